@@ -1,0 +1,122 @@
+"""The energy conditions of SPEC §3 (seed, Theorem 2 restricted to degree ≤ m).
+
+For an order ``N`` and a degree bound ``m`` (None = all Hamiltonians) the conditions
+are the non-superfluous free trees ``t̄`` with ``3 <= |t̄| <= N+1`` and maximum vertex
+degree ``<= m``, one per tree, each
+
+    R(t̄) = Σ_{u ∈ π⁻¹(t̄)} (−1)^κ(t,u) / σ(u) · a(B₋(u))
+
+with ``t`` the rooting at the canonical centre.  A :class:`ConditionTable` holds the
+conditions as pure combinatorics (no numbers): each term is a sign, ``σ(u)`` and the
+ids of the trees of ``B₋(u)``, so that every backend evaluates them from one shared
+table of elementary weights ``a(t)``.  Tables are built once per ``(N, m)`` and
+process (:func:`condition_table`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property, lru_cache
+from math import lcm
+
+from .freetrees import FreeTree, FreeTreeGenerator, table_for
+from .trees import RootedTreeTable, bracket_of_forest, level_sequence_of_forest, sigma_of_forest
+
+
+@dataclass(frozen=True, slots=True)
+class Term:
+    """One rooting ``u`` of a condition: ``sign/σ(u) · Π_{t ∈ B₋(u)} a(t)``."""
+
+    sign: int
+    sigma: int
+    branches: tuple[int, ...]  # table ids of B₋(u)
+
+
+@dataclass(frozen=True)
+class EnergyCondition:
+    """The condition of one non-superfluous free tree (terms: designated rooting first)."""
+
+    index: int
+    vertices: int
+    max_degree: int
+    terms: tuple[Term, ...]
+    table: RootedTreeTable
+
+    @property
+    def order(self) -> int:
+        """The energy order this condition belongs to: ``|t̄| - 1``."""
+        return self.vertices - 1
+
+    @cached_property
+    def level_sequence(self) -> tuple[int, ...]:
+        """Canonical id (SPEC §3): level sequence of the rooting at the canonical centre."""
+        return self.term_level_sequence(self.terms[0])
+
+    @property
+    def id(self) -> str:
+        return ",".join(map(str, self.level_sequence))
+
+    @property
+    def bracket(self) -> str:
+        return self.term_bracket(self.terms[0])
+
+    @cached_property
+    def denominator(self) -> int:
+        """lcm of the σ(u): ``R · denominator`` has integer coefficients."""
+        return lcm(*(t.sigma for t in self.terms))
+
+    def term_level_sequence(self, term: Term) -> tuple[int, ...]:
+        return level_sequence_of_forest([self.table.level_sequence(b) for b in term.branches])
+
+    def term_bracket(self, term: Term) -> str:
+        return bracket_of_forest([self.table.level_sequence(b) for b in term.branches])
+
+
+def condition_from_free_tree(index: int, tree: FreeTree, table: RootedTreeTable) -> EnergyCondition:
+    terms = tuple(
+        Term(-1 if parity else 1, sigma_of_forest(branches, table), branches)
+        for branches, parity in tree.rootings
+    )
+    return EnergyCondition(index, tree.vertices, tree.max_degree, terms, table)
+
+
+class ConditionTable:
+    """All energy conditions up to order ``N`` for degree ``<= m``, in a fixed order:
+    by number of vertices, then in generation order (deterministic)."""
+
+    def __init__(self, order: int, degree: int | None):
+        if order < 1:
+            raise ValueError("order must be at least 1")
+        if degree is not None and degree < 1:
+            raise ValueError("degree must be at least 1")
+        self.order = order
+        self.degree = degree
+        self.trees = table_for(order, degree)
+        self.generator = FreeTreeGenerator(self.trees, degree)
+        conditions: list[EnergyCondition] = []
+        for n in range(3, order + 2):
+            if degree is not None and degree < 2:
+                break  # m = 1: every tree with 3 vertices has a vertex of degree 2
+            for tree in self.generator.free_trees(n):
+                conditions.append(condition_from_free_tree(len(conditions), tree, self.trees))
+        self.conditions = conditions
+
+    def __len__(self) -> int:
+        return len(self.conditions)
+
+    def counts_by_order(self) -> dict[int, int]:
+        counts = {k: 0 for k in range(2, self.order + 1)}
+        for c in self.conditions:
+            counts[c.order] += 1
+        return counts
+
+    def condition_for_level_sequence(self, seq: tuple[int, ...]) -> EnergyCondition:
+        """The condition of the free tree underlying ``seq`` (any rooting of it)."""
+        tree = self.generator.from_level_sequence(seq)
+        return condition_from_free_tree(-1, tree, self.trees)
+
+
+@lru_cache(maxsize=8)
+def condition_table(order: int, degree: int | None) -> ConditionTable:
+    """The shared, cached :class:`ConditionTable` for ``(order, degree)``."""
+    return ConditionTable(order, degree)
