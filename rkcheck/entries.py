@@ -1,0 +1,174 @@
+"""The number model: what a tableau entry *is* (SPEC §5).
+
+An :class:`Entry` keeps exactly what the file said (its text and parsed expression) and
+knows three facts about it:
+
+* its exact rational value at face value, when it has one (integers, fractions,
+  decimal literals, and roots of rational squares);
+* whether it involves a square root of a non-square (then it is algebraic and is
+  evaluated by outward-rounded interval arithmetic at the working precision);
+* whether it contains a *rounded* decimal literal (SPEC §5: "some number within half a
+  unit of its last digit"; see :data:`rkcheck.expr.ROUNDED_MIN_DIGITS`).
+
+Named constants (the ``[constants]`` table) are shared by all entries of one tableau
+through a :class:`Constants` table, so ``r3 = "sqrt(3)"`` is evaluated once per
+precision, however often it is used.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Mapping
+
+from . import expr as ex
+from .errors import UserError
+from .intervals import Interval
+
+#: Decimals modes of SPEC §5: 'rounded' (default) or 'exact' (face value).
+DECIMALS_MODES = ("rounded", "exact")
+
+
+class Constants:
+    """The ``[constants]`` table of one tableau: name -> expression, resolved lazily.
+
+    Constants may use other constants in any order; unknown names and cycles are
+    reported at construction, naming the constant (``constants.r5: unknown name 'q'``).
+    """
+
+    def __init__(self, definitions: Mapping[str, ex.Expr] | None = None):
+        self.definitions: dict[str, ex.Expr] = dict(definitions or {})
+        self._order = self._topological_order()
+        self._exact: dict[str, Fraction | None] | None = None
+        self._enclosures: dict[tuple[int, bool], dict[str, Interval]] = {}
+        self._rounded: dict[str, bool] = {}
+        for name in self._order:
+            node = self.definitions[name]
+            used = {n.name for n in ex.names(node)}
+            self._rounded[name] = any(lit.is_rounded_decimal for lit in ex.literals(node)) or any(
+                self._rounded[u] for u in used
+            )
+
+    def _topological_order(self) -> list[str]:
+        order: list[str] = []
+        state: dict[str, int] = {}  # 1 = visiting, 2 = done
+
+        def visit(name: str, chain: list[str]) -> None:
+            if state.get(name) == 2:
+                return
+            if state.get(name) == 1:
+                cycle = " -> ".join(chain[chain.index(name):] + [name])
+                raise UserError(f"constants refer to each other in a cycle: {cycle}", f"constants.{chain[0]}")
+            state[name] = 1
+            for used in ex.names(self.definitions[name]):
+                if used.name not in self.definitions:
+                    raise UserError(
+                        f"unknown name {used.name!r} at column {used.column}", f"constants.{name}"
+                    )
+                visit(used.name, chain + [used.name])
+            state[name] = 2
+            order.append(name)
+
+        for name in self.definitions:
+            visit(name, [name])
+        return order
+
+    def check_names(self, node: ex.Expr) -> None:
+        """Raise for a name in ``node`` that is not a constant of this table."""
+        for used in ex.names(node):
+            if used.name not in self.definitions:
+                known = ", ".join(sorted(self.definitions)) or "none defined"
+                raise UserError(f"unknown constant {used.name!r} at column {used.column} (constants: {known})")
+
+    def exact_values(self) -> dict[str, Fraction | None]:
+        if self._exact is None:
+            values: dict[str, Fraction | None] = {}
+            for name in self._order:
+                try:
+                    values[name] = ex.evaluate_exact(self.definitions[name], values)
+                except UserError as err:
+                    raise err.located(f"constants.{name}") from None
+            self._exact = values
+        return self._exact
+
+    def enclosures(self, bits: int, rounded: bool) -> dict[str, Interval]:
+        key = (bits, rounded)
+        if key not in self._enclosures:
+            values: dict[str, Interval] = {}
+            for name in self._order:
+                try:
+                    values[name] = ex.enclose(self.definitions[name], bits, rounded, values)
+                except UserError as err:
+                    raise err.located(f"constants.{name}") from None
+            self._enclosures[key] = values
+        return self._enclosures[key]
+
+    def is_rounded(self, name: str) -> bool:
+        return self._rounded[name]
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One coefficient of a tableau, as written, with its exact value when it has one."""
+
+    text: str
+    node: ex.Expr = field(repr=False, compare=False)
+    constants: Constants = field(repr=False, compare=False)
+    exact: Fraction | None
+    uses_sqrt: bool
+    rounded_digits: int | None  # fewest significant digits among its rounded decimal literals
+    bare_number: bool = False  # written as a bare TOML/JSON number, not a string
+
+    @staticmethod
+    def parse(text: str, constants: Constants | None = None, bare_number: bool = False) -> "Entry":
+        """Parse an entry; raises :class:`UserError` with the column of the problem."""
+        constants = constants or Constants()
+        node = ex.parse(text)
+        constants.check_names(node)
+        used = {n.name for n in ex.names(node)}
+        rounded = [lit.digits for lit in ex.literals(node) if lit.is_rounded_decimal]
+        via_constant = [u for u in used if constants.is_rounded(u)]
+        rounded_digits = min(rounded) if rounded else None
+        if via_constant and rounded_digits is None:
+            rounded_digits = min(
+                lit.digits
+                for u in via_constant
+                for lit in ex.literals(constants.definitions[u])
+                if lit.is_rounded_decimal
+            )
+        exact = ex.evaluate_exact(node, constants.exact_values())
+        # sqrt of a non-square is the only source of irrationals: an entry without an
+        # exact value is algebraic; sqrt(9/4) stays rational.
+        return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number)
+
+    @staticmethod
+    def of(value: Fraction | int) -> "Entry":
+        """An exact entry from a rational number (used by generators and tests)."""
+        value = Fraction(value)
+        text = str(value)
+        return Entry.parse(text)
+
+    @property
+    def is_rational(self) -> bool:
+        return self.exact is not None
+
+    @property
+    def is_rounded(self) -> bool:
+        return self.rounded_digits is not None
+
+    def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
+        """A rigorous enclosure at ``bits`` bits under the decimals mode of SPEC §5."""
+        rounded = decimals == "rounded"
+        if self.exact is not None and not (rounded and self.is_rounded):
+            return Interval.point(self.exact)
+        return ex.enclose(self.node, bits, rounded, self.constants.enclosures(bits, rounded))
+
+    def is_zero(self) -> bool:
+        """Certainly zero at face value (used for the explicit/implicit structure)."""
+        return self.exact == 0
+
+    def exact_string(self) -> str:
+        """The exact value as ``p/q`` when rational, else the expression as written."""
+        if self.exact is not None:
+            return str(self.exact)
+        return self.text

@@ -1,0 +1,505 @@
+"""The entry grammar: a small recursive-descent parser of arithmetic expressions (SPEC §5).
+
+File content never reaches ``eval``/``exec``: entries are tokenised and parsed here into
+a tiny AST that only knows numbers, named constants, ``+ - * / ^ **``, unary signs,
+parentheses and ``sqrt(...)``.  Grammar (``^`` and ``**`` are the same operator, right
+associative, binding tighter than unary minus, so ``-2^2 = -4`` and ``2^-1 = 1/2``)::
+
+    expr   := term  (('+' | '-') term)*
+    term   := unary (('*' | '/') unary)*
+    unary  := ('+' | '-') unary | power
+    power  := atom (('^' | '**') unary)?
+    atom   := NUMBER | NAME | 'sqrt' '(' expr ')' | '(' expr ')'
+
+Numbers are integers, decimals (``0.25``, ``.5``, ``2.``) and scientific notation
+(``1.5e-3``).  A decimal literal keeps the number of significant digits it was
+written with, which SPEC §5 uses as its precision.
+
+Hostile input is refused early and cheaply: entries longer than
+:data:`MAX_ENTRY_LENGTH` characters, nesting deeper than :data:`MAX_DEPTH`, exponents
+outside ``±MAX_EXPONENT`` and powers whose exact result would exceed
+:data:`MAX_BITS` bits.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Mapping
+
+from .errors import UserError
+from .intervals import Interval, exact_sqrt
+
+MAX_ENTRY_LENGTH = 20_000
+MAX_DEPTH = 100
+MAX_EXPONENT = 1000
+MAX_DECIMAL_EXPONENT = 1000
+MAX_BITS = 200_000
+
+#: A decimal literal with at least this many significant digits is, by default, read as
+#: "rounded to its last digit" (SPEC §5).  Shorter decimals such as 0.5, 0.25 or 0.125
+#: are read exactly: see README "Decimals" for why (a literal reading of SPEC would make
+#: ``0.5`` mean [0.45, 0.55]).
+ROUNDED_MIN_DIGITS = 6
+
+_NUMBER = re.compile(r"(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+FUNCTIONS = ("sqrt",)
+
+
+# --------------------------------------------------------------------------- AST
+
+
+@dataclass(frozen=True, slots=True)
+class Num:
+    """A literal.  ``digits`` = significant digits of a decimal literal, None for integers."""
+
+    value: Fraction
+    text: str
+    digits: int | None
+    last_digit_exponent: int  # the written number is an integer multiple of 10**this
+
+    @property
+    def is_rounded_decimal(self) -> bool:
+        return self.digits is not None and self.digits >= ROUNDED_MIN_DIGITS
+
+    @property
+    def half_unit(self) -> Fraction:
+        """Half a unit in the last written digit: the rounding radius of SPEC §5."""
+        return Fraction(1, 2) * Fraction(10) ** self.last_digit_exponent
+
+
+@dataclass(frozen=True, slots=True)
+class Name:
+    name: str
+    column: int
+
+
+@dataclass(frozen=True, slots=True)
+class Unary:
+    op: str  # '-' only; unary '+' is dropped by the parser
+    operand: "Expr"
+
+
+@dataclass(frozen=True, slots=True)
+class Binary:
+    op: str  # '+', '-', '*', '/'
+    left: "Expr"
+    right: "Expr"
+    column: int
+
+
+@dataclass(frozen=True, slots=True)
+class Power:
+    base: "Expr"
+    exponent: "Expr"
+    column: int
+
+
+@dataclass(frozen=True, slots=True)
+class Call:
+    func: str
+    arg: "Expr"
+    column: int
+
+
+Expr = Num | Name | Unary | Binary | Power | Call
+
+
+# ----------------------------------------------------------------------- tokens
+
+
+@dataclass(frozen=True, slots=True)
+class _Token:
+    kind: str  # 'num', 'name', 'op', '(', ')', 'end'
+    text: str
+    column: int  # 1-based
+
+
+def _tokenize(text: str) -> list[_Token]:
+    tokens: list[_Token] = []
+    i, n = 0, len(text)
+    depth = 0
+    while i < n:
+        ch = text[i]
+        col = i + 1
+        if ch.isspace():
+            i += 1
+            continue
+        if ch.isdigit() or (ch == "." and i + 1 < n and text[i + 1].isdigit()):
+            m = _NUMBER.match(text, i)
+            assert m is not None
+            tokens.append(_Token("num", m.group(0), col))
+            i = m.end()
+            continue
+        if ch.isalpha() or ch == "_":
+            m = _NAME.match(text, i)
+            assert m is not None
+            tokens.append(_Token("name", m.group(0), col))
+            i = m.end()
+            continue
+        if text.startswith("**", i):
+            tokens.append(_Token("op", "^", col))
+            i += 2
+            continue
+        if ch in "+-*/^":
+            tokens.append(_Token("op", ch, col))
+            i += 1
+            continue
+        if ch == "(":
+            depth += 1
+            if depth > MAX_DEPTH:
+                raise UserError(f"parentheses nested deeper than {MAX_DEPTH} at column {col}")
+            tokens.append(_Token("(", ch, col))
+            i += 1
+            continue
+        if ch == ")":
+            depth -= 1
+            tokens.append(_Token(")", ch, col))
+            i += 1
+            continue
+        raise UserError(f"unexpected character {ch!r} at column {col}")
+    tokens.append(_Token("end", "", n + 1))
+    return tokens
+
+
+# ----------------------------------------------------------------------- parser
+
+
+class _Parser:
+    def __init__(self, text: str):
+        self.text = text
+        self.tokens = _tokenize(text)
+        self.pos = 0
+        self.depth = 0
+
+    def peek(self) -> _Token:
+        return self.tokens[self.pos]
+
+    def take(self) -> _Token:
+        tok = self.tokens[self.pos]
+        self.pos += 1
+        return tok
+
+    def fail(self, tok: _Token) -> UserError:
+        if tok.kind == "end":
+            return UserError(f"unexpected end of expression at column {tok.column}")
+        return UserError(f"unexpected {tok.text!r} at column {tok.column}")
+
+    def descend(self, tok: _Token) -> None:
+        # Unary chains ('- - - 1') nest without parentheses; bound them too.
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise UserError(f"expression nested deeper than {MAX_DEPTH} at column {tok.column}")
+
+    def parse(self) -> Expr:
+        if self.peek().kind == "end":
+            raise UserError("empty expression")
+        node = self.expr()
+        tok = self.peek()
+        if tok.kind != "end":
+            raise self.fail(tok)
+        return node
+
+    def expr(self) -> Expr:
+        node = self.term()
+        while self.peek().kind == "op" and self.peek().text in "+-":
+            tok = self.take()
+            node = Binary(tok.text, node, self.term(), tok.column)
+        return node
+
+    def term(self) -> Expr:
+        node = self.unary()
+        while self.peek().kind == "op" and self.peek().text in "*/":
+            tok = self.take()
+            node = Binary(tok.text, node, self.unary(), tok.column)
+        return node
+
+    def unary(self) -> Expr:
+        tok = self.peek()
+        if tok.kind == "op" and tok.text in "+-":
+            self.take()
+            self.descend(tok)
+            operand = self.unary()
+            self.depth -= 1
+            return operand if tok.text == "+" else Unary("-", operand)
+        return self.power()
+
+    def power(self) -> Expr:
+        base = self.atom()
+        tok = self.peek()
+        if tok.kind == "op" and tok.text == "^":
+            self.take()
+            self.descend(tok)
+            exponent = self.unary()
+            self.depth -= 1
+            return Power(base, exponent, tok.column)
+        return base
+
+    def atom(self) -> Expr:
+        tok = self.take()
+        if tok.kind == "num":
+            return _number(tok)
+        if tok.kind == "name":
+            if self.peek().kind == "(":
+                if tok.text not in FUNCTIONS:
+                    raise UserError(f"unknown function {tok.text!r} at column {tok.column} (only sqrt)")
+                self.take()
+                arg = self.expr()
+                close = self.take()
+                if close.kind != ")":
+                    raise self.fail(close)
+                return Call(tok.text, arg, tok.column)
+            if tok.text in FUNCTIONS:
+                raise UserError(f"{tok.text} needs parentheses at column {tok.column}")
+            return Name(tok.text, tok.column)
+        if tok.kind == "(":
+            node = self.expr()
+            close = self.take()
+            if close.kind != ")":
+                raise self.fail(close)
+            return node
+        raise self.fail(tok)
+
+
+def _number(tok: _Token) -> Num:
+    m = _NUMBER.fullmatch(tok.text)
+    assert m is not None
+    mantissa, exp_part = m.group(1), m.group(2)
+    exp10 = 0
+    if exp_part:
+        exp10 = int(exp_part[1:])
+        if abs(exp10) > MAX_DECIMAL_EXPONENT:
+            raise UserError(
+                f"exponent {exp10} of {tok.text!r} is out of range (|e| <= {MAX_DECIMAL_EXPONENT}) "
+                f"at column {tok.column}"
+            )
+    if "." in mantissa:
+        whole, frac = mantissa.split(".")
+    else:
+        whole, frac = mantissa, ""
+    digits_str = (whole + frac).lstrip("0")
+    value = Fraction(int(whole + frac or "0")) * Fraction(10) ** (exp10 - len(frac))
+    is_decimal = "." in mantissa or exp_part is not None
+    if not is_decimal:
+        return Num(value, tok.text, None, 0)
+    # A written zero (0.000) carries no significant digits: it is exact.
+    digits = len(digits_str) if digits_str else None
+    return Num(value, tok.text, digits, exp10 - len(frac))
+
+
+def parse(text: str) -> Expr:
+    """Parse one entry.  Raises :class:`UserError` with the column of the problem."""
+    if len(text) > MAX_ENTRY_LENGTH:
+        raise UserError(f"entry too long ({len(text):,} characters; the limit is {MAX_ENTRY_LENGTH:,})")
+    return _Parser(text).parse()
+
+
+# ------------------------------------------------------------------- traversals
+
+
+def names(node: Expr) -> list[Name]:
+    """All names used in ``node`` (with repetition), left to right."""
+    out: list[Name] = []
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, Name):
+            out.append(n)
+        elif isinstance(n, Unary):
+            stack.append(n.operand)
+        elif isinstance(n, Call):
+            stack.append(n.arg)
+        elif isinstance(n, Binary):
+            stack.extend((n.right, n.left))
+        elif isinstance(n, Power):
+            stack.extend((n.exponent, n.base))
+    return out
+
+
+def literals(node: Expr) -> list[Num]:
+    """All number literals in ``node``."""
+    out: list[Num] = []
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, Num):
+            out.append(n)
+        elif isinstance(n, Unary):
+            stack.append(n.operand)
+        elif isinstance(n, Call):
+            stack.append(n.arg)
+        elif isinstance(n, Binary):
+            stack.extend((n.right, n.left))
+        elif isinstance(n, Power):
+            stack.extend((n.exponent, n.base))
+    return out
+
+
+def has_sqrt(node: Expr) -> bool:
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, Call):
+            return True
+        if isinstance(n, Unary):
+            stack.append(n.operand)
+        elif isinstance(n, Binary):
+            stack.extend((n.right, n.left))
+        elif isinstance(n, Power):
+            stack.extend((n.exponent, n.base))
+    return False
+
+
+# ------------------------------------------------------------------- evaluation
+
+
+def _check_exponent(value: Fraction, column: int) -> int:
+    if value.denominator != 1:
+        raise UserError(f"exponent {value} at column {column} is not an integer")
+    if abs(value) > MAX_EXPONENT:
+        raise UserError(f"exponent {value} at column {column} is out of range (|n| <= {MAX_EXPONENT})")
+    return int(value)
+
+
+def _check_size(base: Fraction, n: int, column: int) -> None:
+    bits = (base.numerator.bit_length() + base.denominator.bit_length()) * abs(n)
+    if bits > MAX_BITS:
+        raise UserError(f"power at column {column} is too large (about {bits:,} bits)")
+
+
+def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Fraction | None:
+    """The exact rational value of ``node`` at face value, or None when it is irrational.
+
+    ``constants`` maps names to their exact values (None = irrational).  Square roots of
+    rational squares are exact (``sqrt(9/4) = 3/2``).  Raises :class:`UserError` for a
+    division by zero or the root of a negative number.
+    """
+    if isinstance(node, Num):
+        return node.value
+    if isinstance(node, Name):
+        return constants[node.name]
+    if isinstance(node, Unary):
+        v = evaluate_exact(node.operand, constants)
+        return None if v is None else -v
+    if isinstance(node, Call):
+        v = evaluate_exact(node.arg, constants)
+        if v is None:
+            return None
+        if v < 0:
+            raise UserError(f"square root of a negative number ({v}) at column {node.column}")
+        return exact_sqrt(v)
+    if isinstance(node, Power):
+        e = evaluate_exact(node.exponent, constants)
+        if e is None:
+            raise UserError(f"exponent at column {node.column} is not an integer")
+        n = _check_exponent(e, node.column)
+        b = evaluate_exact(node.base, constants)
+        if b is None:
+            return None
+        if b == 0 and n < 0:
+            raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
+        _check_size(b, n, node.column)
+        return b**n
+    assert isinstance(node, Binary)
+    left = evaluate_exact(node.left, constants)
+    right = evaluate_exact(node.right, constants)
+    if node.op == "/" and right == 0:
+        raise UserError(f"division by zero at column {node.column}")
+    if left is None or right is None:
+        return None
+    if node.op == "+":
+        return left + right
+    if node.op == "-":
+        return left - right
+    if node.op == "*":
+        return left * right
+    return left / right
+
+
+def enclose(
+    node: Expr,
+    bits: int,
+    rounded: bool,
+    constants: Mapping[str, Interval],
+) -> Interval:
+    """A rigorous enclosure of ``node`` (SPEC §5).
+
+    ``rounded``: read decimal literals with at least :data:`ROUNDED_MIN_DIGITS`
+    significant digits as "within half a unit of the last digit"; otherwise every
+    literal is exact.  Square roots of non-squares are rounded outwards to ``bits``
+    bits.  ``constants`` maps names to their enclosures.
+    """
+    if isinstance(node, Num):
+        if rounded and node.is_rounded_decimal:
+            h = node.half_unit
+            return Interval(node.value - h, node.value + h)
+        return Interval.point(node.value)
+    if isinstance(node, Name):
+        return constants[node.name]
+    if isinstance(node, Unary):
+        return -enclose(node.operand, bits, rounded, constants)
+    if isinstance(node, Call):
+        v = enclose(node.arg, bits, rounded, constants)
+        if v.hi < 0:
+            raise UserError(f"square root of a negative number at column {node.column}")
+        if v.lo < 0:
+            raise UserError(
+                f"square root at column {node.column}: the argument cannot be shown to be >= 0 "
+                f"(it lies in [{float(v.lo):.3g}, {float(v.hi):.3g}])"
+            )
+        return v.sqrt(bits)
+    if isinstance(node, Power):
+        e = enclose(node.exponent, bits, rounded, constants)
+        if not e.is_point:
+            raise UserError(f"exponent at column {node.column} is not an exact integer")
+        n = _check_exponent(e.lo, node.column)
+        b = enclose(node.base, bits, rounded, constants)
+        if n < 0 and b.contains_zero():
+            raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
+        _check_size(max(abs(b.lo), abs(b.hi)) or Fraction(1), n, node.column)
+        return b.power(n)
+    assert isinstance(node, Binary)
+    left = enclose(node.left, bits, rounded, constants)
+    right = enclose(node.right, bits, rounded, constants)
+    if node.op == "+":
+        return left + right
+    if node.op == "-":
+        return left - right
+    if node.op == "*":
+        return left * right
+    if right.contains_zero():
+        if right.is_point:
+            raise UserError(f"division by zero at column {node.column}")
+        raise UserError(
+            f"division at column {node.column}: the divisor cannot be shown to be nonzero"
+        )
+    return left / right
+
+
+def to_text(node: Expr) -> str:
+    """A canonical, fully parenthesised-where-needed rendering (used for constants inlined in output)."""
+    prec = {"+": 1, "-": 1, "*": 2, "/": 2}
+
+    def go(n: Expr, parent: int) -> str:
+        if isinstance(n, Num):
+            return n.text
+        if isinstance(n, Name):
+            return n.name
+        if isinstance(n, Call):
+            return f"{n.func}({go(n.arg, 0)})"
+        if isinstance(n, Unary):
+            s = "-" + go(n.operand, 3)
+            return f"({s})" if parent >= 3 else s
+        if isinstance(n, Power):
+            s = f"{go(n.base, 4)}^{go(n.exponent, 3)}"
+            return f"({s})" if parent >= 4 else s
+        assert isinstance(n, Binary)
+        p = prec[n.op]
+        right_parent = p + 1 if n.op in "-/" else p
+        s = f"{go(n.left, p)} {n.op} {go(n.right, right_parent)}" if p == 1 else f"{go(n.left, p)}{n.op}{go(n.right, right_parent)}"
+        return f"({s})" if parent > p else s
+
+    return go(node, 0)
+

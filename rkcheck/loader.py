@@ -1,0 +1,351 @@
+"""Tableau files (TOML or JSON, same structure) -> :class:`~rkcheck.tableau.Tableau`.
+
+This is the only module of the core that reads files.  Every problem becomes a
+:class:`~rkcheck.errors.UserError` naming the file and the place, 1-based like the
+coefficients ``a_ij`` (``A[2][3]: unexpected ')' at column 7``).  File content is
+parsed by :mod:`rkcheck.expr`, never evaluated by Python.
+
+Bare TOML/JSON floats are read digit for digit (the parser hands us their text, not a
+binary64 double), with a warning because other tools will read them as doubles.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+import tomllib
+from pathlib import Path
+from typing import Any, Callable
+
+from . import expr as ex
+from .entries import Constants, Entry
+from .errors import UserError
+from .tableau import Tableau
+
+DEFAULT_MAX_STAGES = 64
+MAX_FILE_BYTES = 16 * 1024 * 1024
+KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
+CHECK_KEYS = ("degree", "order", "dps", "decimals")
+
+
+class BareFloat(str):
+    """The text of a bare TOML/JSON float, kept digit for digit."""
+
+
+def _bare_float(text: str) -> BareFloat:
+    return BareFloat(text.replace("_", ""))
+
+
+def _reject_constant(text: str) -> Any:
+    raise ValueError(f"{text} is not a finite number")
+
+
+# ------------------------------------------------------------------ reading
+
+
+def read_text(path: str) -> str:
+    """Read a file (``-`` = standard input) as UTF-8, as a UserError on failure."""
+    if path == "-":
+        return sys.stdin.read()
+    p = Path(path)
+    try:
+        if p.is_dir():
+            raise UserError("is a directory, not a tableau file", source=path)
+        size = p.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise UserError(f"file too large ({size:,} bytes; limit {MAX_FILE_BYTES:,})", source=path)
+        return p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise UserError("no such file", source=path) from None
+    except PermissionError:
+        raise UserError("permission denied", source=path) from None
+    except UnicodeDecodeError as err:
+        raise UserError(f"not UTF-8 text (byte {err.start})", source=path) from None
+    except OSError as err:
+        raise UserError(f"cannot read: {err.strerror}", source=path) from None
+
+
+def detect_format(path: str, text: str) -> str:
+    suffix = Path(path).suffix.lower()
+    if suffix in (".toml", ".json"):
+        return suffix[1:]
+    return "json" if text.lstrip().startswith("{") else "toml"
+
+
+def parse_document(text: str, fmt: str) -> dict[str, Any]:
+    """TOML or JSON text -> dict, syntax errors as UserError with their line."""
+    try:
+        if fmt == "json":
+            data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant)
+        else:
+            data = tomllib.loads(text, parse_float=_bare_float)
+    except tomllib.TOMLDecodeError as err:
+        msg = str(err)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        if m:
+            msg = msg[: m.start()].strip()
+            raise UserError(f"TOML syntax error: {msg}", f"line {m.group(1)}, column {m.group(2)}") from None
+        raise UserError(f"TOML syntax error: {msg}") from None
+    except json.JSONDecodeError as err:
+        raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
+    except ValueError as err:  # NaN/Infinity in JSON
+        raise UserError(f"JSON: {err}") from None
+    except RecursionError:
+        raise UserError("nesting too deep") from None
+    if not isinstance(data, dict):
+        raise UserError("the top level must be a table/object")
+    return data
+
+
+def locate_lines(text: str, fmt: str) -> dict[str, int]:
+    """Line numbers (1-based) of the tables and their keys, for annotations.
+
+    Keys are ``"tableau"``, ``"expect"``, ``"expect.energy_order"``, ...  A best effort
+    on the raw text; a missing key simply has no line.
+    """
+    lines: dict[str, int] = {}
+    if fmt == "toml":
+        table = ""
+        for no, line in enumerate(text.splitlines(), start=1):
+            m = re.match(r"\s*\[\s*([A-Za-z0-9_.\-]+)\s*\]", line)
+            if m:
+                table = m.group(1)
+                lines.setdefault(table, no)
+                continue
+            m = re.match(r"\s*([A-Za-z0-9_\-]+|\"[^\"]+\")\s*=", line)
+            if m:
+                key = m.group(1).strip('"')
+                lines.setdefault(f"{table}.{key}" if table else key, no)
+    else:
+        stack: list[str] = []
+        for no, line in enumerate(text.splitlines(), start=1):
+            for m in re.finditer(r"\"([^\"]+)\"\s*:", line):
+                key = m.group(1)
+                if key in KNOWN_TABLES:
+                    stack = [key]
+                    lines.setdefault(key, no)
+                elif stack:
+                    lines.setdefault(f"{stack[0]}.{key}", no)
+    return lines
+
+
+# ------------------------------------------------------------------ validation
+
+
+def _table(data: dict[str, Any], name: str, required: bool = False) -> dict[str, Any]:
+    value = data.get(name)
+    if value is None:
+        if required:
+            raise UserError(f"missing [{name}] table")
+        return {}
+    if not isinstance(value, dict):
+        raise UserError(f"[{name}] must be a table, not {_kind(value)}", name)
+    return value
+
+
+def _kind(value: Any) -> str:
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, (int, BareFloat)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    return type(value).__name__
+
+
+def _entry_text(value: Any, place: str) -> tuple[str, bool]:
+    """The text of an entry and whether it was a bare number."""
+    if isinstance(value, bool) or not isinstance(value, (int, str)):
+        raise UserError(f"expected a number or a string, got {_kind(value)}", place)
+    if isinstance(value, BareFloat):
+        if value.lower().lstrip("+-") in ("inf", "nan"):
+            raise UserError(f"{value} is not a finite number", place)
+        return str(value), True
+    if isinstance(value, int):
+        return str(value), True
+    return value, False
+
+
+def _parse_entry(value: Any, place: str, constants: Constants) -> Entry:
+    text, bare = _entry_text(value, place)
+    try:
+        return Entry.parse(text, constants, bare_number=bare)
+    except UserError as err:
+        raise err.located(place) from None
+
+
+def _vector(value: Any, name: str, s: int, constants: Constants) -> tuple[Entry, ...]:
+    if not isinstance(value, list):
+        raise UserError(f"expected a list of {s} entries, got {_kind(value)}", name)
+    if len(value) != s:
+        raise UserError(f"has {len(value)} entries, expected {s} (one per stage)", name)
+    return tuple(_parse_entry(x, f"{name}[{i}]", constants) for i, x in enumerate(value, start=1))
+
+
+def _constants(table: dict[str, Any]) -> Constants:
+    defs: dict[str, ex.Expr] = {}
+    for name, value in table.items():
+        place = f"constants.{name}"
+        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name) or name in ex.FUNCTIONS:
+            raise UserError("a constant's name must be an identifier (letters, digits, _) other than sqrt", place)
+        text, _ = _entry_text(value, place)
+        try:
+            defs[name] = ex.parse(text)
+        except UserError as err:
+            raise err.located(place) from None
+    constants = Constants(defs)
+    constants.exact_values()  # report a broken constant at its own place, used or not
+    return constants
+
+
+def _check_table(table: dict[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        place = f"check.{key}"
+        if key == "degree":
+            if value in ("none", "all", None):
+                out[key] = None
+            elif isinstance(value, int) and not isinstance(value, bool) and value >= 1:
+                out[key] = value
+            else:
+                raise UserError(f"expected a positive integer or 'none', got {value!r}", place)
+        elif key in ("order", "dps"):
+            if not (isinstance(value, int) and not isinstance(value, bool) and value >= 1):
+                raise UserError(f"expected a positive integer, got {value!r}", place)
+            out[key] = value
+        elif key == "decimals":
+            if value not in ("rounded", "exact"):
+                raise UserError(f"expected 'rounded' or 'exact', got {value!r}", place)
+            out[key] = value
+        else:
+            raise UserError(f"unknown key (known: {', '.join(CHECK_KEYS)})", place)
+    return out
+
+
+def _strings(value: Any, place: str) -> tuple[str, ...]:
+    if isinstance(value, str):
+        return (value,)
+    if isinstance(value, list) and all(isinstance(x, str) for x in value):
+        return tuple(value)
+    raise UserError("expected a string or a list of strings", place)
+
+
+def build_tableau(
+    data: dict[str, Any],
+    source: str,
+    max_stages: int = DEFAULT_MAX_STAGES,
+    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
+) -> Tableau:
+    """Validate a parsed document and build the tableau (errors carry the source)."""
+    try:
+        return _build(data, source, max_stages, family_builder)
+    except UserError as err:
+        raise err.located(source=source) from None
+
+
+def _build(
+    data: dict[str, Any],
+    source: str,
+    max_stages: int,
+    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None,
+) -> Tableau:
+    warnings: list[str] = []
+    for key in data:
+        if key not in KNOWN_TABLES:
+            warnings.append(f"unknown table [{key}] ignored (known: {', '.join(KNOWN_TABLES)})")
+    method = _table(data, "method")
+    name = method.get("name", Path(source).stem if source != "-" else "stdin")
+    if not isinstance(name, str):
+        raise UserError("expected a string", "method.name")
+    description = method.get("description", "")
+    if not isinstance(description, str):
+        raise UserError("expected a string", "method.description")
+    references = _strings(method.get("references", []), "method.references") if "references" in method else ()
+    check = _check_table(_table(data, "check"))
+    expect = _table(data, "expect")
+    base = dict(
+        name=name, description=description, references=references, source=source,
+        check=check, expect=expect, warnings=warnings,
+    )
+
+    if "family" in data and "tableau" in data:
+        raise UserError("give either [tableau] or [family], not both")
+    if "family" in data:
+        family = _table(data, "family")
+        if family_builder is None:
+            raise UserError("[family] tables are not supported here", "family")
+        return family_builder(family, Tableau(A=(), b=(), family=family, **base))
+
+    tab = _table(data, "tableau", required=True)
+    for key in tab:
+        if key not in ("A", "b", "c"):
+            warnings.append(f"unknown key tableau.{key} ignored (known: A, b, c)")
+    constants = _constants(_table(data, "constants"))
+    if "A" not in tab:
+        raise UserError("missing A", "tableau")
+    if "b" not in tab:
+        raise UserError("missing b", "tableau")
+    rows = tab["A"]
+    if not isinstance(rows, list):
+        raise UserError(f"expected a list of rows, got {_kind(rows)}", "A")
+    s = len(rows)
+    if s == 0:
+        raise UserError("the tableau is empty (A has no rows)", "A")
+    if s > max_stages:
+        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages)", "A")
+    for i, row in enumerate(rows, start=1):
+        if not isinstance(row, list):
+            raise UserError(f"expected a row (a list), got {_kind(row)}", f"A[{i}]")
+        if len(row) != s:
+            raise UserError(f"row has {len(row)} entries, expected {s} (A must be square)", f"A[{i}]")
+    A = tuple(
+        tuple(_parse_entry(x, f"A[{i}][{j}]", constants) for j, x in enumerate(row, start=1))
+        for i, row in enumerate(rows, start=1)
+    )
+    b = _vector(tab["b"], "b", s, constants)
+    c = _vector(tab["c"], "c", s, constants) if "c" in tab else None
+    tableau = Tableau(A=A, b=b, c=c, constants=constants, **base)
+    bare = [e for e in tableau.entries() if e.bare_number and isinstance(e.text, str) and _is_float_text(e.text)]
+    if bare:
+        tableau.warnings.append(
+            f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
+            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"
+        )
+    return tableau
+
+
+def _is_float_text(text: str) -> bool:
+    return any(ch in text for ch in ".eE")
+
+
+def loads(
+    text: str,
+    source: str = "<string>",
+    fmt: str | None = None,
+    max_stages: int = DEFAULT_MAX_STAGES,
+    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
+) -> Tableau:
+    """Parse tableau text (TOML or JSON)."""
+    fmt = fmt or detect_format(source, text)
+    try:
+        data = parse_document(text, fmt)
+    except UserError as err:
+        raise err.located(source=source) from None
+    tableau = build_tableau(data, source, max_stages, family_builder)
+    tableau.lines = locate_lines(text, fmt)
+    return tableau
+
+
+def load(
+    path: str,
+    max_stages: int = DEFAULT_MAX_STAGES,
+    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
+) -> Tableau:
+    """Load a tableau file; ``-`` reads standard input."""
+    text = read_text(path)
+    return loads(text, source=path, max_stages=max_stages, family_builder=family_builder)

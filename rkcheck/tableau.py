@@ -1,0 +1,151 @@
+"""The Butcher tableau ``(A, b, c)`` of SPEC §1, as entries of the number model.
+
+A :class:`Tableau` is pure data: no file I/O (that is :mod:`rkcheck.loader`) and no
+B-series (that is :mod:`rkcheck.weights`).  Every B-series quantity uses the row sums
+``A·1``; a given ``c`` is only compared with them (:func:`consistency_warnings`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Sequence
+
+from .entries import Constants, Entry
+from .intervals import Interval
+
+
+@dataclass
+class Tableau:
+    """An s-stage Runge–Kutta method; ``c`` is None when the file left it out."""
+
+    A: tuple[tuple[Entry, ...], ...]
+    b: tuple[Entry, ...]
+    c: tuple[Entry, ...] | None = None
+    name: str = "unnamed tableau"
+    description: str = ""
+    references: tuple[str, ...] = ()
+    source: str = "<memory>"
+    check: dict[str, Any] = field(default_factory=dict)
+    expect: dict[str, Any] = field(default_factory=dict)
+    family: dict[str, Any] | None = None
+    warnings: list[str] = field(default_factory=list)
+    lines: dict[str, int] = field(default_factory=dict)  # "tableau", "expect.avf", ... -> line
+    constants: Constants = field(default_factory=Constants)
+
+    # ------------------------------------------------------------- construction
+
+    @staticmethod
+    def from_values(
+        A: Sequence[Sequence[Fraction | int | str]],
+        b: Sequence[Fraction | int | str],
+        c: Sequence[Fraction | int | str] | None = None,
+        name: str = "unnamed tableau",
+        **kwargs: Any,
+    ) -> "Tableau":
+        """Build a tableau from rationals or entry strings (for generators and tests)."""
+
+        def entry(x: Fraction | int | str) -> Entry:
+            return Entry.parse(x) if isinstance(x, str) else Entry.of(x)
+
+        return Tableau(
+            A=tuple(tuple(entry(x) for x in row) for row in A),
+            b=tuple(entry(x) for x in b),
+            c=None if c is None else tuple(entry(x) for x in c),
+            name=name,
+            **kwargs,
+        )
+
+    # ----------------------------------------------------------------- structure
+
+    @property
+    def stages(self) -> int:
+        return len(self.b)
+
+    def entries(self) -> list[Entry]:
+        out = [e for row in self.A for e in row] + list(self.b)
+        return out + list(self.c or ())
+
+    @property
+    def is_rational(self) -> bool:
+        """Every entry of A and b is an exact rational at face value."""
+        return all(e.is_rational for row in self.A for e in row) and all(e.is_rational for e in self.b)
+
+    @property
+    def uses_sqrt(self) -> bool:
+        return any(e.uses_sqrt for e in self.entries())
+
+    @property
+    def rounded_digits(self) -> int | None:
+        """Fewest significant digits of a rounded decimal in A or b (None: no rounded decimals)."""
+        digits = [e.rounded_digits for row in self.A for e in row if e.is_rounded]
+        digits += [e.rounded_digits for e in self.b if e.is_rounded]
+        return min(digits) if digits else None
+
+    def is_exact(self, decimals: str) -> bool:
+        """True when the check runs in exact rational arithmetic (SPEC §5)."""
+        return self.is_rational and (decimals == "exact" or self.rounded_digits is None)
+
+    @property
+    def structure(self) -> str:
+        """``explicit``, ``diagonally implicit`` or ``implicit`` (by entries that are exactly 0)."""
+        s = self.stages
+        upper_zero = all(self.A[i][j].is_zero() for i in range(s) for j in range(i + 1, s))
+        if not upper_zero:
+            return "implicit"
+        if all(self.A[i][i].is_zero() for i in range(s)):
+            return "explicit"
+        return "diagonally implicit"
+
+    def number_kind(self, decimals: str = "rounded") -> str:
+        if self.uses_sqrt:
+            return "algebraic (square roots)"
+        digits = self.rounded_digits
+        if digits is not None and decimals == "rounded":
+            return f"decimals rounded to their last digit (>= {digits} significant digits)"
+        return "exact rational"
+
+    # ------------------------------------------------------------------- values
+
+    def exact_A(self) -> list[list[Fraction]]:
+        assert self.is_rational
+        return [[e.exact for e in row] for row in self.A]  # type: ignore[misc]
+
+    def exact_b(self) -> list[Fraction]:
+        assert self.is_rational
+        return [e.exact for e in self.b]  # type: ignore[misc]
+
+    def enclosures(self, bits: int, decimals: str) -> tuple[list[list[Interval]], list[Interval]]:
+        """Rigorous enclosures of A and b at ``bits`` bits (SPEC §5)."""
+        A = [[e.enclosure(bits, decimals) for e in row] for row in self.A]
+        b = [e.enclosure(bits, decimals) for e in self.b]
+        return A, b
+
+
+def _sum(xs: Sequence[Interval]) -> Interval:
+    total = Interval.point(0)
+    for x in xs:
+        total = total + x
+    return total
+
+
+def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:
+    """SPEC §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
+
+    A difference is reported only when it is certain (its enclosure excludes 0);
+    differences within the rounding of decimal input are not warnings.
+    """
+    out: list[str] = []
+    A, b = tab.enclosures(bits, decimals)
+    if tab.c is not None:
+        bad = []
+        for i, (row, ci) in enumerate(zip(A, tab.c), start=1):
+            diff = ci.enclosure(bits, decimals) - _sum(row)
+            if not diff.contains_zero():
+                bad.append(f"c[{i}] - (A·1)[{i}] = {float(diff.mid):.3g}")
+        if bad:
+            out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
+    sb = _sum(b)
+    if not (sb - Interval.point(1)).contains_zero():
+        out.append(f"Σb = {float(sb.mid):.17g} ≠ 1: the method is inconsistent (not even order 1)")
+    return out
