@@ -1,0 +1,185 @@
+"""``check(tableau, options)``: every energy condition, the orders, and the AVF verdict.
+
+This is the pure core behind ``rkcheck verify``: it takes a loaded
+:class:`~rkcheck.tableau.Tableau` and returns a :class:`CheckResult` (plain data that the
+reports render).  It does no I/O and knows nothing of the CLI.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from .avf import AvfVerdict, avf_verdict, theorem1_remark
+from .backends import Enclosure, bits_for_dps, make_backend
+from .conditions import ConditionTable, EnergyCondition, condition_table
+from .expr import ROUNDED_MIN_DIGITS
+from .orders import OrderResult, classical_order, quadrature_order
+from .tableau import Tableau, consistency_warnings
+from .verdicts import FAILS, HOLDS_TO_DIGITS, Verdict, classify, combine
+
+DEFAULT_ORDER = 8
+DEFAULT_DPS = 50
+
+
+@dataclass(frozen=True)
+class CheckOptions:
+    degree: int | None = None
+    order: int = DEFAULT_ORDER
+    dps: int = DEFAULT_DPS
+    decimals: str = "rounded"
+    fail_fast: bool = False
+
+
+@dataclass(frozen=True)
+class ConditionResult:
+    condition: EnergyCondition
+    enclosure: Enclosure
+    verdict: Verdict
+
+
+@dataclass(frozen=True)
+class OrderCounts:
+    order: int
+    conditions: int  # how many conditions this order has
+    checked: int
+    held: int
+    failed: int
+    min_digits: int | None  # weakest certified digits among numerically held ones
+
+
+@dataclass
+class CheckResult:
+    tableau: Tableau
+    options: CheckOptions
+    backend: str  # "exact" or "mpmath"
+    results: list[ConditionResult]
+    per_order: list[OrderCounts]
+    energy_order: int
+    energy_order_all: bool  # certified for every order by the AVF verdict
+    quadrature: OrderResult
+    classical: OrderResult
+    avf: AvfVerdict | None
+    theorem1: str | None
+    warnings: list[str]
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def failures(self) -> list[ConditionResult]:
+        return [r for r in self.results if r.verdict.state == FAILS]
+
+    @property
+    def all_hold(self) -> bool:
+        return not self.failures
+
+    @property
+    def first_failure(self) -> ConditionResult | None:
+        fails = self.failures
+        return fails[0] if fails else None
+
+    @property
+    def min_digits(self) -> int | None:
+        digits = [r.verdict.digits for r in self.results if r.verdict.state == HOLDS_TO_DIGITS]
+        return min(digits) if digits else None  # type: ignore[type-var]
+
+
+def evaluate_conditions(
+    table: ConditionTable, backend, fail_fast: bool = False
+) -> list[ConditionResult]:
+    """Every condition of ``table`` on ``backend`` (weights computed once, shared)."""
+    backend.tree_weights(table.trees)
+    out: list[ConditionResult] = []
+    stop_after_order = None
+    for cond in table.conditions:
+        if stop_after_order is not None and cond.order > stop_after_order:
+            break
+        enc = backend.enclose_terms(table.trees, cond.terms, cond.denominator)
+        verdict = classify(enc)
+        out.append(ConditionResult(cond, enc, verdict))
+        if fail_fast and verdict.state == FAILS and stop_after_order is None:
+            stop_after_order = cond.order  # finish this order, so its counts are complete
+    return out
+
+
+def energy_order_of(results: list[ConditionResult], order: int) -> int:
+    """Largest n <= order such that every condition with <= n+1 vertices holds (SPEC §3)."""
+    failing = [r.condition.order for r in results if r.verdict.state == FAILS]
+    return min(failing) - 1 if failing else order
+
+
+def per_order_counts(table: ConditionTable, results: list[ConditionResult]) -> list[OrderCounts]:
+    totals = table.counts_by_order()
+    out = []
+    for k in sorted(totals):
+        rs = [r for r in results if r.condition.order == k]
+        failed = sum(1 for r in rs if r.verdict.state == FAILS)
+        digits = [r.verdict.digits for r in rs if r.verdict.state == HOLDS_TO_DIGITS]
+        out.append(
+            OrderCounts(k, totals[k], len(rs), len(rs) - failed, failed, min(digits) if digits else None)  # type: ignore[type-var]
+        )
+    return out
+
+
+def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
+    """Run the whole check of SPEC §3–§5 on ``tableau``."""
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    table = condition_table(options.order, options.degree)
+    t1 = time.perf_counter()
+    timings["trees"] = t1 - t0
+
+    backend = make_backend(tableau, options.dps, options.decimals)
+    exact = backend.exact
+    results = evaluate_conditions(table, backend, options.fail_fast)
+    t2 = time.perf_counter()
+    timings["evaluation"] = t2 - t1
+
+    bits = bits_for_dps(options.dps) + 8
+    A, b = tableau.enclosures(bits, options.decimals)
+    warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
+    quad = quadrature_order(A, b, exact)
+    classical = classical_order(backend, options.order)
+    avf = avf_verdict(A, b, options.degree, exact) if options.degree is not None else None
+    t3 = time.perf_counter()
+    timings["orders_and_avf"] = t3 - t2
+
+    energy_order = energy_order_of(results, options.order)
+    first = next((r for r in results if r.verdict.state == FAILS), None)
+    if avf is not None and avf.equals_avf and first is not None:
+        if avf.verdict.state != HOLDS_TO_DIGITS:
+            raise AssertionError(  # an exact AVF certificate with a failing condition is a bug
+                f"internal inconsistency: exact AVF certificate but condition {first.condition.id} fails"
+            )
+        avf = AvfVerdict(
+            avf.degree, Verdict(FAILS),
+            f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.condition.id} certainly fails",
+            avf.reduced_stages, avf.stages, avf.kept, avf.s_min, avf.notes,
+        )
+    energy_all = bool(avf and avf.equals_avf)
+    first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
+    remark = theorem1_remark(avf, first_label, options.order) if avf else None
+    if tableau.rounded_digits is not None and options.decimals == "rounded":
+        warnings.append(
+            f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
+            "are read as rounded to their last digit (SPEC §5); --decimals exact takes them at face value"
+        )
+    timings["total"] = time.perf_counter() - t0
+    return CheckResult(
+        tableau=tableau,
+        options=options,
+        backend=backend.name,
+        results=results,
+        per_order=per_order_counts(table, results),
+        energy_order=energy_order,
+        energy_order_all=energy_all,
+        quadrature=quad,
+        classical=classical,
+        avf=avf,
+        theorem1=remark,
+        warnings=warnings,
+        timings=timings,
+    )
+
+
+def overall(result: CheckResult) -> Verdict:
+    return combine([r.verdict for r in result.results])

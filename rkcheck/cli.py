@@ -1,0 +1,295 @@
+"""The ``rkcheck`` command line: options in, core call, report out.
+
+Heavy modules (numpy, mpmath, matplotlib, the reports) are imported inside the
+commands that need them, so that ``rkcheck verify`` starts quickly.  Every
+:class:`~rkcheck.errors.UserError` and click usage error ends as one line on stderr and
+exit code 2.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from typing import Any, Callable
+
+import click
+
+from . import __version__
+from .errors import UserError
+
+EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
+MAX_ORDER = 20
+
+
+class DegreeType(click.ParamType):
+    """A polynomial degree m >= 1, or ``none`` for all Hamiltonians."""
+
+    name = "m|none"
+
+    def convert(self, value: Any, param, ctx) -> int | str:
+        if isinstance(value, int):
+            return value
+        text = str(value).strip().lower()
+        if text in ("none", "all", "any"):
+            return "none"
+        try:
+            m = int(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a degree (a positive integer or 'none')", param, ctx)
+        if m < 1:
+            self.fail(f"degree must be at least 1, got {m}", param, ctx)
+        return m
+
+
+DEGREE = DegreeType()
+
+
+def output_options(f: Callable) -> Callable:
+    """--quiet / --verbose / --no-color, accepted by every command (and the group)."""
+
+    @click.option("--no-color", is_flag=True, default=None, help="No colour (also: NO_COLOR=1, or output not a terminal).")
+    @click.option("--verbose", "-v", is_flag=True, default=None, help="More detail (timings, notes).")
+    @click.option("--quiet", "-q", is_flag=True, default=None, help="Only the essential lines.")
+    @functools.wraps(f)
+    def wrapper(*args: Any, no_color: bool | None, verbose: bool | None, quiet: bool | None, **kwargs: Any) -> Any:
+        from .reports import console
+
+        current = console._settings
+        console.configure(
+            color=not no_color if no_color is not None else current["color"],
+            quiet=quiet if quiet is not None else current["quiet"],
+            verbose=verbose if verbose is not None else current["verbose"],
+        )
+        return f(*args, **kwargs)
+
+    return wrapper
+
+
+def check_options(f: Callable) -> Callable:
+    """--degree / --order / --dps / --decimals / --max-stages, shared by the checking commands."""
+    f = click.option(
+        "--max-stages", type=click.IntRange(1), default=64, show_default=True,
+        help="Refuse tableaux with more stages than this.",
+    )(f)
+    f = click.option(
+        "--decimals", type=click.Choice(["rounded", "exact"]), default=None,
+        help="Decimal literals with >= 6 significant digits: 'rounded' (default) = within half a unit "
+        "of the last digit; 'exact' = at face value.",
+    )(f)
+    f = click.option(
+        "--dps", type=click.IntRange(10, 5000), default=None,
+        help="Working precision in decimal digits for non-rational tableaux [default: file's [check], else 50].",
+    )(f)
+    f = click.option(
+        "--order", "-N", type=click.IntRange(1, MAX_ORDER), default=None,
+        help="Check conditions up to this energy order, i.e. free trees with <= N+1 vertices "
+        "[default: file's [check], else 8].",
+    )(f)
+    f = click.option(
+        "--degree", "-m", type=DEGREE, default=None,
+        help="Polynomial Hamiltonians of degree <= m ('none' = all Hamiltonians) "
+        "[default: file's [check], else none].",
+    )(f)
+    return f
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.version_option(__version__, prog_name="rkcheck")
+@output_options
+def cli() -> None:
+    """Check the energy-preservation conditions of a Runge–Kutta method.
+
+    Give it a Butcher tableau (TOML or JSON) and it evaluates every B-series energy
+    condition (one per free tree, Chartier–Faou–Murua) for polynomial Hamiltonians of
+    degree <= m, in exact or certified arbitrary-precision arithmetic, and says whether
+    the tableau is the Averaged Vector Field method.
+
+    \b
+    Start with:
+      rkcheck show tableaux/collocation/gauss-2.toml
+      rkcheck verify tableaux/collocation/gauss-2.toml --degree 4
+    """
+
+
+# ------------------------------------------------------------------ helpers
+
+
+def load_tableau(path: str, max_stages: int):
+    from .loader import load
+
+    return load(path, max_stages=max_stages)
+
+
+def resolve_options(tab, degree, order, dps, decimals, fail_fast=False):
+    """CLI flags override the file's [check] table, which overrides the defaults."""
+    from .check import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions
+
+    defaults = tab.check
+    if degree is None:
+        degree = defaults.get("degree")
+    elif degree == "none":
+        degree = None
+    return CheckOptions(
+        degree=degree,
+        order=order if order is not None else defaults.get("order", DEFAULT_ORDER),
+        dps=dps if dps is not None else defaults.get("dps", DEFAULT_DPS),
+        decimals=decimals if decimals is not None else defaults.get("decimals", "rounded"),
+        fail_fast=fail_fast,
+    )
+
+
+def _stdout():
+    from .reports.console import make_console
+
+    return make_console()
+
+
+# ----------------------------------------------------------------- commands
+
+
+@cli.command()
+@click.argument("file", metavar="FILE")
+@check_options
+@click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
+@output_options
+def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_fast) -> None:
+    """Check every energy condition of the tableau in FILE ('-' = stdin).
+
+    Exit code: 0 when every checked condition holds (or the tableau is certified to be
+    AVF), 1 when a condition fails, 2 for a bad file or option.
+    """
+    from .check import check
+
+    tab = load_tableau(file, max_stages)
+    options = resolve_options(tab, degree, order, dps, decimals, fail_fast)
+    result = check(tab, options)
+    if fmt == "json":
+        from .reports.jsonout import check_doc, dumps
+
+        click.echo(dumps(check_doc(result)))
+    else:
+        from .reports.console import is_quiet
+        from .reports.text import render_check
+
+        render_check(result, _stdout(), show_all=show_all, quiet=is_quiet())
+    ok = result.all_hold or result.energy_order_all
+    sys.exit(EXIT_OK if ok else EXIT_FAIL)
+
+
+@cli.command()
+@click.argument("file", metavar="FILE")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--decimals", type=click.Choice(["rounded", "exact"]), default="rounded", show_default=True)
+@click.option("--max-stages", type=click.IntRange(1), default=64, show_default=True)
+@output_options
+def show(file, fmt, decimals, max_stages) -> None:
+    """Print the tableau in FILE as a Butcher table, with its kind and any warnings."""
+    from .backends import bits_for_dps
+    from .tableau import consistency_warnings
+
+    tab = load_tableau(file, max_stages)
+    warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(50), decimals)
+    if fmt == "json":
+        from .reports.jsonout import SCHEMA, dumps, method_doc, tableau_doc
+
+        doc = {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals), "warnings": warnings}
+        click.echo(dumps(doc))
+        return
+    from .reports.text import render_tableau
+
+    render_tableau(tab, _stdout(), decimals, warnings)
+
+
+@cli.command()
+@click.option("--order", "-N", type=click.IntRange(1, MAX_ORDER), required=True, help="Energy order (free trees with <= N+1 vertices).")
+@click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
+@click.option("--count", is_flag=True, help="Only count the conditions per order.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@output_options
+def conditions(order, degree, count, fmt) -> None:
+    """List the energy conditions (non-superfluous free trees) up to an order."""
+    from .conditions import condition_table
+
+    table = condition_table(order, None if degree == "none" else degree)
+    counts = table.counts_by_order()
+    if fmt == "json":
+        from .reports.jsonout import dumps
+
+        doc: dict[str, Any] = {
+            "schema": 1,
+            "order": order,
+            "degree": None if degree == "none" else degree,
+            "total": len(table),
+            "counts": [{"order": k, "vertices": k + 1, "conditions": v} for k, v in counts.items()],
+        }
+        if not count:
+            doc["conditions"] = [
+                {
+                    "id": c.id, "level_sequence": list(c.level_sequence), "bracket": c.bracket,
+                    "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": len(c.terms),
+                }
+                for c in table.conditions
+            ]
+        click.echo(dumps(doc))
+        return
+    from .reports.text import render_condition_list
+
+    render_condition_list(table, _stdout(), count)
+
+
+@cli.command()
+@click.argument("tree_id", metavar="ID")
+@click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
+@click.option("--dps", type=click.IntRange(10, 5000), default=50, show_default=True)
+@click.option("--decimals", type=click.Choice(["rounded", "exact"]), default="rounded", show_default=True)
+@click.option("--max-stages", type=click.IntRange(1), default=64, show_default=True)
+@output_options
+def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
+    """Show one energy condition: the free tree of ID, its rootings, signs, σ and weights.
+
+    ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
+    the id column of verify and conditions).
+    """
+    from .explain import explain as do_explain
+    from .reports.text import render_explanation
+    from .trees import parse_level_sequence
+
+    try:
+        seq = parse_level_sequence(tree_id)
+    except ValueError as err:
+        raise UserError(str(err), "ID") from None
+    if len(seq) > MAX_ORDER + 1:
+        raise UserError(f"at most {MAX_ORDER + 1} vertices", "ID")
+    tab = load_tableau(tableau_file, max_stages) if tableau_file else None
+    render_explanation(do_explain(seq, tab, dps, decimals), _stdout(), tab)
+
+
+# ------------------------------------------------------------------- main
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point: one-line errors with exit code 2, never a traceback for user errors."""
+    try:
+        cli.main(args=argv, prog_name="rkcheck", standalone_mode=False)
+    except UserError as err:
+        click.echo(f"rkcheck: error: {err}", err=True)
+        sys.exit(EXIT_USAGE)
+    except click.UsageError as err:
+        if type(err).__name__ == "NoArgsIsHelpError":  # click >= 8.2: bare `rkcheck`
+            click.echo(err.ctx.get_help() if err.ctx else err.format_message())
+            sys.exit(EXIT_USAGE)
+        where = f"{err.ctx.command_path}: " if err.ctx is not None else ""
+        click.echo(f"rkcheck: error: {where}{err.format_message()} (see --help)", err=True)
+        sys.exit(EXIT_USAGE)
+    except click.Abort:
+        click.echo("rkcheck: aborted", err=True)
+        sys.exit(130)
+    except click.exceptions.Exit as err:
+        sys.exit(err.exit_code)
+    except click.ClickException as err:
+        click.echo(f"rkcheck: error: {err.format_message()}", err=True)
+        sys.exit(EXIT_USAGE)
+    except BrokenPipeError:  # `rkcheck ... | head`
+        sys.exit(EXIT_OK)

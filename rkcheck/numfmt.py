@@ -1,0 +1,60 @@
+"""Exact decimal rendering of rationals (no floating point, no mpmath import)."""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+
+def decimal_exponent(x: Fraction) -> int:
+    """floor(log10 |x|) for x != 0, exactly."""
+    x = abs(x)
+    p, q = x.numerator, x.denominator
+    e = math.floor((p.bit_length() - q.bit_length()) * math.log10(2))
+    while Fraction(10) ** (e + 1) <= x:
+        e += 1
+    while Fraction(10) ** e > x:
+        e -= 1
+    return e
+
+
+def _digits(x: Fraction, sig: int, up: bool = False) -> tuple[int, int]:
+    """(N, e) with |x| ≈ N · 10^(e-sig+1), N having ``sig`` digits (rounded half-even or up)."""
+    e = decimal_exponent(x)
+    scaled = abs(x) / Fraction(10) ** (e - sig + 1)
+    n = math.ceil(scaled) if up else round(scaled)
+    if n >= 10**sig:
+        n = math.ceil(n / 10) if up else round(Fraction(n, 10))
+        e += 1
+    return n, e
+
+
+def decimal_string(x: Fraction | int, sig: int = 20, up: bool = False) -> str:
+    """``x`` rounded to ``sig`` significant digits (``up``: away from zero), e.g.
+    ``-3.4722222222222222222e-4``, ``0.5``, ``12.25``.  Trailing zeros are dropped."""
+    x = Fraction(x)
+    if x == 0:
+        return "0"
+    n, e = _digits(x, sig, up)
+    digits = str(n).rstrip("0") or "0"
+    sign = "-" if x < 0 else ""
+    if -5 <= e < 16 and len(digits) <= max(e + 1, 0) + sig:
+        # plain positional notation
+        if e >= 0:
+            whole = digits[: e + 1].ljust(e + 1, "0")
+            frac = digits[e + 1:]
+            return sign + whole + ("." + frac if frac else "")
+        return sign + "0." + "0" * (-e - 1) + digits
+    mant = digits[0] + ("." + digits[1:] if len(digits) > 1 else "")
+    return f"{sign}{mant}e{e}"
+
+
+def radius_string(r: Fraction) -> str:
+    """A radius rounded *up* to 2 significant digits (an upper bound stays an upper bound)."""
+    if r == 0:
+        return "0"
+    return decimal_string(r, 2, up=True)
+
+
+def short(x: Fraction, sig: int = 6) -> str:
+    return decimal_string(x, sig)

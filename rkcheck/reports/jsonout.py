@@ -1,0 +1,161 @@
+"""Stable JSON documents (schema 1).  The keys documented in README "JSON schema" are a
+public interface: keys may be added, never renamed or removed without a schema bump."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from .. import __version__
+from ..check import CheckResult, ConditionResult, overall
+from ..expr import to_text
+from ..numfmt import decimal_string, radius_string
+from ..tableau import Tableau
+from ..verdicts import HOLDS_TO_DIGITS
+
+SCHEMA = 1
+
+
+def dumps(doc: Any) -> str:
+    return json.dumps(doc, indent=2, ensure_ascii=False)
+
+
+def entry_doc(e) -> dict[str, Any]:
+    return {
+        "text": e.text,
+        "exact": None if e.exact is None else str(e.exact),
+        "algebraic": e.uses_sqrt,
+        "rounded_digits": e.rounded_digits,
+    }
+
+
+def tableau_doc(tab: Tableau, decimals: str = "rounded") -> dict[str, Any]:
+    """The parsed tableau: every entry as written and, when rational, as an exact p/q."""
+    return {
+        "stages": tab.stages,
+        "structure": tab.structure,
+        "numbers": tab.number_kind(decimals),
+        "rational": tab.is_rational,
+        "constants": {k: to_text(v) for k, v in tab.constants.definitions.items()},
+        "A": [[entry_doc(e) for e in row] for row in tab.A],
+        "b": [entry_doc(e) for e in tab.b],
+        "c": None if tab.c is None else [entry_doc(e) for e in tab.c],
+        "family": tab.family,
+    }
+
+
+def method_doc(tab: Tableau) -> dict[str, Any]:
+    return {"name": tab.name, "description": tab.description, "references": list(tab.references)}
+
+
+def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
+    enc = r.enclosure
+    if enc.exact:
+        residual = decimal_string(enc.mid, dps)
+        return {"residual": residual, "residual_exact": str(enc.mid), "radius": "0", "digits": None}
+    sig = dps
+    if enc.rad > 0 and enc.mid != 0:
+        # digits of the mid-point that the radius leaves meaningful, plus one
+        ratio = abs(enc.mid) / enc.rad
+        sig = max(1, min(dps, len(str(int(ratio))) + 1))
+    return {
+        "residual": decimal_string(enc.mid, sig),
+        "residual_exact": None,
+        "radius": radius_string(enc.rad),
+        "digits": r.verdict.digits if r.verdict.state == HOLDS_TO_DIGITS else None,
+    }
+
+
+def condition_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
+    c = r.condition
+    doc = {
+        "id": c.id,
+        "level_sequence": list(c.level_sequence),
+        "bracket": c.bracket,
+        "vertices": c.vertices,
+        "order": c.order,
+        "max_degree": c.max_degree,
+        "state": r.verdict.state,
+    }
+    doc.update(residual_doc(r, dps))
+    return doc
+
+
+def summary_doc(res: CheckResult) -> dict[str, Any]:
+    o = res.options
+    first = res.first_failure
+    avf = res.avf
+    return {
+        "verdict": overall(res).state,
+        "energy_order": res.energy_order,
+        "energy_order_all": res.energy_order_all,
+        "order_checked": o.order,
+        "degree": o.degree,
+        "equals_avf": None if avf is None else avf.equals_avf,
+        "avf": None
+        if avf is None
+        else {
+            "state": avf.verdict.state,
+            "digits": avf.verdict.digits,
+            "reason": avf.reason,
+            "stages": avf.stages,
+            "reduced_stages": avf.reduced_stages,
+            "kept_stages": list(avf.kept),
+            "s_min": avf.s_min,
+            "notes": avf.notes,
+        },
+        "theorem1": res.theorem1,
+        "classical_order": res.classical.order,
+        "classical_order_checked": res.classical.checked,
+        "classical_first_failure": res.classical.first_failure,
+        "quadrature_order": res.quadrature.order,
+        "quadrature_first_failure": res.quadrature.first_failure,
+        "conditions_total": sum(p.conditions for p in res.per_order),
+        "conditions_checked": len(res.results),
+        "conditions_held": sum(1 for r in res.results if r.verdict.holds),
+        "conditions_failed": len(res.failures),
+        "min_digits": res.min_digits,
+        "first_failure": None
+        if first is None
+        else {"id": first.condition.id, "bracket": first.condition.bracket, "order": first.condition.order},
+        "per_order": [
+            {
+                "order": p.order,
+                "vertices": p.order + 1,
+                "conditions": p.conditions,
+                "checked": p.checked,
+                "held": p.held,
+                "failed": p.failed,
+                "min_digits": p.min_digits,
+            }
+            for p in res.per_order
+        ],
+    }
+
+
+def check_doc(res: CheckResult) -> dict[str, Any]:
+    """The per-file object of ``verify --format json`` (also used by ``scan``)."""
+    o = res.options
+    return {
+        "schema": SCHEMA,
+        "rkcheck": __version__,
+        "file": res.tableau.source,
+        "method": method_doc(res.tableau),
+        "tableau": {
+            "stages": res.tableau.stages,
+            "structure": res.tableau.structure,
+            "numbers": res.tableau.number_kind(o.decimals),
+        },
+        "options": {
+            "degree": o.degree,
+            "order": o.order,
+            "dps": o.dps,
+            "decimals": o.decimals,
+            "backend": res.backend,
+            "fail_fast": o.fail_fast,
+        },
+        "summary": summary_doc(res),
+        "conditions": [condition_doc(r, o.dps) for r in res.results],
+        "warnings": res.warnings,
+        "timings": {k: round(v, 6) for k, v in res.timings.items()},
+    }

@@ -1,0 +1,272 @@
+"""Rich text reports for people (``verify``, ``show``, ``conditions``, ``explain``)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from rich import box
+from rich.console import Console, Group
+from rich.table import Table
+from rich.text import Text
+
+from ..backends import Enclosure
+from ..check import CheckResult, ConditionResult, overall
+from ..numfmt import decimal_string, radius_string
+from ..tableau import Tableau
+from ..verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+
+STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
+MAX_FAILURES_SHOWN = 20
+
+
+def state_text(v: Verdict) -> Text:
+    return Text(v.label(), style=STYLE[v.state])
+
+
+def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12) -> str:
+    """A residual for people: exact value, or mid ± radius, or a certified bound."""
+    if enc.exact:
+        if enc.mid == 0:
+            return "0"
+        frac = str(enc.mid)
+        approx = decimal_string(enc.mid, sig)
+        if frac == approx:
+            return frac
+        return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
+    if verdict.state == FAILS:
+        return f"{decimal_string(enc.mid, sig)} ± {radius_string(enc.rad)}"
+    return f"|R| ≤ {radius_string(abs(enc.mid) + enc.rad)}"
+
+
+def _kv_table() -> Table:
+    t = Table(box=None, show_header=False, pad_edge=False, padding=(0, 2, 0, 0))
+    t.add_column(style="bold", no_wrap=True)
+    t.add_column()
+    return t
+
+
+def header(tab: Tableau, decimals: str) -> Group:
+    title = Text(tab.name, style="bold")
+    if tab.source and tab.source not in ("<memory>", "<string>"):
+        title.append(f"  ({tab.source})", style="dim")
+    facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {tab.number_kind(decimals)}"
+    return Group(title, Text(facts))
+
+
+def conditions_table(results: list[ConditionResult], title: str) -> Table:
+    t = Table(title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("id", no_wrap=True)
+    t.add_column("bracket", no_wrap=True)
+    t.add_column("vertices", justify="right")
+    t.add_column("max deg", justify="right")
+    t.add_column("residual")
+    t.add_column("state", no_wrap=True)
+    for r in results:
+        c = r.condition
+        t.add_row(
+            c.id, c.bracket, str(c.vertices), str(c.max_degree),
+            enclosure_text(r.enclosure, r.verdict), state_text(r.verdict),
+        )
+    return t
+
+
+def per_order_table(res: CheckResult) -> Table:
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("order", justify="right")
+    t.add_column("vertices", justify="right")
+    t.add_column("conditions", justify="right")
+    t.add_column("checked", justify="right")
+    t.add_column("held", justify="right")
+    t.add_column("failed", justify="right")
+    t.add_column("min digits", justify="right")
+    for p in res.per_order:
+        failed = Text(str(p.failed), style="bold red" if p.failed else "")
+        digits = "exact" if p.checked and p.min_digits is None and p.held else (str(p.min_digits) if p.min_digits is not None else "")
+        t.add_row(str(p.order), str(p.order + 1), str(p.conditions), str(p.checked), str(p.held), failed, digits)
+    return t
+
+
+def _backend_text(res: CheckResult) -> str:
+    if res.backend == "exact":
+        return "exact rational arithmetic"
+    return f"certified ball arithmetic at {res.options.dps} digits"
+
+
+def render_check(res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False) -> None:
+    """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
+    o = res.options
+    deg = "all Hamiltonians" if o.degree is None else f"degree ≤ {o.degree}"
+    total = sum(p.conditions for p in res.per_order)
+    if not quiet:
+        console.print(header(res.tableau, o.decimals))
+        console.print(f"{deg}, order ≤ {o.order}: {total} conditions, {_backend_text(res)}")
+        for w in res.warnings:
+            console.print(Text(f"warning: {w}", style="yellow"))
+        console.print()
+        kv = _kv_table()
+        kv.add_row("quadrature order", _order_text(res.quadrature, "quadrature"))
+        kv.add_row("classical order", _order_text(res.classical, "classical"))
+        if res.avf is not None:
+            a = res.avf
+            if a.equals_avf:
+                label = Text("yes", style="green") if a.verdict.state == HOLDS else Text(f"yes, to {a.verdict.digits} digits", style="yellow")
+            else:
+                label = Text("no", style="red")
+            label.append(f" — {a.reason}", style="")
+            kv.add_row(f"AVF (degree {a.degree})", label)
+            for note in a.notes:
+                kv.add_row("", note)
+        kv.add_row("energy order", _energy_text(res))
+        if res.theorem1:
+            kv.add_row("Theorem 1", res.theorem1.removeprefix("Theorem 1: "))
+        console.print(kv)
+        console.print()
+        console.print(per_order_table(res))
+    if show_all:
+        console.print(conditions_table(res.results, f"All conditions ({len(res.results)} checked)"))
+    elif res.failures:
+        shown = res.failures[:MAX_FAILURES_SHOWN]
+        title = f"Failing conditions ({len(res.failures)} of {len(res.results)} checked"
+        title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
+        console.print(conditions_table(shown, title))
+    console.print(final_line(res))
+
+
+def _order_text(r, what: str) -> str:
+    if r.first_failure:
+        text = f"{r.order}  ({r.first_failure} fails)"
+    else:
+        text = f"≥ {r.order}  (checked up to {r.checked})" if what == "classical" else f"{r.order}"
+    if r.verdict.state == HOLDS_TO_DIGITS:
+        text += f", holding to {r.verdict.digits} digits"
+    return text
+
+
+def _energy_text(res: CheckResult) -> Text:
+    o = res.options
+    if res.energy_order_all:
+        return Text(f"all orders (AVF certificate for degree ≤ {o.degree}); {o.order} verified", style="green")
+    first = res.first_failure
+    if first is None:
+        return Text(f"≥ {res.energy_order} (every condition up to order {o.order} holds; not proven beyond)", style="green")
+    return Text(
+        f"{res.energy_order} (first failing condition at order {first.condition.order}: "
+        f"{first.condition.id} {first.condition.bracket})",
+        style="red",
+    )
+
+
+def final_line(res: CheckResult) -> Text:
+    v = overall(res)
+    n = len(res.results)
+    if res.energy_order_all:
+        avf = res.avf
+        how = "AVF" if avf is None or avf.verdict.state == HOLDS else f"AVF to {avf.verdict.digits} digits"
+        return Text(
+            f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({how}); {n} conditions checked",
+            style="bold green",
+        )
+    if v.state == HOLDS:
+        return Text(f"OK: all {n} conditions hold exactly", style="bold green")
+    if v.state == HOLDS_TO_DIGITS:
+        return Text(f"OK: all {n} conditions hold to at least {v.digits} digits", style="bold yellow")
+    return Text(
+        f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
+        style="bold red",
+    )
+
+
+def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", warnings: list[str] | None = None) -> None:
+    """``show``: the Butcher table ``c | A`` over ``| bᵀ`` with the entries as written."""
+    console.print(header(tab, decimals))
+    if tab.description:
+        console.print(Text(tab.description, style="dim"))
+    for ref in tab.references:
+        console.print(Text(f"reference: {ref}", style="dim"))
+    if tab.constants.definitions:
+        from ..expr import to_text
+
+        consts = ", ".join(f"{k} = {to_text(v)}" for k, v in tab.constants.definitions.items())
+        console.print(f"constants: {consts}")
+    t = Table(box=box.SIMPLE, show_header=False, pad_edge=False)
+    t.add_column(style="cyan")
+    for _ in range(tab.stages):
+        t.add_column()
+    c_entries = tab.c
+    for i, row in enumerate(tab.A):
+        c_text = c_entries[i].text if c_entries is not None else Text(_row_sum_text(tab, i), style="dim")
+        t.add_row(c_text, *[e.text for e in row], end_section=i == tab.stages - 1)
+    t.add_row("", *[e.text for e in tab.b], style="bold")
+    console.print(t)
+    if c_entries is None:
+        console.print(Text("c not given: the row sums A·1 are shown (dim) and used", style="dim"))
+    for w in warnings or []:
+        console.print(Text(f"warning: {w}", style="yellow"))
+
+
+def _row_sum_text(tab: Tableau, i: int) -> str:
+    row = tab.A[i]
+    if all(e.exact is not None for e in row):
+        return str(sum((e.exact for e in row), Fraction(0)))
+    enc = sum((e.enclosure(80, "exact") for e in row[1:]), row[0].enclosure(80, "exact"))
+    return "≈ " + decimal_string(enc.mid, 12)
+
+
+def render_condition_list(table, console: Console, count_only: bool) -> None:
+    """``conditions``: counts per order, and the list of condition trees."""
+    deg = "no degree bound" if table.degree is None else f"max degree ≤ {table.degree}"
+    console.print(f"Energy conditions up to order {table.order} ({deg}): {len(table)}")
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("order", justify="right")
+    t.add_column("vertices", justify="right")
+    t.add_column("conditions", justify="right")
+    for k, v in table.counts_by_order().items():
+        t.add_row(str(k), str(k + 1), str(v))
+    console.print(t)
+    if count_only:
+        return
+    lst = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    lst.add_column("id", no_wrap=True)
+    lst.add_column("bracket", no_wrap=True)
+    lst.add_column("vertices", justify="right")
+    lst.add_column("max deg", justify="right")
+    lst.add_column("rootings", justify="right")
+    for c in table.conditions:
+        lst.add_row(c.id, c.bracket, str(c.vertices), str(c.max_degree), str(len(c.terms)))
+    console.print(lst)
+
+
+def render_explanation(ex, console: Console, tableau=None) -> None:
+    """``explain``: the free tree, its rootings with signs and σ, and the weights."""
+    given = ",".join(map(str, ex.given))
+    if ex.condition is None:
+        why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
+        console.print(f"{given}: {ex.vertices} vertices — superfluous free tree, no energy condition ({why})")
+        return
+    c = ex.condition
+    console.print(Text(f"Energy condition {c.id}  {c.bracket}", style="bold"))
+    if c.id != given:
+        console.print(f"(given as {given}: canonical id = level sequence of the rooting at the centre)")
+    console.print(
+        f"{ex.vertices} vertices (order {c.order}), max degree {ex.max_degree}: "
+        f"a condition for every degree m ≥ {ex.max_degree}"
+    )
+    console.print("R = Σ_u (−1)^κ / σ(u) · a(B₋(u)) over the distinct rootings u:")
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("rooting u", no_wrap=True)
+    t.add_column("sign", justify="center")
+    t.add_column("σ(u)", justify="right")
+    t.add_column("a(B₋(u)) = product of")
+    if tableau is not None:
+        t.add_column("term value")
+    for term in ex.terms:
+        forest = " · ".join(f"({f[2]})" for f in term.forest) or "1"
+        row = [f"{term.bracket}  {','.join(map(str, term.level_sequence))}", "+" if term.sign > 0 else "−", str(term.sigma), forest]
+        if tableau is not None and term.value is not None:
+            row.append(enclosure_text(term.value, Verdict(FAILS) if not term.value.exact else Verdict(HOLDS)))
+        t.add_row(*row)
+    console.print(t)
+    if tableau is not None and ex.residual is not None and ex.verdict is not None:
+        line = Text(f"R = {enclosure_text(ex.residual, ex.verdict, 20)}   ")
+        line.append_text(state_text(ex.verdict))
+        console.print(line)

@@ -1,0 +1,167 @@
+"""``check`` / ``rkcheck verify`` on methods whose energy behaviour is known in closed form."""
+
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+
+from clirun import run_cli
+from rkcheck.check import CheckOptions, check
+from rkcheck.loader import load
+from rkcheck.tableau import Tableau
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
+
+TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+
+
+def avf(nodes: list[str], weights: list[str]) -> Tableau:
+    """A = c bᵀ over a quadrature rule given by entry strings (seed, eq. (avfmat))."""
+    A = [[f"({ci})*({bj})" for bj in weights] for ci in nodes]
+    return Tableau.from_values(A, weights, nodes)
+
+
+# 2-point Gauss: nodes (3 ∓ √3)/6, weights 1/2 (exact to degree 3)
+GAUSS2 = (["1/2 - sqrt(3)/6", "1/2 + sqrt(3)/6"], ["1/2", "1/2"])
+# 3-point Gauss: nodes 1/2 ∓ √15/10, 1/2; weights 5/18, 8/18, 5/18 (exact to degree 5)
+GAUSS3 = (["1/2 - sqrt(15)/10", "1/2", "1/2 + sqrt(15)/10"], ["5/18", "8/18", "5/18"])
+# 2-point Radau IIA: nodes 1/3, 1; weights 3/4, 1/4 (exact to degree 2s-1 = 3), rational
+RADAU2 = (["1/3", "1"], ["3/4", "1/4"])
+
+
+@pytest.mark.parametrize("degree", [3, 4])
+def test_avf_gauss2_holds_every_condition_and_is_recognised(degree):
+    res = check(avf(*GAUSS2), CheckOptions(degree=degree, order=8))
+    assert res.backend == "mpmath"
+    assert res.failures == []
+    assert all(r.verdict.state == HOLDS_TO_DIGITS and r.verdict.digits >= 45 for r in res.results)
+    assert res.avf is not None and res.avf.equals_avf
+    assert res.energy_order_all and res.energy_order == 8
+
+
+def test_avf_gauss2_is_not_avf_for_degree_5():
+    # a 2-point rule is exact only to degree 3 < 4 = m - 1: Σ b c^4 = 7/36 ≠ 1/5 (hand computation)
+    res = check(avf(*GAUSS2), CheckOptions(degree=5, order=6))
+    assert not res.avf.equals_avf and "Σ b_i c_i^4 = 1/5" in res.avf.reason
+    assert res.first_failure is not None
+
+
+def test_avf_gauss3_holds_for_degree_up_to_6_to_order_7():
+    for degree in (5, 6):
+        res = check(avf(*GAUSS3), CheckOptions(degree=degree, order=7))
+        assert res.failures == [] and res.avf.equals_avf
+
+
+def test_avf_over_a_rational_rule_holds_exactly():
+    res = check(avf(*RADAU2), CheckOptions(degree=3, order=8))
+    assert res.backend == "exact"
+    assert {r.verdict.state for r in res.results} == {HOLDS}
+    assert res.avf.verdict.state == HOLDS and res.energy_order_all
+
+
+def test_implicit_midpoint_degree_2_holds_to_order_12():
+    res = check(load(str(TABLEAUX / "collocation" / "implicit-midpoint.toml")), CheckOptions(degree=2, order=12))
+    # m = 2 leaves the odd paths: one condition per even order 2, 4, ..., 12 (SPEC §3)
+    assert [r.condition.vertices for r in res.results] == [3, 5, 7, 9, 11, 13]
+    assert all(r.verdict.state == HOLDS for r in res.results)
+    assert res.avf.equals_avf
+
+
+def test_implicit_midpoint_star_condition_value():
+    # star [τ³] ~ [[τ²]]: R = -(Σ b c² - 1/3)/2! (tests/reference.py derivation);
+    # midpoint c = 1/2, b = 1: R = -(1/4 - 1/3)/2 = 1/24
+    res = check(load(str(TABLEAUX / "collocation" / "implicit-midpoint.toml")), CheckOptions(degree=None, order=3))
+    star = next(r for r in res.results if r.condition.id == "1,2,2,2")
+    assert star.enclosure.mid == Fraction(1, 24) and star.verdict.state == FAILS
+    assert res.energy_order == 2
+
+
+def test_rk4_energy_order_is_4():
+    # RK4 has classical order 4, so H(y1) - H(y0) = O(h^5); its local error term at h^5 is a
+    # generic combination of elementary differentials, so some 6-vertex condition fails.
+    res = check(load(str(TABLEAUX / "explicit" / "rk4.toml")), CheckOptions(degree=None, order=8))
+    assert res.energy_order == 4
+    assert res.classical.order == 4 and res.quadrature.order == 4
+    assert res.first_failure.condition.vertices == 6
+
+
+def test_decimal_semantics_of_16_digit_avf():
+    tab = load(str(TABLEAUX / "avf" / "avf-gauss-2-decimal16.toml"))
+    rounded = check(tab, CheckOptions(degree=4, order=8, decimals="rounded"))
+    assert rounded.failures == []
+    digits = [r.verdict.digits for r in rounded.results]
+    assert all(r.verdict.state == HOLDS_TO_DIGITS for r in rounded.results)
+    assert 14 <= min(digits) <= 16  # "holds to ~15 digits": limited by the 16-digit input
+    exact = check(tab, CheckOptions(degree=4, order=8, decimals="exact"))
+    assert exact.backend == "exact" and exact.failures
+
+
+def test_fifty_digit_input_limits_the_digits_not_the_precision():
+    tab = load(str(TABLEAUX / "avf" / "avf-gauss-2-decimal50.toml"))
+    res = check(tab, CheckOptions(degree=4, order=6, dps=80))
+    assert res.failures == []
+    assert 48 <= res.min_digits <= 50
+
+
+def test_fail_fast_stops_after_the_first_failing_order():
+    tab = load(str(TABLEAUX / "explicit" / "rk4.toml"))
+    res = check(tab, CheckOptions(order=8, fail_fast=True))
+    assert max(r.condition.order for r in res.results) == 5
+    assert res.energy_order == 4
+
+
+# ---------------------------------------------------------------------- CLI
+
+
+def test_verify_exit_codes_and_json_schema(capsys):
+    good = run_cli(capsys, "verify", str(TABLEAUX / "avf" / "avf-gauss-2.toml"), "--format", "json")
+    assert good.code == 0
+    doc = json.loads(good.out)
+    assert doc["schema"] == 1
+    for key in ("energy_order", "order_checked", "degree", "equals_avf", "classical_order", "quadrature_order", "per_order"):
+        assert key in doc["summary"]
+    assert doc["summary"]["equals_avf"] is True and doc["summary"]["degree"] == 4
+    cond = doc["conditions"][0]
+    for key in ("id", "level_sequence", "bracket", "vertices", "max_degree", "state", "residual", "radius", "digits"):
+        assert key in cond
+    assert cond["state"] in ("holds", "holds_to_digits", "fails")
+    assert len(doc["conditions"]) == doc["summary"]["conditions_total"]
+
+    bad = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"), "--format", "json")
+    assert bad.code == 1
+    doc = json.loads(bad.out)
+    assert doc["summary"]["equals_avf"] is None and doc["summary"]["energy_order"] == 4
+    fails = [c for c in doc["conditions"] if c["state"] == "fails"]
+    assert fails and all(c["residual_exact"] not in (None, "0") for c in fails)
+
+
+def test_verify_text_report(capsys):
+    r = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--degree", "4")
+    assert r.code == 1
+    assert "energy order      4" in r.out and "Failing conditions" in r.out and "FAIL:" in r.out
+
+
+def test_file_check_defaults_are_overridden_by_flags(capsys):
+    # implicit-midpoint.toml says degree = 2 (all hold); --degree none brings the failing star
+    path = str(TABLEAUX / "collocation" / "implicit-midpoint.toml")
+    assert run_cli(capsys, "verify", path).code == 0
+    assert run_cli(capsys, "verify", path, "--degree", "none").code == 1
+
+
+def test_explain_writes_sigma_notation_and_evaluates(capsys):
+    r = run_cli(capsys, "explain", "1,2,3,3,2")
+    assert r.code == 0
+    assert "Σ b_i c_i a_ij c_j" in r.out and "Σ b_i a_ij c_j²" in r.out
+    r = run_cli(capsys, "explain", "1,2,2,2", "--tableau", str(TABLEAUX / "collocation" / "implicit-midpoint.toml"))
+    assert "1/24" in r.out  # the star value derived above
+    r = run_cli(capsys, "explain", "1,2,3,4")  # path of 4 vertices: u∘u with u = [τ]
+    assert "superfluous" in r.out
+
+
+def test_conditions_count_matches_spec(capsys):
+    r = run_cli(capsys, "conditions", "--order", "11", "--count", "--format", "json")
+    doc = json.loads(r.out)
+    # SPEC §3: non-superfluous free trees with n = 3..12 vertices
+    assert [c["conditions"] for c in doc["counts"]] == [1, 1, 3, 4, 11, 19, 47, 97, 235, 531]
