@@ -14,6 +14,7 @@ from .avf import AvfVerdict, avf_verdict, theorem1_remark
 from .backends import Enclosure, bits_for_dps, make_backend
 from .conditions import ConditionTable, EnergyCondition, condition_table
 from .expr import ROUNDED_MIN_DIGITS
+from .lineintegral import LineIntegralCertificate, line_integral_certificate
 from .orders import OrderResult, classical_order, quadrature_order
 from .tableau import Tableau, consistency_warnings
 from .verdicts import FAILS, HOLDS_TO_DIGITS, Verdict, classify, combine
@@ -56,10 +57,11 @@ class CheckResult:
     results: list[ConditionResult]
     per_order: list[OrderCounts]
     energy_order: int
-    energy_order_all: bool  # certified for every order by the AVF verdict
+    energy_order_all: bool  # certified for every order (AVF or line-integral certificate)
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
+    certificate: LineIntegralCertificate | None  # proves every order for degree m (σ = 1: AVF)
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
@@ -140,22 +142,33 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     quad = quadrature_order(A, b, exact)
     classical = classical_order(backend, options.order)
     avf = avf_verdict(A, b, options.degree, exact) if options.degree is not None else None
+    cert = None
+    if avf is not None:
+        cert = line_integral_certificate(A, b, options.degree, exact)
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 
     energy_order = energy_order_of(results, options.order)
     first = next((r for r in results if r.verdict.state == FAILS), None)
-    if avf is not None and avf.equals_avf and first is not None:
-        if avf.verdict.state != HOLDS_TO_DIGITS:
-            raise AssertionError(  # an exact AVF certificate with a failing condition is a bug
-                f"internal inconsistency: exact AVF certificate but condition {first.condition.id} fails"
+    if first is not None:
+        # A certificate "to D digits" is refuted by a condition that certainly fails; an
+        # exact certificate cannot be, so that would be a bug.
+        if avf is not None and avf.equals_avf:
+            if avf.verdict.state != HOLDS_TO_DIGITS:
+                raise AssertionError(f"internal inconsistency: exact AVF but {first.condition.id} fails")
+            avf = AvfVerdict(
+                avf.degree, Verdict(FAILS),
+                f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.condition.id} certainly fails",
+                avf.reduced_stages, avf.stages, avf.kept, avf.s_min, avf.notes,
             )
-        avf = AvfVerdict(
-            avf.degree, Verdict(FAILS),
-            f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.condition.id} certainly fails",
-            avf.reduced_stages, avf.stages, avf.kept, avf.s_min, avf.notes,
-        )
-    energy_all = bool(avf and avf.equals_avf)
+        if cert is not None and cert.certified:
+            if cert.verdict.state != HOLDS_TO_DIGITS:
+                raise AssertionError(f"internal inconsistency: exact certificate but {first.condition.id} fails")
+            cert = LineIntegralCertificate(
+                cert.degree, None, Verdict(FAILS),
+                f"(LI) holds only to {cert.verdict.digits} digits, and condition {first.condition.id} certainly fails",
+            )
+    energy_all = bool(cert and cert.certified)
     first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
     remark = theorem1_remark(avf, first_label, options.order) if avf else None
     if tableau.rounded_digits is not None and options.decimals == "rounded":
@@ -175,6 +188,7 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
         quadrature=quad,
         classical=classical,
         avf=avf,
+        certificate=cert,
         theorem1=remark,
         warnings=warnings,
         timings=timings,
@@ -183,3 +197,21 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
 
 def overall(result: CheckResult) -> Verdict:
     return combine([r.verdict for r in result.results])
+
+
+def conditions_ok(result: CheckResult) -> bool:
+    """Every checked condition holds, or the AVF certificate proves them all."""
+    return result.all_hold or result.energy_order_all
+
+
+class CheckRunner:
+    """``check`` with a memo per options, so that a verify run and the claim runs it
+    implies share their work (same tableau, same options => same result)."""
+
+    def __init__(self) -> None:
+        self._memo: dict[CheckOptions, CheckResult] = {}
+
+    def __call__(self, tableau: Tableau, options: CheckOptions) -> CheckResult:
+        if options not in self._memo:
+            self._memo[options] = check(tableau, options)
+        return self._memo[options]

@@ -93,6 +93,14 @@ def check_options(f: Callable) -> Callable:
     return f
 
 
+def fail_on_option(f: Callable) -> Callable:
+    return click.option(
+        "--fail-on", type=click.Choice(["auto", "conditions", "claims", "never"]), default="auto", show_default=True,
+        help="What makes the exit code 1: 'auto' = broken claims for files with an [expect] table, "
+        "failing conditions otherwise.",
+    )(f)
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
 @click.version_option(__version__, prog_name="rkcheck")
 @output_options
@@ -153,29 +161,36 @@ def _stdout():
 @click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
+@fail_on_option
 @output_options
-def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_fast) -> None:
-    """Check every energy condition of the tableau in FILE ('-' = stdin).
+def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_fast, fail_on) -> None:
+    """Check every energy condition of the tableau in FILE ('-' = stdin), and the
+    claims of its [expect] table.
 
-    Exit code: 0 when every checked condition holds (or the tableau is certified to be
-    AVF), 1 when a condition fails, 2 for a bad file or option.
+    \b
+    Exit code (--fail-on auto): a file with claims is judged by its claims, a file
+    without claims by its conditions (an AVF certificate counts as holding):
+      0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
-    from .check import check
+    from .check import CheckRunner, conditions_ok
+    from .claims import check_claims, file_fails
 
     tab = load_tableau(file, max_stages)
     options = resolve_options(tab, degree, order, dps, decimals, fail_fast)
-    result = check(tab, options)
+    runner = CheckRunner()
+    result = runner(tab, options)
+    claim_results = check_claims(tab, tab.claims, options, runner) if tab.claims else None
     if fmt == "json":
         from .reports.jsonout import check_doc, dumps
 
-        click.echo(dumps(check_doc(result)))
+        click.echo(dumps(check_doc(result, claim_results)))
     else:
         from .reports.console import is_quiet
         from .reports.text import render_check
 
-        render_check(result, _stdout(), show_all=show_all, quiet=is_quiet())
-    ok = result.all_hold or result.energy_order_all
-    sys.exit(EXIT_OK if ok else EXIT_FAIL)
+        render_check(result, _stdout(), show_all=show_all, quiet=is_quiet(), claims=claim_results)
+    failed = file_fails(conditions_ok(result), claim_results, fail_on)
+    sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
 @cli.command()

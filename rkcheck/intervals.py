@@ -42,6 +42,16 @@ class Interval:
     def rad(self) -> Fraction:
         return (self.hi - self.lo) / 2
 
+    def round_out(self, bits: int) -> "Interval":
+        """Widen to dyadic end points with ``bits`` fractional bits (points stay exact),
+        so that long interval computations do not grow huge denominators."""
+        if self.is_point:
+            return self
+        scale = 1 << bits
+        return Interval(
+            Fraction(math.floor(self.lo * scale), scale), Fraction(math.ceil(self.hi * scale), scale)
+        )
+
     def contains_zero(self) -> bool:
         return self.lo <= 0 <= self.hi
 

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from . import expr as ex
+from .claims import parse_claims
 from .entries import Constants, Entry
 from .errors import UserError
 from .tableau import Tableau
@@ -268,9 +269,10 @@ def _build(
     references = _strings(method.get("references", []), "method.references") if "references" in method else ()
     check = _check_table(_table(data, "check"))
     expect = _table(data, "expect")
+    claims = parse_claims(expect)
     base = dict(
         name=name, description=description, references=references, source=source,
-        check=check, expect=expect, warnings=warnings,
+        check=check, expect=expect, warnings=warnings, claims=claims,
     )
 
     if "family" in data and "tableau" in data:
@@ -278,7 +280,7 @@ def _build(
     if "family" in data:
         family = _table(data, "family")
         if family_builder is None:
-            raise UserError("[family] tables are not supported here", "family")
+            from .families import build_family as family_builder
         return family_builder(family, Tableau(A=(), b=(), family=family, **base))
 
     tab = _table(data, "tableau", required=True)

@@ -32,6 +32,7 @@ class Tableau:
     warnings: list[str] = field(default_factory=list)
     lines: dict[str, int] = field(default_factory=dict)  # "tableau", "expect.avf", ... -> line
     constants: Constants = field(default_factory=Constants)
+    claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.claims.Claim)
 
     # ------------------------------------------------------------- construction
 
@@ -98,6 +99,8 @@ class Tableau:
         return "diagonally implicit"
 
     def number_kind(self, decimals: str = "rounded") -> str:
+        if self.family is not None and not self.is_rational:
+            return "computed by its family at the working precision"
         if self.uses_sqrt:
             return "algebraic (square roots)"
         digits = self.rounded_digits

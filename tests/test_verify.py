@@ -138,7 +138,7 @@ def test_verify_exit_codes_and_json_schema(capsys):
 
 
 def test_verify_text_report(capsys):
-    r = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--degree", "4")
+    r = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--degree", "4", "--fail-on", "conditions")
     assert r.code == 1
     assert "energy order      4" in r.out and "Failing conditions" in r.out and "FAIL:" in r.out
 

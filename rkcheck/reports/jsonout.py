@@ -104,6 +104,15 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
             "s_min": avf.s_min,
             "notes": avf.notes,
         },
+        "certificate": None
+        if res.certificate is None
+        else {
+            "kind": "avf" if res.certificate.sigma == 1 else ("line_integral" if res.certificate.sigma else None),
+            "sigma": res.certificate.sigma,
+            "state": res.certificate.verdict.state,
+            "digits": res.certificate.verdict.digits,
+            "reason": res.certificate.reason,
+        },
         "theorem1": res.theorem1,
         "classical_order": res.classical.order,
         "classical_order_checked": res.classical.checked,
@@ -133,9 +142,29 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
     }
 
 
-def check_doc(res: CheckResult) -> dict[str, Any]:
+def claims_doc(claim_results) -> list[dict[str, Any]] | None:
+    if claim_results is None:
+        return None
+    return [
+        {
+            "claim": r.claim.kind,
+            "place": r.claim.place,
+            "degree": r.claim.degree,
+            "order": r.claim.order,
+            "claimed": r.claimed,
+            "found": r.found,
+            "met": r.met,
+            "note": r.note,
+        }
+        for r in claim_results
+    ]
+
+
+def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
     """The per-file object of ``verify --format json`` (also used by ``scan``)."""
     o = res.options
+    summary = summary_doc(res)
+    summary["claims_ok"] = None if claim_results is None else all(r.met for r in claim_results)
     return {
         "schema": SCHEMA,
         "rkcheck": __version__,
@@ -154,7 +183,8 @@ def check_doc(res: CheckResult) -> dict[str, Any]:
             "backend": res.backend,
             "fail_fast": o.fail_fast,
         },
-        "summary": summary_doc(res),
+        "summary": summary,
+        "claims": claims_doc(claim_results),
         "conditions": [condition_doc(r, o.dps) for r in res.results],
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},

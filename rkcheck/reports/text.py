@@ -38,6 +38,11 @@ def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12) -> str:
     return f"|R| ≤ {radius_string(abs(enc.mid) + enc.rad)}"
 
 
+def plain(*values) -> list:
+    """Table cells as plain Text: user strings and brackets like [τ] are not rich markup."""
+    return [v if isinstance(v, Text) else Text(str(v)) for v in values]
+
+
 def _kv_table() -> Table:
     t = Table(box=None, show_header=False, pad_edge=False, padding=(0, 2, 0, 0))
     t.add_column(style="bold", no_wrap=True)
@@ -54,7 +59,7 @@ def header(tab: Tableau, decimals: str) -> Group:
 
 
 def conditions_table(results: list[ConditionResult], title: str) -> Table:
-    t = Table(title=title, title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+    t = Table(title=Text(title), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("id", no_wrap=True)
     t.add_column("bracket", no_wrap=True)
     t.add_column("vertices", justify="right")
@@ -63,10 +68,10 @@ def conditions_table(results: list[ConditionResult], title: str) -> Table:
     t.add_column("state", no_wrap=True)
     for r in results:
         c = r.condition
-        t.add_row(
-            c.id, c.bracket, str(c.vertices), str(c.max_degree),
+        t.add_row(*plain(
+            c.id, c.bracket, c.vertices, c.max_degree,
             enclosure_text(r.enclosure, r.verdict), state_text(r.verdict),
-        )
+        ))
     return t
 
 
@@ -82,7 +87,7 @@ def per_order_table(res: CheckResult) -> Table:
     for p in res.per_order:
         failed = Text(str(p.failed), style="bold red" if p.failed else "")
         digits = "exact" if p.checked and p.min_digits is None and p.held else (str(p.min_digits) if p.min_digits is not None else "")
-        t.add_row(str(p.order), str(p.order + 1), str(p.conditions), str(p.checked), str(p.held), failed, digits)
+        t.add_row(*plain(p.order, p.order + 1, p.conditions, p.checked, p.held, failed, digits))
     return t
 
 
@@ -92,7 +97,22 @@ def _backend_text(res: CheckResult) -> str:
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 
-def render_check(res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False) -> None:
+def claims_table(claim_results) -> Table:
+    t = Table(title=Text("Claims ([expect])"), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("claim", no_wrap=True)
+    t.add_column("claimed")
+    t.add_column("found")
+    t.add_column("", no_wrap=True)
+    t.add_column("note")
+    for r in claim_results:
+        ok = Text("ok", style="green") if r.met else Text("BROKEN", style="bold red")
+        t.add_row(*plain(r.claim.label(), r.claimed, r.found, ok, r.note or ""))
+    return t
+
+
+def render_check(
+    res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False, claims=None
+) -> None:
     """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
     o = res.options
     deg = "all Hamiltonians" if o.degree is None else f"degree ≤ {o.degree}"
@@ -104,8 +124,8 @@ def render_check(res: CheckResult, console: Console, show_all: bool = False, qui
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
         kv = _kv_table()
-        kv.add_row("quadrature order", _order_text(res.quadrature, "quadrature"))
-        kv.add_row("classical order", _order_text(res.classical, "classical"))
+        kv.add_row(*plain("quadrature order", _order_text(res.quadrature, "quadrature")))
+        kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
         if res.avf is not None:
             a = res.avf
             if a.equals_avf:
@@ -113,12 +133,14 @@ def render_check(res: CheckResult, console: Console, show_all: bool = False, qui
             else:
                 label = Text("no", style="red")
             label.append(f" — {a.reason}", style="")
-            kv.add_row(f"AVF (degree {a.degree})", label)
+            kv.add_row(*plain(f"AVF (degree {a.degree})", label))
             for note in a.notes:
-                kv.add_row("", note)
-        kv.add_row("energy order", _energy_text(res))
+                kv.add_row(*plain("", note))
+        if res.certificate is not None and res.certificate.certified and res.certificate.sigma != 1:
+            kv.add_row(*plain("certificate", res.certificate.reason))
+        kv.add_row(*plain("energy order", _energy_text(res)))
         if res.theorem1:
-            kv.add_row("Theorem 1", res.theorem1.removeprefix("Theorem 1: "))
+            kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
         console.print(kv)
         console.print()
         console.print(per_order_table(res))
@@ -129,6 +151,17 @@ def render_check(res: CheckResult, console: Console, show_all: bool = False, qui
         title = f"Failing conditions ({len(res.failures)} of {len(res.results)} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
+    if claims:
+        console.print(claims_table(claims))
+        broken = [r for r in claims if not r.met]
+        line = final_line(res)
+        if broken:
+            head = Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)} ", style="bold red")
+        else:
+            head = Text(f"OK: all {len(claims)} claims met ", style="bold green")
+        head.append(Text(f"(conditions: {line.plain})", style=""))
+        console.print(head)
+        return
     console.print(final_line(res))
 
 
@@ -142,10 +175,20 @@ def _order_text(r, what: str) -> str:
     return text
 
 
+def _certificate_name(res: CheckResult) -> str:
+    cert = res.certificate
+    if cert is None or cert.sigma is None:
+        return "certificate"
+    name = "AVF certificate" if cert.sigma == 1 else f"line-integral certificate, σ = {cert.sigma}"
+    if cert.verdict.state == HOLDS_TO_DIGITS:
+        name += f", to {cert.verdict.digits} digits"
+    return name
+
+
 def _energy_text(res: CheckResult) -> Text:
     o = res.options
     if res.energy_order_all:
-        return Text(f"all orders (AVF certificate for degree ≤ {o.degree}); {o.order} verified", style="green")
+        return Text(f"all orders for degree ≤ {o.degree} ({_certificate_name(res)}); {o.order} verified", style="green")
     first = res.first_failure
     if first is None:
         return Text(f"≥ {res.energy_order} (every condition up to order {o.order} holds; not proven beyond)", style="green")
@@ -160,10 +203,9 @@ def final_line(res: CheckResult) -> Text:
     v = overall(res)
     n = len(res.results)
     if res.energy_order_all:
-        avf = res.avf
-        how = "AVF" if avf is None or avf.verdict.state == HOLDS else f"AVF to {avf.verdict.digits} digits"
         return Text(
-            f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({how}); {n} conditions checked",
+            f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({_certificate_name(res)}); "
+            f"{n} conditions checked",
             style="bold green",
         )
     if v.state == HOLDS:
@@ -195,8 +237,8 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", wa
     c_entries = tab.c
     for i, row in enumerate(tab.A):
         c_text = c_entries[i].text if c_entries is not None else Text(_row_sum_text(tab, i), style="dim")
-        t.add_row(c_text, *[e.text for e in row], end_section=i == tab.stages - 1)
-    t.add_row("", *[e.text for e in tab.b], style="bold")
+        t.add_row(*plain(c_text, *[e.text for e in row]), end_section=i == tab.stages - 1)
+    t.add_row(*plain("", *[e.text for e in tab.b]), style="bold")
     console.print(t)
     if c_entries is None:
         console.print(Text("c not given: the row sums A·1 are shown (dim) and used", style="dim"))
@@ -221,7 +263,7 @@ def render_condition_list(table, console: Console, count_only: bool) -> None:
     t.add_column("vertices", justify="right")
     t.add_column("conditions", justify="right")
     for k, v in table.counts_by_order().items():
-        t.add_row(str(k), str(k + 1), str(v))
+        t.add_row(*plain(k, k + 1, v))
     console.print(t)
     if count_only:
         return
@@ -232,7 +274,7 @@ def render_condition_list(table, console: Console, count_only: bool) -> None:
     lst.add_column("max deg", justify="right")
     lst.add_column("rootings", justify="right")
     for c in table.conditions:
-        lst.add_row(c.id, c.bracket, str(c.vertices), str(c.max_degree), str(len(c.terms)))
+        lst.add_row(*plain(c.id, c.bracket, c.vertices, c.max_degree, len(c.terms)))
     console.print(lst)
 
 
@@ -264,7 +306,7 @@ def render_explanation(ex, console: Console, tableau=None) -> None:
         row = [f"{term.bracket}  {','.join(map(str, term.level_sequence))}", "+" if term.sign > 0 else "−", str(term.sigma), forest]
         if tableau is not None and term.value is not None:
             row.append(enclosure_text(term.value, Verdict(FAILS) if not term.value.exact else Verdict(HOLDS)))
-        t.add_row(*row)
+        t.add_row(*plain(*row))
     console.print(t)
     if tableau is not None and ex.residual is not None and ex.verdict is not None:
         line = Text(f"R = {enclosure_text(ex.residual, ex.verdict, 20)}   ")

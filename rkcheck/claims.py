@@ -1,0 +1,193 @@
+"""Claims: the ``[expect]`` table of a tableau file, and how they are checked.
+
+A method's author states the published properties of the method; rkcheck checks each
+one and reports *claimed* against *found*::
+
+    [expect]
+    energy_order = {degree = 4, order = 8, value = "all"}   # or value = 4; degree = "none"
+    avf = {degree = 4, value = true}
+    classical_order = 4
+    quadrature_order = 4
+
+``energy_order`` and ``avf`` may also be lists of such tables (one per degree).
+
+Meanings (SPEC §3–§4):
+
+* ``energy_order = n`` — exactly n: every condition with ≤ n+1 vertices holds and one
+  with n+2 vertices fails (checked to order ``max(order, n+1)``).
+* ``energy_order = "all"`` — energy is preserved to every order: met by the AVF
+  certificate, or, without it, by every condition up to ``order`` holding, with the note
+  "verified to order N, not proven beyond".
+* ``avf = true|false`` — the AVF verdict for that degree.
+* ``classical_order = p`` / ``quadrature_order = q`` — exactly p / q.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+from .errors import UserError
+
+CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order")
+
+
+@dataclass(frozen=True)
+class Claim:
+    kind: str
+    value: int | str | bool
+    degree: int | None = None
+    order: int | None = None
+    place: str = ""  # "expect.energy_order" or "expect.energy_order[2]"
+
+    def label(self) -> str:
+        if self.kind in ("energy_order", "avf"):
+            deg = "all H" if self.degree is None else f"degree {self.degree}"
+            return f"{self.kind} ({deg})"
+        return self.kind
+
+
+@dataclass(frozen=True)
+class ClaimResult:
+    claim: Claim
+    met: bool
+    found: str
+    note: str | None = None
+
+    @property
+    def claimed(self) -> str:
+        v = self.claim.value
+        return str(v).lower() if isinstance(v, bool) else str(v)
+
+
+def _int(value: Any, place: str, minimum: int = 0) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
+    return value
+
+
+def _degree(value: Any, place: str) -> int | None:
+    if value in ("none", "all", None):
+        return None
+    return _int(value, place, 1)
+
+
+def _one(kind: str, raw: Any, place: str) -> Claim:
+    if kind in ("classical_order", "quadrature_order"):
+        if isinstance(raw, dict):
+            raw = raw.get("value")
+        return Claim(kind, _int(raw, place), place=place)
+    if not isinstance(raw, dict):
+        raise UserError("expected a table like {degree = 4, value = ...}", place)
+    unknown = set(raw) - {"degree", "order", "value"}
+    if unknown:
+        raise UserError(f"unknown key {sorted(unknown)[0]!r} (known: degree, order, value)", place)
+    if "value" not in raw:
+        raise UserError("missing value", place)
+    if kind == "avf" and "degree" not in raw:
+        raise UserError("missing degree (AVF is defined for a polynomial degree m)", place)
+    degree = _degree(raw.get("degree"), f"{place}.degree")
+    order = _int(raw["order"], f"{place}.order", 1) if "order" in raw else None
+    value = raw["value"]
+    if kind == "avf":
+        if not isinstance(value, bool):
+            raise UserError(f"expected true or false, got {value!r}", f"{place}.value")
+        if degree is None:
+            raise UserError("AVF needs a polynomial degree", f"{place}.degree")
+    elif value != "all":
+        value = _int(value, f"{place}.value", 1)
+    return Claim(kind, value, degree, order, place)
+
+
+def parse_claims(expect: dict[str, Any]) -> list[Claim]:
+    """Validate an ``[expect]`` table; errors name the claim (``expect.avf.value``)."""
+    claims: list[Claim] = []
+    for kind, raw in expect.items():
+        place = f"expect.{kind}"
+        if kind not in CLAIM_KINDS:
+            raise UserError(f"unknown claim (known: {', '.join(CLAIM_KINDS)})", place)
+        if isinstance(raw, list) and kind in ("energy_order", "avf"):
+            claims.extend(_one(kind, item, f"{place}[{i}]") for i, item in enumerate(raw, start=1))
+        else:
+            claims.append(_one(kind, raw, place))
+    return claims
+
+
+# ------------------------------------------------------------------ checking
+
+
+def needed_options(claims: list[Claim], base):
+    """The distinct check runs the claims need: one per degree, each to the highest order
+    any claim on that degree needs.  ``base`` is the run the user asked for."""
+    runs: dict[int | None, int] = {base.degree: base.order}
+    for c in claims:
+        if c.kind in ("energy_order", "avf"):
+            need = c.order or base.order
+            if c.kind == "energy_order" and isinstance(c.value, int):
+                need = max(need, c.value + 1)
+            runs[c.degree] = max(runs.get(c.degree, 0), need)
+        elif c.kind == "classical_order":
+            runs[base.degree] = max(runs[base.degree], int(c.value) + 1)
+    return {deg: replace(base, degree=deg, order=order, fail_fast=False) for deg, order in runs.items()}
+
+
+def judge(claim: Claim, result) -> ClaimResult:
+    """One claim against the check run made for it (see :func:`needed_options`)."""
+    if claim.kind == "quadrature_order" or claim.kind == "classical_order":
+        r = result.quadrature if claim.kind == "quadrature_order" else result.classical
+        found = r.order
+        exact_found = r.first_failure is not None
+        if claim.kind == "classical_order" and not exact_found:
+            return ClaimResult(claim, False, f"≥ {found}", f"checked to order {r.checked} only")
+        return ClaimResult(claim, found == claim.value, str(found))
+    if claim.kind == "avf":
+        found_bool = bool(result.avf and result.avf.equals_avf)
+        note = result.avf.reason if result.avf else None
+        return ClaimResult(claim, found_bool == claim.value, str(found_bool).lower(), note)
+    # energy order
+    n_checked = result.options.order
+    if result.energy_order_all:
+        found, proven = "all", True
+    elif result.first_failure is None:
+        found, proven = f"≥ {n_checked}", False
+    else:
+        found, proven = str(result.energy_order), True
+    if claim.value == "all":
+        if result.energy_order_all:
+            return ClaimResult(claim, True, "all", "AVF certificate: every order")
+        if result.first_failure is None:
+            return ClaimResult(claim, True, found, f"verified to order {n_checked}, not proven beyond")
+        return ClaimResult(claim, False, found)
+    if not proven:
+        return ClaimResult(claim, False, found, f"no condition fails up to order {n_checked}")
+    return ClaimResult(claim, found == str(claim.value), found)
+
+
+def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimResult]:
+    """Judge every claim; ``run_check(tableau, options)`` is the check function (injected
+    so that callers can share runs; normally :func:`rkcheck.check.check`)."""
+    runs = needed_options(claims, base)
+    results = {deg: run_check(tableau, opts) for deg, opts in runs.items()}
+    return [judge(c, results[c.degree if c.kind in ("energy_order", "avf") else base.degree]) for c in claims]
+
+
+# ---------------------------------------------------------------- exit policy
+
+FAIL_ON = ("auto", "conditions", "claims", "never")
+
+
+def file_fails(conditions_ok: bool, claim_results: list[ClaimResult] | None, fail_on: str = "auto") -> bool:
+    """Whether a checked file counts as failed (exit 1) under ``--fail-on``.
+
+    ``auto`` (the default): a file with claims is judged by its claims, a file without
+    claims by its conditions.  ``conditions``: any failing condition (an AVF certificate
+    counts as success).  ``claims``: any broken claim.  ``never``: never fails.
+    """
+    claims_ok = all(r.met for r in claim_results) if claim_results else True
+    if fail_on == "never":
+        return False
+    if fail_on == "claims":
+        return not claims_ok
+    if fail_on == "conditions":
+        return not conditions_ok
+    return not claims_ok if claim_results else not conditions_ok

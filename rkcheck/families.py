@@ -1,0 +1,296 @@
+"""Method families computed at any precision (the ``[family]`` table and ``rkcheck new``).
+
+==================  ==============================================================  ============
+family              coefficients                                                    parameters
+==================  ==============================================================  ============
+``avf``             ``a_ij = c_i b_j`` over a rule (SPEC §4)                         rule, s
+``gauss``           collocation at Gauss nodes: ``a_ij = ∫₀^{c_i} ℓ_j``              s
+``lobatto-iiia``    collocation at Lobatto nodes                                     s >= 2
+``lobatto-iiib``    ``a_ij = (b_j/b_i) ∫_{c_j}^1 ℓ_i`` (condition D(s)), Lobatto     s >= 2
+``radau-iia``       collocation at Radau II nodes (c_s = 1)                          s
+``radau-ia``        ``a_ij = (b_j/b_i) ∫_{c_j}^1 ℓ_i`` at Radau I nodes (c_1 = 0)    s
+``hbvm``            HBVM(k, s): k Gauss nodes, ``A = I_s P_sᵀ Ω``                    k >= s >= 1
+``kernel``          the seed's ``c bᵀ + β N``, ``N = ((ζ−1)1 − 2ζc) bᵀ(I−2C)``, s = 2  zeta, beta
+==================  ==============================================================  ============
+
+HBVM (Brugnano, Iavernaro, Trigiante): with orthonormal shifted Legendre polynomials
+``P̂_j = √(2j+1) P_j``, ``(I_s)_{ij} = ∫₀^{c_i} P̂_{j−1}``, ``(P_s)_{ij} = P̂_{j−1}(c_i)``,
+``Ω = diag(b)``; the square roots cancel: ``a_il = b_l Σ_{j<s} (2j+1) G_j(c_i) P_j(c_l)``
+with ``G_j = ∫₀^x P_j``.  HBVM(k, s) conserves polynomial H of degree ≤ 2k/s.
+
+Every coefficient is a certified interval at the requested number of bits (computed from
+the certified nodes of :mod:`rkcheck.quadrature`), and an exact rational when the rule is
+rational.  :func:`expression_texts` gives the same coefficients as exact entry
+expressions over closed-form node constants, for ``rkcheck new``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from itertools import combinations
+from typing import Any, Callable
+
+from .entries import Constants, Entry
+from .errors import UserError
+from .intervals import Interval
+from .quadrature import Rule, lagrange_integral, poly_eval, poly_integral, rule, shifted_legendre
+from .tableau import Tableau
+
+FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
+TITLES = {
+    "gauss": "Gauss–Legendre collocation",
+    "lobatto-iiia": "Lobatto IIIA",
+    "lobatto-iiib": "Lobatto IIIB",
+    "radau-iia": "Radau IIA",
+    "radau-ia": "Radau IA",
+}
+PARAMS = {
+    "avf": ("s", "rule"),
+    "gauss": ("s",),
+    "lobatto-iiia": ("s",),
+    "lobatto-iiib": ("s",),
+    "radau-iia": ("s",),
+    "radau-ia": ("s",),
+    "hbvm": ("k", "s"),
+    "kernel": ("zeta", "beta"),
+}
+
+
+@dataclass(frozen=True)
+class FamilySpec:
+    name: str
+    s: int
+    k: int | None = None
+    rule: str = "gauss"
+    zeta: Fraction | None = None
+    beta: Fraction | None = None
+
+    def title(self) -> str:
+        if self.name == "avf":
+            return f"AVF over the {self.s}-point {self.rule} rule"
+        if self.name == "hbvm":
+            return f"HBVM({self.k}, {self.s})"
+        if self.name == "kernel":
+            return f"Seed kernel family, ζ = {self.zeta}, β = {self.beta}"
+        return f"{TITLES[self.name]}, {self.s} stages"
+
+    def stages(self) -> int:
+        return self.s
+
+    def base_rule(self) -> Rule:
+        if self.name == "avf":
+            return rule(self.rule, self.s)
+        if self.name in ("gauss", "hbvm"):
+            return rule("gauss", self.k if self.name == "hbvm" else self.s)
+        if self.name in ("lobatto-iiia", "lobatto-iiib"):
+            return rule("lobatto", self.s)
+        if self.name == "radau-iia":
+            return rule("radau-ii", self.s)
+        if self.name == "radau-ia":
+            return rule("radau-i", self.s)
+        assert self.name == "kernel"
+        return rule(f"zeta:{self.zeta}", 2)
+
+    def params(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"name": self.name}
+        if self.name == "hbvm":
+            out.update(k=self.k, s=self.s)
+        elif self.name == "kernel":
+            out.update(zeta=str(self.zeta), beta=str(self.beta))
+        else:
+            out["s"] = self.s
+            if self.name == "avf":
+                out["rule"] = self.rule
+        return out
+
+
+def _exact(text: Any, place: str) -> Fraction:
+    try:
+        e = Entry.parse(str(text))
+    except UserError as err:
+        raise err.located(place) from None
+    if e.exact is None:
+        raise UserError(f"expected a rational number, got {text!r}", place)
+    return e.exact
+
+
+def _positive(value: Any, place: str, minimum: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
+    if value > 64:
+        raise UserError(f"at most 64, got {value}", place)
+    return value
+
+
+def parse_spec(table: dict[str, Any]) -> FamilySpec:
+    """Validate a ``[family]`` table (``place`` in errors: ``family.k``)."""
+    name = table.get("name")
+    if name not in FAMILIES:
+        raise UserError(f"unknown family {name!r} (known: {', '.join(FAMILIES)})", "family.name")
+    known = {"name", "stages", *PARAMS[name]}
+    for key in table:
+        if key not in known:
+            raise UserError(f"unknown parameter for {name} (known: {', '.join(sorted(known - {'name'}))})", f"family.{key}")
+    if name == "kernel":
+        zeta = _exact(table.get("zeta", "0"), "family.zeta")
+        beta = _exact(table.get("beta", "0"), "family.beta")
+        return FamilySpec(name, 2, zeta=zeta, beta=beta)
+    s_raw = table.get("s", table.get("stages"))
+    if s_raw is None:
+        raise UserError("missing s (the number of stages)", "family")
+    minimum = 2 if name.startswith("lobatto") else 1
+    s = _positive(s_raw, "family.s", minimum)
+    if name == "hbvm":
+        if "k" not in table:
+            raise UserError("missing k (the number of Gauss nodes)", "family")
+        k = _positive(table["k"], "family.k", s)
+        return FamilySpec(name, s, k=k)
+    if name == "avf":
+        rule_name = table.get("rule", "gauss")
+        if not isinstance(rule_name, str):
+            raise UserError("expected a rule name", "family.rule")
+        if rule_name == "lobatto" and s < 2:
+            raise UserError("lobatto needs s >= 2", "family.s")
+        rule(rule_name, s)  # validates the name
+        return FamilySpec(name, s, rule=rule_name)
+    return FamilySpec(name, s)
+
+
+# ----------------------------------------------------------------- intervals
+
+
+def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], list[Interval]]:
+    """(A, b) of the family at ``bits`` bits (exact points for rational rules)."""
+    r = spec.base_rule()
+    c, b = r.enclosures(bits)
+    n = len(c)
+    zero, one = Interval.point(0), Interval.point(1)
+    if spec.name == "avf":
+        A = [[c[i] * b[j] for j in range(n)] for i in range(n)]
+    elif spec.name in ("gauss", "lobatto-iiia", "radau-iia"):
+        A = [[lagrange_integral(c, j, zero, c[i], bits) for j in range(n)] for i in range(n)]
+    elif spec.name in ("lobatto-iiib", "radau-ia"):
+        A = [
+            [(b[j] / b[i] * lagrange_integral(c, i, c[j], one, bits)).round_out(bits + 32) for j in range(n)]
+            for i in range(n)
+        ]
+    elif spec.name == "hbvm":
+        A = [[_hbvm_entry(c, b, i, l, spec.s).round_out(bits + 32) for l in range(n)] for i in range(n)]
+    else:
+        zeta, beta = Interval.point(spec.zeta), Interval.point(spec.beta)
+        A = [
+            [
+                c[i] * b[j] + beta * ((zeta - one) - Interval.point(2) * zeta * c[i]) * b[j] * (one - Interval.point(2) * c[j])
+                for j in range(n)
+            ]
+            for i in range(n)
+        ]
+    return A, b
+
+
+def _poly_at(p: list[Fraction], x: Interval) -> Interval:
+    acc = Interval.point(0)
+    for coeff in reversed(p):
+        acc = acc * x + Interval.point(coeff)
+    return acc
+
+
+def _hbvm_entry(c: list[Interval], b: list[Interval], i: int, l: int, s: int) -> Interval:
+    total = Interval.point(0)
+    for j in range(s):
+        P = shifted_legendre(j)
+        total = total + Interval.point(2 * j + 1) * _poly_at(poly_integral(P), c[i]) * _poly_at(P, c[l])
+    return b[l] * total
+
+
+class ComputedEntry:
+    """A coefficient computed by a family at whatever precision is asked for.
+
+    It answers the same questions as :class:`~rkcheck.entries.Entry`; its value comes from
+    the family (one computation per precision, shared by all entries of the tableau).
+    """
+
+    rounded_digits = None
+    bare_number = False
+    computed = True
+    is_rounded = False
+
+    def __init__(self, provider: Callable[[int], Interval], exact: Fraction | None, label: str):
+        self._provider = provider
+        self.exact = exact
+        self.uses_sqrt = exact is None
+        self.label = label
+
+    @property
+    def text(self) -> str:
+        if self.exact is not None:
+            return str(self.exact)
+        from .numfmt import decimal_string
+
+        return "≈" + decimal_string(self._provider(80).mid, 15)
+
+    @property
+    def is_rational(self) -> bool:
+        return self.exact is not None
+
+    def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
+        if self.exact is not None:
+            return Interval.point(self.exact)
+        return self._provider(bits)
+
+    def is_zero(self) -> bool:
+        return self.exact == 0
+
+    def exact_string(self) -> str:
+        return str(self.exact) if self.exact is not None else self.text
+
+
+@dataclass
+class _Shared:
+    spec: FamilySpec
+    cache: dict[int, tuple[list[list[Interval]], list[Interval]]] = field(default_factory=dict)
+
+    def get(self, bits: int) -> tuple[list[list[Interval]], list[Interval]]:
+        if bits not in self.cache:
+            self.cache[bits] = coefficients(self.spec, bits)
+        return self.cache[bits]
+
+
+def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
+    """The family as a :class:`Tableau` whose entries are computed at the check's precision."""
+    shared = _Shared(spec)
+    A0, b0 = shared.get(64)
+    rational = spec.base_rule().is_rational
+    n = len(b0)
+
+    def entry(getter: Callable[[tuple], Interval], value: Interval, label: str) -> ComputedEntry:
+        exact = value.lo if rational and value.is_point else None
+        return ComputedEntry(lambda bits: getter(shared.get(bits)), exact, label)
+
+    A = tuple(
+        tuple(entry(lambda ab, i=i, j=j: ab[0][i][j], A0[i][j], f"A[{i + 1}][{j + 1}]") for j in range(n))
+        for i in range(n)
+    )
+    b = tuple(entry(lambda ab, j=j: ab[1][j], b0[j], f"b[{j + 1}]") for j in range(n))
+    kw: dict[str, Any] = {}
+    if base is not None:
+        kw = dict(
+            description=base.description, references=base.references, source=base.source,
+            check=base.check, expect=base.expect, warnings=base.warnings, claims=base.claims,
+        )
+        name = base.name if base.name and base.source and base.name != _stem(base.source) else spec.title()
+    else:
+        name = spec.title()
+    return Tableau(A=A, b=b, c=None, name=name, family=spec.params(), **kw)
+
+
+def _stem(source: str) -> str:
+    from pathlib import Path
+
+    return Path(source).stem
+
+
+def build_family(table: dict[str, Any], base: Tableau) -> Tableau:
+    """The loader's hook for ``[family]`` tables."""
+    return family_tableau(parse_spec(table), base)
