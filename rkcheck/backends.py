@@ -111,7 +111,9 @@ class ExactBackend:
         # sparse rows: explicit tableaux are mostly zeros
         self._rows = [[(j, a) for j, a in enumerate(row) if a] for row in self.A]
         self._bnz = [(i, x) for i, x in enumerate(self.b) if x]
-        self._caches: dict[int, _WeightCache] = {}
+        # keyed by the table object itself (identity), never by id(): a freed table's id
+        # could be reused by a new table and would then return stale weights
+        self._caches: dict[RootedTreeTable, _WeightCache] = {}
 
     def _matvec(self, x: list[int]) -> list[int]:
         return [sum(a * x[j] for j, a in row) for row in self._rows]
@@ -119,9 +121,9 @@ class ExactBackend:
     def tree_weights(self, table: RootedTreeTable, upto: int | None = None) -> list[int]:
         """``â(t) = d^|t| a(t)`` for every id of order <= ``upto`` (default: all)."""
         upto = table.max_order if upto is None else upto
-        cache = self._caches.get(id(table))
+        cache = self._caches.get(table)
         if cache is None:
-            cache = self._caches[id(table)] = _WeightCache()
+            cache = self._caches[table] = _WeightCache()
             ones = [1] * self.s
             cache.phi.append(ones)
             cache.psi.append(self._matvec(ones))
@@ -143,7 +145,7 @@ class ExactBackend:
 
     def enclose_terms(self, table: RootedTreeTable, terms: Sequence[Term], scale: int) -> Enclosure:
         """``Σ sign/σ Π a(t)`` exactly; ``scale`` = lcm of the σ of the terms."""
-        a = self._caches[id(table)].a
+        a = self._caches[table].a
         total = 0
         size = None
         for term in terms:
@@ -194,7 +196,9 @@ class BallBackend:
         self.b = [_to_ball(x, bits) for x in b]
         self._rows = [[(j, m, r) for j, (m, r) in enumerate(row) if m or r] for row in self.A]
         self._bnz = [(i, m, r) for i, (m, r) in enumerate(self.b) if m or r]
-        self._caches: dict[int, _WeightCache] = {}
+        # keyed by the table object itself (identity), never by id(): a freed table's id
+        # could be reused by a new table and would then return stale weights
+        self._caches: dict[RootedTreeTable, _WeightCache] = {}
 
     def _mul(self, m1: int, r1: int, m2: int, r2: int) -> tuple[int, int]:
         P = self.bits
@@ -215,9 +219,9 @@ class BallBackend:
 
     def tree_weights(self, table: RootedTreeTable, upto: int | None = None) -> list[tuple[int, int]]:
         upto = table.max_order if upto is None else upto
-        cache = self._caches.get(id(table))
+        cache = self._caches.get(table)
         if cache is None:
-            cache = self._caches[id(table)] = _WeightCache()
+            cache = self._caches[table] = _WeightCache()
             ones_m, ones_r = [self.one] * self.s, [0] * self.s
             cache.phi.append((ones_m, ones_r))
             cache.psi.append(self._matvec(ones_m, ones_r))
@@ -247,7 +251,7 @@ class BallBackend:
         return out_m, out_r
 
     def enclose_terms(self, table: RootedTreeTable, terms: Sequence[Term], scale: int) -> Enclosure:
-        a = self._caches[id(table)].a
+        a = self._caches[table].a
         P = self.bits
         total_m = 0
         total_r = 0

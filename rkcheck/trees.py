@@ -179,8 +179,9 @@ def bracket_of_forest(subtrees: Sequence[tuple[int, ...]]) -> str:
 
 
 def bracket(seq: Sequence[int]) -> str:
-    """Bracket notation of a level sequence."""
-    return bracket_of_forest(_split_children(tuple(seq)))
+    """Bracket notation of a level sequence (any valid one: it is canonicalised first,
+    so every rooting of the same tree prints the same way)."""
+    return bracket_of_forest(_split_children(canonical_level_sequence(seq)))
 
 
 def _split_children(seq: tuple[int, ...]) -> list[tuple[int, ...]]:
