@@ -154,7 +154,9 @@ def judge(claim: Claim, result) -> ClaimResult:
         found, proven = str(result.energy_order), True
     if claim.value == "all":
         if result.energy_order_all:
-            return ClaimResult(claim, True, "all", "AVF certificate: every order")
+            cert = result.certificate
+            kind = "AVF" if cert is None or cert.sigma == 1 else f"line-integral (σ = {cert.sigma})"
+            return ClaimResult(claim, True, "all", f"{kind} certificate: every order")
         if result.first_failure is None:
             return ClaimResult(claim, True, found, f"verified to order {n_checked}, not proven beyond")
         return ClaimResult(claim, False, found)

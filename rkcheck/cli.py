@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import functools
 import sys
-from typing import Any, Callable
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any, Callable, Iterator
 
 import click
 
@@ -146,6 +148,23 @@ def resolve_options(tab, degree, order, dps, decimals, fail_fast=False):
     )
 
 
+@contextmanager
+def _progress(label: str, total: int) -> Iterator[Callable[[], None]]:
+    """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
+    from .reports.console import is_quiet, make_console
+
+    console = make_console(stderr=True)
+    if is_quiet() or not console.is_terminal:
+        yield lambda: None
+        return
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as progress:
+        task = progress.add_task(label, total=total)
+        yield lambda: progress.advance(task)
+
+
 def _stdout():
     from .reports.console import make_console
 
@@ -279,6 +298,105 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
         raise UserError(f"at most {MAX_ORDER + 1} vertices", "ID")
     tab = load_tableau(tableau_file, max_stages) if tableau_file else None
     render_explanation(do_explain(seq, tab, dps, decimals), _stdout(), tab)
+
+
+@cli.command()
+@click.argument("family", metavar="FAMILY", type=click.Choice(
+    ["avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel"]))
+@click.option("--stages", "-s", "s", type=click.IntRange(1, 64), default=None, help="Number of stages s.")
+@click.option("-k", "k", type=click.IntRange(1, 64), default=None, help="HBVM: number of Gauss nodes k (>= s).")
+@click.option("--rule", default="gauss", show_default=True,
+              help="AVF: quadrature rule gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
+@click.option("--zeta", default="0", show_default=True, help="kernel: the rule parameter ζ (nodes = zeros of P_2 − ζP_1).")
+@click.option("--beta", default="1/10", show_default=True, help="kernel: the perturbation size β.")
+@click.option("--digits", type=click.IntRange(1, 5000), default=None,
+              help="Write D-digit decimals (default: exact expressions when the nodes have a closed form "
+              "in square roots, else 60-digit decimals).")
+@click.option("--exact", is_flag=True, help="Require exact entries (fails if the nodes have no closed form).")
+@click.option("--name", default=None, help="The [method] name (default: from the family).")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="Write to this file instead of stdout.")
+@output_options
+def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
+    """Write a complete tableau file (TOML) for a method FAMILY.
+
+    \b
+    Examples:
+      rkcheck new gauss -s 3                      # exact: sqrt(15) closed forms
+      rkcheck new hbvm -k 6 -s 2 -o hbvm-6-2.toml # 60-digit decimals (no closed form)
+      rkcheck new avf -s 2 --rule radau-ii        # rational: plain fractions
+      rkcheck new kernel --zeta 1/3 --beta 1e-12  # the seed's counterexample family
+      rkcheck new gauss -s 2 | rkcheck verify - --degree 4
+    """
+    from .families import parse_spec
+    from .newfile import render_toml
+
+    if exact and digits is not None:
+        raise UserError("give either --exact or --digits, not both")
+    table: dict[str, Any] = {"name": family}
+    if family == "kernel":
+        table.update(zeta=zeta, beta=beta)
+    else:
+        if s is None:
+            raise UserError(f"{family} needs --stages/-s")
+        table["s"] = s
+        if family == "hbvm":
+            if k is None:
+                raise UserError("hbvm needs -k (the number of Gauss nodes, k >= s)")
+            table["k"] = k
+        if family == "avf":
+            table["rule"] = rule
+    spec = parse_spec(table)
+    mode = "exact" if exact else ("digits" if digits is not None else "auto")
+    command = "rkcheck new " + " ".join(sys.argv[2:]) if len(sys.argv) > 2 else f"rkcheck new {family}"
+    text = render_toml(spec, mode, digits or 60, name, command)
+    if output and output != "-":
+        with open(output, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    else:
+        click.echo(text, nl=False)
+
+
+@cli.command()
+@click.argument("paths", nargs=-1, required=True, metavar="PATH...")
+@click.option("--degrees", default="2,3,4,6,none", show_default=True,
+              help="Comma-separated degrees m for the energy-order columns ('none' = all Hamiltonians).")
+@click.option("--order", "-N", type=click.IntRange(1, MAX_ORDER), default=8, show_default=True)
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="Write to this file ('-' = stdout, the default).")
+@output_options
+def catalog(paths, degrees, order, output) -> None:
+    """Write a Markdown catalogue of tableau files (how tableaux/README.md is made).
+
+    \b
+    Example:
+      rkcheck catalog tableaux/ -o tableaux/README.md
+    """
+    from .catalog import catalog_row
+    from .reports.markdown import catalog_markdown
+    from .scanning import find_tableau_files
+
+    degs: list[int | None] = []
+    for part in degrees.split(","):
+        d = DEGREE.convert(part, None, None)
+        degs.append(None if d == "none" else d)
+    files = find_tableau_files(list(paths), exclude=["README*", "*/README*"])
+    root = Path(paths[0]) if len(paths) == 1 and Path(paths[0]).is_dir() else None
+    rows = []
+    with _progress("catalog", len(files)) as advance:
+        for f in files:
+            row = catalog_row(f, degs, order)
+            if root is not None:
+                row.path = str(Path(f).relative_to(root))
+            rows.append(row)
+            advance()
+    labels = ["all H" if d is None else f"m={d}" for d in degs]
+    command = "rkcheck catalog " + " ".join(sys.argv[2:]) if len(sys.argv) > 2 else "rkcheck catalog"
+    text = catalog_markdown(rows, labels, order, command)
+    if output and output != "-":
+        Path(output).write_text(text, encoding="utf-8")
+    else:
+        click.echo(text, nl=False)
 
 
 # ------------------------------------------------------------------- main

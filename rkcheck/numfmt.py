@@ -29,14 +29,15 @@ def _digits(x: Fraction, sig: int, up: bool = False) -> tuple[int, int]:
     return n, e
 
 
-def decimal_string(x: Fraction | int, sig: int = 20, up: bool = False) -> str:
+def decimal_string(x: Fraction | int, sig: int = 20, up: bool = False, keep_zeros: bool = False) -> str:
     """``x`` rounded to ``sig`` significant digits (``up``: away from zero), e.g.
-    ``-3.4722222222222222222e-4``, ``0.5``, ``12.25``.  Trailing zeros are dropped."""
+    ``-3.4722222222222222222e-4``, ``0.5``, ``12.25``.  Trailing zeros are dropped unless
+    ``keep_zeros`` (then the text states exactly ``sig`` significant digits)."""
     x = Fraction(x)
     if x == 0:
         return "0"
     n, e = _digits(x, sig, up)
-    digits = str(n).rstrip("0") or "0"
+    digits = str(n) if keep_zeros else (str(n).rstrip("0") or "0")
     sign = "-" if x < 0 else ""
     if -5 <= e < 16 and len(digits) <= max(e + 1, 0) + sig:
         # plain positional notation

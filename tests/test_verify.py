@@ -129,7 +129,7 @@ def test_verify_exit_codes_and_json_schema(capsys):
     assert cond["state"] in ("holds", "holds_to_digits", "fails")
     assert len(doc["conditions"]) == doc["summary"]["conditions_total"]
 
-    bad = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"), "--format", "json")
+    bad = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"), "--format", "json", "--fail-on", "conditions")
     assert bad.code == 1
     doc = json.loads(bad.out)
     assert doc["summary"]["equals_avf"] is None and doc["summary"]["energy_order"] == 4
@@ -146,8 +146,8 @@ def test_verify_text_report(capsys):
 def test_file_check_defaults_are_overridden_by_flags(capsys):
     # implicit-midpoint.toml says degree = 2 (all hold); --degree none brings the failing star
     path = str(TABLEAUX / "collocation" / "implicit-midpoint.toml")
-    assert run_cli(capsys, "verify", path).code == 0
-    assert run_cli(capsys, "verify", path, "--degree", "none").code == 1
+    assert run_cli(capsys, "verify", path, "--fail-on", "conditions").code == 0
+    assert run_cli(capsys, "verify", path, "--degree", "none", "--fail-on", "conditions").code == 1
 
 
 def test_explain_writes_sigma_notation_and_evaluates(capsys):

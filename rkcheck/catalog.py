@@ -1,0 +1,64 @@
+"""A catalogue of tableaux: one row per file with its orders per degree (``rkcheck catalog``).
+
+Pure: it loads and checks the files it is given and returns rows; rendering (Markdown for
+``tableaux/README.md``) is in :mod:`rkcheck.reports.markdown`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .check import CheckOptions, CheckResult, check
+from .errors import UserError
+from .loader import load
+
+
+@dataclass
+class CatalogRow:
+    path: str
+    name: str = ""
+    stages: int = 0
+    structure: str = ""
+    numbers: str = ""
+    classical: str = ""
+    quadrature: str = ""
+    energy: dict[str, str] = field(default_factory=dict)  # degree label -> "all" / "≥ N" / "n"
+    avf_degrees: list[int] = field(default_factory=list)
+    claims: str = ""  # "ok" / "BROKEN" / ""
+    error: str | None = None
+
+
+def energy_label(res: CheckResult) -> str:
+    if res.energy_order_all:
+        return "all"
+    if res.first_failure is None:
+        return f"≥ {res.options.order}"
+    return str(res.energy_order)
+
+
+def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
+    from .check import CheckRunner
+    from .claims import check_claims
+
+    row = CatalogRow(path)
+    try:
+        tab = load(path)
+    except UserError as err:
+        row.error = str(err)
+        return row
+    row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
+    row.numbers = "exact" if tab.is_rational else ("family" if tab.family else "algebraic/decimal")
+    runner = CheckRunner()
+    for deg in degrees:
+        res = runner(tab, CheckOptions(degree=deg, order=order, dps=dps))
+        row.energy["all H" if deg is None else f"m={deg}"] = energy_label(res)
+        if res.avf is not None and res.avf.equals_avf:
+            row.avf_degrees.append(deg)  # type: ignore[arg-type]
+        if deg is None or not row.classical:
+            cls = res.classical
+            row.classical = str(cls.order) if cls.first_failure else f"≥ {cls.order}"
+            row.quadrature = str(res.quadrature.order)
+    if tab.claims:
+        results = check_claims(tab, tab.claims, CheckOptions(order=order, dps=dps), runner)
+        row.claims = "ok" if all(r.met for r in results) else "BROKEN"
+    return row

@@ -1,0 +1,43 @@
+"""Finding tableau files: recursive, deterministic, with exclusions (``scan``, ``catalog``)."""
+
+from __future__ import annotations
+
+import fnmatch
+from pathlib import Path
+
+from .errors import UserError
+
+SUFFIXES = (".toml", ".json")
+
+
+def _excluded(path: Path, patterns: list[str]) -> bool:
+    text = path.as_posix()
+    return any(fnmatch.fnmatch(text, p) or fnmatch.fnmatch(path.name, p) for p in patterns)
+
+
+def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> list[str]:
+    """Every ``*.toml``/``*.json`` under ``paths`` (files given explicitly are kept whatever
+    their suffix), sorted, without duplicates, minus the ``exclude`` glob patterns (matched
+    against the path and the file name)."""
+    exclude = list(exclude or [])
+    found: list[Path] = []
+    for raw in paths:
+        p = Path(raw)
+        if p.is_dir():
+            for f in sorted(p.rglob("*")):
+                if f.is_file() and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
+                    if not any(part.startswith(".") for part in f.relative_to(p).parts):
+                        found.append(f)
+        elif p.exists() or raw == "-":
+            if not _excluded(p, exclude):
+                found.append(p)
+        else:
+            raise UserError("no such file or directory", source=raw)
+    seen: set[str] = set()
+    out = []
+    for f in found:
+        key = f.as_posix()
+        if key not in seen:
+            seen.add(key)
+            out.append(key)
+    return out

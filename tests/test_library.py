@@ -1,0 +1,197 @@
+"""The shipped library: every file meets its claims; family and explicit forms agree;
+HBVM identities; `rkcheck new | rkcheck verify -` round-trips."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+
+import reference as ref
+from rkcheck.check import CheckOptions, CheckRunner, check
+from rkcheck.claims import check_claims
+from rkcheck.families import FamilySpec, family_tableau
+from rkcheck.loader import load
+from rkcheck.scanning import find_tableau_files
+
+TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+FILES = find_tableau_files([str(TABLEAUX)])
+IDS = [str(Path(f).relative_to(TABLEAUX)) for f in FILES]
+
+
+def test_the_library_has_at_least_40_documented_files_in_every_kind():
+    assert len(FILES) >= 40
+    kinds = {Path(f).relative_to(TABLEAUX).parts[0] for f in FILES}
+    assert kinds >= {"avf", "collocation", "hbvm", "explicit", "pseudo-energy-preserving", "counterexamples"}
+    for f in FILES:
+        tab = load(f)
+        assert tab.name and tab.description and tab.references, f
+        assert tab.claims, f"{f} has no [expect] claims"
+
+
+@pytest.mark.parametrize("path", FILES, ids=IDS)
+def test_every_shipped_tableau_meets_its_claims(path):
+    tab = load(path)
+    runner = CheckRunner()
+    results = check_claims(tab, tab.claims, CheckOptions(order=8), runner)
+    broken = [(r.claim.place, r.claimed, r.found, r.note) for r in results if not r.met]
+    assert broken == []
+
+
+# ------------------------------------------------- claims by a second route
+
+
+def _reference_energy_order(A, b, degree, max_vertices):
+    """First failing vertex count − 2 by the slow reference (Fractions), capped."""
+    for n in range(3, max_vertices + 1):
+        for cond in ref.energy_conditions(n, degree):
+            if ref.energy_residual(cond, A, b) != 0:
+                return n - 2
+    return None  # every condition up to max_vertices holds
+
+
+RATIONAL = [f for f in FILES if load(f).is_exact("rounded") and load(f).family is None]
+
+
+@pytest.mark.parametrize("path", RATIONAL, ids=[str(Path(f).relative_to(TABLEAUX)) for f in RATIONAL])
+def test_rational_claims_agree_with_the_reference_implementation(path):
+    tab = load(path)
+    A, b = tab.exact_A(), tab.exact_b()
+    max_vertices = 7
+    for claim in tab.claims:
+        if claim.kind == "energy_order":
+            found = _reference_energy_order(A, b, claim.degree, max_vertices)
+            if claim.value == "all":
+                assert found is None
+            elif claim.value <= max_vertices - 2:
+                assert found == claim.value, claim
+            else:
+                assert found is None  # the claimed first failure lies beyond 7 vertices
+        elif claim.kind == "classical_order":
+            assert ref.classical_order(A, b, claim.value + 1) == claim.value
+        elif claim.kind == "quadrature_order":
+            c = [sum(row, Fraction(0)) for row in A]
+            ok = [sum(bi * ci ** (k - 1) for bi, ci in zip(b, c)) == Fraction(1, k) for k in range(1, 2 * len(b) + 1)]
+            assert (ok + [False]).index(False) == claim.value
+
+
+# ------------------------------------------------- family form vs explicit form
+
+
+def _states(tab, degree, order=8):
+    res = check(tab, CheckOptions(degree=degree, order=order))
+    return {r.condition.id: r.verdict.holds for r in res.results}, res.energy_order_all
+
+
+@pytest.mark.parametrize("degree", [6, 7])
+def test_hbvm_6_2_family_and_60_digit_forms_give_the_same_verdicts(degree):
+    family = load(str(TABLEAUX / "hbvm" / "hbvm-6-2.toml"))
+    explicit = load(str(TABLEAUX / "hbvm" / "hbvm-6-2-decimal60.toml"))
+    assert family.family is not None and explicit.family is None
+    assert _states(family, degree) == _states(explicit, degree)
+
+
+def test_gauss_3_exact_expressions_and_family_give_the_same_verdicts():
+    exact_file = load(str(TABLEAUX / "collocation" / "gauss-3.toml"))
+    assert exact_file.uses_sqrt and exact_file.family is None
+    family = family_tableau(FamilySpec("gauss", 3))
+    for degree in (2, 3, 4):
+        assert _states(exact_file, degree) == _states(family, degree)
+
+
+# ------------------------------------------------------------ HBVM identities
+
+
+@pytest.mark.parametrize("s", [1, 2, 3, 4])
+def test_hbvm_s_s_is_gauss_collocation(s):
+    # A = I_s P_sᵀ Ω with k = s is the collocation matrix (Brugnano et al.): compare the
+    # certified enclosures entry by entry (they must overlap and be tiny)
+    bits = 200
+    hb, _ = family_tableau(FamilySpec("hbvm", s, k=s)).enclosures(bits, "exact")
+    ga, _ = family_tableau(FamilySpec("gauss", s)).enclosures(bits, "exact")
+    for row_h, row_g in zip(hb, ga):
+        for x, y in zip(row_h, row_g):
+            assert x.lo <= y.hi and y.lo <= x.hi
+            assert x.hi - x.lo < Fraction(1, 2**150)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4])
+def test_hbvm_k_1_is_avf(k):
+    res = check(family_tableau(FamilySpec("hbvm", 1, k=k)), CheckOptions(degree=2 * k, order=6))
+    assert res.avf.equals_avf and res.certificate.sigma == 1
+
+
+FIRST_FAILURE = {
+    # (k, s): first failing condition for degree ⌊2k/s⌋ + 1, at order 2k + 1 (energy
+    # order 2k: the k-point Gauss quadrature error of the line integral). Found with
+    # `rkcheck verify --fail-fast`; each is a "spider" whose centre has degree m + 1.
+    (2, 1): "1,2,2,2,2,2",
+    (3, 2): "1,2,3,2,3,2,3,2",
+    (4, 3): "1,2,3,3,2,3,3,2,3,3",
+    (6, 2): "1,2,3,2,3,2,3,2,3,2,3,2,3,2",
+}
+
+
+@pytest.mark.parametrize("k, s", list(FIRST_FAILURE), ids=[f"hbvm-{k}-{s}" for k, s in FIRST_FAILURE])
+@pytest.mark.parametrize("dps", [50, 100])
+def test_hbvm_holds_to_2k_over_s_and_fails_beyond(k, s, dps):
+    tab = family_tableau(FamilySpec("hbvm", s, k=k))
+    m = (2 * k) // s
+    res = check(tab, CheckOptions(degree=m, order=8, dps=dps))
+    assert res.failures == [] and res.certificate.certified
+    res = check(tab, CheckOptions(degree=m + 1, order=2 * k + 1, dps=dps, fail_fast=True))
+    assert res.energy_order == 2 * k
+    assert res.first_failure.condition.id == FIRST_FAILURE[(k, s)]
+
+
+# ------------------------------------------------------------------ new | verify -
+
+
+def test_new_pipes_into_verify_from_stdin():
+    new = subprocess.run([sys.executable, "-m", "rkcheck", "new", "gauss", "-s", "3"],
+                         capture_output=True, text=True, check=True)
+    assert 'c1 = "1/2 - sqrt(15)/10"' in new.stdout
+    ver = subprocess.run([sys.executable, "-m", "rkcheck", "verify", "-", "--degree", "2", "--format", "json"],
+                         input=new.stdout, capture_output=True, text=True)
+    assert ver.returncode == 0, ver.stderr
+    assert '"energy_order_all": true' in ver.stdout
+
+
+@pytest.mark.parametrize("args", [["hbvm", "-k", "6", "-s", "2"], ["radau-iia", "-s", "3", "--digits", "30"],
+                                  ["kernel", "--zeta", "1/3", "--beta", "1/10"], ["avf", "-s", "2", "--rule", "radau-ii"]])
+def test_new_files_reproduce_the_family_verdicts(tmp_path, args):
+    out = tmp_path / "new.toml"
+    subprocess.run([sys.executable, "-m", "rkcheck", "new", *args, "-o", str(out)], check=True)
+    written = load(str(out))
+    from rkcheck.families import parse_spec
+
+    table = {"name": args[0]}
+    it = iter(args[1:])
+    for flag in it:
+        value = next(it)
+        key = {"-k": "k", "-s": "s", "--zeta": "zeta", "--beta": "beta", "--rule": "rule"}.get(flag)
+        if key:
+            table[key] = int(value) if key in ("k", "s") else value
+    family = family_tableau(parse_spec(table))
+    for degree in (3, 4):
+        assert _states(written, degree, order=6) == _states(family, degree, order=6)
+
+
+def test_new_exact_refuses_when_there_is_no_closed_form():
+    r = subprocess.run([sys.executable, "-m", "rkcheck", "new", "radau-iia", "-s", "4", "--exact"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "no closed form in square roots" in r.stderr
+
+
+@pytest.mark.slow
+def test_catalog_matches_the_committed_readme():
+    # tableaux/README.md is generated, not edited: regenerate and compare
+    r = subprocess.run([sys.executable, "-m", "rkcheck", "catalog", "tableaux/", "-o", "-"],
+                       capture_output=True, text=True, cwd=TABLEAUX.parent)
+    committed = (TABLEAUX / "README.md").read_text(encoding="utf-8")
+    generated = r.stdout
+    strip = lambda t: [line for line in t.splitlines() if not line.startswith("Generated by")]  # noqa: E731
+    assert strip(generated) == strip(committed)
