@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .check import CheckOptions, CheckResult, check
+from .check import CheckOptions, CheckResult
 from .errors import UserError
 from .loader import load
 

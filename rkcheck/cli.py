@@ -97,9 +97,9 @@ def check_options(f: Callable) -> Callable:
 
 def fail_on_option(f: Callable) -> Callable:
     return click.option(
-        "--fail-on", type=click.Choice(["auto", "conditions", "claims", "never"]), default="auto", show_default=True,
+        "--fail-on", type=click.Choice(["auto", "conditions", "claims", "never"]), default=None,
         help="What makes the exit code 1: 'auto' = broken claims for files with an [expect] table, "
-        "failing conditions otherwise.",
+        "failing conditions otherwise; 'conditions'; 'claims'; 'never'. [default: verify auto, scan claims]",
     )(f)
 
 
@@ -130,22 +130,26 @@ def load_tableau(path: str, max_stages: int):
     return load(path, max_stages=max_stages)
 
 
-def resolve_options(tab, degree, order, dps, decimals, fail_fast=False):
-    """CLI flags override the file's [check] table, which overrides the defaults."""
-    from .check import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions
+def cli_check_values(degree, order, dps, decimals, fail_fast=False, max_stages=64) -> dict[str, Any]:
+    """The check options given on the command line (only those given)."""
+    out: dict[str, Any] = {"max_stages": max_stages}
+    if degree is not None:
+        out["degree"] = None if degree == "none" else degree
+    if order is not None:
+        out["order"] = order
+    if dps is not None:
+        out["dps"] = dps
+    if decimals is not None:
+        out["decimals"] = decimals
+    if fail_fast:
+        out["fail_fast"] = True
+    return out
 
-    defaults = tab.check
-    if degree is None:
-        degree = defaults.get("degree")
-    elif degree == "none":
-        degree = None
-    return CheckOptions(
-        degree=degree,
-        order=order if order is not None else defaults.get("order", DEFAULT_ORDER),
-        dps=dps if dps is not None else defaults.get("dps", DEFAULT_DPS),
-        decimals=decimals if decimals is not None else defaults.get("decimals", "rounded"),
-        fail_fast=fail_fast,
-    )
+
+def project_config():
+    from .config import load_config
+
+    return load_config()
 
 
 @contextmanager
@@ -193,9 +197,12 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     """
     from .check import CheckRunner, conditions_ok
     from .claims import check_claims, file_fails
+    from .scan import options_for
 
+    config = project_config()
     tab = load_tableau(file, max_stages)
-    options = resolve_options(tab, degree, order, dps, decimals, fail_fast)
+    options = options_for(tab, cli_check_values(degree, order, dps, decimals, fail_fast), config.check)
+    fail_on = fail_on or config.fail_on or "auto"
     runner = CheckRunner()
     result = runner(tab, options)
     claim_results = check_claims(tab, tab.claims, options, runner) if tab.claims else None
@@ -355,6 +362,89 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
             fh.write(text)
     else:
         click.echo(text, nl=False)
+
+
+@cli.command()
+@click.argument("paths", nargs=-1, metavar="[PATH...]")
+@check_options
+@click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None, help="Worker processes [default: all cores].")
+@click.option("--exclude", multiple=True, metavar="GLOB", help="Skip files matching GLOB (path or name); repeatable.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "csv", "junit", "github"]), default=None,
+              help="Output format [default: [tool.rkcheck] format, else text].")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="Write the report to this file (written even when interrupted).")
+@fail_on_option
+@output_options
+def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, output, fail_on) -> None:
+    """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
+
+    One row per file in a fixed order; a file that cannot be read is a row with its error,
+    never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
+    [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
+    format, fail_on, jobs); flags override it.
+
+    \b
+    Exit code: 1 when a file fails under --fail-on (default: claims) or cannot be
+    checked, 0 otherwise, 2 for a bad option, 130 when interrupted (the rows that
+    finished are still written).
+    """
+    import time as _time
+
+    from .scan import default_jobs, exit_status, run_scan
+    from .scanning import find_tableau_files
+
+    config = project_config()
+    roots = list(paths) or config.paths
+    if not roots:
+        raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
+    files = find_tableau_files(roots, list(exclude) + config.exclude)
+    cli_values = cli_check_values(degree, order, dps, decimals, max_stages=max_stages)
+    fmt = fmt or config.format or "text"
+    fail_on = fail_on or config.fail_on or "claims"
+    jobs = jobs or config.jobs or default_jobs()
+    t0 = _time.perf_counter()
+    with _progress("checking", len(files)) as advance:
+        outcomes, interrupted = run_scan(files, cli_values, config.check, fail_on, jobs, lambda r: advance())
+    elapsed = _time.perf_counter() - t0
+    from .reports import scanout
+
+    options = {k: v for k, v in cli_values.items() if k != "max_stages"}
+    options.update(fail_on=fail_on, jobs=jobs, paths=roots)
+    if fmt == "text":
+        if output and output != "-":
+            from rich.console import Console
+
+            with open(output, "w", encoding="utf-8") as fh:
+                scanout.render_scan_text(outcomes, Console(file=fh, no_color=True, width=140), elapsed, interrupted)
+        else:
+            scanout.render_scan_text(outcomes, _stdout(), elapsed, interrupted)
+    else:
+        text = {
+            "json": lambda: scanout.scan_json(outcomes, interrupted, options) + "\n",
+            "csv": lambda: scanout.scan_csv(outcomes),
+            "junit": lambda: scanout.scan_junit(outcomes, elapsed),
+            "github": lambda: scanout.scan_github(outcomes),
+        }[fmt]()
+        _write_report(text, output)
+    if interrupted:
+        click.echo("rkcheck: interrupted; the report holds the files that finished", err=True)
+        sys.exit(130)
+    sys.exit(EXIT_OK if fail_on == "never" else exit_status(outcomes))
+
+
+def _write_report(text: str, output: str | None) -> None:
+    """Write a report to stdout or, atomically, to a file."""
+    if not output or output == "-":
+        click.echo(text, nl=False)
+        return
+    import os
+    import tempfile
+
+    target = Path(output)
+    fd, tmp = tempfile.mkstemp(dir=target.parent if str(target.parent) else ".", prefix=".rkcheck-", suffix=".tmp")
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    os.replace(tmp, target)
 
 
 @cli.command()

@@ -28,13 +28,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from itertools import combinations
 from typing import Any, Callable
 
-from .entries import Constants, Entry
+from .entries import Entry
 from .errors import UserError
 from .intervals import Interval
-from .quadrature import Rule, lagrange_integral, poly_eval, poly_integral, rule, shifted_legendre
+from .quadrature import Rule, lagrange_integral, poly_integral, rule, shifted_legendre
 from .tableau import Tableau
 
 FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
@@ -73,7 +72,7 @@ class FamilySpec:
             return f"HBVM({self.k}, {self.s})"
         if self.name == "kernel":
             return f"Seed kernel family, ζ = {self.zeta}, β = {self.beta}"
-        return f"{TITLES[self.name]}, {self.s} stages"
+        return f"{TITLES[self.name]}, {self.s} stage{'s' if self.s != 1 else ''}"
 
     def stages(self) -> int:
         return self.s

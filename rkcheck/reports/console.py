@@ -12,7 +12,7 @@ import sys
 
 from rich.console import Console
 
-PIPE_WIDTH = 110
+PIPE_WIDTH = 132
 _settings = {"color": True, "quiet": False, "verbose": False}
 
 

@@ -1,0 +1,265 @@
+"""Scan reports: text (rich), JSON, CSV, JUnit XML and GitHub Actions annotations.
+
+Every format is built from the same outcome dicts (:mod:`rkcheck.scan`); the JSON
+per-file object under ``result`` is exactly ``verify --format json``.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from typing import Any
+from xml.sax.saxutils import escape, quoteattr
+
+from .. import __version__
+from .jsonout import SCHEMA
+
+CSV_COLUMNS = [
+    "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
+    "quadrature_order", "energy_order", "energy_order_all", "equals_avf", "conditions_checked",
+    "conditions_failed", "first_failure", "claims", "claims_ok", "broken_claims", "time", "error",
+]
+
+
+def _summary(o: dict[str, Any]) -> dict[str, Any]:
+    return (o.get("result") or {}).get("summary", {})
+
+
+def broken_claims(o: dict[str, Any]) -> list[dict[str, Any]]:
+    return [c for c in ((o.get("result") or {}).get("claims") or []) if not c["met"]]
+
+
+def failing_conditions(o: dict[str, Any], limit: int = 5) -> list[dict[str, Any]]:
+    conds = (o.get("result") or {}).get("conditions") or []
+    return [c for c in conds if c["state"] == "fails"][:limit]
+
+
+def energy_text(o: dict[str, Any]) -> str:
+    s = _summary(o)
+    if not s:
+        return ""
+    if s.get("energy_order_all"):
+        return "all"
+    if s.get("first_failure") is None:
+        return f"≥ {s['order_checked']}"
+    return str(s["energy_order"])
+
+
+def totals(outcomes: list[dict[str, Any]]) -> dict[str, int]:
+    t = {"files": len(outcomes), "ok": 0, "failed": 0, "error": 0, "skipped": 0}
+    for o in outcomes:
+        t[o["status"]] = t.get(o["status"], 0) + 1
+    return t
+
+
+# ---------------------------------------------------------------------- JSON
+
+
+def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[str, Any]) -> str:
+    files = []
+    for o in outcomes:
+        files.append({
+            "file": o["path"], "status": o["status"], "error": o["error"], "time": o["time"],
+            "result": o.get("result"),
+        })
+    doc = {
+        "schema": SCHEMA,
+        "rkcheck": __version__,
+        "kind": "scan",
+        "options": options,
+        "interrupted": interrupted,
+        "totals": totals(outcomes),
+        "files": files,
+    }
+    return json.dumps(doc, indent=2, ensure_ascii=False)
+
+
+# ----------------------------------------------------------------------- CSV
+
+
+def scan_csv(outcomes: list[dict[str, Any]]) -> str:
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=CSV_COLUMNS, lineterminator="\n")
+    w.writeheader()
+    for o in outcomes:
+        r = o.get("result") or {}
+        s = r.get("summary", {})
+        opts = r.get("options", {})
+        claims = r.get("claims")
+        first = s.get("first_failure")
+        w.writerow({
+            "file": o["path"], "status": o["status"], "method": (r.get("method") or {}).get("name", ""),
+            "stages": (r.get("tableau") or {}).get("stages", ""),
+            "structure": (r.get("tableau") or {}).get("structure", ""),
+            "degree": "none" if r and opts.get("degree") is None else opts.get("degree", ""),
+            "order": opts.get("order", ""),
+            "classical_order": s.get("classical_order", ""), "quadrature_order": s.get("quadrature_order", ""),
+            "energy_order": s.get("energy_order", ""), "energy_order_all": s.get("energy_order_all", ""),
+            "equals_avf": "" if s.get("equals_avf") is None else s["equals_avf"],
+            "conditions_checked": s.get("conditions_checked", ""), "conditions_failed": s.get("conditions_failed", ""),
+            "first_failure": first["id"] if first else "",
+            "claims": "" if claims is None else len(claims),
+            "claims_ok": "" if s.get("claims_ok") is None else s["claims_ok"],
+            "broken_claims": "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)),
+            "time": o["time"], "error": o["error"] or "",
+        })
+    return buf.getvalue()
+
+
+# --------------------------------------------------------------------- JUnit
+
+
+def failure_message(o: dict[str, Any]) -> str:
+    parts = [f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
+    fails = failing_conditions(o)
+    if fails:
+        s = _summary(o)
+        parts.append(
+            f"{s.get('conditions_failed', len(fails))} failing conditions, first: "
+            + ", ".join(f"{c['id']} {c['bracket']} (R = {c['residual']})" for c in fails[:3])
+        )
+    return "; ".join(parts) or "check failed"
+
+
+def scan_junit(outcomes: list[dict[str, Any]], total_time: float) -> str:
+    """JUnit XML (the common Jenkins/Ant schema): one testcase per file."""
+    t = totals(outcomes)
+    cases = []
+    for o in outcomes:
+        name = quoteattr(o["path"])
+        head = f'    <testcase classname="rkcheck" name={name} file={name} time="{o["time"]:.6f}"'
+        if o["status"] == "ok":
+            cases.append(head + "/>")
+        elif o["status"] == "skipped":
+            cases.append(head + f">\n      <skipped message={quoteattr(o['error'] or 'skipped')}/>\n    </testcase>")
+        elif o["status"] == "error":
+            msg = o["error"] or "error"
+            cases.append(head + f">\n      <error message={quoteattr(msg)} type=\"UserError\">{escape(msg)}</error>\n    </testcase>")
+        else:
+            msg = failure_message(o)
+            detail = "\n".join(
+                [f"claim {c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
+                + [f"condition {c['id']} {c['bracket']}: {c['state']}, R = {c['residual']} ± {c['radius']}"
+                   for c in failing_conditions(o, 20)]
+            )
+            cases.append(head + f">\n      <failure message={quoteattr(msg)} type=\"EnergyCheck\">{escape(detail)}</failure>\n    </testcase>")
+    suite = (
+        f'  <testsuite name="rkcheck" tests="{t["files"]}" failures="{t["failed"]}" errors="{t["error"]}" '
+        f'skipped="{t["skipped"]}" time="{total_time:.6f}">'
+    )
+    return "\n".join(['<?xml version="1.0" encoding="UTF-8"?>',
+                      f'<testsuites name="rkcheck scan" tests="{t["files"]}" failures="{t["failed"]}" '
+                      f'errors="{t["error"]}" time="{total_time:.6f}">',
+                      suite, *cases, "  </testsuite>", "</testsuites>"]) + "\n"
+
+
+# -------------------------------------------------------------------- GitHub
+
+
+def _gh_escape(text: str, prop: bool = False) -> str:
+    text = text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    if prop:
+        text = text.replace(":", "%3A").replace(",", "%2C")
+    return text
+
+
+def _annotation(level: str, path: str, line: int | None, title: str, message: str) -> str:
+    props = f"file={_gh_escape(path, True)}"
+    if line:
+        props += f",line={line}"
+    props += f",title={_gh_escape(title, True)}"
+    return f"::{level} {props}::{_gh_escape(message)}"
+
+
+def scan_github(outcomes: list[dict[str, Any]]) -> str:
+    """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
+    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file."""
+    out = []
+    for o in outcomes:
+        path, lines = o["path"], o.get("lines") or {}
+        if o["status"] == "error":
+            line = None
+            err = o["error"] or ""
+            import re
+
+            m = re.search(r"line (\d+)", err)
+            if m:
+                line = int(m.group(1))
+            out.append(_annotation("error", path, line, "rkcheck: cannot check", err))
+        elif o["status"] == "failed":
+            broken = broken_claims(o)
+            for c in broken:
+                key = c["place"].split("[")[0]
+                line = lines.get(key) or lines.get("expect")
+                out.append(_annotation("error", path, line, f"rkcheck: claim {c['claim']}",
+                                       f"{c['place']}: claimed {c['claimed']}, found {c['found']}"
+                                       + (f" ({c['note']})" if c.get("note") else "")))
+            if not broken:
+                line = lines.get("tableau") or lines.get("family")
+                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail", failure_message(o)))
+        for w in (o.get("result") or {}).get("warnings", []):
+            out.append(_annotation("warning", path, lines.get("tableau"), "rkcheck", w))
+    return "\n".join(out) + ("\n" if out else "")
+
+
+# ---------------------------------------------------------------------- text
+
+
+def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float, interrupted: bool) -> None:
+    from rich import box
+    from rich.table import Table
+    from rich.text import Text
+
+    from .text import plain
+
+    import os
+
+    paths = [o["path"] for o in outcomes]
+    root = os.path.commonpath(paths) if len(paths) > 1 else ""
+    if root and not os.path.isdir(root):
+        root = os.path.dirname(root)
+
+    def shown(path: str) -> str:
+        return os.path.relpath(path, root) if root else path
+
+    title = f"files under {root}/" if root else None
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False, title=title, title_justify="left")
+    t.add_column("file", no_wrap=True, overflow="fold")
+    t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=26)
+    for col in ("s", "m", "classical", "energy"):
+        t.add_column(col, justify="right", no_wrap=True)
+    t.add_column("AVF", justify="center", no_wrap=True)
+    t.add_column("claims", justify="center", no_wrap=True)
+    t.add_column("time", justify="right", no_wrap=True)
+    for o in outcomes:
+        r = o.get("result") or {}
+        s = r.get("summary", {})
+        if o["status"] in ("error", "skipped"):
+            style = "bold red" if o["status"] == "error" else "dim"
+            label = "ERROR (see below)" if o["status"] == "error" else "skipped: not a tableau"
+            t.add_row(*plain(shown(o["path"]), Text(label, style=style), "", "", "", "", "", "", f"{o['time']:.2f}"))
+            continue
+        avf = {True: "yes", False: "no", None: "—"}[s.get("equals_avf")]
+        claims = s.get("claims_ok")
+        claims_t = Text("—") if claims is None else (Text("ok", style="green") if claims else Text("BROKEN", style="bold red"))
+        energy = Text(energy_text(o), style="red" if s.get("first_failure") and o["status"] == "failed" else "")
+        deg = s.get("degree")
+        classical = s.get("classical_order", "")
+        if s and s.get("classical_first_failure") is None:
+            classical = f"≥ {classical}"
+        t.add_row(*plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
+                         "—" if deg is None else deg, classical, energy, avf, claims_t, f"{o['time']:.2f}"))
+    console.print(t)
+    for o in outcomes:
+        if o["status"] == "error":
+            console.print(Text(f"error: {o['error']}", style="red"))
+    tot = totals(outcomes)
+    line = Text(
+        f"{tot['files']} files: {tot['ok']} ok, {tot['failed']} failed, {tot['error']} errors, "
+        f"{tot['skipped']} skipped; {total_time:.1f} s",
+        style="bold red" if tot["failed"] or tot["error"] else "bold green",
+    )
+    if interrupted:
+        line.append("  (interrupted: partial results)", style="bold yellow")
+    console.print(line)

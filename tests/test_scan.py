@@ -1,0 +1,201 @@
+"""rkcheck scan: rows, exit codes per --fail-on, jobs, formats, configuration, Ctrl-C."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from clirun import run_cli
+
+MIDPOINT_OK = """[method]
+name = "midpoint, honest claims"
+[tableau]
+A = [["1/2"]]
+b = [1]
+[check]
+degree = 2
+[expect]
+energy_order = {degree = 2, value = "all"}
+quadrature_order = 2
+"""
+# RK4 claims classical order 5 (wrong: it is 4)
+RK4_WRONG = """[method]
+name = "RK4, wrong claim"
+[tableau]
+A = [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]]
+b = ["1/6", "1/3", "1/3", "1/6"]
+
+[expect]
+classical_order = 5
+"""
+RK4_NO_CLAIMS = """{"method": {"name": "RK4 without claims"},
+ "tableau": {"A": [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]],
+             "b": ["1/6", "1/3", "1/3", "1/6"]}}
+"""
+BROKEN = '[tableau]\nA = [["1/4", "1/4 - )"], [0, 0]]\nb = [1, 0]\n'
+NOT_TABLEAU = '[project]\nname = "something"\n'
+
+
+@pytest.fixture
+def folder(tmp_path):
+    (tmp_path / "sub").mkdir()
+    files = {
+        "a-good.toml": MIDPOINT_OK,
+        "b-wrong-claim.toml": RK4_WRONG,
+        "sub/c-no-claims.json": RK4_NO_CLAIMS,
+        "d-broken.toml": BROKEN,
+        "e-other.toml": NOT_TABLEAU,
+        "notes.txt": "not scanned",
+    }
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+    return tmp_path
+
+
+def scan_json(capsys, folder, *extra):
+    r = run_cli(capsys, "scan", str(folder), "--format", "json", "--jobs", "1", *extra)
+    return r, json.loads(r.out)
+
+
+def test_rows_statuses_and_order(capsys, folder):
+    r, doc = scan_json(capsys, folder)
+    rows = [(Path(f["file"]).relative_to(folder).as_posix(), f["status"]) for f in doc["files"]]
+    # deterministic sorted order; txt ignored; statuses under the default --fail-on claims
+    assert rows == [
+        ("a-good.toml", "ok"),
+        ("b-wrong-claim.toml", "failed"),
+        ("d-broken.toml", "error"),
+        ("e-other.toml", "skipped"),
+        ("sub/c-no-claims.json", "ok"),
+    ]
+    broken = doc["files"][2]
+    assert broken["error"].endswith("A[1][2]: unexpected ')' at column 7") and broken["result"] is None
+    wrong = doc["files"][1]["result"]
+    assert wrong["claims"][0]["claimed"] == "5" and wrong["claims"][0]["found"] == "4"
+    assert r.code == 1
+    assert doc["totals"] == {"files": 5, "ok": 2, "failed": 1, "error": 1, "skipped": 1}
+
+
+def test_exit_codes_follow_fail_on(capsys, folder):
+    _, doc = scan_json(capsys, folder, "--fail-on", "conditions")
+    status = {Path(f["file"]).name: f["status"] for f in doc["files"]}
+    assert status["c-no-claims.json"] == "failed"  # RK4 fails higher energy conditions
+    assert status["b-wrong-claim.toml"] == "failed" and status["a-good.toml"] == "ok"
+    assert run_cli(capsys, "scan", str(folder), "--fail-on", "never", "--jobs", "1").code == 0
+    ok_only = run_cli(capsys, "scan", str(folder), "--jobs", "1", "--exclude", "b-*", "--exclude", "d-*")
+    assert ok_only.code == 0
+    auto = run_cli(capsys, "scan", str(folder / "sub"), "--fail-on", "auto", "--jobs", "1")
+    assert auto.code == 1  # no claims: judged by its conditions
+
+
+def test_jobs_1_and_2_give_identical_results(capsys, folder):
+    def strip_times(doc):
+        for f in doc["files"]:
+            f.pop("time")
+            if f["result"]:
+                f["result"].pop("timings")
+        doc["options"].pop("jobs")
+        return doc
+
+    _, one = scan_json(capsys, folder)
+    r2 = run_cli(capsys, "scan", str(folder), "--format", "json", "--jobs", "2")
+    two = json.loads(r2.out)
+    assert strip_times(one) == strip_times(two)
+
+
+def test_junit_parses_with_the_right_counts(capsys, folder):
+    r = run_cli(capsys, "scan", str(folder), "--format", "junit", "--jobs", "1")
+    root = ET.fromstring(r.out)
+    suite = root.find("testsuite")
+    assert suite.get("tests") == "5" and suite.get("failures") == "1" and suite.get("errors") == "1"
+    assert suite.get("skipped") == "1"
+    cases = suite.findall("testcase")
+    assert len(cases) == 5
+    failure = next(c for c in cases if c.find("failure") is not None)
+    assert "expect.classical_order: claimed 5, found 4" in failure.find("failure").get("message")
+    assert next(c for c in cases if c.find("error") is not None).get("name").endswith("d-broken.toml")
+
+
+def test_csv_round_trips(capsys, folder):
+    r = run_cli(capsys, "scan", str(folder), "--format", "csv", "--jobs", "1")
+    rows = list(csv.DictReader(io.StringIO(r.out)))
+    assert [Path(row["file"]).name for row in rows] == [
+        "a-good.toml", "b-wrong-claim.toml", "d-broken.toml", "e-other.toml", "c-no-claims.json"]
+    rk4 = rows[1]
+    assert rk4["classical_order"] == "4" and rk4["claims_ok"] == "False" and rk4["stages"] == "4"
+    assert "claimed 5, found 4" in rk4["broken_claims"]
+    # write it back with the csv module and read it again: identical
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=rows[0].keys(), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    assert list(csv.DictReader(io.StringIO(buf.getvalue()))) == rows
+
+
+ANNOTATION = re.compile(r"^::(error|warning|notice) file=[^,:]+(,line=\d+)?,title=[^:]+::.+$")
+
+
+def test_github_annotations_point_at_the_claim_line(capsys, folder):
+    r = run_cli(capsys, "scan", str(folder), "--format", "github", "--jobs", "1")
+    lines = r.out.strip().splitlines()
+    assert lines and all(ANNOTATION.match(line) for line in lines), lines
+    claim = next(line for line in lines if "classical_order" in line)
+    expect_line = RK4_WRONG.splitlines().index("classical_order = 5") + 1
+    assert f",line={expect_line}," in claim
+    broken = next(line for line in lines if "d-broken.toml" in line)
+    assert broken.startswith("::error")
+
+
+def test_pyproject_configuration_and_flags_override(tmp_path, capsys, folder, monkeypatch):
+    (folder / "pyproject.toml").write_text(
+        '[tool.rkcheck]\npaths = ["."]\nexclude = ["d-*", "b-*"]\nformat = "json"\ndegree = 3\njobs = 1\n',
+        encoding="utf-8")
+    work = folder / "sub"
+    monkeypatch.chdir(work)  # config is found by walking up
+    r = run_cli(capsys, "scan")
+    doc = json.loads(r.out)
+    names = [Path(f["file"]).name for f in doc["files"]]
+    assert "d-broken.toml" not in names and "b-wrong-claim.toml" not in names
+    no_claims = next(f for f in doc["files"] if f["file"].endswith("c-no-claims.json"))
+    assert no_claims["result"]["options"]["degree"] == 3  # from [tool.rkcheck]
+    r = run_cli(capsys, "scan", "--degree", "4", "--format", "csv")
+    assert "degree" in r.out.splitlines()[0] and ",4," in r.out  # flags override the config
+    bad = folder / "pyproject.toml"
+    bad.write_text('[tool.rkcheck]\ndegre = 3\n', encoding="utf-8")
+    r = run_cli(capsys, "scan")
+    assert r.code == 2 and "tool.rkcheck.degre: unknown key" in r.err
+
+
+def test_ctrl_c_leaves_a_valid_partial_json_report(tmp_path):
+    # slow files (order 13 on a dense 4-stage tableau, about a second each) so that the
+    # interrupt arrives while the scan is running
+    dense = ('[tableau]\nA = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],'
+             ' ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]\nb = ["1/5", "3/10", "1/4", "1/4"]\n')
+    for i in range(40):
+        (tmp_path / f"t{i:02d}.toml").write_text(dense, encoding="utf-8")
+    out = tmp_path / "report.json"
+    env = dict(os.environ, NO_COLOR="1")
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(tmp_path), "--order", "13",
+                             "--jobs", "2", "--format", "json", "-o", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.time() + 60
+    time.sleep(3.0)
+    proc.send_signal(signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=max(1, deadline - time.time()))
+    assert proc.returncode == 130, stderr
+    assert "Traceback" not in stderr
+    doc = json.loads(out.read_text())
+    assert doc["interrupted"] is True
+    assert 0 < len(doc["files"]) < 40
+    assert all(f["status"] == "ok" for f in doc["files"])
