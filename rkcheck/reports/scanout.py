@@ -111,13 +111,15 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
 
 
 def failure_message(o: dict[str, Any]) -> str:
+    """Broken claims if any (the conditions are then as claimed), else the first failing
+    conditions."""
     parts = [f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
     fails = failing_conditions(o)
-    if fails:
+    if fails and not parts:
         s = _summary(o)
         parts.append(
-            f"{s.get('conditions_failed', len(fails))} failing conditions, first: "
-            + ", ".join(f"{c['id']} {c['bracket']} (R = {c['residual']})" for c in fails[:3])
+            f"{s.get('conditions_failed', len(fails))} failing conditions (energy order {s.get('energy_order')}), first: "
+            + ", ".join(f"{c['id']} {c['bracket']} (R = {float(c['residual']):.6g})" for c in fails[:3])
         )
     return "; ".join(parts) or "check failed"
 
@@ -254,9 +256,12 @@ def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float,
     for o in outcomes:
         if o["status"] == "error":
             console.print(Text(f"error: {o['error']}", style="red"))
+        elif o["status"] == "failed":
+            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o)}", style="red"))
     tot = totals(outcomes)
     line = Text(
-        f"{tot['files']} files: {tot['ok']} ok, {tot['failed']} failed, {tot['error']} errors, "
+        f"{tot['files']} file{'s' if tot['files'] != 1 else ''}: {tot['ok']} ok, {tot['failed']} failed, "
+        f"{tot['error']} errors, "
         f"{tot['skipped']} skipped; {total_time:.1f} s",
         style="bold red" if tot["failed"] or tot["error"] else "bold green",
     )
