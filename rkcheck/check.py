@@ -91,6 +91,10 @@ def evaluate_conditions(
     """Every condition of ``table`` on ``backend`` (weights computed once, shared)."""
     backend.tree_weights(table.trees)
     out: list[ConditionResult] = []
+    batch = getattr(backend, "enclose_conditions", None)
+    if batch is not None and not fail_fast:
+        encs = batch(table.trees, table.conditions)
+        return [ConditionResult(c, e, classify(e)) for c, e in zip(table.conditions, encs)]
     stop_after_order = None
     for cond in table.conditions:
         if stop_after_order is not None and cond.order > stop_after_order:

@@ -489,6 +489,151 @@ def catalog(paths, degrees, order, output) -> None:
         click.echo(text, nl=False)
 
 
+def _dps_list(text: str) -> list[int]:
+    try:
+        values = [int(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise UserError(f"expected a comma-separated list of integers, got {text!r}", "--dps") from None
+    if not values or any(d < 10 or d > 5000 for d in values):
+        raise UserError("each dps must be between 10 and 5000", "--dps")
+    return values
+
+
+def _degree_value(degree, tab):
+    if degree is None:
+        return tab.check.get("degree") if tab is not None else None
+    return None if degree == "none" else degree
+
+
+@cli.command()
+@click.argument("file", metavar="FILE")
+@click.option("--degree", "-m", type=DEGREE, default=None, help="Degree m ('none' = all) [default: file's [check]].")
+@click.option("--order", "-N", type=click.IntRange(1, MAX_ORDER), default=None, help="Order N [default: file's [check], else 8].")
+@click.option("--dps", "dps_text", default="15,30,50,100,200,400", show_default=True, help="mpmath precisions to run.")
+@click.option("--repeat", type=click.IntRange(1, 50), default=3, show_default=True, help="Best of this many runs.")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw time against certified digits (needs matplotlib).")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@output_options
+def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
+    """Run the same check on every backend: float64 screen, mpmath at each --dps, exact.
+
+    One row per backend: wall time, conditions per second, the weakest certified digits,
+    the certified failures, and whether the verdicts agree with the most precise backend.
+    """
+    from .accuracy import bench_backends, bench_json
+
+    tab = load_tableau(file, 64)
+    deg = _degree_value(degree, tab)
+    N = order if order is not None else tab.check.get("order", 8)
+    rows, t_tables = bench_backends(tab, deg, N, _dps_list(dps_text), repeat=repeat)
+    title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {rows[0].conditions} conditions"
+    if chart:
+        from .charts import bench_chart
+
+        bench_chart(rows, title, chart)
+    if fmt == "json":
+        from .reports.jsonout import dumps
+
+        click.echo(dumps({"schema": 1, "file": file, "degree": deg, "order": N, **bench_json(rows, t_tables)}))
+        return
+    from .reports.accuracyout import render_bench
+
+    render_bench(rows, t_tables, _stdout(), title)
+    if chart:
+        click.echo(f"chart written to {chart}")
+
+
+@cli.command()
+@click.argument("file", metavar="FILE")
+@click.option("--direction", required=True, metavar="random|kernel|entry:i,j",
+              help="Perturb A along a fixed-seed random matrix, the zero-row-sum kernel direction of the "
+              "double-bush map (needs --degree >= 3), or one entry.")
+@click.option("--degree", "-m", type=DEGREE, default=None, help="Degree m [default: file's [check]].")
+@click.option("--order", "-N", type=click.IntRange(1, MAX_ORDER), default=None, help="Order N [default: file's [check], else 8].")
+@click.option("--eps", "eps_text", default="1e-1..1e-30", show_default=True,
+              help="ε values: 1e-1..1e-40 (every decade), 1e-2..1e-30:2 (every 2nd), or a list 1e-3,1e-6.")
+@click.option("--dps", "dps_text", default="15,50", show_default=True, help="mpmath precisions whose detection is reported.")
+@click.option("--seed", type=int, default=2024, show_default=True, help="Seed of the random direction.")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw max|R| against ε with each backend's floor.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@output_options
+def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt) -> None:
+    """Perturb the tableau's A by ε·D and watch the energy conditions fail.
+
+    For each ε: max |R| over the failing conditions, the first failing order, and which
+    backends still certify the failure. Prints the fitted slope of log max|R| against
+    log ε (1 for generic directions, 2 for kernel directions: the seed's quadratic
+    failure) and each backend's detection threshold ε*.
+    """
+    from .accuracy import direction as make_direction
+    from .accuracy import parse_eps, perturb_sweep
+
+    tab = load_tableau(file, 64)
+    deg = _degree_value(degree, tab)
+    N = order if order is not None else tab.check.get("order", 8)
+    D, desc = make_direction(tab, direction, deg, seed)
+    res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, _dps_list(dps_text))
+    title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
+    if chart:
+        from .charts import perturb_chart
+
+        perturb_chart(res, title, chart)
+    if fmt == "json":
+        from .reports.jsonout import dumps
+        from .numfmt import decimal_string
+
+        doc = {
+            "schema": 1, "file": file, "direction": desc, "degree": deg, "order": N, "slope": res.slope,
+            "thresholds": {k: None if v is None else str(v) for k, v in res.thresholds.items()},
+            "floors": res.floors,
+            "rows": [{"eps": str(r.eps), "max_residual": None if r.max_residual is None else decimal_string(r.max_residual, 12),
+                      "first_failing_order": r.first_failing_order, "failing": r.failing, "detected": r.detected}
+                     for r in res.rows],
+        }
+        click.echo(dumps(doc))
+        return
+    from .reports.accuracyout import render_perturb
+
+    render_perturb(res, _stdout(), title)
+    if chart:
+        click.echo(f"chart written to {chart}")
+
+
+@cli.command()
+@click.option("--stages", "-s", type=click.IntRange(1, 12), default=None, help="Number of stages s.")
+@click.option("--degree", "-m", type=click.IntRange(3, 40), required=True, help="Polynomial degree m (>= 3).")
+@click.option("--rule", default="gauss", show_default=True, help="gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
+@click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Use this tableau's b and c = A·1 instead of a rule.")
+@click.option("--dps", type=click.IntRange(15, 2000), default=50, show_default=True)
+@output_options
+def kernel(stages, degree, rule, tableau_file, dps) -> None:
+    """Rank and kernel of the double-bush map M (seed Lemma 2) on s×s matrices.
+
+    Exact for rational rules; otherwise numerical, with the singular values around the
+    cut printed so that the gap is visible. Also the part of ker M with zero row sums
+    (seed Lemma "onedim"): the directions A → A + βN that keep every linear condition.
+
+    \b
+    Examples:
+      rkcheck kernel -s 2 -m 4                  # Gauss, m = 2s: rank s²−1, kernel (1−c)bᵀ
+      rkcheck kernel -s 3 -m 5 --rule radau-i   # ζ = −1: rank s²−s−1
+      rkcheck kernel -m 3 --tableau tableaux/avf/avf-radau-ii-2.toml
+    """
+    from .kernel import kernel_of, rule_values, tableau_rule
+    from .reports.accuracyout import render_kernel
+
+    if tableau_file:
+        tab = load_tableau(tableau_file, 64)
+        b, c, exact = tableau_rule(tab, dps)
+        title = f"double-bush map of {tab.name} (b and c = A·1), degree {degree}"
+    else:
+        if stages is None:
+            raise UserError("give --stages/-s (or --tableau FILE)")
+        b, c, exact = rule_values(rule, stages, dps)
+        title = f"double-bush map at the {stages}-point {rule} rule, degree {degree}"
+    render_kernel(kernel_of(b, c, degree, exact, dps), _stdout(), title)
+
+
 # ------------------------------------------------------------------- main
 
 

@@ -1,0 +1,256 @@
+"""Accuracy against speed: the same check over several backends, and perturbation sweeps.
+
+* :func:`bench_backends` — one row per backend (float64 screen, certified balls at each
+  dps, exact when rational): time, conditions per second, the weakest certified digits of
+  the conditions that hold, the number of certified failures, and whether the verdicts
+  agree with the most precise backend.
+* :func:`perturb_sweep` — ``A + εD`` for a direction D (random, the zero-row-sum kernel
+  direction of the double-bush map, or one entry), for each ε: max |R| over failing
+  conditions, first failing order, which backends still detect the failure; the fitted
+  slope of log max|R| against log ε (1 for generic directions, 2 for kernel directions,
+  seed §2.4) and each backend's detection threshold ε*.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+from .backends import BallBackend, ExactBackend, bits_for_dps
+from .check import evaluate_conditions
+from .conditions import condition_table
+from .entries import Entry
+from .errors import UserError
+from .tableau import Tableau
+from .verdicts import FAILS, HOLDS_TO_DIGITS
+
+DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
+
+
+def backend_for(tableau: Tableau, name: str, decimals: str = "rounded"):
+    """A fresh backend: 'float64', 'exact', or 'dps:<D>'."""
+    if name == "float64":
+        from .screen import make_float_backend
+
+        return make_float_backend(tableau, decimals)
+    if name == "exact":
+        return ExactBackend(tableau.exact_A(), tableau.exact_b())
+    dps = int(name.split(":")[1])
+    bits = bits_for_dps(dps)
+    A, b = tableau.enclosures(bits + 8, decimals)
+    return BallBackend(A, b, bits)
+
+
+def backend_names(tableau: Tableau, dps_list, decimals: str = "rounded") -> list[str]:
+    names = ["float64"] + [f"dps:{d}" for d in dps_list]
+    if tableau.is_exact(decimals):
+        names.append("exact")
+    return names
+
+
+def label(name: str) -> str:
+    return f"mpmath dps {name[4:]}" if name.startswith("dps:") else name
+
+
+@dataclass
+class BenchRow:
+    backend: str
+    seconds: float
+    conditions: int
+    min_digits: int | None  # weakest certified digits among the held conditions (None: all exact)
+    failures: int
+    agrees: bool
+    failing_ids: frozenset = field(default_factory=frozenset, repr=False)
+
+    @property
+    def per_second(self) -> float:
+        return self.conditions / self.seconds if self.seconds > 0 else math.inf
+
+
+def bench_backends(tableau: Tableau, degree: int | None, order: int, dps_list=DEFAULT_DPS_LIST,
+                   decimals: str = "rounded", repeat: int = 1) -> tuple[list[BenchRow], float]:
+    """Rows per backend, and the time to build the (shared) condition table."""
+    t0 = time.perf_counter()
+    table = condition_table(order, degree)
+    t_tables = time.perf_counter() - t0
+    rows: list[BenchRow] = []
+    for name in backend_names(tableau, dps_list, decimals):
+        best = math.inf
+        results = None
+        for _ in range(max(1, repeat)):
+            backend = backend_for(tableau, name, decimals)
+            t1 = time.perf_counter()
+            results = evaluate_conditions(table, backend)
+            best = min(best, time.perf_counter() - t1)
+        assert results is not None
+        digits = [r.verdict.digits for r in results if r.verdict.state == HOLDS_TO_DIGITS]
+        failing = frozenset(r.condition.id for r in results if r.verdict.state == FAILS)
+        rows.append(BenchRow(name, best, len(results), min(digits) if digits else None, len(failing), True, failing))
+    reference = rows[-1]  # exact when rational, else the highest dps
+    for r in rows:
+        r.agrees = r.failing_ids == reference.failing_ids
+    return rows, t_tables
+
+
+# ------------------------------------------------------------------ perturbation
+
+
+def parse_eps(text: str) -> list[Fraction]:
+    """``1e-1..1e-40`` (every decade), ``1e-2..1e-30:2`` (every 2nd decade) or ``1e-3,1e-6``."""
+    text = text.strip()
+    try:
+        if ".." in text:
+            lo, _, rest = text.partition("..")
+            hi, _, step = rest.partition(":")
+            a, b = Fraction(lo), Fraction(hi)
+            ea, eb = round(math.log10(a)), round(math.log10(b))
+            k = int(step) if step else 1
+            if Fraction(10) ** ea != a or Fraction(10) ** eb != b or k < 1:
+                raise ValueError
+            sign = -1 if eb < ea else 1
+            return [Fraction(10) ** e for e in range(ea, eb + sign, sign * k)]
+        return [Fraction(x) for x in text.split(",") if x.strip()]
+    except (ValueError, ZeroDivisionError):
+        raise UserError(f"cannot read {text!r} (examples: 1e-1..1e-40, 1e-2..1e-30:2, 1e-3,1e-6)", "--eps") from None
+
+
+def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024, dps: int = 60):
+    """(D as a matrix of Fractions with max |d_ij| = 1, a description)."""
+    s = tableau.stages
+    if kind == "random":
+        rng = random.Random(seed)
+        D = [[Fraction(rng.randint(-10**6, 10**6), 10**6) for _ in range(s)] for _ in range(s)]
+        desc = f"random (seed {seed}, entries uniform in [-1, 1] on a 10^-6 grid)"
+    elif kind.startswith("entry:"):
+        try:
+            i, j = (int(x) for x in kind[6:].split(","))
+        except ValueError:
+            raise UserError(f"expected entry:i,j, got {kind!r}", "--direction") from None
+        if not (1 <= i <= s and 1 <= j <= s):
+            raise UserError(f"entry ({i},{j}) is outside the {s}x{s} tableau", "--direction")
+        D = [[Fraction(int(r == i - 1 and c == j - 1)) for c in range(s)] for r in range(s)]
+        desc = f"the entry a_{i}{j}"
+    elif kind == "kernel":
+        if degree is None or degree < 3:
+            raise UserError("the kernel direction needs --degree m >= 3 (the double-bush map)", "--direction")
+        from .kernel import kernel_of, tableau_rule
+
+        b, c, exact = tableau_rule(tableau, dps)
+        k = kernel_of(b, c, degree, exact, dps)
+        if not k.zero_row_sum:
+            raise UserError(
+                f"the double-bush map for degree {degree} has no kernel direction with zero row sums at this rule "
+                f"(rank {k.rank} of {s * s})", "--direction")
+        N = k.zero_row_sum[0]
+        if exact:
+            D = [[Fraction(x) for x in row] for row in N]
+        else:  # a rational approximation to 2·dps digits: in the kernel up to ~10^-dps
+            D = [[Fraction(str(x)).limit_denominator(10 ** (dps // 2)) for x in row] for row in N]
+        desc = (f"the zero-row-sum kernel direction of the double-bush map for degree {degree} "
+                f"({'exact' if exact else f'to {dps} digits'}; {len(k.zero_row_sum)}-dimensional)")
+    else:
+        raise UserError(f"unknown direction {kind!r} (random, kernel, entry:i,j)", "--direction")
+    big = max(abs(x) for row in D for x in row)
+    if big == 0:
+        raise UserError("the direction is zero", "--direction")
+    return [[x / big for x in row] for row in D], desc
+
+
+def perturbed(tableau: Tableau, D, eps: Fraction) -> Tableau:
+    """A + εD with b unchanged; entries stay exact expressions over the same constants."""
+    A = tuple(
+        tuple(
+            e if D[i][j] == 0 else Entry.parse(f"({e.text}) + ({eps * D[i][j]})", tableau.constants)
+            if not getattr(e, "computed", False) else e
+            for j, e in enumerate(row)
+        )
+        for i, row in enumerate(tableau.A)
+    )
+    if any(getattr(e, "computed", False) for row in tableau.A for e in row):
+        raise UserError("perturb needs explicit entries; write the family out with `rkcheck new` first")
+    return Tableau(A=A, b=tableau.b, c=None, name=f"{tableau.name} + {eps}·D", constants=tableau.constants)
+
+
+@dataclass
+class PerturbRow:
+    eps: Fraction
+    max_residual: Fraction | None  # over certified failures of the reference backend
+    first_failing_order: int | None
+    failing: int
+    detected: dict[str, bool]
+
+
+@dataclass
+class PerturbResult:
+    rows: list[PerturbRow]
+    slope: float | None
+    thresholds: dict[str, Fraction | None]  # smallest ε at which each backend certifies a failure
+    floors: dict[str, float]  # each backend's detection floor: its radius level at ε = 0
+    direction: str
+    backends: list[str]
+
+
+def fit_slope(xs: list[float], ys: list[float]) -> float | None:
+    if len(xs) < 2:
+        return None
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    if sxx == 0:
+        return None
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+
+
+def _log10(x: Fraction) -> float:
+    return math.log10(x.numerator) - math.log10(x.denominator)
+
+
+def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degree: int | None, order: int,
+                  dps_list=(15, 50), decimals: str = "rounded") -> PerturbResult:
+    table = condition_table(order, degree)
+    names = backend_names(tableau, dps_list, decimals)
+    if "exact" not in names:
+        names.append(f"dps:{max(dps_list) * 2 + 20}")  # the reference: well beyond the others
+    reference = names[-1]
+    rows: list[PerturbRow] = []
+    for eps in eps_list:
+        tab = perturbed(tableau, D, eps)
+        detected = {}
+        ref_results = None
+        for name in names:
+            res = evaluate_conditions(table, backend_for(tab, name, decimals))
+            detected[name] = any(r.verdict.state == FAILS for r in res)
+            if name == reference:
+                ref_results = res
+        assert ref_results is not None
+        fails = [r for r in ref_results if r.verdict.state == FAILS]
+        rows.append(PerturbRow(
+            eps, max((abs(r.enclosure.mid) for r in fails), default=None),
+            min((r.condition.order for r in fails), default=None), len(fails), detected,
+        ))
+    pts = [(_log10(r.eps), _log10(r.max_residual)) for r in rows if r.max_residual]
+    slope = fit_slope([p[0] for p in pts], [p[1] for p in pts])
+    thresholds = {n: min((r.eps for r in rows if r.detected[n]), default=None) for n in names}
+    base = evaluate_conditions(table, backend_for(perturbed(tableau, D, Fraction(0)), names[0], decimals))
+    floors = {}
+    for name in names:
+        if name == "exact":
+            continue
+        res = base if name == names[0] else evaluate_conditions(table, backend_for(tableau, name, decimals))
+        floors[name] = max(float(abs(r.enclosure.mid) + r.enclosure.rad) for r in res) if res else 0.0
+    return PerturbResult(rows, slope, thresholds, floors, desc, names)
+
+
+def bench_json(rows: list[BenchRow], t_tables: float) -> dict[str, Any]:
+    return {
+        "tables_seconds": t_tables,
+        "backends": [
+            {"backend": r.backend, "seconds": r.seconds, "conditions": r.conditions,
+             "conditions_per_second": r.per_second, "min_digits": r.min_digits, "failures": r.failures,
+             "agrees": r.agrees}
+            for r in rows
+        ],
+    }

@@ -1,0 +1,98 @@
+"""Charts (matplotlib, the optional extra ``rkcheck[plot]``); imported only when drawing."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .errors import UserError
+
+INSTALL_HINT = "charts need matplotlib: pip install 'rkcheck[plot]' (or pip install matplotlib)"
+
+
+def pyplot():
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise UserError(INSTALL_HINT, "--chart") from None
+    return plt
+
+
+def _save(fig, out: str) -> None:
+    if not out.lower().endswith((".png", ".svg", ".pdf")):
+        raise UserError("the chart file must end in .png, .svg or .pdf", "--chart")
+    fig.savefig(out, dpi=130, bbox_inches="tight")
+
+
+def bench_chart(rows, title: str, out: str) -> None:
+    """Time (log x) against certified digits (y), one labelled point per backend."""
+    from .accuracy import label
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for r in rows:
+        digits = r.min_digits if r.min_digits is not None else None
+        y = digits if digits is not None else max((x.min_digits or 0) for x in rows) + 20
+        marker = "*" if digits is None else "o"
+        ax.scatter([r.seconds], [y], s=60, marker=marker, color="tab:red" if r.backend == "float64" else "tab:blue")
+        text = label(r.backend) + (" (exact: ∞ digits)" if digits is None else "")
+        ax.annotate(text, (r.seconds, y), textcoords="offset points", xytext=(6, 4), fontsize=8)
+    ax.set_xscale("log")
+    ax.set_xlabel("wall time of the check (s, log scale)")
+    ax.set_ylabel("certified digits (weakest held condition)")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    _save(fig, out)
+    plt.close(fig)
+
+
+def perturb_chart(result, title: str, out: str) -> None:
+    """max |R| against ε (log–log) with one horizontal line per backend's detection floor."""
+    from .accuracy import label
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    pts = [(float(r.eps), float(r.max_residual)) for r in result.rows if r.max_residual]
+    if pts:
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", color="black",
+                  label=f"max |R| (slope {result.slope:.2f})" if result.slope is not None else "max |R|")
+    colours = ["tab:red", "tab:orange", "tab:green", "tab:blue", "tab:purple", "tab:brown", "tab:gray"]
+    for (name, floor), colour in zip(result.floors.items(), colours):
+        if floor > 0:
+            ax.axhline(floor, color=colour, linestyle="--", linewidth=1,
+                       label=f"{label(name)} floor ≈ {floor:.0e}")
+    ax.set_xlabel("ε (perturbation size)")
+    ax.set_ylabel("max |R| over failing conditions")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.invert_xaxis()
+    _save(fig, out)
+    plt.close(fig)
+
+
+def energy_chart(series: list[tuple[str, list[float], list[float]]], title: str, out: str,
+                 xlabel: str = "t", ylabel: str = "|H(y_n) − H(y_0)|", loglog: bool = False) -> None:
+    """Energy error over time (or any x), one line per series (semilog-y)."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, xs, ys in series:
+        ys_pos = [max(y, 1e-300) for y in ys]
+        if loglog:
+            ax.loglog(xs, ys_pos, "o-", label=name, markersize=3)
+        else:
+            ax.semilogy(xs, ys_pos, label=name, linewidth=1)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    _save(fig, out)
+    plt.close(fig)
+
+
+def finite(x: Any) -> bool:
+    return isinstance(x, float) and math.isfinite(x)

@@ -1,0 +1,214 @@
+"""The double-bush map M of the seed (Lemma "DBmono"), its rank and kernel.
+
+For a rule ``(b, c)`` and a degree m, the double-bush conditions
+
+    p bᵀC^(p−1) A c^q − q bᵀC^(q−1) A c^p = 1/(q+1) − 1/(p+1),   1 ≤ p < q ≤ m−1,
+
+are linear in A: ``M(A)`` with ``M: R^(s×s) → R^((m−1)(m−2)/2)``; the coefficient of
+``a_ij`` in row (p, q) is ``p b_i c_i^(p−1) c_j^q − q b_i c_i^(q−1) c_j^p``.  The seed
+proves ``rank M = s²−1`` with kernel ``(1−c)bᵀ`` for Gauss and m = 2s, and for m = 2s−1
+with nodes the zeros of ``P_s − ζP_{s−1}``: ``s²−3`` (ζ ≠ −1) and ``s²−s−1`` (ζ = −1);
+the part of the kernel with zero row sums is one-dimensional ("onedim").
+
+Rational rules are handled exactly (Gaussian elimination over Q).  Otherwise the rank is
+numerical: singular values of M at the working precision (mpmath), the cut placed at
+the largest gap, and the singular values around the cut reported so the gap can be seen.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Sequence
+
+
+def pairs(m: int) -> list[tuple[int, int]]:
+    return [(p, q) for q in range(2, m) for p in range(1, q)]
+
+
+def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
+    """The rows of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
+    s = len(b)
+    rows = []
+    for p, q in pairs(m):
+        row = []
+        for i in range(s):
+            for j in range(s):
+                row.append(p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
+        rows.append(row)
+    return rows
+
+
+def row_sum_rows(s: int) -> list[list[int]]:
+    """The constraints N·1 = 0 on vec(N)."""
+    return [[1 if k // s == i else 0 for k in range(s * s)] for i in range(s)]
+
+
+# ------------------------------------------------------------------- exact
+
+
+def nullspace_exact(rows: list[list[Fraction]], n: int) -> tuple[int, list[list[Fraction]]]:
+    """(rank, basis of the null space) over Q, by reduced row echelon form."""
+    M = [list(map(Fraction, r)) for r in rows]
+    pivots: list[int] = []
+    r = 0
+    for col in range(n):
+        piv = next((k for k in range(r, len(M)) if M[k][col] != 0), None)
+        if piv is None:
+            continue
+        M[r], M[piv] = M[piv], M[r]
+        inv = 1 / M[r][col]
+        M[r] = [x * inv for x in M[r]]
+        for k in range(len(M)):
+            if k != r and M[k][col] != 0:
+                f = M[k][col]
+                M[k] = [x - f * y for x, y in zip(M[k], M[r])]
+        pivots.append(col)
+        r += 1
+        if r == len(M):
+            break
+    free = [j for j in range(n) if j not in pivots]
+    basis = []
+    for fj in free:
+        v = [Fraction(0)] * n
+        v[fj] = Fraction(1)
+        for k, pc in enumerate(pivots):
+            v[pc] = -M[k][fj]
+        basis.append(v)
+    return len(pivots), basis
+
+
+# ------------------------------------------------------------------ numeric
+
+
+@dataclass
+class NumericRank:
+    rank: int
+    singular_values: list[Any]  # mpf, decreasing
+    basis: list[list[Any]]  # kernel vectors (mpf)
+
+    def around_cut(self, k: int = 2) -> list[tuple[int, Any]]:
+        lo = max(0, self.rank - k)
+        hi = min(len(self.singular_values), self.rank + k)
+        return [(i + 1, self.singular_values[i]) for i in range(lo, hi)]
+
+
+def nullspace_numeric(rows: list[list[Any]], n: int, dps: int) -> NumericRank:
+    """Numerical rank and null space by SVD at ``dps`` digits (cut at the largest gap
+    below 10^-(dps/2) relative to the largest singular value)."""
+    import mpmath
+
+    with mpmath.workdps(dps):
+        nrow = len(rows)
+        # pad to a square matrix so that the full right singular basis is returned
+        size = max(nrow, n)
+        M = mpmath.zeros(size, n)
+        for i, r in enumerate(rows):
+            for j, x in enumerate(r):
+                M[i, j] = x
+        U, S, V = mpmath.svd_r(M, full_matrices=True)
+        svals = sorted([S[i] for i in range(min(size, n))], reverse=True)
+        svals += [mpmath.mpf(0)] * (n - len(svals))
+        top = svals[0] if svals and svals[0] > 0 else mpmath.mpf(1)
+        tol = top * mpmath.mpf(10) ** (-(dps // 2))
+        rank = sum(1 for x in svals if x > tol)
+        order = sorted(range(min(size, n)), key=lambda i: -S[i])
+        small = order[rank:] + list(range(min(size, n), n))
+        basis = [[V[i, j] for j in range(n)] for i in small]
+    return NumericRank(rank, svals, basis)
+
+
+# ------------------------------------------------------------------ results
+
+
+@dataclass
+class KernelResult:
+    s: int
+    degree: int
+    exact: bool
+    rank: int
+    conditions: int
+    kernel: list[list[list[Any]]]  # basis matrices
+    zero_row_sum: list[list[list[Any]]]  # basis of ker M ∩ {N·1 = 0}
+    singular_values: list[tuple[int, Any]] | None = None  # around the cut (numeric)
+    zero_row_sum_singular_values: list[tuple[int, Any]] | None = None
+
+
+def _matrix(v: list[Any], s: int) -> list[list[Any]]:
+    return [v[i * s:(i + 1) * s] for i in range(s)]
+
+
+def _normalise(v: list[Any]) -> list[Any]:
+    """Scale so that the entry of largest magnitude is 1 (exact for rationals)."""
+    big = max(v, key=lambda x: abs(x))
+    return [x / big for x in v] if big != 0 else v
+
+
+def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps: int = 50) -> KernelResult:
+    """Rank and kernel of the double-bush map at the rule (b, c), and the zero-row-sum part."""
+    s = len(b)
+    n = s * s
+    if exact:
+        rows = map_rows(b, c, degree)
+    else:
+        import mpmath
+
+        with mpmath.workdps(dps + 10):  # the rows themselves at the working precision
+            rows = map_rows(b, c, degree)
+    stacked = rows + row_sum_rows(s)
+    if exact:
+        rank, basis = nullspace_exact(rows, n)
+        _, zr = nullspace_exact(stacked, n)
+        return KernelResult(s, degree, True, rank, len(rows),
+                            [_matrix(_normalise(v), s) for v in basis], [_matrix(_normalise(v), s) for v in zr])
+    import mpmath
+
+    num = nullspace_numeric(rows, n, dps)
+    zr = nullspace_numeric(stacked, n, dps)
+    with mpmath.workdps(dps + 10):  # normalise at the working precision, not at 15 digits
+        kernel = [_matrix(_normalise(v), s) for v in num.basis]
+        zero_row_sum = [_matrix(_normalise(v), s) for v in zr.basis]
+    return KernelResult(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(), zr.around_cut())
+
+
+def rule_values(rule_name: str, s: int, dps: int):
+    """(b, c, exact) of a named rule: Fractions when rational, else mpf at ``dps``."""
+    import mpmath
+
+    from .quadrature import rule
+
+    r = rule(rule_name, s)
+    if r.is_rational:
+        c, b = r.exact_nodes_weights()
+        return b, c, True
+    bits = int(dps * 3.33) + 40
+    c_i, b_i = r.enclosures(bits)
+    with mpmath.workdps(dps + 10):
+        c = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in c_i]
+        b = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in b_i]
+    return b, c, False
+
+
+def tableau_rule(tableau, dps: int):
+    """(b, c = A·1, exact) of a tableau."""
+    import mpmath
+
+    if tableau.is_exact("exact"):
+        A, b = tableau.exact_A(), tableau.exact_b()
+        return b, [sum(row, Fraction(0)) for row in A], True
+    bits = int(dps * 3.33) + 40
+    A, b = tableau.enclosures(bits, "exact")
+    with mpmath.workdps(dps + 10):
+        def mp(x):
+            return mpmath.mpf(x.mid.numerator) / x.mid.denominator
+
+        return [mp(x) for x in b], [sum((mp(x) for x in row), mpmath.mpf(0)) for row in A], False
+
+
+def seed_N(zeta: Any, b: Sequence[Any], c: Sequence[Any]) -> list[list[Any]]:
+    """The seed's s = 2, m = 3 direction N = ((ζ−1)1 − 2ζc) bᵀ(I − 2C)."""
+    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction):
+        import mpmath
+
+        zeta = mpmath.mpf(zeta.numerator) / zeta.denominator
+    return [[((zeta - 1) - 2 * zeta * c[i]) * b[j] * (1 - 2 * c[j]) for j in range(len(b))] for i in range(len(b))]

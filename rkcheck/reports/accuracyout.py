@@ -1,0 +1,95 @@
+"""Text renderings of ``bench``, ``perturb`` and ``kernel``."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from rich import box
+from rich.console import Console
+from rich.table import Table
+from rich.text import Text
+
+from ..numfmt import decimal_string
+from .text import plain
+
+
+def _eps(x: Fraction | None) -> str:
+    return "—" if x is None else decimal_string(x, 3)
+
+
+def render_bench(rows, t_tables: float, console: Console, title: str) -> None:
+    from ..accuracy import label
+
+    console.print(Text(title, style="bold"))
+    console.print(f"tree and condition tables: {t_tables:.3f} s (shared by all backends)")
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    for col, just in [("backend", "left"), ("time s", "right"), ("conditions/s", "right"),
+                      ("min certified digits", "right"), ("certified failures", "right"), ("agrees", "center")]:
+        t.add_column(col, justify=just, no_wrap=True)
+    for r in rows:
+        digits = "exact" if r.min_digits is None and r.backend == "exact" else ("—" if r.min_digits is None else str(r.min_digits))
+        agrees = Text("yes", style="green") if r.agrees else Text("no", style="bold red")
+        t.add_row(*plain(label(r.backend), f"{r.seconds:.4f}", f"{r.per_second:,.0f}", digits, r.failures, agrees))
+    console.print(t)
+    console.print("agrees = the same set of certified failures as the most precise backend (last row)")
+
+
+def render_perturb(res, console: Console, title: str) -> None:
+    from ..accuracy import label
+
+    console.print(Text(title, style="bold"))
+    console.print(f"direction: {res.direction}")
+    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
+    t.add_column("ε", justify="right")
+    t.add_column("max |R|", justify="right")
+    t.add_column("first failing order", justify="right")
+    t.add_column("failing", justify="right")
+    for name in res.backends:
+        t.add_column(label(name), justify="center")
+    for r in res.rows:
+        cells = [_eps(r.eps), "—" if r.max_residual is None else decimal_string(r.max_residual, 3),
+                 "—" if r.first_failing_order is None else r.first_failing_order, r.failing]
+        cells += [Text("detects", style="green") if r.detected[n] else Text("—", style="dim") for n in res.backends]
+        t.add_row(*plain(*cells))
+    console.print(t)
+    slope = "—" if res.slope is None else f"{res.slope:.3f}"
+    console.print(f"slope of log max|R| against log ε: {slope} (1 for a generic direction, 2 along the kernel)")
+    th = ", ".join(f"{label(n)}: {_eps(v)}" for n, v in res.thresholds.items())
+    console.print(f"detection threshold ε* (smallest ε certified to fail): {th}")
+
+
+def _fmt(x) -> str:
+    if isinstance(x, Fraction):
+        return str(x)
+    import mpmath
+
+    return mpmath.nstr(x, 8, min_fixed=-3, max_fixed=3) if x != 0 else "0"
+
+
+def render_kernel(res, console: Console, title: str) -> None:
+    console.print(Text(title, style="bold"))
+    s = res.s
+    kind = "exact (rational rule)" if res.exact else "numerical (singular values at the working precision)"
+    console.print(f"M: R^({s}×{s}) → R^{res.conditions} (double-bush conditions 1 ≤ p < q ≤ {res.degree - 1})")
+    console.print(f"rank M = {res.rank}   dim ker M = {s * s - res.rank}   [{kind}]")
+    if res.singular_values:
+        around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.singular_values)
+        console.print(f"singular values around the cut: {around}")
+    for k, N in enumerate(res.kernel, start=1):
+        console.print(Text(f"ker M basis N_{k}:", style="bold"))
+        _matrix(N, console)
+    console.print(f"ker M ∩ {{N·1 = 0}}: dimension {len(res.zero_row_sum)}")
+    if res.zero_row_sum_singular_values:
+        around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.zero_row_sum_singular_values)
+        console.print(f"(stacked with the row sums) singular values around the cut: {around}")
+    for N in res.zero_row_sum:
+        _matrix(N, console)
+
+
+def _matrix(N, console: Console) -> None:
+    t = Table(box=box.SIMPLE, show_header=False, pad_edge=False)
+    for _ in N[0]:
+        t.add_column(justify="right")
+    for row in N:
+        t.add_row(*plain(*[_fmt(x) for x in row]))
+    console.print(t)
