@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from .avf import AvfVerdict, avf_verdict, theorem1_remark
 from .backends import Enclosure, bits_for_dps, make_backend
@@ -32,8 +33,7 @@ class CheckOptions:
     fail_fast: bool = False
 
 
-@dataclass(frozen=True)
-class ConditionResult:
+class ConditionResult(NamedTuple):
     condition: EnergyCondition
     enclosure: Enclosure
     verdict: Verdict
@@ -91,10 +91,15 @@ def evaluate_conditions(
     """Every condition of ``table`` on ``backend`` (weights computed once, shared)."""
     backend.tree_weights(table.trees)
     out: list[ConditionResult] = []
-    batch = getattr(backend, "enclose_conditions", None)
-    if batch is not None and not fail_fast:
-        encs = batch(table.trees, table.conditions)
-        return [ConditionResult(c, e, classify(e)) for c, e in zip(table.conditions, encs)]
+    if not fail_fast:
+        judge = getattr(backend, "judge_table", None)
+        if judge is not None:  # the backend classifies its own enclosures, vectorised
+            encs, verdicts = judge(table)
+            return [ConditionResult(c, e, v) for c, e, v in zip(table.conditions, encs, verdicts)]
+        batch = getattr(backend, "enclose_table", None)
+        if batch is not None:
+            encs = batch(table)
+            return [ConditionResult(c, e, classify(e)) for c, e in zip(table.conditions, encs)]
     stop_after_order = None
     for cond in table.conditions:
         if stop_after_order is not None and cond.order > stop_after_order:

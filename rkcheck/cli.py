@@ -19,7 +19,7 @@ import click
 from . import __version__
 from .errors import UserError
 
-EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
+EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 MAX_ORDER = 20
 
 
@@ -661,3 +661,17 @@ def main(argv: list[str] | None = None) -> None:
         sys.exit(EXIT_USAGE)
     except BrokenPipeError:  # `rkcheck ... | head`
         sys.exit(EXIT_OK)
+    except KeyboardInterrupt:
+        click.echo("rkcheck: interrupted", err=True)
+        sys.exit(130)
+    except Exception as err:  # a bug in rkcheck, not a user error
+        import os
+
+        if os.environ.get("RKCHECK_DEBUG"):
+            raise
+        click.echo(
+            f"rkcheck: internal error: {type(err).__name__}: {err} — this is a bug in rkcheck; please report "
+            "it with the command and the file (RKCHECK_DEBUG=1 shows the traceback)",
+            err=True,
+        )
+        sys.exit(EXIT_INTERNAL)

@@ -111,7 +111,6 @@ class FreeTreeGenerator:
         self.ids_of_height = heights
         self._tall: dict[int, _Forests] = {}
         self._short: dict[int, _Forests] = {}
-        self._minus: dict[tuple[tuple[int, ...], int], int] = {}
 
     def _forests(self, h: int) -> tuple[_Forests, _Forests]:
         """(trees of height exactly h, trees of height < h)."""
@@ -176,44 +175,43 @@ class FreeTreeGenerator:
 
     # --------------------------------------------------------------- rerooting
 
-    def _minus_one(self, key: tuple[int, ...], x: int) -> int:
-        """Id of the tree whose root carries ``key`` with one copy of ``x`` removed."""
-        memo_key = (key, x)
-        t = self._minus.get(memo_key)
-        if t is None:
-            i = key.index(x)
-            t = self.table.index[key[:i] + key[i + 1:]]
-            self._minus[memo_key] = t
-        return t
-
     def _walk(self, root_key: tuple[int, ...]) -> tuple[dict[tuple[int, ...], int], int, bool]:
-        """Distinct rootings reachable from a vertex with branches ``root_key``."""
+        """Distinct rootings reachable from a vertex with branches ``root_key``.
+
+        Walking from a vertex with key K into its branch x, the new vertex carries
+        ``children(x)`` plus the branch back, which is K minus one x: a dictionary lookup.
+        (Each rooted tree belongs to exactly one free tree, so these lookups are not
+        memoised: nothing would ever be reused.)"""
         children = self.table.children
+        index = self.table.index
         found: dict[tuple[int, ...], int] = {root_key: 0}
         max_deg = len(root_key)
         superfluous = False
         # (key at vertex, id of the branch that leads back, parity)
         stack: list[tuple[tuple[int, ...], int, int]] = [(root_key, -1, 0)]
+        pop, push = stack.pop, stack.append
         while stack:
-            key, back, parity = stack.pop()
+            key, back, parity = pop()
+            p = parity ^ 1
+            n = len(key)
             prev = -1
-            for x in key:
+            for i in range(n):
+                x = key[i]
                 if x == prev:
                     continue  # equal siblings: same rootings, walked once
                 prev = x
-                if x == back and key.count(x) == 1:
+                if x == back and (i + 1 == n or key[i + 1] != x):
                     continue  # the only branch with this id leads back where we came from
-                up = self._minus_one(key, x)
-                new_key = _merge(children[x], (up,))
+                up = index[key[:i] + key[i + 1:]]
+                new_key = tuple(sorted(children[x] + (up,), reverse=True))
                 if len(new_key) > max_deg:
                     max_deg = len(new_key)
-                p = parity ^ 1
                 seen = found.get(new_key)
                 if seen is None:
                     found[new_key] = p
                 elif seen != p:
                     superfluous = True
-                stack.append((new_key, up, p))
+                push((new_key, up, p))
         return found, max_deg, superfluous
 
     def _max_degree_from(self, root_key: tuple[int, ...]) -> int:

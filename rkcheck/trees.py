@@ -121,6 +121,17 @@ class RootedTreeTable:
     def __len__(self) -> int:
         return len(self.order)
 
+    def factor_arrays(self):
+        """numpy arrays (left, right) of the Butcher factors of every id (rebuilt when the
+        table has grown), for vectorised weight recursions."""
+        import numpy as np
+
+        cached = getattr(self, "_factor_arrays", None)
+        if cached is None or len(cached[0]) != len(self.order):
+            cached = (np.array(self.left, dtype=np.int64), np.array(self.right, dtype=np.int64))
+            self._factor_arrays = cached
+        return cached
+
     # ------------------------------------------------------------------ lookup
 
     def lookup(self, key: tuple[int, ...]) -> int:
@@ -229,14 +240,16 @@ def parse_level_sequence(text: str) -> tuple[int, ...]:
 
 
 def sigma_of_forest(branches: Sequence[int], table: RootedTreeTable) -> int:
-    """σ of the tree whose root carries the subtrees ``branches`` (ids of ``table``)."""
+    """σ of the tree whose root carries the subtrees ``branches`` (ids of ``table``, equal
+    ids adjacent, as in a key): Π r_i! σ(t_i)^r_i, accumulated run by run."""
+    sigma = table.sigma
     result = 1
     run = 0
-    prev = None
-    for b in sorted(branches):
+    prev = -1
+    for b in branches:
         run = run + 1 if b == prev else 1
         prev = b
-        result *= table.sigma[b] * run
+        result *= sigma[b] * run
     return result
 
 

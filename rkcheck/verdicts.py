@@ -37,17 +37,19 @@ class Verdict:
         return self.state
 
 
-def certified_digits(bound: Fraction) -> int:
+def certified_digits(bound: Fraction | float) -> int:
     """The largest integer D with ``bound <= 10^-D`` (bound > 0), exactly."""
     if bound <= 0:
         raise ValueError("bound must be positive")
-    p, q = bound.numerator, bound.denominator
-    estimate = math.floor((q.bit_length() - p.bit_length()) * math.log10(2))
-    d = estimate - 2
-    # bound <= 10^-d  <=>  p * 10^d <= q ; move d up while it still holds
-    while p * Fraction(10) ** (d + 1) <= q:
+    p, q = bound.as_integer_ratio()
+
+    def within(d: int) -> bool:  # bound <= 10^-d, in integers
+        return p * 10**d <= q if d >= 0 else p <= q * 10 ** (-d)
+
+    d = math.floor(math.log10(q) - math.log10(p))  # math.log10 takes big ints
+    while within(d + 1):
         d += 1
-    while p * Fraction(10) ** d > q:
+    while not within(d):
         d -= 1
     return d
 
@@ -61,6 +63,8 @@ def classify(enc: Enclosure) -> Verdict:
     bound = abs(enc.mid) + enc.rad
     if bound == 0:
         return Verdict(HOLDS)
+    if isinstance(bound, float):
+        bound = bound * (1 + 2.0**-51) + 2.0**-1074  # the float addition rounded up
     return Verdict(HOLDS_TO_DIGITS, certified_digits(bound))
 
 

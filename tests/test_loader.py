@@ -203,3 +203,17 @@ def test_loads_detects_json_without_suffix():
 def test_user_error_str_orders_source_place_message():
     err = UserError("bad", "A[1][2]").located(source="f.toml")
     assert str(err) == "f.toml: A[1][2]: bad"
+
+
+def test_internal_errors_are_one_line_with_exit_3(capsys, monkeypatch):
+    import rkcheck.check
+
+    def boom(*args, **kwargs):
+        raise RuntimeError("simulated bug")
+
+    monkeypatch.setattr(rkcheck.check, "check", boom)
+    monkeypatch.setattr(rkcheck.check.CheckRunner, "__call__", lambda self, t, o: boom())
+    r = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"))
+    assert r.code == 3
+    assert r.err.strip().startswith("rkcheck: internal error: RuntimeError: simulated bug")
+    assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
