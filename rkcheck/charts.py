@@ -79,8 +79,10 @@ def energy_chart(series: list[tuple[str, list[float], list[float]]], title: str,
     """Energy error over time (or any x), one line per series (semilog-y)."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 4.5))
+    positive = [y for _, _, ys in series for y in ys if y > 0]
+    floor = min(positive) / 2 if positive else 1e-300  # exact zeros drawn just below the data
     for name, xs, ys in series:
-        ys_pos = [max(y, 1e-300) for y in ys]
+        ys_pos = [max(y, floor) for y in ys]
         if loglog:
             ax.loglog(xs, ys_pos, "o-", label=name, markersize=3)
         else:
@@ -96,3 +98,25 @@ def energy_chart(series: list[tuple[str, list[float], list[float]]], title: str,
 
 def finite(x: Any) -> bool:
     return isinstance(x, float) and math.isfinite(x)
+
+
+def workprec_chart(wp, title: str, out: str) -> None:
+    """Final error and energy error against wall time (log–log), one line per tableau."""
+    plt = pyplot()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    names = list(dict.fromkeys(r.name for r in wp.rows))
+    for name in names:
+        rows = [r for r in wp.rows if r.name == name]
+        t = [max(r.seconds, 1e-6) for r in rows]
+        ax1.loglog(t, [max(r.error, 1e-300) for r in rows], "o-", label=name, markersize=4)
+        ax2.loglog(t, [max(r.energy_error, 1e-300) for r in rows], "o-", label=name, markersize=4)
+    ax1.set_xlabel("wall time (s)")
+    ax1.set_ylabel(f"error at T = {float(wp.T):g}")
+    ax2.set_xlabel("wall time (s)")
+    ax2.set_ylabel("max |H(y_n) − H(y_0)|")
+    for ax in (ax1, ax2):
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(title, fontsize=10)
+    _save(fig, out)
+    plt.close(fig)
