@@ -23,10 +23,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .backends import Enclosure
 from .intervals import Interval
 from .orders import quadrature_residual, row_sums
-from .verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, classify, combine
+from .verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, classify_interval, combine
 
 
 @dataclass(frozen=True)
@@ -45,14 +44,6 @@ class AvfVerdict:
         return self.verdict.state != FAILS
 
 
-def _enc(x: Interval, exact: bool) -> Enclosure:
-    return Enclosure(x.mid, x.rad, exact and x.is_point)
-
-
-def _zero(x: Interval, exact: bool) -> Verdict:
-    return classify(_enc(x, exact))
-
-
 def reduce_stages(
     A: list[list[Interval]], b: list[Interval], exact: bool
 ) -> tuple[list[list[Interval]], list[Interval], list[int], list[Verdict]]:
@@ -65,19 +56,19 @@ def reduce_stages(
     s = len(b)
     used: list[Verdict] = []
 
-    def is_zero(x: Interval) -> bool:
-        v = _zero(x, exact)
+    def isclassify_interval(x: Interval) -> bool:
+        v = classify_interval(x, exact)
         if v.state != FAILS:
             used.append(v)
             return True
         return False
 
-    needed = {j for j in range(s) if not is_zero(b[j])}
+    needed = {j for j in range(s) if not isclassify_interval(b[j])}
     frontier = list(needed)
     while frontier:
         i = frontier.pop()
         for j in range(s):
-            if j not in needed and not is_zero(A[i][j]):
+            if j not in needed and not isclassify_interval(A[i][j]):
                 needed.add(j)
                 frontier.append(j)
     keep = sorted(needed)
@@ -91,7 +82,7 @@ def reduce_stages(
         n = len(b)
         for i in range(n):
             for k in range(i + 1, n):
-                if all(is_zero(A[i][j] - A[k][j]) for j in range(n)):
+                if all(isclassify_interval(A[i][j] - A[k][j]) for j in range(n)):
                     for r in range(n):
                         A[r][i] = A[r][i] + A[r][k]
                     b[i] = b[i] + b[k]
@@ -127,7 +118,7 @@ def avf_verdict(A: list[list[Interval]], b: list[Interval], degree: int, exact: 
     for i in range(n):
         for j in range(n):
             diff = rA[i][j] - c[i] * rb[j]
-            v = _zero(diff, exact)
+            v = classify_interval(diff, exact)
             if v.state == FAILS:
                 gi, gj = kept[i] + 1, kept[j] + 1
                 return result(
@@ -136,7 +127,7 @@ def avf_verdict(A: list[list[Interval]], b: list[Interval], degree: int, exact: 
                 )
             checks.append(v)
     for k in range(1, degree + 1):
-        v = _zero(quadrature_residual(rb, c, k), exact)
+        v = classify_interval(quadrature_residual(rb, c, k), exact)
         if v.state == FAILS:
             return result(
                 Verdict(FAILS),

@@ -79,7 +79,6 @@ class Backend(Protocol):
 
     def weight_minus(self, table: RootedTreeTable, t: int, value: Fraction) -> Enclosure: ...
 
-    def enclose_scalar(self, x: Interval | Fraction) -> Enclosure: ...
 
 
 def bits_for_dps(dps: int) -> int:
@@ -211,11 +210,6 @@ class ExactBackend:
         a = self.tree_weights(table, table.order[t])
         return Enclosure.of(Fraction(int(a[t]), self.d ** table.order[t]) - value)
 
-    def enclose_scalar(self, x: Interval | Fraction) -> Enclosure:
-        if isinstance(x, Interval):
-            assert x.is_point
-            x = x.lo
-        return Enclosure.of(x)
 
 
 # ------------------------------------------------------------------------- ball
@@ -389,10 +383,6 @@ class BallBackend:
         m, r = self._ball_of(a_m, a_r, t)
         return Enclosure(Fraction(m, self.one) - value, Fraction(math.ceil(r * _UP1), self.one), False)
 
-    def enclose_scalar(self, x: Interval | Fraction) -> Enclosure:
-        if not isinstance(x, Interval):
-            x = Interval.point(x)
-        return Enclosure(x.mid, x.rad, False)
 
 
 class _BallWeights:

@@ -19,7 +19,6 @@ class CatalogRow:
     name: str = ""
     stages: int = 0
     structure: str = ""
-    numbers: str = ""
     classical: str = ""
     quadrature: str = ""
     energy: dict[str, str] = field(default_factory=dict)  # degree label -> "all" / "≥ N" / "n"
@@ -47,7 +46,6 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
         row.error = str(err)
         return row
     row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
-    row.numbers = "exact" if tab.is_rational else ("family" if tab.family else "algebraic/decimal")
     runner = CheckRunner()
     for deg in degrees:
         res = runner(tab, CheckOptions(degree=deg, order=order, dps=dps))

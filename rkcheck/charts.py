@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-from typing import Any
 
 from .errors import UserError
 
@@ -94,10 +92,6 @@ def energy_chart(series: list[tuple[str, list[float], list[float]]], title: str,
     ax.legend(fontsize=8)
     _save(fig, out)
     plt.close(fig)
-
-
-def finite(x: Any) -> bool:
-    return isinstance(x, float) and math.isfinite(x)
 
 
 def workprec_chart(wp, title: str, out: str) -> None:

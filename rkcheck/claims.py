@@ -173,6 +173,21 @@ def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimRes
     return [judge(c, results[c.degree if c.kind in ("energy_order", "avf") else base.degree]) for c in claims]
 
 
+# ------------------------------------------------------------------ one file
+
+
+def judge_tableau(tableau, options, fail_on: str = "auto"):
+    """Check a tableau and its claims: (main result, claim results or None, failed?).
+
+    The claim runs share the main run when their options coincide (one CheckRunner)."""
+    from .check import CheckRunner, conditions_ok
+
+    runner = CheckRunner()
+    result = runner(tableau, options)
+    claims = check_claims(tableau, tableau.claims, options, runner) if tableau.claims else None
+    return result, claims, file_fails(conditions_ok(result), claims, fail_on)
+
+
 # ---------------------------------------------------------------- exit policy
 
 FAIL_ON = ("auto", "conditions", "claims", "never")

@@ -17,6 +17,7 @@ from typing import Any, Callable, Iterator
 import click
 
 from . import __version__
+from .claims import FAIL_ON
 from .errors import UserError
 
 EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
@@ -97,7 +98,7 @@ def check_options(f: Callable) -> Callable:
 
 def fail_on_option(f: Callable) -> Callable:
     return click.option(
-        "--fail-on", type=click.Choice(["auto", "conditions", "claims", "never"]), default=None,
+        "--fail-on", type=click.Choice(FAIL_ON), default=None,
         help="What makes the exit code 1: 'auto' = broken claims for files with an [expect] table, "
         "failing conditions otherwise; 'conditions'; 'claims'; 'never'. [default: verify auto, scan claims]",
     )(f)
@@ -195,27 +196,24 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
-    from .check import CheckRunner, conditions_ok
-    from .claims import check_claims, file_fails
+    from .claims import judge_tableau
     from .scan import options_for
 
     config = project_config()
     tab = load_tableau(file, max_stages)
     options = options_for(tab, cli_check_values(degree, order, dps, decimals, fail_fast), config.check)
     fail_on = fail_on or config.fail_on or "auto"
-    runner = CheckRunner()
-    result = runner(tab, options)
-    claim_results = check_claims(tab, tab.claims, options, runner) if tab.claims else None
+    result, claim_results, failed = judge_tableau(tab, options, fail_on)
     if fmt == "json":
         from .reports.jsonout import check_doc, dumps
 
         click.echo(dumps(check_doc(result, claim_results)))
     else:
-        from .reports.console import is_quiet
+        from .reports.console import is_quiet, is_verbose
         from .reports.text import render_check
 
-        render_check(result, _stdout(), show_all=show_all, quiet=is_quiet(), claims=claim_results)
-    failed = file_fails(conditions_ok(result), claim_results, fail_on)
+        render_check(result, _stdout(), show_all=show_all, quiet=is_quiet(), claims=claim_results,
+                     verbose=is_verbose())
     sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
@@ -417,7 +415,9 @@ def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, ou
             with open(output, "w", encoding="utf-8") as fh:
                 scanout.render_scan_text(outcomes, Console(file=fh, no_color=True, width=140), elapsed, interrupted)
         else:
-            scanout.render_scan_text(outcomes, _stdout(), elapsed, interrupted)
+            from .reports.console import is_verbose
+
+            scanout.render_scan_text(outcomes, _stdout(), elapsed, interrupted, verbose=is_verbose())
     else:
         text = {
             "json": lambda: scanout.scan_json(outcomes, interrupted, options) + "\n",

@@ -113,6 +113,10 @@ class ConditionTable:
             counts[c.order] += 1
         return counts
 
+    def condition_for_level_sequence(self, seq: tuple[int, ...]) -> EnergyCondition:
+        """The condition of the free tree underlying ``seq`` (any rooting of it)."""
+        return condition_from_free_tree(-1, self.generator.from_level_sequence(seq), self.trees)
+
     @cached_property
     def term_arrays(self):
         """Arrays over all terms of all conditions for the vectorised backends, built once
@@ -156,11 +160,6 @@ class ConditionTable:
             "lcm": lcm_a,
             "size": [c.vertices - 1 for c in self.conditions],
         }
-
-    def condition_for_level_sequence(self, seq: tuple[int, ...]) -> EnergyCondition:
-        """The condition of the free tree underlying ``seq`` (any rooting of it)."""
-        tree = self.generator.from_level_sequence(seq)
-        return condition_from_free_tree(-1, tree, self.trees)
 
 
 @lru_cache(maxsize=8)

@@ -166,9 +166,3 @@ class Entry:
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""
         return self.exact == 0
-
-    def exact_string(self) -> str:
-        """The exact value as ``p/q`` when rational, else the expression as written."""
-        if self.exact is not None:
-            return str(self.exact)
-        return self.text

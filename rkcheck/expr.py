@@ -299,15 +299,13 @@ def parse(text: str) -> Expr:
 # ------------------------------------------------------------------- traversals
 
 
-def names(node: Expr) -> list[Name]:
-    """All names used in ``node`` (with repetition), left to right."""
-    out: list[Name] = []
+def walk(node: Expr):
+    """Every node of ``node`` in pre-order, left to right."""
     stack = [node]
     while stack:
         n = stack.pop()
-        if isinstance(n, Name):
-            out.append(n)
-        elif isinstance(n, Unary):
+        yield n
+        if isinstance(n, Unary):
             stack.append(n.operand)
         elif isinstance(n, Call):
             stack.append(n.arg)
@@ -315,41 +313,16 @@ def names(node: Expr) -> list[Name]:
             stack.extend((n.right, n.left))
         elif isinstance(n, Power):
             stack.extend((n.exponent, n.base))
-    return out
+
+
+def names(node: Expr) -> list[Name]:
+    """All names used in ``node`` (with repetition), left to right."""
+    return [n for n in walk(node) if isinstance(n, Name)]
 
 
 def literals(node: Expr) -> list[Num]:
     """All number literals in ``node``."""
-    out: list[Num] = []
-    stack = [node]
-    while stack:
-        n = stack.pop()
-        if isinstance(n, Num):
-            out.append(n)
-        elif isinstance(n, Unary):
-            stack.append(n.operand)
-        elif isinstance(n, Call):
-            stack.append(n.arg)
-        elif isinstance(n, Binary):
-            stack.extend((n.right, n.left))
-        elif isinstance(n, Power):
-            stack.extend((n.exponent, n.base))
-    return out
-
-
-def has_sqrt(node: Expr) -> bool:
-    stack = [node]
-    while stack:
-        n = stack.pop()
-        if isinstance(n, Call):
-            return True
-        if isinstance(n, Unary):
-            stack.append(n.operand)
-        elif isinstance(n, Binary):
-            stack.extend((n.right, n.left))
-        elif isinstance(n, Power):
-            stack.extend((n.exponent, n.base))
-    return False
+    return [n for n in walk(node) if isinstance(n, Num)]
 
 
 # ------------------------------------------------------------------- evaluation

@@ -241,9 +241,6 @@ class ComputedEntry:
     def is_zero(self) -> bool:
         return self.exact == 0
 
-    def exact_string(self) -> str:
-        return str(self.exact) if self.exact is not None else self.text
-
 
 @dataclass
 class _Shared:

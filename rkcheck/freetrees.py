@@ -49,6 +49,7 @@ class FreeTree:
 
     @property
     def centre(self) -> tuple[int, ...]:
+        """The branches at the designated root (the canonical centre)."""
         return self.rootings[0][0]
 
 

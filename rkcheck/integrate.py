@@ -185,7 +185,7 @@ def _implicit_stages(method, ham, y, h, ctx, where, guess=None):
             Z = [[h * sum(row) * fk for fk in f0] for row in A]  # explicit predictor
         prev = None
         scale = ctx.norm(y) + 1
-        for it in range(1, ctx.max_iter + 1):
+        for _ in range(ctx.max_iter):
             F = [ham.f(_add(y, Zi)) for Zi in Z]
             G = []
             for i in range(s):

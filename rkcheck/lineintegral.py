@@ -28,11 +28,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from .avf import reduce_stages
-from .backends import Enclosure
 from .intervals import Interval
 from .orders import quadrature_residual, row_sums
 from .quadrature import poly_integral, shifted_legendre
-from .verdicts import FAILS, HOLDS, Verdict, classify, combine
+from .verdicts import FAILS, HOLDS, Verdict, classify_interval, combine
 
 
 @dataclass(frozen=True)
@@ -68,7 +67,7 @@ def _check_sigma(A, b, c, sigma: int, exact: bool) -> list[Verdict] | None:
             for j in range(sigma):
                 total = total + Interval.point(2 * j + 1) * Gc[i][j] * Pc[l][j]
             diff = A[i][l] - total * b[l]
-            v = classify(Enclosure(diff.mid, diff.rad, exact and diff.is_point))
+            v = classify_interval(diff, exact)
             if v.state == FAILS:
                 return None
             out.append(v)
@@ -88,7 +87,7 @@ def line_integral_certificate(
     quad_order = 0
     for k in range(1, 2 * n + 1):
         r = quadrature_residual(rb, c, k)
-        v = classify(Enclosure(r.mid, r.rad, exact and r.is_point))
+        v = classify_interval(r, exact)
         if v.state == FAILS:
             break
         quad.append(v)

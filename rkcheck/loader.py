@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 from . import expr as ex
 from .claims import parse_claims
-from .entries import Constants, Entry
+from .entries import DECIMALS_MODES, Constants, Entry
 from .errors import UserError
 from .tableau import Tableau
 
@@ -220,7 +220,7 @@ def _check_table(table: dict[str, Any]) -> dict[str, Any]:
                 raise UserError(f"expected a positive integer, got {value!r}", place)
             out[key] = value
         elif key == "decimals":
-            if value not in ("rounded", "exact"):
+            if value not in DECIMALS_MODES:
                 raise UserError(f"expected 'rounded' or 'exact', got {value!r}", place)
             out[key] = value
         else:

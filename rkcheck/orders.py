@@ -14,10 +14,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 
-from .backends import Backend, Enclosure
+from .backends import Backend
 from .intervals import Interval
 from .trees import RootedTreeTable
-from .verdicts import FAILS, Verdict, classify, combine
+from .verdicts import FAILS, Verdict, classify, classify_interval, combine
 
 
 @dataclass(frozen=True)
@@ -46,17 +46,13 @@ def quadrature_residual(b: list[Interval], c: list[Interval], k: int) -> Interva
     return total - Interval.point(Fraction(1, k))
 
 
-def as_enclosure(x: Interval, exact: bool) -> Enclosure:
-    return Enclosure(x.mid, x.rad, exact and x.is_point)
-
-
 def quadrature_order(A: list[list[Interval]], b: list[Interval], exact: bool) -> OrderResult:
     """Quadrature order of the rule ``(b, A·1)`` (checked up to ``2s``, its maximum)."""
     c = row_sums(A)
     top = 2 * len(b)
     verdicts = []
     for k in range(1, top + 1):
-        v = classify(as_enclosure(quadrature_residual(b, c, k), exact))
+        v = classify_interval(quadrature_residual(b, c, k), exact)
         if v.state == FAILS:
             power = "" if k == 1 else ("_i" if k == 2 else f"_i^{k - 1}")
             label = "Σ b_i = 1" if k == 1 else f"Σ b_i c{power} = 1/{k}"

@@ -336,8 +336,7 @@ class Rule:
 
     def order(self, bits: int = 200) -> int:
         """Quadrature order: the largest q with Σ b c^(k−1) = 1/k for all k <= q (certified)."""
-        from .verdicts import FAILS, classify
-        from .backends import Enclosure
+        from .verdicts import FAILS, classify_interval
 
         c, b = self.enclosures(bits)
         q = 0
@@ -346,7 +345,7 @@ class Rule:
             for bi, ci in zip(b, c):
                 total = total + bi * ci.power(k - 1)
             r = total - Interval.point(Fraction(1, k))
-            if classify(Enclosure(r.mid, r.rad, r.is_point)).state == FAILS:
+            if classify_interval(r, True).state == FAILS:
                 break
             q = k
         return q
@@ -398,7 +397,7 @@ def rule(name: str, s: int) -> Rule:
     zeta = {"gauss": Fraction(0), "radau-i": Fraction(-1), "radau-ii": Fraction(1)}.get(name)
     if zeta is None:
         if not name.startswith("zeta:"):
-            raise UserError(f"unknown rule {name!r} (gauss, radau-i, radau-ii, lobatto, zeta:<value>)")
+            raise UserError(f"unknown rule {name!r} ({', '.join(RULES)}, zeta:<value>)")
         zeta = _parse_zeta(name[5:])
     poly = poly_add(shifted_legendre(s), poly_scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))

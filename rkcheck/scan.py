@@ -48,8 +48,7 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 
 def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: str) -> dict[str, Any]:
     """Check one file; the outcome dict always has path, status, error and time."""
-    from .check import CheckRunner, conditions_ok
-    from .claims import check_claims, file_fails
+    from .claims import judge_tableau
     from .loader import build_tableau, detect_format, locate_lines, parse_document, read_text
 
     t0 = time.perf_counter()
@@ -67,14 +66,10 @@ def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: 
             return out
         tab = build_tableau(data, path, cli.get("max_stages", 64))
         tab.lines = out["lines"]
-        options = options_for(tab, cli, project)
-        runner = CheckRunner()
-        result = runner(tab, options)
-        claims = check_claims(tab, tab.claims, options, runner) if tab.claims else None
         from .reports.jsonout import check_doc
 
+        result, claims, failed = judge_tableau(tab, options_for(tab, cli, project), fail_on)
         out["result"] = check_doc(result, claims)
-        failed = file_fails(conditions_ok(result), claims, fail_on)
         out["status"] = "failed" if failed else "ok"
     except UserError as err:
         out["error"] = str(err.located(source=path) if not err.source else err)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import bisect
 from functools import lru_cache
-from typing import Iterator, Sequence
+from typing import Sequence
 
 TAU = 0  # id of the one-vertex tree τ in every table
 
@@ -252,7 +252,3 @@ def sigma_of_forest(branches: Sequence[int], table: RootedTreeTable) -> int:
         result *= sigma[b] * run
     return result
 
-
-def iter_trees(table: RootedTreeTable, order: int) -> Iterator[int]:
-    """Ids of the trees of ``table`` with ``order`` vertices."""
-    return iter(table.ids_of_order(order))

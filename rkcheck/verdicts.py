@@ -15,11 +15,11 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from .backends import Enclosure
+from .intervals import Interval
 
 HOLDS = "holds"
 HOLDS_TO_DIGITS = "holds_to_digits"
 FAILS = "fails"
-STATES = (HOLDS, HOLDS_TO_DIGITS, FAILS)
 
 
 @dataclass(frozen=True, slots=True)
@@ -66,6 +66,12 @@ def classify(enc: Enclosure) -> Verdict:
     if isinstance(bound, float):
         bound = bound * (1 + 2.0**-51) + 2.0**-1074  # the float addition rounded up
     return Verdict(HOLDS_TO_DIGITS, certified_digits(bound))
+
+
+def classify_interval(x: Interval, exact: bool) -> Verdict:
+    """The state of a quantity known as an interval; a point interval counts as exact only
+    when the data was exact (``exact``), otherwise it is a certified enclosure."""
+    return classify(Enclosure(x.mid, x.rad, exact and x.is_point))
 
 
 def combine(verdicts: list[Verdict]) -> Verdict:

@@ -44,6 +44,7 @@ import networkx as nx
 import pytest
 
 import reference as ref
+from shapes import asymbush, double_bush, triple_bush
 from rkcheck.backends import BallBackend, ExactBackend
 from rkcheck.conditions import ConditionTable
 from rkcheck.intervals import Interval
@@ -167,28 +168,6 @@ def engine_residual(G, A, b, degree=None):
 
 def star(k):
     return nx.star_graph(k)
-
-
-def double_bush(p, q):
-    G = nx.Graph([("X", "Y")])
-    G.add_edges_from(("X", f"x{i}") for i in range(p))
-    G.add_edges_from(("Y", f"y{i}") for i in range(q))
-    return G
-
-
-def triple_bush(p, r, q):
-    G = nx.Graph([("X", "M"), ("M", "Y")])
-    G.add_edges_from(("X", f"x{i}") for i in range(p))
-    G.add_edges_from(("M", f"m{i}") for i in range(r))
-    G.add_edges_from(("Y", f"y{i}") for i in range(q))
-    return G
-
-
-def asymbush(q):
-    G = nx.Graph([("V", "L")])
-    for i in range(q):
-        G.add_edges_from([("V", f"w{i}"), (f"w{i}", f"z{i}")])
-    return G
 
 
 # ================================================== engine vs reference, exact

@@ -20,11 +20,11 @@ from __future__ import annotations
 from fractions import Fraction as F
 from functools import lru_cache
 
-import networkx as nx
 import pytest
 import sympy as sp
 
 import reference as ref
+from shapes import asymbush, double_bush, triple_bush
 from rkcheck.check import CheckOptions, check
 from rkcheck.tableau import Tableau
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
@@ -118,28 +118,6 @@ def result_by_id(res, seq):
     rs = [r for r in res.results if r.condition.level_sequence == tuple(seq)]
     assert len(rs) == 1, seq
     return rs[0]
-
-
-def double_bush(p, q):
-    G = nx.Graph([("X", "Y")])
-    G.add_edges_from(("X", f"x{i}") for i in range(p))
-    G.add_edges_from(("Y", f"y{i}") for i in range(q))
-    return G
-
-
-def triple_bush(p, r, q):
-    G = nx.Graph([("X", "M"), ("M", "Y")])
-    G.add_edges_from(("X", f"x{i}") for i in range(p))
-    G.add_edges_from(("M", f"m{i}") for i in range(r))
-    G.add_edges_from(("Y", f"y{i}") for i in range(q))
-    return G
-
-
-def asymbush(q):
-    G = nx.Graph([("V", "L")])
-    for i in range(q):
-        G.add_edges_from([("V", f"w{i}"), (f"w{i}", f"z{i}")])
-    return G
 
 
 DB12_ID = ref.centre_canonical_id(double_bush(1, 2))

@@ -208,7 +208,8 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
 # ---------------------------------------------------------------------- text
 
 
-def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float, interrupted: bool) -> None:
+def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float, interrupted: bool,
+                     verbose: bool = False) -> None:
     from rich import box
     from rich.table import Table
     from rich.text import Text
@@ -258,6 +259,9 @@ def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float,
             console.print(Text(f"error: {o['error']}", style="red"))
         elif o["status"] == "failed":
             console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o)}", style="red"))
+        if verbose:
+            for w in (o.get("result") or {}).get("warnings", []):
+                console.print(Text(f"warning: {shown(o['path'])}: {w}", style="yellow"))
     tot = totals(outcomes)
     line = Text(
         f"{tot['files']} file{'s' if tot['files'] != 1 else ''}: {tot['ok']} ok, {tot['failed']} failed, "

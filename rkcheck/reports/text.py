@@ -9,7 +9,7 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
-from ..backends import Enclosure
+from ..backends import Enclosure, bits_for_dps
 from ..check import CheckResult, ConditionResult, overall
 from ..numfmt import decimal_string, radius_string
 from ..tableau import Tableau
@@ -111,7 +111,8 @@ def claims_table(claim_results) -> Table:
 
 
 def render_check(
-    res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False, claims=None
+    res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False, claims=None,
+    verbose: bool = False,
 ) -> None:
     """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
     o = res.options
@@ -144,6 +145,15 @@ def render_check(
         console.print(kv)
         console.print()
         console.print(per_order_table(res))
+        if verbose:
+            t = res.timings
+            console.print(
+                f"timings: tree and condition tables {t.get('trees', 0):.3f} s, evaluation "
+                f"{t.get('evaluation', 0):.3f} s, orders and certificates {t.get('orders_and_avf', 0):.3f} s; "
+                f"backend {res.backend}"
+                + (f" at {bits_for_dps(res.options.dps)} bits" if res.backend != "exact" else ""),
+                style="dim",
+            )
     if show_all:
         console.print(conditions_table(res.results, f"All conditions ({len(res.results)} checked)"))
     elif res.failures:
