@@ -213,7 +213,7 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
         from .reports.text import render_check
 
         render_check(result, _stdout(), show_all=show_all, quiet=is_quiet(), claims=claim_results,
-                     verbose=is_verbose())
+                     verbose=is_verbose(), fail_on=fail_on)
     sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 

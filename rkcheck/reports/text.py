@@ -112,7 +112,7 @@ def claims_table(claim_results) -> Table:
 
 def render_check(
     res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False, claims=None,
-    verbose: bool = False,
+    verbose: bool = False, fail_on: str = "auto",
 ) -> None:
     """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
     o = res.options
@@ -163,16 +163,7 @@ def render_check(
         console.print(conditions_table(shown, title))
     if claims:
         console.print(claims_table(claims))
-        broken = [r for r in claims if not r.met]
-        line = final_line(res)
-        if broken:
-            head = Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)} ", style="bold red")
-        else:
-            head = Text(f"OK: all {len(claims)} claims met ", style="bold green")
-        head.append(Text(f"(conditions: {line.plain})", style=""))
-        console.print(head)
-        return
-    console.print(final_line(res))
+    console.print(verdict_line(res, claims, fail_on))
 
 
 def _order_text(r, what: str) -> str:
@@ -207,6 +198,24 @@ def _energy_text(res: CheckResult) -> Text:
         f"{first.condition.id} {first.condition.bracket})",
         style="red",
     )
+
+
+def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
+    """The last line: the verdict that decides the exit code first (claims or conditions,
+    by ``--fail-on``), the other one in parentheses."""
+    conditions = final_line(res)
+    if not claims:
+        return conditions
+    broken = [r for r in claims if not r.met]
+    claims_text = (Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)}", style="bold red") if broken
+                   else Text(f"OK: all {len(claims)} claims met", style="bold green"))
+    if fail_on == "conditions":
+        head, other = conditions, claims_text.plain
+    else:
+        head, other = claims_text, conditions.plain
+    head = head.copy()
+    head.append(Text(f"  ({other})", style=""))
+    return head
 
 
 def final_line(res: CheckResult) -> Text:
