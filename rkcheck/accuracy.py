@@ -53,7 +53,7 @@ def backend_names(tableau: Tableau, dps_list, decimals: str = "rounded") -> list
 
 
 def label(name: str) -> str:
-    return f"mpmath dps {name[4:]}" if name.startswith("dps:") else name
+    return f"balls dps {name[4:]}" if name.startswith("dps:") else name
 
 
 @dataclass

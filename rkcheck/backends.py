@@ -16,10 +16,13 @@ Backends:
     then ``â(t) = d^|t| a(t)`` and ``Φ̂(t) = d^(|t|-1) Φ(t)`` are integers, and a
     condition on ``n`` vertices times ``lcm(σ) d^(n-1)`` is an integer sum.  Verdicts
     are exact: ``holds`` or ``fails``.
-``BallBackend``
-    Everything else (square roots, rounded decimals).  Fixed-point balls: an integer
-    mid-point ``m`` and radius ``r`` at scale ``2^-P`` mean the value lies in
-    ``[m-r, m+r]·2^-P``.  Additions are exact on integers; every product adds the
+``BallBackend`` (``"ball"``)
+    Everything else (square roots, rounded decimals), at ``--dps`` digits.  Fixed-point
+    balls: an integer mid-point ``m`` and radius ``r`` at scale ``2^-P`` mean the value
+    lies in ``[m-r, m+r]·2^-P``.  This is the arbitrary-precision backend that SPEC §5
+    calls "mpmath at the working precision": mpmath's ``mpf`` carries no error bound and
+    its interval context was several times slower, so rkcheck does its own balls on
+    Python integers (what ``mpf`` does internally) with a proven radius.  Additions are exact on integers; every product adds the
     propagated radius and one unit for its rounding, so the enclosure is rigorous by
     construction (no reliance on floating-point rounding modes).
 ``FloatBackend`` (:mod:`rkcheck.screen`)
@@ -236,7 +239,7 @@ class BallBackend:
     the magnitudes by ``1 + 2^-51``), which keeps it an upper bound (Higham's γ_k).  The
     big-integer work is then one product per operation, as in exact arithmetic."""
 
-    name = "mpmath"
+    name = "ball"
     exact = False
 
     def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int):

@@ -53,7 +53,7 @@ class OrderCounts:
 class CheckResult:
     tableau: Tableau
     options: CheckOptions
-    backend: str  # "exact" or "mpmath"
+    backend: str  # "exact" or "ball"
     results: list[ConditionResult]
     per_order: list[OrderCounts]
     energy_order: int

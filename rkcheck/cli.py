@@ -515,7 +515,7 @@ def _degree_value(degree, tab):
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @output_options
 def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
-    """Run the same check on every backend: float64 screen, mpmath at each --dps, exact.
+    """Run the same check on every backend: float64 screen, certified balls at each --dps, exact.
 
     One row per backend: wall time, conditions per second, the weakest certified digits,
     the certified failures, and whether the verdicts agree with the most precise backend.

@@ -168,7 +168,7 @@ def test_double_bush_holds_in_the_family(zeta, b_value):
     # engine can only certify digits
     assert DB12_ID == (1, 2, 3, 3, 2)  # hand: [τ[τ²]], rooted at the 1-leaf bush
     res = family_check(zeta, b_value)
-    assert res.backend == "mpmath"
+    assert res.backend == "ball"
     r = result_by_id(res, DB12_ID)
     assert r.verdict.state == HOLDS_TO_DIGITS
     assert r.verdict.digits >= 40
@@ -314,7 +314,7 @@ def test_gauss2_collocation_degree4_energy_order():
     assert nonzero, "Gauss collocation is not energy preserving for quartic H"
     first_bad = min(len(i) for i in nonzero)  # number of vertices of the first failure
     res = check(Tableau.from_values(GAUSS2_A, GAUSS2_B), CheckOptions(degree=4, order=8))
-    assert res.backend == "mpmath"
+    assert res.backend == "ball"
     assert res.energy_order == first_bad - 2
     assert res.classical.order == 4  # 2-stage Gauss: order 2s (Butcher), hand value
     failing_at_first = {r.condition.level_sequence for r in res.failures

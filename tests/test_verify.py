@@ -34,7 +34,7 @@ RADAU2 = (["1/3", "1"], ["3/4", "1/4"])
 @pytest.mark.parametrize("degree", [3, 4])
 def test_avf_gauss2_holds_every_condition_and_is_recognised(degree):
     res = check(avf(*GAUSS2), CheckOptions(degree=degree, order=8))
-    assert res.backend == "mpmath"
+    assert res.backend == "ball"
     assert res.failures == []
     assert all(r.verdict.state == HOLDS_TO_DIGITS and r.verdict.digits >= 45 for r in res.results)
     assert res.avf is not None and res.avf.equals_avf
