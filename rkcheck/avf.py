@@ -98,11 +98,12 @@ def reduce_stages(
     return A, b, kept, used
 
 
-def avf_verdict(A: list[list[Interval]], b: list[Interval], degree: int, exact: bool) -> AvfVerdict:
-    """Decide whether ``(A, b)`` equals AVF for Hamiltonians of degree ≤ ``degree``."""
+def avf_verdict(A: list[list[Interval]], b: list[Interval], degree: int, exact: bool, reduced=None) -> AvfVerdict:
+    """Decide whether ``(A, b)`` equals AVF for Hamiltonians of degree ≤ ``degree``
+    (``reduced``: the result of :func:`reduce_stages`, if already computed)."""
     s = len(b)
     s_min = (degree + 1) // 2 if degree >= 3 else None
-    rA, rb, kept, used = reduce_stages([row[:] for row in A], b[:], exact)
+    rA, rb, kept, used = reduced or reduce_stages([row[:] for row in A], b[:], exact)
     n = len(rb)
     notes: list[str] = []
     if n < s:

@@ -417,12 +417,17 @@ class _BallWeights:
         self.a_r = np.concatenate([self.a_r, np.zeros(extra)])
 
 
-def make_backend(tableau, dps: int, decimals: str) -> ExactBackend | BallBackend:
+def entry_bits(dps: int) -> int:
+    """Bits at which entries are enclosed for a check at ``dps`` digits."""
+    return bits_for_dps(dps) + 8
+
+
+def make_backend(tableau, dps: int, decimals: str, enclosures=None) -> ExactBackend | BallBackend:
     """Exact arithmetic when the tableau is rational (and decimals are read exactly or
-    are all short), else certified balls at ``dps`` digits (SPEC §5)."""
+    are all short), else certified balls at ``dps`` digits (SPEC §5).  ``enclosures``:
+    the entries already enclosed at :func:`entry_bits` (saves enclosing them twice)."""
     if tableau.is_exact(decimals):
         return ExactBackend(tableau.exact_A(), tableau.exact_b())
-    bits = bits_for_dps(dps)
-    A, b = tableau.enclosures(bits + 8, decimals)
-    return BallBackend(A, b, bits)
+    A, b = enclosures or tableau.enclosures(entry_bits(dps), decimals)
+    return BallBackend(A, b, bits_for_dps(dps))
 

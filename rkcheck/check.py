@@ -11,8 +11,8 @@ import time
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
-from .avf import AvfVerdict, avf_verdict, theorem1_remark
-from .backends import Enclosure, bits_for_dps, make_backend
+from .avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
+from .backends import Enclosure, entry_bits, make_backend
 from .conditions import ConditionTable, EnergyCondition, condition_table
 from .expr import ROUNDED_MIN_DIGITS
 from .lineintegral import LineIntegralCertificate, line_integral_certificate
@@ -139,21 +139,22 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     t1 = time.perf_counter()
     timings["trees"] = t1 - t0
 
-    backend = make_backend(tableau, options.dps, options.decimals)
+    bits = entry_bits(options.dps)
+    A, b = tableau.enclosures(bits, options.decimals)  # once: backend, orders, certificates
+    backend = make_backend(tableau, options.dps, options.decimals, (A, b))
     exact = backend.exact
     results = evaluate_conditions(table, backend, options.fail_fast)
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
 
-    bits = bits_for_dps(options.dps) + 8
-    A, b = tableau.enclosures(bits, options.decimals)
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
     quad = quadrature_order(A, b, exact)
     classical = classical_order(backend, options.order)
-    avf = avf_verdict(A, b, options.degree, exact) if options.degree is not None else None
-    cert = None
-    if avf is not None:
-        cert = line_integral_certificate(A, b, options.degree, exact)
+    avf = cert = None
+    if options.degree is not None:
+        reduced = reduce_stages([row[:] for row in A], b[:], exact)  # shared by both certificates
+        avf = avf_verdict(A, b, options.degree, exact, reduced)
+        cert = line_integral_certificate(A, b, options.degree, exact, reduced)
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 

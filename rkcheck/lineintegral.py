@@ -75,10 +75,11 @@ def _check_sigma(A, b, c, sigma: int, exact: bool) -> list[Verdict] | None:
 
 
 def line_integral_certificate(
-    A: list[list[Interval]], b: list[Interval], degree: int, exact: bool
+    A: list[list[Interval]], b: list[Interval], degree: int, exact: bool, reduced=None
 ) -> LineIntegralCertificate:
-    """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ."""
-    rA, rb, kept, used = reduce_stages([row[:] for row in A], b[:], exact)
+    """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ
+    (``reduced``: the result of :func:`~rkcheck.avf.reduce_stages`, if already computed)."""
+    rA, rb, kept, used = reduced or reduce_stages([row[:] for row in A], b[:], exact)
     n = len(rb)
     if n == 0:
         return LineIntegralCertificate(degree, None, Verdict(FAILS), "every weight is zero")
