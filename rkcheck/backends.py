@@ -21,8 +21,8 @@ Backends:
     balls: an integer mid-point ``m`` and radius ``r`` at scale ``2^-P`` mean the value
     lies in ``[m-r, m+r]·2^-P``.  This is the arbitrary-precision backend that SPEC §5
     calls "mpmath at the working precision": mpmath's ``mpf`` carries no error bound and
-    its interval context was several times slower, so rkcheck does its own balls on
-    Python integers (what ``mpf`` does internally) with a proven radius.  Additions are exact on integers; every product adds the
+    its interval context costs about 2.5× more per product, so rkcheck does its own balls
+    on Python integers (what ``mpf`` does internally) with a proven radius.  Additions are exact on integers; every product adds the
     propagated radius and one unit for its rounding, so the enclosure is rigorous by
     construction (no reliance on floating-point rounding modes).
 ``FloatBackend`` (:mod:`rkcheck.screen`)
