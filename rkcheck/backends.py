@@ -89,29 +89,39 @@ def bits_for_dps(dps: int) -> int:
     return math.ceil(dps * LOG2_10) + GUARD_BITS
 
 
-class _ObjectWeights:
-    """Per-table store of Φ(t), AΦ(t) and a(t) as numpy *object* arrays of Python ints,
-    grown order by order (a caller that stops early, like the classical-order check,
-    never pays for higher orders).  Object arrays keep the arithmetic exact while the
-    loops over the trees of one order run in numpy's C code, not in the interpreter."""
+class _WeightStore:
+    """Per-table store of Φ(t), AΦ(t) and a(t), grown order by order (a caller that stops
+    early, like the classical-order check, never pays for higher orders).  Mid-points are
+    numpy *object* arrays of Python ints, so the arithmetic stays exact while the loops
+    over the trees of one order run in numpy's C code; the ball backend adds float64
+    radius arrays (``radii=True``)."""
 
-    def __init__(self, s: int, width: int) -> None:
+    def __init__(self, s: int, radii: bool = False) -> None:
         import numpy as np
 
         self.np = np
+        self.radii = radii
         self.done_order = 0
-        self.phi = np.empty((0, s, width), dtype=object)  # width 1 (exact) or 2 (mid, rad)
-        self.psi = np.empty((0, s, width), dtype=object)
-        self.a = np.empty((0, width), dtype=object)
+        self.phi_m = np.empty((0, s), dtype=object)
+        self.psi_m = np.empty((0, s), dtype=object)
+        self.a_m = np.empty(0, dtype=object)
+        self.phi_r = np.empty((0, s))
+        self.psi_r = np.empty((0, s))
+        self.a_r = np.empty(0)
 
     def grow(self, n: int) -> None:
         np = self.np
-        extra = n - len(self.a)
-        if extra > 0:
-            s, w = self.phi.shape[1], self.phi.shape[2]
-            self.phi = np.concatenate([self.phi, np.zeros((extra, s, w), dtype=object)])
-            self.psi = np.concatenate([self.psi, np.zeros((extra, s, w), dtype=object)])
-            self.a = np.concatenate([self.a, np.zeros((extra, w), dtype=object)])
+        extra = n - len(self.a_m)
+        if extra <= 0:
+            return
+        s = self.phi_m.shape[1]
+        self.phi_m = np.concatenate([self.phi_m, np.zeros((extra, s), dtype=object)])
+        self.psi_m = np.concatenate([self.psi_m, np.zeros((extra, s), dtype=object)])
+        self.a_m = np.concatenate([self.a_m, np.zeros(extra, dtype=object)])
+        if self.radii:
+            self.phi_r = np.concatenate([self.phi_r, np.zeros((extra, s))])
+            self.psi_r = np.concatenate([self.psi_r, np.zeros((extra, s))])
+            self.a_r = np.concatenate([self.a_r, np.zeros(extra)])
 
 
 def _term_multipliers(ctable):
@@ -144,7 +154,7 @@ class ExactBackend:
         self._bv = np.array(self.b, dtype=object)
         # keyed by the table object itself (identity), never by id(): a freed table's id
         # could be reused by a new table and would then return stale weights
-        self._caches: dict[RootedTreeTable, _ObjectWeights] = {}
+        self._caches: dict[RootedTreeTable, _WeightStore] = {}
 
     def tree_weights(self, table: RootedTreeTable, upto: int | None = None):
         """``â(t) = d^|t| a(t)`` for every id of order <= ``upto`` (default: all), as an
@@ -152,12 +162,12 @@ class ExactBackend:
         upto = table.max_order if upto is None else upto
         cache = self._caches.get(table)
         if cache is None:
-            cache = self._caches[table] = _ObjectWeights(self.s, 1)
+            cache = self._caches[table] = _WeightStore(self.s)
             cache.grow(1)
             ones = cache.np.array([1] * self.s, dtype=object)
-            cache.phi[0, :, 0] = ones
-            cache.psi[0, :, 0] = ones.dot(self._At)
-            cache.a[0, 0] = ones.dot(self._bv)
+            cache.phi_m[0] = ones
+            cache.psi_m[0] = ones.dot(self._At)
+            cache.a_m[0] = ones.dot(self._bv)
             cache.done_order = 1
         if upto > cache.done_order:
             cache.grow(table.first_id[upto + 1])
@@ -165,12 +175,12 @@ class ExactBackend:
             for n in range(cache.done_order + 1, upto + 1):
                 lo, hi = table.first_id[n], table.first_id[n + 1]
                 if hi > lo:
-                    phi = cache.phi[left[lo:hi], :, 0] * cache.psi[right[lo:hi], :, 0]
-                    cache.phi[lo:hi, :, 0] = phi
-                    cache.psi[lo:hi, :, 0] = phi.dot(self._At)
-                    cache.a[lo:hi, 0] = phi.dot(self._bv)
+                    phi = cache.phi_m[left[lo:hi]] * cache.psi_m[right[lo:hi]]
+                    cache.phi_m[lo:hi] = phi
+                    cache.psi_m[lo:hi] = phi.dot(self._At)
+                    cache.a_m[lo:hi] = phi.dot(self._bv)
                 cache.done_order = n
-        return cache.a[:, 0]
+        return cache.a_m
 
     def enclose_terms(self, table: RootedTreeTable, terms: Sequence[Term], scale: int) -> Enclosure:
         """``Σ sign/σ Π a(t)`` exactly; ``scale`` = lcm of the σ of the terms."""
@@ -261,7 +271,7 @@ class BallBackend:
         self._br = np.array([float(r) for _, r in balls_b]) * _UP1 + 1.0
         self._bx = self._mag(self._bm)
         self._dot_up = 1.0 + (2 * self.s + 8) * 2.0**-52
-        self._caches: dict[RootedTreeTable, _ObjectWeights] = {}
+        self._caches: dict[RootedTreeTable, _WeightStore] = {}
 
     def _mag(self, m):
         """float upper bounds of |m|·2^-P for an object array of integers (shifted down
@@ -286,7 +296,7 @@ class BallBackend:
         upto = table.max_order if upto is None else upto
         cache = self._caches.get(table)
         if cache is None:
-            cache = self._caches[table] = _BallWeights(self.s)
+            cache = self._caches[table] = _WeightStore(self.s, radii=True)
             cache.grow(1)
             ones_m = np.array([self.one] * self.s, dtype=object)
             zeros = np.zeros(self.s)
@@ -386,35 +396,6 @@ class BallBackend:
         m, r = self._ball_of(a_m, a_r, t)
         return Enclosure(Fraction(m, self.one) - value, Fraction(math.ceil(r * _UP1), self.one), False)
 
-
-
-class _BallWeights:
-    """Per-table store for the ball backend: integer mids (object arrays), float radii."""
-
-    def __init__(self, s: int) -> None:
-        import numpy as np
-
-        self.np = np
-        self.done_order = 0
-        self.phi_m = np.empty((0, s), dtype=object)
-        self.psi_m = np.empty((0, s), dtype=object)
-        self.a_m = np.empty(0, dtype=object)
-        self.phi_r = np.empty((0, s))
-        self.psi_r = np.empty((0, s))
-        self.a_r = np.empty(0)
-
-    def grow(self, n: int) -> None:
-        np = self.np
-        extra = n - len(self.a_m)
-        if extra <= 0:
-            return
-        s = self.phi_m.shape[1]
-        self.phi_m = np.concatenate([self.phi_m, np.zeros((extra, s), dtype=object)])
-        self.psi_m = np.concatenate([self.psi_m, np.zeros((extra, s), dtype=object)])
-        self.a_m = np.concatenate([self.a_m, np.zeros(extra, dtype=object)])
-        self.phi_r = np.concatenate([self.phi_r, np.zeros((extra, s))])
-        self.psi_r = np.concatenate([self.psi_r, np.zeros((extra, s))])
-        self.a_r = np.concatenate([self.a_r, np.zeros(extra)])
 
 
 def entry_bits(dps: int) -> int:

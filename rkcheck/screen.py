@@ -108,22 +108,6 @@ class FloatBackend:
             c["done"] = n
         return c["a_m"], c["a_r"]
 
-    def _products(self, table, branch_lists: list[tuple[int, ...]]):
-        a_m, a_r = self.tree_weights(table)
-        n = len(branch_lists)
-        pm = np.ones(n)
-        pr = np.zeros(n)
-        width = max((len(b) for b in branch_lists), default=0)
-        for k in range(width):
-            idx = np.array([b[k] if k < len(b) else -1 for b in branch_lists])
-            has = idx >= 0
-            qm = np.where(has, a_m[np.where(has, idx, 0)], 1.0)
-            qr = np.where(has, a_r[np.where(has, idx, 0)], 0.0)
-            new_m = pm * qm
-            pr = _up(np.abs(pm) * qr + np.abs(qm) * pr + pr * qr + U * np.abs(new_m))
-            pm = new_m
-        return pm, pr
-
     def enclose_table(self, ctable) -> list[Enclosure]:
         """Every condition of a condition table at once, from its cached term arrays."""
         arr = ctable.term_arrays
@@ -185,39 +169,25 @@ class FloatBackend:
                 verdicts.append(v)
         return encs, verdicts
 
-    def enclose_conditions(self, table: RootedTreeTable, conditions) -> list[Enclosure]:
-        """Every condition at once: vectorised over all their terms."""
-        branches, owner, coef = [], [], []
-        for i, cond in enumerate(conditions):
-            for term in cond.terms:
-                branches.append(term.branches)
-                owner.append(i)
-                coef.append(term.sign / term.sigma)
-        if not branches:
-            return []
-        pm, pr = self._products(table, branches)
-        cf = np.array(coef)
-        tm = cf * pm
-        tr = _up(np.abs(cf) * pr + U * np.abs(cf) * np.abs(pm) + U * np.abs(tm))  # coef itself rounded
-        owner_a = np.array(owner)
-        n = len(conditions)
-        mid = np.zeros(n)
-        np.add.at(mid, owner_a, tm)
-        rad = np.zeros(n)
-        np.add.at(rad, owner_a, tr)
-        absum = np.zeros(n)
-        np.add.at(absum, owner_a, np.abs(tm))
-        counts = np.bincount(owner_a, minlength=n)
-        rad = _up(rad + np.array([gamma(int(k)) for k in counts]) * absum)
-        return [Enclosure(Fraction(float(m)), Fraction(float(r)), False) for m, r in zip(mid, rad)]
-
     def enclose_terms(self, table: RootedTreeTable, terms, scale: int) -> Enclosure:
-        class _C:
-            pass
-
-        cond = _C()
-        cond.terms = terms  # type: ignore[attr-defined]
-        return self.enclose_conditions(table, [cond])[0]
+        """One condition (the per-condition path of the backend protocol), in scalar
+        floats with the same bounds as :meth:`enclose_table`."""
+        a_m, a_r = self.tree_weights(table)
+        mid = rad = absum = 0.0
+        for term in terms:
+            pm, pr = 1.0, 0.0
+            for t in term.branches:
+                qm, qr = float(a_m[t]), float(a_r[t])
+                new_m = pm * qm
+                pr = (abs(pm) * qr + abs(qm) * pr + pr * qr + U * abs(new_m)) * INFLATE + ETA
+                pm = new_m
+            cf = term.sign / term.sigma
+            tm = cf * pm
+            rad += (abs(cf) * pr + U * abs(cf) * abs(pm) + U * abs(tm)) * INFLATE + ETA
+            mid += tm
+            absum += abs(tm)
+        rad = (rad + gamma(len(terms)) * absum) * INFLATE + ETA
+        return Enclosure(mid, rad, False)
 
     def weight_minus(self, table: RootedTreeTable, t: int, value: Fraction) -> Enclosure:
         a_m, a_r = self.tree_weights(table, table.order[t])
