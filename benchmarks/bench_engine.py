@@ -44,10 +44,10 @@ CHILD = r"""
 import gc, json, resource, sys, time
 sys.path.insert(0, {root!r})
 import numpy, mpmath  # imports are start-up, timed separately (last line of the table)
-from rkcheck.tableau import Tableau
-from rkcheck.conditions import ConditionTable
-from rkcheck.check import evaluate_conditions
-from rkcheck.accuracy import backend_for
+from rkcheck.methods.tableau import Tableau
+from rkcheck.trees.conditions import ConditionTable
+from rkcheck.energy.check import evaluate_conditions
+from rkcheck.studies.accuracy import backend_for
 A, B = {A!r}, {B!r}
 order, degree, repeat = {order!r}, {degree!r}, {repeat!r}
 rational = Tableau.from_values(A, B)

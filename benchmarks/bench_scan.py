@@ -20,7 +20,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from rkcheck.scanning import find_tableau_files  # noqa: E402
+from rkcheck.io.discovery import find_tableau_files  # noqa: E402
 
 
 def wall(cmd: list[str]) -> float:

@@ -1,6 +1,6 @@
 """``python -m rkcheck`` = the ``rkcheck`` command."""
 
-from .cli import main
+from rkcheck.cli import main
 
 if __name__ == "__main__":
     main()

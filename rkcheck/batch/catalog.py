@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .check import CheckOptions, CheckResult
-from .errors import UserError
-from .loader import load
+from rkcheck.energy.check import CheckOptions, CheckResult
+from rkcheck.errors import UserError
+from rkcheck.io.loader import load
 
 
 @dataclass
@@ -36,8 +36,8 @@ def energy_label(res: CheckResult) -> str:
 
 
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
-    from .check import CheckRunner
-    from .claims import check_claims
+    from rkcheck.energy.check import CheckRunner
+    from rkcheck.energy.claims import check_claims
 
     row = CatalogRow(path)
     try:

@@ -17,7 +17,7 @@ import signal
 import time
 from typing import Any, Callable, Iterable
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 STATUS_RANK = {"ok": 0, "skipped": 0, "failed": 1, "error": 1}
 
@@ -25,7 +25,7 @@ STATUS_RANK = {"ok": 0, "skipped": 0, "failed": 1, "error": 1}
 def options_for(tab, cli: dict[str, Any], project: dict[str, Any]):
     """Check options: command line, else the file's ``[check]``, else ``[tool.rkcheck]``,
     else the defaults (degree none, order 8, dps 50, decimals rounded)."""
-    from .check import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions
+    from rkcheck.energy.check import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions
 
     def pick(key: str, default: Any) -> Any:
         for source in (cli, tab.check, project):
@@ -48,8 +48,8 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 
 def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: str) -> dict[str, Any]:
     """Check one file; the outcome dict always has path, status, error and time."""
-    from .claims import judge_tableau
-    from .loader import build_tableau, detect_format, locate_lines, parse_document, read_text
+    from rkcheck.energy.claims import judge_tableau
+    from rkcheck.io.loader import build_tableau, detect_format, locate_lines, parse_document, read_text
 
     t0 = time.perf_counter()
     out: dict[str, Any] = {"path": path, "status": "error", "error": None, "time": 0.0, "lines": {}}
@@ -66,7 +66,7 @@ def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: 
             return out
         tab = build_tableau(data, path, cli.get("max_stages", 64))
         tab.lines = out["lines"]
-        from .reports.jsonout import check_doc
+        from rkcheck.reports.jsondoc import check_doc
 
         result, claims, failed = judge_tableau(tab, options_for(tab, cli, project), fail_on)
         out["result"] = check_doc(result, claims)
@@ -96,8 +96,8 @@ def _work(path: str) -> dict[str, Any]:
 
 def warm_tables(cli: dict[str, Any], project: dict[str, Any]) -> None:
     """Build the condition table of the scan's default options before forking workers."""
-    from .check import DEFAULT_ORDER
-    from .conditions import condition_table
+    from rkcheck.energy.check import DEFAULT_ORDER
+    from rkcheck.trees.conditions import condition_table
 
     degree = cli.get("degree", project.get("degree"))
     order = cli.get("order", project.get("order", DEFAULT_ORDER))

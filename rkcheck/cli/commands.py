@@ -16,9 +16,9 @@ from typing import Any, Callable, Iterator
 
 import click
 
-from . import __version__
-from .claims import FAIL_ON
-from .errors import UserError
+from rkcheck import __version__
+from rkcheck.energy.claims import FAIL_ON
+from rkcheck.errors import UserError
 
 EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 MAX_ORDER = 20
@@ -55,7 +55,7 @@ def output_options(f: Callable) -> Callable:
     @click.option("--quiet", "-q", is_flag=True, default=None, help="Only the essential lines.")
     @functools.wraps(f)
     def wrapper(*args: Any, no_color: bool | None, verbose: bool | None, quiet: bool | None, **kwargs: Any) -> Any:
-        from .reports import console
+        from rkcheck.reports import console
 
         current = console._settings
         console.configure(
@@ -126,7 +126,7 @@ def cli() -> None:
 
 
 def load_tableau(path: str, max_stages: int):
-    from .loader import load
+    from rkcheck.io.loader import load
 
     return load(path, max_stages=max_stages)
 
@@ -148,7 +148,7 @@ def cli_check_values(degree, order, dps, decimals, fail_fast=False, max_stages=6
 
 
 def project_config():
-    from .config import load_config
+    from rkcheck.io.config import load_config
 
     return load_config()
 
@@ -156,7 +156,7 @@ def project_config():
 @contextmanager
 def _progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
-    from .reports.console import is_quiet, make_console
+    from rkcheck.reports.console import is_quiet, make_console
 
     console = make_console(stderr=True)
     if is_quiet() or not console.is_terminal:
@@ -171,7 +171,7 @@ def _progress(label: str, total: int) -> Iterator[Callable[[], None]]:
 
 
 def _stdout():
-    from .reports.console import make_console
+    from rkcheck.reports.console import make_console
 
     return make_console()
 
@@ -196,8 +196,8 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
-    from .claims import judge_tableau
-    from .scan import options_for
+    from rkcheck.energy.claims import judge_tableau
+    from rkcheck.batch.scan import options_for
 
     config = project_config()
     tab = load_tableau(file, max_stages)
@@ -205,12 +205,12 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     fail_on = fail_on or config.fail_on or "auto"
     result, claim_results, failed = judge_tableau(tab, options, fail_on)
     if fmt == "json":
-        from .reports.jsonout import check_doc, dumps
+        from rkcheck.reports.jsondoc import check_doc, dumps
 
         click.echo(dumps(check_doc(result, claim_results)))
     else:
-        from .reports.console import is_quiet, is_verbose
-        from .reports.text import render_check
+        from rkcheck.reports.console import is_quiet, is_verbose
+        from rkcheck.reports.text import render_check
 
         render_check(result, _stdout(), show_all=show_all, quiet=is_quiet(), claims=claim_results,
                      verbose=is_verbose(), fail_on=fail_on)
@@ -225,18 +225,18 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
 @output_options
 def show(file, fmt, decimals, max_stages) -> None:
     """Print the tableau in FILE as a Butcher table, with its kind and any warnings."""
-    from .backends import bits_for_dps
-    from .tableau import consistency_warnings
+    from rkcheck.evaluation.backends import bits_for_dps
+    from rkcheck.methods.tableau import consistency_warnings
 
     tab = load_tableau(file, max_stages)
     warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(50), decimals)
     if fmt == "json":
-        from .reports.jsonout import SCHEMA, dumps, method_doc, tableau_doc
+        from rkcheck.reports.jsondoc import SCHEMA, dumps, method_doc, tableau_doc
 
         doc = {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals), "warnings": warnings}
         click.echo(dumps(doc))
         return
-    from .reports.text import render_tableau
+    from rkcheck.reports.text import render_tableau
 
     render_tableau(tab, _stdout(), decimals, warnings)
 
@@ -249,12 +249,12 @@ def show(file, fmt, decimals, max_stages) -> None:
 @output_options
 def conditions(order, degree, count, fmt) -> None:
     """List the energy conditions (non-superfluous free trees) up to an order."""
-    from .conditions import condition_table
+    from rkcheck.trees.conditions import condition_table
 
     table = condition_table(order, None if degree == "none" else degree)
     counts = table.counts_by_order()
     if fmt == "json":
-        from .reports.jsonout import dumps
+        from rkcheck.reports.jsondoc import dumps
 
         doc: dict[str, Any] = {
             "schema": 1,
@@ -273,7 +273,7 @@ def conditions(order, degree, count, fmt) -> None:
             ]
         click.echo(dumps(doc))
         return
-    from .reports.text import render_condition_list
+    from rkcheck.reports.text import render_condition_list
 
     render_condition_list(table, _stdout(), count)
 
@@ -291,9 +291,9 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
     ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
     the id column of verify and conditions).
     """
-    from .explain import explain as do_explain
-    from .reports.text import render_explanation
-    from .trees import parse_level_sequence
+    from rkcheck.energy.explain import explain as do_explain
+    from rkcheck.reports.text import render_explanation
+    from rkcheck.trees.rooted import parse_level_sequence
 
     try:
         seq = parse_level_sequence(tree_id)
@@ -333,8 +333,8 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
       rkcheck new kernel --zeta 1/3 --beta 1e-12  # the seed's counterexample family
       rkcheck new gauss -s 2 | rkcheck verify - --degree 4
     """
-    from .families import parse_spec
-    from .newfile import render_toml
+    from rkcheck.methods.families import parse_spec
+    from rkcheck.io.writers import render_toml
 
     if exact and digits is not None:
         raise UserError("give either --exact or --digits, not both")
@@ -388,8 +388,8 @@ def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, ou
     """
     import time as _time
 
-    from .scan import default_jobs, exit_status, run_scan
-    from .scanning import find_tableau_files
+    from rkcheck.batch.scan import default_jobs, exit_status, run_scan
+    from rkcheck.io.discovery import find_tableau_files
 
     config = project_config()
     roots = list(paths) or config.paths
@@ -404,7 +404,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, ou
     with _progress("checking", len(files)) as advance:
         outcomes, interrupted = run_scan(files, cli_values, config.check, fail_on, jobs, lambda r: advance())
     elapsed = _time.perf_counter() - t0
-    from .reports import scanout
+    from rkcheck.reports import scan as scanout
 
     options = {k: v for k, v in cli_values.items() if k != "max_stages"}
     options.update(fail_on=fail_on, jobs=jobs, paths=roots)
@@ -415,7 +415,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, ou
             with open(output, "w", encoding="utf-8") as fh:
                 scanout.render_scan_text(outcomes, Console(file=fh, no_color=True, width=140), elapsed, interrupted)
         else:
-            from .reports.console import is_verbose
+            from rkcheck.reports.console import is_verbose
 
             scanout.render_scan_text(outcomes, _stdout(), elapsed, interrupted, verbose=is_verbose())
     else:
@@ -462,9 +462,9 @@ def catalog(paths, degrees, order, output) -> None:
     Example:
       rkcheck catalog tableaux/ -o tableaux/README.md
     """
-    from .catalog import catalog_row
-    from .reports.markdown import catalog_markdown
-    from .scanning import find_tableau_files
+    from rkcheck.batch.catalog import catalog_row
+    from rkcheck.reports.markdown import catalog_markdown
+    from rkcheck.io.discovery import find_tableau_files
 
     degs: list[int | None] = []
     for part in degrees.split(","):
@@ -520,7 +520,7 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
     One row per backend: wall time, conditions per second, the weakest certified digits,
     the certified failures, and whether the verdicts agree with the most precise backend.
     """
-    from .accuracy import bench_backends, bench_json
+    from rkcheck.studies.accuracy import bench_backends, bench_json
 
     tab = load_tableau(file, 64)
     deg = _degree_value(degree, tab)
@@ -528,15 +528,15 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
     rows, t_tables = bench_backends(tab, deg, N, _dps_list(dps_text), repeat=repeat)
     title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {rows[0].conditions} conditions"
     if chart:
-        from .charts import bench_chart
+        from rkcheck.reports.charts import bench_chart
 
         bench_chart(rows, title, chart)
     if fmt == "json":
-        from .reports.jsonout import dumps
+        from rkcheck.reports.jsondoc import dumps
 
         click.echo(dumps({"schema": 1, "file": file, "degree": deg, "order": N, **bench_json(rows, t_tables)}))
         return
-    from .reports.accuracyout import render_bench
+    from rkcheck.reports.studies import render_bench
 
     render_bench(rows, t_tables, _stdout(), title)
     if chart:
@@ -565,8 +565,8 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     log ε (1 for generic directions, 2 for kernel directions: the seed's quadratic
     failure) and each backend's detection threshold ε*.
     """
-    from .accuracy import direction as make_direction
-    from .accuracy import parse_eps, perturb_sweep
+    from rkcheck.studies.accuracy import direction as make_direction
+    from rkcheck.studies.accuracy import parse_eps, perturb_sweep
 
     tab = load_tableau(file, 64)
     deg = _degree_value(degree, tab)
@@ -575,12 +575,12 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, _dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
-        from .charts import perturb_chart
+        from rkcheck.reports.charts import perturb_chart
 
         perturb_chart(res, title, chart)
     if fmt == "json":
-        from .reports.jsonout import dumps
-        from .numfmt import decimal_string
+        from rkcheck.reports.jsondoc import dumps
+        from rkcheck.numbers.formatting import decimal_string
 
         doc = {
             "schema": 1, "file": file, "direction": desc, "degree": deg, "order": N, "slope": res.slope,
@@ -592,7 +592,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
         }
         click.echo(dumps(doc))
         return
-    from .reports.accuracyout import render_perturb
+    from rkcheck.reports.studies import render_perturb
 
     render_perturb(res, _stdout(), title)
     if chart:
@@ -619,8 +619,8 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
       rkcheck kernel -s 3 -m 5 --rule radau-i   # ζ = −1: rank s²−s−1
       rkcheck kernel -m 3 --tableau tableaux/avf/avf-radau-ii-2.toml
     """
-    from .kernel import kernel_of, rule_values, tableau_rule
-    from .reports.accuracyout import render_kernel
+    from rkcheck.energy.double_bush import kernel_of, rule_values, tableau_rule
+    from rkcheck.reports.studies import render_kernel
 
     if tableau_file:
         tab = load_tableau(tableau_file, 64)
@@ -637,7 +637,7 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
 def _fraction_option(text: str, place: str):
     from fractions import Fraction
 
-    from .entries import Entry
+    from rkcheck.numbers.entries import Entry
 
     try:
         e = Entry.parse(text)
@@ -681,14 +681,14 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
       rkcheck simulate tableaux/collocation/gauss-2.toml tableaux/avf/avf-gauss-2.toml \\
           --problem henon-heiles --h 1/10 --steps 2000 --chart drift.png
     """
-    from .hamiltonians import problem
-    from .reports.simout import render_energy_fit, render_series
+    from rkcheck.dynamics.hamiltonians import problem
+    from rkcheck.reports.simulation import render_energy_fit, render_series
 
     ham = problem(problem_spec)
     tabs = [load_tableau(f, max_stages) for f in files]
     console = _stdout()
     if energy_order:
-        from .simulate import energy_order_agreement
+        from rkcheck.dynamics.simulate import energy_order_agreement
 
         disagree = 0
         series = []
@@ -698,12 +698,12 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
             disagree += not agreement.agree
             series.append((tab.name, [float(r.h) for r in fit.rows], [float(r.delta) for r in fit.rows]))
         if chart:
-            from .charts import energy_chart
+            from rkcheck.reports.charts import energy_chart
 
             energy_chart(series, f"one-step energy error on {ham.name}", chart, xlabel="h", ylabel="|ΔH| (geometric mean)", loglog=True)
             click.echo(f"chart written to {chart}")
         sys.exit(EXIT_FAIL if disagree else EXIT_OK)
-    from .simulate import energy_series, start_point
+    from rkcheck.dynamics.simulate import energy_series, start_point
 
     h = _fraction_option(h_text, "--h")
     y0 = start_point(ham)
@@ -713,7 +713,7 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
         render_series(tab, ham, h, steps, dps, t, dH, console)
         all_series.append((tab.name, t, dH))
     if chart:
-        from .charts import energy_chart
+        from rkcheck.reports.charts import energy_chart
 
         energy_chart(all_series, f"energy error on {ham.name}, h = {h}, {'float64' if not dps else f'{dps} digits'}", chart)
         click.echo(f"chart written to {chart}")
@@ -734,9 +734,9 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
     Each tableau runs in float64 over the step counts; the error is measured against a
     reference solution computed with 6-stage Gauss collocation (order 12) at 20 digits.
     """
-    from .hamiltonians import problem
-    from .reports.simout import render_workprec
-    from .simulate import work_precision
+    from rkcheck.dynamics.hamiltonians import problem
+    from rkcheck.reports.simulation import render_workprec
+    from rkcheck.dynamics.simulate import work_precision
 
     ham = problem(problem_spec)
     T = _fraction_option(T_text, "--T")
@@ -750,7 +750,7 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
     wp = work_precision(tabs, ham, T, counts)
     render_workprec(wp, ham, _stdout())
     if chart:
-        from .charts import workprec_chart
+        from rkcheck.reports.charts import workprec_chart
 
         workprec_chart(wp, f"work–precision on {ham.name}, T = {T}", chart)
         click.echo(f"chart written to {chart}")

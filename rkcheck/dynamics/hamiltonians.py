@@ -32,7 +32,7 @@ from fractions import Fraction
 from itertools import combinations_with_replacement
 from typing import Any, Sequence
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 Monomials = dict[tuple[int, ...], Fraction]  # exponents (len 2d) -> coefficient
 

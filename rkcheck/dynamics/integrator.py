@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Sequence
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 
 class NewtonError(UserError):

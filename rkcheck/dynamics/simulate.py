@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from .integrate import MP, Float64, RKMethod, integrate, step
+from rkcheck.dynamics.integrator import MP, Float64, RKMethod, integrate, step
 
 H_EXPONENTS = tuple(range(3, 11))  # h = 2^-3 ... 2^-10
 
@@ -145,7 +145,7 @@ def energy_order_agreement(tableau, ham, dps: int | None = None, points: int = 4
 
     The integrator steps with the entries' face values, so ``verify`` is asked with
     ``decimals = exact`` too: a 16-digit AVF tableau is compared as what it is."""
-    from .check import CheckOptions, check
+    from rkcheck.energy.check import CheckOptions, check
 
     res = check(tableau, CheckOptions(degree=ham.degree, order=order, decimals="exact"))
     use = max(dps or 40, needed_dps(res, exponents))
@@ -177,7 +177,7 @@ def dominant_order(result, fit: EnergyFit) -> int:
 
 
 def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int = 10, result=None) -> Agreement:
-    from .check import CheckOptions, check
+    from rkcheck.energy.check import CheckOptions, check
 
     res = result or check(tableau, CheckOptions(degree=degree, order=order, decimals="exact"))
     emp = "ΔH at solver precision" if fit.at_solver_precision else (
@@ -263,7 +263,7 @@ def reference_solution(ham, y0, T: Fraction, dps: int = 20, steps: int = 160):
     """y(T) with 6-stage Gauss collocation (order 12) in mpmath: error ≈ (T/steps)^12."""
     import mpmath
 
-    from .families import FamilySpec, family_tableau
+    from rkcheck.methods.families import FamilySpec, family_tableau
 
     gauss6 = family_tableau(FamilySpec("gauss", 6))
     with mpmath.workdps(dps):

@@ -23,9 +23,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .intervals import Interval
-from .orders import quadrature_residual, row_sums
-from .verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, classify_interval, combine
+from rkcheck.numbers.intervals import Interval
+from rkcheck.energy.orders import quadrature_residual, row_sums
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, classify_interval, combine
 
 
 @dataclass(frozen=True)

@@ -11,14 +11,14 @@ import time
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
-from .avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
-from .backends import Enclosure, entry_bits, make_backend
-from .conditions import ConditionTable, EnergyCondition, condition_table
-from .expr import ROUNDED_MIN_DIGITS
-from .lineintegral import LineIntegralCertificate, line_integral_certificate
-from .orders import OrderResult, classical_order, quadrature_order
-from .tableau import Tableau, consistency_warnings
-from .verdicts import FAILS, HOLDS_TO_DIGITS, Verdict, classify, combine
+from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
+from rkcheck.evaluation.backends import Enclosure, entry_bits, make_backend
+from rkcheck.trees.conditions import ConditionTable, EnergyCondition, condition_table
+from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
+from rkcheck.energy.lineintegral import LineIntegralCertificate, line_integral_certificate
+from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.methods.tableau import Tableau, consistency_warnings
+from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict, classify, combine
 
 DEFAULT_ORDER = 8
 DEFAULT_DPS = 50

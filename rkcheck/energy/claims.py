@@ -27,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order")
 
@@ -180,7 +180,7 @@ def judge_tableau(tableau, options, fail_on: str = "auto"):
     """Check a tableau and its claims: (main result, claim results or None, failed?).
 
     The claim runs share the main run when their options coincide (one CheckRunner)."""
-    from .check import CheckRunner, conditions_ok
+    from rkcheck.energy.check import CheckRunner, conditions_ok
 
     runner = CheckRunner()
     result = runner(tableau, options)

@@ -175,7 +175,7 @@ def rule_values(rule_name: str, s: int, dps: int):
     """(b, c, exact) of a named rule: Fractions when rational, else mpf at ``dps``."""
     import mpmath
 
-    from .quadrature import rule
+    from rkcheck.methods.quadrature import rule
 
     r = rule(rule_name, s)
     if r.is_rational:

@@ -13,11 +13,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .backends import Enclosure, make_backend
-from .conditions import EnergyCondition, condition_from_free_tree
-from .freetrees import FreeTreeGenerator, table_for
-from .trees import bracket, children_of_level_sequence
-from .verdicts import Verdict, classify
+from rkcheck.evaluation.backends import Enclosure, make_backend
+from rkcheck.trees.conditions import EnergyCondition, condition_from_free_tree
+from rkcheck.trees.free import FreeTreeGenerator, table_for
+from rkcheck.trees.rooted import bracket, children_of_level_sequence
+from rkcheck.energy.verdicts import Verdict, classify
 
 _INDICES = "ijklmnpqrsuvwxyz"
 _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -27,11 +27,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from .avf import reduce_stages
-from .intervals import Interval
-from .orders import quadrature_residual, row_sums
-from .quadrature import poly_integral, shifted_legendre
-from .verdicts import FAILS, HOLDS, Verdict, classify_interval, combine
+from rkcheck.energy.avf import reduce_stages
+from rkcheck.numbers.intervals import Interval
+from rkcheck.energy.orders import quadrature_residual, row_sums
+from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval, combine
 
 
 @dataclass(frozen=True)

@@ -14,10 +14,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 
-from .backends import Backend
-from .intervals import Interval
-from .trees import RootedTreeTable
-from .verdicts import FAILS, Verdict, classify, classify_interval, combine
+from rkcheck.evaluation.backends import Backend
+from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.rooted import RootedTreeTable
+from rkcheck.energy.verdicts import FAILS, Verdict, classify, classify_interval, combine
 
 
 @dataclass(frozen=True)

@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from .backends import Enclosure
-from .intervals import Interval
+from rkcheck.evaluation.backends import Enclosure
+from rkcheck.numbers.intervals import Interval
 
 HOLDS = "holds"
 HOLDS_TO_DIGITS = "holds_to_digits"

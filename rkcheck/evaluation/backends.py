@@ -35,8 +35,8 @@ import math
 from fractions import Fraction
 from typing import NamedTuple, Protocol, Sequence
 
-from .intervals import Interval
-from .trees import RootedTreeTable
+from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.rooted import RootedTreeTable
 
 LOG2_10 = math.log2(10)
 _ZERO = Fraction(0)

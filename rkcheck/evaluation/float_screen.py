@@ -19,9 +19,9 @@ from typing import Sequence
 
 import numpy as np
 
-from .backends import Enclosure
-from .intervals import Interval
-from .trees import RootedTreeTable
+from rkcheck.evaluation.backends import Enclosure
+from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.rooted import RootedTreeTable
 
 U = 2.0**-53
 ETA = 2.0**-1074  # smallest subnormal: covers underflow in the bounds
@@ -145,7 +145,7 @@ class FloatBackend:
         ``fails`` iff |mid| > rad; otherwise D = ⌊−log10(bound)⌋ on the bound rounded up,
         lowered by one when log10's own rounding could make it overstate (a margin of
         1e-9 in the exponent: conservative, never optimistic)."""
-        from .verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+        from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 
         encs = self.enclose_table(ctable)
         mid = np.array([e.mid for e in encs])

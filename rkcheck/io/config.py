@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 KEYS = ("paths", "exclude", "degree", "order", "dps", "decimals", "format", "fail_on", "jobs")
 FORMATS = ("text", "json", "csv", "junit", "github")

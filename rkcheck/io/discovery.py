@@ -5,7 +5,7 @@ from __future__ import annotations
 import fnmatch
 from pathlib import Path
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 SUFFIXES = (".toml", ".json")
 

@@ -18,11 +18,11 @@ import tomllib
 from pathlib import Path
 from typing import Any, Callable
 
-from . import expr as ex
-from .claims import parse_claims
-from .entries import DECIMALS_MODES, Constants, Entry
-from .errors import UserError
-from .tableau import Tableau
+from rkcheck.numbers import grammar as ex
+from rkcheck.energy.claims import parse_claims
+from rkcheck.numbers.entries import DECIMALS_MODES, Constants, Entry
+from rkcheck.errors import UserError
+from rkcheck.methods.tableau import Tableau
 
 DEFAULT_MAX_STAGES = 64
 MAX_FILE_BYTES = 16 * 1024 * 1024
@@ -280,7 +280,7 @@ def _build(
     if "family" in data:
         family = _table(data, "family")
         if family_builder is None:
-            from .families import build_family as family_builder
+            from rkcheck.methods.families import build_family as family_builder
         return family_builder(family, Tableau(A=(), b=(), family=family, **base))
 
     tab = _table(data, "tableau", required=True)

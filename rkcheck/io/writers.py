@@ -13,10 +13,10 @@ from __future__ import annotations
 from fractions import Fraction
 from itertools import combinations
 
-from .errors import UserError
-from .families import FamilySpec, coefficients
-from .numfmt import decimal_string
-from .quadrature import poly_integral, shifted_legendre
+from rkcheck.errors import UserError
+from rkcheck.methods.families import FamilySpec, coefficients
+from rkcheck.numbers.formatting import decimal_string
+from rkcheck.methods.quadrature import poly_integral, shifted_legendre
 
 REFERENCES = {
     "avf": ["G. R. W. Quispel, D. I. McLaren, J. Phys. A 41 (2008) 045206",

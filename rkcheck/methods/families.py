@@ -30,11 +30,11 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Callable
 
-from .entries import Entry
-from .errors import UserError
-from .intervals import Interval
-from .quadrature import Rule, lagrange_integral, poly_integral, rule, shifted_legendre
-from .tableau import Tableau
+from rkcheck.numbers.entries import Entry
+from rkcheck.errors import UserError
+from rkcheck.numbers.intervals import Interval
+from rkcheck.methods.quadrature import Rule, lagrange_integral, poly_integral, rule, shifted_legendre
+from rkcheck.methods.tableau import Tableau
 
 FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
 TITLES = {
@@ -225,7 +225,7 @@ class ComputedEntry:
     def text(self) -> str:
         if self.exact is not None:
             return str(self.exact)
-        from .numfmt import decimal_string
+        from rkcheck.numbers.formatting import decimal_string
 
         return "≈" + decimal_string(self._provider(80).mid, 15)
 

@@ -26,8 +26,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 
-from .errors import UserError
-from .intervals import Interval
+from rkcheck.errors import UserError
+from rkcheck.numbers.intervals import Interval
 
 RULES = ("gauss", "radau-i", "radau-ii", "lobatto")
 
@@ -296,7 +296,7 @@ def _shift(p: list[Fraction], h: Fraction) -> list[Fraction]:
 
 
 def _approx(text: str) -> float:
-    from .entries import Entry
+    from rkcheck.numbers.entries import Entry
 
     return float(Entry.parse(text).enclosure(64).mid)
 
@@ -336,7 +336,7 @@ class Rule:
 
     def order(self, bits: int = 200) -> int:
         """Quadrature order: the largest q with Σ b c^(k−1) = 1/k for all k <= q (certified)."""
-        from .verdicts import FAILS, classify_interval
+        from rkcheck.energy.verdicts import FAILS, classify_interval
 
         c, b = self.enclosures(bits)
         q = 0
@@ -373,7 +373,7 @@ def lagrange_integral(c: list[Interval], i: int, lo: Interval, hi: Interval, bit
 
 
 def _parse_zeta(text: str) -> Fraction:
-    from .entries import Entry
+    from rkcheck.numbers.entries import Entry
 
     try:
         e = Entry.parse(text)

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Sequence
 
-from .entries import Constants, Entry
-from .intervals import Interval
+from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.numbers.intervals import Interval
 
 
 @dataclass

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Mapping
 
-from .errors import UserError
-from .intervals import Interval, exact_sqrt
+from rkcheck.errors import UserError
+from rkcheck.numbers.intervals import Interval, exact_sqrt
 
 MAX_ENTRY_LENGTH = 20_000
 MAX_DEPTH = 100

@@ -1,5 +1,8 @@
-"""Renderings of results for people (rich text) and machines (JSON, CSV, JUnit, ...).
+"""Renderings of results for people (rich text, Markdown, charts) and machines (JSON,
+CSV, JUnit, GitHub annotations).
 
-Reports read the plain data returned by the core (:mod:`rkcheck.check`) and never
-compute mathematics themselves.
+Takes: the plain data that the stages above return.  Gives: text.  Reports never compute
+mathematics themselves.
+
+May import: every stage except :mod:`rkcheck.cli`.
 """

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 
-from .errors import UserError
+from rkcheck.errors import UserError
 
 INSTALL_HINT = "charts need matplotlib: pip install 'rkcheck[plot]' (or pip install matplotlib)"
 
@@ -27,7 +27,7 @@ def _save(fig, out: str) -> None:
 
 def bench_chart(rows, title: str, out: str) -> None:
     """Time (log x) against certified digits (y), one labelled point per backend."""
-    from .accuracy import label
+    from rkcheck.studies.accuracy import label
 
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 4.5))
@@ -49,7 +49,7 @@ def bench_chart(rows, title: str, out: str) -> None:
 
 def perturb_chart(result, title: str, out: str) -> None:
     """max |R| against ε (log–log) with one horizontal line per backend's detection floor."""
-    from .accuracy import label
+    from rkcheck.studies.accuracy import label
 
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 4.5))

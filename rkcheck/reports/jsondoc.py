@@ -6,12 +6,12 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from .. import __version__
-from ..check import CheckResult, ConditionResult, overall
-from ..expr import to_text
-from ..numfmt import decimal_string, radius_string
-from ..tableau import Tableau
-from ..verdicts import HOLDS_TO_DIGITS
+from rkcheck import __version__
+from rkcheck.energy.check import CheckResult, ConditionResult, overall
+from rkcheck.numbers.grammar import to_text
+from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
 
 SCHEMA = 1
 

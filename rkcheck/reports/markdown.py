@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..catalog import CatalogRow
+from rkcheck.batch.catalog import CatalogRow
 
 
 def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: int, command: str) -> str:

@@ -12,8 +12,8 @@ import json
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
-from .. import __version__
-from .jsonout import SCHEMA
+from rkcheck import __version__
+from rkcheck.reports.jsondoc import SCHEMA
 
 CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
@@ -214,7 +214,7 @@ def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float,
     from rich.table import Table
     from rich.text import Text
 
-    from .text import plain
+    from rkcheck.reports.text import plain
 
     import os
 

@@ -7,7 +7,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from .text import plain
+from rkcheck.reports.text import plain
 
 
 def _e(x) -> str:

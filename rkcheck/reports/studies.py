@@ -9,8 +9,8 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from ..numfmt import decimal_string
-from .text import plain
+from rkcheck.numbers.formatting import decimal_string
+from rkcheck.reports.text import plain
 
 
 def _eps(x: Fraction | None) -> str:
@@ -18,7 +18,7 @@ def _eps(x: Fraction | None) -> str:
 
 
 def render_bench(rows, t_tables: float, console: Console, title: str) -> None:
-    from ..accuracy import label
+    from rkcheck.studies.accuracy import label
 
     console.print(Text(title, style="bold"))
     console.print(f"tree and condition tables: {t_tables:.3f} s (shared by all backends)")
@@ -35,7 +35,7 @@ def render_bench(rows, t_tables: float, console: Console, title: str) -> None:
 
 
 def render_perturb(res, console: Console, title: str) -> None:
-    from ..accuracy import label
+    from rkcheck.studies.accuracy import label
 
     console.print(Text(title, style="bold"))
     console.print(f"direction: {res.direction}")

@@ -9,11 +9,11 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
-from ..backends import Enclosure, bits_for_dps
-from ..check import CheckResult, ConditionResult, overall
-from ..numfmt import decimal_string, radius_string
-from ..tableau import Tableau
-from ..verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.evaluation.backends import Enclosure, bits_for_dps
+from rkcheck.energy.check import CheckResult, ConditionResult, overall
+from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 MAX_FAILURES_SHOWN = 20
@@ -245,7 +245,7 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", wa
     for ref in tab.references:
         console.print(Text(f"reference: {ref}", style="dim"))
     if tab.constants.definitions:
-        from ..expr import to_text
+        from rkcheck.numbers.grammar import to_text
 
         consts = ", ".join(f"{k} = {to_text(v)}" for k, v in tab.constants.definitions.items())
         console.print(f"constants: {consts}")

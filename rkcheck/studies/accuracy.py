@@ -20,13 +20,13 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from .backends import BallBackend, ExactBackend, bits_for_dps
-from .check import evaluate_conditions
-from .conditions import condition_table
-from .entries import Entry
-from .errors import UserError
-from .tableau import Tableau
-from .verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.evaluation.backends import BallBackend, ExactBackend, bits_for_dps
+from rkcheck.energy.check import evaluate_conditions
+from rkcheck.trees.conditions import condition_table
+from rkcheck.numbers.entries import Entry
+from rkcheck.errors import UserError
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 
@@ -34,7 +34,7 @@ DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 def backend_for(tableau: Tableau, name: str, decimals: str = "rounded"):
     """A fresh backend: 'float64', 'exact', or 'dps:<D>'."""
     if name == "float64":
-        from .screen import make_float_backend
+        from rkcheck.evaluation.float_screen import make_float_backend
 
         return make_float_backend(tableau, decimals)
     if name == "exact":
@@ -137,7 +137,7 @@ def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024,
     elif kind == "kernel":
         if degree is None or degree < 3:
             raise UserError("the kernel direction needs --degree m >= 3 (the double-bush map)", "--direction")
-        from .kernel import kernel_of, tableau_rule
+        from rkcheck.energy.double_bush import kernel_of, tableau_rule
 
         b, c, exact = tableau_rule(tableau, dps)
         k = kernel_of(b, c, degree, exact, dps)

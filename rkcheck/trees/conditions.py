@@ -20,8 +20,8 @@ from functools import cached_property, lru_cache
 from math import lcm
 from typing import NamedTuple
 
-from .freetrees import FreeTree, FreeTreeGenerator, table_for
-from .trees import RootedTreeTable, bracket_of_forest, level_sequence_of_forest, sigma_of_forest
+from rkcheck.trees.free import FreeTree, FreeTreeGenerator, table_for
+from rkcheck.trees.rooted import RootedTreeTable, bracket_of_forest, level_sequence_of_forest, sigma_of_forest
 
 
 class Term(NamedTuple):

@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterator
 
-from .trees import RootedTreeTable, level_sequence_of_forest
+from rkcheck.trees.rooted import RootedTreeTable, level_sequence_of_forest
 
 
 @dataclass(frozen=True, slots=True)

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli
+from support.clirun import run_cli
 
 MIDPOINT_OK = """[method]
 name = "midpoint, honest claims"

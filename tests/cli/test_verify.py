@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli
-from rkcheck.check import CheckOptions, check
-from rkcheck.loader import load
-from rkcheck.tableau import Tableau
-from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
+from support.clirun import run_cli
+from rkcheck.energy.check import CheckOptions, check
+from rkcheck.io.loader import load
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 
-TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+from support.paths import TABLEAUX  # noqa: E402
 
 
 def avf(nodes: list[str], weights: list[str]) -> Tableau:

@@ -9,15 +9,15 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli
-from rkcheck.families import FamilySpec, family_tableau
-from rkcheck.hamiltonians import problem
-from rkcheck.integrate import Float64, NewtonError, RKMethod, integrate, step
-from rkcheck.loader import load
-from rkcheck.scanning import find_tableau_files
-from rkcheck.simulate import energy_order_agreement, fit_energy_order
+from support.clirun import run_cli
+from rkcheck.methods.families import FamilySpec, family_tableau
+from rkcheck.dynamics.hamiltonians import problem
+from rkcheck.dynamics.integrator import Float64, NewtonError, RKMethod, integrate, step
+from rkcheck.io.loader import load
+from rkcheck.io.discovery import find_tableau_files
+from rkcheck.dynamics.simulate import energy_order_agreement, fit_energy_order
 
-TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+from support.paths import TABLEAUX  # noqa: E402
 
 
 def test_rk4_energy_order_on_random_quartic():

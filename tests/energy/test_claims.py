@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli
+from support.clirun import run_cli
 
 RK4 = """
 [method]

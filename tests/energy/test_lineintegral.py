@@ -8,9 +8,9 @@ from fractions import Fraction
 
 import pytest
 
-from rkcheck.check import CheckOptions, check
-from rkcheck.quadrature import poly_eval, poly_integral, shifted_legendre
-from rkcheck.tableau import Tableau
+from rkcheck.energy.check import CheckOptions, check
+from rkcheck.methods.quadrature import poly_eval, poly_integral, shifted_legendre
+from rkcheck.methods.tableau import Tableau
 
 
 def li_tableau(c: list[Fraction], sigma: int) -> Tableau:
@@ -55,7 +55,7 @@ def test_certificate_on_random_rational_rules_is_sound(seed):
 
 @pytest.mark.parametrize("k, s", [(2, 1), (3, 1), (3, 2), (4, 2), (4, 3), (5, 3)])
 def test_hbvm_is_certified_exactly_up_to_2k_over_s(k, s):
-    from rkcheck.families import FamilySpec, family_tableau
+    from rkcheck.methods.families import FamilySpec, family_tableau
 
     tab = family_tableau(FamilySpec("hbvm", s, k=k))
     m = (2 * k) // s

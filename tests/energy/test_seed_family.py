@@ -23,11 +23,11 @@ from functools import lru_cache
 import pytest
 import sympy as sp
 
-import reference as ref
-from shapes import asymbush, double_bush, triple_bush
-from rkcheck.check import CheckOptions, check
-from rkcheck.tableau import Tableau
-from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
+from support import reference as ref
+from support.shapes import asymbush, double_bush, triple_bush
+from rkcheck.energy.check import CheckOptions, check
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 
 beta = sp.Symbol("beta")
 ZETAS = {"0": 3, "1/3": 7}  # ζ -> squarefree k with √(3+ζ²) ∈ Q(√k)

@@ -10,19 +10,19 @@ from pathlib import Path
 
 import pytest
 
-import reference as ref
-from rkcheck.accuracy import backend_for
-from rkcheck.backends import BallBackend, ExactBackend, bits_for_dps, make_backend
-from rkcheck.check import evaluate_conditions
-from rkcheck.conditions import ConditionTable, condition_table
-from rkcheck.intervals import Interval
-from rkcheck.loader import load
-from rkcheck.scanning import find_tableau_files
-from rkcheck.screen import make_float_backend
-from rkcheck.tableau import Tableau
-from rkcheck.verdicts import FAILS, HOLDS, classify
+from support import reference as ref
+from rkcheck.studies.accuracy import backend_for
+from rkcheck.evaluation.backends import BallBackend, ExactBackend, bits_for_dps, make_backend
+from rkcheck.energy.check import evaluate_conditions
+from rkcheck.trees.conditions import ConditionTable, condition_table
+from rkcheck.numbers.intervals import Interval
+from rkcheck.io.loader import load
+from rkcheck.io.discovery import find_tableau_files
+from rkcheck.evaluation.float_screen import make_float_backend
+from rkcheck.methods.tableau import Tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS, classify
 
-TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+from support.paths import TABLEAUX  # noqa: E402
 
 
 def random_tableau(seed: int):

@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli, run_subprocess
-from rkcheck.backends import bits_for_dps
+from support.clirun import run_cli, run_subprocess
+from rkcheck.evaluation.backends import bits_for_dps
 from rkcheck.errors import UserError
-from rkcheck.loader import load, loads
-from rkcheck.tableau import consistency_warnings
+from rkcheck.io.loader import load, loads
+from rkcheck.methods.tableau import consistency_warnings
 
-ROOT = Path(__file__).resolve().parent.parent
+from support.paths import REPO as ROOT  # noqa: E402
 TABLEAUX = ROOT / "tableaux"
 
 GAUSS2_TOML = """
@@ -206,13 +206,13 @@ def test_user_error_str_orders_source_place_message():
 
 
 def test_internal_errors_are_one_line_with_exit_3(capsys, monkeypatch):
-    import rkcheck.check
+    import rkcheck.energy.check
 
     def boom(*args, **kwargs):
         raise RuntimeError("simulated bug")
 
-    monkeypatch.setattr(rkcheck.check, "check", boom)
-    monkeypatch.setattr(rkcheck.check.CheckRunner, "__call__", lambda self, t, o: boom())
+    monkeypatch.setattr(rkcheck.energy.check, "check", boom)
+    monkeypatch.setattr(rkcheck.energy.check.CheckRunner, "__call__", lambda self, t, o: boom())
     r = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"))
     assert r.code == 3
     assert r.err.strip().startswith("rkcheck: internal error: RuntimeError: simulated bug")

@@ -10,14 +10,14 @@ from pathlib import Path
 
 import pytest
 
-import reference as ref
-from rkcheck.check import CheckOptions, CheckRunner, check
-from rkcheck.claims import check_claims
-from rkcheck.families import FamilySpec, family_tableau
-from rkcheck.loader import load
-from rkcheck.scanning import find_tableau_files
+from support import reference as ref
+from rkcheck.energy.check import CheckOptions, CheckRunner, check
+from rkcheck.energy.claims import check_claims
+from rkcheck.methods.families import FamilySpec, family_tableau
+from rkcheck.io.loader import load
+from rkcheck.io.discovery import find_tableau_files
 
-TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+from support.paths import TABLEAUX  # noqa: E402
 FILES = find_tableau_files([str(TABLEAUX)])
 IDS = [str(Path(f).relative_to(TABLEAUX)) for f in FILES]
 
@@ -166,7 +166,7 @@ def test_new_files_reproduce_the_family_verdicts(tmp_path, args):
     out = tmp_path / "new.toml"
     subprocess.run([sys.executable, "-m", "rkcheck", "new", *args, "-o", str(out)], check=True)
     written = load(str(out))
-    from rkcheck.families import parse_spec
+    from rkcheck.methods.families import parse_spec
 
     table = {"name": args[0]}
     it = iter(args[1:])

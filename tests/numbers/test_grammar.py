@@ -9,10 +9,10 @@ from fractions import Fraction
 
 import pytest
 
-from rkcheck import expr as ex
-from rkcheck.entries import Constants, Entry
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.entries import Constants, Entry
 from rkcheck.errors import UserError
-from rkcheck.intervals import Interval
+from rkcheck.numbers.intervals import Interval
 
 
 @contextmanager

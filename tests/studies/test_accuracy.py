@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from clirun import run_cli
-from rkcheck.accuracy import bench_backends, direction, parse_eps, perturb_sweep
-from rkcheck.kernel import kernel_of, rule_values, seed_N
-from rkcheck.loader import load
+from support.clirun import run_cli
+from rkcheck.studies.accuracy import bench_backends, direction, parse_eps, perturb_sweep
+from rkcheck.energy.double_bush import kernel_of, rule_values, seed_N
+from rkcheck.io.loader import load
 
-TABLEAUX = Path(__file__).resolve().parent.parent / "tableaux"
+from support.paths import TABLEAUX  # noqa: E402
 
 
 def proportional(X, Y, tol) -> bool:

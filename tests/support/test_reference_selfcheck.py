@@ -8,7 +8,7 @@ from fractions import Fraction as F
 import networkx as nx
 import pytest
 
-import reference as ref
+from support import reference as ref
 
 A000081 = [1, 1, 2, 4, 9, 20, 48, 115, 286]            # n = 1..9
 A000055 = [1, 1, 1, 2, 3, 6, 11, 23, 47, 106, 235, 551]  # n = 1..12

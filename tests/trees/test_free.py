@@ -16,10 +16,10 @@ from functools import lru_cache
 import networkx as nx
 import pytest
 
-import reference as ref
-from rkcheck.conditions import ConditionTable
-from rkcheck.freetrees import FreeTreeGenerator, table_for
-from rkcheck.trees import level_sequence_of_forest
+from support import reference as ref
+from rkcheck.trees.conditions import ConditionTable
+from rkcheck.trees.free import FreeTreeGenerator, table_for
+from rkcheck.trees.rooted import level_sequence_of_forest
 
 A000081 = [1, 1, 2, 4, 9, 20, 48, 115, 286]  # rooted trees, n = 1..9 (OEIS)
 A000055 = [1, 1, 1, 2, 3, 6, 11, 23, 47, 106, 235, 551]  # free trees, n = 1..12 (OEIS)

@@ -16,8 +16,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import reference as ref
-from rkcheck.trees import (
+from support import reference as ref
+from rkcheck.trees.rooted import (
     TAU,
     RootedTreeTable,
     bracket,

@@ -1,0 +1,8 @@
+"""Many files at once: ``scan`` (a worker pool with one outcome per file, in a fixed
+order, interrupt-safe) and ``catalog`` (one row per file and degree).
+
+Takes: file lists and options.  Gives: outcomes and catalogue rows as plain data.
+
+May import: :mod:`rkcheck.io`, :mod:`rkcheck.energy` and every stage below it,
+:mod:`rkcheck.options`, :mod:`rkcheck.errors`.
+"""

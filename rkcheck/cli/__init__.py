@@ -1,0 +1,8 @@
+"""The ``rkcheck`` command line: parse options, call the core, render a report.
+
+May import: every stage.  Nothing imports it.
+"""
+
+from rkcheck.cli.commands import cli, main
+
+__all__ = ["cli", "main"]

@@ -1,0 +1,9 @@
+"""The number model (README "Numbers and verdicts"; docs/definitions.md §5).
+
+Takes: the text of a tableau entry.  Gives: what the entry *is* — an exact rational,
+an enclosure with rational end points, or (with the proof-grade work) an element of a
+number field — and the certified-number type :class:`~rkcheck.numbers.enclosure.Enclosure`
+that every backend returns, plus exact decimal formatting.
+
+May import: :mod:`rkcheck.errors` only.  Every other stage builds on it.
+"""
