@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from rkcheck.energy.check import CheckOptions, CheckResult
+from rkcheck.energy.check import CheckOptions
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
 
@@ -27,14 +27,6 @@ class CatalogRow:
     error: str | None = None
 
 
-def energy_label(res: CheckResult) -> str:
-    if res.energy_order_all:
-        return "all"
-    if res.first_failure is None:
-        return f"≥ {res.options.order}"
-    return str(res.energy_order)
-
-
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
     from rkcheck.energy.check import CheckRunner
     from rkcheck.energy.claims import check_claims
@@ -49,7 +41,7 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
     runner = CheckRunner()
     for deg in degrees:
         res = runner(tab, CheckOptions(degree=deg, order=order, dps=dps))
-        row.energy["all H" if deg is None else f"m={deg}"] = energy_label(res)
+        row.energy["all H" if deg is None else f"m={deg}"] = res.energy_order_label
         if res.avf is not None and res.avf.equals_avf:
             row.avf_degrees.append(deg)  # type: ignore[arg-type]
         if deg is None or not row.classical:

@@ -18,28 +18,14 @@ import time
 from typing import Any, Callable, Iterable
 
 from rkcheck.errors import UserError
+from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
 
 STATUS_RANK = {"ok": 0, "skipped": 0, "failed": 1, "error": 1}
 
 
 def options_for(tab, cli: dict[str, Any], project: dict[str, Any]):
-    """Check options: command line, else the file's ``[check]``, else ``[tool.rkcheck]``,
-    else the defaults (degree none, order 8, dps 50, decimals rounded)."""
-    from rkcheck.energy.check import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions
-
-    def pick(key: str, default: Any) -> Any:
-        for source in (cli, tab.check, project):
-            if key in source:
-                return source[key]
-        return default
-
-    return CheckOptions(
-        degree=pick("degree", None),
-        order=pick("order", DEFAULT_ORDER),
-        dps=pick("dps", DEFAULT_DPS),
-        decimals=pick("decimals", "rounded"),
-        fail_fast=bool(cli.get("fail_fast", False)),
-    )
+    """Check options of one file: flags, else its ``[check]``, else ``[tool.rkcheck]``."""
+    return resolve_check_options(cli, tab.check, project)
 
 
 def _is_tableau_document(data: dict[str, Any]) -> bool:
@@ -49,7 +35,13 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: str) -> dict[str, Any]:
     """Check one file; the outcome dict always has path, status, error and time."""
     from rkcheck.energy.claims import judge_tableau
-    from rkcheck.io.loader import build_tableau, detect_format, locate_lines, parse_document, read_text
+    from rkcheck.io.loader import (
+        build_tableau,
+        detect_format,
+        locate_lines,
+        parse_document,
+        read_text,
+    )
 
     t0 = time.perf_counter()
     out: dict[str, Any] = {"path": path, "status": "error", "error": None, "time": 0.0, "lines": {}}
@@ -64,7 +56,7 @@ def scan_file(path: str, cli: dict[str, Any], project: dict[str, Any], fail_on: 
         if not _is_tableau_document(data):
             out.update(status="skipped", error="not a tableau file (no [tableau], [family] or [method] table)")
             return out
-        tab = build_tableau(data, path, cli.get("max_stages", 64))
+        tab = build_tableau(data, path, cli.get("max_stages", DEFAULT_MAX_STAGES))
         tab.lines = out["lines"]
         from rkcheck.reports.jsondoc import check_doc
 
@@ -96,7 +88,6 @@ def _work(path: str) -> dict[str, Any]:
 
 def warm_tables(cli: dict[str, Any], project: dict[str, Any]) -> None:
     """Build the condition table of the scan's default options before forking workers."""
-    from rkcheck.energy.check import DEFAULT_ORDER
     from rkcheck.trees.conditions import condition_table
 
     degree = cli.get("degree", project.get("degree"))

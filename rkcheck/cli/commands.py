@@ -162,7 +162,13 @@ def _progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     if is_quiet() or not console.is_terminal:
         yield lambda: None
         return
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeRemainingColumn,
+    )
 
     with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
                   console=console, transient=True) as progress:
@@ -196,8 +202,8 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
-    from rkcheck.energy.claims import judge_tableau
     from rkcheck.batch.scan import options_for
+    from rkcheck.energy.claims import judge_tableau
 
     config = project_config()
     tab = load_tableau(file, max_stages)
@@ -225,8 +231,8 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
 @output_options
 def show(file, fmt, decimals, max_stages) -> None:
     """Print the tableau in FILE as a Butcher table, with its kind and any warnings."""
-    from rkcheck.evaluation.backends import bits_for_dps
     from rkcheck.methods.tableau import consistency_warnings
+    from rkcheck.numbers.precision import bits_for_dps
 
     tab = load_tableau(file, max_stages)
     warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(50), decimals)
@@ -333,8 +339,8 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
       rkcheck new kernel --zeta 1/3 --beta 1e-12  # the seed's counterexample family
       rkcheck new gauss -s 2 | rkcheck verify - --degree 4
     """
-    from rkcheck.methods.families import parse_spec
     from rkcheck.io.writers import render_toml
+    from rkcheck.methods.families import parse_spec
 
     if exact and digits is not None:
         raise UserError("give either --exact or --digits, not both")
@@ -463,8 +469,8 @@ def catalog(paths, degrees, order, output) -> None:
       rkcheck catalog tableaux/ -o tableaux/README.md
     """
     from rkcheck.batch.catalog import catalog_row
-    from rkcheck.reports.markdown import catalog_markdown
     from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.reports.markdown import catalog_markdown
 
     degs: list[int | None] = []
     for part in degrees.split(","):
@@ -579,8 +585,8 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 
         perturb_chart(res, title, chart)
     if fmt == "json":
-        from rkcheck.reports.jsondoc import dumps
         from rkcheck.numbers.formatting import decimal_string
+        from rkcheck.reports.jsondoc import dumps
 
         doc = {
             "schema": 1, "file": file, "direction": desc, "degree": deg, "order": N, "slope": res.slope,
@@ -735,8 +741,8 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
     reference solution computed with 6-stage Gauss collocation (order 12) at 20 digits.
     """
     from rkcheck.dynamics.hamiltonians import problem
-    from rkcheck.reports.simulation import render_workprec
     from rkcheck.dynamics.simulate import work_precision
+    from rkcheck.reports.simulation import render_workprec
 
     ham = problem(problem_spec)
     T = _fraction_option(T_text, "--T")

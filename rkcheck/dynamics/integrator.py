@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.precision import mpmath_bits
 
 
 class NewtonError(UserError):
@@ -82,7 +83,7 @@ class RKMethod:
 
     @staticmethod
     def from_tableau(tableau, ctx, bits: int = 0) -> "RKMethod":
-        bits = bits or (int(getattr(ctx, "dps", 16) * 3.33) + 40)
+        bits = bits or mpmath_bits(getattr(ctx, "dps", 16))
         A_i, b_i = tableau.enclosures(bits, "exact")
         A = [[ctx.num(x.mid) for x in row] for row in A_i]
         b = [ctx.num(x.mid) for x in b_i]

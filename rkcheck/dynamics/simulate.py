@@ -183,15 +183,13 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
     emp = "ΔH at solver precision" if fit.at_solver_precision else (
         "—" if fit.empirical_order is None else f"{fit.empirical_order:.2f}")
     cert = None
+    alg = res.energy_order_label
     if res.energy_order_all:
-        alg = "all"
         agree = fit.at_solver_precision
         cert = res.certificate.reason if res.certificate else None
     elif res.first_failure is None:
-        alg = f"≥ {order}"
         agree = fit.at_solver_precision or (fit.empirical_order is not None and fit.empirical_order >= order - 0.5)
     else:
-        alg = str(res.energy_order)
         expected = dominant_order(res, fit)
         agree = fit.empirical_order is not None and abs(fit.empirical_order - expected) <= 0.5
         if agree and expected != res.energy_order:

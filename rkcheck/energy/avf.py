@@ -23,9 +23,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from rkcheck.energy.orders import row_sums
+from rkcheck.energy.verdicts import (
+    FAILS,
+    HOLDS,
+    HOLDS_TO_DIGITS,
+    Verdict,
+    classify_interval,
+    combine,
+)
+from rkcheck.methods.quadrature import quadrature_residual
 from rkcheck.numbers.intervals import Interval
-from rkcheck.energy.orders import quadrature_residual, row_sums
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, classify_interval, combine
 
 
 @dataclass(frozen=True)
@@ -56,19 +64,21 @@ def reduce_stages(
     s = len(b)
     used: list[Verdict] = []
 
-    def isclassify_interval(x: Interval) -> bool:
+    def counts_as_zero(x: Interval) -> bool:
+        # zero unless certainly nonzero; the decision is recorded, since with inexact
+        # data it holds only to some digits)
         v = classify_interval(x, exact)
         if v.state != FAILS:
             used.append(v)
             return True
         return False
 
-    needed = {j for j in range(s) if not isclassify_interval(b[j])}
+    needed = {j for j in range(s) if not counts_as_zero(b[j])}
     frontier = list(needed)
     while frontier:
         i = frontier.pop()
         for j in range(s):
-            if j not in needed and not isclassify_interval(A[i][j]):
+            if j not in needed and not counts_as_zero(A[i][j]):
                 needed.add(j)
                 frontier.append(j)
     keep = sorted(needed)
@@ -82,7 +92,7 @@ def reduce_stages(
         n = len(b)
         for i in range(n):
             for k in range(i + 1, n):
-                if all(isclassify_interval(A[i][j] - A[k][j]) for j in range(n)):
+                if all(counts_as_zero(A[i][j] - A[k][j]) for j in range(n)):
                     for r in range(n):
                         A[r][i] = A[r][i] + A[r][k]
                     b[i] = b[i] + b[k]

@@ -12,25 +12,26 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
-from rkcheck.evaluation.backends import Enclosure, entry_bits, make_backend
-from rkcheck.trees.conditions import ConditionTable, EnergyCondition, condition_table
-from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
-from rkcheck.energy.lineintegral import LineIntegralCertificate, line_integral_certificate
+from rkcheck.energy.lineintegral import (
+    LineIntegralCertificate,
+    line_integral_certificate,
+)
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.energy.verdicts import (
+    FAILS,
+    HOLDS_TO_DIGITS,
+    Verdict,
+    classify,
+    classify_many,
+    combine,
+)
+from rkcheck.evaluation.backends import make_backend
 from rkcheck.methods.tableau import Tableau, consistency_warnings
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict, classify, combine
-
-DEFAULT_ORDER = 8
-DEFAULT_DPS = 50
-
-
-@dataclass(frozen=True)
-class CheckOptions:
-    degree: int | None = None
-    order: int = DEFAULT_ORDER
-    dps: int = DEFAULT_DPS
-    decimals: str = "rounded"
-    fail_fast: bool = False
+from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
+from rkcheck.numbers.precision import entry_bits
+from rkcheck.options import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions  # noqa: F401 (re-exported)
+from rkcheck.trees.conditions import ConditionTable, EnergyCondition, condition_table
 
 
 class ConditionResult(NamedTuple):
@@ -80,6 +81,16 @@ class CheckResult:
         return fails[0] if fails else None
 
     @property
+    def energy_order_label(self) -> str:
+        """``all`` (proven for every order by a certificate), ``≥ N`` (every condition up
+        to the checked order N holds, not proven beyond) or the exact energy order ``n``."""
+        if self.energy_order_all:
+            return "all"
+        if self.first_failure is None:
+            return f"≥ {self.options.order}"
+        return str(self.energy_order)
+
+    @property
     def min_digits(self) -> int | None:
         digits = [r.verdict.digits for r in self.results if r.verdict.state == HOLDS_TO_DIGITS]
         return min(digits) if digits else None  # type: ignore[type-var]
@@ -92,14 +103,10 @@ def evaluate_conditions(
     backend.tree_weights(table.trees)
     out: list[ConditionResult] = []
     if not fail_fast:
-        judge = getattr(backend, "judge_table", None)
-        if judge is not None:  # the backend classifies its own enclosures, vectorised
-            encs, verdicts = judge(table)
-            return [ConditionResult(c, e, v) for c, e, v in zip(table.conditions, encs, verdicts)]
         batch = getattr(backend, "enclose_table", None)
         if batch is not None:
             encs = batch(table)
-            return [ConditionResult(c, e, classify(e)) for c, e in zip(table.conditions, encs)]
+            return [ConditionResult(c, e, v) for c, e, v in zip(table.conditions, encs, classify_many(encs))]
     stop_after_order = None
     for cond in table.conditions:
         if stop_after_order is not None and cond.order > stop_after_order:

@@ -28,6 +28,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.options import FAIL_ON, parse_degree  # noqa: F401 (FAIL_ON re-exported)
 
 CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order")
 
@@ -66,12 +67,6 @@ def _int(value: Any, place: str, minimum: int = 0) -> int:
     return value
 
 
-def _degree(value: Any, place: str) -> int | None:
-    if value in ("none", "all", None):
-        return None
-    return _int(value, place, 1)
-
-
 def _one(kind: str, raw: Any, place: str) -> Claim:
     if kind in ("classical_order", "quadrature_order"):
         if isinstance(raw, dict):
@@ -86,7 +81,7 @@ def _one(kind: str, raw: Any, place: str) -> Claim:
         raise UserError("missing value", place)
     if kind == "avf" and "degree" not in raw:
         raise UserError("missing degree (AVF is defined for a polynomial degree m)", place)
-    degree = _degree(raw.get("degree"), f"{place}.degree")
+    degree = parse_degree(raw.get("degree"), f"{place}.degree")
     order = _int(raw["order"], f"{place}.order", 1) if "order" in raw else None
     value = raw["value"]
     if kind == "avf":
@@ -146,12 +141,8 @@ def judge(claim: Claim, result) -> ClaimResult:
         return ClaimResult(claim, found_bool == claim.value, str(found_bool).lower(), note)
     # energy order
     n_checked = result.options.order
-    if result.energy_order_all:
-        found, proven = "all", True
-    elif result.first_failure is None:
-        found, proven = f"≥ {n_checked}", False
-    else:
-        found, proven = str(result.energy_order), True
+    found = result.energy_order_label
+    proven = result.energy_order_all or result.first_failure is not None
     if claim.value == "all":
         if result.energy_order_all:
             cert = result.certificate
@@ -189,9 +180,6 @@ def judge_tableau(tableau, options, fail_on: str = "auto"):
 
 
 # ---------------------------------------------------------------- exit policy
-
-FAIL_ON = ("auto", "conditions", "claims", "never")
-
 
 def file_fails(conditions_ok: bool, claim_results: list[ClaimResult] | None, fail_on: str = "auto") -> bool:
     """Whether a checked file counts as failed (exit 1) under ``--fail-on``.

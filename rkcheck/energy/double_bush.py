@@ -21,6 +21,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Sequence
 
+from rkcheck.numbers.precision import mpmath_bits
+
 
 def pairs(m: int) -> list[tuple[int, int]]:
     return [(p, q) for q in range(2, m) for p in range(1, q)]
@@ -181,7 +183,7 @@ def rule_values(rule_name: str, s: int, dps: int):
     if r.is_rational:
         c, b = r.exact_nodes_weights()
         return b, c, True
-    bits = int(dps * 3.33) + 40
+    bits = mpmath_bits(dps)
     c_i, b_i = r.enclosures(bits)
     with mpmath.workdps(dps + 10):
         c = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in c_i]
@@ -196,7 +198,7 @@ def tableau_rule(tableau, dps: int):
     if tableau.is_exact("exact"):
         A, b = tableau.exact_A(), tableau.exact_b()
         return b, [sum(row, Fraction(0)) for row in A], True
-    bits = int(dps * 3.33) + 40
+    bits = mpmath_bits(dps)
     A, b = tableau.enclosures(bits, "exact")
     with mpmath.workdps(dps + 10):
         def mp(x):

@@ -13,11 +13,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from rkcheck.evaluation.backends import Enclosure, make_backend
+from rkcheck.energy.verdicts import Verdict, classify
+from rkcheck.evaluation.backends import make_backend
+from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.trees.conditions import EnergyCondition, condition_from_free_tree
 from rkcheck.trees.free import FreeTreeGenerator, table_for
 from rkcheck.trees.rooted import bracket, children_of_level_sequence
-from rkcheck.energy.verdicts import Verdict, classify
 
 _INDICES = "ijklmnpqrsuvwxyz"
 _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")

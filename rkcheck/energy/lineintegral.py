@@ -25,13 +25,12 @@ The test is made on the tableau after the stage reduction of :mod:`rkcheck.avf`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from fractions import Fraction
 
 from rkcheck.energy.avf import reduce_stages
-from rkcheck.numbers.intervals import Interval
-from rkcheck.energy.orders import quadrature_residual, row_sums
-from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+from rkcheck.energy.orders import row_sums
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval, combine
+from rkcheck.methods.quadrature import line_integral_matrix, quadrature_residual
+from rkcheck.numbers.intervals import Interval
 
 
 @dataclass(frozen=True)
@@ -46,28 +45,13 @@ class LineIntegralCertificate:
         return self.verdict.state != FAILS
 
 
-def _poly_at(p: list[Fraction], x: Interval) -> Interval:
-    acc = Interval.point(0)
-    for coeff in reversed(p):
-        acc = acc * x + Interval.point(coeff)
-    return acc
-
-
 def _check_sigma(A, b, c, sigma: int, exact: bool) -> list[Verdict] | None:
     """Verdicts of the entries of (LI) for this σ, or None at the first certain mismatch."""
-    n = len(b)
-    G = [poly_integral(shifted_legendre(j)) for j in range(sigma)]
-    P = [shifted_legendre(j) for j in range(sigma)]
-    Gc = [[_poly_at(G[j], c[i]) for j in range(sigma)] for i in range(n)]
-    Pc = [[_poly_at(P[j], c[l]) for j in range(sigma)] for l in range(n)]
+    rhs = line_integral_matrix(c, b, sigma)
     out = []
-    for i in range(n):
-        for l in range(n):
-            total = Interval.point(0)
-            for j in range(sigma):
-                total = total + Interval.point(2 * j + 1) * Gc[i][j] * Pc[l][j]
-            diff = A[i][l] - total * b[l]
-            v = classify_interval(diff, exact)
+    for row, rhs_row in zip(A, rhs):
+        for a, r in zip(row, rhs_row):
+            v = classify_interval(a - r, exact)
             if v.state == FAILS:
                 return None
             out.append(v)

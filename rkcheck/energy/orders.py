@@ -14,10 +14,11 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 
-from rkcheck.evaluation.backends import Backend
-from rkcheck.numbers.intervals import Interval
-from rkcheck.trees.rooted import RootedTreeTable
 from rkcheck.energy.verdicts import FAILS, Verdict, classify, classify_interval, combine
+from rkcheck.evaluation.backends import Backend
+from rkcheck.methods.quadrature import quadrature_residual
+from rkcheck.numbers.intervals import Interval, interval_sum
+from rkcheck.trees.rooted import RootedTreeTable
 
 
 @dataclass(frozen=True)
@@ -29,21 +30,8 @@ class OrderResult:
 
 
 def row_sums(A: list[list[Interval]]) -> list[Interval]:
-    out = []
-    for row in A:
-        total = Interval.point(0)
-        for x in row:
-            total = total + x
-        out.append(total)
-    return out
-
-
-def quadrature_residual(b: list[Interval], c: list[Interval], k: int) -> Interval:
-    """``Σ b_i c_i^(k-1) − 1/k`` as an interval."""
-    total = Interval.point(0)
-    for bi, ci in zip(b, c):
-        total = total + bi * ci.power(k - 1)
-    return total - Interval.point(Fraction(1, k))
+    """``A·1``: the nodes ``c`` every B-series quantity uses (definitions §1)."""
+    return [interval_sum(row) for row in A]
 
 
 def quadrature_order(A: list[list[Interval]], b: list[Interval], exact: bool) -> OrderResult:

@@ -33,37 +33,17 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import NamedTuple, Protocol, Sequence
+from typing import Protocol, Sequence
 
+from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import bits_for_dps, entry_bits
 from rkcheck.trees.rooted import RootedTreeTable
 
-LOG2_10 = math.log2(10)
 _ZERO = Fraction(0)
 # float inflation factors that keep computed radii upper bounds (see BallBackend)
 _UP1 = 1.0 + 2.0**-51
 _UP4 = 1.0 + 12 * 2.0**-52
-GUARD_BITS = 32
-
-
-class Enclosure(NamedTuple):
-    """``mid ± rad`` with rational end points; ``exact`` means ``rad == 0`` by construction.
-
-    ``mid`` and ``rad`` are Fractions, or floats on the float64 screen's fast path (a
-    float is an exact dyadic rational, so nothing is lost).  A NamedTuple: one is built
-    per condition and evaluation, and tuples are much cheaper to build than frozen
-    dataclasses."""
-
-    mid: Fraction | float
-    rad: Fraction | float
-    exact: bool
-
-    def contains_zero(self) -> bool:
-        return abs(self.mid) <= self.rad
-
-    @staticmethod
-    def of(x: Fraction) -> "Enclosure":
-        return Enclosure(Fraction(x), Fraction(0), True)
 
 
 class Term(Protocol):
@@ -82,11 +62,6 @@ class Backend(Protocol):
 
     def weight_minus(self, table: RootedTreeTable, t: int, value: Fraction) -> Enclosure: ...
 
-
-
-def bits_for_dps(dps: int) -> int:
-    """Working bits for ``dps`` decimal digits, plus guard bits for the rounding of long sums."""
-    return math.ceil(dps * LOG2_10) + GUARD_BITS
 
 
 class _WeightStore:
@@ -396,11 +371,6 @@ class BallBackend:
         m, r = self._ball_of(a_m, a_r, t)
         return Enclosure(Fraction(m, self.one) - value, Fraction(math.ceil(r * _UP1), self.one), False)
 
-
-
-def entry_bits(dps: int) -> int:
-    """Bits at which entries are enclosed for a check at ``dps`` digits."""
-    return bits_for_dps(dps) + 8
 
 
 def make_backend(tableau, dps: int, decimals: str, enclosures=None) -> ExactBackend | BallBackend:

@@ -8,8 +8,10 @@ overflow: a product or a length-n dot product of floats has relative error at mo
 Algorithms*, §3.1), radii are propagated as for exact balls, and every computed radius is
 inflated by ``(1 + 16u)`` and the smallest subnormal to cover the rounding of the bound
 itself.  So the screen may say ``fails`` only when its own bound excludes 0 (SPEC §5);
-otherwise it reports ``holds to D digits`` with D ≈ 15 at best, and ``verify`` never
-uses it for a verdict — it exists for speed comparisons (``rkcheck bench``) and screens.
+otherwise its enclosures give ``holds to D digits`` with D ≈ 15 at best, and ``verify``
+never uses it for a verdict — it exists for speed comparisons (``rkcheck bench``) and
+screens.  Like every backend it returns enclosures; the verdicts are
+:mod:`rkcheck.energy.verdicts`' job.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.backends import Enclosure
+from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.rooted import RootedTreeTable
 
@@ -139,35 +141,6 @@ class FloatBackend:
         rad = _up(rad + g * absum)
         # floats are exact dyadic rationals: no Fraction objects on this fast path
         return [Enclosure(m, r, False) for m, r in zip(mid.tolist(), rad.tolist())]
-
-    def judge_table(self, ctable):
-        """Enclosures and verdicts of every condition, the verdicts vectorised:
-        ``fails`` iff |mid| > rad; otherwise D = ⌊−log10(bound)⌋ on the bound rounded up,
-        lowered by one when log10's own rounding could make it overstate (a margin of
-        1e-9 in the exponent: conservative, never optimistic)."""
-        from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
-
-        encs = self.enclose_table(ctable)
-        mid = np.array([e.mid for e in encs])
-        rad = np.array([e.rad for e in encs])
-        fails = np.abs(mid) > rad
-        bound = (np.abs(mid) + rad) * (1 + 2.0**-51) + ETA
-        with np.errstate(divide="ignore"):
-            digits = np.floor(-np.log10(bound) - 1e-9).astype(np.int64)
-        cache: dict[int, Verdict] = {}
-        fail, hold = Verdict(FAILS), Verdict(HOLDS)
-        verdicts = []
-        for f, d, bz in zip(fails.tolist(), digits.tolist(), (bound == 0).tolist()):
-            if f:
-                verdicts.append(fail)
-            elif bz:
-                verdicts.append(hold)
-            else:
-                v = cache.get(d)
-                if v is None:
-                    v = cache[d] = Verdict(HOLDS_TO_DIGITS, d)
-                verdicts.append(v)
-        return encs, verdicts
 
     def enclose_terms(self, table: RootedTreeTable, terms, scale: int) -> Enclosure:
         """One condition (the per-condition path of the backend protocol), in scalar

@@ -15,9 +15,17 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.options import (
+    FAIL_ON,
+    SCAN_FORMATS,
+    parse_choice,
+    parse_positive,
+    parse_strings,
+    validate_check_table,
+)
 
-KEYS = ("paths", "exclude", "degree", "order", "dps", "decimals", "format", "fail_on", "jobs")
-FORMATS = ("text", "json", "csv", "junit", "github")
+#: Keys of [tool.rkcheck] beyond the check options of :data:`rkcheck.options.CHECK_KEYS`.
+EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs")
 
 
 @dataclass
@@ -41,14 +49,6 @@ def find_pyproject(start: Path | None = None) -> Path | None:
     return None
 
 
-def _strings(value: Any, place: str) -> list[str]:
-    if isinstance(value, str):
-        return [value]
-    if isinstance(value, list) and all(isinstance(x, str) for x in value):
-        return list(value)
-    raise UserError("expected a string or a list of strings", place)
-
-
 def load_config(start: Path | None = None) -> Config:
     """The ``[tool.rkcheck]`` table of the nearest ``pyproject.toml`` (empty if none)."""
     path = find_pyproject(start)
@@ -65,39 +65,18 @@ def load_config(start: Path | None = None) -> Config:
     if not isinstance(table, dict):
         raise UserError("[tool.rkcheck] must be a table", source=src)
     cfg = Config(source=src, root=path.parent)
+    cfg.check = validate_check_table(table, "tool.rkcheck", src, extra_keys=EXTRA_KEYS)
     for key, value in table.items():
         place = f"tool.rkcheck.{key}"
         key_n = key.replace("-", "_")
-        if key_n not in KEYS:
-            raise UserError(f"unknown key (known: {', '.join(KEYS)})", place, src)
         if key_n == "paths":
-            cfg.paths = [str((path.parent / p)) for p in _strings(value, place)]
+            cfg.paths = [str((path.parent / p)) for p in parse_strings(value, place, src)]
         elif key_n == "exclude":
-            cfg.exclude = _strings(value, place)
-        elif key_n == "degree":
-            if value in ("none", "all"):
-                cfg.check["degree"] = None
-            elif isinstance(value, int) and not isinstance(value, bool) and value >= 1:
-                cfg.check["degree"] = value
-            else:
-                raise UserError(f"expected a positive integer or 'none', got {value!r}", place, src)
-        elif key_n in ("order", "dps", "jobs"):
-            if not (isinstance(value, int) and not isinstance(value, bool) and value >= 1):
-                raise UserError(f"expected a positive integer, got {value!r}", place, src)
-            if key_n == "jobs":
-                cfg.jobs = value
-            else:
-                cfg.check[key_n] = value
-        elif key_n == "decimals":
-            if value not in ("rounded", "exact"):
-                raise UserError(f"expected 'rounded' or 'exact', got {value!r}", place, src)
-            cfg.check["decimals"] = value
+            cfg.exclude = parse_strings(value, place, src)
+        elif key_n == "jobs":
+            cfg.jobs = parse_positive(value, place, src)
         elif key_n == "format":
-            if value not in FORMATS:
-                raise UserError(f"expected one of {', '.join(FORMATS)}, got {value!r}", place, src)
-            cfg.format = value
+            cfg.format = parse_choice(value, SCAN_FORMATS, place, src)
         elif key_n == "fail_on":
-            if value not in ("auto", "conditions", "claims", "never"):
-                raise UserError(f"expected auto, conditions, claims or never, got {value!r}", place, src)
-            cfg.fail_on = value
+            cfg.fail_on = parse_choice(value, FAIL_ON, place, src)
     return cfg

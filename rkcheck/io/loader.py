@@ -16,18 +16,17 @@ import re
 import sys
 import tomllib
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
-from rkcheck.numbers import grammar as ex
 from rkcheck.energy.claims import parse_claims
-from rkcheck.numbers.entries import DECIMALS_MODES, Constants, Entry
 from rkcheck.errors import UserError
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.options import DEFAULT_MAX_STAGES, parse_strings, validate_check_table
 
-DEFAULT_MAX_STAGES = 64
 MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
-CHECK_KEYS = ("degree", "order", "dps", "decimals")
 
 
 class BareFloat(str):
@@ -204,47 +203,14 @@ def _constants(table: dict[str, Any]) -> Constants:
     return constants
 
 
-def _check_table(table: dict[str, Any]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for key, value in table.items():
-        place = f"check.{key}"
-        if key == "degree":
-            if value in ("none", "all", None):
-                out[key] = None
-            elif isinstance(value, int) and not isinstance(value, bool) and value >= 1:
-                out[key] = value
-            else:
-                raise UserError(f"expected a positive integer or 'none', got {value!r}", place)
-        elif key in ("order", "dps"):
-            if not (isinstance(value, int) and not isinstance(value, bool) and value >= 1):
-                raise UserError(f"expected a positive integer, got {value!r}", place)
-            out[key] = value
-        elif key == "decimals":
-            if value not in DECIMALS_MODES:
-                raise UserError(f"expected 'rounded' or 'exact', got {value!r}", place)
-            out[key] = value
-        else:
-            raise UserError(f"unknown key (known: {', '.join(CHECK_KEYS)})", place)
-    return out
-
-
-def _strings(value: Any, place: str) -> tuple[str, ...]:
-    if isinstance(value, str):
-        return (value,)
-    if isinstance(value, list) and all(isinstance(x, str) for x in value):
-        return tuple(value)
-    raise UserError("expected a string or a list of strings", place)
-
-
 def build_tableau(
     data: dict[str, Any],
     source: str,
     max_stages: int = DEFAULT_MAX_STAGES,
-    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
 ) -> Tableau:
     """Validate a parsed document and build the tableau (errors carry the source)."""
     try:
-        return _build(data, source, max_stages, family_builder)
+        return _build(data, source, max_stages)
     except UserError as err:
         raise err.located(source=source) from None
 
@@ -253,7 +219,6 @@ def _build(
     data: dict[str, Any],
     source: str,
     max_stages: int,
-    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None,
 ) -> Tableau:
     warnings: list[str] = []
     for key in data:
@@ -266,8 +231,8 @@ def _build(
     description = method.get("description", "")
     if not isinstance(description, str):
         raise UserError("expected a string", "method.description")
-    references = _strings(method.get("references", []), "method.references") if "references" in method else ()
-    check = _check_table(_table(data, "check"))
+    references = tuple(parse_strings(method["references"], "method.references")) if "references" in method else ()
+    check = validate_check_table(_table(data, "check"))
     expect = _table(data, "expect")
     claims = parse_claims(expect)
     base = dict(
@@ -279,9 +244,11 @@ def _build(
         raise UserError("give either [tableau] or [family], not both")
     if "family" in data:
         family = _table(data, "family")
-        if family_builder is None:
-            from rkcheck.methods.families import build_family as family_builder
-        return family_builder(family, Tableau(A=(), b=(), family=family, **base))
+        from rkcheck.methods.families import (
+            build_family,  # imported when needed: start-up time
+        )
+
+        return build_family(family, Tableau(A=(), b=(), family=family, **base))
 
     tab = _table(data, "tableau", required=True)
     for key in tab:
@@ -330,7 +297,6 @@ def loads(
     source: str = "<string>",
     fmt: str | None = None,
     max_stages: int = DEFAULT_MAX_STAGES,
-    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
 ) -> Tableau:
     """Parse tableau text (TOML or JSON)."""
     fmt = fmt or detect_format(source, text)
@@ -338,7 +304,7 @@ def loads(
         data = parse_document(text, fmt)
     except UserError as err:
         raise err.located(source=source) from None
-    tableau = build_tableau(data, source, max_stages, family_builder)
+    tableau = build_tableau(data, source, max_stages)
     tableau.lines = locate_lines(text, fmt)
     return tableau
 
@@ -346,8 +312,7 @@ def loads(
 def load(
     path: str,
     max_stages: int = DEFAULT_MAX_STAGES,
-    family_builder: Callable[[dict[str, Any], Tableau], Tableau] | None = None,
 ) -> Tableau:
     """Load a tableau file; ``-`` reads standard input."""
     text = read_text(path)
-    return loads(text, source=path, max_stages=max_stages, family_builder=family_builder)
+    return loads(text, source=path, max_stages=max_stages)

@@ -15,8 +15,9 @@ from itertools import combinations
 
 from rkcheck.errors import UserError
 from rkcheck.methods.families import FamilySpec, coefficients
-from rkcheck.numbers.formatting import decimal_string
 from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+from rkcheck.numbers.formatting import decimal_string
+from rkcheck.numbers.precision import bits_for_digits
 
 REFERENCES = {
     "avf": ["G. R. W. Quispel, D. I. McLaren, J. Phys. A 41 (2008) 045206",
@@ -211,7 +212,7 @@ def render_toml(
         lines += [f"  {_toml_list(row)}," for row in A_t]
         lines += ["]", f"b = {_toml_list(b_t)}", f"c = {_toml_list(c_t)}"]
     else:
-        bits = int(digits * 3.33) + 64
+        bits = bits_for_digits(digits, 64)
         A, b = coefficients(spec, bits)
         c = [sum((x for x in row[1:]), row[0]) for row in A]
 

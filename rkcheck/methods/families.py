@@ -30,11 +30,16 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Callable
 
-from rkcheck.numbers.entries import Entry
 from rkcheck.errors import UserError
-from rkcheck.numbers.intervals import Interval
-from rkcheck.methods.quadrature import Rule, lagrange_integral, poly_integral, rule, shifted_legendre
+from rkcheck.methods.quadrature import (
+    Rule,
+    lagrange_integral,
+    line_integral_matrix,
+    rule,
+)
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.entries import Entry
+from rkcheck.numbers.intervals import Interval
 
 FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
 TITLES = {
@@ -175,7 +180,7 @@ def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], lis
             for i in range(n)
         ]
     elif spec.name == "hbvm":
-        A = [[_hbvm_entry(c, b, i, l, spec.s).round_out(bits + 32) for l in range(n)] for i in range(n)]
+        A = [[x.round_out(bits + 32) for x in row] for row in line_integral_matrix(c, b, spec.s)]
     else:
         zeta, beta = Interval.point(spec.zeta), Interval.point(spec.beta)
         A = [
@@ -186,21 +191,6 @@ def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], lis
             for i in range(n)
         ]
     return A, b
-
-
-def _poly_at(p: list[Fraction], x: Interval) -> Interval:
-    acc = Interval.point(0)
-    for coeff in reversed(p):
-        acc = acc * x + Interval.point(coeff)
-    return acc
-
-
-def _hbvm_entry(c: list[Interval], b: list[Interval], i: int, l: int, s: int) -> Interval:
-    total = Interval.point(0)
-    for j in range(s):
-        P = shifted_legendre(j)
-        total = total + Interval.point(2 * j + 1) * _poly_at(poly_integral(P), c[i]) * _poly_at(P, c[l])
-    return b[l] * total
 
 
 class ComputedEntry:

@@ -27,7 +27,7 @@ from fractions import Fraction
 from functools import lru_cache
 
 from rkcheck.errors import UserError
-from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.intervals import Interval, poly_at
 
 RULES = ("gauss", "radau-i", "radau-ii", "lobatto")
 
@@ -335,20 +335,43 @@ class Rule:
         return closed_forms(self.nodes)
 
     def order(self, bits: int = 200) -> int:
-        """Quadrature order: the largest q with Σ b c^(k−1) = 1/k for all k <= q (certified)."""
-        from rkcheck.energy.verdicts import FAILS, classify_interval
-
+        """Quadrature order: the largest q with Σ b c^(k−1) = 1/k for all k <= q (certified:
+        a residual whose enclosure excludes 0 stops it)."""
         c, b = self.enclosures(bits)
         q = 0
         for k in range(1, 2 * self.s + 2):
-            total = Interval.point(0)
-            for bi, ci in zip(b, c):
-                total = total + bi * ci.power(k - 1)
-            r = total - Interval.point(Fraction(1, k))
-            if classify_interval(r, True).state == FAILS:
+            if not quadrature_residual(b, c, k).contains_zero():
                 break
             q = k
         return q
+
+
+def quadrature_residual(b: list[Interval], c: list[Interval], k: int) -> Interval:
+    """``Σ b_i c_i^(k−1) − 1/k``: zero for every k <= q when the rule has order q."""
+    total = Interval.point(0)
+    for bi, ci in zip(b, c):
+        total = total + bi * ci.power(k - 1)
+    return total - Interval.point(Fraction(1, k))
+
+
+def line_integral_matrix(c: list[Interval], b: list[Interval], sigma: int) -> list[list[Interval]]:
+    """``Σ_(j<σ) (2j+1) G_j(c)(P_j(c) ⊙ b)ᵀ`` (``P_j`` shifted Legendre, ``G_j = ∫₀^x P_j``):
+    the coefficients of HBVM(k, σ) over the rule (b, c), and the right-hand side of the
+    line-integral identity (LI) of :mod:`rkcheck.energy.lineintegral`."""
+    P = [shifted_legendre(j) for j in range(sigma)]
+    G = [poly_integral(p) for p in P]
+    Gc = [[poly_at(G[j], ci) for j in range(sigma)] for ci in c]
+    Pc = [[poly_at(P[j], cl) for j in range(sigma)] for cl in c]
+    out = []
+    for i in range(len(c)):
+        row = []
+        for l in range(len(c)):
+            total = Interval.point(0)
+            for j in range(sigma):
+                total = total + Interval.point(2 * j + 1) * Gc[i][j] * Pc[l][j]
+            row.append(total * b[l])
+        out.append(row)
+    return out
 
 
 def lagrange_integral(c: list[Interval], i: int, lo: Interval, hi: Interval, bits: int) -> Interval:

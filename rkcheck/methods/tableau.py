@@ -12,7 +12,7 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.numbers.entries import Constants, Entry
-from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.intervals import Interval, interval_sum
 
 
 @dataclass
@@ -125,13 +125,6 @@ class Tableau:
         return A, b
 
 
-def _sum(xs: Sequence[Interval]) -> Interval:
-    total = Interval.point(0)
-    for x in xs:
-        total = total + x
-    return total
-
-
 def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:
     """SPEC §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
 
@@ -143,12 +136,12 @@ def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:
     if tab.c is not None:
         bad = []
         for i, (row, ci) in enumerate(zip(A, tab.c), start=1):
-            diff = ci.enclosure(bits, decimals) - _sum(row)
+            diff = ci.enclosure(bits, decimals) - interval_sum(row)
             if not diff.contains_zero():
                 bad.append(f"c[{i}] - (A·1)[{i}] = {float(diff.mid):.3g}")
         if bad:
             out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
-    sb = _sum(b)
+    sb = interval_sum(b)
     if not (sb - Interval.point(1)).contains_zero():
         out.append(f"Σb = {float(sb.mid):.17g} ≠ 1: the method is inconsistent (not even order 1)")
     return out

@@ -21,12 +21,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Mapping
 
-from rkcheck.numbers import grammar as ex
 from rkcheck.errors import UserError
+from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.intervals import Interval
-
-#: Decimals modes of SPEC §5: 'rounded' (default) or 'exact' (face value).
-DECIMALS_MODES = ("rounded", "exact")
 
 
 class Constants:

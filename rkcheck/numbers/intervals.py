@@ -115,6 +115,23 @@ class Interval:
         return Interval(Fraction(lo, 1 << bits), Fraction(hi, 1 << bits))
 
 
+def interval_sum(xs) -> Interval:
+    """The sum of intervals (the point 0 for none)."""
+    total = Interval.point(0)
+    for x in xs:
+        total = total + x
+    return total
+
+
+def poly_at(coeffs, x: Interval) -> Interval:
+    """The polynomial with rational ``coeffs`` (ascending powers) at the interval ``x``
+    (Horner's scheme)."""
+    acc = Interval.point(0)
+    for coeff in reversed(coeffs):
+        acc = acc * x + Interval.point(coeff)
+    return acc
+
+
 def _isqrt_floor(x: Fraction) -> int:
     """floor(sqrt(x)) for a rational x >= 0."""
     return math.isqrt(math.floor(x))

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 from rkcheck.errors import UserError
 
 INSTALL_HINT = "charts need matplotlib: pip install 'rkcheck[plot]' (or pip install matplotlib)"

@@ -8,10 +8,10 @@ from typing import Any
 
 from rkcheck import __version__
 from rkcheck.energy.check import CheckResult, ConditionResult, overall
-from rkcheck.numbers.grammar import to_text
-from rkcheck.numbers.formatting import decimal_string, radius_string
-from rkcheck.methods.tableau import Tableau
 from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.grammar import to_text
 
 SCHEMA = 1
 
@@ -89,6 +89,7 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "verdict": overall(res).state,
         "energy_order": res.energy_order,
         "energy_order_all": res.energy_order_all,
+        "energy_order_label": res.energy_order_label,
         "order_checked": o.order,
         "degree": o.degree,
         "equals_avf": None if avf is None else avf.equals_avf,

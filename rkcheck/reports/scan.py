@@ -36,14 +36,7 @@ def failing_conditions(o: dict[str, Any], limit: int = 5) -> list[dict[str, Any]
 
 
 def energy_text(o: dict[str, Any]) -> str:
-    s = _summary(o)
-    if not s:
-        return ""
-    if s.get("energy_order_all"):
-        return "all"
-    if s.get("first_failure") is None:
-        return f"≥ {s['order_checked']}"
-    return str(s["energy_order"])
+    return _summary(o).get("energy_order_label", "")
 
 
 def totals(outcomes: list[dict[str, Any]]) -> dict[str, int]:
@@ -210,13 +203,13 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
 
 def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float, interrupted: bool,
                      verbose: bool = False) -> None:
+    import os
+
     from rich import box
     from rich.table import Table
     from rich.text import Text
 
     from rkcheck.reports.text import plain
-
-    import os
 
     paths = [o["path"] for o in outcomes]
     root = os.path.commonpath(paths) if len(paths) > 1 else ""

@@ -9,11 +9,12 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
-from rkcheck.evaluation.backends import Enclosure, bits_for_dps
 from rkcheck.energy.check import CheckResult, ConditionResult, overall
-from rkcheck.numbers.formatting import decimal_string, radius_string
-from rkcheck.methods.tableau import Tableau
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.precision import bits_for_dps
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 MAX_FAILURES_SHOWN = 20

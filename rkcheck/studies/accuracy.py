@@ -20,13 +20,14 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.evaluation.backends import BallBackend, ExactBackend, bits_for_dps
 from rkcheck.energy.check import evaluate_conditions
-from rkcheck.trees.conditions import condition_table
-from rkcheck.numbers.entries import Entry
-from rkcheck.errors import UserError
-from rkcheck.methods.tableau import Tableau
 from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.errors import UserError
+from rkcheck.evaluation.backends import BallBackend, ExactBackend
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.entries import Entry
+from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.trees.conditions import condition_table
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 

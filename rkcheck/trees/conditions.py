@@ -21,7 +21,12 @@ from math import lcm
 from typing import NamedTuple
 
 from rkcheck.trees.free import FreeTree, FreeTreeGenerator, table_for
-from rkcheck.trees.rooted import RootedTreeTable, bracket_of_forest, level_sequence_of_forest, sigma_of_forest
+from rkcheck.trees.rooted import (
+    RootedTreeTable,
+    bracket_of_forest,
+    level_sequence_of_forest,
+    sigma_of_forest,
+)
 
 
 class Term(NamedTuple):

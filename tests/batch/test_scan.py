@@ -15,7 +15,6 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-
 from support.clirun import run_cli
 
 MIDPOINT_OK = """[method]

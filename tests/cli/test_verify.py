@@ -4,17 +4,15 @@ from __future__ import annotations
 
 import json
 from fractions import Fraction
-from pathlib import Path
 
 import pytest
-
 from support.clirun import run_cli
+from support.paths import TABLEAUX  # noqa: E402
+
 from rkcheck.energy.check import CheckOptions, check
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.io.loader import load
 from rkcheck.methods.tableau import Tableau
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
-
-from support.paths import TABLEAUX  # noqa: E402
 
 
 def avf(nodes: list[str], weights: list[str]) -> Tableau:

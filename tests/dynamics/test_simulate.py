@@ -8,16 +8,15 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-
 from support.clirun import run_cli
-from rkcheck.methods.families import FamilySpec, family_tableau
+from support.paths import TABLEAUX  # noqa: E402
+
 from rkcheck.dynamics.hamiltonians import problem
 from rkcheck.dynamics.integrator import Float64, NewtonError, RKMethod, integrate, step
-from rkcheck.io.loader import load
-from rkcheck.io.discovery import find_tableau_files
 from rkcheck.dynamics.simulate import energy_order_agreement, fit_energy_order
-
-from support.paths import TABLEAUX  # noqa: E402
+from rkcheck.io.discovery import find_tableau_files
+from rkcheck.io.loader import load
+from rkcheck.methods.families import FamilySpec, family_tableau
 
 
 def test_rk4_energy_order_on_random_quartic():

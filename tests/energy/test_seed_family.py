@@ -22,12 +22,12 @@ from functools import lru_cache
 
 import pytest
 import sympy as sp
-
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
+
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.methods.tableau import Tableau
 from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.methods.tableau import Tableau
 
 beta = sp.Symbol("beta")
 ZETAS = {"0": 3, "1/3": 7}  # ζ -> squarefree k with √(3+ζ²) ∈ Q(√k)

@@ -42,12 +42,12 @@ from functools import lru_cache
 
 import networkx as nx
 import pytest
-
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
+
 from rkcheck.evaluation.backends import BallBackend, ExactBackend
-from rkcheck.trees.conditions import ConditionTable
 from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.conditions import ConditionTable
 from rkcheck.trees.rooted import RootedTreeTable
 
 # ------------------------------------------------------------ linear algebra

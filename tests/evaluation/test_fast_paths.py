@@ -9,20 +9,20 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-
 from support import reference as ref
-from rkcheck.studies.accuracy import backend_for
-from rkcheck.evaluation.backends import BallBackend, ExactBackend, bits_for_dps, make_backend
-from rkcheck.energy.check import evaluate_conditions
-from rkcheck.trees.conditions import ConditionTable, condition_table
-from rkcheck.numbers.intervals import Interval
-from rkcheck.io.loader import load
-from rkcheck.io.discovery import find_tableau_files
-from rkcheck.evaluation.float_screen import make_float_backend
-from rkcheck.methods.tableau import Tableau
-from rkcheck.energy.verdicts import FAILS, HOLDS, classify
-
 from support.paths import TABLEAUX  # noqa: E402
+
+from rkcheck.energy.check import evaluate_conditions
+from rkcheck.energy.verdicts import FAILS, HOLDS, classify
+from rkcheck.evaluation.backends import BallBackend, ExactBackend, make_backend
+from rkcheck.evaluation.float_screen import make_float_backend
+from rkcheck.io.discovery import find_tableau_files
+from rkcheck.io.loader import load
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.studies.accuracy import backend_for
+from rkcheck.trees.conditions import ConditionTable, condition_table
 
 
 def random_tableau(seed: int):

@@ -7,14 +7,14 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-
 from support.clirun import run_cli, run_subprocess
-from rkcheck.evaluation.backends import bits_for_dps
+from support.paths import REPO as ROOT  # noqa: E402
+
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load, loads
 from rkcheck.methods.tableau import consistency_warnings
+from rkcheck.numbers.precision import bits_for_dps
 
-from support.paths import REPO as ROOT  # noqa: E402
 TABLEAUX = ROOT / "tableaux"
 
 GAUSS2_TOML = """

@@ -9,15 +9,15 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-
 from support import reference as ref
+from support.paths import TABLEAUX  # noqa: E402
+
 from rkcheck.energy.check import CheckOptions, CheckRunner, check
 from rkcheck.energy.claims import check_claims
-from rkcheck.methods.families import FamilySpec, family_tableau
-from rkcheck.io.loader import load
 from rkcheck.io.discovery import find_tableau_files
+from rkcheck.io.loader import load
+from rkcheck.methods.families import FamilySpec, family_tableau
 
-from support.paths import TABLEAUX  # noqa: E402
 FILES = find_tableau_files([str(TABLEAUX)])
 IDS = [str(Path(f).relative_to(TABLEAUX)) for f in FILES]
 

@@ -6,8 +6,8 @@ from fractions import Fraction
 
 import pytest
 
-from rkcheck.numbers.entries import Entry
 from rkcheck.methods.quadrature import closed_forms, rule
+from rkcheck.numbers.entries import Entry
 
 # Closed forms from the literature (Hairer–Wanner II, Table IV.5.x; Abramowitz–Stegun 25.4):
 HAND = {

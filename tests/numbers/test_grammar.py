@@ -9,9 +9,9 @@ from fractions import Fraction
 
 import pytest
 
+from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
-from rkcheck.errors import UserError
 from rkcheck.numbers.intervals import Interval
 
 

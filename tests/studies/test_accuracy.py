@@ -5,16 +5,14 @@ from __future__ import annotations
 
 import sys
 from fractions import Fraction
-from pathlib import Path
 
 import pytest
-
 from support.clirun import run_cli
-from rkcheck.studies.accuracy import bench_backends, direction, parse_eps, perturb_sweep
+from support.paths import TABLEAUX  # noqa: E402
+
 from rkcheck.energy.double_bush import kernel_of, rule_values, seed_N
 from rkcheck.io.loader import load
-
-from support.paths import TABLEAUX  # noqa: E402
+from rkcheck.studies.accuracy import bench_backends, direction, parse_eps, perturb_sweep
 
 
 def proportional(X, Y, tol) -> bool:

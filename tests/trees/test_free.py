@@ -15,8 +15,8 @@ from functools import lru_cache
 
 import networkx as nx
 import pytest
-
 from support import reference as ref
+
 from rkcheck.trees.conditions import ConditionTable
 from rkcheck.trees.free import FreeTreeGenerator, table_for
 from rkcheck.trees.rooted import level_sequence_of_forest

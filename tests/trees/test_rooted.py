@@ -15,8 +15,8 @@ from functools import lru_cache
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from support import reference as ref
+
 from rkcheck.trees.rooted import (
     TAU,
     RootedTreeTable,

@@ -1,0 +1,142 @@
+"""Check options: their names, values, defaults, and where they come from.
+
+Options reach rkcheck from four places — command-line flags, a tableau file's
+``[check]`` table, the project's ``[tool.rkcheck]`` table, and the Python API — and are
+resolved by one rule, most specific first: flags, then ``[check]``, then
+``[tool.rkcheck]``, then the defaults below (:func:`resolve_check_options`).  Every
+source is validated by the same functions, so a value means the same everywhere and is
+refused with the same one-line message.
+
+This module is shared vocabulary: it imports nothing from rkcheck but the errors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from rkcheck.errors import UserError
+
+DEFAULT_ORDER = 8
+DEFAULT_DPS = 50
+DEFAULT_DECIMALS = "rounded"
+DEFAULT_MAX_STAGES = 64
+
+#: The highest energy order the command line accepts (free trees with 21 vertices).
+MAX_ORDER = 20
+#: Working precisions the command line accepts.
+DPS_RANGE = (10, 5000)
+
+#: Decimals modes (docs/definitions.md §5): 'rounded' (default) or 'exact' (face value).
+DECIMALS_MODES = ("rounded", "exact")
+#: What makes a checked file count as failed (exit code 1).
+FAIL_ON = ("auto", "conditions", "claims", "never")
+#: Output formats of ``rkcheck scan``.
+SCAN_FORMATS = ("text", "json", "csv", "junit", "github")
+#: Words that mean "no degree bound: all Hamiltonians".
+NO_DEGREE = ("none", "all", "any")
+#: Keys of a tableau file's ``[check]`` table.
+CHECK_KEYS = ("degree", "order", "dps", "decimals")
+
+
+@dataclass(frozen=True)
+class CheckOptions:
+    """What one check runs: degree bound m (None = all Hamiltonians), energy order N,
+    working precision, decimals mode, and whether to stop after the first failing order."""
+
+    degree: int | None = None
+    order: int = DEFAULT_ORDER
+    dps: int = DEFAULT_DPS
+    decimals: str = DEFAULT_DECIMALS
+    fail_fast: bool = False
+
+
+# ------------------------------------------------------------------ single values
+
+
+def _is_int(value: Any) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def parse_degree(value: Any, place: str, source: str | None = None) -> int | None:
+    """A degree bound: a positive integer, or ``none``/``all``/``any``/None for no bound."""
+    if value is None or (isinstance(value, str) and value.strip().lower() in NO_DEGREE):
+        return None
+    if isinstance(value, str) and value.strip().isdigit():
+        value = int(value)
+    if _is_int(value) and value >= 1:
+        return value
+    raise UserError(f"expected a positive integer or 'none', got {value!r}", place, source)
+
+
+def parse_positive(value: Any, place: str, source: str | None = None) -> int:
+    """A positive integer (an order, a precision, a number of jobs)."""
+    if _is_int(value) and value >= 1:
+        return value
+    raise UserError(f"expected a positive integer, got {value!r}", place, source)
+
+
+def parse_choice(value: Any, choices: tuple[str, ...], place: str, source: str | None = None) -> str:
+    if value in choices:
+        return value
+    names = ", ".join(f"'{c}'" for c in choices)
+    raise UserError(f"expected one of {names}, got {value!r}", place, source)
+
+
+def parse_strings(value: Any, place: str, source: str | None = None) -> list[str]:
+    """A string or a list of strings (paths, globs, references)."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, list) and all(isinstance(x, str) for x in value):
+        return list(value)
+    raise UserError("expected a string or a list of strings", place, source)
+
+
+def degree_label(degree: int | None) -> str:
+    """How a degree bound is written back: ``4`` or ``none``."""
+    return "none" if degree is None else str(degree)
+
+
+# ------------------------------------------------------------------ tables
+
+
+def validate_check_table(table: Mapping[str, Any], prefix: str = "check", source: str | None = None,
+                         extra_keys: tuple[str, ...] = ()) -> dict[str, Any]:
+    """Validate the check options of a ``[check]`` (or ``[tool.rkcheck]``) table.
+
+    Returns the recognised options with their parsed values; keys in ``extra_keys`` are
+    left to the caller; any other key is an error naming ``prefix.key``."""
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        place = f"{prefix}.{key}"
+        name = key.replace("-", "_")
+        if name == "degree":
+            out[name] = parse_degree(value, place, source)
+        elif name in ("order", "dps"):
+            out[name] = parse_positive(value, place, source)
+        elif name == "decimals":
+            out[name] = parse_choice(value, DECIMALS_MODES, place, source)
+        elif name not in extra_keys:
+            known = ", ".join(CHECK_KEYS + extra_keys)
+            raise UserError(f"unknown key (known: {known})", place, source)
+    return out
+
+
+def resolve_check_options(flags: Mapping[str, Any], file: Mapping[str, Any],
+                          project: Mapping[str, Any]) -> CheckOptions:
+    """The options of one check: flags, else the file's ``[check]``, else
+    ``[tool.rkcheck]``, else the defaults.  Each mapping holds parsed values."""
+
+    def pick(key: str, default: Any) -> Any:
+        for source in (flags, file, project):
+            if key in source:
+                return source[key]
+        return default
+
+    return CheckOptions(
+        degree=pick("degree", None),
+        order=pick("order", DEFAULT_ORDER),
+        dps=pick("dps", DEFAULT_DPS),
+        decimals=pick("decimals", DEFAULT_DECIMALS),
+        fail_fast=bool(flags.get("fail_fast", False)),
+    )
