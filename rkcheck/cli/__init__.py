@@ -3,6 +3,6 @@
 May import: every stage.  Nothing imports it.
 """
 
-from rkcheck.cli.commands import cli, main
+from rkcheck.cli.main import cli, main
 
 __all__ = ["cli", "main"]

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable
+from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.methods.quadrature import (
@@ -196,8 +196,11 @@ def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], lis
 class ComputedEntry:
     """A coefficient computed by a family at whatever precision is asked for.
 
-    It answers the same questions as :class:`~rkcheck.entries.Entry`; its value comes from
-    the family (one computation per precision, shared by all entries of the tableau).
+    It answers the same questions as :class:`~rkcheck.numbers.entries.Entry`; its value
+    comes from the family's shared coefficients (one computation per precision, shared by
+    all entries of the tableau).  ``where`` is ``("A", i, j)`` or ``("b", j)``, 0-based.
+    Plain data throughout, so that family tableaux can be pickled (scan workers send
+    their results back to the parent).
     """
 
     rounded_digits = None
@@ -205,11 +208,16 @@ class ComputedEntry:
     computed = True
     is_rounded = False
 
-    def __init__(self, provider: Callable[[int], Interval], exact: Fraction | None, label: str):
-        self._provider = provider
+    def __init__(self, shared: "_Shared", where: tuple, exact: Fraction | None, label: str):
+        self._shared = shared
+        self._where = where
         self.exact = exact
         self.uses_sqrt = exact is None
         self.label = label
+
+    def _value(self, bits: int) -> Interval:
+        A, b = self._shared.get(bits)
+        return A[self._where[1]][self._where[2]] if self._where[0] == "A" else b[self._where[1]]
 
     @property
     def text(self) -> str:
@@ -217,7 +225,7 @@ class ComputedEntry:
             return str(self.exact)
         from rkcheck.numbers.formatting import decimal_string
 
-        return "≈" + decimal_string(self._provider(80).mid, 15)
+        return "≈" + decimal_string(self._value(80).mid, 15)
 
     @property
     def is_rational(self) -> bool:
@@ -226,7 +234,7 @@ class ComputedEntry:
     def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
         if self.exact is not None:
             return Interval.point(self.exact)
-        return self._provider(bits)
+        return self._value(bits)
 
     def is_zero(self) -> bool:
         return self.exact == 0
@@ -242,6 +250,9 @@ class _Shared:
             self.cache[bits] = coefficients(self.spec, bits)
         return self.cache[bits]
 
+    def __getstate__(self) -> dict[str, Any]:
+        return {"spec": self.spec, "cache": {}}  # coefficients are recomputed where needed
+
 
 def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
     """The family as a :class:`Tableau` whose entries are computed at the check's precision."""
@@ -250,15 +261,12 @@ def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
     rational = spec.base_rule().is_rational
     n = len(b0)
 
-    def entry(getter: Callable[[tuple], Interval], value: Interval, label: str) -> ComputedEntry:
+    def entry(where: tuple, value: Interval, label: str) -> ComputedEntry:
         exact = value.lo if rational and value.is_point else None
-        return ComputedEntry(lambda bits: getter(shared.get(bits)), exact, label)
+        return ComputedEntry(shared, where, exact, label)
 
-    A = tuple(
-        tuple(entry(lambda ab, i=i, j=j: ab[0][i][j], A0[i][j], f"A[{i + 1}][{j + 1}]") for j in range(n))
-        for i in range(n)
-    )
-    b = tuple(entry(lambda ab, j=j: ab[1][j], b0[j], f"b[{j + 1}]") for j in range(n))
+    A = tuple(tuple(entry(("A", i, j), A0[i][j], f"A[{i + 1}][{j + 1}]") for j in range(n)) for i in range(n))
+    b = tuple(entry(("b", j), b0[j], f"b[{j + 1}]") for j in range(n))
     kw: dict[str, Any] = {}
     if base is not None:
         kw = dict(

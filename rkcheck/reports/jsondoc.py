@@ -48,6 +48,33 @@ def method_doc(tab: Tableau) -> dict[str, Any]:
     return {"name": tab.name, "description": tab.description, "references": list(tab.references)}
 
 
+def show_doc(tab: Tableau, file: str, decimals: str, warnings: list[str]) -> dict[str, Any]:
+    """``rkcheck show --format json``."""
+    return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals),
+            "warnings": warnings}
+
+
+def conditions_list_doc(table, with_conditions: bool = True) -> dict[str, Any]:
+    """``rkcheck conditions --format json``: counts per order and (unless ``--count``) the
+    condition trees."""
+    doc: dict[str, Any] = {
+        "schema": SCHEMA,
+        "order": table.order,
+        "degree": table.degree,
+        "total": len(table),
+        "counts": [{"order": k, "vertices": k + 1, "conditions": v} for k, v in table.counts_by_order().items()],
+    }
+    if with_conditions:
+        doc["conditions"] = [
+            {
+                "id": c.id, "level_sequence": list(c.level_sequence), "bracket": c.bracket,
+                "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": len(c.terms),
+            }
+            for c in table.conditions
+        ]
+    return doc
+
+
 def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
     enc = r.enclosure
     if enc.exact:

@@ -1,7 +1,8 @@
 """Scan reports: text (rich), JSON, CSV, JUnit XML and GitHub Actions annotations.
 
-Every format is built from the same outcome dicts (:mod:`rkcheck.scan`); the JSON
-per-file object under ``result`` is exactly ``verify --format json``.
+Every format is built from the same outcome documents (:func:`outcome_docs` of the
+:class:`~rkcheck.batch.scan.FileOutcome` values); the JSON per-file object under
+``result`` is exactly ``verify --format json``.
 """
 
 from __future__ import annotations
@@ -13,13 +14,46 @@ from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
 from rkcheck import __version__
-from rkcheck.reports.jsondoc import SCHEMA
+from rkcheck.reports.jsondoc import SCHEMA, check_doc
 
 CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
     "quadrature_order", "energy_order", "energy_order_all", "equals_avf", "conditions_checked",
     "conditions_failed", "first_failure", "claims", "claims_ok", "broken_claims", "time", "error",
 ]
+
+
+def outcome_docs(outcomes) -> list[dict[str, Any]]:
+    """Plain documents of the outcomes: path, status, error, time, lines, and under
+    ``result`` the ``verify --format json`` object of each checked file."""
+    return [
+        {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
+         "result": None if o.result is None else check_doc(o.result, o.claims)}
+        for o in outcomes
+    ]
+
+
+def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any], elapsed: float) -> str:
+    """The scan report in a machine format: json, csv, junit or github."""
+    docs = outcome_docs(outcomes)
+    if fmt == "json":
+        return scan_json(docs, interrupted, options) + "\n"
+    if fmt == "csv":
+        return scan_csv(docs)
+    if fmt == "junit":
+        return scan_junit(docs, elapsed)
+    if fmt == "github":
+        return scan_github(docs)
+    raise ValueError(f"unknown scan format {fmt!r}")
+
+
+def scan_text(outcomes, elapsed: float, interrupted: bool) -> str:
+    """The text report as plain text (for ``--output``)."""
+    from rich.console import Console
+
+    console = Console(record=True, file=io.StringIO(), no_color=True, width=140)
+    render_scan_text(outcomes, console, elapsed, interrupted)
+    return console.export_text()
 
 
 def _summary(o: dict[str, Any]) -> dict[str, Any]:
@@ -201,8 +235,7 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
 # ---------------------------------------------------------------------- text
 
 
-def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float, interrupted: bool,
-                     verbose: bool = False) -> None:
+def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False) -> None:
     import os
 
     from rich import box
@@ -211,6 +244,7 @@ def render_scan_text(outcomes: list[dict[str, Any]], console, total_time: float,
 
     from rkcheck.reports.text import plain
 
+    outcomes = outcome_docs(outcomes)
     paths = [o["path"] for o in outcomes]
     root = os.path.commonpath(paths) if len(paths) > 1 else ""
     if root and not os.path.isdir(root):

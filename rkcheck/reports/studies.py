@@ -58,6 +58,37 @@ def render_perturb(res, console: Console, title: str) -> None:
     console.print(f"detection threshold ε* (smallest ε certified to fail): {th}")
 
 
+def bench_doc(file: str, degree, order: int, rows, t_tables: float) -> dict:
+    """``rkcheck bench --format json``."""
+    from rkcheck.reports.jsondoc import SCHEMA
+
+    return {
+        "schema": SCHEMA, "file": file, "degree": degree, "order": order, "tables_seconds": t_tables,
+        "backends": [
+            {"backend": r.backend, "seconds": r.seconds, "conditions": r.conditions,
+             "conditions_per_second": r.per_second, "min_digits": r.min_digits, "failures": r.failures,
+             "agrees": r.agrees}
+            for r in rows
+        ],
+    }
+
+
+def perturb_doc(file: str, degree, order: int, res) -> dict:
+    """``rkcheck perturb --format json``."""
+    from rkcheck.reports.jsondoc import SCHEMA
+
+    return {
+        "schema": SCHEMA, "file": file, "direction": res.direction, "degree": degree, "order": order,
+        "slope": res.slope,
+        "thresholds": {k: None if v is None else str(v) for k, v in res.thresholds.items()},
+        "floors": res.floors,
+        "rows": [{"eps": str(r.eps),
+                  "max_residual": None if r.max_residual is None else decimal_string(r.max_residual, 12),
+                  "first_failing_order": r.first_failing_order, "failing": r.failing, "detected": r.detected}
+                 for r in res.rows],
+    }
+
+
 def _fmt(x) -> str:
     if isinstance(x, Fraction):
         return str(x)

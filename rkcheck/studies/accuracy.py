@@ -18,7 +18,6 @@ import random
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
 
 from rkcheck.energy.check import evaluate_conditions
 from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
@@ -243,15 +242,3 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
         res = base if name == names[0] else evaluate_conditions(table, backend_for(tableau, name, decimals))
         floors[name] = max(float(abs(r.enclosure.mid) + r.enclosure.rad) for r in res) if res else 0.0
     return PerturbResult(rows, slope, thresholds, floors, desc, names)
-
-
-def bench_json(rows: list[BenchRow], t_tables: float) -> dict[str, Any]:
-    return {
-        "tables_seconds": t_tables,
-        "backends": [
-            {"backend": r.backend, "seconds": r.seconds, "conditions": r.conditions,
-             "conditions_per_second": r.per_second, "min_digits": r.min_digits, "failures": r.failures,
-             "agrees": r.agrees}
-            for r in rows
-        ],
-    }

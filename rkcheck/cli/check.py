@@ -1,0 +1,135 @@
+"""``verify``, ``show``, ``conditions``, ``explain``: one tableau, one tree, the conditions."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from rkcheck.cli.common import (
+    DEGREE,
+    EXIT_FAIL,
+    EXIT_OK,
+    check_options,
+    decimals_option,
+    dps_option,
+    fail_on_option,
+    flag_values,
+    load_tableau,
+    max_stages_option,
+    order_option,
+    output_options,
+    project_config,
+    settings,
+    stdout_console,
+)
+from rkcheck.errors import UserError
+from rkcheck.options import DEFAULT_DPS, MAX_ORDER, resolve_check_options
+
+
+@click.command()
+@click.argument("file", metavar="FILE")
+@check_options
+@click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
+@fail_on_option
+@output_options
+def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_fast, fail_on) -> None:
+    """Check every energy condition of the tableau in FILE ('-' = stdin), and the
+    claims of its [expect] table.
+
+    \b
+    Exit code (--fail-on auto): a file with claims is judged by its claims, a file
+    without claims by its conditions (an AVF certificate counts as holding):
+      0  all good   1  a claim is broken / a condition fails   2  bad file or option
+    """
+    from rkcheck.energy.claims import judge_tableau
+
+    config = project_config()
+    tab = load_tableau(file, max_stages)
+    options = resolve_check_options(flag_values(), tab.check, config.check)
+    fail_on = fail_on or config.fail_on or "auto"
+    result, claim_results, failed = judge_tableau(tab, options, fail_on)
+    if fmt == "json":
+        from rkcheck.reports.jsondoc import check_doc, dumps
+
+        click.echo(dumps(check_doc(result, claim_results)))
+    else:
+        from rkcheck.reports.text import render_check
+
+        out = settings()
+        render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, claims=claim_results,
+                     verbose=out.verbose, fail_on=fail_on)
+    sys.exit(EXIT_FAIL if failed else EXIT_OK)
+
+
+@click.command()
+@click.argument("file", metavar="FILE")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@decimals_option("rounded")
+@max_stages_option
+@output_options
+def show(file, fmt, decimals, max_stages) -> None:
+    """Print the tableau in FILE as a Butcher table, with its kind and any warnings."""
+    from rkcheck.methods.tableau import consistency_warnings
+    from rkcheck.numbers.precision import bits_for_dps
+
+    tab = load_tableau(file, max_stages)
+    warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(DEFAULT_DPS), decimals)
+    if fmt == "json":
+        from rkcheck.reports.jsondoc import dumps, show_doc
+
+        click.echo(dumps(show_doc(tab, file, decimals, warnings)))
+        return
+    from rkcheck.reports.text import render_tableau
+
+    render_tableau(tab, stdout_console(), decimals, warnings)
+
+
+@click.command()
+@order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
+@click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
+@click.option("--count", is_flag=True, help="Only count the conditions per order.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@output_options
+def conditions(order, degree, count, fmt) -> None:
+    """List the energy conditions (non-superfluous free trees) up to an order."""
+    from rkcheck.trees.conditions import condition_table
+
+    table = condition_table(order, degree)
+    if fmt == "json":
+        from rkcheck.reports.jsondoc import conditions_list_doc, dumps
+
+        click.echo(dumps(conditions_list_doc(table, with_conditions=not count)))
+        return
+    from rkcheck.reports.text import render_condition_list
+
+    render_condition_list(table, stdout_console(), count)
+
+
+@click.command()
+@click.argument("tree_id", metavar="ID")
+@click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
+@dps_option(DEFAULT_DPS)
+@decimals_option("rounded")
+@max_stages_option
+@output_options
+def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
+    """Show one energy condition: the free tree of ID, its rootings, signs, σ and weights.
+
+    ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
+    the id column of verify and conditions).
+    """
+    from rkcheck.energy.explain import explain as explain_condition
+    from rkcheck.reports.text import render_explanation
+    from rkcheck.trees.rooted import parse_level_sequence
+
+    try:
+        seq = parse_level_sequence(tree_id)
+    except ValueError as err:
+        raise UserError(str(err), "ID") from None
+    if len(seq) > MAX_ORDER + 1:
+        raise UserError(f"at most {MAX_ORDER + 1} vertices", "ID")
+    tab = load_tableau(tableau_file, max_stages) if tableau_file else None
+    render_explanation(explain_condition(seq, tab, dps, decimals), stdout_console(), tab)

@@ -1,0 +1,229 @@
+"""What every command shares: option decorators, exit codes, the output settings of the
+run, progress bars, and loading a tableau.
+
+Commands stay thin: they parse options (here), call the core, and hand the result to a
+report.  Heavy modules (numpy, mpmath, the reports) are imported inside the commands that
+need them, so that ``rkcheck verify`` starts quickly.
+"""
+
+from __future__ import annotations
+
+import functools
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator
+
+import click
+
+from rkcheck.errors import UserError
+from rkcheck.options import (
+    DEFAULT_MAX_STAGES,
+    DPS_RANGE,
+    FAIL_ON,
+    MAX_ORDER,
+    parse_degree,
+)
+from rkcheck.reports.console import OutputSettings, make_console
+
+EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
+
+
+class DegreeType(click.ParamType):
+    """A polynomial degree m >= 1, or ``none`` for all Hamiltonians (parsed to None)."""
+
+    name = "m|none"
+
+    def convert(self, value: Any, param, ctx) -> int | None:
+        try:
+            return parse_degree(value, "degree")
+        except UserError:
+            self.fail(f"{value!r} is not a degree (a positive integer or 'none')", param, ctx)
+
+
+DEGREE = DegreeType()
+
+
+# ------------------------------------------------------------------ output settings
+
+
+def settings() -> OutputSettings:
+    """The output settings of the command being run."""
+    ctx = click.get_current_context(silent=True)
+    obj = ctx.obj if ctx is not None else None
+    return obj if isinstance(obj, OutputSettings) else OutputSettings()
+
+
+def output_options(f: Callable) -> Callable:
+    """--quiet / --verbose / --no-color, accepted by every command (and the group); a
+    flag on the command overrides the same flag on the group."""
+
+    @click.option("--no-color", is_flag=True, default=None, help="No colour (also: NO_COLOR=1, or output not a terminal).")
+    @click.option("--verbose", "-v", is_flag=True, default=None, help="More detail (timings, notes).")
+    @click.option("--quiet", "-q", is_flag=True, default=None, help="Only the essential lines.")
+    @functools.wraps(f)
+    def wrapper(*args: Any, no_color: bool | None, verbose: bool | None, quiet: bool | None, **kwargs: Any) -> Any:
+        ctx = click.get_current_context()
+        inherited = ctx.parent.obj if ctx.parent is not None and isinstance(ctx.parent.obj, OutputSettings) else OutputSettings()
+        ctx.obj = OutputSettings(
+            color=inherited.color if no_color is None else not no_color,
+            quiet=inherited.quiet if quiet is None else quiet,
+            verbose=inherited.verbose if verbose is None else verbose,
+        )
+        return f(*args, **kwargs)
+
+    return wrapper
+
+
+def stdout_console():
+    return make_console(settings())
+
+
+@contextmanager
+def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
+    """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
+    console = make_console(settings(), stderr=True)
+    if settings().quiet or not console.is_terminal:
+        yield lambda: None
+        return
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as bar:
+        task = bar.add_task(label, total=total)
+        yield lambda: bar.advance(task)
+
+
+# ------------------------------------------------------------------ check options
+
+
+def order_option(default: int | None = None, required: bool = False, help: str | None = None) -> Callable:
+    return click.option(
+        "--order", "-N", type=click.IntRange(1, MAX_ORDER), default=default, required=required,
+        show_default=default is not None,
+        help=help or "Check conditions up to this energy order, i.e. free trees with <= N+1 vertices "
+        "[default: file's [check], else 8].",
+    )
+
+
+def degree_option(default: Any = None, help: str | None = None) -> Callable:
+    return click.option(
+        "--degree", "-m", type=DEGREE, default=default, show_default=default is not None,
+        help=help or "Polynomial Hamiltonians of degree <= m ('none' = all Hamiltonians) "
+        "[default: file's [check], else none].",
+    )
+
+
+def max_stages_option(f: Callable) -> Callable:
+    return click.option(
+        "--max-stages", type=click.IntRange(1), default=DEFAULT_MAX_STAGES, show_default=True,
+        help="Refuse tableaux with more stages than this.",
+    )(f)
+
+
+def decimals_option(default: str | None = None) -> Callable:
+    return click.option(
+        "--decimals", type=click.Choice(["rounded", "exact"]), default=default, show_default=default is not None,
+        help="Decimal literals with >= 6 significant digits: 'rounded' (default) = within half a unit "
+        "of the last digit; 'exact' = at face value.",
+    )
+
+
+def dps_option(default: int | None = None) -> Callable:
+    return click.option(
+        "--dps", type=click.IntRange(*DPS_RANGE), default=default, show_default=default is not None,
+        help="Working precision in decimal digits for non-rational tableaux"
+        + ("" if default is not None else " [default: file's [check], else 50]") + ".",
+    )
+
+
+def check_options(f: Callable) -> Callable:
+    """--degree / --order / --dps / --decimals / --max-stages, shared by the checking commands."""
+    for decorator in (max_stages_option, decimals_option(), dps_option(), order_option(), degree_option()):
+        f = decorator(f)
+    return f
+
+
+def fail_on_option(f: Callable) -> Callable:
+    return click.option(
+        "--fail-on", type=click.Choice(FAIL_ON), default=None,
+        help="What makes the exit code 1: 'auto' = broken claims for files with an [expect] table, "
+        "failing conditions otherwise; 'conditions'; 'claims'; 'never'. [default: verify auto, scan claims]",
+    )(f)
+
+
+def flag_values(*names: str) -> dict[str, Any]:
+    """The check options the user gave on the command line, parsed (``degree`` None =
+    'none'), by name; options left at their default are absent, so that the file's
+    ``[check]`` and ``[tool.rkcheck]`` can supply them (rkcheck.options)."""
+    from click.core import ParameterSource
+
+    ctx = click.get_current_context()
+    names = names or ("degree", "order", "dps", "decimals", "fail_fast")
+    out: dict[str, Any] = {}
+    for name in names:
+        if name in ctx.params and ctx.get_parameter_source(name) in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT):
+            out[name] = ctx.params[name]
+    return out
+
+
+# ------------------------------------------------------------------ inputs
+
+
+def load_tableau(path: str, max_stages: int = DEFAULT_MAX_STAGES):
+    from rkcheck.io.loader import load
+
+    return load(path, max_stages=max_stages)
+
+
+def project_config():
+    from rkcheck.io.config import load_config
+
+    return load_config()
+
+
+def dps_list(text: str) -> list[int]:
+    """A comma-separated list of working precisions (``--dps 15,50``)."""
+    try:
+        values = [int(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise UserError(f"expected a comma-separated list of integers, got {text!r}", "--dps") from None
+    lo, hi = DPS_RANGE
+    if not values or any(d < lo or d > hi for d in values):
+        raise UserError(f"each dps must be between {lo} and {hi}", "--dps")
+    return values
+
+
+def rational_option(text: str, place: str):
+    """A positive rational number from an option (``--h 1/100``, ``--T 10``)."""
+    from fractions import Fraction
+
+    from rkcheck.numbers.entries import Entry
+
+    try:
+        e = Entry.parse(text)
+    except UserError as err:
+        raise err.located(place) from None
+    if e.exact is None or e.exact <= 0:
+        raise UserError(f"expected a positive rational number, got {text!r}", place)
+    return Fraction(e.exact)
+
+
+def write_text(text: str, output: str | None) -> None:
+    """Write a report to stdout (no output or ``-``) or, atomically, to a file."""
+    if not output or output == "-":
+        click.echo(text, nl=False)
+        return
+    import os
+    import tempfile
+    from pathlib import Path
+
+    target = Path(output)
+    fd, tmp = tempfile.mkstemp(dir=target.parent if str(target.parent) else ".", prefix=".rkcheck-", suffix=".tmp")
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    os.replace(tmp, target)

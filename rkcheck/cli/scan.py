@@ -1,0 +1,78 @@
+"""``scan``: every tableau file under some folders, in parallel, in one report."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import click
+
+from rkcheck.cli.common import (
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    check_options,
+    fail_on_option,
+    flag_values,
+    output_options,
+    progress,
+    project_config,
+    settings,
+    stdout_console,
+    write_text,
+)
+from rkcheck.errors import UserError
+from rkcheck.options import SCAN_FORMATS
+
+
+@click.command()
+@click.argument("paths", nargs=-1, metavar="[PATH...]")
+@check_options
+@click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None, help="Worker processes [default: all cores].")
+@click.option("--exclude", multiple=True, metavar="GLOB", help="Skip files matching GLOB (path or name); repeatable.")
+@click.option("--format", "fmt", type=click.Choice(SCAN_FORMATS), default=None,
+              help="Output format [default: [tool.rkcheck] format, else text].")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="Write the report to this file (written even when interrupted).")
+@fail_on_option
+@output_options
+def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, output, fail_on) -> None:
+    """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
+
+    One row per file in a fixed order; a file that cannot be read is a row with its error,
+    never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
+    [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
+    format, fail_on, jobs); flags override it.
+
+    \b
+    Exit code: 1 when a file fails under --fail-on (default: claims) or cannot be
+    checked, 0 otherwise, 2 for a bad option, 130 when interrupted (the rows that
+    finished are still written).
+    """
+    from rkcheck.batch.scan import default_jobs, exit_status, run_scan
+    from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.reports import scan as scan_report
+
+    config = project_config()
+    roots = list(paths) or config.paths
+    if not roots:
+        raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
+    files = find_tableau_files(roots, list(exclude) + config.exclude)
+    flags = flag_values()
+    fmt = fmt or config.format or "text"
+    fail_on = fail_on or config.fail_on or "claims"
+    jobs = jobs or config.jobs or default_jobs()
+    t0 = time.perf_counter()
+    with progress("checking", len(files)) as advance:
+        outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, lambda r: advance())
+    elapsed = time.perf_counter() - t0
+    options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
+    if fmt == "text" and output and output != "-":
+        write_text(scan_report.scan_text(outcomes, elapsed, interrupted), output)
+    elif fmt == "text":
+        scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose)
+    else:
+        write_text(scan_report.scan_document(fmt, outcomes, interrupted, options, elapsed), output)
+    if interrupted:
+        click.echo("rkcheck: interrupted; the report holds the files that finished", err=True)
+        sys.exit(EXIT_INTERRUPTED)
+    sys.exit(EXIT_OK if fail_on == "never" else exit_status(outcomes))
