@@ -1,4 +1,6 @@
-"""The ``rkcheck`` command line: parse options, call the core, render a report.
+"""The ``rkcheck`` command line: one module per command group, each thin — parse the
+options, call the core (or the public API), hand the result to a report, exit with the
+documented code.
 
 May import: every stage.  Nothing imports it.
 """

@@ -1,4 +1,4 @@
-"""Is the tableau the Averaged Vector Field method for degree-m Hamiltonians? (SPEC §4)
+"""Is the tableau the Averaged Vector Field method for degree-m Hamiltonians? (definitions §4)
 
 AVF, ``y₁ = y₀ + h ∫₀¹ f((1−ξ)y₀ + ξy₁) dξ``, preserves every H.  For polynomial H of
 degree ≤ m it *is* the Runge–Kutta method ``A = c bᵀ`` over any rule with

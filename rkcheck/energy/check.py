@@ -1,7 +1,7 @@
 """``check(tableau, options)``: every energy condition, the orders, and the AVF verdict.
 
 This is the pure core behind ``rkcheck verify``: it takes a loaded
-:class:`~rkcheck.tableau.Tableau` and returns a :class:`CheckResult` (plain data that the
+:class:`~rkcheck.methods.tableau.Tableau` and returns a :class:`CheckResult` (plain data that the
 reports render).  It does no I/O and knows nothing of the CLI.
 """
 
@@ -120,7 +120,7 @@ def evaluate_conditions(
 
 
 def energy_order_of(results: list[ConditionResult], order: int) -> int:
-    """Largest n <= order such that every condition with <= n+1 vertices holds (SPEC §3)."""
+    """Largest n <= order such that every condition with <= n+1 vertices holds (definitions §3)."""
     failing = [r.condition.order for r in results if r.verdict.state == FAILS]
     return min(failing) - 1 if failing else order
 
@@ -139,7 +139,7 @@ def per_order_counts(table: ConditionTable, results: list[ConditionResult]) -> l
 
 
 def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
-    """Run the whole check of SPEC §3–§5 on ``tableau``."""
+    """Run the whole check of definitions §3–§5 on ``tableau``."""
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     table = condition_table(options.order, options.degree)
@@ -191,7 +191,7 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     if tableau.rounded_digits is not None and options.decimals == "rounded":
         warnings.append(
             f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
-            "are read as rounded to their last digit (SPEC §5); --decimals exact takes them at face value"
+            "are read as rounded to their last digit (definitions §5); --decimals exact takes them at face value"
         )
     timings["total"] = time.perf_counter() - t0
     return CheckResult(

@@ -1,17 +1,7 @@
-"""Claims: the ``[expect]`` table of a tableau file, and how they are checked.
+"""Claims judged: each ``[expect]`` claim (:mod:`rkcheck.methods.claims`) against the
+check runs it needs, reported as *claimed* against *found*.
 
-A method's author states the published properties of the method; rkcheck checks each
-one and reports *claimed* against *found*::
-
-    [expect]
-    energy_order = {degree = 4, order = 8, value = "all"}   # or value = 4; degree = "none"
-    avf = {degree = 4, value = true}
-    classical_order = 4
-    quadrature_order = 4
-
-``energy_order`` and ``avf`` may also be lists of such tables (one per degree).
-
-Meanings (SPEC §3–§4):
+Meanings (definitions §3–§4):
 
 * ``energy_order = n`` — exactly n: every condition with ≤ n+1 vertices holds and one
   with n+2 vertices fails (checked to order ``max(order, n+1)``).
@@ -25,27 +15,9 @@ Meanings (SPEC §3–§4):
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
 
-from rkcheck.errors import UserError
-from rkcheck.options import FAIL_ON, parse_degree  # noqa: F401 (FAIL_ON re-exported)
-
-CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order")
-
-
-@dataclass(frozen=True)
-class Claim:
-    kind: str
-    value: int | str | bool
-    degree: int | None = None
-    order: int | None = None
-    place: str = ""  # "expect.energy_order" or "expect.energy_order[2]"
-
-    def label(self) -> str:
-        if self.kind in ("energy_order", "avf"):
-            deg = "all H" if self.degree is None else f"degree {self.degree}"
-            return f"{self.kind} ({deg})"
-        return self.kind
+from rkcheck.methods.claims import Claim
+from rkcheck.options import FAIL_ON  # noqa: F401 (re-exported)
 
 
 @dataclass(frozen=True)
@@ -59,53 +31,6 @@ class ClaimResult:
     def claimed(self) -> str:
         v = self.claim.value
         return str(v).lower() if isinstance(v, bool) else str(v)
-
-
-def _int(value: Any, place: str, minimum: int = 0) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
-    return value
-
-
-def _one(kind: str, raw: Any, place: str) -> Claim:
-    if kind in ("classical_order", "quadrature_order"):
-        if isinstance(raw, dict):
-            raw = raw.get("value")
-        return Claim(kind, _int(raw, place), place=place)
-    if not isinstance(raw, dict):
-        raise UserError("expected a table like {degree = 4, value = ...}", place)
-    unknown = set(raw) - {"degree", "order", "value"}
-    if unknown:
-        raise UserError(f"unknown key {sorted(unknown)[0]!r} (known: degree, order, value)", place)
-    if "value" not in raw:
-        raise UserError("missing value", place)
-    if kind == "avf" and "degree" not in raw:
-        raise UserError("missing degree (AVF is defined for a polynomial degree m)", place)
-    degree = parse_degree(raw.get("degree"), f"{place}.degree")
-    order = _int(raw["order"], f"{place}.order", 1) if "order" in raw else None
-    value = raw["value"]
-    if kind == "avf":
-        if not isinstance(value, bool):
-            raise UserError(f"expected true or false, got {value!r}", f"{place}.value")
-        if degree is None:
-            raise UserError("AVF needs a polynomial degree", f"{place}.degree")
-    elif value != "all":
-        value = _int(value, f"{place}.value", 1)
-    return Claim(kind, value, degree, order, place)
-
-
-def parse_claims(expect: dict[str, Any]) -> list[Claim]:
-    """Validate an ``[expect]`` table; errors name the claim (``expect.avf.value``)."""
-    claims: list[Claim] = []
-    for kind, raw in expect.items():
-        place = f"expect.{kind}"
-        if kind not in CLAIM_KINDS:
-            raise UserError(f"unknown claim (known: {', '.join(CLAIM_KINDS)})", place)
-        if isinstance(raw, list) and kind in ("energy_order", "avf"):
-            claims.extend(_one(kind, item, f"{place}[{i}]") for i, item in enumerate(raw, start=1))
-        else:
-            claims.append(_one(kind, raw, place))
-    return claims
 
 
 # ------------------------------------------------------------------ checking
@@ -158,7 +83,7 @@ def judge(claim: Claim, result) -> ClaimResult:
 
 def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimResult]:
     """Judge every claim; ``run_check(tableau, options)`` is the check function (injected
-    so that callers can share runs; normally :func:`rkcheck.check.check`)."""
+    so that callers can share runs; normally :func:`rkcheck.energy.check.check`)."""
     runs = needed_options(claims, base)
     results = {deg: run_check(tableau, opts) for deg, opts in runs.items()}
     return [judge(c, results[c.degree if c.kind in ("energy_order", "avf") else base.degree]) for c in claims]

@@ -1,7 +1,7 @@
 """One energy condition taken apart: its rootings, signs, σ and elementary weights.
 
 ``explain(level_sequence)`` accepts *any* rooting of a free tree, finds its canonical
-centre (SPEC §3) and lists the terms of
+centre (definitions §3) and lists the terms of
 
     R(t̄) = Σ_u (−1)^κ(t,u) / σ(u) · a(B₋(u)),
 
@@ -25,7 +25,7 @@ _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def sigma_notation(seq: tuple[int, ...]) -> str:
-    """``a(t) = bᵀΦ(t)`` in Σ-notation (SPEC §2), e.g. ``Σ b_i c_i a_ij c_j²``.
+    """``a(t) = bᵀΦ(t)`` in Σ-notation (definitions §2), e.g. ``Σ b_i c_i a_ij c_j²``.
 
     Leaves hanging from a vertex with index x give ``c_x`` (``c = A·1``); every other
     child gets a new index y and the factor ``a_xy`` followed by its own factors.

@@ -1,6 +1,6 @@
 """The line-integral certificate: energy preservation proven for every order.
 
-This generalises the AVF certificate of SPEC §4 (it is its case σ = 1) to the Hamiltonian
+This generalises the AVF certificate of definitions §4 (it is its case σ = 1) to the Hamiltonian
 Boundary Value Methods of Brugnano, Iavernaro and Trigiante.  Let ``(b, c)``, ``c = A·1``,
 be the tableau's own quadrature rule, ``P_j`` the shifted Legendre polynomials
 (``P_j(1) = 1``) and ``G_j(x) = ∫₀^x P_j``.  If for some σ
@@ -19,7 +19,7 @@ proves energy preservation for all degree-≤m Hamiltonians to every order.  σ 
 ``A = c bᵀ`` (AVF); HBVM(k, s) satisfies (LI) with σ = s over k Gauss nodes (order 2k), so
 it is certified for m ≤ 2k/s; s-stage Gauss collocation (HBVM(s, s)) for m ≤ 2.
 
-The test is made on the tableau after the stage reduction of :mod:`rkcheck.avf`.
+The test is made on the tableau after the stage reduction of :mod:`rkcheck.energy.avf`.
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def line_integral_certificate(
     A: list[list[Interval]], b: list[Interval], degree: int, exact: bool, reduced=None
 ) -> LineIntegralCertificate:
     """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ
-    (``reduced``: the result of :func:`~rkcheck.avf.reduce_stages`, if already computed)."""
+    (``reduced``: the result of :func:`~rkcheck.energy.avf.reduce_stages`, if already computed)."""
     rA, rb, kept, used = reduced or reduce_stages([row[:] for row in A], b[:], exact)
     n = len(rb)
     if n == 0:

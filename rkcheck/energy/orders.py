@@ -1,4 +1,4 @@
-"""Quadrature order and classical order (SPEC §2, §4).
+"""Quadrature order and classical order (definitions §2, §4).
 
 * quadrature order: the largest ``k`` with ``Σ b_i c_i^(j-1) = 1/j`` for ``j = 1..k``
   (``c = A·1``); at most ``2s`` for ``s`` nodes.

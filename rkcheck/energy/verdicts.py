@@ -1,4 +1,4 @@
-"""The three states of a condition (SPEC §5), and nothing else.
+"""The three states of a condition (definitions §5), and nothing else.
 
 =================== =====================================================================
 ``holds``           the residual is exactly zero (exact arithmetic on exact data)
@@ -55,7 +55,7 @@ def certified_digits(bound: Fraction | float) -> int:
 
 
 def classify(enc: Enclosure) -> Verdict:
-    """The state of a residual from its enclosure (SPEC §5)."""
+    """The state of a residual from its enclosure (definitions §5)."""
     if enc.exact:
         return Verdict(HOLDS) if enc.mid == 0 else Verdict(FAILS)
     if not enc.contains_zero():

@@ -6,6 +6,6 @@ energy condition, in one of several number contexts (exact rationals, certified 
 the float64 screen), as mpmath does with its ``mp``/``iv``/``fp`` contexts.  It does not
 judge: turning an enclosure into a verdict is :mod:`rkcheck.energy`'s job.
 
-May import: :mod:`rkcheck.trees`, :mod:`rkcheck.methods`, :mod:`rkcheck.numbers`,
+May import: :mod:`rkcheck.trees.rooted`, :mod:`rkcheck.methods`, :mod:`rkcheck.numbers`,
 :mod:`rkcheck.errors`.
 """

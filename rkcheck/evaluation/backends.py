@@ -1,9 +1,9 @@
-"""Number backends: one algorithm, several number contexts (SPEC §5).
+"""Number backends: one algorithm, several number contexts (definitions §5).
 
 Every backend answers the same two calls, in the manner of mpmath's ``mp``/``iv``/``fp``:
 
 * :meth:`tree_weights` — the elementary weights ``a(t) = bᵀΦ(t)`` of every tree of a
-  :class:`~rkcheck.trees.RootedTreeTable`, by the recursion (SPEC §2)
+  :class:`~rkcheck.trees.rooted.RootedTreeTable`, by the recursion (definitions §2)
   ``Φ(τ) = 1``, ``Φ(u∘v) = Φ(u) ⊙ AΦ(v)``, memoised per tree id and per table, so each
   weight is computed once and shared by all the conditions that use it;
 * :meth:`enclose_terms` — enclosures of sums ``Σ sign/σ · Π a(t_k)``, the shape of
@@ -19,13 +19,13 @@ Backends:
 ``BallBackend`` (``"ball"``)
     Everything else (square roots, rounded decimals), at ``--dps`` digits.  Fixed-point
     balls: an integer mid-point ``m`` and radius ``r`` at scale ``2^-P`` mean the value
-    lies in ``[m-r, m+r]·2^-P``.  This is the arbitrary-precision backend that SPEC §5
+    lies in ``[m-r, m+r]·2^-P``.  This is the arbitrary-precision backend that definitions §5
     calls "mpmath at the working precision": mpmath's ``mpf`` carries no error bound and
     its interval context costs about 2.5× more per product, so rkcheck does its own balls
     on Python integers (what ``mpf`` does internally) with a proven radius.  Additions are exact on integers; every product adds the
     propagated radius and one unit for its rounding, so the enclosure is rigorous by
     construction (no reliance on floating-point rounding modes).
-``FloatBackend`` (:mod:`rkcheck.screen`)
+``FloatBackend`` (:mod:`rkcheck.evaluation.float_screen`)
     A float64 screen with its own rounding bound, used for speed comparisons.
 """
 
@@ -173,7 +173,7 @@ class ExactBackend:
         return Enclosure(value, Fraction(0), True)
 
     def enclose_table(self, ctable) -> list[Enclosure]:
-        """Every condition of a :class:`~rkcheck.conditions.ConditionTable`, exactly:
+        """Every condition of a :class:`~rkcheck.trees.conditions.ConditionTable`, exactly:
         ``lcm·d^(n−1)·R = Σ ±(lcm/σ) Π â(t)``, vectorised over all terms."""
         import numpy as np
 
@@ -375,7 +375,7 @@ class BallBackend:
 
 def make_backend(tableau, dps: int, decimals: str, enclosures=None) -> ExactBackend | BallBackend:
     """Exact arithmetic when the tableau is rational (and decimals are read exactly or
-    are all short), else certified balls at ``dps`` digits (SPEC §5).  ``enclosures``:
+    are all short), else certified balls at ``dps`` digits (definitions §5).  ``enclosures``:
     the entries already enclosed at :func:`entry_bits` (saves enclosing them twice)."""
     if tableau.is_exact(decimals):
         return ExactBackend(tableau.exact_A(), tableau.exact_b())

@@ -7,7 +7,7 @@ overflow: a product or a length-n dot product of floats has relative error at mo
 ``γ_n = n·u/(1 − n·u)`` (``u = 2⁻⁵³``, Higham, *Accuracy and Stability of Numerical
 Algorithms*, §3.1), radii are propagated as for exact balls, and every computed radius is
 inflated by ``(1 + 16u)`` and the smallest subnormal to cover the rounding of the bound
-itself.  So the screen may say ``fails`` only when its own bound excludes 0 (SPEC §5);
+itself.  So the screen may say ``fails`` only when its own bound excludes 0 (definitions §5);
 otherwise its enclosures give ``holds to D digits`` with D ≈ 15 at best, and ``verify``
 never uses it for a verdict — it exists for speed comparisons (``rkcheck bench``) and
 screens.  Like every backend it returns enclosures; the verdicts are

@@ -1,9 +1,9 @@
-"""Tableau files (TOML or JSON, same structure) -> :class:`~rkcheck.tableau.Tableau`.
+"""Tableau files (TOML or JSON, same structure) -> :class:`~rkcheck.methods.tableau.Tableau`.
 
 This is the only module of the core that reads files.  Every problem becomes a
 :class:`~rkcheck.errors.UserError` naming the file and the place, 1-based like the
 coefficients ``a_ij`` (``A[2][3]: unexpected ')' at column 7``).  File content is
-parsed by :mod:`rkcheck.expr`, never evaluated by Python.
+parsed by :mod:`rkcheck.numbers.grammar`, never evaluated by Python.
 
 Bare TOML/JSON floats are read digit for digit (the parser hands us their text, not a
 binary64 double), with a warning because other tools will read them as doubles.
@@ -18,8 +18,8 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from rkcheck.energy.claims import parse_claims
 from rkcheck.errors import UserError
+from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry

@@ -3,7 +3,7 @@
 ==================  ==============================================================  ============
 family              coefficients                                                    parameters
 ==================  ==============================================================  ============
-``avf``             ``a_ij = c_i b_j`` over a rule (SPEC §4)                         rule, s
+``avf``             ``a_ij = c_i b_j`` over a rule (definitions §4)                         rule, s
 ``gauss``           collocation at Gauss nodes: ``a_ij = ∫₀^{c_i} ℓ_j``              s
 ``lobatto-iiia``    collocation at Lobatto nodes                                     s >= 2
 ``lobatto-iiib``    ``a_ij = (b_j/b_i) ∫_{c_j}^1 ℓ_i`` (condition D(s)), Lobatto     s >= 2
@@ -19,7 +19,7 @@ HBVM (Brugnano, Iavernaro, Trigiante): with orthonormal shifted Legendre polynom
 with ``G_j = ∫₀^x P_j``.  HBVM(k, s) conserves polynomial H of degree ≤ 2k/s.
 
 Every coefficient is a certified interval at the requested number of bits (computed from
-the certified nodes of :mod:`rkcheck.quadrature`), and an exact rational when the rule is
+the certified nodes of :mod:`rkcheck.methods.quadrature`), and an exact rational when the rule is
 rational.  :func:`expression_texts` gives the same coefficients as exact entry
 expressions over closed-form node constants, for ``rkcheck new``.
 """

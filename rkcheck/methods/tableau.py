@@ -1,7 +1,7 @@
-"""The Butcher tableau ``(A, b, c)`` of SPEC §1, as entries of the number model.
+"""The Butcher tableau ``(A, b, c)`` of definitions §1, as entries of the number model.
 
-A :class:`Tableau` is pure data: no file I/O (that is :mod:`rkcheck.loader`) and no
-B-series (that is :mod:`rkcheck.weights`).  Every B-series quantity uses the row sums
+A :class:`Tableau` is pure data: no file I/O (that is :mod:`rkcheck.io.loader`) and no
+B-series (that is :mod:`rkcheck.evaluation.backends`).  Every B-series quantity uses the row sums
 ``A·1``; a given ``c`` is only compared with them (:func:`consistency_warnings`).
 """
 
@@ -32,7 +32,7 @@ class Tableau:
     warnings: list[str] = field(default_factory=list)
     lines: dict[str, int] = field(default_factory=dict)  # "tableau", "expect.avf", ... -> line
     constants: Constants = field(default_factory=Constants)
-    claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.claims.Claim)
+    claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.energy.claims.Claim)
 
     # ------------------------------------------------------------- construction
 
@@ -84,7 +84,7 @@ class Tableau:
         return min(digits) if digits else None
 
     def is_exact(self, decimals: str) -> bool:
-        """True when the check runs in exact rational arithmetic (SPEC §5)."""
+        """True when the check runs in exact rational arithmetic (definitions §5)."""
         return self.is_rational and (decimals == "exact" or self.rounded_digits is None)
 
     @property
@@ -119,14 +119,14 @@ class Tableau:
         return [e.exact for e in self.b]  # type: ignore[misc]
 
     def enclosures(self, bits: int, decimals: str) -> tuple[list[list[Interval]], list[Interval]]:
-        """Rigorous enclosures of A and b at ``bits`` bits (SPEC §5)."""
+        """Rigorous enclosures of A and b at ``bits`` bits (definitions §5)."""
         A = [[e.enclosure(bits, decimals) for e in row] for row in self.A]
         b = [e.enclosure(bits, decimals) for e in self.b]
         return A, b
 
 
 def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:
-    """SPEC §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
+    """definitions §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
 
     A difference is reported only when it is certain (its enclosure excludes 0);
     differences within the rounding of decimal input are not warnings.

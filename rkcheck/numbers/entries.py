@@ -1,4 +1,4 @@
-"""The number model: what a tableau entry *is* (SPEC §5).
+"""The number model: what a tableau entry *is* (definitions §5).
 
 An :class:`Entry` keeps exactly what the file said (its text and parsed expression) and
 knows three facts about it:
@@ -7,8 +7,8 @@ knows three facts about it:
   decimal literals, and roots of rational squares);
 * whether it involves a square root of a non-square (then it is algebraic and is
   evaluated by outward-rounded interval arithmetic at the working precision);
-* whether it contains a *rounded* decimal literal (SPEC §5: "some number within half a
-  unit of its last digit"; see :data:`rkcheck.expr.ROUNDED_MIN_DIGITS`).
+* whether it contains a *rounded* decimal literal (definitions §5: "some number within half a
+  unit of its last digit"; see :data:`rkcheck.numbers.grammar.ROUNDED_MIN_DIGITS`).
 
 Named constants (the ``[constants]`` table) are shared by all entries of one tableau
 through a :class:`Constants` table, so ``r3 = "sqrt(3)"`` is evaluated once per
@@ -154,7 +154,7 @@ class Entry:
         return self.rounded_digits is not None
 
     def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
-        """A rigorous enclosure at ``bits`` bits under the decimals mode of SPEC §5."""
+        """A rigorous enclosure at ``bits`` bits under the decimals mode of definitions §5."""
         rounded = decimals == "rounded"
         if self.exact is not None and not (rounded and self.is_rounded):
             return Interval.point(self.exact)

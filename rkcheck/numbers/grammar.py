@@ -1,4 +1,4 @@
-"""The entry grammar: a small recursive-descent parser of arithmetic expressions (SPEC §5).
+"""The entry grammar: a small recursive-descent parser of arithmetic expressions (definitions §5).
 
 File content never reaches ``eval``/``exec``: entries are tokenised and parsed here into
 a tiny AST that only knows numbers, named constants, ``+ - * / ^ **``, unary signs,
@@ -13,7 +13,7 @@ associative, binding tighter than unary minus, so ``-2^2 = -4`` and ``2^-1 = 1/2
 
 Numbers are integers, decimals (``0.25``, ``.5``, ``2.``) and scientific notation
 (``1.5e-3``).  A decimal literal keeps the number of significant digits it was
-written with, which SPEC §5 uses as its precision.
+written with, which definitions §5 uses as its precision.
 
 Hostile input is refused early and cheaply: entries longer than
 :data:`MAX_ENTRY_LENGTH` characters, nesting deeper than :data:`MAX_DEPTH`, exponents
@@ -38,8 +38,8 @@ MAX_DECIMAL_EXPONENT = 1000
 MAX_BITS = 200_000
 
 #: A decimal literal with at least this many significant digits is, by default, read as
-#: "rounded to its last digit" (SPEC §5).  Shorter decimals such as 0.5, 0.25 or 0.125
-#: are read exactly: see README "Decimals" for why (a literal reading of SPEC would make
+#: "rounded to its last digit" (definitions §5).  Shorter decimals such as 0.5, 0.25 or 0.125
+#: are read exactly: see README "Decimals" for why (a literal reading of the definition would make
 #: ``0.5`` mean [0.45, 0.55]).
 ROUNDED_MIN_DIGITS = 6
 
@@ -66,7 +66,7 @@ class Num:
 
     @property
     def half_unit(self) -> Fraction:
-        """Half a unit in the last written digit: the rounding radius of SPEC §5."""
+        """Half a unit in the last written digit: the rounding radius of definitions §5."""
         return Fraction(1, 2) * Fraction(10) ** self.last_digit_exponent
 
 
@@ -397,7 +397,7 @@ def enclose(
     rounded: bool,
     constants: Mapping[str, Interval],
 ) -> Interval:
-    """A rigorous enclosure of ``node`` (SPEC §5).
+    """A rigorous enclosure of ``node`` (definitions §5).
 
     ``rounded``: read decimal literals with at least :data:`ROUNDED_MIN_DIGITS`
     significant digits as "within half a unit of the last digit"; otherwise every

@@ -1,4 +1,4 @@
-"""Closed intervals with exact rational end points (SPEC §5).
+"""Closed intervals with exact rational end points (definitions §5).
 
 Every arithmetic operation on tableau entries is carried out here exactly; the only
 inexact step is ``sqrt`` of a non-square, whose end points are rounded *outwards* to
@@ -8,7 +8,7 @@ rounding modes of any floating-point library.
 
 Entries are short expressions, so exact end points cost nothing here; the hot loops of
 the energy check never see this class (they run on the fixed-point balls of
-:mod:`rkcheck.backends`).
+:mod:`rkcheck.evaluation.backends`).
 """
 
 from __future__ import annotations

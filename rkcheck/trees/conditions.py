@@ -1,4 +1,4 @@
-"""The energy conditions of SPEC §3 (seed, Theorem 2 restricted to degree ≤ m).
+"""The energy conditions of definitions §3 (seed, Theorem 2 restricted to degree ≤ m).
 
 For an order ``N`` and a degree bound ``m`` (None = all Hamiltonians) the conditions
 are the non-superfluous free trees ``t̄`` with ``3 <= |t̄| <= N+1`` and maximum vertex
@@ -57,7 +57,7 @@ class EnergyCondition:
 
     @cached_property
     def level_sequence(self) -> tuple[int, ...]:
-        """Canonical id (SPEC §3): level sequence of the rooting at the canonical centre."""
+        """Canonical id (definitions §3): level sequence of the rooting at the canonical centre."""
         return self.term_level_sequence(self.terms[0])
 
     @property

@@ -1,4 +1,4 @@
-"""Free (unrooted) trees, enumerated canonically from their centre (SPEC §3).
+"""Free (unrooted) trees, enumerated canonically from their centre (definitions §3).
 
 A free tree has one centre or two adjacent ones.  It is generated directly in its
 centre-rooted form, so no tree is built twice and none is built only to be discarded:
@@ -9,7 +9,7 @@ centre-rooted form, so no tree is built twice and none is built only to be disca
   are equal exactly when the tree is **superfluous** (a rooting ``u∘u``), so the
   non-superfluous ones are the pairs of *distinct* halves.
 
-Subtrees come from a :class:`~rkcheck.trees.RootedTreeTable` whose children bound is
+Subtrees come from a :class:`~rkcheck.trees.rooted.RootedTreeTable` whose children bound is
 ``max_degree - 1`` (every vertex of a branch also has its parent edge), which is how a
 degree bound prunes the generation itself.
 

@@ -1,4 +1,4 @@
-"""Rooted trees: integer ids, level sequences, bracket notation, σ and γ (SPEC §2).
+"""Rooted trees: integer ids, level sequences, bracket notation, σ and γ (definitions §2).
 
 Conventions (the same as RootedTrees.jl, so ids can be pasted between tools):
 
@@ -18,7 +18,7 @@ is its multiset of children, stored as the tuple of child ids in *decreasing id 
 subtrees first.  The table is built by Butcher products ``t = u ∘ v`` (``v`` attached
 to the root of ``u``) where ``v`` is the child of ``t`` with the smallest id, which
 generates every tree exactly once and gives the recursion
-``Φ(t) = Φ(u) ⊙ AΦ(v)`` used by :mod:`rkcheck.weights`.  A bound on the number of
+``Φ(t) = Φ(u) ⊙ AΦ(v)`` used by :mod:`rkcheck.evaluation.backends`.  A bound on the number of
 children of every vertex is applied *during* generation: trees it excludes are never
 built.
 """
@@ -26,7 +26,6 @@ built.
 from __future__ import annotations
 
 import bisect
-from functools import lru_cache
 from typing import Sequence
 
 TAU = 0  # id of the one-vertex tree τ in every table
@@ -62,6 +61,7 @@ class RootedTreeTable:
         # ids of each order form a contiguous range: by_order[n] = range(first, last+1)
         self.first_id: list[int] = [0, 0]  # first_id[n] for n >= 1; sentinel at n = 0
         self._level_sequences: dict[int, tuple[int, ...]] = {TAU: (1,)}
+        self._lefts_cache: dict[int, list[tuple[float, int]]] = {}
         self.first_id.append(len(self.order))
         self.grow_to(max_order)
 
@@ -98,13 +98,17 @@ class RootedTreeTable:
                         continue
                     self._add(key, u, v, n)
 
-    @lru_cache(maxsize=None)
     def _lefts_by_min_child(self, n: int) -> list[tuple[float, int]]:
+        # cached on the instance (an lru_cache on the method would keep every table alive)
+        cached = self._lefts_cache.get(n)
+        if cached is not None:
+            return cached
         out = []
         for u in self.ids_of_order(n):
             key = self.children[u]
             out.append((key[-1] if key else float("inf"), u))
         out.sort()
+        self._lefts_cache[n] = out
         return out
 
     def _add(self, key: tuple[int, ...], u: int, v: int, n: int) -> None:
@@ -217,7 +221,7 @@ def _split_children(seq: tuple[int, ...]) -> list[tuple[int, ...]]:
 
 
 def children_of_level_sequence(seq: Sequence[int]) -> list[tuple[int, ...]]:
-    """Public form of the subtree split: ``B₋(t)`` as level sequences (SPEC §2)."""
+    """Public form of the subtree split: ``B₋(t)`` as level sequences (definitions §2)."""
     return _split_children(tuple(seq))
 
 

@@ -1,0 +1,106 @@
+"""The package layout is the one-way flow the README draws: each stage imports only the
+stages before it.  Read from the source (every import statement, also inside
+functions), never by importing the package."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from support.paths import REPO
+
+PACKAGE = REPO / "rkcheck"
+
+BASE = {"errors"}
+#: unit -> the units it may import (a unit is a subpackage or a top-level module)
+ALLOWED: dict[str, set[str]] = {
+    "errors": set(),
+    "options": BASE,
+    "numbers": BASE,
+    "trees": BASE,
+    "methods": BASE | {"options", "numbers"},
+    "io": BASE | {"options", "numbers", "methods"},
+    "evaluation": BASE | {"numbers", "trees", "methods"},
+    "energy": BASE | {"options", "numbers", "trees", "methods", "evaluation"},
+    "dynamics": BASE | {"options", "numbers", "methods", "evaluation", "energy"},
+    "studies": BASE | {"options", "numbers", "trees", "methods", "evaluation", "energy"},
+    "batch": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy"},
+    "reports": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
+                       "studies", "batch"},
+    "api": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
+                   "studies", "batch", "reports"},
+    "cli": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
+                   "studies", "batch", "reports", "api"},
+    "__init__": {"api"},
+    "__main__": {"cli"},
+}
+#: the core computes; it never prints, parses command lines or renders
+CORE = ("numbers", "trees", "methods", "evaluation", "energy")
+
+
+def unit_of(path: Path) -> str:
+    rel = path.relative_to(PACKAGE)
+    return rel.parts[0].removesuffix(".py") if len(rel.parts) > 1 else rel.stem
+
+
+def imports(path: Path) -> list[tuple[int, str, list[str]]]:
+    """(line, module, names) of every import of rkcheck in the file."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            assert node.level == 0, f"{path}:{node.lineno}: relative import"
+            if node.module and node.module.split(".")[0] == "rkcheck":
+                out.append((node.lineno, node.module, [a.name for a in node.names]))
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] == "rkcheck":
+                    out.append((node.lineno, alias.name, []))
+    return out
+
+
+def imported_units(module: str, names: list[str]) -> set[str]:
+    parts = module.split(".")
+    if len(parts) > 1:
+        return {parts[1]}
+    # `from rkcheck import X`: the version string is the only thing the root may give
+    return {"__version__" if n == "__version__" else n for n in names}
+
+
+def test_every_unit_has_a_rule():
+    units = {unit_of(p) for p in PACKAGE.rglob("*.py")}
+    assert units <= set(ALLOWED), f"add a rule for {sorted(units - set(ALLOWED))}"
+
+
+def test_imports_follow_the_flow():
+    bad = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        unit = unit_of(path)
+        for line, module, names in imports(path):
+            for target in imported_units(module, names) - {unit, "__version__"}:
+                if target not in ALLOWED[unit]:
+                    bad.append(f"{path.relative_to(REPO)}:{line}: {unit} imports {target} ({module})")
+    assert not bad, "imports against the flow:\n" + "\n".join(bad)
+
+
+def test_core_does_no_io_and_knows_no_cli():
+    forbidden = {"click", "rich", "sys.stdout", "builtins.print"}
+    bad = []
+    for unit in CORE:
+        for path in sorted((PACKAGE / unit).rglob("*.py")):
+            tree = ast.parse(path.read_text(encoding="utf-8"))
+            for node in ast.walk(tree):
+                if isinstance(node, (ast.Import, ast.ImportFrom)):
+                    names = [node.module] if isinstance(node, ast.ImportFrom) else [a.name for a in node.names]
+                    if any(n and n.split(".")[0] in forbidden for n in names):
+                        bad.append(f"{path.relative_to(REPO)}:{node.lineno}: imports {names}")
+                if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("print", "open"):
+                    bad.append(f"{path.relative_to(REPO)}:{node.lineno}: calls {node.func.id}()")
+    assert not bad, "\n".join(bad)
+
+
+def test_every_subpackage_says_what_it_takes_gives_and_may_import():
+    for init in sorted(PACKAGE.glob("*/__init__.py")):
+        doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
+        assert "May import" in doc or init.parent.name == "cli", f"{init}: docstring lacks the import rule"
+        assert len(doc.split()) >= 20, f"{init}: docstring too short to say what the stage takes and gives"
