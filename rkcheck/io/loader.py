@@ -192,7 +192,7 @@ def _constants(table: dict[str, Any]) -> Constants:
     for name, value in table.items():
         place = f"constants.{name}"
         if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name) or name in ex.FUNCTIONS:
-            raise UserError("a constant's name must be an identifier (letters, digits, _) other than sqrt", place)
+            raise UserError("a constant's name must be an identifier (letters, digits, _) other than a function name (sqrt, root)", place)
         text, _ = _entry_text(value, place)
         try:
             defs[name] = ex.parse(text)

@@ -2,14 +2,16 @@
 
 File content never reaches ``eval``/``exec``: entries are tokenised and parsed here into
 a tiny AST that only knows numbers, named constants, ``+ - * / ^ **``, unary signs,
-parentheses and ``sqrt(...)``.  Grammar (``^`` and ``**`` are the same operator, right
+parentheses, ``sqrt(...)`` and ``root(p, k)`` (the k-th smallest real root of a
+polynomial p in ``x`` with rational coefficients).  Grammar (``^`` and ``**`` are the same operator, right
 associative, binding tighter than unary minus, so ``-2^2 = -4`` and ``2^-1 = 1/2``)::
 
     expr   := term  (('+' | '-') term)*
     term   := unary (('*' | '/') unary)*
     unary  := ('+' | '-') unary | power
     power  := atom (('^' | '**') unary)?
-    atom   := NUMBER | NAME | 'sqrt' '(' expr ')' | '(' expr ')'
+    atom   := NUMBER | NAME | FUNC '(' expr (',' expr)* ')' | '(' expr ')'
+    FUNC   := 'sqrt' (one argument) | 'root' (two: root(p, k))
 
 Numbers are integers, decimals (``0.25``, ``.5``, ``2.``) and scientific notation
 (``1.5e-3``).  A decimal literal keeps the number of significant digits it was
@@ -45,7 +47,10 @@ ROUNDED_MIN_DIGITS = 6
 
 _NUMBER = re.compile(r"(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-FUNCTIONS = ("sqrt",)
+#: Functions and their number of arguments.  ``root(p, k)`` is the k-th smallest real root
+#: of the polynomial p in the variable :data:`ROOT_VARIABLE` (rational coefficients).
+FUNCTIONS = {"sqrt": 1, "root": 2}
+ROOT_VARIABLE = "x"
 
 
 # --------------------------------------------------------------------------- AST
@@ -99,9 +104,16 @@ class Power:
 
 @dataclass(frozen=True, slots=True)
 class Call:
+    """``sqrt(a)`` or ``root(p, k)``: a function of one or more arguments."""
+
     func: str
-    arg: "Expr"
+    args: tuple["Expr", ...]
     column: int
+
+    @property
+    def arg(self) -> "Expr":
+        """The first argument (the only one of ``sqrt``)."""
+        return self.args[0]
 
 
 Expr = Num | Name | Unary | Binary | Power | Call
@@ -157,6 +169,10 @@ def _tokenize(text: str) -> list[_Token]:
         if ch == ")":
             depth -= 1
             tokens.append(_Token(")", ch, col))
+            i += 1
+            continue
+        if ch == ",":
+            tokens.append(_Token(",", ch, col))
             i += 1
             continue
         raise UserError(f"unexpected character {ch!r} at column {col}")
@@ -244,13 +260,22 @@ class _Parser:
         if tok.kind == "name":
             if self.peek().kind == "(":
                 if tok.text not in FUNCTIONS:
-                    raise UserError(f"unknown function {tok.text!r} at column {tok.column} (only sqrt)")
+                    known = ", ".join(FUNCTIONS)
+                    raise UserError(f"unknown function {tok.text!r} at column {tok.column} (known: {known})")
                 self.take()
-                arg = self.expr()
+                args = [self.expr()]
+                while self.peek().kind == ",":
+                    self.take()
+                    args.append(self.expr())
                 close = self.take()
                 if close.kind != ")":
                     raise self.fail(close)
-                return Call(tok.text, arg, tok.column)
+                want = FUNCTIONS[tok.text]
+                if len(args) != want:
+                    shape = "sqrt(a)" if tok.text == "sqrt" else "root(p, k)"
+                    raise UserError(f"{tok.text} takes {want} argument{'s' if want > 1 else ''} ({shape}) "
+                                    f"at column {tok.column}")
+                return Call(tok.text, tuple(args), tok.column)
             if tok.text in FUNCTIONS:
                 raise UserError(f"{tok.text} needs parentheses at column {tok.column}")
             return Name(tok.text, tok.column)
@@ -308,11 +333,99 @@ def walk(node: Expr):
         if isinstance(n, Unary):
             stack.append(n.operand)
         elif isinstance(n, Call):
-            stack.append(n.arg)
+            # root's polynomial is not part of the expression: its x is a bound variable
+            # and its coefficients are exact (see :func:`root_polynomial`)
+            stack.extend(reversed(n.args[1:] if n.func == "root" else n.args))
         elif isinstance(n, Binary):
             stack.extend((n.right, n.left))
         elif isinstance(n, Power):
             stack.extend((n.exponent, n.base))
+
+
+# ------------------------------------------------------------------- root(p, k)
+
+MAX_ROOT_DEGREE = 100
+
+
+def root_polynomial(call: Call) -> list[Fraction]:
+    """The coefficients (ascending) of the polynomial of ``root(p, k)``: ``p`` may use the
+    variable ``x``, numbers (taken exactly), ``+ - *``, division by a nonzero number and
+    powers with integer exponents >= 0."""
+    from rkcheck.numbers.polynomials import trim
+
+    def padd(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
+        n = max(len(a), len(b))
+        return [(a[i] if i < len(a) else 0) + (b[i] if i < len(b) else 0) for i in range(n)]
+
+    def pmul(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
+        out = [Fraction(0)] * (len(a) + len(b) - 1)
+        for i, x in enumerate(a):
+            if x:
+                for j, y in enumerate(b):
+                    out[i + j] += x * y
+        if len(out) - 1 > MAX_ROOT_DEGREE:
+            raise UserError(f"root's polynomial has degree above {MAX_ROOT_DEGREE} at column {call.column}")
+        return out
+
+    def const(node: Expr, what: str) -> Fraction:
+        p = trim(go(node))
+        if len(p) > 1:
+            raise UserError(f"{what} in root's polynomial must not depend on x (column {call.column})")
+        return p[0]
+
+    def go(node: Expr) -> list[Fraction]:
+        if isinstance(node, Num):
+            return [node.value]
+        if isinstance(node, Name):
+            if node.name != ROOT_VARIABLE:
+                raise UserError(f"root's polynomial may use only the variable {ROOT_VARIABLE!r} and numbers, "
+                                f"not {node.name!r} (column {node.column})")
+            return [Fraction(0), Fraction(1)]
+        if isinstance(node, Unary):
+            return [-c for c in go(node.operand)]
+        if isinstance(node, Call):
+            raise UserError(f"no function inside root's polynomial (column {node.column})")
+        if isinstance(node, Power):
+            n = _check_exponent(const(node.exponent, "an exponent"), node.column)
+            if n < 0:
+                raise UserError(f"negative power in root's polynomial at column {node.column}")
+            base, out = go(node.base), [Fraction(1)]
+            for _ in range(n):
+                out = pmul(out, base)
+            return out
+        assert isinstance(node, Binary)
+        left, right = go(node.left), go(node.right)
+        if node.op == "+":
+            return padd(left, right)
+        if node.op == "-":
+            return padd(left, [-c for c in right])
+        if node.op == "*":
+            return pmul(left, right)
+        divisor = const(node.right, "a divisor")
+        if divisor == 0:
+            raise UserError(f"division by zero at column {node.column}")
+        return [c / divisor for c in left]
+
+    coeffs = trim(go(call.args[0]))
+    if len(coeffs) < 2:
+        raise UserError(f"root's polynomial must have degree >= 1 (column {call.column})")
+    return coeffs
+
+
+def root_enclosure(call: Call, k_value: Fraction | None, bits: int) -> Interval:
+    """The k-th smallest real root of root(p, k), enclosed to ``2^-bits`` (exact when
+    rational).  ``k_value`` is the exact value of k."""
+    from rkcheck.numbers.polynomials import real_root_intervals
+
+    if k_value is None or k_value.denominator != 1 or k_value < 1:
+        raise UserError(f"root(p, k): k must be a positive integer, got {k_value} (column {call.column})")
+    coeffs = root_polynomial(call)
+    roots = real_root_intervals(coeffs, bits)
+    k = int(k_value)
+    if k > len(roots):
+        raise UserError(f"root(p, {k}): the polynomial has only {len(roots)} real root"
+                        f"{'s' if len(roots) != 1 else ''} (column {call.column})")
+    return roots[k - 1]
 
 
 def names(node: Expr) -> list[Name]:
@@ -357,6 +470,9 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
         v = evaluate_exact(node.operand, constants)
         return None if v is None else -v
     if isinstance(node, Call):
+        if node.func == "root":
+            iv = root_enclosure(node, evaluate_exact(node.args[1], constants), 64)
+            return iv.lo if iv.is_point else None
         v = evaluate_exact(node.arg, constants)
         if v is None:
             return None
@@ -413,6 +529,9 @@ def enclose(
         return constants[node.name]
     if isinstance(node, Unary):
         return -enclose(node.operand, bits, rounded, constants)
+    if isinstance(node, Call) and node.func == "root":
+        k = enclose(node.args[1], bits, rounded, constants)
+        return root_enclosure(node, k.lo if k.is_point else None, bits)
     if isinstance(node, Call):
         v = enclose(node.arg, bits, rounded, constants)
         if v.hi < 0:
@@ -461,7 +580,7 @@ def to_text(node: Expr) -> str:
         if isinstance(n, Name):
             return n.name
         if isinstance(n, Call):
-            return f"{n.func}({go(n.arg, 0)})"
+            return f"{n.func}({', '.join(go(a, 0) for a in n.args)})"
         if isinstance(n, Unary):
             s = "-" + go(n.operand, 3)
             return f"({s})" if parent >= 3 else s

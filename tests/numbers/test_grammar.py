@@ -174,3 +174,49 @@ def test_to_text_round_trips():
         node = ex.parse(text)
         again = ex.parse(ex.to_text(node))
         assert again == node or ex.to_text(again) == ex.to_text(node)
+
+
+# ------------------------------------------------------------------ root(p, k)
+
+
+def test_root_is_the_kth_real_root_certified():
+    # Shifted Legendre P4 (Gauss-4 nodes): closed form 1/2 ± sqrt(3/7 ∓ 2/7·sqrt(6/5))/2
+    p4 = "70*x^4 - 140*x^3 + 90*x^2 - 20*x + 1"
+    closed = [
+        "1/2 - sqrt(3/7 + 2/7*sqrt(6/5))/2", "1/2 - sqrt(3/7 - 2/7*sqrt(6/5))/2",
+        "1/2 + sqrt(3/7 - 2/7*sqrt(6/5))/2", "1/2 + sqrt(3/7 + 2/7*sqrt(6/5))/2",
+    ]
+    for k, form in enumerate(closed, start=1):
+        r = Entry.parse(f"root({p4}, {k})")
+        assert r.exact is None and r.uses_sqrt
+        a, b = r.enclosure(200), Entry.parse(form).enclosure(200)
+        assert a.hi - a.lo < Fraction(1, 2**200)
+        assert a.lo <= b.hi and b.lo <= a.hi  # the same number
+
+
+def test_rational_roots_are_exact_and_x_is_bound_inside_root_only():
+    assert Entry.parse("root(x^2 - 4, 2)").exact == 2
+    assert Entry.parse("root((x - 1/3)*(x - 2)^2, 1)").exact == Fraction(1, 3)
+    assert Entry.parse("root((x - 1/3)*(x - 2)^2, 2)").exact == 2  # double root counted once
+    assert ex.to_text(ex.parse("root(x^2 - 2, 1)")) == "root(x^2 - 2, 1)"
+    with pytest.raises(UserError, match="unknown constant 'x'"):
+        Entry.parse("x + 1")
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("root(x^2 + 1, 1)", "only 0 real roots"),
+        ("root(x^2 - 2, 3)", "only 2 real roots"),
+        ("root(y^2 - 2, 1)", "only the variable 'x'"),
+        ("root(x^2 - 2)", "takes 2 arguments"),
+        ("sqrt(2, 3)", "takes 1 argument"),
+        ("root(x^2 - 2, 1/2)", "k must be a positive integer"),
+        ("root(5, 1)", "degree >= 1"),
+        ("root(x^-1, 1)", "negative power"),
+        ("root(sqrt(x), 1)", "no function inside"),
+    ],
+)
+def test_root_errors_name_the_problem(text, message):
+    with pytest.raises(UserError, match=message):
+        Entry.parse(text)
