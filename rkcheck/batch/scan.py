@@ -103,11 +103,11 @@ def _work(path: str) -> FileOutcome:
 
 def warm_tables(flags: dict[str, Any], project: dict[str, Any]) -> None:
     """Build the condition table of the scan's default options before forking workers."""
-    from rkcheck.trees.conditions import condition_table
+    from rkcheck.trees.listing import condition_listing
 
     degree = flags.get("degree", project.get("degree"))
     order = flags.get("order", project.get("order", DEFAULT_ORDER))
-    condition_table(order, degree)
+    condition_listing(order, degree)
 
 
 def run_scan(

@@ -95,17 +95,17 @@ def show(file, fmt, decimals, max_stages) -> None:
 @output_options
 def conditions(order, degree, count, fmt) -> None:
     """List the energy conditions (non-superfluous free trees) up to an order."""
-    from rkcheck.trees.conditions import condition_table
+    from rkcheck.trees.listing import condition_listing
 
-    table = condition_table(order, degree)
+    listing = condition_listing(order, degree)
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc, dumps
 
-        click.echo(dumps(conditions_list_doc(table, with_conditions=not count)))
+        click.echo(dumps(conditions_list_doc(listing, with_conditions=not count)))
         return
     from rkcheck.reports.text import render_condition_list
 
-    render_condition_list(table, stdout_console(), count)
+    render_condition_list(listing, stdout_console(), count)
 
 
 @click.command()

@@ -1,15 +1,23 @@
 """``check(tableau, options)``: every energy condition, the orders, and the AVF verdict.
 
 This is the pure core behind ``rkcheck verify``: it takes a loaded
-:class:`~rkcheck.methods.tableau.Tableau` and returns a :class:`CheckResult` (plain data that the
-reports render).  It does no I/O and knows nothing of the CLI.
+:class:`~rkcheck.methods.tableau.Tableau` and returns a :class:`CheckResult` (plain data
+that the reports render).  It does no I/O and knows nothing of the CLI.
+
+The verdicts of all conditions are kept per number of vertices as compact arrays (3.5
+million conditions at order 20); a condition's record (canonical id, bracket) and its
+residual are built only when someone looks at it.  Within an order, conditions are
+presented by canonical id (level sequence) ascending.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from fractions import Fraction
+from typing import Any, Iterator, NamedTuple, Sequence
+
+import numpy as np
 
 from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
 from rkcheck.energy.lineintegral import (
@@ -19,25 +27,163 @@ from rkcheck.energy.lineintegral import (
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.energy.verdicts import (
     FAILS,
+    HOLDS,
     HOLDS_TO_DIGITS,
     Verdict,
-    classify,
+    classify_bounds,
     classify_many,
-    combine,
 )
-from rkcheck.evaluation.backends import make_backend
+from rkcheck.evaluation.backends import Evaluation, evaluate
 from rkcheck.methods.tableau import Tableau, consistency_warnings
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
 from rkcheck.numbers.precision import entry_bits
 from rkcheck.options import DEFAULT_DPS, DEFAULT_ORDER, CheckOptions  # noqa: F401 (re-exported)
-from rkcheck.trees.conditions import ConditionTable, EnergyCondition, condition_table
+from rkcheck.trees.listing import ConditionListing, ConditionRecord, condition_listing
+
+_STATE = (HOLDS, HOLDS_TO_DIGITS, FAILS)
+_CODE = {HOLDS: 0, HOLDS_TO_DIGITS: 1, FAILS: 2}
 
 
 class ConditionResult(NamedTuple):
-    condition: EnergyCondition
+    """One condition: its record, a certified enclosure of its residual R (for the
+    designated rooting), the verdict, and the exact value of R when it is exact."""
+
+    condition: ConditionRecord
     enclosure: Enclosure
     verdict: Verdict
+    value: Any = None  # Fraction (or field element) when exact, else None
+
+
+@dataclass
+class OrderVerdicts:
+    """The verdicts of the conditions with ``vertices`` vertices, in listing order."""
+
+    vertices: int
+    state: np.ndarray  # int8: 0 holds, 1 holds_to_digits, 2 fails
+    digits: np.ndarray  # int32 (meaningful where state == 1)
+    values: Any  # ExactOrderSums or list[Enclosure] (representative sign)
+    _rank: np.ndarray | None = field(default=None, repr=False)  # presentation order
+    _records: list | None = field(default=None, repr=False)
+    _exact: list | None = field(default=None, repr=False)  # all exact values, rebuilt at once
+
+    @property
+    def order(self) -> int:
+        return self.vertices - 1
+
+    def __len__(self) -> int:
+        return len(self.state)
+
+
+class ConditionResults(Sequence[ConditionResult]):
+    """Every checked condition, by vertices and then canonical id, built on demand."""
+
+    def __init__(self, listing: ConditionListing, orders: dict[int, OrderVerdicts]):
+        self.listing = listing
+        self.orders = dict(sorted(orders.items()))
+        self._offsets = np.cumsum([0] + [len(o) for o in self.orders.values()])
+
+    def __len__(self) -> int:
+        return int(self._offsets[-1])
+
+    def _presentation(self, o: OrderVerdicts) -> np.ndarray:
+        if o._rank is None:
+            o._records = self.listing.records(o.vertices)
+            seqs = [r.level_sequence for r in o._records]
+            o._rank = np.array(sorted(range(len(o)), key=seqs.__getitem__), dtype=np.int64)
+        return o._rank
+
+    def _record(self, o: OrderVerdicts, k: int) -> ConditionRecord:
+        return o._records[k] if o._records is not None else self.listing.record(o.vertices, k)
+
+    def result(self, n: int, k: int) -> ConditionResult:
+        """Condition ``k`` (listing order) of the order with ``n`` vertices."""
+        o = self.orders[n]
+        record = self._record(o, k)
+        verdict = Verdict(_STATE[o.state[k]], int(o.digits[k]) if o.state[k] == 1 else None)
+        if isinstance(o.values, list) or hasattr(o.values, "excludes_zero"):
+            e = o.values[k] if isinstance(o.values, list) else o.values.enclosure(k)
+            return ConditionResult(record, Enclosure(e.mid * record.flip, e.rad, e.exact), verdict)
+        if o._exact is None and o._records is not None:  # a whole order is being read
+            o._exact = o.values.values()
+        value = (o._exact[k] if o._exact is not None else o.values.value(k)) * record.flip
+        return ConditionResult(record, _enclosure_of(value), verdict, value)
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        if i < 0:
+            i += len(self)
+        idx = int(np.searchsorted(self._offsets, i, side="right")) - 1
+        o = list(self.orders.values())[idx]
+        return self.result(o.vertices, int(self._presentation(o)[i - self._offsets[idx]]))
+
+    def __iter__(self) -> Iterator[ConditionResult]:
+        for o in self.orders.values():
+            for k in self._presentation(o):
+                yield self.result(o.vertices, int(k))
+
+    def with_state(self, state: str) -> Iterator[ConditionResult]:
+        """The conditions in a state, in presentation order, without building the others."""
+        code = _CODE[state]
+        for o in self.orders.values():
+            hits = np.flatnonzero(o.state == code)
+            if len(hits) == 0:
+                continue
+            seqs = {int(k): self.listing.record(o.vertices, int(k)).level_sequence for k in hits}
+            for k in sorted(seqs, key=seqs.__getitem__):
+                yield self.result(o.vertices, k)
+
+    def count(self, state: str) -> int:  # type: ignore[override]
+        code = _CODE[state]
+        return int(sum(int(np.count_nonzero(o.state == code)) for o in self.orders.values()))
+
+
+def _enclosure_of(value: Any) -> Enclosure:
+    """The enclosure of an exact residual: itself for a rational, a tight certified one
+    (exact flag off: it is a numerical view) for an algebraic number."""
+    if isinstance(value, Fraction):
+        return Enclosure.of(value)
+    iv = value.enclosure(256)
+    return Enclosure(iv.mid, iv.rad, False)
+
+
+class Failures(Sequence[ConditionResult]):
+    """The failing conditions of a result: counted at once, built only as far as read."""
+
+    def __init__(self, results: ConditionResults):
+        self._results = results
+        self._count = results.count(FAILS)
+        self._built: list[ConditionResult] = []
+        self._source = results.with_state(FAILS)
+
+    def __len__(self) -> int:
+        return self._count
+
+    def _build(self, upto: int) -> None:
+        while len(self._built) < min(upto, self._count):
+            self._built.append(next(self._source))
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            start, stop, step = i.indices(self._count)
+            self._build(stop)
+            return self._built[start:stop:step]
+        if i < 0:
+            i += self._count
+        self._build(i + 1)
+        return self._built[i]
+
+    def __iter__(self) -> Iterator[ConditionResult]:
+        for i in range(self._count):
+            yield self[i]
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, (list, tuple, Failures)):
+            return len(self) == len(other) and list(self) == list(other)
+        return NotImplemented
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 @dataclass(frozen=True)
@@ -55,7 +201,7 @@ class CheckResult:
     tableau: Tableau
     options: CheckOptions
     backend: str  # "exact" or "ball"
-    results: list[ConditionResult]
+    results: ConditionResults
     per_order: list[OrderCounts]
     energy_order: int
     energy_order_all: bool  # certified for every order (AVF or line-integral certificate)
@@ -66,19 +212,26 @@ class CheckResult:
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
+    _failures: Failures | None = field(default=None, repr=False)
 
     @property
-    def failures(self) -> list[ConditionResult]:
-        return [r for r in self.results if r.verdict.state == FAILS]
+    def failures(self) -> Failures:
+        if self._failures is None:
+            self._failures = Failures(self.results)
+        return self._failures
 
     @property
     def all_hold(self) -> bool:
-        return not self.failures
+        return len(self.failures) == 0
 
     @property
     def first_failure(self) -> ConditionResult | None:
-        fails = self.failures
-        return fails[0] if fails else None
+        return self.failures[0] if len(self.failures) else None
+
+    @property
+    def min_digits(self) -> int | None:
+        digits = [p.min_digits for p in self.per_order if p.min_digits is not None]
+        return min(digits) if digits else None
 
     @property
     def energy_order_label(self) -> str:
@@ -90,73 +243,98 @@ class CheckResult:
             return f"≥ {self.options.order}"
         return str(self.energy_order)
 
-    @property
-    def min_digits(self) -> int | None:
-        digits = [r.verdict.digits for r in self.results if r.verdict.state == HOLDS_TO_DIGITS]
-        return min(digits) if digits else None  # type: ignore[type-var]
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state["_failures"] = None  # a generator does not pickle; it is rebuilt on demand
+        return state
 
 
-def evaluate_conditions(
-    table: ConditionTable, backend, fail_fast: bool = False
-) -> list[ConditionResult]:
-    """Every condition of ``table`` on ``backend`` (weights computed once, shared)."""
-    backend.tree_weights(table.trees)
-    out: list[ConditionResult] = []
-    if not fail_fast:
-        batch = getattr(backend, "enclose_table", None)
-        if batch is not None:
-            encs = batch(table)
-            return [ConditionResult(c, e, v) for c, e, v in zip(table.conditions, encs, classify_many(encs))]
-    stop_after_order = None
-    for cond in table.conditions:
-        if stop_after_order is not None and cond.order > stop_after_order:
-            break
-        enc = backend.enclose_terms(table.trees, cond.terms, cond.denominator)
-        verdict = classify(enc)
-        out.append(ConditionResult(cond, enc, verdict))
-        if fail_fast and verdict.state == FAILS and stop_after_order is None:
-            stop_after_order = cond.order  # finish this order, so its counts are complete
+# ---------------------------------------------------------------------- verdicts
+
+
+def order_verdicts(n: int, values: Any) -> OrderVerdicts:
+    """The verdicts of one order's residuals (definitions §5): exact residues (zero or
+    not), certified balls (excludes 0, magnitude bound), or a list of enclosures."""
+    if hasattr(values, "excludes_zero"):
+        state, digits = classify_bounds(values.excludes_zero(), values.magnitude_bound())
+        return OrderVerdicts(n, state, digits, values)
+    if isinstance(values, list):
+        verdicts = classify_many(values)
+        state = np.array([_CODE[v.state] for v in verdicts], dtype=np.int8)
+        digits = np.array([v.digits if v.digits is not None else -1 for v in verdicts], dtype=np.int32)
+        return OrderVerdicts(n, state, digits, values)
+    zero = values.is_zero()
+    state = np.where(zero, 0, 2).astype(np.int8)
+    return OrderVerdicts(n, state, np.full(len(state), -1, dtype=np.int32), values)
+
+
+def per_order_counts(listing: ConditionListing, orders: dict[int, OrderVerdicts]) -> list[OrderCounts]:
+    out = []
+    for k, total in listing.counts_by_order().items():
+        o = orders.get(k + 1)
+        if o is None:
+            out.append(OrderCounts(k, total, 0, 0, 0, None))
+            continue
+        failed = int(np.count_nonzero(o.state == 2))
+        digits = o.digits[o.state == 1]
+        out.append(OrderCounts(k, total, len(o), len(o) - failed, failed, int(digits.min()) if len(digits) else None))
     return out
 
 
-def energy_order_of(results: list[ConditionResult], order: int) -> int:
+def energy_order_of(per_order: list[OrderCounts], order: int) -> int:
     """Largest n <= order such that every condition with <= n+1 vertices holds (definitions §3)."""
-    failing = [r.condition.order for r in results if r.verdict.state == FAILS]
+    failing = [p.order for p in per_order if p.failed]
     return min(failing) - 1 if failing else order
 
 
-def per_order_counts(table: ConditionTable, results: list[ConditionResult]) -> list[OrderCounts]:
-    totals = table.counts_by_order()
-    out = []
-    for k in sorted(totals):
-        rs = [r for r in results if r.condition.order == k]
-        failed = sum(1 for r in rs if r.verdict.state == FAILS)
-        digits = [r.verdict.digits for r in rs if r.verdict.state == HOLDS_TO_DIGITS]
-        out.append(
-            OrderCounts(k, totals[k], len(rs), len(rs) - failed, failed, min(digits) if digits else None)  # type: ignore[type-var]
-        )
-    return out
+# ---------------------------------------------------------------------- check
 
 
-def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
+def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckOptions, enclosures=None,
+                    arithmetic: str = "auto") -> tuple[str, dict[int, OrderVerdicts]]:
+    """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
+    the first one that has a certainly failing condition."""
+    wanted = sorted(listing.orders)
+    if options.fail_fast and wanted:
+        # orders are cheap at the bottom and costly at the top: look one order at a time
+        # until a failure, doubling the batch, so that a low failure never pays for the top
+        orders: dict[int, OrderVerdicts] = {}
+        backend = "exact"
+        i, step = 0, 1
+        while i < len(wanted):
+            batch = wanted[i:i + step]
+            ev = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, batch, enclosures)
+            backend = ev.backend
+            for n in batch:
+                orders[n] = order_verdicts(n, ev.orders[n])
+            failing = [n for n in batch if np.any(orders[n].state == 2)]
+            if failing:  # keep the orders up to the first failing one: what fail-fast promises
+                return backend, {n: v for n, v in orders.items() if n <= failing[0]}
+            i += step
+            step *= 2
+        return backend, orders
+    ev: Evaluation = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, None, enclosures)
+    return ev.backend, {n: order_verdicts(n, v) for n, v in ev.orders.items()}
+
+
+def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto") -> CheckResult:
     """Run the whole check of definitions §3–§5 on ``tableau``."""
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    table = condition_table(options.order, options.degree)
+    listing = condition_listing(options.order, options.degree)
     t1 = time.perf_counter()
-    timings["trees"] = t1 - t0
+    timings["trees"] = t1 - t0  # the listing of the conditions (JSON key kept)
 
     bits = entry_bits(options.dps)
     A, b = tableau.enclosures(bits, options.decimals)  # once: backend, orders, certificates
-    backend = make_backend(tableau, options.dps, options.decimals, (A, b))
-    exact = backend.exact
-    results = evaluate_conditions(table, backend, options.fail_fast)
+    backend, orders = evaluate_orders(listing, tableau, options, (A, b), arithmetic)
+    exact = backend == "exact"
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
 
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
     quad = quadrature_order(A, b, exact)
-    classical = classical_order(backend, options.order)
+    classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
     if options.degree is not None:
         reduced = reduce_stages([row[:] for row in A], b[:], exact)  # shared by both certificates
@@ -165,8 +343,11 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 
-    energy_order = energy_order_of(results, options.order)
-    first = next((r for r in results if r.verdict.state == FAILS), None)
+    results = ConditionResults(listing, orders)
+    per_order = per_order_counts(listing, orders)
+    energy_order = energy_order_of(per_order, options.order)
+    failures = Failures(results)
+    first = failures[0] if len(failures) else None
     if first is not None:
         # A certificate "to D digits" is refuted by a condition that certainly fails; an
         # exact certificate cannot be, so that would be a bug.
@@ -197,9 +378,9 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     return CheckResult(
         tableau=tableau,
         options=options,
-        backend=backend.name,
+        backend=backend,
         results=results,
-        per_order=per_order_counts(table, results),
+        per_order=per_order,
         energy_order=energy_order,
         energy_order_all=energy_all,
         quadrature=quad,
@@ -209,11 +390,16 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
         theorem1=remark,
         warnings=warnings,
         timings=timings,
+        _failures=failures,
     )
 
 
 def overall(result: CheckResult) -> Verdict:
-    return combine([r.verdict for r in result.results])
+    """All checked conditions at once: fails if any fails, else the weakest digits."""
+    if len(result.failures):
+        return Verdict(FAILS)
+    digits = result.min_digits
+    return Verdict(HOLDS_TO_DIGITS, digits) if digits is not None else Verdict(HOLDS)
 
 
 def conditions_ok(result: CheckResult) -> bool:

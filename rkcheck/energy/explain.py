@@ -7,18 +7,29 @@ centre (definitions §3) and lists the terms of
 
 writing each ``a(t)`` in the usual Σ-notation over ``b``, ``A`` and ``c``
 (``a([[τ²]τ]) = Σ b_i c_i a_ij c_j²``).  With a tableau it also evaluates every term.
+
+The tree is small (at most 21 vertices), so everything is computed directly on it: the
+rooting at every vertex, its canonical level sequence, the distance to the designated
+centre — a second route to the conditions, independent of the bulk listing of
+:mod:`rkcheck.trees.listing` (the tests compare the two).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
 
 from rkcheck.energy.verdicts import Verdict, classify
-from rkcheck.evaluation.backends import make_backend
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.trees.conditions import EnergyCondition, condition_from_free_tree
-from rkcheck.trees.free import FreeTreeGenerator, table_for
-from rkcheck.trees.rooted import bracket, children_of_level_sequence
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import entry_bits
+from rkcheck.trees.rooted import (
+    bracket,
+    bracket_of_forest,
+    canonical_level_sequence,
+    children_of_level_sequence,
+)
 
 _INDICES = "ijklmnpqrsuvwxyz"
 _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -49,6 +60,21 @@ def sigma_notation(seq: tuple[int, ...]) -> str:
 
 
 @dataclass(frozen=True)
+class ExplainedCondition:
+    level_sequence: tuple[int, ...]
+    bracket: str
+    vertices: int
+
+    @property
+    def id(self) -> str:
+        return ",".join(map(str, self.level_sequence))
+
+    @property
+    def order(self) -> int:
+        return self.vertices - 1
+
+
+@dataclass(frozen=True)
 class ExplainedTerm:
     level_sequence: tuple[int, ...]
     bracket: str
@@ -61,7 +87,7 @@ class ExplainedTerm:
 @dataclass
 class Explanation:
     given: tuple[int, ...]
-    condition: EnergyCondition | None  # None when superfluous
+    condition: ExplainedCondition | None  # None when superfluous (or too small)
     superfluous: bool
     vertices: int
     max_degree: int
@@ -74,51 +100,160 @@ class Explanation:
         return self.condition.id if self.condition else ",".join(map(str, self.given))
 
 
-def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "rounded") -> Explanation:
-    """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it)."""
-    n = len(seq)
-    if n < 3:
-        return Explanation(seq, None, n == 2, n, n - 1)
-    degree = _max_degree(seq)
-    table = table_for(n - 1, degree)
-    gen = FreeTreeGenerator(table, degree)
-    tree = gen.from_level_sequence(seq)
-    if tree.superfluous:
-        return Explanation(seq, None, True, n, tree.max_degree)
-    cond = condition_from_free_tree(-1, tree, table)
-    backend = None
-    if tableau is not None:
-        backend = make_backend(tableau, dps, decimals)
-        backend.tree_weights(table)
-    terms = []
-    for term in cond.terms:
-        forest = [
-            (table.level_sequence(b), table.bracket(b), sigma_notation(table.level_sequence(b)))
-            for b in term.branches
-        ]
-        value = None
-        if backend is not None:
-            value = backend.enclose_terms(table, [term], term.sigma)
-        terms.append(
-            ExplainedTerm(cond.term_level_sequence(term), cond.term_bracket(term), term.sign, term.sigma, forest, value)
-        )
-    out = Explanation(seq, cond, False, n, cond.max_degree, terms)
-    if backend is not None:
-        out.residual = backend.enclose_terms(table, cond.terms, cond.denominator)
-        out.verdict = classify(out.residual)
+# ------------------------------------------------------------------ the free tree
+
+
+def adjacency(seq: tuple[int, ...]) -> list[list[int]]:
+    """The tree of a level sequence as adjacency lists (vertex 0 = the given root)."""
+    adj: list[list[int]] = [[] for _ in seq]
+    last_at_depth: dict[int, int] = {}
+    for v, d in enumerate(seq):
+        if d > 1:
+            p = last_at_depth[d - 1]
+            adj[p].append(v)
+            adj[v].append(p)
+        last_at_depth[d] = v
+    return adj
+
+
+def rooted_at(adj: list[list[int]], root: int) -> tuple[int, ...]:
+    """Canonical level sequence of the tree rooted at ``root``."""
+    order, depth, parent = [], {root: 1}, {root: -1}
+    stack = [root]
+    while stack:  # depth-first, iteratively: the sequence is canonicalised afterwards
+        v = stack.pop()
+        order.append(v)
+        for w in reversed(adj[v]):
+            if w != parent[v]:
+                parent[w], depth[w] = v, depth[v] + 1
+                stack.append(w)
+    return canonical_level_sequence([depth[v] for v in order])
+
+
+def centres(adj: list[list[int]]) -> list[int]:
+    """The one or two centres, by peeling leaves."""
+    n = len(adj)
+    if n <= 2:
+        return list(range(n))
+    degree = [len(a) for a in adj]
+    layer = [v for v in range(n) if degree[v] == 1]
+    remaining = n
+    while remaining > 2:
+        remaining -= len(layer)
+        nxt = []
+        for v in layer:
+            for w in adj[v]:
+                degree[w] -= 1
+                if degree[w] == 1:
+                    nxt.append(w)
+        layer = nxt
+    return sorted(layer)
+
+
+def distances(adj: list[list[int]], source: int) -> list[int]:
+    dist = [-1] * len(adj)
+    dist[source] = 0
+    queue = [source]
+    for v in queue:
+        for w in adj[v]:
+            if dist[w] < 0:
+                dist[w] = dist[v] + 1
+                queue.append(w)
+    return dist
+
+
+def sigma_of(seq: tuple[int, ...]) -> int:
+    """σ (definitions §2) of a canonical level sequence: Π r_i! σ(t_i)^r_i."""
+    import math
+
+    subs = children_of_level_sequence(seq)
+    out = 1
+    for sub in set(subs):
+        r = subs.count(sub)
+        out *= math.factorial(r) * sigma_of(sub) ** r
     return out
 
 
-def _max_degree(seq: tuple[int, ...]) -> int:
-    degree = [0] * len(seq)
-    last: dict[int, int] = {}
-    for v, d in enumerate(seq):
-        if d > 1:
-            p = last[d - 1]
-            degree[p] += 1
-            degree[v] += 1
-        last[d] = v
-    return max(degree)
+# ------------------------------------------------------------------ weights
 
 
-__all__ = ["explain", "sigma_notation", "Explanation", "ExplainedTerm", "bracket"]
+def _weights(A: list[list[Any]], b: list[Any], one: Any):
+    """a(t) for a level sequence, memoised (Φ(τ) = 1, Φ([t…]) = ⊙ AΦ(t_i))."""
+    s = len(b)
+    cache: dict[tuple[int, ...], list[Any]] = {}
+
+    def phi(seq: tuple[int, ...]) -> list[Any]:
+        if seq not in cache:
+            out = [one] * s
+            for sub in children_of_level_sequence(seq):
+                p = phi(sub)
+                Ap = [sum((A[i][j] * p[j] for j in range(1, s)), A[i][0] * p[0]) for i in range(s)]
+                out = [x * y for x, y in zip(out, Ap)]
+            cache[seq] = out
+        return cache[seq]
+
+    def a(seq: tuple[int, ...]) -> Any:
+        p = phi(seq)
+        return sum((b[i] * p[i] for i in range(1, s)), b[0] * p[0])
+
+    return a
+
+
+def _enclosure(x: Any) -> Enclosure:
+    if isinstance(x, Interval):
+        return Enclosure(x.mid, x.rad, False)
+    return Enclosure.of(x)
+
+
+def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "rounded") -> Explanation:
+    """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it)."""
+    seq = tuple(seq)
+    n = len(seq)
+    adj = adjacency(seq)
+    max_degree = max((len(a) for a in adj), default=0)
+    if n < 3:
+        return Explanation(seq, None, n == 2, n, max_degree)
+    cs = centres(adj)
+    if len(cs) == 2:  # two centres: superfluous when the halves across the edge are equal
+        x, y = cs
+        halves = []
+        for keep, cut in ((x, y), (y, x)):
+            sub = [[w for w in nb if not (v == keep and w == cut)] for v, nb in enumerate(adj)]
+            halves.append(rooted_at(sub, keep))
+        if halves[0] == halves[1]:
+            return Explanation(seq, None, True, n, max_degree)
+    designated = max(cs, key=lambda c: rooted_at(adj, c))
+    dist = distances(adj, designated)
+    rootings: dict[tuple[int, ...], int] = {}
+    for v in sorted(range(n), key=lambda v: (dist[v], rooted_at(adj, v))):
+        rootings.setdefault(rooted_at(adj, v), dist[v] % 2)
+    id_seq = rooted_at(adj, designated)
+    condition = ExplainedCondition(id_seq, bracket(id_seq), n)
+    weight = None
+    if tableau is not None:
+        if tableau.is_exact(decimals):
+            A, b, one = tableau.exact_A(), tableau.exact_b(), Fraction(1)
+        else:
+            A, b = tableau.enclosures(entry_bits(dps), decimals)
+            one = Interval.point(1)
+        weight = _weights(A, b, one)
+    terms = []
+    total = None
+    for u, parity in rootings.items():
+        forest_seqs = sorted(children_of_level_sequence(u), reverse=True)
+        forest = [(f, bracket(f), sigma_notation(f)) for f in forest_seqs]
+        sign, sigma = (-1 if parity else 1), sigma_of(u)
+        value = None
+        if weight is not None:
+            product: Any = one
+            for f in forest_seqs:
+                product = product * weight(f)
+            term = product * (Fraction(sign, sigma) if isinstance(one, Fraction) else Interval.point(Fraction(sign, sigma)))
+            total = term if total is None else total + term
+            value = _enclosure(term)
+        terms.append(ExplainedTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, value))
+    out = Explanation(seq, condition, False, n, max_degree, terms)
+    if total is not None:
+        out.residual = _enclosure(total)
+        out.verdict = classify(out.residual)
+    return out

@@ -3,22 +3,34 @@
 * quadrature order: the largest ``k`` with ``Σ b_i c_i^(j-1) = 1/j`` for ``j = 1..k``
   (``c = A·1``); at most ``2s`` for ``s`` nodes.
 * classical order: the largest ``p`` with ``a(t) = 1/γ(t)`` for every rooted tree with
-  at most ``p`` vertices.  It is checked order by order on a growable, unbounded tree
+  at most ``p`` vertices.  It is checked order by order on a growing, unbounded tree
   table and stops at the first failing order, so it costs what the method's order
   costs, whatever the energy-check order.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
+from typing import Any
 
-from rkcheck.energy.verdicts import FAILS, Verdict, classify, classify_interval, combine
-from rkcheck.evaluation.backends import Backend
+import numpy as np
+
+from rkcheck.energy.verdicts import (
+    FAILS,
+    HOLDS,
+    Verdict,
+    classify,
+    classify_interval,
+    combine,
+)
 from rkcheck.methods.quadrature import quadrature_residual
+from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval, interval_sum
-from rkcheck.trees.rooted import RootedTreeTable
+from rkcheck.trees.rooted import bracket_of_forest
+from rkcheck.trees.table import TreeTable
 
 
 @dataclass(frozen=True)
@@ -50,21 +62,111 @@ def quadrature_order(A: list[list[Interval]], b: list[Interval], exact: bool) ->
 
 
 @lru_cache(maxsize=1)
-def unbounded_table() -> RootedTreeTable:
-    """The process-wide growable table of all rooted trees (for classical orders)."""
-    return RootedTreeTable(1, None, growable=True)
+def unbounded_table() -> TreeTable:
+    """The process-wide table of all rooted trees (no degree bound), grown as far as
+    classical orders have needed."""
+    return TreeTable(1)
 
 
-def classical_order(backend: Backend, max_order: int) -> OrderResult:
-    """Classical order (capped at ``max_order``), stopping at the first failing order."""
+class _Weights:
+    """Φ, ψ and a of every tree of a growing table, in one number context."""
+
+    def __init__(self, ctx: Any, s: int):
+        self.ctx, self.s, self.done = ctx, s, 1
+        self.phi, self.psi, self.a = ctx.vectors(1, s), ctx.vectors(1, s), ctx.scalars(1)
+        one = ctx.ones(1, s)
+        ctx.put(self.phi, 0, one)
+        ctx.put(self.psi, 0, ctx.matvec(one))
+        ctx.put(self.a, 0, ctx.dot(one))
+
+    def extend(self, table: TreeTable, p: int) -> Any:
+        """The weights a(t) of the trees with p vertices (orders below are done)."""
+        ctx = self.ctx
+        for n in range(self.done + 1, p + 1):
+            lo, hi = table.first[n], table.first[n + 1]
+            grow = hi - _rows(self.a)
+            if grow > 0:
+                self.phi = _append(ctx, self.phi, ctx.vectors(grow, self.s))
+                self.psi = _append(ctx, self.psi, ctx.vectors(grow, self.s))
+                self.a = _append(ctx, self.a, ctx.scalars(grow))
+            phi_n = ctx.mul(ctx.take(self.phi, table.left[lo:hi]), ctx.take(self.psi, table.right[lo:hi]))
+            ctx.put(self.phi, lo, phi_n)
+            ctx.put(self.psi, lo, ctx.matvec(phi_n))
+            ctx.put(self.a, lo, ctx.dot(phi_n))
+            self.done = n
+        lo, hi = table.first[p], table.first[p + 1]
+        return ctx.take(self.a, np.arange(lo, hi))
+
+
+def _rows(x: Any) -> int:
+    return len(x[0]) if isinstance(x, tuple) else len(x)
+
+
+def _append(ctx: Any, x: Any, y: Any) -> Any:
+    if isinstance(x, tuple):
+        return tuple(np.concatenate([xa, ya]) for xa, ya in zip(x, y))
+    return np.concatenate([x, y])
+
+
+def _first_failure(table: TreeTable, ids: np.ndarray) -> str:
+    """The classical condition of the failing tree with the smallest level sequence."""
+    best = min((int(t) for t in ids), key=table.level_sequence)
+    gamma = int(table.gamma(np.array([best]))[0])
+    forest = [table.level_sequence(c) for c in table.children(best)]
+    return f"a({bracket_of_forest(forest)}) = 1/{gamma}"
+
+
+def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arithmetic: str = "auto") -> OrderResult:
+    """Classical order (definitions §2: ``a(t) = 1/γ(t)`` for every tree with ≤ p vertices),
+    capped at ``max_order``, stopping at the first order with a certain failure.
+
+    Exact data: residues of ``γ(t)·â(t) − d^|t|`` (``â = d^|t| a``) modulo primes — a
+    nonzero one proves the failure; zero at enough primes (the size bound of
+    :mod:`rkcheck.evaluation.modular`) proves the condition.  Otherwise certified balls."""
+    from rkcheck.evaluation.backends import ball_context, choose_backend, scaled_tableau
+
     table = unbounded_table()
+    s = tableau.stages
     verdicts: list[Verdict] = []
+    if choose_backend(tableau, decimals, arithmetic) == "exact":
+        scaled = scaled_tableau(tableau, decimals)
+        channels: list[tuple[int, int, _Weights]] = []
+        for p in range(1, max_order + 1):
+            table.grow_to(p)
+            ids = np.arange(table.first[p], table.first[p + 1])
+            gamma = table.gamma(ids)
+            # |γ(t)·â(t)| <= p!·M^p (the bound of an order-p sum with one term) and
+            # d^p has p·log2(d) bits
+            bits = scaled.coefficient_bits(p + 1, 1) + math.ceil(p * math.log2(scaled.d)) + 1
+            primes = scaled.primes_for(bits)
+            while len(channels) < sum(len(r) for _, r in primes):
+                q, roots = primes[len({c[0] for c in channels})]
+                for r in roots:
+                    channels.append((q, r, _Weights(scaled.channel(q, r), s)))
+            failing = np.zeros(len(ids), dtype=bool)
+            for q, r, weights in channels:
+                a = weights.extend(table, p)
+                target = pow(scaled.d, p, q)
+                g = np.array([int(x) % q for x in gamma], dtype=np.int64)
+                failing |= (a * g % q) != target
+            if failing.any():
+                return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, ids[failing]))
+            verdicts.append(Verdict(HOLDS))
+        return OrderResult(max_order, max_order, combine(verdicts))
+    weights = _Weights(ball_context(tableau, dps, decimals), s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
-        backend.tree_weights(table, p)
-        for t in table.ids_of_order(p):
-            v = classify(backend.weight_minus(table, t, Fraction(1, table.gamma[t])))
+        ids = np.arange(table.first[p], table.first[p + 1])
+        values = weights.ctx.enclosures(weights.extend(table, p))
+        gamma = table.gamma(ids)
+        order_verdicts = []
+        failing = []
+        for t, e, g in zip(ids, values, gamma):
+            v = classify(Enclosure(e.mid - Fraction(1, int(g)), e.rad, False))
             if v.state == FAILS:
-                return OrderResult(p - 1, p, combine(verdicts), f"a({table.bracket(t)}) = 1/{table.gamma[t]}")
-            verdicts.append(v)
+                failing.append(t)
+            order_verdicts.append(v)
+        if failing:
+            return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, np.array(failing)))
+        verdicts.extend(order_verdicts)
     return OrderResult(max_order, max_order, combine(verdicts))

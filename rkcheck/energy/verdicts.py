@@ -101,6 +101,27 @@ def classify_many(encs: list[Enclosure]) -> list[Verdict]:
     return verdicts
 
 
+STATE_CODES = {HOLDS: 0, HOLDS_TO_DIGITS: 1, FAILS: 2}
+
+
+def classify_bounds(excludes_zero, bound):
+    """The states of many certified values at once, given for each whether its
+    enclosure excludes 0 (exactly) and a float upper bound of its magnitude (|mid| + rad):
+    ``fails`` where 0 is excluded, else ``holds to D digits`` with
+    D = ⌊−log10(bound)⌋, lowered by one when log10's own rounding could make it overstate
+    (a margin of 1e-9 in the exponent: conservative, never optimistic).  Returns
+    (state codes 0/1/2, digits) as numpy arrays."""
+    import numpy as np
+
+    fails = np.asarray(excludes_zero, dtype=bool)
+    bound = np.asarray(bound, dtype=float)
+    with np.errstate(divide="ignore"):
+        digits = np.floor(-np.log10(bound) - 1e-9)
+    digits = np.where(np.isfinite(digits), digits, 0).astype(np.int32)
+    state = np.where(fails, 2, 1).astype(np.int8)
+    return state, np.where(fails, -1, digits).astype(np.int32)
+
+
 def classify_interval(x: Interval, exact: bool) -> Verdict:
     """The state of a quantity known as an interval; a point interval counts as exact only
     when the data was exact (``exact``), otherwise it is a certified enclosure."""

@@ -6,25 +6,39 @@ import math
 from fractions import Fraction
 
 
+def _at_least(p: int, q: int, e: int) -> bool:
+    """p/q >= 10^e, in integers."""
+    return p >= q * 10**e if e >= 0 else p * 10**-e >= q
+
+
 def decimal_exponent(x: Fraction) -> int:
-    """floor(log10 |x|) for x != 0, exactly."""
-    x = abs(x)
-    p, q = x.numerator, x.denominator
+    """floor(log10 |x|) for x != 0, exactly (integer comparisons only)."""
+    p, q = abs(x.numerator), x.denominator
     e = math.floor((p.bit_length() - q.bit_length()) * math.log10(2))
-    while Fraction(10) ** (e + 1) <= x:
+    while _at_least(p, q, e + 1):
         e += 1
-    while Fraction(10) ** e > x:
+    while not _at_least(p, q, e):
         e -= 1
     return e
+
+
+def _scaled_round(p: int, q: int, up: bool) -> int:
+    """p/q rounded half-even (or up) to an integer, p, q > 0."""
+    n, r = divmod(p, q)
+    if up:
+        return n + (r > 0)
+    twice = 2 * r
+    return n + (twice > q or (twice == q and n % 2 == 1))
 
 
 def _digits(x: Fraction, sig: int, up: bool = False) -> tuple[int, int]:
     """(N, e) with |x| ≈ N · 10^(e-sig+1), N having ``sig`` digits (rounded half-even or up)."""
     e = decimal_exponent(x)
-    scaled = abs(x) / Fraction(10) ** (e - sig + 1)
-    n = math.ceil(scaled) if up else round(scaled)
+    p, q = abs(x.numerator), x.denominator
+    shift = sig - 1 - e  # |x| · 10^shift has sig digits before the point
+    n = _scaled_round(p * 10**shift, q, up) if shift >= 0 else _scaled_round(p, q * 10**-shift, up)
     if n >= 10**sig:
-        n = math.ceil(n / 10) if up else round(Fraction(n, 10))
+        n = _scaled_round(n, 10, up)
         e += 1
     return n, e
 

@@ -54,23 +54,23 @@ def show_doc(tab: Tableau, file: str, decimals: str, warnings: list[str]) -> dic
             "warnings": warnings}
 
 
-def conditions_list_doc(table, with_conditions: bool = True) -> dict[str, Any]:
+def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:
     """``rkcheck conditions --format json``: counts per order and (unless ``--count``) the
-    condition trees."""
+    condition trees, by vertices and then canonical id."""
     doc: dict[str, Any] = {
         "schema": SCHEMA,
-        "order": table.order,
-        "degree": table.degree,
-        "total": len(table),
-        "counts": [{"order": k, "vertices": k + 1, "conditions": v} for k, v in table.counts_by_order().items()],
+        "order": listing.order,
+        "degree": listing.degree,
+        "total": len(listing),
+        "counts": [{"order": k, "vertices": k + 1, "conditions": v} for k, v in listing.counts_by_order().items()],
     }
     if with_conditions:
         doc["conditions"] = [
             {
                 "id": c.id, "level_sequence": list(c.level_sequence), "bracket": c.bracket,
-                "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": len(c.terms),
+                "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": c.rootings,
             }
-            for c in table.conditions
+            for c in listing.sorted_records()
         ]
     return doc
 
@@ -148,9 +148,9 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "quadrature_order": res.quadrature.order,
         "quadrature_first_failure": res.quadrature.first_failure,
         "conditions_total": sum(p.conditions for p in res.per_order),
-        "conditions_checked": len(res.results),
-        "conditions_held": sum(1 for r in res.results if r.verdict.holds),
-        "conditions_failed": len(res.failures),
+        "conditions_checked": sum(p.checked for p in res.per_order),
+        "conditions_held": sum(p.held for p in res.per_order),
+        "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
         "first_failure": None
         if first is None

@@ -274,15 +274,15 @@ def _row_sum_text(tab: Tableau, i: int) -> str:
     return "≈ " + decimal_string(enc.mid, 12)
 
 
-def render_condition_list(table, console: Console, count_only: bool) -> None:
+def render_condition_list(listing, console: Console, count_only: bool) -> None:
     """``conditions``: counts per order, and the list of condition trees."""
-    deg = "no degree bound" if table.degree is None else f"max degree ≤ {table.degree}"
-    console.print(f"Energy conditions up to order {table.order} ({deg}): {len(table)}")
+    deg = "no degree bound" if listing.degree is None else f"max degree ≤ {listing.degree}"
+    console.print(f"Energy conditions up to order {listing.order} ({deg}): {len(listing)}")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("order", justify="right")
     t.add_column("vertices", justify="right")
     t.add_column("conditions", justify="right")
-    for k, v in table.counts_by_order().items():
+    for k, v in listing.counts_by_order().items():
         t.add_row(*plain(k, k + 1, v))
     console.print(t)
     if count_only:
@@ -293,8 +293,8 @@ def render_condition_list(table, console: Console, count_only: bool) -> None:
     lst.add_column("vertices", justify="right")
     lst.add_column("max deg", justify="right")
     lst.add_column("rootings", justify="right")
-    for c in table.conditions:
-        lst.add_row(*plain(c.id, c.bracket, c.vertices, c.max_degree, len(c.terms)))
+    for c in listing.sorted_records():
+        lst.add_row(*plain(c.id, c.bracket, c.vertices, c.max_degree, c.rootings))
     console.print(lst)
 
 

@@ -19,30 +19,48 @@ import time
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from rkcheck.energy.check import evaluate_conditions
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.energy.verdicts import (
+    FAILS,
+    HOLDS,
+    HOLDS_TO_DIGITS,
+    Verdict,
+    classify_bounds,
+)
 from rkcheck.errors import UserError
-from rkcheck.evaluation.backends import BallBackend, ExactBackend
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.entries import Entry
-from rkcheck.numbers.precision import bits_for_dps
-from rkcheck.trees.conditions import condition_table
+from rkcheck.trees.listing import condition_listing
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 
 
-def backend_for(tableau: Tableau, name: str, decimals: str = "rounded"):
-    """A fresh backend: 'float64', 'exact', or 'dps:<D>'."""
-    if name == "float64":
-        from rkcheck.evaluation.float_screen import make_float_backend
+def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "rounded"):
+    """Every condition of ``listing`` on one backend — ``float64``, ``exact`` or
+    ``dps:<D>`` — as ``{(vertices, k): (enclosure, verdict)}`` in listing order (the
+    enclosure is the class representative's: sizes and verdicts do not depend on it)."""
+    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.backends import ball_context, float_context, scaled_tableau
+    from rkcheck.evaluation.modular import exact_condition_sums
 
-        return make_float_backend(tableau, decimals)
     if name == "exact":
-        return ExactBackend(tableau.exact_A(), tableau.exact_b())
-    dps = int(name.split(":")[1])
-    bits = bits_for_dps(dps)
-    A, b = tableau.enclosures(bits + 8, decimals)
-    return BallBackend(A, b, bits)
+        sums = exact_condition_sums(scaled_tableau(tableau, "exact"), listing)
+        out = {}
+        for n, o in sums.items():
+            zero = o.is_zero()
+            for k in range(len(zero)):
+                v = o.value(k)
+                out[(n, k)] = (Enclosure.of(v), Verdict(HOLDS) if zero[k] else Verdict(FAILS))
+        return out
+    ctx = float_context(tableau, decimals) if name == "float64" else ball_context(tableau, int(name[4:]), decimals)
+    sums = condition_sums(listing, ctx, tableau.stages)
+    out = {}
+    for n, values in sums.items():
+        states, digits = classify_bounds(values.excludes_zero(), values.magnitude_bound())
+        for k in range(len(values)):
+            v = Verdict(FAILS) if states[k] == 2 else Verdict(HOLDS_TO_DIGITS, int(digits[k]))
+            out[(n, k)] = (values.enclosure(k), v)
+    return out
 
 
 def backend_names(tableau: Tableau, dps_list, decimals: str = "rounded") -> list[str]:
@@ -75,20 +93,19 @@ def bench_backends(tableau: Tableau, degree: int | None, order: int, dps_list=DE
                    decimals: str = "rounded", repeat: int = 1) -> tuple[list[BenchRow], float]:
     """Rows per backend, and the time to build the (shared) condition table."""
     t0 = time.perf_counter()
-    table = condition_table(order, degree)
+    listing = condition_listing(order, degree)
     t_tables = time.perf_counter() - t0
     rows: list[BenchRow] = []
     for name in backend_names(tableau, dps_list, decimals):
         best = math.inf
         results = None
         for _ in range(max(1, repeat)):
-            backend = backend_for(tableau, name, decimals)
             t1 = time.perf_counter()
-            results = evaluate_conditions(table, backend)
+            results = evaluate_backend(listing, tableau, name, decimals)
             best = min(best, time.perf_counter() - t1)
         assert results is not None
-        digits = [r.verdict.digits for r in results if r.verdict.state == HOLDS_TO_DIGITS]
-        failing = frozenset(r.condition.id for r in results if r.verdict.state == FAILS)
+        digits = [v.digits for _, v in results.values() if v.state == HOLDS_TO_DIGITS]
+        failing = frozenset(key for key, (_, v) in results.items() if v.state == FAILS)
         rows.append(BenchRow(name, best, len(results), min(digits) if digits else None, len(failing), True, failing))
     reference = rows[-1]  # exact when rational, else the highest dps
     for r in rows:
@@ -210,7 +227,7 @@ def _log10(x: Fraction) -> float:
 
 def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degree: int | None, order: int,
                   dps_list=(15, 50), decimals: str = "rounded") -> PerturbResult:
-    table = condition_table(order, degree)
+    listing = condition_listing(order, degree)
     names = backend_names(tableau, dps_list, decimals)
     if "exact" not in names:
         names.append(f"dps:{max(dps_list) * 2 + 20}")  # the reference: well beyond the others
@@ -221,24 +238,24 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
         detected = {}
         ref_results = None
         for name in names:
-            res = evaluate_conditions(table, backend_for(tab, name, decimals))
-            detected[name] = any(r.verdict.state == FAILS for r in res)
+            res = evaluate_backend(listing, tab, name, decimals)
+            detected[name] = any(v.state == FAILS for _, v in res.values())
             if name == reference:
                 ref_results = res
         assert ref_results is not None
-        fails = [r for r in ref_results if r.verdict.state == FAILS]
+        fails = [(key, e) for key, (e, v) in ref_results.items() if v.state == FAILS]
         rows.append(PerturbRow(
-            eps, max((abs(r.enclosure.mid) for r in fails), default=None),
-            min((r.condition.order for r in fails), default=None), len(fails), detected,
+            eps, max((abs(Fraction(e.mid)) for _, e in fails), default=None),
+            min((key[0] - 1 for key, _ in fails), default=None), len(fails), detected,
         ))
     pts = [(_log10(r.eps), _log10(r.max_residual)) for r in rows if r.max_residual]
     slope = fit_slope([p[0] for p in pts], [p[1] for p in pts])
     thresholds = {n: min((r.eps for r in rows if r.detected[n]), default=None) for n in names}
-    base = evaluate_conditions(table, backend_for(perturbed(tableau, D, Fraction(0)), names[0], decimals))
+    base = evaluate_backend(listing, perturbed(tableau, D, Fraction(0)), names[0], decimals)
     floors = {}
     for name in names:
         if name == "exact":
             continue
-        res = base if name == names[0] else evaluate_conditions(table, backend_for(tableau, name, decimals))
-        floors[name] = max(float(abs(r.enclosure.mid) + r.enclosure.rad) for r in res) if res else 0.0
+        res = base if name == names[0] else evaluate_backend(listing, tableau, name, decimals)
+        floors[name] = max(float(abs(e.mid) + e.rad) for e, _ in res.values()) if res else 0.0
     return PerturbResult(rows, slope, thresholds, floors, desc, names)

@@ -177,7 +177,7 @@ def test_pyproject_configuration_and_flags_override(tmp_path, capsys, folder, mo
 
 
 def test_ctrl_c_leaves_a_valid_partial_json_report(tmp_path):
-    # slow files (order 13 on a dense 4-stage tableau, about a second each) so that the
+    # slow files (order 15 on a dense 4-stage tableau, about half a second each) so that the
     # interrupt arrives while the scan is running
     dense = ('[tableau]\nA = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],'
              ' ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]\nb = ["1/5", "3/10", "1/4", "1/4"]\n')
@@ -185,7 +185,7 @@ def test_ctrl_c_leaves_a_valid_partial_json_report(tmp_path):
         (tmp_path / f"t{i:02d}.toml").write_text(dense, encoding="utf-8")
     out = tmp_path / "report.json"
     env = dict(os.environ, NO_COLOR="1")
-    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(tmp_path), "--order", "13",
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(tmp_path), "--order", "15",
                              "--jobs", "2", "--format", "json", "-o", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     deadline = time.time() + 60

@@ -45,10 +45,12 @@ import pytest
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
-from rkcheck.evaluation.backends import BallBackend, ExactBackend
+from rkcheck.evaluation.algorithm import condition_sums, tree_weights
+from rkcheck.evaluation.balls import BallContext
+from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
 from rkcheck.numbers.intervals import Interval
-from rkcheck.trees.conditions import ConditionTable
-from rkcheck.trees.rooted import RootedTreeTable
+from rkcheck.trees.listing import ConditionListing
+from rkcheck.trees.table import TreeTable
 
 # ------------------------------------------------------------ linear algebra
 
@@ -127,7 +129,7 @@ def tableau_with_quadrature(rng, s):
 
 @lru_cache(maxsize=None)
 def cond_table(degree):
-    return ConditionTable(8, degree)  # conditions with 3..9 vertices
+    return ConditionListing(8, degree)  # conditions with 3..9 vertices
 
 
 @lru_cache(maxsize=None)
@@ -139,28 +141,22 @@ def ref_by_id():
     return out
 
 
-def exact_residuals(table, A, b):
-    backend = ExactBackend(A, b)
-    backend.tree_weights(table.trees)
+def exact_residuals(listing, A, b):
+    """{canonical id: exact residual} of every condition (designated sign)."""
+    sums = exact_condition_sums(scaled_rational(A, b), listing)
     out = {}
-    for c in table.conditions:
-        enc = backend.enclose_terms(table.trees, c.terms, c.denominator)
-        assert enc.exact and enc.rad == 0
-        out[c.level_sequence] = enc.mid
+    for n, o in sums.items():
+        for k in range(len(listing.orders[n])):
+            rec = listing.record(n, k)
+            out[rec.level_sequence] = o.value(k) * rec.flip
     return out
 
 
 def engine_residual(G, A, b, degree=None):
     """Exact engine residual of the condition of free tree G (found by the reference's
     centre canonical id)."""
-    cid = ref.centre_canonical_id(G)
-    table = cond_table(degree)
-    conds = [c for c in table.conditions if c.level_sequence == cid]
-    assert len(conds) == 1, cid
-    backend = ExactBackend(A, b)
-    backend.tree_weights(table.trees)
-    enc = backend.enclose_terms(table.trees, conds[0].terms, conds[0].denominator)
-    return enc.mid
+    got = exact_residuals(cond_table(degree), A, b)
+    return got[ref.centre_canonical_id(G)]
 
 
 # ------------------------------------------------------------- free trees
@@ -201,23 +197,29 @@ def test_ball_backend_encloses_exact_residual(seed, s):
     A, b = random_tableau(rng, s, sum_b_one=True)
     refs = ref_by_id()
     for degree in (None, 4):
-        table = cond_table(degree)
-        backend = BallBackend([[Interval.point(x) for x in row] for row in A],
-                              [Interval.point(x) for x in b], bits=200)
-        backend.tree_weights(table.trees)
-        for c in table.conditions:
-            enc = backend.enclose_terms(table.trees, c.terms, c.denominator)
-            exact = ref.energy_residual(refs[c.level_sequence], A, b)
-            assert not enc.exact
-            assert abs(enc.mid - exact) <= enc.rad, c.id
-            assert enc.rad < F(1, 10 ** 50), (c.id, float(enc.rad))
+        listing = cond_table(degree)
+        ctx = BallContext([[Interval.point(x) for x in row] for row in A], [Interval.point(x) for x in b], bits=200)
+        for n, sums in condition_sums(listing, ctx, s).items():
+            for k in range(len(sums)):
+                enc = sums.enclosure(k)
+                rec = listing.record(n, k)
+                exact = ref.energy_residual(refs[rec.level_sequence], A, b)
+                assert not enc.exact
+                assert abs(enc.mid * rec.flip - exact) <= enc.rad, rec.id
+                assert enc.rad < F(1, 10 ** 50), (rec.id, float(enc.rad))
 
 
-def test_denominator_is_lcm_of_reference_sigmas():
-    # expected: lcm of σ(u) over the reference rootings
-    for c in cond_table(None).conditions:
-        d = ref_by_id()[c.level_sequence]
-        assert c.denominator == math.lcm(*(sig for _, _, sig, _ in d["terms"]))
+def test_symmetry_factors_equal_reference_sigmas():
+    # expected: σ(u) of every rooting from the reference (the engine folds (n−1)!/σ(u)
+    # into each term's coefficient)
+    listing = cond_table(None)
+    for n in listing.orders:
+        for k in range(len(listing.orders[n])):
+            rec = listing.record(n, k)
+            d = ref_by_id()[rec.level_sequence]
+            got = sorted(sigma for _, sigma, _ in listing.term_forests(n, k))
+            assert got == sorted(sig for _, _, sig, _ in d["terms"])
+            assert math.factorial(n - 1) % math.lcm(*got) == 0  # σ(u) divides (n−1)!
 
 
 # ======================================================== closed forms: star
@@ -433,7 +435,8 @@ def test_asymbush_q1_is_superfluous():
     # one leaf + one branch of length two = the 4-path, superfluous (no condition)
     G = asymbush(1)
     assert ref.is_superfluous(G)
-    assert ref.centre_canonical_id(G) not in {c.level_sequence for c in cond_table(None).conditions}
+    listing = cond_table(None)
+    assert ref.centre_canonical_id(G) not in {r.level_sequence for n in listing.orders for r in listing.records(n)}
 
 
 # ========================================================== AVF B-series
@@ -466,16 +469,16 @@ def test_avf_identity_for_c_bT(p, seed):
     bad_k = [k for k in range(p, 7) if w[k] != F(1, k + 1)]
     assert p in bad_k  # quadrature order exactly p
     A = [[ci * bj for bj in b] for ci in c]
-    backend = ExactBackend(A, b)
-    table = RootedTreeTable(7)
-    weights = backend.tree_weights(table)
+    table = TreeTable(7)
+    ctx = BallContext([[Interval.point(x) for x in row] for row in A], [Interval.point(x) for x in b], bits=300)
+    weights = ctx.enclosures(tree_weights(table, ctx, p, 7))
     n_equal = n_diff = 0
     for n in range(1, 8):
         for t in table.ids_of_order(n):
             seq = table.level_sequence(t)
-            a = F(weights[t], backend.d ** n)
+            a = math.prod(w[k] for k in child_counts(seq))  # the closed form, exact
+            assert abs(weights[t].mid - a) <= weights[t].rad < F(1, 10**80), seq
             ks = child_counts(seq)
-            assert a == math.prod(w[k] for k in ks), seq
             if max(ks) <= p - 1:
                 assert a == avf_weight(seq), seq
                 n_equal += 1

@@ -1,0 +1,289 @@
+"""Certified balls: the number contexts for data that is not exact (definitions §5).
+
+Two contexts behind the kernel of :mod:`rkcheck.evaluation.algorithm`:
+
+:class:`BallContext` — arbitrary precision.  A value is a ball ``m·2^−P ± r``: the
+    mid-point ``m`` is an exact integer at scale ``2^−P`` (numpy object arrays of Python
+    ints, so loops run in C), the radius ``r`` a float64 upper bound kept in units of
+    ``2^−S`` with ``S = max(0, P − 1000)``: the rounding unit ``2^−P`` is then a normal
+    float (``2^−1000`` at most) and radii up to ``2^(2024−P)`` fit — absolute units would
+    cap certified digits near 10^−320, units of ``2^−P`` overflow for rounded input
+    beyond about 170 digits.  A radius that still overflows is refused with a message.
+    A product is ``(m₁m₂) >> P`` (floored: less than one unit lost) with radius
+    ``|x₁|r₂ + |x₂|r₁ + r₁r₂`` plus one unit; sums of mid-points are exact.  Every float
+    operation rounds to nearest, so each computed radius is multiplied by
+    ``1 + (2k+4)·2^−52`` for a k-term expression (Higham's γ_k) and magnitudes ``|x|`` by
+    ``1 + 2^−51``: radii stay upper bounds.
+:class:`FloatContext` — the float64 screen: mid-point and radius both float64, with the
+    rounding of every product and sum bounded by ``γ_n = n·u/(1 − n·u)`` (``u = 2^−53``)
+    and every radius inflated by ``1 + 16u`` plus the smallest subnormal.  It may say
+    ``fails`` only when its own bound excludes 0.
+
+Both give :class:`~rkcheck.numbers.enclosure.Enclosure` values per condition.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Sequence
+
+import numpy as np
+
+from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.numbers.intervals import Interval
+
+_UP1 = 1.0 + 2.0**-51
+_UP4 = 1.0 + 12 * 2.0**-52
+U = 2.0**-53
+ETA = 2.0**-1074  # smallest subnormal: covers underflow in the bounds
+INFLATE = 1.0 + 16 * U
+
+
+def _fraction_float_up(x: Fraction) -> float:
+    """A float ≥ x >= 0 (correctly rounded, then one ulp up)."""
+    f = float(x)
+    return math.nextafter(f, math.inf) if Fraction(f) < x else f
+
+
+class BallContext:
+    """Certified fixed-point balls at ``bits`` bits (see the module docstring).
+
+    A value is a triple (mid-points: object array of ints at scale 2^−P, radii: floats in
+    units of 2^−S, magnitudes: floats bounding |mid·2^−P| from above).  Carrying the
+    magnitudes avoids converting big integers to floats in every product."""
+
+    exact = False
+
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int):
+        self.s = len(b)
+        self.bits = bits
+        self.fixed_one = 1 << bits
+        self.shift = max(0, bits - 1000)  # S: radii are floats in units of 2^−S
+        self.unit = 2.0 ** (self.shift - bits)  # 2^−P in those units: a normal float
+        self.unit_abs = 2.0**-bits if bits <= 1074 else ETA  # 2^−P (or more) in absolute terms
+        self._r_down = 2.0**-self.shift  # r·2^−S for a product of two radii
+        balls_A = [[self._ball(x) for x in row] for row in A]
+        balls_b = [self._ball(x) for x in b]
+        self.Am_t = np.array([[m for m, _, _ in row] for row in balls_A], dtype=object).T
+        self.Ar_t = np.array([[r for _, r, _ in row] for row in balls_A]).T
+        self.Ag_t = np.array([[g for _, _, g in row] for row in balls_A]).T
+        self.bm = np.array([m for m, _, _ in balls_b], dtype=object)
+        self.br = np.array([r for _, r, _ in balls_b])
+        self.bg = np.array([g for _, _, g in balls_b])
+        self._dot_up = 1.0 + (2 * self.s + 8) * 2.0**-52
+
+    def _ball(self, x: Interval) -> tuple[int, float, float]:
+        """(mid-point at scale 2^−P, radius in units of 2^−S, magnitude bound) of a ball
+        enclosing ``x``."""
+        lo, hi = x.lo * self.fixed_one, x.hi * self.fixed_one
+        m = math.floor((lo + hi) / 2)
+        r = max(hi - m, m - lo) / self.fixed_one * (1 << self.shift)  # in units of 2^−S
+        return m, _fraction_float_up(r) * _UP1, _fraction_float_up(abs(Fraction(m, self.fixed_one))) * _UP1
+
+    # ------------------------------------------------------------- kernel
+
+    def vectors(self, n: int, s: int):
+        return (np.zeros((n, s), dtype=object), np.zeros((n, s)), np.zeros((n, s)))
+
+    def scalars(self, n: int):
+        return (np.zeros(n, dtype=object), np.zeros(n), np.zeros(n))
+
+    def ones(self, k: int, s: int):
+        return (np.full((k, s), self.fixed_one, dtype=object), np.zeros((k, s)), np.ones((k, s)))
+
+    def one(self, k: int):
+        return (np.full(k, self.fixed_one, dtype=object), np.zeros(k), np.ones(k))
+
+    def take(self, x, idx):
+        return (x[0][idx], x[1][idx], x[2][idx])
+
+    def put(self, store, lo: int, x) -> None:
+        for part, value in zip(store, x):
+            part[lo:lo + len(value)] = value
+
+    def mul(self, x, y):
+        xm, xr, xg = x
+        ym, yr, yg = y
+        rad = (xg * yr + yg * xr + xr * yr * self._r_down) * _UP4 + self.unit
+        return ((xm * ym) >> self.bits, rad, xg * yg * _UP4 + self.unit_abs)
+
+    def _dot(self, x, Mm, Mr, Mg):
+        xm, xr, xg = x
+        mid = xm.dot(Mm) >> self.bits
+        rad = (xg.dot(Mr) + xr.dot(Mg) + xr.dot(Mr) * self._r_down) * self._dot_up + self.unit
+        return mid, rad, xg.dot(Mg) * self._dot_up + self.unit_abs
+
+    def matvec(self, x):
+        return self._dot(x, self.Am_t, self.Ar_t, self.Ag_t)
+
+    def dot(self, x):
+        return self._dot(x, self.bm, self.br, self.bg)
+
+    def enclosures(self, x) -> list[Enclosure]:
+        """Scalars of this context as enclosures (exact rational end points)."""
+        r_scale = 1 << self.shift
+        return [Enclosure(Fraction(int(m), self.fixed_one), Fraction(r) / r_scale, False)
+                for m, r in zip(x[0].tolist(), x[1].tolist())]
+
+    def sums(self, k: int, n: int):
+        return [np.zeros(k, dtype=object), np.zeros(k)]
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """Σ c·w with c = ±(n−1)!/σ exact: mid-points summed exactly, radii |c|·r."""
+        coef = _coefficients(terms)
+        idx = terms.coefficient_index[i0:i1]
+        cond = terms.condition[i0:i1]
+        np.add.at(acc[0], cond, w_terms[0] * coef[idx])
+        # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
+        acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
+                              minlength=len(acc[1]))
+
+    def finish_sums(self, acc, k: int, n: int) -> "BallSums":
+        """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
+        rounded up (the float additions into each bin, at most a few hundred, covered by
+        γ_256)."""
+        rads = acc[1][:k] * (1.0 + 256 * U)
+        if not np.all(np.isfinite(rads)):
+            from rkcheck.errors import UserError
+
+            raise UserError(f"the certified radii exceed the floating-point range at {self.bits} bits; "
+                            "use a lower --dps (or exact arithmetic)")
+        return BallSums(acc[0][:k], rads, self.bits, self.shift, math.factorial(n - 1))
+
+
+class BallSums:
+    """The condition sums of one order as balls: ``R_k = mids[k]/(f·2^P) ± rads[k]/(f·2^S)``
+    (f = (n−1)!).  Decided without building a Fraction per condition."""
+
+    def __init__(self, mids: np.ndarray, rads: np.ndarray, bits: int, shift: int, factorial: int):
+        self.mids, self.rads, self.bits, self.shift, self.factorial = mids, rads, bits, shift, factorial
+
+    def __len__(self) -> int:
+        return len(self.mids)
+
+    def enclosure(self, k: int) -> Enclosure:
+        f = self.factorial
+        return Enclosure(Fraction(int(self.mids[k]), f << self.bits), Fraction(float(self.rads[k])) / (f << self.shift), False)
+
+    def excludes_zero(self) -> np.ndarray:
+        """|mid| > rad, exactly (a Python int against a float compares exactly)."""
+        limit = self.rads * 2.0 ** (self.bits - self.shift)  # rad in units of 2^−P (inf: no claim)
+        return np.array([abs(int(m)) > r for m, r in zip(self.mids.tolist(), limit.tolist())], dtype=bool)
+
+    def magnitude_bound(self) -> np.ndarray:
+        """Floats bounding |mid| + rad from above."""
+        out = np.empty(len(self.mids))
+        f = self.factorial
+        for i, (m, r) in enumerate(zip(self.mids.tolist(), self.rads.tolist())):
+            m = abs(int(m))
+            e = max(0, m.bit_length() - 60)
+            mid_up = math.ldexp(float((m >> e) + 1), e - self.bits)  # >= |m|·2^−P
+            out[i] = (mid_up + math.ldexp(r, -self.shift)) / f * (1 + 2.0**-50) + ETA
+        return out
+
+
+def _coefficients(terms) -> np.ndarray:
+    cached = getattr(terms, "_coef_object", None)
+    if cached is None:
+        cached = np.array(terms.coefficients, dtype=object)
+        terms._coef_object = cached
+    return cached
+
+
+class FloatContext:
+    """The float64 screen (module docstring): fast, certified, about 15 digits at best."""
+
+    exact = False
+
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval]):
+        self.s = len(b)
+        Am = np.array([[float(x.mid) for x in row] for row in A])
+        Ar = np.array([[_fraction_float_up(x.rad) + abs(float(x.mid)) * U for x in row] for row in A]) * INFLATE + ETA
+        bm = np.array([float(x.mid) for x in b])
+        br = np.array([_fraction_float_up(x.rad) + abs(float(x.mid)) * U for x in b]) * INFLATE + ETA
+        self.Am_t, self.Ar_t, self.Aabs_t = Am.T.copy(), Ar.T.copy(), np.abs(Am).T.copy()
+        self.bm, self.br, self.babs = bm, br, np.abs(bm)
+        self._gamma = (self.s + 1) * U / (1 - (self.s + 1) * U)
+
+    def vectors(self, n: int, s: int):
+        return (np.zeros((n, s)), np.zeros((n, s)))
+
+    def scalars(self, n: int):
+        return (np.zeros(n), np.zeros(n))
+
+    def ones(self, k: int, s: int):
+        return (np.ones((k, s)), np.zeros((k, s)))
+
+    def one(self, k: int):
+        return (np.ones(k), np.zeros(k))
+
+    def take(self, x, idx):
+        return (x[0][idx], x[1][idx])
+
+    def put(self, store, lo: int, x) -> None:
+        store[0][lo:lo + len(x[0])] = x[0]
+        store[1][lo:lo + len(x[1])] = x[1]
+
+    def mul(self, x, y):
+        xm, xr = x
+        ym, yr = y
+        pm = xm * ym
+        pr = (np.abs(xm) * yr + np.abs(ym) * xr + xr * yr + U * np.abs(pm)) * INFLATE + ETA
+        return (pm, pr)
+
+    def _dot(self, x, Mm, Mr, Mabs):
+        xm, xr = x
+        mid = xm @ Mm
+        absx = np.abs(xm)
+        rad = absx @ Mr + xr @ Mabs + xr @ Mr + self._gamma * (absx @ Mabs)
+        return mid, rad * INFLATE + ETA
+
+    def matvec(self, x):
+        return self._dot(x, self.Am_t, self.Ar_t, self.Aabs_t)
+
+    def dot(self, x):
+        return self._dot(x, self.bm, self.br, self.babs)
+
+    def sums(self, k: int, n: int):
+        return [np.zeros(k), np.zeros(k), np.zeros(k), np.zeros(k)]  # mid, rad, Σ|term|, count
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        cf = np.array([float(Fraction(c, math.factorial(n - 1))) for c in terms.coefficients])
+        c = cf[terms.coefficient_index[i0:i1]]
+        cond = terms.condition[i0:i1]
+        tm = c * w_terms[0]
+        # the coefficient is c(1 ± u) (a rounded quotient), the product rounds once more
+        tr = (np.abs(c) * w_terms[1] + 2 * U * np.abs(tm)) * INFLATE + ETA
+        k = len(acc[0])
+        acc[0] += np.bincount(cond, weights=tm, minlength=k)
+        acc[1] += np.bincount(cond, weights=tr, minlength=k)
+        acc[2] += np.bincount(cond, weights=np.abs(tm), minlength=k)
+        acc[3] += np.bincount(cond, minlength=k)
+
+    def finish_sums(self, acc, k: int, n: int) -> "FloatSums":
+        mid, rad, absum, count = (a[:k] for a in acc)
+        g = (count + 64) * U / (1 - (count + 64) * U)  # the summation (and the chunked adds)
+        return FloatSums(mid, (rad + g * absum) * INFLATE + ETA)
+
+    def enclosures(self, x) -> list[Enclosure]:
+        return [Enclosure(m, r, False) for m, r in zip(x[0].tolist(), x[1].tolist())]
+
+
+class FloatSums:
+    """The condition sums of one order on the float screen: mid ± rad, floats."""
+
+    def __init__(self, mid: np.ndarray, rad: np.ndarray):
+        self.mid, self.rad = mid, rad
+
+    def __len__(self) -> int:
+        return len(self.mid)
+
+    def enclosure(self, k: int) -> Enclosure:
+        return Enclosure(float(self.mid[k]), float(self.rad[k]), False)
+
+    def excludes_zero(self) -> np.ndarray:
+        return np.abs(self.mid) > self.rad
+
+    def magnitude_bound(self) -> np.ndarray:
+        return (np.abs(self.mid) + self.rad) * (1 + 2.0**-51) + ETA

@@ -1,0 +1,357 @@
+"""Exact evaluation by residues modulo primes (definitions §5: ``holds`` / ``fails`` with
+no digits), for rational tableaux and for tableaux in a number field ``Q(θ)``.
+
+Scaled data.  With ``θ`` an algebraic integer (monic integer minimal polynomial ``g``)
+and ``d`` a common denominator, ``Â = d·A`` and ``b̂ = d·b`` have entries in ``Z[θ]``.  The
+weights computed from them are ``Φ̂(t) = d^(|t|−1)Φ(t)``, ``â(t) = d^|t| a(t)``,
+``ŵ(u) = d^(|u|−1) w(u)``, and the residual ``R`` of a condition with ``n`` vertices gives
+the element ``N = (n−1)!·d^(n−1)·R = Σ_u ±((n−1)!/σ(u))·ŵ(u)`` of ``Z[θ]`` (σ(u) divides
+``(n−1)!``: it is the order of a group of permutations of the ``n − 1`` non-root vertices).
+
+Channels.  For a prime ``p`` over which ``g`` has ``D = deg g`` distinct roots ``r``,
+``θ ↦ r`` is a ring homomorphism ``Z[θ] → Z/p``; every weight is computed in int64 numpy
+arrays modulo ``p`` (``p < 2^29``, so a row of ``s ≤ 32`` products sums without
+overflow).  A nonzero residue proves ``N ≠ 0``: the condition **fails**.  Zero is proven
+by size: the ``D`` residues at one prime determine the coefficients of ``N`` modulo
+``p``; when every coefficient is known to be smaller than ``Π p / 2`` in absolute value,
+residues that are all zero mean ``N = 0``: the condition **holds**.
+
+The bound.  In each complex embedding ``σ_j`` (for rationals: the value itself),
+``|σ_j(Φ̂(t))_i| ≤ α_j^(|t|−1)`` with ``α_j = max_i Σ_k |σ_j(Â_ik)|``, so
+``|σ_j(â(t))| ≤ β_j α_j^(|t|−1)`` (``β_j = Σ_i |σ_j(b̂_i)|``) and
+``|σ_j(N)| ≤ (n−1)!·T·M^(n−1)`` with ``T`` the number of terms and
+``M = max_j max(α_j, β_j, 1)``.  The coefficients of ``N`` are ``V⁻¹`` times its
+conjugates (``V`` the Vandermonde matrix of the conjugates of ``θ``), so
+``|coefficient| ≤ ‖V⁻¹‖_∞ (n−1)! T M^(n−1)``; all of it is computed with exact integers
+or certified Arb balls, rounded up.
+
+Values.  Residues are kept; the exact residual is rebuilt only when asked for (Chinese
+remaindering, Garner's mixed-radix form), so that deciding ``holds``/``fails`` costs
+nothing more.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import lru_cache
+from typing import Any, Sequence
+
+import numpy as np
+
+PRIME_BITS = 29  # products of two residues and sums of 32 of them stay below 2^63
+_PRIME_LIMIT = 1 << PRIME_BITS
+
+
+@lru_cache(maxsize=4)
+def _primes_below(limit: int, count: int) -> tuple[int, ...]:
+    """The ``count`` largest primes below ``limit`` (deterministic)."""
+    from flint import fmpz
+
+    out = []
+    q = limit - 1
+    while len(out) < count:
+        if fmpz(q).is_prime():
+            out.append(q)
+        q -= 2 if q % 2 else 1
+    return tuple(out)
+
+
+def primes(count: int, skip: int = 0) -> tuple[int, ...]:
+    """Primes below 2^29, largest first, in a fixed order (``skip`` them first)."""
+    size = 64
+    while size < count + skip:
+        size *= 2
+    return _primes_below(_PRIME_LIMIT, size)[skip:skip + count]
+
+
+# ---------------------------------------------------------------------- one channel
+
+
+class ModularChannel:
+    """The arithmetic of one channel: int64 numpy arrays of residues modulo ``p``."""
+
+    exact = True
+
+    def __init__(self, p: int, A: np.ndarray, b: np.ndarray):
+        self.p = p
+        self._coef_cache: dict[int, tuple] = {}
+        self.A_t = np.ascontiguousarray(A.T % p)
+        self.b = b % p
+        self.s = len(b)
+
+    # Stored weights are residues below 2^29: int32 halves the memory; arithmetic
+    # widens to int64 (a product of two residues needs 58 bits).
+    def vectors(self, n: int, s: int) -> np.ndarray:
+        return np.zeros((n, s), dtype=np.int32)
+
+    def scalars(self, n: int) -> np.ndarray:
+        return np.zeros(n, dtype=np.int32)
+
+    def ones(self, k: int, s: int) -> np.ndarray:
+        return np.ones((k, s), dtype=np.int64)
+
+    def one(self, k: int) -> np.ndarray:
+        return np.ones(k, dtype=np.int64)
+
+    def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return x[idx].astype(np.int64)
+
+    def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
+        store[lo:lo + len(x)] = x
+
+    def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        z = x * y
+        z %= self.p
+        return z
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        if self.s <= 32:
+            z = x @ self.A_t
+            z %= self.p
+            return z
+        z = np.zeros((len(x), self.s), dtype=np.int64)
+        for k in range(0, self.s, 32):
+            z += (x[:, k:k + 32] @ self.A_t[k:k + 32]) % self.p
+            z %= self.p
+        return z
+
+    def dot(self, x: np.ndarray) -> np.ndarray:
+        if self.s <= 32:
+            z = x @ self.b
+            z %= self.p
+            return z
+        return _chunked_dot(x, self.b, self.p)
+
+    def sums(self, k: int, n: int) -> np.ndarray:
+        # float64 bins: a condition sums at most 21 residues below 2^29 (< 2^34), far
+        # inside the 2^53 integers a double holds exactly, and bincount is fast
+        return np.zeros(k, dtype=np.float64)
+
+    def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
+        """Add ``((n−1)!/σ)·(±ŵ)`` modulo p of terms i0 … i1−1 to their conditions' bins."""
+        p = self.p
+        w_terms *= self._coefficients(terms, n)[terms.coefficient_index[i0:i1]]
+        w_terms %= p
+        acc += np.bincount(terms.condition[i0:i1], weights=w_terms, minlength=len(acc))
+
+    def finish_sums(self, acc: np.ndarray, k: int, n: int) -> np.ndarray:
+        """The residues of N per condition (the extra bin dropped)."""
+        return acc[:k].astype(np.int64) % self.p
+
+    def _coefficients(self, terms, n: int) -> np.ndarray:
+        cached = self._coef_cache.get(n)
+        if cached is None or cached[0] is not terms:
+            cached = (terms, np.array([c % self.p for c in terms.coefficients], dtype=np.int64))  # signs as residues
+            self._coef_cache[n] = cached
+        return cached[1]
+
+
+def _chunked_dot(x: np.ndarray, b: np.ndarray, p: int) -> np.ndarray:
+    z = np.zeros(len(x), dtype=np.int64)
+    for k in range(0, len(b), 32):
+        z += (x[:, k:k + 32] @ b[k:k + 32]) % p
+        z %= p
+    return z
+
+
+# ---------------------------------------------------------------------- the tableau
+
+
+@dataclass
+class ScaledTableau:
+    """``Â = d·A`` and ``b̂ = d·b`` over ``Z[θ]``: entries are integer coefficient lists
+    (power basis of θ, length D); ``minpoly`` is the monic integer minimal polynomial of
+    θ (ascending, length D + 1; ``[0, 1]`` for Q); ``log2_bound(n, terms)`` bounds the
+    bits of the coefficients of ``N`` (module docstring)."""
+
+    A: list[list[list[int]]]
+    b: list[list[int]]
+    d: int
+    minpoly: list[int]
+    log2_M: float  # upper bound of log2 M
+    log2_Vinv: float = 0.0  # upper bound of log2 ‖V⁻¹‖_∞ (0 for Q)
+    number_field: Any = None  # the number field of the entries (None: Q)
+
+    @property
+    def degree(self) -> int:
+        return len(self.minpoly) - 1
+
+    @property
+    def s(self) -> int:
+        return len(self.b)
+
+    def coefficient_bits(self, n: int, terms: int) -> int:
+        """Bits that bound ``|coefficient of N|`` for a condition with ``n`` vertices and
+        ``terms`` terms (rounded up, plus one for the sign)."""
+        bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
+        return math.ceil(bits) + 2
+
+    def primes_for(self, bits: int) -> list[tuple[int, list[int]]]:
+        """Enough channel primes for coefficients of ``bits`` bits: each (p, roots of
+        the minimal polynomial mod p), in a fixed order, with ``Π p > 2^bits``."""
+        chosen: list[tuple[int, list[int]]] = []
+        total = 0.0
+        skip = 0
+        while total <= bits:
+            for p in primes(16, skip):
+                if total > bits:
+                    break
+                roots = self._roots_mod(p)
+                if roots is not None:
+                    chosen.append((p, roots))
+                    total += math.log2(p)
+            skip += 16
+        return chosen
+
+    def _roots_mod(self, p: int) -> list[int] | None:
+        """The D distinct roots of the minimal polynomial modulo p, or None when p
+        divides d or the polynomial does not split into distinct linear factors."""
+        if self.d % p == 0:
+            return None
+        if self.degree == 1:
+            return [(-self.minpoly[0]) % p]
+        from flint import nmod_poly
+
+        f = nmod_poly([c % p for c in self.minpoly], p)
+        roots = [int(r) for r, mult in f.roots() if mult == 1]
+        return roots if len(roots) == self.degree else None
+
+    def channel(self, p: int, root: int) -> ModularChannel:
+        def image(coeffs: Sequence[int]) -> int:
+            acc = 0
+            for c in reversed(coeffs):
+                acc = (acc * root + c) % p
+            return acc
+
+        A = np.array([[image(x) for x in row] for row in self.A], dtype=np.int64)
+        b = np.array([image(x) for x in self.b], dtype=np.int64)
+        return ModularChannel(p, A, b)
+
+
+def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:
+    """The scaled data of a rational tableau (D = 1)."""
+    d = 1
+    for x in [x for row in A for x in row] + list(b):
+        d = math.lcm(d, Fraction(x).denominator)
+    Ai = [[[int(Fraction(x) * d)] for x in row] for row in A]
+    bi = [[int(Fraction(x) * d)] for x in b]
+    alpha = max(sum(abs(x[0]) for x in row) for row in Ai)
+    beta = sum(abs(x[0]) for x in bi)
+    M = max(alpha, beta, 1)
+    return ScaledTableau(Ai, bi, d, [0, 1], float(M.bit_length()))
+
+
+# ---------------------------------------------------------------------- results
+
+
+@dataclass
+class ExactOrderSums:
+    """The residues of every condition of one order, and what they prove.
+
+    ``residues[k, i, j]``: condition k, prime i, root j.  ``scale = (n−1)!·d^(n−1)``
+    turns the integer element ``N`` back into the residual ``R`` (of the class
+    representative; the caller applies the designated sign)."""
+
+    vertices: int
+    residues: np.ndarray
+    primes: list[tuple[int, list[int]]]
+    scale: int
+    tableau: ScaledTableau
+
+    def is_zero(self) -> np.ndarray:
+        return ~np.any(self.residues != 0, axis=(1, 2))
+
+    def value(self, k: int) -> Any:
+        """The exact residual of condition k: a Fraction (rationals) or a field element."""
+        coeffs = self._coefficients(k)
+        if self.tableau.number_field is None:
+            return Fraction(coeffs[0], self.scale)
+        return self.tableau.field_element(coeffs, self.scale)
+
+    def values(self) -> list[Any]:
+        """Every condition's exact residual (Garner's algorithm vectorised over the
+        conditions: the mixed-radix digits in int64, then one integer per condition)."""
+        if self.tableau.degree != 1:
+            return [self.value(k) for k in range(len(self.residues))]
+        mods = [p for p, _ in self.primes]
+        r = self.residues[:, :, 0].astype(np.int64)
+        digits = []
+        for i, p in enumerate(mods):
+            # x_i = (r_i − (x_0 + x_1 m_0 + …)) / (m_0 … m_{i−1})  (mod p_i)
+            acc = np.zeros(len(r), dtype=np.int64)
+            weight = 1
+            for j in range(i):
+                acc = (acc + digits[j] * (weight % p)) % p
+                weight *= mods[j]
+            inv = pow(weight % p, -1, p)
+            digits.append(((r[:, i] - acc) % p) * inv % p)
+        total = math.prod(mods)
+        out = []
+        weights = [math.prod(mods[:i]) for i in range(len(mods))]
+        cols = [d.tolist() for d in digits]
+        for row in zip(*cols) if cols else [() for _ in range(len(r))]:
+            x = sum(d * w for d, w in zip(row, weights))
+            out.append(Fraction(x - total if x > total // 2 else x, self.scale))
+        return out
+
+    def _coefficients(self, k: int) -> list[int]:
+        D = self.tableau.degree
+        per_prime = []
+        for i, (p, roots) in enumerate(self.primes):
+            vals = [int(v) for v in self.residues[k, i, :D]]
+            per_prime.append(_vandermonde_solve(roots, vals, p) if D > 1 else vals)
+        mods = [p for p, _ in self.primes]
+        return [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
+
+
+def _vandermonde_solve(roots: list[int], values: list[int], p: int) -> list[int]:
+    """Coefficients c (mod p) with Σ c_k r^k = value at every root r."""
+    from flint import nmod_mat
+
+    D = len(roots)
+    V = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p)
+    x = V.solve(nmod_mat([[v] for v in values], p))
+    return [int(x[i, 0]) for i in range(D)]
+
+
+def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
+    """The integer in (−Π/2, Π/2] with the given residues (Garner's algorithm)."""
+    x, m = 0, 1
+    for r, p in zip(residues, moduli):
+        t = ((r - x) * pow(m, -1, p)) % p
+        x += m * t
+        m *= p
+    return x - m if x > m // 2 else x
+
+
+def exact_condition_sums(scaled: ScaledTableau, listing, orders=None) -> dict[int, ExactOrderSums]:
+    """Every condition of the listing (or of the given orders) exactly: residues over
+    enough channels for each order's bound."""
+    from rkcheck.evaluation.algorithm import condition_sums
+
+    wanted = sorted(listing.orders if orders is None else orders)
+    need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
+    channels = scaled.primes_for(max(need.values(), default=1))
+    D = scaled.degree
+    count = {n: 0 for n in wanted}
+    cum = 0.0
+    for p, _ in channels:
+        for n in wanted:
+            if cum < need[n]:
+                count[n] += 1
+        cum += math.log2(p)
+    residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
+    for i, (p, roots) in enumerate(channels):
+        orders_i = [n for n in wanted if i < count[n]]
+        if not orders_i:
+            break
+        for j, r in enumerate(roots):
+            sums = condition_sums(listing, scaled.channel(p, r), scaled.s, orders_i)
+            for n in orders_i:
+                residues[n][:, i, j] = sums[n]
+    return {
+        n: ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled)
+        for n in wanted
+    }

@@ -1,0 +1,335 @@
+"""All rooted trees up to an order as flat arrays, with O(1) Butcher-product lookups.
+
+This is the listing behind the energy check (definitions §2–§3).  Conventions:
+
+* Every rooted tree ``t ≠ τ`` is the **Butcher product** ``t = u ∘ v``: ``v`` is its
+  child with the *largest* id and ``u`` is ``t`` with (one copy of) that child removed.
+  So ``children(t) = children(u) ∪ {v}`` and the elementary weights follow
+  ``Φ(t) = Φ(u) ⊙ AΦ(v)`` and ``a(B₋(t)) = a(B₋(u)) · a(v)`` (definitions §2).
+* Ids grow with the number of vertices: the trees with ``n`` vertices are
+  ``first[n] <= id < first[n+1]``, so both factors of a tree have smaller ids.
+* Within an order, ids follow the **generation order**: by the order ``r`` of ``v``,
+  then by ``v``, then by ``u`` in the order of the left factors sorted by their largest
+  child.  That makes the id of a product a sum of table entries::
+
+      id(u ∘ v) = first[n] + base[n, r] + offset[n, v] + rank[u]        (n = |u| + |v|)
+
+  — a few array reads, never a search.  (A sorted-key search costs about 1.6 µs per
+  lookup in a table of 35 million trees, from cache misses; the sum costs a few reads.)
+* Degree bounds: every vertex other than the root has at most ``inner_bound`` children
+  and the root at most ``root_bound``.  For Hamiltonians of degree ≤ m the energy
+  conditions need ``inner_bound = m − 1`` and ``root_bound = m`` (a vertex's degree is its
+  children plus its parent edge); trees outside the bounds are never built.
+
+Per tree the table keeps: ``left``/``right`` (the factors ``u``, ``v``; −1 for τ),
+``nchild``, ``sigma`` (symmetry σ), ``mult`` (copies of ``v`` among the children), the
+depths of the two deepest branches ``h1 ≥ h2`` (``height = h1``), the child ``tall`` that
+alone reaches depth ``h1`` (when ``h1 > h2``) and ``rest = t − tall``; these locate the
+centre of every tree's free tree without building it (:mod:`rkcheck.trees.classes`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+TAU = 0
+_NONE = -1
+
+
+_FIELDS = {  # per-tree arrays and their dtypes
+    "left": np.int32, "right": np.int32, "nchild": np.int8, "h1": np.int8, "h2": np.int8,
+    "tall": np.int32, "rest": np.int32, "sigma": np.int64, "mult": np.int8, "order": np.int8,
+    "rank": np.int32, "inner_max": np.int8,
+}
+_CHUNK = 1 << 20  # rows per vectorised step: bounds the temporaries
+
+
+class TreeTable:
+    """Every rooted tree with at most ``max_order`` vertices within the degree bounds
+    (``None`` = unbounded), generated order by order into preallocated arrays."""
+
+    def __init__(self, max_order: int, root_bound: int | None = None, inner_bound: int | None = None):
+        if max_order < 1:
+            raise ValueError("max_order must be at least 1")
+        if root_bound is not None and inner_bound is not None and inner_bound > root_bound:
+            raise ValueError("the root may not have fewer children than an inner vertex")
+        self.root_bound = root_bound
+        self.inner_bound = inner_bound
+        self.first = [0, 0, 1]  # first[n] for n = 0, 1, 2 (order 1 is τ alone)
+        self._capacity = 1
+        for name, dtype in _FIELDS.items():
+            setattr(self, name, np.zeros(1, dtype=dtype))
+        self.left[0] = self.right[0] = self.tall[0] = self.rest[0] = _NONE
+        self.sigma[0] = self.order[0] = 1
+        # lookup tables: base[n][r]; offset[n] covers the ids of orders < n
+        self._base: dict[int, np.ndarray] = {}
+        self._offset: dict[int, np.ndarray] = {}
+        self._lefts_sorted: dict[int, np.ndarray] = {}  # order -> left-factor ids sorted by largest child
+        self._block_cache: dict[int, list] = {}
+        self._count: dict[int, int] = {}
+        self._prepare_lefts(1)
+        self.max_order = 1
+        self.grow_to(max_order)
+
+    def grow_to(self, max_order: int) -> None:
+        """Add the orders up to ``max_order`` (a table grows; it never shrinks)."""
+        for n in range(self.max_order + 1, max_order + 1):
+            self._grow(n)
+            self.max_order = n
+
+    def __len__(self) -> int:
+        return self.first[-1]
+
+    def ids_of_order(self, n: int) -> range:
+        if n < 1 or n > self.max_order:
+            return range(0)
+        return range(self.first[n], self.first[n + 1])
+
+    def count(self, n: int) -> int:
+        return len(self.ids_of_order(n))
+
+    def _inner_ok(self, ids: np.ndarray) -> np.ndarray:
+        if self.inner_bound is None:
+            return np.ones(len(ids), dtype=bool)
+        return self.nchild[ids] <= self.inner_bound
+
+    def _reserve(self, size: int, used: int) -> None:
+        """Grow every per-tree array to hold ``size`` trees, keeping the first ``used``."""
+        if size <= self._capacity:
+            return
+        cap = size
+        for name, dtype in _FIELDS.items():
+            arr = np.empty(cap, dtype=dtype)
+            arr[:used] = getattr(self, name)[:used]
+            setattr(self, name, arr)
+        self._capacity = cap
+
+    def release(self) -> None:
+        """Keep only the factors ``left``/``right`` (all that evaluating weights needs)
+        and what :meth:`pairs` needs to generate a prepared order again; lookups and new
+        orders are no longer possible afterwards."""
+        for name in _FIELDS:
+            if name not in ("left", "right"):
+                setattr(self, name, None)
+        self._base.clear()
+        self._offset.clear()
+
+    # -------------------------------------------------------------- generation
+
+    def _prepare_lefts(self, k: int) -> None:
+        """The trees of order k that can be left factors (room for one more child at the
+        root), sorted by their largest child (τ's is −1), and each one's rank there."""
+        ids = np.arange(self.first[k], self.first[k + 1], dtype=np.int32)
+        if self.root_bound is not None:
+            ids = ids[self.nchild[ids] < self.root_bound]
+        order = np.argsort(self.right[ids], kind="stable")
+        lefts = ids[order]
+        self._lefts_sorted[k] = lefts
+        self.rank[self.first[k]:self.first[k + 1]] = _NONE
+        self.rank[lefts] = np.arange(len(lefts), dtype=np.int32)
+
+    def _blocks(self, n: int):
+        """For each order r of the right factor: (r, inner-valid right factors v of order
+        r, how many left factors each one takes)."""
+        for r in range(1, n):
+            v_ids = np.arange(self.first[r], self.first[r + 1], dtype=np.int32)
+            v_ids = v_ids[self._inner_ok(v_ids)]
+            lefts = self._lefts_sorted[n - r]
+            if len(v_ids) == 0 or len(lefts) == 0:
+                yield r, v_ids[:0], np.zeros(0, dtype=np.int64)
+                continue
+            yield r, v_ids, np.searchsorted(self.right[lefts], v_ids, side="right").astype(np.int64)
+
+    def prepare_order(self, n: int) -> int:
+        """Build the lookup tables of order ``n`` (``base``, ``offset``) and return how
+        many trees it has.  ``n`` may be one above the stored orders: its trees can then be
+        looked up and generated in chunks (:meth:`pairs`) without being stored."""
+        if n in self._block_cache:
+            return int(self._count[n])
+        bases = np.zeros(n + 1, dtype=np.int64)
+        offset = np.full(self.first[n], _NONE, dtype=np.int32)
+        total = 0
+        blocks = []
+        for r, v_ids, counts in self._blocks(n):
+            bases[r] = total
+            starts = np.cumsum(counts) - counts
+            offset[v_ids] = starts
+            blocks.append((r, v_ids, counts))
+            total += int(counts.sum())
+        self._base[n] = bases
+        self._offset[n] = offset
+        self._block_cache[n] = blocks
+        self._count[n] = total
+        return total
+
+    def pairs(self, n: int):
+        """The factors ``(U, V)`` of the trees of order ``n`` in id order, in chunks of
+        about ``_CHUNK`` rows (generation order, see the module docstring)."""
+        self.prepare_order(n)
+        for r, v_ids, counts in self._block_cache[n]:
+            lefts = self._lefts_sorted[n - r]
+            i = 0
+            while i < len(v_ids):
+                j = i + 1
+                rows = int(counts[i])
+                while j < len(v_ids) and rows + int(counts[j]) <= _CHUNK:
+                    rows += int(counts[j])
+                    j += 1
+                c = counts[i:j]
+                m = int(c.sum())
+                if m:
+                    V = np.repeat(v_ids[i:j], c)
+                    local = np.arange(m, dtype=np.int64) - np.repeat(np.cumsum(c) - c, c)
+                    yield lefts[local], V
+                i = j
+
+    def _grow(self, n: int) -> None:
+        total = self.prepare_order(n)
+        lo = self.first[-1]
+        self._reserve(lo + total, lo)
+        self.first.append(lo + total)
+        pos = lo
+        for U, V in self.pairs(n):
+            hi = pos + len(U)
+            for name, values in self.attributes(n, U, V).items():
+                getattr(self, name)[pos:hi] = values
+            pos = hi
+        del self._block_cache[n]
+        self._prepare_lefts(n)
+
+    def attributes(self, n: int, U: np.ndarray, V: np.ndarray) -> dict[str, np.ndarray]:
+        """The per-tree attributes of the trees ``U ∘ V`` (all of order ``n``)."""
+        h1u = self.h1[U].astype(np.int16)
+        dv = self.h1[V].astype(np.int16) + 1
+        taller = dv > h1u
+        tie = dv == h1u
+        h1 = np.maximum(h1u, dv)
+        h2 = np.where(taller, h1u, np.where(tie, dv, np.maximum(self.h2[U], dv)))
+        tall = np.where(taller | tie, V, self.tall[U])
+        mult = np.where(self.right[U] == V, self.mult[U] + 1, 1)
+        # rest = t − tall: u when the tall child is v, else (u − tall) ∘ v; only where the
+        # tallest branch is unique (h1 > h2), which is where the centre lies off the root
+        rest = np.full(len(U), _NONE, dtype=np.int32)
+        unique = h1 > h2
+        via_v = unique & (tall == V)
+        rest[via_v] = U[via_v]
+        via_u = np.flatnonzero(unique & ~via_v)
+        if len(via_u):  # (u − tall) has fewer vertices: its product is already in the table
+            rest[via_u] = self.product(self.rest[U[via_u]], V[via_u])
+        return {
+            "left": U, "right": V, "nchild": self.nchild[U] + 1, "h1": h1, "h2": h2, "tall": tall,
+            "rest": rest, "mult": mult, "sigma": self.sigma[U] * self.sigma[V] * mult, "order": n,
+            "rank": _NONE,
+            "inner_max": np.maximum(self.inner_max[U], np.maximum(self.inner_max[V], self.nchild[V] + 1)),
+        }
+
+    # ----------------------------------------------------------------- lookups
+
+    def product(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """``id(u ∘ v)`` for arrays of factors; requires ``v >= largest child of u``, ``u``
+        with room for one more child and ``v`` within the inner bound (every caller
+        guarantees this by construction)."""
+        u = np.asarray(u)
+        v = np.asarray(v)
+        order = self.order
+        r = order[v]
+        n = order[u] + r
+        out = np.empty(len(u), dtype=np.int32)
+        lo_n, hi_n = (int(n.min()), int(n.max())) if len(n) else (0, -1)
+        for nn in range(lo_n, hi_n + 1):
+            sel = np.flatnonzero(n == nn) if lo_n != hi_n else slice(None)
+            vs = v[sel]
+            out[sel] = self._base[nn][r[sel]] + self._offset[nn][vs] + self.rank[u[sel]] + self.first[nn]
+        return out
+
+    def insert(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """``id`` of the tree whose root carries ``children(x) ∪ {y}`` (``y`` any id within
+        the inner bound): strip the children of ``x`` larger than ``y``, attach ``y``,
+        re-attach the stripped ones, largest last."""
+        x = np.array(x, dtype=np.int32)
+        y = np.asarray(y)
+        right, left = self.right, self.left
+        stripped: list[tuple[np.ndarray, np.ndarray]] = []  # (rows, child) per level
+        active = np.flatnonzero(right[x] > y)
+        while len(active):
+            stripped.append((active, right[x[active]]))
+            x[active] = left[x[active]]
+            active = active[right[x[active]] > y[active]]
+        cur = self.product(x, y)
+        for rows, child in reversed(stripped):
+            cur[rows] = self.product(cur[rows], child)
+        return cur
+
+    def gamma(self, ids: np.ndarray) -> np.ndarray:
+        """The density γ of each tree (definitions §2): ``γ(u ∘ v) = γ(u)·γ(v)·|t|/|u|``,
+        as exact Python ints (object array; 21! exceeds int64)."""
+        cache = self.__dict__.setdefault("_gamma", {0: 1})
+        out = []
+        for t in (int(x) for x in ids):
+            stack = [t]
+            while stack:
+                x = stack[-1]
+                if x in cache:
+                    stack.pop()
+                    continue
+                u, v = int(self.left[x]), int(self.right[x])
+                missing = [y for y in (u, v) if y not in cache]
+                if missing:
+                    stack.extend(missing)
+                    continue
+                cache[x] = cache[u] * cache[v] * int(self.order[x]) // int(self.order[u])
+                stack.pop()
+            out.append(cache[t])
+        return np.array(out, dtype=object)
+
+    def id_of_children(self, children) -> int:
+        """The id of the tree whose root carries ``children`` (ids, any order); KeyError
+        when that tree is not in the table (too many vertices, or outside the bounds)."""
+        kids = sorted(int(c) for c in children)
+        n = 1 + sum(int(self.order[c]) for c in kids)
+        if n > self.max_order or (self.root_bound is not None and len(kids) > self.root_bound):
+            raise KeyError(tuple(children))
+        if self.inner_bound is not None and any(self.nchild[c] > self.inner_bound for c in kids):
+            raise KeyError(tuple(children))
+        cur = TAU
+        for c in kids:  # attaching children in increasing id order: each is the largest so far
+            cur = int(self.product(np.array([cur]), np.array([c]))[0])
+        return cur
+
+    def id_of_level_sequence(self, seq) -> int:
+        """The id of the tree with level sequence ``seq`` (any valid one)."""
+        from rkcheck.trees.rooted import children_of_level_sequence
+
+        return self.id_of_children([self.id_of_level_sequence(sub) for sub in children_of_level_sequence(tuple(seq))])
+
+    def bracket(self, t: int) -> str:
+        """Butcher's bracket notation of ``t`` (``[[τ]τ²]``)."""
+        from rkcheck.trees.rooted import bracket_of_forest
+
+        return bracket_of_forest([self.level_sequence(c) for c in self.children(t)])
+
+    @property
+    def height(self) -> np.ndarray:
+        """Edges from the root to the deepest leaf (τ: 0)."""
+        return self.h1
+
+    def children(self, t: int) -> list[int]:
+        """The children of ``t`` (ids), largest first."""
+        out = []
+        right, left = self.right, self.left
+        while t != TAU:
+            out.append(int(right[t]))
+            t = int(left[t])
+        return out
+
+    def level_sequence(self, t: int, _cache: dict | None = None) -> tuple[int, ...]:
+        """Canonical (lexicographically largest) level sequence of ``t``, definitions §2."""
+        cache = self.__dict__.setdefault("_ls_cache", {}) if _cache is None else _cache
+        seq = cache.get(t)
+        if seq is None:
+            subs = sorted((self.level_sequence(c, cache) for c in self.children(t)), reverse=True)
+            out = [1]
+            for sub in subs:
+                out.extend(d + 1 for d in sub)
+            seq = cache[t] = tuple(out)
+        return seq

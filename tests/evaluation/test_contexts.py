@@ -1,0 +1,147 @@
+"""The number contexts of the one weight algorithm against independent values.
+
+* exact residues (multi-modular, ``rkcheck.evaluation.modular``) rebuild exactly the
+  residuals of the brute-force reference (``tests/support/reference.py``, Fractions);
+* certified balls at any precision, and the float64 screen, enclose those exact values;
+* chunked evaluation (small chunks: many partial sums and bins) is bit-identical to
+  one-chunk evaluation;
+* the float screen never says ``fails`` where exact arithmetic says ``holds``.
+"""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+from support import reference as ref
+from support.paths import TABLEAUX
+
+import rkcheck.evaluation.algorithm as algorithm
+import rkcheck.trees.classes as classes
+import rkcheck.trees.table as table_module
+from rkcheck.energy.verdicts import FAILS, HOLDS, classify
+from rkcheck.evaluation.algorithm import condition_sums
+from rkcheck.evaluation.balls import BallContext, FloatContext
+from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.io.discovery import find_tableau_files
+from rkcheck.io.loader import load
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.studies.accuracy import evaluate_backend
+from rkcheck.trees.listing import ConditionListing
+
+
+def random_tableau(seed: int, big: bool = False):
+    rng = random.Random(seed)
+    s = rng.randint(1, 4)
+    den = 10**9 if big else 12  # large denominators: many channels
+    A = [[Fraction(rng.randint(-12, 12), rng.randint(1, den)) for _ in range(s)] for _ in range(s)]
+    b = [Fraction(rng.randint(-12, 12), rng.randint(1, den)) for _ in range(s)]
+    if rng.random() < 0.5:  # some with Σb = 1, so that low-order conditions can vanish
+        b[-1] = 1 - sum(b[:-1])
+    if rng.random() < 0.3:  # a dead stage
+        b[0] = Fraction(0)
+    return A, b
+
+
+def points(A, b):
+    return [[Interval.point(x) for x in r] for r in A], [Interval.point(x) for x in b]
+
+
+def exact_by_id(listing, A, b):
+    sums = exact_condition_sums(scaled_rational(A, b), listing)
+    out = {}
+    for n, o in sums.items():
+        zero = o.is_zero()
+        for k in range(len(listing.orders[n])):
+            rec = listing.record(n, k)
+            value = o.value(k) * rec.flip
+            assert (value == 0) == bool(zero[k])
+            out[rec.level_sequence] = value
+    return out
+
+
+@pytest.mark.parametrize("seed", range(8))
+@pytest.mark.parametrize("degree", [None, 3])
+def test_exact_residues_rebuild_the_reference_residuals(seed, degree):
+    A, b = random_tableau(seed, big=seed % 3 == 0)
+    listing = ConditionListing(7, degree)
+    got = exact_by_id(listing, A, b)
+    for n in range(3, 9):
+        for d in ref.energy_conditions(n, degree):
+            assert got[d["id"]] == ref.energy_residual(d, A, b), d["id"]
+    assert len(got) == sum(len(ref.energy_conditions(n, degree)) for n in range(3, 9))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_chunked_evaluation_is_bit_identical(seed, monkeypatch):
+    # tiny chunks split every order into many parts (listing and sums); results must not move
+    A, b = random_tableau(seed)
+    whole = exact_by_id(ConditionListing(9, None), A, b)
+    S, P = points(A, b)
+    balls_whole = condition_sums(ConditionListing(9, None), BallContext(S, P, 200), len(b))
+    monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
+    monkeypatch.setattr(classes, "_CHUNK", 7)
+    monkeypatch.setattr(table_module, "_CHUNK", 7)
+    listing = ConditionListing(9, None)  # built anew with the small chunks (not the cached one)
+    assert exact_by_id(listing, A, b) == whole
+    balls_chunked = condition_sums(listing, BallContext(S, P, 200), len(b))
+    for n in balls_whole:
+        assert list(balls_chunked[n].mids) == list(balls_whole[n].mids)
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("dps", [15, 50, 400, 1000])
+def test_balls_enclose_the_exact_values_at_every_precision(seed, dps):
+    A, b = random_tableau(seed)
+    listing = ConditionListing(8 if dps <= 50 else 6, None)
+    truth = exact_condition_sums(scaled_rational(A, b), listing)
+    S, P = points(A, b)
+    balls = condition_sums(listing, BallContext(S, P, bits_for_dps(dps)), len(b))
+    for n, sums in balls.items():
+        for k in range(len(sums)):
+            e, t = sums.enclosure(k), truth[n].value(k)
+            assert abs(e.mid - t) <= e.rad and e.rad < Fraction(1, 10**dps) * max(1, abs(t))
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_float_screen_encloses_and_never_fails_where_exact_holds(seed):
+    A, b = random_tableau(seed)
+    listing = ConditionListing(9, None)
+    truth = exact_condition_sums(scaled_rational(A, b), listing)
+    S, P = points(A, b)
+    screen = condition_sums(listing, FloatContext(S, P), len(b))
+    detected = failing = 0
+    for n, sums in screen.items():
+        zero = truth[n].is_zero()
+        for k in range(len(sums)):
+            e, t = sums.enclosure(k), truth[n].value(k)
+            assert abs(Fraction(e.mid) - t) <= Fraction(e.rad)
+            v = classify(e)
+            if zero[k]:
+                assert v.state != FAILS
+            else:
+                failing += 1
+                detected += v.state == FAILS
+    assert failing == 0 or detected / failing > 0.9  # random data fails by O(1): the screen sees it
+
+
+FILES = [f for f in find_tableau_files([str(TABLEAUX)])]
+
+
+@pytest.mark.parametrize("path", FILES, ids=[str(Path(f).relative_to(TABLEAUX)) for f in FILES])
+def test_shipped_tableaux_balls_agree_with_exact_and_screen_is_safe(path):
+    tab = load(path)
+    listing = ConditionListing(8, tab.check.get("degree"))
+    balls = evaluate_backend(listing, tab, "dps:50")
+    if tab.is_exact("rounded"):
+        exact = evaluate_backend(listing, tab, "exact")
+        screen = evaluate_backend(listing, tab, "float64")
+        for key, (e, v) in exact.items():
+            assert abs(Fraction(balls[key][0].mid) - e.mid) <= balls[key][0].rad
+            if v.state == HOLDS:
+                assert screen[key][1].state != FAILS and balls[key][1].state != FAILS
+            else:
+                assert balls[key][1].state == FAILS
