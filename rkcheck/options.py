@@ -22,8 +22,10 @@ DEFAULT_DPS = 50
 DEFAULT_DECIMALS = "rounded"
 DEFAULT_MAX_STAGES = 64
 
-#: The highest energy order the command line accepts (free trees with 21 vertices).
-MAX_ORDER = 20
+#: The highest energy order any source may ask for.  What actually fits is decided by the
+#: resource guard from exact condition counts (rkcheck.energy.budget): order 20 needs
+#: about 2 GB, order 24 about 140 GB.
+MAX_ORDER = 30
 #: Working precisions the command line accepts.
 DPS_RANGE = (10, 5000)
 

@@ -9,16 +9,20 @@ import click
 from rkcheck.cli.common import (
     DEGREE,
     EXIT_FAIL,
+    EXIT_INTERRUPTED,
     EXIT_OK,
+    budget,
     check_options,
     decimals_option,
     dps_option,
     fail_on_option,
     flag_values,
     load_tableau,
+    max_conditions_option,
     max_stages_option,
     order_option,
     output_options,
+    progress_steps,
     project_config,
     settings,
     stdout_console,
@@ -35,7 +39,8 @@ from rkcheck.options import DEFAULT_DPS, MAX_ORDER, resolve_check_options
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
-def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_fast, fail_on) -> None:
+def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, show_all, fmt, fail_fast,
+           fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table.
 
@@ -44,13 +49,20 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
+    from rkcheck.energy.check import CheckInterrupted
     from rkcheck.energy.claims import judge_tableau
 
     config = project_config()
     tab = load_tableau(file, max_stages)
     options = resolve_check_options(flag_values(), tab.check, config.check)
     fail_on = fail_on or config.fail_on or "auto"
-    result, claim_results, failed = judge_tableau(tab, options, fail_on)
+    interrupted = False
+    try:
+        with progress_steps("checking") as update:
+            result, claim_results, failed = judge_tableau(tab, options, fail_on, budget(max_conditions), update,
+                                                          arithmetic)
+    except CheckInterrupted as stop:  # report what was finished, then exit 130
+        result, claim_results, failed, interrupted = stop.result, None, True, True
     if fmt == "json":
         from rkcheck.reports.jsondoc import check_doc, dumps
 
@@ -61,6 +73,11 @@ def verify(file, degree, order, dps, decimals, max_stages, show_all, fmt, fail_f
         out = settings()
         render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, claims=claim_results,
                      verbose=out.verbose, fail_on=fail_on)
+    if interrupted:
+        done = [p.order for p in result.per_order if p.checked]
+        click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
+                   f"{f' (up to {max(done)})' if done else ' (none)'}", err=True)
+        sys.exit(EXIT_INTERRUPTED)
     sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
@@ -90,14 +107,23 @@ def show(file, fmt, decimals, max_stages) -> None:
 @click.command()
 @order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
-@click.option("--count", is_flag=True, help="Only count the conditions per order.")
+@click.option("--count", is_flag=True, help="Only count the conditions per order (from generating functions: "
+              "instant at any order).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@max_conditions_option
 @output_options
-def conditions(order, degree, count, fmt) -> None:
+def conditions(order, degree, count, fmt, max_conditions) -> None:
     """List the energy conditions (non-superfluous free trees) up to an order."""
+    from rkcheck.energy.budget import check_budget, estimate
     from rkcheck.trees.listing import condition_listing
 
-    listing = condition_listing(order, degree)
+    if count:
+        from rkcheck.trees.counting import CountOnly
+
+        listing = CountOnly(order, degree)
+    else:
+        check_budget(estimate(order, degree, "exact", 0), budget(max_conditions), order)
+        listing = condition_listing(order, degree)
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc, dumps
 

@@ -78,6 +78,28 @@ def stdout_console():
 
 
 @contextmanager
+def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
+    """A rich progress bar on stderr driven by ``update(done, total)`` (hidden when stderr
+    is not a terminal or --quiet); it disappears when the work is done."""
+    console = make_console(settings(), stderr=True)
+    if settings().quiet or not console.is_terminal:
+        yield lambda done, total: None
+        return
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as bar:
+        task = bar.add_task(label, total=None)
+        yield lambda done, total: bar.update(task, completed=done, total=total)
+
+
+@contextmanager
 def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
     console = make_console(settings(), stderr=True)
@@ -141,11 +163,40 @@ def dps_option(default: int | None = None) -> Callable:
     )
 
 
+def max_conditions_option(f: Callable) -> Callable:
+    return click.option(
+        "--max-conditions", type=click.IntRange(1), default=None,
+        help="Refuse checks with more conditions than this [default: whatever fits in the memory "
+        "available]; setting it also skips the memory check.",
+    )(f)
+
+
+def arithmetic_option(f: Callable) -> Callable:
+    return click.option(
+        "--arithmetic", type=click.Choice(["auto", "exact", "ball"]), default="auto", show_default=True,
+        help="'auto' = exact when the entries are exact numbers, else certified balls; 'exact' refuses "
+        "data that is not exact; 'ball' = certified balls at --dps in any case.",
+    )(f)
+
+
 def check_options(f: Callable) -> Callable:
-    """--degree / --order / --dps / --decimals / --max-stages, shared by the checking commands."""
-    for decorator in (max_stages_option, decimals_option(), dps_option(), order_option(), degree_option()):
+    """--degree / --order / --dps / --decimals / --max-stages / --max-conditions / --arithmetic,
+    shared by the checking commands."""
+    for decorator in (arithmetic_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
+                      order_option(), degree_option()):
         f = decorator(f)
     return f
+
+
+def budget(max_conditions: int | None):
+    """The resource budget of a check run from the command line: the memory this
+    machine has available, an explicit --max-conditions, and estimates of long checks
+    said on stderr (unless --quiet)."""
+    from rkcheck.energy.budget import Budget
+    from rkcheck.io.machine import available_memory
+
+    announce = None if settings().quiet else (lambda text: click.echo(f"rkcheck: {text}", err=True))
+    return Budget(available_memory(), max_conditions, announce)
 
 
 def fail_on_option(f: Callable) -> Callable:

@@ -35,7 +35,8 @@ from rkcheck.options import SCAN_FORMATS
               help="Write the report to this file (written even when interrupted).")
 @fail_on_option
 @output_options
-def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, output, fail_on) -> None:
+def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, jobs, exclude, fmt, output,
+         fail_on) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,

@@ -15,11 +15,12 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Iterator, NamedTuple, Sequence
+from typing import Any, Callable, Iterator, NamedTuple, Sequence
 
 import numpy as np
 
 from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
+from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.lineintegral import (
     LineIntegralCertificate,
     line_integral_certificate,
@@ -33,7 +34,13 @@ from rkcheck.energy.verdicts import (
     classify_bounds,
     classify_many,
 )
-from rkcheck.evaluation.backends import Evaluation, evaluate
+from rkcheck.evaluation.algorithm import EvaluationInterrupted
+from rkcheck.evaluation.backends import (
+    Evaluation,
+    channels_for,
+    choose_backend,
+    evaluate,
+)
 from rkcheck.methods.tableau import Tableau, consistency_warnings
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
@@ -213,6 +220,7 @@ class CheckResult:
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
     _failures: Failures | None = field(default=None, repr=False)
+    interrupted: bool = False  # Ctrl-C: only the orders in ``results`` were finished
 
     @property
     def failures(self) -> Failures:
@@ -290,8 +298,17 @@ def energy_order_of(per_order: list[OrderCounts], order: int) -> int:
 # ---------------------------------------------------------------------- check
 
 
+class CheckInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a check: ``result`` holds the orders that were finished (a
+    KeyboardInterrupt for library callers, a partial report for the CLI)."""
+
+    def __init__(self, result: "CheckResult"):
+        super().__init__()
+        self.result = result
+
+
 def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckOptions, enclosures=None,
-                    arithmetic: str = "auto") -> tuple[str, dict[int, OrderVerdicts]]:
+                    arithmetic: str = "auto", progress=None) -> tuple[str, dict[int, OrderVerdicts]]:
     """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
     the first one that has a certainly failing condition."""
     wanted = sorted(listing.orders)
@@ -303,31 +320,52 @@ def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckO
         i, step = 0, 1
         while i < len(wanted):
             batch = wanted[i:i + step]
-            ev = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, batch, enclosures)
+            try:
+                ev = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, batch, enclosures)
+            except EvaluationInterrupted as stop:
+                stop.finished = {**{n: o.values for n, o in orders.items()}, **stop.finished}
+                raise
             backend = ev.backend
             for n in batch:
                 orders[n] = order_verdicts(n, ev.orders[n])
+            if progress is not None:
+                progress(wanted.index(batch[-1]) + 1, len(wanted))
             failing = [n for n in batch if np.any(orders[n].state == 2)]
             if failing:  # keep the orders up to the first failing one: what fail-fast promises
                 return backend, {n: v for n, v in orders.items() if n <= failing[0]}
             i += step
             step *= 2
         return backend, orders
-    ev: Evaluation = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, None, enclosures)
+    ev: Evaluation = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, None, enclosures, progress)
     return ev.backend, {n: order_verdicts(n, v) for n, v in ev.orders.items()}
 
 
-def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto") -> CheckResult:
-    """Run the whole check of definitions §3–§5 on ``tableau``."""
+def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", budget: Budget | None = None,
+          progress: Callable[[int, int], None] | None = None) -> CheckResult:
+    """Run the whole check of definitions §3–§5 on ``tableau``.
+
+    ``budget``: refuse (:class:`~rkcheck.energy.budget.ResourceError`) a check that would
+    not fit, and announce a long one, before any work.  ``progress(done, total)`` as the
+    evaluation advances.  Ctrl-C raises :class:`CheckInterrupted` with the orders that
+    were finished."""
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
+    kind = choose_backend(tableau, options.decimals, arithmetic)
+    channels = channels_for(tableau, options.order, options.decimals, arithmetic) if kind == "exact" else 0
+    check_budget(estimate(options.order, options.degree, kind, channels, tableau.stages, options.dps),
+                 budget, options.order)
     listing = condition_listing(options.order, options.degree)
     t1 = time.perf_counter()
     timings["trees"] = t1 - t0  # the listing of the conditions (JSON key kept)
 
     bits = entry_bits(options.dps)
     A, b = tableau.enclosures(bits, options.decimals)  # once: backend, orders, certificates
-    backend, orders = evaluate_orders(listing, tableau, options, (A, b), arithmetic)
+    interrupted = False
+    try:
+        backend, orders = evaluate_orders(listing, tableau, options, (A, b), arithmetic, progress)
+    except EvaluationInterrupted as stop:
+        backend, interrupted = kind, True
+        orders = {n: order_verdicts(n, v) for n, v in stop.finished.items()}
     exact = backend == "exact"
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
@@ -375,7 +413,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto") -> 
             "are read as rounded to their last digit (definitions §5); --decimals exact takes them at face value"
         )
     timings["total"] = time.perf_counter() - t0
-    return CheckResult(
+    result = CheckResult(
         tableau=tableau,
         options=options,
         backend=backend,
@@ -391,7 +429,11 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto") -> 
         warnings=warnings,
         timings=timings,
         _failures=failures,
+        interrupted=interrupted,
     )
+    if interrupted:
+        raise CheckInterrupted(result)
+    return result
 
 
 def overall(result: CheckResult) -> Verdict:
@@ -411,10 +453,11 @@ class CheckRunner:
     """``check`` with a memo per options, so that a verify run and the claim runs it
     implies share their work (same tableau, same options => same result)."""
 
-    def __init__(self) -> None:
+    def __init__(self, budget: Budget | None = None, progress=None, arithmetic: str = "auto") -> None:
         self._memo: dict[CheckOptions, CheckResult] = {}
+        self.budget, self.progress, self.arithmetic = budget, progress, arithmetic
 
     def __call__(self, tableau: Tableau, options: CheckOptions) -> CheckResult:
         if options not in self._memo:
-            self._memo[options] = check(tableau, options)
+            self._memo[options] = check(tableau, options, self.arithmetic, self.budget, self.progress)
         return self._memo[options]

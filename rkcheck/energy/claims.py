@@ -92,13 +92,14 @@ def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimRes
 # ------------------------------------------------------------------ one file
 
 
-def judge_tableau(tableau, options, fail_on: str = "auto"):
+def judge_tableau(tableau, options, fail_on: str = "auto", budget=None, progress=None, arithmetic: str = "auto"):
     """Check a tableau and its claims: (main result, claim results or None, failed?).
 
-    The claim runs share the main run when their options coincide (one CheckRunner)."""
+    The claim runs share the main run when their options coincide (one CheckRunner);
+    ``budget``, ``progress`` and ``arithmetic`` go to every run (:func:`rkcheck.energy.check.check`)."""
     from rkcheck.energy.check import CheckRunner, conditions_ok
 
-    runner = CheckRunner()
+    runner = CheckRunner(budget, progress, arithmetic)
     result = runner(tableau, options)
     claims = check_claims(tableau, tableau.claims, options, runner) if tableau.claims else None
     return result, claims, file_fails(conditions_ok(result), claims, fail_on)

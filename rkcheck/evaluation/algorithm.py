@@ -36,6 +36,14 @@ from rkcheck.trees.listing import ConditionListing
 from rkcheck.trees.table import TreeTable
 
 
+class EvaluationInterrupted(KeyboardInterrupt):
+    """Ctrl-C during an evaluation; ``finished`` holds the orders that were complete."""
+
+    def __init__(self, finished: dict[int, Any]):
+        super().__init__()
+        self.finished = finished
+
+
 def condition_sums(
     listing: ConditionListing,
     ctx: Any,
@@ -54,6 +62,14 @@ def condition_sums(
     out: dict[int, Any] = {}
     if not wanted:
         return out
+    try:
+        _weights_and_sums(listing, ctx, s, wanted, out, on_order)
+    except KeyboardInterrupt:
+        raise EvaluationInterrupted(out) from None
+    return out
+
+
+def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, Any], on_order) -> None:
     top = wanted[-1]
     first = listing.first
     n_a = first[top]  # trees with <= top − 1 vertices
@@ -98,7 +114,6 @@ def condition_sums(
             out[n] = ctx.finish_sums(acc, len(terms), n)
             if on_order is not None:
                 on_order(n, out[n])
-    return out
 
 
 _TERM_CHUNK = 1 << 20

@@ -71,11 +71,23 @@ def choose_backend(tableau, decimals: str, arithmetic: str = "auto") -> str:
 
 
 def evaluate(listing, tableau, dps: int, decimals: str, arithmetic: str = "auto", orders=None,
-             enclosures=None, on_order: Callable[[int, Any], None] | None = None) -> Evaluation:
-    """Every condition of ``listing`` (or of the given numbers of vertices)."""
+             enclosures=None, progress: Callable[[int, int], None] | None = None) -> Evaluation:
+    """Every condition of ``listing`` (or of the given numbers of vertices);
+    ``progress(done, total)`` as the work advances (passes over primes, or orders)."""
     backend = choose_backend(tableau, decimals, arithmetic)
     if backend == "exact":
         scaled = scaled_tableau(tableau, decimals)
-        return Evaluation("exact", exact_condition_sums(scaled, listing, orders), scaled)
+        return Evaluation("exact", exact_condition_sums(scaled, listing, orders, progress), scaled)
     ctx = ball_context(tableau, dps, decimals, enclosures)
-    return Evaluation("ball", condition_sums(listing, ctx, tableau.stages, orders, on_order))
+    wanted = sorted(listing.orders if orders is None else orders)
+    on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
+    return Evaluation("ball", condition_sums(listing, ctx, tableau.stages, wanted, on_order))
+
+
+def channels_for(tableau, order: int, decimals: str, arithmetic: str = "auto") -> int:
+    """How many channels (prime × root) an exact check to ``order`` needs (for estimates)."""
+    if choose_backend(tableau, decimals, arithmetic) != "exact":
+        return 0
+    scaled = scaled_tableau(tableau, decimals)
+    bits = scaled.coefficient_bits(order + 1, order + 1)
+    return len(scaled.primes_for(bits)) * scaled.degree

@@ -44,15 +44,40 @@ PRIME_BITS = 29  # products of two residues and sums of 32 of them stay below 2^
 _PRIME_LIMIT = 1 << PRIME_BITS
 
 
+def is_prime(n: int) -> bool:
+    """Deterministic Miller–Rabin for n < 3.3·10^24 (bases 2 … 41), far beyond the 29-bit
+    primes used here; no library import on the start-up path."""
+    if n < 2:
+        return False
+    small = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41)
+    if n in small:
+        return True
+    if any(n % p == 0 for p in small):
+        return False
+    d, r = n - 1, 0
+    while d % 2 == 0:
+        d //= 2
+        r += 1
+    for a in small:
+        x = pow(a, d, n)
+        if x in (1, n - 1):
+            continue
+        for _ in range(r - 1):
+            x = x * x % n
+            if x == n - 1:
+                break
+        else:
+            return False
+    return True
+
+
 @lru_cache(maxsize=4)
 def _primes_below(limit: int, count: int) -> tuple[int, ...]:
     """The ``count`` largest primes below ``limit`` (deterministic)."""
-    from flint import fmpz
-
     out = []
     q = limit - 1
     while len(out) < count:
-        if fmpz(q).is_prime():
+        if is_prime(q):
             out.append(q)
         q -= 2 if q % 2 else 1
     return tuple(out)
@@ -326,10 +351,12 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
     return x - m if x > m // 2 else x
 
 
-def exact_condition_sums(scaled: ScaledTableau, listing, orders=None) -> dict[int, ExactOrderSums]:
+def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
-    enough channels for each order's bound."""
-    from rkcheck.evaluation.algorithm import condition_sums
+    enough channels for each order's bound.  ``on_pass(done, total)`` after each prime.
+    On Ctrl-C, :class:`~rkcheck.evaluation.algorithm.EvaluationInterrupted` carries the
+    orders whose primes were all done (low orders need fewer primes: they finish first)."""
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
 
     wanted = sorted(listing.orders if orders is None else orders)
     need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
@@ -342,16 +369,23 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None) -> dict[in
             if cum < need[n]:
                 count[n] += 1
         cum += math.log2(p)
+    passes = max(count.values(), default=0)
     residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
-    for i, (p, roots) in enumerate(channels):
-        orders_i = [n for n in wanted if i < count[n]]
-        if not orders_i:
-            break
-        for j, r in enumerate(roots):
-            sums = condition_sums(listing, scaled.channel(p, r), scaled.s, orders_i)
-            for n in orders_i:
-                residues[n][:, i, j] = sums[n]
-    return {
-        n: ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled)
-        for n in wanted
-    }
+
+    def result(n: int) -> ExactOrderSums:
+        return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled)
+
+    done = 0
+    try:
+        for i, (p, roots) in enumerate(channels[:passes]):
+            orders_i = [n for n in wanted if i < count[n]]
+            for j, r in enumerate(roots):
+                sums = condition_sums(listing, scaled.channel(p, r), scaled.s, orders_i)
+                for n in orders_i:
+                    residues[n][:, i, j] = sums[n]
+            done = i + 1
+            if on_pass is not None:
+                on_pass(done, passes)
+    except KeyboardInterrupt:
+        raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
+    return {n: result(n) for n in wanted}

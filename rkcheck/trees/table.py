@@ -168,13 +168,19 @@ class TreeTable:
         self.prepare_order(n)
         for r, v_ids, counts in self._block_cache[n]:
             lefts = self._lefts_sorted[n - r]
+            if len(v_ids) == 0:
+                continue
+            # chunk boundaries on the right factors: about _CHUNK pairs each (one factor
+            # with more partners than that is a chunk of its own)
+            ends = np.cumsum(counts)
+            cuts = np.unique(np.searchsorted(ends, np.arange(_CHUNK, int(ends[-1]) + _CHUNK, _CHUNK), side="right"))
             i = 0
-            while i < len(v_ids):
-                j = i + 1
-                rows = int(counts[i])
-                while j < len(v_ids) and rows + int(counts[j]) <= _CHUNK:
-                    rows += int(counts[j])
-                    j += 1
+            for j in cuts.tolist():
+                j = max(j, i + 1)
+                if j > len(v_ids):
+                    j = len(v_ids)
+                if j <= i:
+                    continue
                 c = counts[i:j]
                 m = int(c.sum())
                 if m:
@@ -182,6 +188,13 @@ class TreeTable:
                     local = np.arange(m, dtype=np.int64) - np.repeat(np.cumsum(c) - c, c)
                     yield lefts[local], V
                 i = j
+            if i < len(v_ids):
+                c = counts[i:]
+                m = int(c.sum())
+                if m:
+                    V = np.repeat(v_ids[i:], c)
+                    local = np.arange(m, dtype=np.int64) - np.repeat(np.cumsum(c) - c, c)
+                    yield lefts[local], V
 
     def _grow(self, n: int) -> None:
         total = self.prepare_order(n)

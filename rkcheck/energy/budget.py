@@ -1,0 +1,118 @@
+"""What a check will cost, before it starts, and refusing what does not fit.
+
+The counts come from :mod:`rkcheck.trees.counting` (exact, instant); the costs per tree
+were measured on the 2-core development machine (README "Performance": the benchmark
+prints the same figures) and are deliberately on the high side:
+
+* listing: about 0.6 µs per rooted tree (terms with up to N+1 vertices and the factor
+  trees with up to N vertices);
+* exact evaluation: about 0.06 µs per tree and channel (prime, or prime × root for a
+  number field); the channels needed grow with the order and the size of the entries;
+* certified balls: about 3.5 µs per tree at 50 digits, growing with the precision;
+* memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
+  grow with the listing until 10 million trees (exact); balls add 64 + 150·s bytes per
+  factor tree (big-integer weights).  Measured peaks: 113 MB at order 16, 420 MB at 18,
+  1.7 GB at 20; the model gives 127 MB, 413 MB and 2.0 GB.
+
+The machine's available memory is not read here (this is the core: no I/O); the caller
+passes it in a :class:`Budget`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+from rkcheck.errors import UserError
+from rkcheck.trees.counting import listing_size
+
+LISTING_SECONDS_PER_TREE = 0.6e-6
+EXACT_SECONDS_PER_TREE_CHANNEL = 0.06e-6
+BALL_SECONDS_PER_TREE = 3.5e-6
+BASE_BYTES = 80 * 2**20
+EXACT_BYTES_PER_TREE = 24
+WORKING_BYTES = 100 * 2**20
+#: Checks estimated below this many seconds run silently.
+QUIET_SECONDS = 5.0
+
+
+class ResourceError(UserError):
+    """A check that would not fit in the machine's memory (exit code 2)."""
+
+
+@dataclass(frozen=True)
+class Estimate:
+    conditions: int
+    terms: int
+    factors: int
+    seconds: float
+    bytes: int
+
+    def text(self) -> str:
+        """``3 489 323 conditions (55 469 204 terms): about 1.6 min and 1.9 GB``."""
+        secs = self.seconds
+        when = f"{secs:.0f} s" if secs < 90 else (f"{secs / 60:.1f} min" if secs < 5400 else f"{secs / 3600:.1f} h")
+        return f"{count(self.conditions)} conditions ({count(self.terms)} terms): about {when} and {human_bytes(self.bytes)}"
+
+
+@dataclass
+class Budget:
+    """What the caller allows: the memory available (bytes; None = unknown), an explicit
+    ``--max-conditions`` (None = derived from the memory), and where to say the estimate
+    of a long check (a callable given the text, or None)."""
+
+    available_bytes: int | None = None
+    max_conditions: int | None = None
+    announce: Callable[[str], None] | None = None
+
+
+def count(n: int) -> str:
+    """``3 489 323``: thin groups of three, as the README prints counts."""
+    return f"{n:,}".replace(",", " ")
+
+
+def human_bytes(n: float) -> str:
+    for unit in ("B", "KB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return f"{n:.0f} {unit}" if unit in ("B", "KB", "MB") else f"{n:.1f} {unit}"
+        n /= 1000
+    return f"{n:.1f} PB"  # pragma: no cover
+
+
+def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
+             dps: int = 50) -> Estimate:
+    """The cost of listing and evaluating every condition to ``order`` for ``degree``."""
+    conditions, terms, factors = listing_size(order, degree)
+    trees = terms + factors
+    seconds = trees * LISTING_SECONDS_PER_TREE
+    if backend == "exact":
+        seconds += trees * channels * EXACT_SECONDS_PER_TREE_CHANNEL
+        size = BASE_BYTES + EXACT_BYTES_PER_TREE * trees + WORKING_BYTES * min(1.0, trees / 1e7)
+    else:
+        seconds += trees * BALL_SECONDS_PER_TREE * max(1.0, dps / 50) ** 1.2
+        size = BASE_BYTES + EXACT_BYTES_PER_TREE * terms + (64 + 150 * stages) * factors
+    return Estimate(conditions, terms, factors, seconds, int(size))
+
+
+def check_budget(est: Estimate, budget: Budget | None, order: int) -> None:
+    """Refuse (one line, exit 2) a check whose estimate exceeds what the budget allows;
+    announce a long one."""
+    if budget is None:
+        return
+    if budget.max_conditions is not None and est.conditions > budget.max_conditions:
+        raise ResourceError(
+            f"order {order} has {count(est.conditions)} conditions, above --max-conditions "
+            f"{count(budget.max_conditions)}; lower --order or --degree, or raise --max-conditions")
+    if budget.max_conditions is None and budget.available_bytes is not None and est.bytes > budget.available_bytes:
+        raise ResourceError(
+            f"order {order} needs about {human_bytes(est.bytes)} for {count(est.conditions)} conditions but "
+            f"{human_bytes(budget.available_bytes)} is available; lower --order or --degree, or set "
+            f"--max-conditions to run anyway")
+    if budget.announce is not None and est.seconds > QUIET_SECONDS:
+        budget.announce(f"estimated {est.text()}")
+
+
+def channels_needed(coefficient_bits: int, degree_of_field: int = 1) -> int:
+    """Channels for residues of ``coefficient_bits`` bits (29-bit primes)."""
+    return max(1, math.ceil((coefficient_bits + 1) / 29)) * degree_of_field
