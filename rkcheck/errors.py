@@ -1,14 +1,26 @@
-"""User-facing errors.
+"""The errors rkcheck raises on purpose, one hierarchy under :class:`RkcheckError`.
 
-A :class:`UserError` is a problem with what the user gave rkcheck (a file, an entry,
-an option).  The CLI prints it as one line ``FILE: PLACE: message`` and exits with
-code 2; it never shows a traceback.  Anything else that escapes is a bug.
+* :class:`UserError` (also exported as ``rkcheck.InputError``) is a problem with what the
+  user gave rkcheck (a file, an entry, an option).  The CLI prints it as one line
+  ``FILE: PLACE: message`` and exits with code 2; it never shows a traceback.  Its
+  subclasses say more: :class:`TableauError` (a tableau that cannot be built),
+  :class:`OptionError` (a check option out of range), :class:`UnknownMethodError`
+  (``@name`` not in the library); the resource guard's ``ResourceError`` and the
+  integrator's ``NewtonError`` are UserErrors too.
+* Anything else that escapes is a bug (the CLI's exit code 3).
+
+Library callers catch ``rkcheck.RkcheckError`` for everything rkcheck refuses, and read
+``str(err)``: the same one line the CLI prints after ``rkcheck: error:``.
 """
 
 from __future__ import annotations
 
 
-class UserError(Exception):
+class RkcheckError(Exception):
+    """Base of every error rkcheck raises on purpose (never for a bug)."""
+
+
+class UserError(RkcheckError):
     """An error in the user's input, reported as one line and exit code 2.
 
     ``place`` says where inside the file (``A[2][3]``, ``line 4``); ``source`` names
@@ -28,8 +40,23 @@ class UserError(Exception):
             new_place = f"{place}: {self.place}"
         else:
             new_place = place or self.place
-        return UserError(self.message, new_place, source or self.source)
+        # keep the subclass (a TableauError stays one when the loader adds the file)
+        copy = UserError.__new__(type(self))
+        UserError.__init__(copy, self.message, new_place, source or self.source)
+        return copy
 
     def __str__(self) -> str:
         parts = [p for p in (self.source, self.place, self.message) if p]
         return ": ".join(parts)
+
+
+class TableauError(UserError):
+    """A tableau that cannot be built from what was given (shape, entry, table)."""
+
+
+class OptionError(UserError):
+    """A check option (degree, order, dps, decimals, ...) that is not valid."""
+
+
+class UnknownMethodError(UserError):
+    """An ``@name`` that names no tableau of the installed library."""

@@ -83,16 +83,25 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 
 @click.command()
 @click.argument("file", metavar="FILE")
-@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "toml", "tableau-json", "latex", "julia", "python"]),
+              default="text", show_default=True,
+              help="text/json: the report; toml/tableau-json: the tableau as a file rkcheck reads back; "
+              "latex/julia/python: the tableau as code with exact entries.")
 @decimals_option("rounded")
 @max_stages_option
 @output_options
 def show(file, fmt, decimals, max_stages) -> None:
-    """Print the tableau in FILE as a Butcher table, with its kind and any warnings."""
+    """Print the tableau in FILE as a Butcher table, with its kind and any warnings
+    (FILE may be @name, a shipped tableau; .csv/.tsv and nodepy .txt files are read too)."""
     from rkcheck.methods.tableau import consistency_warnings
     from rkcheck.numbers.precision import bits_for_dps
 
     tab = load_tableau(file, max_stages)
+    if fmt not in ("text", "json"):
+        from rkcheck.io.formats import write
+
+        click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)
+        return
     warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(DEFAULT_DPS), decimals)
     if fmt == "json":
         from rkcheck.reports.jsondoc import dumps, show_doc

@@ -15,6 +15,7 @@ from rkcheck.cli.common import (
     write_text,
 )
 from rkcheck.errors import UserError
+from rkcheck.methods.classics import NAMES as CLASSIC_NAMES
 from rkcheck.methods.families import FAMILIES
 
 
@@ -38,7 +39,7 @@ def _command_line(spec, mode: str, digits: int | None) -> str:
 
 
 @click.command()
-@click.argument("family", metavar="FAMILY", type=click.Choice(FAMILIES))
+@click.argument("family", metavar="FAMILY|METHOD", type=click.Choice(FAMILIES + tuple(CLASSIC_NAMES)))
 @click.option("--stages", "-s", "s", type=click.IntRange(1, 64), default=None, help="Number of stages s.")
 @click.option("-k", "k", type=click.IntRange(1, 64), default=None, help="HBVM: number of Gauss nodes k (>= s).")
 @click.option("--rule", default="gauss", show_default=True,
@@ -54,10 +55,14 @@ def _command_line(spec, mode: str, digits: int | None) -> str:
               help="Write to this file instead of stdout.")
 @output_options
 def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
-    """Write a complete tableau file (TOML) for a method FAMILY.
+    """Write a complete tableau file (TOML) for a method FAMILY, or for a classical
+    METHOD (exact entries from the literature, with claims: rk4, rk38, heun, ralston,
+    midpoint, rk3, ssprk3, euler, backward-euler, implicit-midpoint, trapezoid, sdirk2,
+    sdirk3).
 
     \b
     Examples:
+      rkcheck new rk4                             # a classical method
       rkcheck new gauss -s 3                      # exact: sqrt(15) closed forms
       rkcheck new hbvm -k 6 -s 2 -o hbvm-6-2.toml # 60-digit decimals (no closed form)
       rkcheck new avf -s 2 --rule radau-ii        # rational: plain fractions
@@ -66,6 +71,16 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
     """
     from rkcheck.io.writers import render_toml
     from rkcheck.methods.families import parse_spec
+
+    if family in CLASSIC_NAMES:
+        from rkcheck.io.formats import document_toml
+        from rkcheck.methods.classics import CLASSICS
+
+        doc = CLASSICS[CLASSIC_NAMES[family]].document()
+        if name:
+            doc["method"]["name"] = name
+        write_text(document_toml(doc), output)
+        return
 
     if exact and digits is not None:
         raise UserError("give either --exact or --digits, not both")

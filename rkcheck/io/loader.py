@@ -7,6 +7,14 @@ parsed by :mod:`rkcheck.numbers.grammar`, never evaluated by Python.
 
 Bare TOML/JSON floats are read digit for digit (the parser hands us their text, not a
 binary64 double), with a warning because other tools will read them as doubles.
+
+Short form: a document with ``A``, ``b`` (and ``c``) at the top level and no
+``[tableau]`` table is read as if they were in ``[tableau]`` (what most people write in
+JSON: ``{"A": [[...]], "b": [...]}``).  Other formats: ``.csv``/``.tsv`` Butcher arrays
+(:mod:`rkcheck.io.delimited`) and nodepy's text tableaux (:mod:`rkcheck.io.nodepy_text`)
+become the same document and are validated here the same way.  ``@name`` loads a
+shipped tableau (:mod:`rkcheck.io.library`) or a classical method
+(:mod:`rkcheck.methods.classics`).
 """
 
 from __future__ import annotations
@@ -27,6 +35,11 @@ from rkcheck.options import DEFAULT_MAX_STAGES, parse_strings, validate_check_ta
 
 MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
+#: what ``load`` reads: TOML and JSON documents, delimited Butcher arrays, nodepy text
+INPUT_FORMATS = ("toml", "json", "csv", "nodepy")
+#: the smallest valid tableau file, shown when a file has no tableau at all
+SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
+SHORT_FORM_KEYS = ("A", "b", "c")
 
 
 class BareFloat(str):
@@ -67,10 +80,20 @@ def read_text(path: str) -> str:
 
 
 def detect_format(path: str, text: str) -> str:
+    """The input format of a file: by suffix, else by content (JSON object, nodepy
+    section headers, else TOML)."""
+    from rkcheck.io import delimited, nodepy_text
+
     suffix = Path(path).suffix.lower()
     if suffix in (".toml", ".json"):
         return suffix[1:]
-    return "json" if text.lstrip().startswith("{") else "toml"
+    if suffix in delimited.SUFFIXES:
+        return "csv"
+    if suffix in nodepy_text.SUFFIXES and nodepy_text.looks_like_nodepy(text):
+        return "nodepy"
+    if text.lstrip().startswith("{"):
+        return "json"
+    return "nodepy" if nodepy_text.looks_like_nodepy(text) else "toml"
 
 
 def parse_document(text: str, fmt: str) -> dict[str, Any]:
@@ -224,6 +247,11 @@ def _build(
     for key in data:
         if key not in KNOWN_TABLES:
             warnings.append(f"unknown table [{key}] ignored (known: {', '.join(KNOWN_TABLES)})")
+    if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):
+        # the short form: A/b/c at the top level stand for the [tableau] table
+        data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
+            "tableau": {k: data[k] for k in SHORT_FORM_KEYS if k in data}}
+        warnings[:] = [w for w in warnings if not any(f"[{k}]" in w for k in SHORT_FORM_KEYS)]
     method = _table(data, "method")
     name = method.get("name", Path(source).stem if source != "-" else "stdin")
     if not isinstance(name, str):
@@ -250,6 +278,8 @@ def _build(
 
         return build_family(family, Tableau(A=(), b=(), family=family, **base))
 
+    if "tableau" not in data:
+        raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)
     for key in tab:
         if key not in ("A", "b", "c"):
@@ -298,10 +328,20 @@ def loads(
     fmt: str | None = None,
     max_stages: int = DEFAULT_MAX_STAGES,
 ) -> Tableau:
-    """Parse tableau text (TOML or JSON)."""
+    """Parse tableau text (``fmt``: one of :data:`INPUT_FORMATS`, default by the source's
+    suffix and the content)."""
     fmt = fmt or detect_format(source, text)
+    if fmt not in INPUT_FORMATS:
+        raise UserError(f"unknown input format {fmt!r} (known: {', '.join(INPUT_FORMATS)})", source=source)
     try:
-        data = parse_document(text, fmt)
+        if fmt in ("csv", "nodepy"):
+            from rkcheck.io.delimited import parse_delimited
+            from rkcheck.io.nodepy_text import parse_nodepy_text
+
+            stem = Path(source).stem if source not in ("-", "<string>") else "stdin"
+            data = (parse_delimited if fmt == "csv" else parse_nodepy_text)(text, stem)
+        else:
+            data = parse_document(text, fmt)
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
@@ -312,7 +352,30 @@ def loads(
 def load(
     path: str,
     max_stages: int = DEFAULT_MAX_STAGES,
+    fmt: str | None = None,
 ) -> Tableau:
-    """Load a tableau file; ``-`` reads standard input."""
+    """Load a tableau file; ``-`` reads standard input; ``@name`` a shipped tableau or a
+    classical method (:func:`load_named`)."""
+    if path.startswith("@"):
+        return load_named(path[1:], max_stages)
     text = read_text(path)
-    return loads(text, source=path, max_stages=max_stages)
+    return loads(text, source=path, fmt=fmt, max_stages=max_stages)
+
+
+def load_named(name: str, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
+    """``@name``: the shipped tableau of that name (:mod:`rkcheck.io.library`), else the
+    classical method (:mod:`rkcheck.methods.classics`), else an
+    :class:`~rkcheck.errors.UnknownMethodError` with the nearest names."""
+    from rkcheck.errors import UnknownMethodError
+    from rkcheck.io import library
+    from rkcheck.methods.classics import NAMES, classic_tableau
+
+    entry = library.find(name)
+    if entry is not None:
+        return loads(entry.read_text(), source=f"@{entry.key}", fmt=entry.resource.name.rsplit(".", 1)[-1],
+                     max_stages=max_stages)
+    if name.strip().lower() in NAMES:
+        return classic_tableau(name)
+    near = library.suggestions(name, list(NAMES))
+    hint = f"; did you mean {', '.join('@' + n for n in near)}?" if near else ""
+    raise UnknownMethodError(f"no tableau called @{name} in the library{hint}")

@@ -1,0 +1,305 @@
+"""A tableau written out for other tools: TOML, JSON, LaTeX, Julia and Python.
+
+Every writer keeps the entries exact.  TOML and JSON write the entries as rkcheck reads
+them (strings in its grammar, the ``[constants]`` table kept), so
+``load(write(t)) == t`` entry for entry.  The code writers translate the same
+expressions: LaTeX an ``array`` with ``\\frac`` and ``\\sqrt`` (a Butcher array:
+``c | A`` over ``| bᵀ``); Julia ``Rational{BigInt}``/``sqrt(big(…))`` expressions;
+Python ``fractions.Fraction`` and, for square roots, ``sympy.sqrt`` (exact) — the code
+is meant to be pasted, and is never read back by rkcheck.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Callable
+
+from rkcheck.errors import UserError
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers import grammar as ex
+
+WRITE_FORMATS = ("toml", "json", "latex", "julia", "python")
+
+
+# ------------------------------------------------------------------ documents
+
+
+def tableau_document(tab: Tableau) -> dict[str, Any]:
+    """The tableau as a tableau-file document (method, constants, tableau, expect)."""
+    doc: dict[str, Any] = {"method": {"name": tab.name}}
+    if tab.description:
+        doc["method"]["description"] = tab.description
+    if tab.references:
+        doc["method"]["references"] = list(tab.references)
+    if tab.constants.definitions:
+        doc["constants"] = {k: ex.to_text(v) for k, v in tab.constants.definitions.items()}
+    doc["tableau"] = {"A": [[e.text for e in row] for row in tab.A], "b": [e.text for e in tab.b]}
+    if tab.c is not None:
+        doc["tableau"]["c"] = [e.text for e in tab.c]
+    if tab.expect:
+        doc["expect"] = tab.expect
+    return doc
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)  # a TOML basic string is JSON-compatible
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    raise TypeError(f"cannot write {type(value).__name__} as TOML")
+
+
+def _toml_key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() and key.isascii() else json.dumps(key)
+
+
+def document_toml(doc: dict[str, Any]) -> str:
+    """A tableau document as TOML text (one table per top-level key, ``A`` row by row)."""
+    out: list[str] = []
+    for table, content in doc.items():
+        out.append(f"[{table}]")
+        for key, value in content.items():
+            if key == "A" and table == "tableau":
+                rows = [_toml_value(r) for r in value]
+                out.append("A = [" + ",\n     ".join(rows) + "]")
+            else:
+                out.append(f"{_toml_key(key)} = {_toml_value(value)}")
+        out.append("")
+    return "\n".join(out)
+
+
+def to_toml(tab: Tableau) -> str:
+    """The tableau as a TOML tableau file (read back by :func:`rkcheck.io.loader.loads`)."""
+    return document_toml(tableau_document(tab))
+
+
+def to_json(tab: Tableau) -> str:
+    """The tableau as a JSON tableau file (read back by :func:`rkcheck.io.loader.loads`)."""
+    return json.dumps(tableau_document(tab), indent=2, ensure_ascii=False) + "\n"
+
+
+# ------------------------------------------------------------------ expressions
+
+_PREC = {"+": 1, "-": 1, "*": 2, "/": 2}
+
+
+class _Code:
+    """Renders an entry expression in another language; subclasses say how."""
+
+    sqrt = "sqrt"
+
+    def number(self, n: ex.Num) -> str:
+        return str(n.value) if n.value.denominator == 1 else f"{n.value.numerator}/{n.value.denominator}"
+
+    def name(self, n: ex.Name) -> str:
+        return n.name
+
+    def div(self, left: str, right: str) -> str:
+        return f"{left}/{right}"
+
+    def power(self, base: str, exponent: str) -> str:
+        return f"{base}^{exponent}"
+
+    def call(self, func: str, args: list[str]) -> str:
+        if func != "sqrt":
+            raise UserError(f"{func}(…) has no exact form in this output format; write the tableau as TOML or JSON")
+        return f"{self.sqrt}({args[0]})"
+
+    def paren(self, text: str) -> str:
+        return f"({text})"
+
+    def render(self, node: ex.Expr, parent: int = 0) -> str:
+        node = _fold_fraction(node)
+        if isinstance(node, ex.Num):
+            text = self.number(node)
+            return self.paren(text) if parent >= 2 and "/" in text else text
+        if isinstance(node, ex.Name):
+            return self.name(node)
+        if isinstance(node, ex.Call):
+            return self.call(node.func, [self.render(a, 0) for a in node.args])
+        if isinstance(node, ex.Unary):
+            text = "-" + self.render(node.operand, 3)
+            return self.paren(text) if parent >= 2 else text
+        if isinstance(node, ex.Power):
+            text = self.power(self.render(node.base, 4), self.render(node.exponent, 3))
+            return self.paren(text) if parent >= 4 else text
+        assert isinstance(node, ex.Binary)
+        p = _PREC[node.op]
+        left = self.render(node.left, p)
+        right = self.render(node.right, p + 1 if node.op in "-/" else p)
+        text = self.div(left, right) if node.op == "/" else (
+            f"{left} {node.op} {right}" if p == 1 else f"{left}*{right}")
+        return self.paren(text) if parent > p else text
+
+
+def _is_integer(node: ex.Expr) -> bool:
+    return isinstance(node, ex.Num) and node.digits is None and node.value.denominator == 1
+
+
+def _fold_fraction(node: ex.Expr) -> ex.Expr:
+    """``p/q`` of two integer literals is one rational literal (``Fraction(1, 4)``)."""
+    if (isinstance(node, ex.Binary) and node.op == "/" and _is_integer(node.left) and _is_integer(node.right)
+            and isinstance(node.right, ex.Num) and node.right.value != 0 and isinstance(node.left, ex.Num)):
+        value = node.left.value / node.right.value
+        return ex.Num(value, str(value), None, 0)
+    return node
+
+
+class _Julia(_Code):
+    """Julia: exact ``Rational{BigInt}`` literals (``big(1)//6``), ``sqrt(big(3))``."""
+
+    def number(self, n: ex.Num) -> str:
+        v = n.value
+        return f"big({v.numerator})" if v.denominator == 1 else f"big({v.numerator})//{v.denominator}"
+
+    def div(self, left: str, right: str) -> str:
+        return f"{left}/{right}"
+
+    def call(self, func: str, args: list[str]) -> str:
+        if func == "sqrt":
+            return f"sqrt({args[0]})" if args[0].startswith("big(") else f"sqrt(big({args[0]}))"
+        return super().call(func, args)
+
+
+class _Python(_Code):
+    """Python: ``Fraction`` literals; ``sympy.sqrt`` keeps square roots exact."""
+
+    sqrt = "sympy.sqrt"
+
+    def call(self, func: str, args: list[str]) -> str:
+        if func == "sqrt" and args[0].startswith("Fraction(") and "," not in args[0]:
+            return f"sympy.sqrt({args[0][9:-1]})"  # an integer: sympy.sqrt(3)
+        return super().call(func, args)
+
+    def number(self, n: ex.Num) -> str:
+        v = n.value
+        return f"Fraction({v.numerator})" if v.denominator == 1 else f"Fraction({v.numerator}, {v.denominator})"
+
+    def power(self, base: str, exponent: str) -> str:
+        return f"{base}**{exponent}"
+
+
+class _Latex(_Code):
+    """LaTeX math: ``\\frac``, ``\\sqrt``, powers with braces; constants inlined."""
+
+    def __init__(self, constants: dict[str, ex.Expr]):
+        self.constants = constants
+
+    def number(self, n: ex.Num) -> str:
+        v = n.value
+        if n.digits is not None:  # a decimal stays the decimal it was
+            return n.text
+        return str(v) if v.denominator == 1 else rf"\frac{{{v.numerator}}}{{{v.denominator}}}"
+
+    def render(self, node: ex.Expr, parent: int = 0) -> str:
+        if isinstance(node, ex.Name) and node.name in self.constants:
+            return self.render(self.constants[node.name], parent)
+        if isinstance(node, ex.Num) and node.digits is None:
+            return self.number(node)  # \frac needs no parentheses
+        if isinstance(node, ex.Binary) and node.op == "/":
+            return rf"\frac{{{self.render(node.left, 0)}}}{{{self.render(node.right, 0)}}}"
+        return super().render(node, parent)
+
+    def paren(self, text: str) -> str:
+        return rf"\left({text}\right)"
+
+    def power(self, base: str, exponent: str) -> str:
+        return f"{base}^{{{exponent}}}"
+
+    def call(self, func: str, args: list[str]) -> str:
+        if func == "sqrt":
+            return rf"\sqrt{{{args[0]}}}"
+        return rf"\operatorname{{{func}}}\left({', '.join(args)}\right)"
+
+    def div(self, left: str, right: str) -> str:
+        return rf"\frac{{{left}}}{{{right}}}"
+
+
+def _entries(tab: Tableau) -> tuple[list[list[ex.Expr]], list[ex.Expr], list[ex.Expr] | None]:
+    return ([[e.node for e in row] for row in tab.A], [e.node for e in tab.b],
+            None if tab.c is None else [e.node for e in tab.c])
+
+
+def _row_sums(A: list[list[ex.Expr]]) -> list[ex.Expr]:
+    """``c = A·1`` as expressions (definitions §1), for writers that need a ``c``."""
+    out: list[ex.Expr] = []
+    for row in A:
+        nonzero = [x for x in row if not (isinstance(x, ex.Num) and x.value == 0)]
+        total: ex.Expr = nonzero[0] if nonzero else ex.parse("0")
+        for x in nonzero[1:]:
+            total = ex.Binary("+", total, x, 0)
+        out.append(total)
+    return out
+
+
+def to_latex(tab: Tableau) -> str:
+    """The Butcher array ``c | A`` over ``| bᵀ`` as a LaTeX ``array`` (exact entries,
+    constants written out)."""
+    code = _Latex(tab.constants.definitions)
+    A, b, c = _entries(tab)
+    c = c if c is not None else _row_sums(A)
+    s = len(b)
+    lines = [rf"% {tab.name}", r"\[", rf"\begin{{array}}{{c|{'c' * s}}}"]
+    for ci, row in zip(c, A):
+        lines.append("  " + " & ".join([code.render(ci)] + [code.render(x) for x in row]) + r" \\")
+    lines.append(r"  \hline")
+    lines.append("  " + " & ".join([""] + [code.render(x) for x in b]))
+    lines += [r"\end{array}", r"\]", ""]
+    return "\n".join(lines)
+
+
+def _code_lines(tab: Tableau, code: _Code, assign: str, vector: Callable[[list[str]], str],
+                matrix: Callable[[list[list[str]]], str]) -> list[str]:
+    A, b, c = _entries(tab)
+    c = c if c is not None else _row_sums(A)
+    lines = [f"{name}{assign}{code.render(value)}" for name, value in tab.constants.definitions.items()]
+    lines.append(f"A{assign}" + matrix([[code.render(x) for x in row] for row in A]))
+    lines.append(f"b{assign}" + vector([code.render(x) for x in b]))
+    lines.append(f"c{assign}" + vector([code.render(x) for x in c]))
+    return lines
+
+
+def _julia_cell(text: str) -> str:
+    """A matrix cell: Julia separates cells by spaces, so a cell with spaces is wrapped."""
+    return f"({text})" if " " in text else text
+
+
+def to_julia(tab: Tableau) -> str:
+    """Julia code defining ``A``, ``b``, ``c`` exactly (``Rational{BigInt}``; square roots
+    as ``BigFloat``)."""
+    lines = [f"# {tab.name} (written by rkcheck; exact rationals, sqrt in BigFloat)"]
+    lines += _code_lines(tab, _Julia(), " = ", lambda v: "[" + ", ".join(v) + "]",
+                         lambda m: "[" + ";\n     ".join(" ".join(_julia_cell(x) for x in r) for r in m) + "]")
+    return "\n".join(lines) + "\n"
+
+
+def to_python(tab: Tableau) -> str:
+    """Python code defining ``A``, ``b``, ``c`` exactly (``Fraction``; ``sympy.sqrt`` when
+    the tableau has square roots)."""
+    uses_sqrt = any(isinstance(n, ex.Call) for e in tab.entries() for n in ex.walk(e.node)) or any(
+        isinstance(n, ex.Call) for d in tab.constants.definitions.values() for n in ex.walk(d))
+    lines = [f"# {tab.name} (written by rkcheck; exact entries)", "from fractions import Fraction"]
+    if uses_sqrt:
+        lines.append("import sympy")
+    lines.append("")
+    lines += _code_lines(tab, _Python(), " = ", lambda v: "[" + ", ".join(v) + "]",
+                         lambda m: "[\n    " + ",\n    ".join("[" + ", ".join(r) + "]" for r in m) + ",\n]")
+    return "\n".join(lines) + "\n"
+
+
+WRITERS: dict[str, Callable[[Tableau], str]] = {
+    "toml": to_toml, "json": to_json, "latex": to_latex, "julia": to_julia, "python": to_python,
+}
+
+
+def write(tab: Tableau, fmt: str) -> str:
+    """The tableau in one of :data:`WRITE_FORMATS`."""
+    if fmt not in WRITERS:
+        raise UserError(f"unknown output format {fmt!r} (known: {', '.join(WRITE_FORMATS)})")
+    return WRITERS[fmt](tab)
