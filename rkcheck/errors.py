@@ -36,10 +36,7 @@ class UserError(RkcheckError):
 
     def located(self, place: str | None = None, source: str | None = None) -> "UserError":
         """Return a copy with the place prefixed (outer places come first) and the source set."""
-        if place and self.place:
-            new_place = f"{place}: {self.place}"
-        else:
-            new_place = place or self.place
+        new_place: str | None = f"{place}: {self.place}" if place and self.place else (place or self.place)
         # keep the subclass (a TableauError stays one when the loader adds the file)
         copy = UserError.__new__(type(self))
         UserError.__init__(copy, self.message, new_place, source or self.source)

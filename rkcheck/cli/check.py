@@ -28,7 +28,7 @@ from rkcheck.cli.common import (
     stdout_console,
 )
 from rkcheck.errors import UserError
-from rkcheck.options import DEFAULT_DPS, MAX_ORDER, resolve_check_options
+from rkcheck.options import DEFAULT_DPS, MAX_ORDER
 
 
 @click.command()
@@ -49,18 +49,18 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
+    from rkcheck.api.verification import run_check
     from rkcheck.energy.check import CheckInterrupted
-    from rkcheck.energy.claims import judge_tableau
 
     config = project_config()
     tab = load_tableau(file, max_stages)
-    options = resolve_check_options(flag_values(), tab.check, config.check)
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
     try:
-        with progress_steps("checking") as update:
-            result, claim_results, failed = judge_tableau(tab, options, fail_on, budget(max_conditions), update,
-                                                          arithmetic)
+        with progress_steps("checking") as update:  # the API's check: same options, same result
+            verification = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update,
+                                     arithmetic)
+        result, claim_results, failed = verification.result, verification.claims, verification.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
         result, claim_results, failed, interrupted = stop.result, None, True, True
     if fmt == "json":

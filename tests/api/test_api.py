@@ -1,0 +1,276 @@
+"""The public API: same verdicts and JSON as the CLI, what array values mean, option
+errors as RkcheckError, free trees and single conditions against the brute-force
+reference (tests/support/reference.py, networkx + Fractions)."""
+
+from __future__ import annotations
+
+import inspect
+import json
+import random
+from decimal import Decimal
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+from support import reference as ref
+from support.clirun import run_cli
+from support.paths import TABLEAUX
+
+import rkcheck
+from rkcheck import errors
+
+
+def without_timings(doc: dict) -> dict:
+    doc = dict(doc)
+    doc.pop("timings")
+    return doc
+
+
+# ------------------------------------------------------------------ same as the CLI
+
+
+@pytest.mark.parametrize("rel, args", [
+    ("collocation/implicit-midpoint.toml", []),  # REVIEW: the API disagreed (73 failures vs OK)
+    ("avf/avf-gauss-2.toml", []),
+    ("explicit/rk4.toml", ["--degree", "3", "--order", "6"]),
+    ("counterexamples/kernel-zeta-third-beta-0.1.toml", ["--order", "5"]),
+])
+def test_to_json_is_the_cli_json(capsys, rel, args):
+    path = str(TABLEAUX / rel)
+    run = run_cli(capsys, "verify", path, "--format", "json", *args)
+    kwargs = {}
+    for flag, value in zip(args[::2], args[1::2]):
+        kwargs[flag.lstrip("-")] = value if flag == "--degree" else int(value)
+    result = rkcheck.verify(path, **kwargs)
+    assert without_timings(json.loads(result.to_json())) == without_timings(json.loads(run.out))
+    assert result.ok == (run.code == 0)
+
+
+def test_the_file_check_table_is_used_like_the_cli():
+    # implicit-midpoint.toml has [check] and claims: the API must judge it as verify does
+    tab = rkcheck.load(TABLEAUX / "collocation" / "implicit-midpoint.toml")
+    result = rkcheck.verify(tab)
+    assert result.options.degree == tab.check.get("degree", None)
+    assert result.ok and result.claims and all(c.met for c in result.claims)
+
+
+def test_result_surface_by_hand_for_explicit_midpoint():
+    # explicit midpoint: b = (0, 1), c = (0, 1/2).  Star [τ²] ~ Σ b c² = 1/4 ≠ 1/3 (definitions §3):
+    # the 4-vertex star R = a([τ²])... fails, the 3-vertex path holds (Σ b c = 1/2): energy order 2
+    result = rkcheck.verify(rkcheck.from_arrays([[0, 0], ["1/2", 0]], [0, 1]), order=4)
+    assert result.verdict == "fails" and result.energy_order == 2 and result.classical_order == 2
+    assert result.quadrature_order == 2
+    first = result.failures[0]
+    assert first.vertices == 4 and first.state == "fails" and isinstance(first.residual, Fraction)
+    assert first.enclosure == (first.residual, 0)
+    # every condition with 4 vertices, by the reference
+    for cond in ref.energy_conditions(4):
+        r = ref.energy_residual(cond, [[0, 0], [Fraction(1, 2), 0]], [0, 1])
+        mine = [c for c in result.conditions if c.level_sequence == cond["id"]][0]
+        assert abs(mine.residual) == abs(r)  # sign depends on the designated rooting
+    assert len(result.conditions) == sum(1 for _ in result.conditions) == 1 + 1 + 3
+    assert result.avf is None and result.certificate is None
+
+
+def test_avf_and_certificate_with_a_degree():
+    result = rkcheck.verify("@avf-gauss-2", degree=4, order=6)
+    assert result.avf is not None and result.avf.equals_avf
+    assert result.certificate is not None and result.certificate.certified
+    assert result.energy_order_label == "all" and result.energy_order_all
+
+
+# ------------------------------------------------------------------ from_arrays
+
+
+def test_values_of_every_kind_are_exact():
+    tab = rkcheck.from_arrays(
+        [[Fraction(1, 4), "1/4 - sqrt(3)/6"], [sp.Rational(1, 4) + sp.sqrt(3) / 6, np.int64(0) + Fraction(1, 4)]],
+        np.array([0.5, 0.5]), [Decimal("0.5") - Decimal("0.5") + sp.Rational(1, 2) - sp.sqrt(3) / 6, "1/2 + sqrt(3)/6"],
+    )
+    assert tab.A[0][0].exact == Fraction(1, 4) and tab.b[0].exact == Fraction(1, 2)
+    assert tab.uses_sqrt and not tab.warnings  # 0.5 is exactly a double: nothing to warn about
+    want = rkcheck.load(TABLEAUX / "collocation" / "gauss-2.toml")
+    bits = 200
+    for mine, theirs in zip([e for r in tab.A for e in r], [e for r in want.A for e in r]):
+        a, b = mine.enclosure(bits), theirs.enclosure(bits)
+        assert abs(a.mid - b.mid) <= a.rad + b.rad
+
+
+def test_a_float_is_its_exact_binary_value():
+    tab = rkcheck.from_arrays([[0.1]], [1.0])
+    assert tab.A[0][0].exact == Fraction(3602879701896397, 2**55) == Fraction(0.1)
+    assert tab.b[0].exact == 1
+    assert len(tab.warnings) == 1 and "A[1][1]" in tab.warnings[0]
+
+
+def test_floats_shortest_reads_repr_as_a_rounded_decimal():
+    tab = rkcheck.from_arrays([[0.1]], [1.0], floats="shortest")
+    assert tab.A[0][0].exact == Fraction(1, 10) and not tab.A[0][0].is_rounded  # "0.1": < 6 digits, exact
+    x = 0.21132486540518713
+    tab = rkcheck.from_arrays([[x]], [1], floats="shortest")
+    assert tab.A[0][0].text == repr(x) and tab.A[0][0].is_rounded
+
+
+def test_numpy_gauss_avf_binary_fails_tiny_and_trusted_digits_hold_to_digits():
+    # AVF over 2-point Gauss: A = c bᵀ, c = 1/2 ∓ √3/6, b = 1/2 (definitions §4), in floats
+    c = np.array([0.5 - np.sqrt(3) / 6, 0.5 + np.sqrt(3) / 6])
+    b = np.array([0.5, 0.5])
+    A = np.outer(c, b)
+    exact = rkcheck.verify(rkcheck.from_arrays(A, b), degree=3, order=5)
+    assert exact.verdict == "fails"
+    assert all(abs(f.enclosure[0]) < Fraction(1, 10**15) for f in exact.failures)  # only the rounding
+    # the digits one trusts, as strings: rounded decimals (definitions §5), judged over their intervals
+    trusted = rkcheck.from_arrays([[f"{x:.15g}" for x in row] for row in A], [f"{x:.15g}" for x in b])
+    result = rkcheck.verify(trusted, degree=3, order=5)
+    assert result.verdict == "holds_to_digits" and not result.failures
+    assert 12 <= min(c.digits for c in result.conditions) <= 16
+    # shortest: the repr digits, the same tableau as a file with those strings would be
+    shortest = rkcheck.from_arrays(A, b, floats="shortest")
+    as_file = rkcheck.loads("[tableau]\nA = " + json.dumps([[repr(float(x)) for x in r] for r in A])
+                            + "\nb = " + json.dumps([repr(float(x)) for x in b]) + "\n")
+    mine = rkcheck.verify(shortest, degree=3, order=5).to_dict()
+    theirs = rkcheck.verify(as_file, degree=3, order=5).to_dict()
+    assert mine["summary"] == theirs["summary"] and mine["conditions"] == theirs["conditions"]
+
+
+@pytest.mark.parametrize("A, b, place", [
+    ([[0, 0], [1]], [1, 0], "A[2]"),
+    ([[0, 0], [1, "x("]], [1, 0], "A[2][2]"),
+    ([[True]], [1], "A[1][1]"),
+    ([[float("nan")]], [1], "A[1][1]"),
+    ([[0]], [1, 2], "b"),
+    ([[sp.Symbol("x")]], [1], "A[1][1]"),
+    ([[object()]], [1], "A[1][1]"),
+    ([], [], "A"),
+    (5, [1], "A"),
+])
+def test_bad_arrays_are_tableau_errors_with_a_place(A, b, place):
+    with pytest.raises(rkcheck.TableauError) as err:
+        rkcheck.from_arrays(A, b)
+    assert err.value.place is not None and err.value.place.startswith(place)
+    assert isinstance(err.value, rkcheck.RkcheckError) and "\n" not in str(err.value)
+
+
+# ------------------------------------------------------------------ options
+
+
+def test_degree_none_spellings_are_the_same_run():
+    tab = rkcheck.load("@heun")
+    for spelling in (None, "none", "all"):
+        assert rkcheck.verify(tab, degree=spelling, order=4).options.degree is None
+    assert rkcheck.verify(tab, degree="3", order=4).options.degree == 3
+
+
+@pytest.mark.parametrize("kwargs, place", [
+    ({"degree": "x"}, "degree"), ({"degree": 0}, "degree"), ({"order": 0}, "order"), ({"order": 99}, "order"),
+    ({"dps": 5}, "dps"), ({"decimals": "fuzzy"}, "decimals"), ({"fail_on": "x"}, "fail_on"),
+    ({"arithmetic": "x"}, "arithmetic"), ({"max_conditions": 0}, "max_conditions"),
+])
+def test_bad_options_are_option_errors(kwargs, place):
+    with pytest.raises(rkcheck.OptionError) as err:
+        rkcheck.verify("@heun", **kwargs)
+    assert err.value.place == place and isinstance(err.value, rkcheck.UserError)
+
+
+def test_error_hierarchy():
+    assert rkcheck.UserError is errors.UserError is rkcheck.InputError
+    for cls in (rkcheck.TableauError, rkcheck.OptionError, rkcheck.UnknownMethodError):
+        assert issubclass(cls, rkcheck.UserError) and issubclass(cls, rkcheck.RkcheckError)
+    from rkcheck.dynamics.integrator import NewtonError
+    from rkcheck.energy.budget import ResourceError
+
+    assert issubclass(ResourceError, rkcheck.RkcheckError) and issubclass(NewtonError, rkcheck.RkcheckError)
+    located = rkcheck.TableauError("bad", "A[1][1]").located(source="f.toml")
+    assert type(located) is rkcheck.TableauError and str(located) == "f.toml: A[1][1]: bad"
+
+
+def test_resource_guard_applies():
+    with pytest.raises(rkcheck.RkcheckError):
+        rkcheck.verify("@heun", order=12, max_conditions=10)
+
+
+# ------------------------------------------------------------------ trees
+
+
+def test_free_tree_counts_from_the_definitions():
+    # definitions §3: 1, 1, 3, 4, 11, 19, 47, 97, 235, 531 for n = 3..12 (A000055 − A000081(n/2))
+    assert [len(rkcheck.free_trees(n)) for n in range(3, 13)] == [1, 1, 3, 4, 11, 19, 47, 97, 235, 531]
+    assert rkcheck.free_trees(1) == [] == rkcheck.free_trees(2)
+
+
+@pytest.mark.parametrize("n", range(3, 10))
+@pytest.mark.parametrize("m", [None, 2, 3, 4])
+def test_free_trees_are_the_reference_conditions(n, m):
+    mine = rkcheck.free_trees(n, max_degree=m)
+    want = ref.energy_conditions(n, max_degree=m)
+    assert [t.level_sequence for t in mine] == sorted(d["id"] for d in want)
+    assert [t.max_degree for t in mine] == [d["max_degree"] for d in sorted(want, key=lambda d: d["id"])]
+    assert all(t.rootings == len(d["terms"]) for t, d in zip(mine, sorted(want, key=lambda d: d["id"])))
+    assert all(t.vertices == n and t.order == n - 1 and t.id == ",".join(map(str, t.level_sequence)) for t in mine)
+
+
+def test_energy_condition_matches_the_reference_residual():
+    rng = random.Random(13)
+    for _ in range(5):
+        s = rng.randint(1, 3)
+        A = [[Fraction(rng.randint(-5, 5), rng.randint(1, 6)) for _ in range(s)] for _ in range(s)]
+        b = [Fraction(rng.randint(-5, 5), rng.randint(1, 6)) for _ in range(s)]
+        tab = rkcheck.from_arrays(A, b)
+        for n in (3, 5, 6):
+            for cond in ref.energy_conditions(n):
+                # give a non-canonical rooting: a leaf-rooted level sequence
+                mine = rkcheck.energy_condition(cond["terms"][-1][0], tab)
+                assert mine.level_sequence == cond["id"]
+                assert mine.residual == ref.energy_residual(cond, A, b)
+                assert mine.state == ("holds" if mine.residual == 0 else "fails")
+                assert sorted(t.level_sequence for t in mine.terms) == sorted(u for u, *_ in cond["terms"])
+
+
+def test_energy_condition_inputs_and_superfluous():
+    a = rkcheck.energy_condition("1,2,3,2")  # the path with 4 vertices: u∘u, superfluous
+    assert a.superfluous and not a.is_condition and a.id is None
+    tree = rkcheck.free_trees(5)[0]
+    for given in (tree, tree.id, list(tree.level_sequence)):
+        assert rkcheck.energy_condition(given).level_sequence == tree.level_sequence
+    cond = rkcheck.verify("@heun", order=4).conditions[0]
+    assert rkcheck.energy_condition(cond, "@heun").residual == cond.residual
+    with pytest.raises(rkcheck.OptionError):
+        rkcheck.energy_condition("1,3")
+
+
+# ------------------------------------------------------------------ the surface
+
+
+def test_every_public_name_is_documented():
+    for name in rkcheck.__all__:
+        obj = getattr(rkcheck, name)
+        if name == "__version__":
+            continue
+        assert inspect.getdoc(obj), f"rkcheck.{name} has no docstring"
+
+
+def test_dir_and_unknown_attribute():
+    assert set(rkcheck.__all__) <= set(dir(rkcheck))
+    with pytest.raises(AttributeError):
+        rkcheck.nope  # noqa: B018
+
+
+def test_library_lists_shipped_and_classics():
+    names = rkcheck.library()
+    assert "collocation/gauss-3" in names and "sdirk2" in names and names == sorted(names)
+
+
+def test_write_and_loads_round_trip():
+    tab = rkcheck.load("@ralston")
+    back = rkcheck.loads(rkcheck.write(tab, "json"), format="json")
+    assert [[e.exact for e in r] for r in back.A] == [[0, 0], [Fraction(2, 3), 0]]
+
+
+def test_import_rkcheck_is_light():
+    import subprocess
+    import sys
+
+    code = "import sys, rkcheck; print(any(m.startswith('numpy') for m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"

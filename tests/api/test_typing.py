@@ -1,0 +1,39 @@
+"""The public surface is typed (py.typed, PEP 561) and mypy accepts it: a typed user
+script passes, misuse is caught, and rkcheck/api itself checks cleanly."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from support.paths import REPO
+
+pytest.importorskip("mypy")
+HERE = Path(__file__).parent
+
+
+def mypy(*paths: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "mypy", "--no-incremental", "--follow-imports=silent",
+                           "--config-file", str(REPO / "pyproject.toml"), *paths],
+                          capture_output=True, text=True, cwd=REPO)
+
+
+@pytest.mark.slow
+def test_api_and_typed_usage_pass_mypy():
+    run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/errors.py", str(HERE / "typed_usage.py"))
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+@pytest.mark.slow
+def test_misuse_is_caught():
+    run = mypy(str(HERE / "typed_misuse.py"))
+    assert run.returncode == 1
+    assert 'Argument "order" to "verify" has incompatible type "str"' in run.stdout
+    assert 'Incompatible types in assignment (expression has type "int", variable has type "str")' in run.stdout
+
+
+def test_py_typed_is_shipped():
+    assert (REPO / "rkcheck" / "py.typed").is_file()
+    assert "py.typed" in (REPO / "pyproject.toml").read_text()
