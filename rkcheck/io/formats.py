@@ -132,7 +132,8 @@ class _Code:
         assert isinstance(node, ex.Binary)
         p = _PREC[node.op]
         left = self.render(node.left, p)
-        right = self.render(node.right, p + 1 if node.op in "-/" else p)
+        # a negative right operand is parenthesised: 1 + (-1), x*(-y), never 1 + -1
+        right = self.render(node.right, 2 if isinstance(node.right, ex.Unary) else (p + 1 if node.op in "-/" else p))
         text = self.div(left, right) if node.op == "/" else (
             f"{left} {node.op} {right}" if p == 1 else f"{left}*{right}")
         return self.paren(text) if parent > p else text
@@ -143,7 +144,13 @@ def _is_integer(node: ex.Expr) -> bool:
 
 
 def _fold_fraction(node: ex.Expr) -> ex.Expr:
-    """``p/q`` of two integer literals is one rational literal (``Fraction(1, 4)``)."""
+    """``p/q`` of two integer literals is one rational literal (``Fraction(1, 4)``); so is
+    ``-p/q`` (the parser reads it as ``(-p)/q``)."""
+    if (isinstance(node, ex.Binary) and node.op == "/" and isinstance(node.left, ex.Unary)
+            and _is_integer(node.left.operand) and _is_integer(node.right)):
+        folded = _fold_fraction(ex.Binary("/", node.left.operand, node.right, node.column))
+        if isinstance(folded, ex.Num):
+            return ex.Num(-folded.value, str(-folded.value), None, 0)
     if (isinstance(node, ex.Binary) and node.op == "/" and _is_integer(node.left) and _is_integer(node.right)
             and isinstance(node.right, ex.Num) and node.right.value != 0 and isinstance(node.left, ex.Num)):
         value = node.left.value / node.right.value
@@ -195,9 +202,11 @@ class _Latex(_Code):
         v = n.value
         if n.digits is not None:  # a decimal stays the decimal it was
             return n.text
-        return str(v) if v.denominator == 1 else rf"\frac{{{v.numerator}}}{{{v.denominator}}}"
+        sign = "-" if v < 0 else ""
+        return str(v) if v.denominator == 1 else rf"{sign}\frac{{{abs(v.numerator)}}}{{{v.denominator}}}"
 
     def render(self, node: ex.Expr, parent: int = 0) -> str:
+        node = _fold_fraction(node)
         if isinstance(node, ex.Name) and node.name in self.constants:
             return self.render(self.constants[node.name], parent)
         if isinstance(node, ex.Num) and node.digits is None:
