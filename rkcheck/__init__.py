@@ -31,9 +31,11 @@ if TYPE_CHECKING:  # what type checkers and IDEs see; at run time __getattr__ lo
         energy_condition,
         free_trees,
         from_arrays,
+        from_nodepy,
         library,
         load,
         loads,
+        to_nodepy,
         verify,
         write,
     )
@@ -48,7 +50,7 @@ if TYPE_CHECKING:  # what type checkers and IDEs see; at run time __getattr__ lo
     from rkcheck.api.types import CheckOptions, Tableau
 
 _API = ("Condition", "EnergyCondition", "FreeTree", "RootingTerm", "Verification", "energy_condition", "free_trees",
-        "from_arrays", "library", "load", "loads", "verify", "write")
+        "from_arrays", "from_nodepy", "library", "load", "loads", "to_nodepy", "verify", "write")
 _ERRORS = ("InputError", "OptionError", "RkcheckError", "TableauError", "UnknownMethodError", "UserError")
 _TYPES = ("CheckOptions", "Tableau")
 

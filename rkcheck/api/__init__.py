@@ -11,6 +11,7 @@ May import every stage of the flow (:mod:`rkcheck.options`, ``numbers``, ``trees
 ``reports``) and :mod:`rkcheck.errors`; never :mod:`rkcheck.cli` (the CLI calls this).
 """
 
+from rkcheck.api.interop import from_nodepy, to_nodepy
 from rkcheck.api.tableaux import from_arrays, library, load, loads, write
 from rkcheck.api.trees import EnergyCondition, FreeTree, RootingTerm, energy_condition, free_trees
 from rkcheck.api.verification import Condition, Verification, verify
@@ -24,9 +25,11 @@ __all__ = [
     "energy_condition",
     "free_trees",
     "from_arrays",
+    "from_nodepy",
     "library",
     "load",
     "loads",
+    "to_nodepy",
     "verify",
     "write",
 ]

@@ -125,13 +125,38 @@ def entry_of(x: Any, place: str, floats: FloatMode = "exact") -> tuple[Entry, bo
                 value = _sympy_float_exact(x)
                 return Entry.of(value), Fraction(str(x)) != value
             if getattr(x, "is_number", False):
-                return Entry.parse(str(x)), False
+                try:
+                    return Entry.parse(str(x)), False
+                except UserError:  # cos(pi/18) and the like: exact through its minimal polynomial
+                    return Entry.parse(_sympy_root_text(x, place)), False
             raise TableauError(f"expected a number, got the sympy expression {x}", place)
         if hasattr(x, "item") and hasattr(x, "dtype"):  # a numpy scalar
             return entry_of(x.item(), place, floats)
     except UserError as err:
         raise TableauError(err.message, f"{place}: {err.place}" if err.place else place) from None
     raise TableauError(f"expected a number (int, Fraction, str, float), got {type(x).__name__}", place)
+
+
+def _sympy_root_text(x: Any, place: str) -> str:
+    """An algebraic sympy number as ``root(p, k)``: its minimal polynomial over Q and
+    which real root it is, counted from the smallest (rkcheck's grammar)."""
+    import sympy
+
+    X = sympy.Symbol("x")
+    try:
+        poly = sympy.Poly(sympy.minimal_polynomial(x, X), X)
+    except (NotImplementedError, ValueError, TypeError, AttributeError):
+        raise TableauError(f"{x} is not an algebraic number rkcheck can take exactly", place) from None
+    if poly.degree() > 100 or not x.is_real:
+        raise TableauError(f"{x}: its minimal polynomial is out of reach (degree {poly.degree()})", place)
+    roots = poly.real_roots()
+    value = sympy.N(x, 60)
+    k = min(range(len(roots)), key=lambda i: abs(sympy.N(roots[i], 60) - value)) + 1
+    terms = []
+    for (power,), coeff in poly.terms():
+        c = sympy.Rational(coeff)
+        terms.append(f"({c.p}/{c.q})*x^{power}" if c.q != 1 else f"({c.p})*x^{power}")
+    return f"root({' + '.join(terms)}, {k})"
 
 
 def _sympy_float_exact(x: Any) -> Fraction:

@@ -263,7 +263,7 @@ def _build(
     check = validate_check_table(_table(data, "check"))
     expect = _table(data, "expect")
     claims = parse_claims(expect)
-    base = dict(
+    base: dict[str, Any] = dict(
         name=name, description=description, references=references, source=source,
         check=check, expect=expect, warnings=warnings, claims=claims,
     )
