@@ -31,16 +31,34 @@ from rkcheck.errors import UserError
 from rkcheck.options import DEFAULT_DPS, MAX_ORDER
 
 
+def input_format_option(f):
+    """--input-format: read FILE as this format instead of guessing by suffix and content."""
+    from rkcheck.io.loader import INPUT_FORMATS
+
+    return click.option("--input-format", type=click.Choice(INPUT_FORMATS), default=None,
+                        help="Read FILE as this format [default: by suffix, then content].")(f)
+
+
+def load_input(file: str, max_stages: int, input_format: str | None):
+    """The tableau of FILE (or @name), in the format asked for, if any."""
+    if input_format is None:
+        return load_tableau(file, max_stages)
+    from rkcheck.io.loader import load
+
+    return load(file, max_stages=max_stages, fmt=input_format)
+
+
 @click.command()
 @click.argument("file", metavar="FILE")
 @check_options
+@input_format_option
 @click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
-def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, show_all, fmt, fail_fast,
-           fail_on) -> None:
+def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, input_format, show_all, fmt,
+           fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table.
 
@@ -53,7 +71,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     from rkcheck.energy.check import CheckInterrupted
 
     config = project_config()
-    tab = load_tableau(file, max_stages)
+    tab = load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
     try:
@@ -89,14 +107,15 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
               "latex/julia/python: the tableau as code with exact entries.")
 @decimals_option("rounded")
 @max_stages_option
+@input_format_option
 @output_options
-def show(file, fmt, decimals, max_stages) -> None:
+def show(file, fmt, decimals, max_stages, input_format) -> None:
     """Print the tableau in FILE as a Butcher table, with its kind and any warnings
     (FILE may be @name, a shipped tableau; .csv/.tsv and nodepy .txt files are read too)."""
     from rkcheck.methods.tableau import consistency_warnings
     from rkcheck.numbers.precision import bits_for_dps
 
-    tab = load_tableau(file, max_stages)
+    tab = load_input(file, max_stages, input_format)
     if fmt not in ("text", "json"):
         from rkcheck.io.formats import write
 

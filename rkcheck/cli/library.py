@@ -104,7 +104,7 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
 
 
 @click.command()
-@click.argument("paths", nargs=-1, required=True, metavar="PATH...")
+@click.argument("paths", nargs=-1, required=False, metavar="[PATH...]")
 @click.option("--degrees", default="2,3,4,6,none", show_default=True,
               help="Comma-separated degrees m for the energy-order columns ('none' = all Hamiltonians).")
 @order_option(default=8)
@@ -112,15 +112,25 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
               help="Write to this file ('-' = stdout, the default).")
 @output_options
 def catalog(paths, degrees, order, output) -> None:
-    """Write a Markdown catalogue of tableau files (how tableaux/README.md is made).
+    """Write a Markdown catalogue of tableau files (how tableaux/README.md is made);
+    without PATH, of the tableaux shipped with rkcheck (the names @name accepts).
 
     \b
     Example:
       rkcheck catalog tableaux/ -o tableaux/README.md
+      rkcheck catalog --order 4            # the shipped library
     """
     from rkcheck.batch.catalog import catalog_row
     from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.io.library import library_root
     from rkcheck.reports.markdown import catalog_markdown
+
+    shown = paths  # the command line the header records: no path stays no path
+    if not paths:
+        root_dir = library_root()
+        if root_dir is None:
+            raise UserError("no tableaux are installed with rkcheck; give a PATH")
+        paths = (str(root_dir),)
 
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
     files = find_tableau_files(list(paths), exclude=["README*", "*/README*"])
@@ -134,6 +144,6 @@ def catalog(paths, degrees, order, output) -> None:
             rows.append(row)
             advance()
     labels = ["all H" if d is None else f"m={d}" for d in degs]
-    command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
+    command = " ".join(["rkcheck catalog", *shown] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
                        + ([f"--order {order}"] if order != 8 else []) + ([f"-o {output}"] if output else []))
     write_text(catalog_markdown(rows, labels, order, command), output)
