@@ -274,3 +274,10 @@ def test_import_rkcheck_is_light():
     code = "import sys, rkcheck; print(any(m.startswith('numpy') for m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
+
+
+def test_tableau_from_arrays_is_the_same_constructor():
+    a = rkcheck.Tableau.from_arrays([[0, 0], [0.5, 0]], ["0", 1], name="m")
+    b = rkcheck.from_arrays([[0, 0], [0.5, 0]], ["0", 1], name="m")
+    assert [[e.exact for e in r] for r in a.A] == [[e.exact for e in r] for r in b.A] == [[0, 0], [Fraction(1, 2), 0]]
+    assert a.name == b.name == "m"

@@ -24,7 +24,7 @@ def mypy(*paths: str) -> subprocess.CompletedProcess:
 def test_api_and_typed_usage_pass_mypy():
     run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/errors.py", "rkcheck/io/library.py",
                "rkcheck/io/formats.py", "rkcheck/io/delimited.py", "rkcheck/io/nodepy_text.py", "rkcheck/io/loader.py",
-               "rkcheck/methods/classics.py", str(HERE / "typed_usage.py"))
+               "rkcheck/methods/classics.py", "rkcheck/methods/arrays.py", str(HERE / "typed_usage.py"))
     assert run.returncode == 0, run.stdout + run.stderr
 
 
