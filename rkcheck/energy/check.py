@@ -9,16 +9,15 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
-from rkcheck.energy.lineintegral import (
-    LineIntegralCertificate,
-    line_integral_certificate,
-)
+from rkcheck.energy.avf import AvfVerdict, theorem1_remark
+from rkcheck.energy.lineintegral import LineIntegralCertificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.energy.properties import tableau_properties
 from rkcheck.energy.verdicts import (
     FAILS,
+    HOLDS,
     HOLDS_TO_DIGITS,
     Verdict,
     classify,
@@ -62,10 +61,11 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    certificate: LineIntegralCertificate | None  # proves every order for degree m (σ = 1: AVF)
+    certificate: LineIntegralCertificate | None  # proves every order for degree m (AVF, line integral, stability)
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
+    properties: Any = None  # rkcheck.energy.properties.TableauProperties: reduction, R(z), symplectic, symmetric
 
     @property
     def failures(self) -> list[ConditionResult]:
@@ -158,10 +158,12 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
     quad = quadrature_order(A, b, exact)
     classical = classical_order(backend, options.order)
     avf = cert = None
+    # Tableau-level algebra (rkcheck.energy.properties): the irreducible form, R(z),
+    # symplecticity, symmetry; the AVF verdict and the certificate of every order (AVF,
+    # line integral, and for m = 2 the stability function). Exact for exact tableaux.
+    props = tableau_properties(tableau, A, b, exact, options.decimals)
     if options.degree is not None:
-        reduced = reduce_stages([row[:] for row in A], b[:], exact)  # shared by both certificates
-        avf = avf_verdict(A, b, options.degree, exact, reduced)
-        cert = line_integral_certificate(A, b, options.degree, exact, reduced)
+        avf, cert = props.certificates(options.degree)
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 
@@ -181,13 +183,12 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
         if cert is not None and cert.certified:
             if cert.verdict.state != HOLDS_TO_DIGITS:
                 raise AssertionError(f"internal inconsistency: exact certificate but {first.condition.id} fails")
-            cert = LineIntegralCertificate(
-                cert.degree, None, Verdict(FAILS),
-                f"(LI) holds only to {cert.verdict.digits} digits, and condition {first.condition.id} certainly fails",
-            )
+            cert = cert.refuted(first.condition.id)
     energy_all = bool(cert and cert.certified)
     first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
-    remark = theorem1_remark(avf, first_label, options.order) if avf else None
+    exact_holds = all(r.verdict.state == HOLDS for r in results)  # Theorem 1 concludes only from exact holds
+    min_digits = min((r.verdict.digits for r in results if r.verdict.state == HOLDS_TO_DIGITS), default=None)
+    remark = theorem1_remark(avf, first_label, options.order, exact_holds, min_digits) if avf else None
     if tableau.rounded_digits is not None and options.decimals == "rounded":
         warnings.append(
             f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
@@ -209,6 +210,7 @@ def check(tableau: Tableau, options: CheckOptions) -> CheckResult:
         theorem1=remark,
         warnings=warnings,
         timings=timings,
+        properties=props,
     )
 
 
