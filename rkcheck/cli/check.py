@@ -92,12 +92,36 @@ def show(file, fmt, decimals, max_stages) -> None:
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
 @click.option("--count", is_flag=True, help="Only count the conditions per order.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--emit", type=click.Choice(["python", "sympy", "julia", "matlab", "latex"]), default=None,
+              help="Write the conditions as code: functions of A and b returning the residuals.")
+@click.option("--classical", is_flag=True, help="--emit: also the classical order conditions up to the same order.")
+@click.option("--stages", "-s", "stages", type=click.IntRange(1, 64), default=None,
+              help="--emit: the number of stages (adds unpack/pack of the free entries; sympy: the symbols).")
+@click.option("--explicit", is_flag=True, help="--emit with --stages: A strictly lower triangular.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="--emit: write to this file instead of stdout.")
 @output_options
-def conditions(order, degree, count, fmt) -> None:
-    """List the energy conditions (non-superfluous free trees) up to an order."""
+def conditions(order, degree, count, fmt, emit, classical, stages, explicit, output) -> None:
+    """List the energy conditions (non-superfluous free trees) up to an order, or write
+    them as code (--emit) for optimisers and computer algebra.
+
+    \b
+    Example:
+      rkcheck conditions --emit python --degree 4 --order 6 --stages 3 --explicit -o conditions.py
+    """
     from rkcheck.trees.conditions import condition_table
 
+    if emit is None and (classical or stages or explicit or output):
+        raise UserError("--classical, --stages, --explicit and --output go with --emit")
+    if explicit and stages is None:
+        raise UserError("--explicit needs --stages")
     table = condition_table(order, degree)
+    if emit is not None:  # conditions as code (rkcheck.reports.code)
+        from rkcheck.cli.common import write_text
+        from rkcheck.reports.code import emit as emit_code
+
+        write_text(emit_code(table, emit, classical, stages, explicit), output)
+        return
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc, dumps
 
