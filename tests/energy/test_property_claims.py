@@ -63,12 +63,11 @@ def test_wrong_claims_are_broken(tmp_path, capsys, text, expect, claimed, found)
     assert code == 1 and (c["claimed"], c["found"], c["met"]) == (claimed, found, False)
 
 
-def test_algebraic_gauss_claims_are_met(tmp_path, capsys):
-    text = (TABLEAUX / "collocation" / "gauss-3.toml").read_text(encoding="utf-8")
-    assert text.rstrip().splitlines()[-1].startswith("quadrature_order")  # [expect] is the last table
-    p = tmp_path / "gauss-3.toml"
-    p.write_text(text + "\nsymplectic = true\nsymmetric = true\nstability_defect = 0\n", encoding="utf-8")
-    code, cs = claims(capsys, str(p))
+def test_algebraic_gauss_claims_are_met(capsys):
+    path = TABLEAUX / "collocation" / "gauss-3.toml"
+    text = path.read_text(encoding="utf-8")
+    assert "symplectic = true" in text and "symmetric = true" in text and "stability_defect = 0" in text
+    code, cs = claims(capsys, str(path))
     assert code == 0
     (sym,) = [c for c in cs if c["claim"] == "symplectic"]
     assert sym["met"] and sym["found"] == "true"
@@ -89,3 +88,39 @@ def test_algebraic_gauss_claims_are_met(tmp_path, capsys):
 def test_malformed_property_claims_are_user_errors(tmp_path, capsys, expect, message):
     r = run_cli(capsys, "verify", write(tmp_path, MIDPOINT, expect))
     assert r.code == 2 and message in r.err and len(r.err.strip().splitlines()) == 1
+
+
+# ------------------------------------------- shipped claims by a second route (sympy)
+
+import sympy  # noqa: E402
+
+from rkcheck.io.discovery import find_tableau_files  # noqa: E402
+from rkcheck.io.loader import load  # noqa: E402
+
+SHIPPED = [f for f in find_tableau_files([str(TABLEAUX)]) if load(f).is_exact("rounded")]
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=[str(Path(f).relative_to(TABLEAUX)) for f in SHIPPED])
+def test_shipped_property_claims_agree_with_sympy(path):
+    tab = load(path)
+    A = sympy.Matrix([[sympy.Rational(x.numerator, x.denominator) for x in row] for row in tab.exact_A()])
+    b = sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in tab.exact_b()])
+    s, z = len(b), sympy.Symbol("z")
+    for claim in tab.claims:
+        if claim.kind == "symplectic":
+            M = sympy.diag(*b) * A + A.T * sympy.diag(*b) - b * b.T
+            # M = 0 as written proves symplecticity; a claim 'false' needs M ≠ 0 as written
+            # (the converse needs the irreducible form: Lobatto IIIB-2 is the midpoint rule)
+            if M == sympy.zeros(s, s):
+                assert claim.value is True
+            if claim.value is False:
+                assert M != sympy.zeros(s, s)
+        elif claim.kind == "stability_defect":
+            I, one = sympy.eye(s), sympy.ones(s, 1)
+            R = sympy.cancel((I - z * A + z * one * b.T).det() / (I - z * A).det())
+            E = sympy.cancel(R * R.subs(z, -z) - 1)
+            if claim.power is None:
+                assert E == 0
+            else:
+                series = sympy.series(E, z, 0, claim.power + 1).removeO()
+                assert sympy.expand(series - sympy.Rational(claim.coefficient) * z**claim.power) == 0
