@@ -34,7 +34,8 @@ from rkcheck.options import SCAN_FORMATS
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
               help="Write the report to this file (written even when interrupted).")
 @click.option("--sort", "sort", type=click.Choice(["path", "energy"]), default="path", show_default=True,
-              help="Row order: by path, or by energy order (best first) and then by the energy error constant C.")
+              help="Row order: by path, or by energy order (best first) and then by the energy error constant C "
+              "(a column C in the text report).")
 @fail_on_option
 @output_options
 def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, output, fail_on, sort) -> None:
@@ -73,9 +74,10 @@ def scan(paths, degree, order, dps, decimals, max_stages, jobs, exclude, fmt, ou
         outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
     if fmt == "text" and output and output != "-":
-        write_text(scan_report.scan_text(outcomes, elapsed, interrupted), output)
+        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy"), output)
     elif fmt == "text":
-        scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose)
+        scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose,
+                                     constants=sort == "energy")
     else:
         write_text(scan_report.scan_document(fmt, outcomes, interrupted, options, elapsed), output)
     if interrupted:

@@ -359,7 +359,8 @@ def monomial_text(coef, k: int) -> str:
 
 def poly_text(p: list) -> str:
     """A polynomial (ascending coefficients) for people, zero terms left out."""
-    terms = [(k, a) for k, a in enumerate(p) if sc.verdict(a).state != HOLDS]
+    # zero terms are left out; for an enclosure, one that may be zero (it is shown with ≈)
+    terms = [(k, a) for k, a in enumerate(p) if sc.verdict(a).state == FAILS]
     if not terms:
         return "0"
     out = ""

@@ -77,10 +77,16 @@ def symplecticity(red: Reduction) -> PropertyVerdict:
     if worst is not None:
         m, i, j = worst
         gi, gj = red.kept[i] + 1, red.kept[j] + 1
-        value = sc.text(abs(m) if sc.rational(m) is not None else m, 12)
+        q = sc.rational(m)
+        if q is not None:
+            value = f"|M[{gi}][{gj}]| = {sc.text(abs(q), 12)}"
+        elif sc.is_interval(m):
+            value = f"M[{gi}][{gj}] ≈ {sc.approx(m):.12g}"
+        else:
+            value = f"M[{gi}][{gj}] = {sc.text(m, 12)}"
         return PropertyVerdict(
             "symplectic", Verdict(FAILS),
-            f"BA + AᵀB − bbᵀ ≠ 0{_after(red)}: largest entry |M[{gi}][{gj}]| = {value}",
+            f"BA + AᵀB − bbᵀ ≠ 0{_after(red)}: largest entry {value}",
             m, (gi, gj),
         )
     return PropertyVerdict("symplectic", verdict, f"BA + AᵀB − bbᵀ = 0 {_how(verdict)}{_after(red)}")

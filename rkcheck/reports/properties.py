@@ -122,8 +122,8 @@ def property_rows(res) -> list[tuple[str, Text | str]]:
         o1 = str(ec.order + 1).translate(_SUP)
         rows.append((
             "error constant",
-            f"C = {ec.text()}: Euclidean norm of the {n} residual{'s' if n != 1 else ''} of order {ec.order}, "
-            f"the leading term of ΔH = h{o} Σ R(t̄)F_t̄(H) + O(h{o1})",
+            f"C = {ec.text()}, the Euclidean norm of the {n} residual{'s' if n != 1 else ''} of order {ec.order} "
+            f"(ΔH = h{o} Σ R(t̄)F_t̄(H) + O(h{o1}))",
         ))
     props = res.properties
     if props is None:

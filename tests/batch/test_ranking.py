@@ -60,9 +60,10 @@ def test_scan_csv_has_the_new_columns(capsys):
     exact = reference_constant_squared("collocation/lobatto-iiia-3.toml", 4)[1]
     assert abs(F(row["error_constant"]) ** 2 / exact - 1) < F(1, 10**10)  # 12 significant digits
     # the text report has a C column
-    out = run_cli(capsys, "scan", str(TABLEAUX / "explicit" / "rk4.toml"), "--jobs", "1").out
+    out = run_cli(capsys, "scan", str(TABLEAUX / "explicit" / "rk4.toml"), "--jobs", "1", "--sort", "energy").out
     header = next(line for line in out.splitlines() if "energy" in line)
     assert header.split()[:7] == ["file", "method", "s", "m", "classical", "energy", "C"]
+    assert "0.015 " in out  # RK4, all H: C = 0.01514 (compact form)
 
 
 def test_catalog_columns_and_ranking():
