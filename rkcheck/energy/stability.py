@@ -37,6 +37,7 @@ from fractions import Fraction
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
 from rkcheck.numbers.formatting import decimal_string
+from rkcheck.numbers.intervals import Interval
 
 #: enclosures: above this many stages det(I − zA) is not expanded (the certificate,
 #: which needs only the series, is still decided)
@@ -110,6 +111,7 @@ def _det_I_minus_zA(A: sc.Matrix, like) -> list | None:
     if not exact and n > MAX_INTERVAL_DET_STAGES:
         return None
     charpoly = _charpoly_hessenberg(A, like) if exact else _charpoly_faddeev(A, like)
+    assert len(charpoly) == n + 1
     # det(xI − A) = Σ c_k x^k  ⇒  det(I − zA) = z^n det(z⁻¹I − A) = Σ c_(n−k) z^k
     return list(reversed(charpoly))
 
@@ -231,16 +233,124 @@ class StabilityFunction:
         return f"R(z)R(−z) − 1 = {lead} + O(z{str(self.leading_power + 2).translate(_SUP)})"
 
 
+def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | None:
+    """For a rational tableau: the series r_0 … r_2s, and P, Q in lowest terms with
+    Q(0) = 1, computed with FLINT (exact rational matrices and polynomials: Fraction
+    arithmetic and Euclid's algorithm on Fractions grow too fast beyond ~15 stages)."""
+    if not all(isinstance(x, (Fraction, int)) for row in A for x in row) or not all(isinstance(x, (Fraction, int)) for x in b):
+        return None
+    from flint import fmpq, fmpq_mat, fmpq_poly
+
+    def q(x) -> fmpq:
+        x = Fraction(x)
+        return fmpq(x.numerator, x.denominator)
+
+    def frac(x) -> Fraction:
+        return Fraction(int(x.p), int(x.q))
+
+    s = len(b)
+    M = fmpq_mat(s, s, [q(x) for row in A for x in row])
+    B = fmpq_mat(1, s, [q(x) for x in b])
+    v = fmpq_mat(s, 1, [fmpq(1)] * s)
+    series = [Fraction(1)]
+    for _ in range(2 * s):
+        series.append(frac((B * v)[0, 0]))
+        v = M * v
+    Q = fmpq_poly(list(reversed(M.charpoly().coeffs())))  # det(I − zA) = z^s det(z⁻¹I − A)
+    P = (Q * fmpq_poly([q(r) for r in series[: s + 1]])).coeffs()[: s + 1]
+    P = fmpq_poly(P)
+    g = P.gcd(Q)
+    if g.degree() > 0:
+        P, Q = P // g, Q // g
+    q0 = Q.coeffs()[0]
+    P, Q = P / q0, Q / q0
+    return series, [frac(c) for c in P.coeffs()] or [Fraction(0)], [frac(c) for c in Q.coeffs()]
+
+
+def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
+    """For enclosures: the series r_0 … r_2s and det(I − zA), enclosed with FLINT's ball
+    matrices (rigorous: every input interval is enclosed by a ball, every result ball is
+    returned as the interval it certifies); O(s³) instead of interval Faddeev–LeVerrier's
+    O(s⁴) on rationals with long end points."""
+    if not all(isinstance(x, Interval) for row in A for x in row) or not all(isinstance(x, Interval) for x in b):
+        return None
+    import flint
+    from flint import arb, arb_mat, fmpq
+
+    widths = [x.hi - x.lo for row in A for x in row if not x.is_point] + [x.hi - x.lo for x in b if not x.is_point]
+    need = max((w.denominator.bit_length() - w.numerator.bit_length() for w in widths), default=64)
+    bits = max(128, need + 64)
+
+    def ball(x: Interval):
+        lo, hi = arb(fmpq(x.lo.numerator, x.lo.denominator)), arb(fmpq(x.hi.numerator, x.hi.denominator))
+        return lo.union(hi)
+
+    def interval(x) -> Interval:
+        mid, rad = _exact(x.mid()), _exact(x.rad())
+        return Interval(mid - rad, mid + rad)
+
+    saved = flint.ctx.prec
+    flint.ctx.prec = bits
+    try:
+        n = len(b)
+        M = arb_mat(n, n, [ball(x) for row in A for x in row])
+        B = arb_mat(1, n, [ball(x) for x in b])
+        v = arb_mat(n, 1, [arb(1)] * n)
+        series = [Interval.point(1)]
+        for _ in range(2 * n):
+            series.append(interval((B * v)[0, 0]))
+            v = M * v
+        Q = [interval(c) for c in reversed(M.charpoly().coeffs())]
+    finally:
+        flint.ctx.prec = saved
+    return [sc.tidy(x) for x in series], [sc.tidy(x) for x in Q]
+
+
+def _exact(x) -> Fraction:
+    """An exact FLINT number (an arb point, arf or mag) as a Fraction."""
+    man, exp = x.mid().man_exp() if hasattr(x, "mid") else x.man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
 def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
     """``R(z)`` of the tableau ``(A, b)`` over its own scalars (see the module docstring)."""
     s = len(b)
     like = sc.sample(A, b)
+    rational = _rational_parts(A, b)
+    if rational is not None:
+        series, P, Q = rational
+        return _from_parts(s, True, series, _trim(P), _trim(Q))
+    enclosed = _interval_parts(A, b)
+    if enclosed is not None:
+        series, Q = enclosed
+        P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
+        return _from_parts(s, False, series, _trim(P), _trim(Q))
     one = sc.const(1, like)
     series = [one]
     v = [sc.const(1, like) for _ in range(s)]  # A^(k−1) 1
     for _ in range(2 * s):
         series.append(sc.dot(b, v, like))
         v = sc.matvec(A, v, like)
+    numerator = denominator = None
+    Q = _det_I_minus_zA(A, like)
+    if Q is not None:
+        P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
+        if sc.is_exact(like):
+            g = _gcd(P, Q, like)
+            if len(g) > 1:
+                P, _ = _divmod(P, g, like)
+                Q, _ = _divmod(Q, g, like)
+            q0 = Q[0]
+            P = [a / q0 for a in P]
+            Q = [a / q0 for a in Q]
+        numerator, denominator = _trim(P), _trim(Q)
+    return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
+
+
+def _from_parts(s: int, exact: bool, series: list, numerator, denominator) -> StabilityFunction:
+    """The defect coefficients e_n and the identity verdict from the series."""
+    like = series[0]
     defect = [sc.const(0, like)]
     for n in range(1, 2 * s + 1):
         if n % 2:
@@ -256,21 +366,7 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
             break
         verdicts.append(v_n)
     identity = Verdict(FAILS) if leading_power is not None else combine(verdicts)
-    numerator = denominator = None
-    Q = _det_I_minus_zA(A, like)
-    if Q is not None:
-        P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
-        if sc.is_exact(like):
-            g = _gcd(P, Q, like)
-            if len(g) > 1:
-                P, _ = _divmod(P, g, like)
-                Q, _ = _divmod(Q, g, like)
-            q0 = Q[0]
-            P = [a / q0 for a in P]
-            Q = [a / q0 for a in Q]
-        numerator, denominator = _trim(P), _trim(Q)
-    return StabilityFunction(s, sc.is_exact(like), series, defect, identity, leading_power, leading,
-                             numerator, denominator)
+    return StabilityFunction(s, exact, series, defect, identity, leading_power, leading, numerator, denominator)
 
 
 # ------------------------------------------------------------------ the certificate

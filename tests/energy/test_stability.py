@@ -202,3 +202,26 @@ def test_enclosures_hold_to_digits():
     st = res.properties.stability
     assert st.identity.state == "holds_to_digits" and st.identity.digits >= 40
     assert st.text().startswith("R(z) ≈ (1 + 0.5z + 0.1z² + 0.008333333333z³)")
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_enclosures_contain_the_exact_stability_function(seed):
+    # the same random tableau exactly and as intervals of radius 1e-30: every enclosed
+    # series and denominator coefficient contains the exact one (FLINT ball route)
+    from rkcheck.numbers.intervals import Interval
+
+    rng = random.Random(50 + seed)
+    A, b = random_tableau(rng, 3 + 4 * seed, explicit=False)
+    exact = stability_function(A, b)
+    eps = F(1, 10**30)
+    st = stability_function([[Interval(x - eps, x + eps) for x in row] for row in A], [Interval(x - eps, x + eps) for x in b])
+    assert not st.exact and len(st.series) == len(exact.series)
+    assert all(i.lo <= e <= i.hi for i, e in zip(st.series, exact.series))
+    assert st.leading_power == exact.leading_power
+    # Q in lowest terms (exact) divides the enclosed det(I − zA): compare values at z = 1/7
+    z0 = F(1, 7)
+    q_exact = sum(c * z0**k for k, c in enumerate(exact.denominator))
+    p_exact = sum(c * z0**k for k, c in enumerate(exact.numerator))
+    q_enc = sum((c.mid * z0**k for k, c in enumerate(st.denominator)), F(0))
+    p_enc = sum((c.mid * z0**k for k, c in enumerate(st.numerator)), F(0))
+    assert abs(p_enc / q_enc - p_exact / q_exact) < F(1, 10**20)
