@@ -19,13 +19,11 @@ from typing import Any, Callable, Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
+from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
-from rkcheck.energy.lineintegral import (
-    LineIntegralCertificate,
-    line_integral_certificate,
-)
+from rkcheck.energy.lineintegral import LineIntegralCertificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.energy.properties import tableau_properties
 from rkcheck.energy.verdicts import (
     FAILS,
     HOLDS,
@@ -215,12 +213,13 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    certificate: LineIntegralCertificate | None  # proves every order for degree m (σ = 1: AVF)
+    certificate: LineIntegralCertificate | None  # proves every order for degree m (AVF, line integral, stability)
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
     _failures: Failures | None = field(default=None, repr=False)
     interrupted: bool = False  # Ctrl-C: only the orders in ``results`` were finished
+    properties: Any = None  # rkcheck.energy.properties.TableauProperties: reduction, R(z), symplectic, symmetric
 
     @property
     def failures(self) -> Failures:
@@ -374,10 +373,12 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     quad = quadrature_order(A, b, exact)
     classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
+    # Tableau-level algebra (rkcheck.energy.properties): the irreducible form, R(z),
+    # symplecticity, symmetry; the AVF verdict and the certificate of every order (AVF,
+    # line integral, and for m = 2 the stability function). Exact for exact tableaux.
+    props = tableau_properties(tableau, A, b, exact, options.decimals)
     if options.degree is not None:
-        reduced = reduce_stages([row[:] for row in A], b[:], exact)  # shared by both certificates
-        avf = avf_verdict(A, b, options.degree, exact, reduced)
-        cert = line_integral_certificate(A, b, options.degree, exact, reduced)
+        avf, cert = props.certificates(options.degree)
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 
@@ -400,13 +401,14 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         if cert is not None and cert.certified:
             if cert.verdict.state != HOLDS_TO_DIGITS:
                 raise AssertionError(f"internal inconsistency: exact certificate but {first.condition.id} fails")
-            cert = LineIntegralCertificate(
-                cert.degree, None, Verdict(FAILS),
-                f"(LI) holds only to {cert.verdict.digits} digits, and condition {first.condition.id} certainly fails",
-            )
+            cert = cert.refuted(first.condition.id)
     energy_all = bool(cert and cert.certified)
     first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
-    remark = theorem1_remark(avf, first_label, options.order) if avf else None
+    # Theorem 1 concludes "beyond order N" only from exact holds (per-order counts, so
+    # that millions of conditions are not visited one by one)
+    min_digits = min((p.min_digits for p in per_order if p.min_digits is not None), default=None)
+    exact_holds = min_digits is None and all(p.checked == p.conditions for p in per_order)
+    remark = theorem1_remark(avf, first_label, options.order, exact_holds, min_digits) if avf else None
     if tableau.rounded_digits is not None and options.decimals == "rounded":
         warnings.append(
             f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
@@ -430,6 +432,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         timings=timings,
         _failures=failures,
         interrupted=interrupted,
+        properties=props,
     )
     if interrupted:
         raise CheckInterrupted(result)

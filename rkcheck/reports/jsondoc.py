@@ -12,6 +12,7 @@ from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.grammar import to_text
+from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
 
 SCHEMA = 1
 
@@ -51,7 +52,7 @@ def method_doc(tab: Tableau) -> dict[str, Any]:
 def show_doc(tab: Tableau, file: str, decimals: str, warnings: list[str]) -> dict[str, Any]:
     """``rkcheck show --format json``."""
     return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals),
-            "warnings": warnings}
+            "stability": stability_doc(tableau_stability(tab, decimals)), "warnings": warnings}
 
 
 def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:
@@ -135,7 +136,7 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "certificate": None
         if res.certificate is None
         else {
-            "kind": "avf" if res.certificate.sigma == 1 else ("line_integral" if res.certificate.sigma else None),
+            "kind": res.certificate.kind,  # avf / line_integral / stability / null
             "sigma": res.certificate.sigma,
             "state": res.certificate.verdict.state,
             "digits": res.certificate.verdict.digits,
@@ -192,6 +193,7 @@ def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
     """The per-file object of ``verify --format json`` (also used by ``scan``)."""
     o = res.options
     summary = summary_doc(res)
+    summary.update(properties_doc(res))  # reduction, symplectic, symmetric, stability, error_constant
     summary["claims_ok"] = None if claim_results is None else all(r.met for r in claim_results)
     return {
         "schema": SCHEMA,

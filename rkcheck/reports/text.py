@@ -15,6 +15,7 @@ from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 MAX_FAILURES_SHOWN = 20
@@ -138,11 +139,13 @@ def render_check(
             kv.add_row(*plain(f"AVF (degree {a.degree})", label))
             for note in a.notes:
                 kv.add_row(*plain("", note))
-        if res.certificate is not None and res.certificate.certified and res.certificate.sigma != 1:
+        if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
             kv.add_row(*plain("certificate", res.certificate.reason))
         kv.add_row(*plain("energy order", _energy_text(res)))
         if res.theorem1:
             kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
+        for label, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
+            kv.add_row(*plain(label, value))
         console.print(kv)
         console.print()
         console.print(per_order_table(res))
@@ -179,9 +182,9 @@ def _order_text(r, what: str) -> str:
 
 def _certificate_name(res: CheckResult) -> str:
     cert = res.certificate
-    if cert is None or cert.sigma is None:
+    if cert is None:
         return "certificate"
-    name = "AVF certificate" if cert.sigma == 1 else f"line-integral certificate, σ = {cert.sigma}"
+    name = cert.name
     if cert.verdict.state == HOLDS_TO_DIGITS:
         name += f", to {cert.verdict.digits} digits"
     return name
@@ -262,6 +265,7 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", wa
     console.print(t)
     if c_entries is None:
         console.print(Text("c not given: the row sums A·1 are shown (dim) and used", style="dim"))
+    console.print(Text(stability_line(tableau_stability(tab, decimals))))  # R(z), R(z)R(−z) − 1
     for w in warnings or []:
         console.print(Text(f"warning: {w}", style="yellow"))
 
