@@ -39,8 +39,8 @@ from rkcheck.options import DEFAULT_DPS, MAX_ORDER, resolve_check_options
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
-def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, show_all, fmt, fail_fast,
-           fail_on) -> None:
+def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, show_all, fmt,
+           fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table.
 
@@ -84,7 +84,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 @click.command()
 @click.argument("file", metavar="FILE")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
-@decimals_option("rounded")
+@decimals_option("auto")
 @max_stages_option
 @output_options
 def show(file, fmt, decimals, max_stages) -> None:
@@ -166,7 +166,7 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
 @click.argument("tree_id", metavar="ID")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
 @dps_option(DEFAULT_DPS)
-@decimals_option("rounded")
+@decimals_option("auto")
 @max_stages_option
 @output_options
 def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:

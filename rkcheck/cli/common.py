@@ -16,11 +16,13 @@ import click
 
 from rkcheck.errors import UserError
 from rkcheck.options import (
+    DECIMALS_MODES,
     DEFAULT_MAX_STAGES,
     DPS_RANGE,
     FAIL_ON,
     MAX_ORDER,
     parse_degree,
+    parse_require,
 )
 from rkcheck.reports.console import OutputSettings, make_console
 
@@ -149,9 +151,11 @@ def max_stages_option(f: Callable) -> Callable:
 
 def decimals_option(default: str | None = None) -> Callable:
     return click.option(
-        "--decimals", type=click.Choice(["rounded", "exact"]), default=default, show_default=default is not None,
-        help="Decimal literals with >= 6 significant digits: 'rounded' (default) = within half a unit "
-        "of the last digit; 'exact' = at face value.",
+        "--decimals", type=click.Choice(list(DECIMALS_MODES)), default=default, show_default=default is not None,
+        help="What a decimal literal stands for. auto (default): one with >= 6 significant digits is "
+        "within half a unit of its last digit, or within half an ulp of the double it is the shortest "
+        "repr of (what Python/numpy print); rounded: the half unit only; float64: every nonzero "
+        "decimal is a double and stands for its rounding interval; exact: face value.",
     )
 
 
@@ -179,10 +183,33 @@ def arithmetic_option(f: Callable) -> Callable:
     )(f)
 
 
+class RequireType(click.ParamType):
+    """The proof gate: any, proof or digits:D (rkcheck.options.parse_require)."""
+
+    name = "any|proof|digits:D"
+
+    def convert(self, value, param, ctx):
+        if not isinstance(value, str):
+            return value
+        try:
+            return parse_require(value, "--require")
+        except UserError as err:
+            self.fail(err.message, param, ctx)
+
+
+def require_option(f: Callable) -> Callable:
+    return click.option(
+        "--require", type=RequireType(), default="any", show_default=True,
+        help="What counts as a pass. any: holds, or holds to D digits; proof: only exact holds and exact "
+        "certificates (a 'holds to D digits' fails the gate, exit 1); digits:D: numerical holds need "
+        "at least D digits. Also [check] require.",
+    )(f)
+
+
 def check_options(f: Callable) -> Callable:
-    """--degree / --order / --dps / --decimals / --max-stages / --max-conditions / --arithmetic,
-    shared by the checking commands."""
-    for decorator in (arithmetic_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
+    """--degree / --order / --dps / --decimals / --require / --max-stages / --max-conditions /
+    --arithmetic, shared by the checking commands."""
+    for decorator in (arithmetic_option, require_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
                       order_option(), degree_option()):
         f = decorator(f)
     return f
@@ -214,7 +241,7 @@ def flag_values(*names: str) -> dict[str, Any]:
     from click.core import ParameterSource
 
     ctx = click.get_current_context()
-    names = names or ("degree", "order", "dps", "decimals", "fail_fast")
+    names = names or ("degree", "order", "dps", "decimals", "fail_fast", "require")
     out: dict[str, Any] = {}
     for name in names:
         if name in ctx.params and ctx.get_parameter_source(name) in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT):

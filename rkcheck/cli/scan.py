@@ -38,8 +38,8 @@ from rkcheck.options import SCAN_FORMATS
               "(a column C in the text report).")
 @fail_on_option
 @output_options
-def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, jobs, exclude, fmt, output,
-         fail_on, sort) -> None:
+def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, exclude, fmt,
+         output, fail_on, sort) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,

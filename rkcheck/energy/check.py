@@ -339,6 +339,32 @@ def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckO
     return ev.backend, {n: order_verdicts(n, v) for n, v in ev.orders.items()}
 
 
+def judge_box(listing: ConditionListing, tableau: Tableau, options: CheckOptions, A, b,
+              orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """Decimal entries are one box of inputs (definitions §5.2): the conditions the balls
+    left undecided are judged again by the mean value form around the face values
+    (:mod:`rkcheck.evaluation.box`), which proves a failure on the whole box where the
+    balls' dependency problem hid it.  Returns the orders and a warning when the
+    refinement did not fit."""
+    from rkcheck.evaluation.box import RefinedSums, box_refinement_fits, refine_box
+
+    undecided = [n for n, o in orders.items() if np.any(o.state == 1)]
+    if not undecided:
+        return orders, None
+    if not box_refinement_fits(listing, A, b):
+        return orders, ("the box of decimal inputs is too large to bound its variation at this order: "
+                        "a condition reported as holding to D digits may still fail on the whole box")
+    refined = refine_box(listing, A, b, tableau.exact_A(), tableau.exact_b(), undecided)
+    out = dict(orders)
+    for n, ref in refined.items():
+        out[n] = order_verdicts(n, RefinedSums(orders[n].values, ref))
+    if options.fail_fast:
+        failing = [n for n in sorted(out) if np.any(out[n].state == 2)]
+        if failing:
+            out = {n: v for n, v in out.items() if n <= failing[0]}
+    return out, None
+
+
 def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", budget: Budget | None = None,
           progress: Callable[[int, int], None] | None = None) -> CheckResult:
     """Run the whole check of definitions §3–§5 on ``tableau``.
@@ -365,11 +391,19 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     except EvaluationInterrupted as stop:
         backend, interrupted = kind, True
         orders = {n: order_verdicts(n, v) for n, v in stop.finished.items()}
+    box_warning = None
+    if backend == "ball" and tableau.is_rational and tableau.is_box(options.decimals) and not interrupted:
+        try:
+            orders, box_warning = judge_box(listing, tableau, options, A, b, orders)
+        except EvaluationInterrupted:
+            interrupted = True
     exact = backend == "exact"
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
 
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
+    if box_warning:
+        warnings.append(box_warning)
     quad = quadrature_order(A, b, exact)
     classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
@@ -409,7 +443,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     min_digits = min((p.min_digits for p in per_order if p.min_digits is not None), default=None)
     exact_holds = min_digits is None and all(p.checked == p.conditions for p in per_order)
     remark = theorem1_remark(avf, first_label, options.order, exact_holds, min_digits) if avf else None
-    if tableau.rounded_digits is not None and options.decimals == "rounded":
+    if tableau.rounded_digits is not None and options.decimals in ("rounded", "auto"):
         warnings.append(
             f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
             "are read as rounded to their last digit (definitions §5); --decimals exact takes them at face value"
@@ -439,17 +473,78 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     return result
 
 
+def inconsistent(result: CheckResult) -> bool:
+    """``Σb ≠ 1`` certainly: the method is not even of order 1, and fails whatever its
+    energy conditions say (definitions §5.3)."""
+    q = result.quadrature
+    return q.order == 0 and q.first_failure is not None
+
+
+@dataclass(frozen=True)
+class Shortfall:
+    """Why the holds of a check do not meet ``--require`` (definitions §5.3)."""
+
+    require: str
+    count: int  # conditions that hold only to too few digits (0: the certificate alone)
+    examples: list[str]  # their ids, first ones in presentation order
+    certificate: bool  # the certificate of every order holds only numerically
+
+    def text(self) -> str:
+        what = "a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits"
+        parts = []
+        if self.count:
+            ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
+            parts.append(f"{self.count} condition{'s' if self.count != 1 else ''} hold only to digits ({ids})")
+        if self.certificate:
+            parts.append("the certificate of every order holds only to digits")
+        return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"
+
+
+def requirement_shortfall(result: CheckResult) -> Shortfall | None:
+    """What keeps the holds of ``result`` from meeting its ``options.require``: conditions
+    that hold only to digits (``proof``) or to fewer than D (``digits:D``), or a
+    certificate that is only numerical.  None when the requirement is met."""
+    require = result.options.require
+    if require == "any":
+        return None
+    need = result.options.required_digits
+
+    def short(digits: np.ndarray) -> np.ndarray:
+        return np.ones(len(digits), dtype=bool) if need is None else digits < need
+
+    count = sum(int(np.count_nonzero((o.state == 1) & short(o.digits))) for o in result.results.orders.values())
+    examples = []
+    if count:
+        for r in result.results.with_state(HOLDS_TO_DIGITS):
+            if need is None or (r.verdict.digits or 0) < need:
+                examples.append(r.condition.id)
+                if len(examples) == 3:
+                    break
+    cert = result.certificate
+    cert_short = bool(result.energy_order_all and cert is not None and cert.verdict.state == HOLDS_TO_DIGITS
+                      and (need is None or (cert.verdict.digits or 0) < need))
+    if not count and not cert_short:
+        return None
+    return Shortfall(require, count, examples, cert_short)
+
+
 def overall(result: CheckResult) -> Verdict:
-    """All checked conditions at once: fails if any fails, else the weakest digits."""
-    if len(result.failures):
+    """All checked conditions at once: fails if any fails (or ``Σb ≠ 1`` certainly),
+    else the weakest digits."""
+    if len(result.failures) or inconsistent(result):
         return Verdict(FAILS)
     digits = result.min_digits
     return Verdict(HOLDS_TO_DIGITS, digits) if digits is not None else Verdict(HOLDS)
 
 
 def conditions_ok(result: CheckResult) -> bool:
-    """Every checked condition holds, or the AVF certificate proves them all."""
-    return result.all_hold or result.energy_order_all
+    """Every checked condition holds, or a certificate proves them all; the method is
+    consistent (``Σb = 1`` not certainly false); and the holds meet ``--require``."""
+    if inconsistent(result):
+        return False
+    if not (result.all_hold or result.energy_order_all):
+        return False
+    return requirement_shortfall(result) is None
 
 
 class CheckRunner:

@@ -34,13 +34,13 @@ Vector = list[Scalar]
 # ------------------------------------------------------------------ the tableau's values
 
 
-def exact_values_or_none(tableau, decimals: str = "rounded") -> tuple[Matrix, Vector] | None:
+def exact_values_or_none(tableau, decimals: str = "auto") -> tuple[Matrix, Vector] | None:
     """``(A, b)`` as exact scalars, or None when the tableau is not exact.
 
     Uses the tableau's own ``exact_values()`` hook when it has one (exact number fields),
     else Fractions for a rational tableau.  A tableau with decimals read as rounded
     (definitions §5) is never exact."""
-    if decimals == "rounded" and tableau.rounded_digits is not None:
+    if tableau.is_box(decimals):
         return None
     hook = getattr(tableau, "exact_values", None)
     if hook is not None:

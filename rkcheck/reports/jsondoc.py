@@ -7,7 +7,7 @@ import json
 from typing import Any
 
 from rkcheck import __version__
-from rkcheck.energy.check import CheckResult, ConditionResult, overall
+from rkcheck.energy.check import CheckResult, ConditionResult, conditions_ok, inconsistent, overall, requirement_shortfall
 from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import decimal_string, radius_string
@@ -30,7 +30,7 @@ def entry_doc(e) -> dict[str, Any]:
     }
 
 
-def tableau_doc(tab: Tableau, decimals: str = "rounded") -> dict[str, Any]:
+def tableau_doc(tab: Tableau, decimals: str = "auto") -> dict[str, Any]:
     """The parsed tableau: every entry as written and, when rational, as an exact p/q."""
     return {
         "stages": tab.stages,
@@ -153,6 +153,11 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "conditions_held": sum(p.held for p in res.per_order),
         "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
+        "proven": overall(res).state == "holds" and (res.certificate is None or not res.energy_order_all
+                                                     or res.certificate.verdict.state == "holds"),
+        "inconsistent": inconsistent(res),
+        "require": _require_doc(res),
+        "passed": conditions_ok(res),
         "first_failure": None
         if first is None
         else {"id": first.condition.id, "bracket": first.condition.bracket, "order": first.condition.order},
@@ -168,6 +173,18 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
             }
             for p in res.per_order
         ],
+    }
+
+
+def _require_doc(res: CheckResult) -> dict[str, Any]:
+    short = requirement_shortfall(res)
+    return {
+        "level": res.options.require,
+        "met": short is None,
+        "unproven": 0 if short is None else short.count,
+        "examples": [] if short is None else short.examples,
+        "certificate_unproven": False if short is None else short.certificate,
+        "reason": None if short is None else short.text(),
     }
 
 
@@ -210,6 +227,7 @@ def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
             "order": o.order,
             "dps": o.dps,
             "decimals": o.decimals,
+            "require": o.require,
             "backend": res.backend,
             "fail_fast": o.fail_fast,
         },

@@ -140,7 +140,7 @@ def stability_line(stab: StabilityFunction) -> str:
     return f"{stab.text()};  {stab.defect_text()}"
 
 
-def tableau_stability(tab, decimals: str = "rounded", dps: int = 50) -> StabilityFunction:
+def tableau_stability(tab, decimals: str = "auto", dps: int = 50) -> StabilityFunction:
     """R(z) of a tableau without running a check (for ``show``): exact when the tableau
     is, else from enclosures at ``dps`` digits."""
     from rkcheck.energy.stability import stability_function
