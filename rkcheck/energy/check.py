@@ -365,6 +365,35 @@ def judge_box(listing: ConditionListing, tableau: Tableau, options: CheckOptions
     return out, None
 
 
+def sharpen_weak_holds(listing: ConditionListing, tableau: Tableau, options: CheckOptions,
+                       orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """On point data (no decimal box) a ball that contains 0 but is wider than 1 says
+    nothing: "holds to D digits" with D ≤ 0 is not a holds (definitions §5).  Such orders
+    are evaluated again at doubled precision, up to 8× ``--dps``, until every condition
+    fails or holds to at least one digit.  Returns the orders and a note of the precision
+    used (or of what stayed undecided)."""
+    from rkcheck.options import DPS_RANGE
+
+    def weak(out: dict[int, OrderVerdicts]) -> list[int]:
+        return [n for n, o in out.items() if np.any((o.state == 1) & (o.digits <= 0))]
+
+    todo = weak(orders)
+    if not todo:
+        return orders, None
+    out = dict(orders)
+    dps, cap = options.dps, min(8 * options.dps, DPS_RANGE[1])
+    while todo and dps < cap:
+        dps = min(2 * dps, cap)
+        ev = evaluate(listing, tableau, dps, options.decimals, "ball", todo)
+        for n in todo:
+            out[n] = order_verdicts(n, ev.orders[n])
+        todo = weak(out)
+    if todo:
+        return out, (f"some conditions of order {', '.join(str(n - 1) for n in todo)} are still undecided at "
+                     f"{dps} digits (their enclosures contain 0 but are wider than 1): raise --dps")
+    return out, f"the balls needed {dps} digits to decide every condition (--dps {options.dps} was not enough)"
+
+
 def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", budget: Budget | None = None,
           progress: Callable[[int, int], None] | None = None) -> CheckResult:
     """Run the whole check of definitions §3–§5 on ``tableau``.
@@ -395,6 +424,11 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     if backend == "ball" and tableau.is_rational and tableau.is_box(options.decimals) and not interrupted:
         try:
             orders, box_warning = judge_box(listing, tableau, options, A, b, orders)
+        except EvaluationInterrupted:
+            interrupted = True
+    elif backend == "ball" and not tableau.is_box(options.decimals) and not interrupted:
+        try:
+            orders, box_warning = sharpen_weak_holds(listing, tableau, options, orders)
         except EvaluationInterrupted:
             interrupted = True
     exact = backend == "exact"
