@@ -102,6 +102,22 @@ def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
 
 
 @contextmanager
+def busy(label: str) -> Iterator[None]:
+    """A spinner with the elapsed time on stderr, for work whose length is not known in
+    steps (family coefficients at large s, ranks, sweeps): hidden when stderr is not a
+    terminal or --quiet; it disappears when the work is done."""
+    console = make_console(settings(), stderr=True)
+    if settings().quiet or not console.is_terminal:
+        yield
+        return
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    with Progress(SpinnerColumn(), TextColumn(label), TimeElapsedColumn(), console=console, transient=True) as bar:
+        bar.add_task(label, total=None)
+        yield
+
+
+@contextmanager
 def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
     console = make_console(settings(), stderr=True)
