@@ -263,6 +263,20 @@ def _python_stages(code: ConditionCode, sym: bool) -> list[str]:
 # ------------------------------------------------------------------ Julia, MATLAB
 
 
+def _weight_lines(code: ConditionCode, ones: str, end: str, comment: str, indent: str) -> list[str]:
+    """``φ`` (and ``Aφ`` where a parent needs it) of every tree, children before parents,
+    in the array syntax Julia and MATLAB share (``.*``, ``A * x``)."""
+    lines = []
+    images = {c for seq in code.trees for c in _children_positions(code, seq)}
+    for k, seq in enumerate(code.trees):
+        children = _children_positions(code, seq)
+        value = " .* ".join(f"Aphi{c}" for c in children) if children else ones
+        lines.append(f"{indent}phi{k} = {value}{end}  {comment} {bracket(seq)}")
+        if k in images:
+            lines.append(f"{indent}Aphi{k} = A * phi{k}{end}")
+    return lines
+
+
 def _julia(code: ConditionCode) -> str:
     lines = [
         f"# {code.description()}, as Julia functions of A and b.",
@@ -272,15 +286,7 @@ def _julia(code: ConditionCode) -> str:
         "function elementary_weights(A, b)",
         "    s = length(b)",
     ]
-    images = {c for seq in code.trees for c in _children_positions(code, seq)}
-    for k, seq in enumerate(code.trees):
-        children = _children_positions(code, seq)
-        if not children:
-            lines.append(f"    phi{k} = ones(eltype(b), s)  # {bracket(seq)}")
-        else:
-            lines.append(f"    phi{k} = {' .* '.join(f'Aphi{c}' for c in children)}  # {bracket(seq)}")
-        if k in images:
-            lines.append(f"    Aphi{k} = A * phi{k}")
+    lines += _weight_lines(code, "ones(eltype(b), s)", end="", comment="#", indent="    ")
     lines.append("    return [" + ", ".join(f"sum(b .* phi{k})" for k in range(len(code.trees))) + "]")
     lines.append("end")
     for name, residuals in (("energy_conditions", code.energy), ("order_conditions", code.classical)):
@@ -315,15 +321,7 @@ def _matlab(code: ConditionCode) -> str:
         "b = b(:);",
         "s = numel(b);",
     ]
-    images = {c for seq in code.trees for c in _children_positions(code, seq)}
-    for k, seq in enumerate(code.trees):
-        children = _children_positions(code, seq)
-        if not children:
-            lines.append(f"phi{k} = ones(s, 1);  % {bracket(seq)}")
-        else:
-            lines.append(f"phi{k} = {' .* '.join(f'Aphi{c}' for c in children)};  % {bracket(seq)}")
-        if k in images:
-            lines.append(f"Aphi{k} = A * phi{k};")
+    lines += _weight_lines(code, "ones(s, 1)", end=";", comment="%", indent="")
     lines.append("w = [" + "; ".join(f"b.' * phi{k}" for k in range(len(code.trees))) + "];")
     for name, residuals in (("energy", code.energy), ("order", code.classical)):
         if not residuals:
