@@ -19,7 +19,7 @@ from rkcheck.errors import UserError
 
 DEFAULT_ORDER = 8
 DEFAULT_DPS = 50
-DEFAULT_DECIMALS = "rounded"
+DEFAULT_DECIMALS = "auto"
 DEFAULT_MAX_STAGES = 64
 
 #: The highest energy order any source may ask for.  What actually fits is decided by the
@@ -30,7 +30,7 @@ MAX_ORDER = 30
 DPS_RANGE = (10, 5000)
 
 #: Decimals modes (docs/definitions.md §5): 'rounded' (default) or 'exact' (face value).
-DECIMALS_MODES = ("rounded", "exact")
+DECIMALS_MODES = ("auto", "rounded", "float64", "exact")
 #: What makes a checked file count as failed (exit code 1).
 FAIL_ON = ("auto", "conditions", "claims", "never")
 #: Output formats of ``rkcheck scan``.
@@ -38,7 +38,7 @@ SCAN_FORMATS = ("text", "json", "csv", "junit", "github")
 #: Words that mean "no degree bound: all Hamiltonians".
 NO_DEGREE = ("none", "all", "any")
 #: Keys of a tableau file's ``[check]`` table.
-CHECK_KEYS = ("degree", "order", "dps", "decimals")
+CHECK_KEYS = ("degree", "order", "dps", "decimals", "require")
 
 
 @dataclass(frozen=True)
@@ -51,6 +51,12 @@ class CheckOptions:
     dps: int = DEFAULT_DPS
     decimals: str = DEFAULT_DECIMALS
     fail_fast: bool = False
+    require: str = "any"  # the gate of definitions §5.3: "any", "proof" or "digits:D"
+
+    @property
+    def required_digits(self) -> int | None:
+        """D of ``digits:D`` (None for ``any`` and ``proof``)."""
+        return int(self.require.split(":", 1)[1]) if self.require.startswith("digits:") else None
 
 
 # ------------------------------------------------------------------ single values
@@ -83,6 +89,20 @@ def parse_choice(value: Any, choices: tuple[str, ...], place: str, source: str |
         return value
     names = ", ".join(f"'{c}'" for c in choices)
     raise UserError(f"expected one of {names}, got {value!r}", place, source)
+
+
+def parse_require(value: Any, place: str, source: str | None = None) -> str:
+    """The proof gate (definitions §5.3): ``any`` (every ``holds to D digits`` passes),
+    ``proof`` (only exact ``holds`` and exact certificates pass) or ``digits:D`` (a
+    numerical holds passes only with at least D digits), returned normalised."""
+    text = value.strip().lower() if isinstance(value, str) else None
+    if text in ("any", "proof"):
+        return text
+    if text and text.startswith("digits:") and text[7:].strip().isdigit():
+        d = int(text[7:].strip())
+        if 1 <= d <= DPS_RANGE[1]:
+            return f"digits:{d}"
+    raise UserError(f"expected 'any', 'proof' or 'digits:D' with 1 <= D <= {DPS_RANGE[1]}, got {value!r}", place, source)
 
 
 def parse_strings(value: Any, place: str, source: str | None = None) -> list[str]:
@@ -118,6 +138,8 @@ def validate_check_table(table: Mapping[str, Any], prefix: str = "check", source
             out[name] = parse_positive(value, place, source)
         elif name == "decimals":
             out[name] = parse_choice(value, DECIMALS_MODES, place, source)
+        elif name == "require":
+            out[name] = parse_require(value, place, source)
         elif name not in extra_keys:
             known = ", ".join(CHECK_KEYS + extra_keys)
             raise UserError(f"unknown key (known: {known})", place, source)
@@ -140,5 +162,6 @@ def resolve_check_options(flags: Mapping[str, Any], file: Mapping[str, Any],
         order=pick("order", DEFAULT_ORDER),
         dps=pick("dps", DEFAULT_DPS),
         decimals=pick("decimals", DEFAULT_DECIMALS),
+        require=pick("require", "any"),
         fail_fast=bool(flags.get("fail_fast", False)),
     )

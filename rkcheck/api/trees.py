@@ -125,7 +125,7 @@ def _level_sequence(tree: Any) -> tuple[int, ...]:
 
 
 def energy_condition(tree: Any, tableau: Tableau | None = None, *, dps: int = DEFAULT_DPS,
-                     decimals: str = "rounded") -> EnergyCondition:
+                     decimals: str = "auto") -> EnergyCondition:
     """The energy condition of the free tree underlying ``tree`` — any rooting of it,
     as a level sequence (``"1,2,3,2"``, ``(1, 2, 3, 2)``), a :class:`FreeTree` or a
     checked :class:`~rkcheck.api.verification.Condition` — with its terms; evaluated on

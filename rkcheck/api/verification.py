@@ -4,7 +4,7 @@ the CLI calls too — so both resolve options the same way and give the same JSO
 Options come from, most specific first: the arguments of :func:`verify` (the CLI's
 flags), the tableau's own ``[check]`` table, ``[tool.rkcheck]`` of the nearest
 ``pyproject.toml`` (only with ``project=True``, as the CLI does), then the defaults
-(degree none, order 8, 50 digits, rounded decimals) — :mod:`rkcheck.options`.
+(degree none, order 8, 50 digits, decimals "auto") — :mod:`rkcheck.options`.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from rkcheck.options import (
     parse_choice,
     parse_degree,
     parse_positive,
+    parse_require,
     resolve_check_options,
 )
 
@@ -222,7 +223,7 @@ def _option(parse: Callable[[], Any]) -> Any:
 
 
 def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decimals: Any = UNSET,
-                fail_fast: bool = False) -> dict[str, Any]:
+                fail_fast: bool = False, require: Any = UNSET) -> dict[str, Any]:
     """The options given explicitly, validated like the CLI's flags (an
     :class:`~rkcheck.errors.OptionError` naming the option otherwise)."""
     flags: dict[str, Any] = {}
@@ -238,6 +239,8 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
             raise OptionError(f"expected {DPS_RANGE[0]} to {DPS_RANGE[1]} digits, got {dps}", "dps")
     if decimals is not UNSET:
         flags["decimals"] = _option(lambda: parse_choice(decimals, DECIMALS_MODES, "decimals"))
+    if require is not UNSET:
+        flags["require"] = _option(lambda: parse_require(require, "require"))
     if fail_fast:
         flags["fail_fast"] = True
     return flags
@@ -263,6 +266,7 @@ def verify(
     order: int = UNSET,
     dps: int = UNSET,
     decimals: str = UNSET,
+    require: str = UNSET,
     fail_fast: bool = False,
     fail_on: str = "auto",
     arithmetic: str = "auto",
@@ -277,8 +281,9 @@ def verify(
 
     Options left out come from the tableau's ``[check]`` table, then (``project=True``)
     ``[tool.rkcheck]`` of the nearest pyproject.toml, then the defaults: degree none,
-    order 8, dps 50, decimals "rounded" (definitions §5).  ``arithmetic``: "auto",
-    "exact" or "ball".  ``max_conditions`` refuses larger checks; the memory available
+    order 8, dps 50, decimals "auto" (definitions §5), require "any" (the proof gate:
+    "proof" or "digits:D" make numerical holds count as failures, like ``--require``).
+    ``arithmetic``: "auto", "exact" or "ball".  ``max_conditions`` refuses larger checks; the memory available
     bounds them anyway (:class:`~rkcheck.energy.budget.ResourceError`).
 
     Bad options raise :class:`~rkcheck.errors.OptionError`, bad tableaux
@@ -287,7 +292,7 @@ def verify(
     from rkcheck.energy.budget import Budget
     from rkcheck.io.machine import available_memory
 
-    flags = check_flags(degree, order, dps, decimals, fail_fast)
+    flags = check_flags(degree, order, dps, decimals, fail_fast, require)
     fail_on = _option(lambda: parse_choice(fail_on, FAIL_ON, "fail_on"))
     arithmetic = _option(lambda: parse_choice(arithmetic, ARITHMETIC, "arithmetic"))
     if max_conditions is not None:

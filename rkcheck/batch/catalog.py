@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from rkcheck.energy.check import CheckOptions
+from rkcheck.energy.error_constants import error_constant
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
 
@@ -25,6 +26,16 @@ class CatalogRow:
     avf_degrees: list[int] = field(default_factory=list)
     claims: str = ""  # "ok" / "BROKEN" / ""
     error: str | None = None
+    symplectic: str = ""  # "yes" / "no" / "yes†" (held to the working precision only)
+    symmetric: str = ""
+    energy_orders: dict[str, int | None] = field(default_factory=dict)  # label -> energy order (None: all / ≥ N)
+    constants: dict[str, float | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
+
+
+def _property_cell(pv) -> str:
+    if pv.verdict.state == "fails":
+        return "no"
+    return "yes" if pv.verdict.state == "holds" else "yes†"
 
 
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
@@ -41,7 +52,14 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
     runner = CheckRunner()
     for deg in degrees:
         res = runner(tab, CheckOptions(degree=deg, order=order, dps=dps))
-        row.energy["all H" if deg is None else f"m={deg}"] = res.energy_order_label
+        label = "all H" if deg is None else f"m={deg}"
+        row.energy[label] = res.energy_order_label
+        ec = error_constant(res)
+        row.energy_orders[label] = ec.energy_order if ec is not None else None
+        row.constants[label] = ec.value if ec is not None else None
+        if res.properties is not None and not row.symplectic:
+            row.symplectic = _property_cell(res.properties.symplectic)
+            row.symmetric = _property_cell(res.properties.symmetric)
         if res.avf is not None and res.avf.equals_avf:
             row.avf_degrees.append(deg)  # type: ignore[arg-type]
         if deg is None or not row.classical:

@@ -57,8 +57,8 @@ def load_input(file: str, max_stages: int, input_format: str | None):
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
-def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, input_format, show_all, fmt,
-           fail_fast, fail_on) -> None:
+def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
+           fmt, fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table.
 
@@ -105,7 +105,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
               default="text", show_default=True,
               help="text/json: the report; toml/tableau-json: the tableau as a file rkcheck reads back; "
               "latex/julia/python: the tableau as code with exact entries.")
-@decimals_option("rounded")
+@decimals_option("auto")
 @max_stages_option
 @input_format_option
 @output_options
@@ -138,13 +138,35 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
 @click.option("--count", is_flag=True, help="Only count the conditions per order (from generating functions: "
               "instant at any order).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--emit", type=click.Choice(["python", "sympy", "julia", "matlab", "latex"]), default=None,
+              help="Write the conditions as code: functions of A and b returning the residuals.")
+@click.option("--classical", is_flag=True, help="--emit: also the classical order conditions up to the same order.")
+@click.option("--stages", "-s", "stages", type=click.IntRange(1, 64), default=None,
+              help="--emit: the number of stages (adds unpack/pack of the free entries; sympy: the symbols).")
+@click.option("--explicit", is_flag=True, help="--emit with --stages: A strictly lower triangular.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="--emit: write to this file instead of stdout.")
 @max_conditions_option
 @output_options
-def conditions(order, degree, count, fmt, max_conditions) -> None:
-    """List the energy conditions (non-superfluous free trees) up to an order."""
+def conditions(order, degree, count, fmt, emit, classical, stages, explicit, output, max_conditions) -> None:
+    """List the energy conditions (non-superfluous free trees) up to an order, or write
+    them as code (--emit) for optimisers and computer algebra.
+
+    \b
+    Examples:
+      rkcheck conditions --order 6 --degree 3
+      rkcheck conditions --order 30 --count
+      rkcheck conditions --emit python --degree 4 --order 6 --stages 3 --explicit -o conditions.py
+    """
     from rkcheck.energy.budget import check_budget, estimate
     from rkcheck.trees.listing import condition_listing
 
+    if emit is None and (classical or stages or explicit or output):
+        raise UserError("--classical, --stages, --explicit and --output go with --emit")
+    if explicit and stages is None:
+        raise UserError("--explicit needs --stages")
+    if emit is not None and count:
+        raise UserError("--count and --emit do not go together")
     if count:
         from rkcheck.trees.counting import CountOnly
 
@@ -152,6 +174,12 @@ def conditions(order, degree, count, fmt, max_conditions) -> None:
     else:
         check_budget(estimate(order, degree, "exact", 0), budget(max_conditions), order)
         listing = condition_listing(order, degree)
+    if emit is not None:  # conditions as code (rkcheck.reports.code)
+        from rkcheck.cli.common import write_text
+        from rkcheck.reports.code import emit as emit_code
+
+        write_text(emit_code(listing, emit, classical, stages, explicit), output)
+        return
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc, dumps
 
@@ -166,7 +194,7 @@ def conditions(order, degree, count, fmt, max_conditions) -> None:
 @click.argument("tree_id", metavar="ID")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
 @dps_option(DEFAULT_DPS)
-@decimals_option("rounded")
+@decimals_option("auto")
 @max_stages_option
 @output_options
 def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:

@@ -16,11 +16,13 @@ import click
 
 from rkcheck.errors import UserError
 from rkcheck.options import (
+    DECIMALS_MODES,
     DEFAULT_MAX_STAGES,
     DPS_RANGE,
     FAIL_ON,
     MAX_ORDER,
     parse_degree,
+    parse_require,
 )
 from rkcheck.reports.console import OutputSettings, make_console
 
@@ -100,6 +102,22 @@ def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
 
 
 @contextmanager
+def busy(label: str) -> Iterator[None]:
+    """A spinner with the elapsed time on stderr, for work whose length is not known in
+    steps (family coefficients at large s, ranks, sweeps): hidden when stderr is not a
+    terminal or --quiet; it disappears when the work is done."""
+    console = make_console(settings(), stderr=True)
+    if settings().quiet or not console.is_terminal:
+        yield
+        return
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    with Progress(SpinnerColumn(), TextColumn(label), TimeElapsedColumn(), console=console, transient=True) as bar:
+        bar.add_task(label, total=None)
+        yield
+
+
+@contextmanager
 def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
     console = make_console(settings(), stderr=True)
@@ -149,9 +167,11 @@ def max_stages_option(f: Callable) -> Callable:
 
 def decimals_option(default: str | None = None) -> Callable:
     return click.option(
-        "--decimals", type=click.Choice(["rounded", "exact"]), default=default, show_default=default is not None,
-        help="Decimal literals with >= 6 significant digits: 'rounded' (default) = within half a unit "
-        "of the last digit; 'exact' = at face value.",
+        "--decimals", type=click.Choice(list(DECIMALS_MODES)), default=default, show_default=default is not None,
+        help="What a decimal literal stands for. auto (default): one with >= 6 significant digits is "
+        "within half a unit of its last digit, or within half an ulp of the double it is the shortest "
+        "repr of (what Python/numpy print); rounded: the half unit only; float64: every nonzero "
+        "decimal is a double and stands for its rounding interval; exact: face value.",
     )
 
 
@@ -179,10 +199,33 @@ def arithmetic_option(f: Callable) -> Callable:
     )(f)
 
 
+class RequireType(click.ParamType):
+    """The proof gate: any, proof or digits:D (rkcheck.options.parse_require)."""
+
+    name = "any|proof|digits:D"
+
+    def convert(self, value, param, ctx):
+        if not isinstance(value, str):
+            return value
+        try:
+            return parse_require(value, "--require")
+        except UserError as err:
+            self.fail(err.message, param, ctx)
+
+
+def require_option(f: Callable) -> Callable:
+    return click.option(
+        "--require", type=RequireType(), default="any", show_default=True,
+        help="What counts as a pass. any: holds, or holds to D digits; proof: only exact holds and exact "
+        "certificates (a 'holds to D digits' fails the gate, exit 1); digits:D: numerical holds need "
+        "at least D digits. Also [check] require.",
+    )(f)
+
+
 def check_options(f: Callable) -> Callable:
-    """--degree / --order / --dps / --decimals / --max-stages / --max-conditions / --arithmetic,
-    shared by the checking commands."""
-    for decorator in (arithmetic_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
+    """--degree / --order / --dps / --decimals / --require / --max-stages / --max-conditions /
+    --arithmetic, shared by the checking commands."""
+    for decorator in (arithmetic_option, require_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
                       order_option(), degree_option()):
         f = decorator(f)
     return f
@@ -214,7 +257,7 @@ def flag_values(*names: str) -> dict[str, Any]:
     from click.core import ParameterSource
 
     ctx = click.get_current_context()
-    names = names or ("degree", "order", "dps", "decimals", "fail_fast")
+    names = names or ("degree", "order", "dps", "decimals", "fail_fast", "require")
     out: dict[str, Any] = {}
     for name in names:
         if name in ctx.params and ctx.get_parameter_source(name) in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT):

@@ -7,6 +7,7 @@ import sys
 import click
 
 from rkcheck.cli.common import (
+    busy,
     EXIT_FAIL,
     EXIT_OK,
     load_tableau,
@@ -118,7 +119,8 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
     if not counts or min(counts) < 1:
         raise UserError("step counts must be positive", "--steps")
     tabs = [load_tableau(f, max_stages) for f in files]
-    wp = work_precision(tabs, ham, T, counts)
+    with busy("work–precision runs"):
+        wp = work_precision(tabs, ham, T, counts)
     render_workprec(wp, ham, stdout_console())
     if chart:
         from rkcheck.reports.charts import workprec_chart

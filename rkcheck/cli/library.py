@@ -11,6 +11,7 @@ from rkcheck.cli.common import (
     DEGREE,
     order_option,
     output_options,
+    busy,
     progress,
     write_text,
 )
@@ -99,7 +100,8 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
             table["rule"] = rule
     spec = parse_spec(table)
     mode = "exact" if exact else ("digits" if digits is not None else "auto")
-    text = render_toml(spec, mode, digits or 60, name, _command_line(spec, mode, digits))
+    with busy(f"computing the {family} coefficients"):
+        text = render_toml(spec, mode, digits or 60, name, _command_line(spec, mode, digits))
     write_text(text, output)
 
 

@@ -72,6 +72,10 @@ def main(argv: list[str] | None = None) -> None:
     except KeyboardInterrupt:
         click.echo("rkcheck: interrupted", err=True)
         sys.exit(EXIT_INTERRUPTED)
+    except MemoryError:  # the estimate let it through, the machine did not: a limit, not a bug
+        click.echo("rkcheck: error: out of memory; lower --order or --dps, or set --max-conditions to refuse "
+                   "such checks before they start", err=True)
+        sys.exit(EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
         import os
 

@@ -33,10 +33,13 @@ from rkcheck.options import SCAN_FORMATS
               help="Output format [default: [tool.rkcheck] format, else text].")
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
               help="Write the report to this file (written even when interrupted).")
+@click.option("--sort", "sort", type=click.Choice(["path", "energy"]), default="path", show_default=True,
+              help="Row order: by path, or by energy order (best first) and then by the energy error constant C "
+              "(a column C in the text report).")
 @fail_on_option
 @output_options
-def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, jobs, exclude, fmt, output,
-         fail_on) -> None:
+def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, exclude, fmt,
+         output, fail_on, sort) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,
@@ -66,11 +69,16 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     with progress("checking", len(files)) as advance:
         outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, lambda r: advance())
     elapsed = time.perf_counter() - t0
+    if sort == "energy":  # methods of equal energy order compared by their error constant
+        from rkcheck.batch.ranking import rank_outcomes
+
+        outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
     if fmt == "text" and output and output != "-":
-        write_text(scan_report.scan_text(outcomes, elapsed, interrupted), output)
+        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy"), output)
     elif fmt == "text":
-        scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose)
+        scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose,
+                                     constants=sort == "energy")
     else:
         write_text(scan_report.scan_document(fmt, outcomes, interrupted, options, elapsed), output)
     if interrupted:

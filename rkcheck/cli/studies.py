@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from rkcheck.cli.common import (
+    busy,
     degree_option,
     dps_list,
     flag_values,
@@ -88,8 +89,9 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 
     tab = load_tableau(file)
     deg, N = _degree_and_order(tab)
-    D, desc = make_direction(tab, direction, deg, seed)
-    res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, dps_list(dps_text))
+    with busy("perturbing"):
+        D, desc = make_direction(tab, direction, deg, seed)
+        res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart
@@ -140,4 +142,6 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
             raise UserError("give --stages/-s (or --tableau FILE)")
         b, c, exact = rule_values(rule, stages, dps)
         title = f"double-bush map at the {stages}-point {rule} rule, degree {degree}"
-    render_kernel(kernel_of(b, c, degree, exact, dps), stdout_console(), title)
+    with busy("ranks of the double-bush map"):
+        result = kernel_of(b, c, degree, exact, dps)
+    render_kernel(result, stdout_console(), title)

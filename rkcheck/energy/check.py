@@ -19,13 +19,11 @@ from typing import Any, Callable, Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from rkcheck.energy.avf import AvfVerdict, avf_verdict, reduce_stages, theorem1_remark
+from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
-from rkcheck.energy.lineintegral import (
-    LineIntegralCertificate,
-    line_integral_certificate,
-)
+from rkcheck.energy.lineintegral import LineIntegralCertificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.energy.properties import tableau_properties
 from rkcheck.energy.verdicts import (
     FAILS,
     HOLDS,
@@ -215,12 +213,13 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    certificate: LineIntegralCertificate | None  # proves every order for degree m (σ = 1: AVF)
+    certificate: LineIntegralCertificate | None  # proves every order for degree m (AVF, line integral, stability)
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
     _failures: Failures | None = field(default=None, repr=False)
     interrupted: bool = False  # Ctrl-C: only the orders in ``results`` were finished
+    properties: Any = None  # rkcheck.energy.properties.TableauProperties: reduction, R(z), symplectic, symmetric
 
     @property
     def failures(self) -> Failures:
@@ -340,6 +339,61 @@ def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckO
     return ev.backend, {n: order_verdicts(n, v) for n, v in ev.orders.items()}
 
 
+def judge_box(listing: ConditionListing, tableau: Tableau, options: CheckOptions, A, b,
+              orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """Decimal entries are one box of inputs (definitions §5.2): the conditions the balls
+    left undecided are judged again by the mean value form around the face values
+    (:mod:`rkcheck.evaluation.box`), which proves a failure on the whole box where the
+    balls' dependency problem hid it.  Returns the orders and a warning when the
+    refinement did not fit."""
+    from rkcheck.evaluation.box import RefinedSums, box_refinement_fits, refine_box
+
+    undecided = [n for n, o in orders.items() if np.any(o.state == 1)]
+    if not undecided:
+        return orders, None
+    if not box_refinement_fits(listing, A, b):
+        return orders, ("the box of decimal inputs is too large to bound its variation at this order: "
+                        "a condition reported as holding to D digits may still fail on the whole box")
+    refined = refine_box(listing, A, b, tableau.exact_A(), tableau.exact_b(), undecided)
+    out = dict(orders)
+    for n, ref in refined.items():
+        out[n] = order_verdicts(n, RefinedSums(orders[n].values, ref))
+    if options.fail_fast:
+        failing = [n for n in sorted(out) if np.any(out[n].state == 2)]
+        if failing:
+            out = {n: v for n, v in out.items() if n <= failing[0]}
+    return out, None
+
+
+def sharpen_weak_holds(listing: ConditionListing, tableau: Tableau, options: CheckOptions,
+                       orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """On point data (no decimal box) a ball that contains 0 but is wider than 1 says
+    nothing: "holds to D digits" with D ≤ 0 is not a holds (definitions §5).  Such orders
+    are evaluated again at doubled precision, up to 8× ``--dps``, until every condition
+    fails or holds to at least one digit.  Returns the orders and a note of the precision
+    used (or of what stayed undecided)."""
+    from rkcheck.options import DPS_RANGE
+
+    def weak(out: dict[int, OrderVerdicts]) -> list[int]:
+        return [n for n, o in out.items() if np.any((o.state == 1) & (o.digits <= 0))]
+
+    todo = weak(orders)
+    if not todo:
+        return orders, None
+    out = dict(orders)
+    dps, cap = options.dps, min(8 * options.dps, DPS_RANGE[1])
+    while todo and dps < cap:
+        dps = min(2 * dps, cap)
+        ev = evaluate(listing, tableau, dps, options.decimals, "ball", todo)
+        for n in todo:
+            out[n] = order_verdicts(n, ev.orders[n])
+        todo = weak(out)
+    if todo:
+        return out, (f"some conditions of order {', '.join(str(n - 1) for n in todo)} are still undecided at "
+                     f"{dps} digits (their enclosures contain 0 but are wider than 1): raise --dps")
+    return out, f"the balls needed {dps} digits to decide every condition (--dps {options.dps} was not enough)"
+
+
 def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", budget: Budget | None = None,
           progress: Callable[[int, int], None] | None = None) -> CheckResult:
     """Run the whole check of definitions §3–§5 on ``tableau``.
@@ -366,18 +420,33 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     except EvaluationInterrupted as stop:
         backend, interrupted = kind, True
         orders = {n: order_verdicts(n, v) for n, v in stop.finished.items()}
+    box_warning = None
+    if backend == "ball" and tableau.is_rational and tableau.is_box(options.decimals) and not interrupted:
+        try:
+            orders, box_warning = judge_box(listing, tableau, options, A, b, orders)
+        except EvaluationInterrupted:
+            interrupted = True
+    elif backend == "ball" and not tableau.is_box(options.decimals) and not interrupted:
+        try:
+            orders, box_warning = sharpen_weak_holds(listing, tableau, options, orders)
+        except EvaluationInterrupted:
+            interrupted = True
     exact = backend == "exact"
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
 
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
+    if box_warning:
+        warnings.append(box_warning)
     quad = quadrature_order(A, b, exact)
     classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
+    # Tableau-level algebra (rkcheck.energy.properties): the irreducible form, R(z),
+    # symplecticity, symmetry; the AVF verdict and the certificate of every order (AVF,
+    # line integral, and for m = 2 the stability function). Exact for exact tableaux.
+    props = tableau_properties(tableau, A, b, exact, options.decimals)
     if options.degree is not None:
-        reduced = reduce_stages([row[:] for row in A], b[:], exact)  # shared by both certificates
-        avf = avf_verdict(A, b, options.degree, exact, reduced)
-        cert = line_integral_certificate(A, b, options.degree, exact, reduced)
+        avf, cert = props.certificates(options.degree)
     t3 = time.perf_counter()
     timings["orders_and_avf"] = t3 - t2
 
@@ -400,14 +469,15 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         if cert is not None and cert.certified:
             if cert.verdict.state != HOLDS_TO_DIGITS:
                 raise AssertionError(f"internal inconsistency: exact certificate but {first.condition.id} fails")
-            cert = LineIntegralCertificate(
-                cert.degree, None, Verdict(FAILS),
-                f"(LI) holds only to {cert.verdict.digits} digits, and condition {first.condition.id} certainly fails",
-            )
+            cert = cert.refuted(first.condition.id)
     energy_all = bool(cert and cert.certified)
     first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
-    remark = theorem1_remark(avf, first_label, options.order) if avf else None
-    if tableau.rounded_digits is not None and options.decimals == "rounded":
+    # Theorem 1 concludes "beyond order N" only from exact holds (per-order counts, so
+    # that millions of conditions are not visited one by one)
+    min_digits = min((p.min_digits for p in per_order if p.min_digits is not None), default=None)
+    exact_holds = min_digits is None and all(p.checked == p.conditions for p in per_order)
+    remark = theorem1_remark(avf, first_label, options.order, exact_holds, min_digits) if avf else None
+    if tableau.rounded_digits is not None and options.decimals in ("rounded", "auto"):
         warnings.append(
             f"decimals with >= {ROUNDED_MIN_DIGITS} significant digits (here as few as {tableau.rounded_digits}) "
             "are read as rounded to their last digit (definitions §5); --decimals exact takes them at face value"
@@ -430,23 +500,85 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         timings=timings,
         _failures=failures,
         interrupted=interrupted,
+        properties=props,
     )
     if interrupted:
         raise CheckInterrupted(result)
     return result
 
 
+def inconsistent(result: CheckResult) -> bool:
+    """``Σb ≠ 1`` certainly: the method is not even of order 1, and fails whatever its
+    energy conditions say (definitions §5.3)."""
+    q = result.quadrature
+    return q.order == 0 and q.first_failure is not None
+
+
+@dataclass(frozen=True)
+class Shortfall:
+    """Why the holds of a check do not meet ``--require`` (definitions §5.3)."""
+
+    require: str
+    count: int  # conditions that hold only to too few digits (0: the certificate alone)
+    examples: list[str]  # their ids, first ones in presentation order
+    certificate: bool  # the certificate of every order holds only numerically
+
+    def text(self) -> str:
+        what = "a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits"
+        parts = []
+        if self.count:
+            ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
+            parts.append(f"{self.count} condition{'s' if self.count != 1 else ''} hold only to digits ({ids})")
+        if self.certificate:
+            parts.append("the certificate of every order holds only to digits")
+        return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"
+
+
+def requirement_shortfall(result: CheckResult) -> Shortfall | None:
+    """What keeps the holds of ``result`` from meeting its ``options.require``: conditions
+    that hold only to digits (``proof``) or to fewer than D (``digits:D``), or a
+    certificate that is only numerical.  None when the requirement is met."""
+    require = result.options.require
+    if require == "any":
+        return None
+    need = result.options.required_digits
+
+    def short(digits: np.ndarray) -> np.ndarray:
+        return np.ones(len(digits), dtype=bool) if need is None else digits < need
+
+    count = sum(int(np.count_nonzero((o.state == 1) & short(o.digits))) for o in result.results.orders.values())
+    examples = []
+    if count:
+        for r in result.results.with_state(HOLDS_TO_DIGITS):
+            if need is None or (r.verdict.digits or 0) < need:
+                examples.append(r.condition.id)
+                if len(examples) == 3:
+                    break
+    cert = result.certificate
+    cert_short = bool(result.energy_order_all and cert is not None and cert.verdict.state == HOLDS_TO_DIGITS
+                      and (need is None or (cert.verdict.digits or 0) < need))
+    if not count and not cert_short:
+        return None
+    return Shortfall(require, count, examples, cert_short)
+
+
 def overall(result: CheckResult) -> Verdict:
-    """All checked conditions at once: fails if any fails, else the weakest digits."""
-    if len(result.failures):
+    """All checked conditions at once: fails if any fails (or ``Σb ≠ 1`` certainly),
+    else the weakest digits."""
+    if len(result.failures) or inconsistent(result):
         return Verdict(FAILS)
     digits = result.min_digits
     return Verdict(HOLDS_TO_DIGITS, digits) if digits is not None else Verdict(HOLDS)
 
 
 def conditions_ok(result: CheckResult) -> bool:
-    """Every checked condition holds, or the AVF certificate proves them all."""
-    return result.all_hold or result.energy_order_all
+    """Every checked condition holds, or a certificate proves them all; the method is
+    consistent (``Σb = 1`` not certainly false); and the holds meet ``--require``."""
+    if inconsistent(result):
+        return False
+    if not (result.all_hold or result.energy_order_all):
+        return False
+    return requirement_shortfall(result) is None
 
 
 class CheckRunner:

@@ -10,6 +10,11 @@ Meanings (definitions §3–§4):
   "verified to order N, not proven beyond".
 * ``avf = true|false`` — the AVF verdict for that degree.
 * ``classical_order = p`` / ``quadrature_order = q`` — exactly p / q.
+* ``symplectic`` / ``symmetric = true|false`` — the verdicts of
+  :mod:`rkcheck.energy.symplectic` on the irreducible form (``holds to D digits`` counts
+  as true, with the digits in the note).
+* ``stability_defect = 0`` — ``R(z)R(−z) ≡ 1``; ``{power = 2k, coefficient = "c"}`` — the
+  leading term of ``R(z)R(−z) − 1`` is ``c z^2k`` (:mod:`rkcheck.energy.stability`).
 """
 
 from __future__ import annotations
@@ -53,6 +58,8 @@ def needed_options(claims: list[Claim], base):
 
 def judge(claim: Claim, result) -> ClaimResult:
     """One claim against the check run made for it (see :func:`needed_options`)."""
+    if claim.kind in ("symplectic", "symmetric", "stability_defect"):
+        return judge_property(claim, result)
     if claim.kind == "quadrature_order" or claim.kind == "classical_order":
         r = result.quadrature if claim.kind == "quadrature_order" else result.classical
         found = r.order
@@ -71,14 +78,40 @@ def judge(claim: Claim, result) -> ClaimResult:
     if claim.value == "all":
         if result.energy_order_all:
             cert = result.certificate
-            kind = "AVF" if cert is None or cert.sigma == 1 else f"line-integral (σ = {cert.sigma})"
-            return ClaimResult(claim, True, "all", f"{kind} certificate: every order")
+            return ClaimResult(claim, True, "all", cert.claim_note if cert is not None else "certificate: every order")
         if result.first_failure is None:
             return ClaimResult(claim, True, found, f"verified to order {n_checked}, not proven beyond")
         return ClaimResult(claim, False, found)
     if not proven:
         return ClaimResult(claim, False, found, f"no condition fails up to order {n_checked}")
     return ClaimResult(claim, found == str(claim.value), found)
+
+
+def judge_property(claim: Claim, result) -> ClaimResult:
+    """A claim on the tableau's own algebra (symplectic, symmetric, stability_defect)."""
+    from rkcheck.energy import scalars as sc
+
+    props = result.properties
+    if claim.kind in ("symplectic", "symmetric"):
+        pv = getattr(props, claim.kind)
+        return ClaimResult(claim, pv.holds == claim.value, str(pv.holds).lower(), pv.reason)
+    stab = props.stability
+    note = stab.defect_text()
+    if stab.leading_power is None:
+        return ClaimResult(claim, claim.power is None, "0", note)
+    lead = stab.leading_coefficient
+    q = sc.rational(lead)
+    found = f"{q if q is not None else sc.text(lead, 12)} z^{stab.leading_power}"
+    if claim.power is None or claim.power != stab.leading_power:
+        return ClaimResult(claim, False, found, note)
+    from rkcheck.numbers.entries import Entry
+
+    entry = Entry.parse(claim.coefficient or "0")
+    if entry.exact is not None:
+        diff = lead - sc.const(entry.exact, lead)
+    else:
+        diff = sc.enclosure(lead, 256) - entry.enclosure(256)
+    return ClaimResult(claim, sc.verdict(diff).holds, found, note)
 
 
 def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimResult]:

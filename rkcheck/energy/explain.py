@@ -205,7 +205,7 @@ def _enclosure(x: Any) -> Enclosure:
     return Enclosure.of(x)
 
 
-def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "rounded") -> Explanation:
+def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "auto") -> Explanation:
     """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it)."""
     seq = tuple(seq)
     n = len(seq)

@@ -19,18 +19,18 @@ proves energy preservation for all degree-≤m Hamiltonians to every order.  σ 
 ``A = c bᵀ`` (AVF); HBVM(k, s) satisfies (LI) with σ = s over k Gauss nodes (order 2k), so
 it is certified for m ≤ 2k/s; s-stage Gauss collocation (HBVM(s, s)) for m ≤ 2.
 
-The test is made on the tableau after the stage reduction of :mod:`rkcheck.energy.avf`.
+The test is made on the irreducible form of the tableau (:mod:`rkcheck.energy.reduction`),
+exactly for exact tableaux and certified for enclosures (:mod:`rkcheck.energy.scalars`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rkcheck.energy.avf import reduce_stages
-from rkcheck.energy.orders import row_sums
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval, combine
-from rkcheck.methods.quadrature import line_integral_matrix, quadrature_residual
-from rkcheck.numbers.intervals import Interval
+from rkcheck.energy import scalars as sc
+from rkcheck.energy.reduction import Reduction, reduce_tableau
+from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
+from rkcheck.methods.quadrature import poly_integral, shifted_legendre
 
 
 @dataclass(frozen=True)
@@ -44,35 +44,81 @@ class LineIntegralCertificate:
     def certified(self) -> bool:
         return self.verdict.state != FAILS
 
+    @property
+    def kind(self) -> str | None:
+        """``avf`` (σ = 1), ``line_integral`` (σ > 1) or None (not certified)."""
+        if self.sigma is None:
+            return None
+        return "avf" if self.sigma == 1 else "line_integral"
 
-def _check_sigma(A, b, c, sigma: int, exact: bool) -> list[Verdict] | None:
+    @property
+    def name(self) -> str:
+        """How reports name the certificate."""
+        if self.sigma is None:
+            return "certificate"
+        return "AVF certificate" if self.sigma == 1 else f"line-integral certificate, σ = {self.sigma}"
+
+    @property
+    def claim_note(self) -> str:
+        kind = "AVF" if self.sigma in (None, 1) else f"line-integral (σ = {self.sigma})"
+        return f"{kind} certificate: every order"
+
+    def refuted(self, condition_id: str) -> "LineIntegralCertificate":
+        """The certificate after condition ``condition_id`` was found to fail for certain
+        (possible only when it held to digits, never when exact)."""
+        return LineIntegralCertificate(
+            self.degree, None, Verdict(FAILS),
+            f"(LI) holds only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",
+        )
+
+
+def line_integral_matrix(c: sc.Vector, b: sc.Vector, sigma: int) -> sc.Matrix:
+    """``Σ_(j<σ) (2j+1) G_j(c)(P_j(c) ⊙ b)ᵀ`` over any scalars (the right-hand side of (LI))."""
+    P = [shifted_legendre(j) for j in range(sigma)]
+    G = [poly_integral(p) for p in P]
+    Gc = [[sc.poly_at(G[j], ci) for j in range(sigma)] for ci in c]
+    Pc = [[sc.poly_at(P[j], cl) for j in range(sigma)] for cl in c]
+    like = sc.sample([], b)
+    return [
+        [sc.total([sc.const(2 * j + 1, like) * Gc[i][j] * Pc[l][j] for j in range(sigma)], like) * b[l]
+         for l in range(len(c))]
+        for i in range(len(c))
+    ]
+
+
+def _check_sigma(A, b, c, sigma: int) -> list[Verdict] | None:
     """Verdicts of the entries of (LI) for this σ, or None at the first certain mismatch."""
     rhs = line_integral_matrix(c, b, sigma)
     out = []
     for row, rhs_row in zip(A, rhs):
         for a, r in zip(row, rhs_row):
-            v = classify_interval(a - r, exact)
+            v = sc.verdict(a - r)
             if v.state == FAILS:
                 return None
             out.append(v)
     return out
 
 
-def line_integral_certificate(
-    A: list[list[Interval]], b: list[Interval], degree: int, exact: bool, reduced=None
-) -> LineIntegralCertificate:
-    """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ
-    (``reduced``: the result of :func:`~rkcheck.energy.avf.reduce_stages`, if already computed)."""
-    rA, rb, kept, used = reduced or reduce_stages([row[:] for row in A], b[:], exact)
+def line_integral_certificate(A, b, degree: int, exact: bool = True, reduced: Reduction | None = None) -> LineIntegralCertificate:
+    """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ.
+
+    ``A``, ``b`` are enclosures (exact points when ``exact``) or exact scalars;
+    ``reduced``: their :class:`~rkcheck.energy.reduction.Reduction`, if already computed."""
+    red = reduced if reduced is not None else reduce_tableau(*sc.values_from_enclosures(A, b, exact))
+    return certificate_of_reduction(red, degree)
+
+
+def certificate_of_reduction(red: Reduction, degree: int) -> LineIntegralCertificate:
+    """(LI) on the irreducible form ``red``."""
+    rA, rb = red.A, red.b
     n = len(rb)
     if n == 0:
         return LineIntegralCertificate(degree, None, Verdict(FAILS), "every weight is zero")
-    c = row_sums(rA)
+    c = sc.row_sums(rA, sc.sample(rA, rb))
     quad: list[Verdict] = []
     quad_order = 0
     for k in range(1, 2 * n + 1):
-        r = quadrature_residual(rb, c, k)
-        v = classify_interval(r, exact)
+        v = sc.verdict(sc.quadrature_residual(rb, c, k))
         if v.state == FAILS:
             break
         quad.append(v)
@@ -80,9 +126,9 @@ def line_integral_certificate(
     for sigma in range(1, n + 1):
         if degree * sigma > quad_order:
             break
-        entries = _check_sigma(rA, rb, c, sigma, exact)
+        entries = _check_sigma(rA, rb, c, sigma)
         if entries is not None:
-            verdict = combine(list(used) + entries + quad[: degree * sigma])
+            verdict = combine(list(red.decisions) + entries + quad[: degree * sigma])
             how = "exactly" if verdict.state == HOLDS else f"to {verdict.digits} digits"
             return LineIntegralCertificate(
                 degree, sigma, verdict,

@@ -117,7 +117,9 @@ def classify_bounds(excludes_zero, bound):
     bound = np.asarray(bound, dtype=float)
     with np.errstate(divide="ignore"):
         digits = np.floor(-np.log10(bound) - 1e-9)
-    digits = np.where(np.isfinite(digits), digits, 0).astype(np.int32)
+    # never negative: a bound above 1 says nothing about the size (definitions §5); on
+    # point data the check raises the precision instead (energy.check.sharpen_weak_holds)
+    digits = np.maximum(np.where(np.isfinite(digits), digits, 0), 0).astype(np.int32)
     state = np.where(fails, 2, 1).astype(np.int8)
     return state, np.where(fails, -1, digits).astype(np.int32)
 

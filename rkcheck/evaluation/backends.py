@@ -55,7 +55,7 @@ def ball_context(tableau, dps: int, decimals: str, enclosures=None) -> BallConte
     return BallContext(A, b, bits_for_dps(dps))
 
 
-def float_context(tableau, decimals: str = "rounded") -> FloatContext:
+def float_context(tableau, decimals: str = "auto") -> FloatContext:
     A, b = tableau.enclosures(128, decimals)
     return FloatContext(A, b)
 

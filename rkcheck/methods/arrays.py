@@ -7,8 +7,9 @@ from arrays:
 ``int``, ``Fraction``       that exact rational
 ``str``                     an entry in rkcheck's grammar (``"1/4 - sqrt(3)/6"``), exactly
                             as in a file: decimals with ≥ 6 significant digits are read
-                            as rounded to their last digit (``decimals="exact"`` in
-                            :func:`rkcheck.verify` takes them at face value)
+                            by the decimals rule of the check (definitions §5; default
+                            ``auto``: within half a unit of the last digit, or half an
+                            ulp for the shortest ``repr`` of a double)
 ``float`` (also numpy)      by default its **exact binary value**: ``0.1`` is
                             ``3602879701896397/36028797018963968``, not 1/10.  That is
                             the number a float computation used; but a tableau whose
@@ -16,10 +17,10 @@ from arrays:
                             slightly different method it is (AVF-Gauss from floats fails
                             by about 1e-17).  ``floats="shortest"`` takes ``repr(x)``
                             instead (``"0.1"``, ``"0.21132486540518713"``), which the
-                            decimals rule reads as "within half a unit of the last
-                            digit" — narrower than the errors of a float computation;
-                            to check a tableau up to the digits you trust, pass
-                            strings: ``f"{x:.15g}"``
+                            ``auto`` decimals rule reads as the double's rounding
+                            interval — still narrower than the errors of a float
+                            computation; to check a tableau up to the digits you trust,
+                            pass strings: ``f"{x:.15g}"``
 ``decimal.Decimal``         its decimal text, as a string would be
 sympy numbers               ``Rational``/``Integer`` exactly; other constant expressions
                             (``sqrt(3)/6``) through their text; ``Float`` at its exact

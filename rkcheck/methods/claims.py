@@ -7,6 +7,10 @@ A method's author states the published properties of the method::
     avf = {degree = 4, value = true}
     classical_order = 4
     quadrature_order = 4
+    symplectic = true                                        # BA + AᵀB − bbᵀ = 0
+    symmetric = true                                         # adjoint = method
+    stability_defect = 0                                     # R(z)R(−z) ≡ 1, or the leading
+    # term of R(z)R(−z) − 1: stability_defect = {power = 6, coefficient = "1/72"}
 
 ``energy_order`` and ``avf`` may also be lists of such tables (one per degree).  This
 module validates the table into :class:`Claim` values; what each claim means and how it
@@ -21,7 +25,9 @@ from typing import Any
 from rkcheck.errors import UserError
 from rkcheck.options import parse_degree
 
-CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order")
+CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order", "symplectic", "symmetric",
+               "stability_defect")
+BOOLEAN_KINDS = ("symplectic", "symmetric")
 
 
 @dataclass(frozen=True)
@@ -31,6 +37,8 @@ class Claim:
     degree: int | None = None
     order: int | None = None
     place: str = ""  # "expect.energy_order" or "expect.energy_order[2]"
+    power: int | None = None  # stability_defect: the power of the leading term (None: R(z)R(−z) ≡ 1)
+    coefficient: str | None = None  # stability_defect: its coefficient, as an entry text
 
     def label(self) -> str:
         if self.kind in ("energy_order", "avf"):
@@ -45,7 +53,47 @@ def _int(value: Any, place: str, minimum: int = 0) -> int:
     return value
 
 
+def _stability_defect(raw: Any, place: str) -> Claim:
+    """``0`` (R(z)R(−z) ≡ 1) or ``{power = 2k, coefficient = "p/q"}`` (its leading term)."""
+    if raw == 0 or raw == "0":
+        return Claim("stability_defect", "0", place=place)
+    if not isinstance(raw, dict):
+        raise UserError('expected 0 or a table like {power = 6, coefficient = "1/72"}', place)
+    unknown = set(raw) - {"power", "coefficient"}
+    if unknown:
+        raise UserError(f"unknown key {sorted(unknown)[0]!r} (known: power, coefficient)", place)
+    for key in ("power", "coefficient"):
+        if key not in raw:
+            raise UserError(f"missing {key}", place)
+    power = _int(raw["power"], f"{place}.power", 2)
+    if power % 2:
+        raise UserError("R(z)R(−z) − 1 is even: the power must be even", f"{place}.power")
+    coef = raw["coefficient"]
+    if isinstance(coef, bool) or not isinstance(coef, (str, int)):
+        raise UserError(f"expected a number as a string, got {coef!r}", f"{place}.coefficient")
+    from rkcheck.numbers.entries import Entry
+
+    try:
+        entry = Entry.parse(str(coef))
+    except UserError as err:
+        raise UserError(err.message, f"{place}.coefficient") from None
+    if entry.exact == 0:
+        raise UserError("the leading coefficient is nonzero (claim 0 for R(z)R(−z) ≡ 1)", f"{place}.coefficient")
+    return Claim("stability_defect", f"{coef} z^{power}", place=place, power=power, coefficient=str(coef))
+
+
 def _one(kind: str, raw: Any, place: str) -> Claim:
+    if kind in BOOLEAN_KINDS:
+        if isinstance(raw, dict):
+            unknown = set(raw) - {"value"}
+            if unknown:
+                raise UserError(f"unknown key {sorted(unknown)[0]!r} (known: value)", place)
+            raw = raw.get("value")
+        if not isinstance(raw, bool):
+            raise UserError(f"expected true or false, got {raw!r}", place)
+        return Claim(kind, raw, place=place)
+    if kind == "stability_defect":
+        return _stability_defect(raw, place)
     if kind in ("classical_order", "quadrature_order"):
         if isinstance(raw, dict):
             raw = raw.get("value")

@@ -231,7 +231,10 @@ class ComputedEntry:
     def is_rational(self) -> bool:
         return self.exact is not None
 
-    def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
+    def is_box(self, decimals: str) -> bool:
+        return False  # computed coefficients are numbers (enclosed), never a box of inputs
+
+    def enclosure(self, bits: int, decimals: str = "auto") -> Interval:
         if self.exact is not None:
             return Interval.point(self.exact)
         return self._value(bits)

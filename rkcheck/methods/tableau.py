@@ -93,7 +93,12 @@ class Tableau:
 
     def is_exact(self, decimals: str) -> bool:
         """True when the check runs in exact rational arithmetic (definitions §5)."""
-        return self.is_rational and (decimals == "exact" or self.rounded_digits is None)
+        return self.is_rational and not self.is_box(decimals)
+
+    def is_box(self, decimals: str) -> bool:
+        """Some entry of A or b stands for an interval of numbers under the decimals mode
+        (definitions §5.2): the tableau is a box of tableaux, judged jointly."""
+        return any(e.is_box(decimals) for row in self.A for e in row) or any(e.is_box(decimals) for e in self.b)
 
     @property
     def structure(self) -> str:
@@ -106,13 +111,15 @@ class Tableau:
             return "explicit"
         return "diagonally implicit"
 
-    def number_kind(self, decimals: str = "rounded") -> str:
+    def number_kind(self, decimals: str = "auto") -> str:
         if self.family is not None and not self.is_rational:
             return "computed by its family at the working precision"
         if self.uses_sqrt:
             return "algebraic (square roots)"
         digits = self.rounded_digits
-        if digits is not None and decimals == "rounded":
+        if decimals == "float64" and self.is_box(decimals):
+            return "decimals read as binary64 doubles (each within half an ulp)"
+        if digits is not None and decimals in ("rounded", "auto"):
             return f"decimals rounded to their last digit (>= {digits} significant digits)"
         return "exact rational"
 

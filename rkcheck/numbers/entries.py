@@ -39,9 +39,13 @@ class Constants:
         self._exact: dict[str, Fraction | None] | None = None
         self._enclosures: dict[tuple[int, bool], dict[str, Interval]] = {}
         self._rounded: dict[str, bool] = {}
+        self._decimal: dict[str, bool] = {}
         for name in self._order:
             node = self.definitions[name]
             used = {n.name for n in ex.names(node)}
+            self._decimal[name] = any(lit.is_decimal for lit in ex.literals(node)) or any(
+                self._decimal[u] for u in used
+            )
             self._rounded[name] = any(lit.is_rounded_decimal for lit in ex.literals(node)) or any(
                 self._rounded[u] for u in used
             )
@@ -88,7 +92,7 @@ class Constants:
             self._exact = values
         return self._exact
 
-    def enclosures(self, bits: int, rounded: bool) -> dict[str, Interval]:
+    def enclosures(self, bits: int, rounded: bool | str) -> dict[str, Interval]:
         key = (bits, rounded)
         if key not in self._enclosures:
             values: dict[str, Interval] = {}
@@ -103,6 +107,9 @@ class Constants:
     def is_rounded(self, name: str) -> bool:
         return self._rounded[name]
 
+    def has_decimal(self, name: str) -> bool:
+        return self._decimal[name]
+
 
 @dataclass(frozen=True)
 class Entry:
@@ -115,6 +122,7 @@ class Entry:
     uses_sqrt: bool
     rounded_digits: int | None  # fewest significant digits among its rounded decimal literals
     bare_number: bool = False  # written as a bare TOML/JSON number, not a string
+    has_decimal: bool = False  # a nonzero decimal literal, itself or through a constant (float64 mode)
 
     @staticmethod
     def parse(text: str, constants: Constants | None = None, bare_number: bool = False) -> "Entry":
@@ -136,7 +144,8 @@ class Entry:
         exact = ex.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
-        return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number)
+        has_decimal = any(lit.is_decimal for lit in ex.literals(node)) or any(constants.has_decimal(u) for u in used)
+        return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number, has_decimal)
 
     @staticmethod
     def of(value: Fraction | int) -> "Entry":
@@ -153,12 +162,20 @@ class Entry:
     def is_rounded(self) -> bool:
         return self.rounded_digits is not None
 
-    def enclosure(self, bits: int, decimals: str = "rounded") -> Interval:
+    def is_box(self, decimals: str) -> bool:
+        """Whether the entry stands for an interval of numbers, not one number, under the
+        decimals mode (definitions §5.2; :meth:`rkcheck.numbers.grammar.Num.interval`)."""
+        if decimals == "float64":
+            return self.has_decimal
+        if decimals in ("rounded", "auto"):
+            return self.is_rounded
+        return False
+
+    def enclosure(self, bits: int, decimals: str = "auto") -> Interval:
         """A rigorous enclosure at ``bits`` bits under the decimals mode of definitions §5."""
-        rounded = decimals == "rounded"
-        if self.exact is not None and not (rounded and self.is_rounded):
+        if self.exact is not None and not self.is_box(decimals):
             return Interval.point(self.exact)
-        return ex.enclose(self.node, bits, rounded, self.constants.enclosures(bits, rounded))
+        return ex.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals))
 
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""

@@ -25,6 +25,7 @@ outside ``±MAX_EXPONENT`` and powers whose exact result would exceed
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from fractions import Fraction
@@ -73,6 +74,60 @@ class Num:
     def half_unit(self) -> Fraction:
         """Half a unit in the last written digit: the rounding radius of definitions §5."""
         return Fraction(1, 2) * Fraction(10) ** self.last_digit_exponent
+
+    @property
+    def is_decimal(self) -> bool:
+        """A nonzero decimal literal (``0.5``, ``1.0``, ``2e-3``): in ``--decimals float64``
+        it stands for a double.  Zero stays exact in every mode (it carries structure:
+        explicit methods, diagonal blocks)."""
+        return self.digits is not None and self.value != 0
+
+    def interval(self, decimals: str) -> tuple[Fraction, Fraction] | None:
+        """The numbers this literal stands for under a decimals mode (definitions §5.2),
+        as ``(lo, hi)``; None when it is exact in that mode.
+
+        * ``exact``: every literal at face value;
+        * ``rounded``: a decimal with at least :data:`ROUNDED_MIN_DIGITS` significant
+          digits is within half a unit of its last digit;
+        * ``float64``: every nonzero decimal is the double nearest to it, and stands for
+          that double's rounding interval (every real that rounds to it);
+        * ``auto``: as ``rounded``, widened to the double's rounding interval when the
+          literal is the shortest representation of a double (what Python, numpy and
+          Julia print): ``0.16666666666666666`` then covers 1/6.
+        """
+        if decimals == "exact":
+            return None
+        if decimals == "float64":
+            return double_interval(self.value) if self.is_decimal else None
+        if not self.is_rounded_decimal:
+            return None
+        h = self.half_unit
+        lo, hi = self.value - h, self.value + h
+        if decimals == "auto":
+            d = double_interval(self.value, shortest_only=True)
+            if d is not None:
+                lo, hi = min(lo, d[0]), max(hi, d[1])
+        return lo, hi
+
+
+def double_interval(value: Fraction, shortest_only: bool = False) -> tuple[Fraction, Fraction] | None:
+    """The rounding interval of the binary64 double nearest to ``value``: the closed
+    interval of reals that round to it (half an ulp each side; the spacing below a power
+    of two is half the spacing above).  None when ``value`` is outside the range of
+    doubles, or, with ``shortest_only``, when ``value`` is not the shortest decimal
+    representation of that double (``repr``)."""
+    try:
+        f = float(value)  # correctly rounded (Fraction.__float__ divides exactly)
+    except OverflowError:
+        return None
+    if not math.isfinite(f) or f == 0:
+        return None
+    if shortest_only and Fraction(repr(f)) != value:
+        return None
+    x = Fraction(f)
+    lo = (x + Fraction(math.nextafter(f, -math.inf))) / 2
+    hi = (x + Fraction(math.nextafter(f, math.inf))) / 2
+    return lo, hi
 
 
 @dataclass(frozen=True, slots=True)
@@ -510,21 +565,20 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
 def enclose(
     node: Expr,
     bits: int,
-    rounded: bool,
+    rounded: bool | str,
     constants: Mapping[str, Interval],
 ) -> Interval:
     """A rigorous enclosure of ``node`` (definitions §5).
 
-    ``rounded``: read decimal literals with at least :data:`ROUNDED_MIN_DIGITS`
-    significant digits as "within half a unit of the last digit"; otherwise every
-    literal is exact.  Square roots of non-squares are rounded outwards to ``bits``
-    bits.  ``constants`` maps names to their enclosures.
+    ``rounded``: the decimals mode (``auto``, ``rounded``, ``float64``, ``exact``; see
+    :meth:`Num.interval`); ``True``/``False`` mean ``rounded``/``exact``.  Square roots
+    of non-squares are rounded outwards to ``bits`` bits.  ``constants`` maps names to
+    their enclosures.
     """
     if isinstance(node, Num):
-        if rounded and node.is_rounded_decimal:
-            h = node.half_unit
-            return Interval(node.value - h, node.value + h)
-        return Interval.point(node.value)
+        mode = rounded if isinstance(rounded, str) else ("rounded" if rounded else "exact")
+        box = node.interval(mode)
+        return Interval(*box) if box is not None else Interval.point(node.value)
     if isinstance(node, Name):
         return constants[node.name]
     if isinstance(node, Unary):

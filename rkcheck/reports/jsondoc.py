@@ -7,11 +7,12 @@ import json
 from typing import Any
 
 from rkcheck import __version__
-from rkcheck.energy.check import CheckResult, ConditionResult, overall
+from rkcheck.energy.check import CheckResult, ConditionResult, conditions_ok, inconsistent, overall, requirement_shortfall
 from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.grammar import to_text
+from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
 
 SCHEMA = 1
 
@@ -29,7 +30,7 @@ def entry_doc(e) -> dict[str, Any]:
     }
 
 
-def tableau_doc(tab: Tableau, decimals: str = "rounded") -> dict[str, Any]:
+def tableau_doc(tab: Tableau, decimals: str = "auto") -> dict[str, Any]:
     """The parsed tableau: every entry as written and, when rational, as an exact p/q."""
     return {
         "stages": tab.stages,
@@ -51,7 +52,7 @@ def method_doc(tab: Tableau) -> dict[str, Any]:
 def show_doc(tab: Tableau, file: str, decimals: str, warnings: list[str]) -> dict[str, Any]:
     """``rkcheck show --format json``."""
     return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals),
-            "warnings": warnings}
+            "stability": stability_doc(tableau_stability(tab, decimals)), "warnings": warnings}
 
 
 def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:
@@ -135,7 +136,7 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "certificate": None
         if res.certificate is None
         else {
-            "kind": "avf" if res.certificate.sigma == 1 else ("line_integral" if res.certificate.sigma else None),
+            "kind": res.certificate.kind,  # avf / line_integral / stability / null
             "sigma": res.certificate.sigma,
             "state": res.certificate.verdict.state,
             "digits": res.certificate.verdict.digits,
@@ -152,6 +153,11 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "conditions_held": sum(p.held for p in res.per_order),
         "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
+        "proven": overall(res).state == "holds" and (res.certificate is None or not res.energy_order_all
+                                                     or res.certificate.verdict.state == "holds"),
+        "inconsistent": inconsistent(res),
+        "require": _require_doc(res),
+        "passed": conditions_ok(res),
         "first_failure": None
         if first is None
         else {"id": first.condition.id, "bracket": first.condition.bracket, "order": first.condition.order},
@@ -167,6 +173,18 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
             }
             for p in res.per_order
         ],
+    }
+
+
+def _require_doc(res: CheckResult) -> dict[str, Any]:
+    short = requirement_shortfall(res)
+    return {
+        "level": res.options.require,
+        "met": short is None,
+        "unproven": 0 if short is None else short.count,
+        "examples": [] if short is None else short.examples,
+        "certificate_unproven": False if short is None else short.certificate,
+        "reason": None if short is None else short.text(),
     }
 
 
@@ -192,6 +210,7 @@ def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
     """The per-file object of ``verify --format json`` (also used by ``scan``)."""
     o = res.options
     summary = summary_doc(res)
+    summary.update(properties_doc(res))  # reduction, symplectic, symmetric, stability, error_constant
     summary["claims_ok"] = None if claim_results is None else all(r.met for r in claim_results)
     return {
         "schema": SCHEMA,
@@ -208,6 +227,7 @@ def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
             "order": o.order,
             "dps": o.dps,
             "decimals": o.decimals,
+            "require": o.require,
             "backend": res.backend,
             "fail_fast": o.fail_fast,
         },

@@ -20,6 +20,7 @@ CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
     "quadrature_order", "energy_order", "energy_order_all", "equals_avf", "conditions_checked",
     "conditions_failed", "first_failure", "claims", "claims_ok", "broken_claims", "time", "error",
+    "symplectic", "symmetric", "error_constant",
 ]
 
 
@@ -47,12 +48,12 @@ def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any]
     raise ValueError(f"unknown scan format {fmt!r}")
 
 
-def scan_text(outcomes, elapsed: float, interrupted: bool) -> str:
+def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False) -> str:
     """The text report as plain text (for ``--output``)."""
     from rich.console import Console
 
     console = Console(record=True, file=io.StringIO(), no_color=True, width=140)
-    render_scan_text(outcomes, console, elapsed, interrupted)
+    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants)
     return console.export_text()
 
 
@@ -130,6 +131,9 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
             "claims_ok": "" if s.get("claims_ok") is None else s["claims_ok"],
             "broken_claims": "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)),
             "time": o["time"], "error": o["error"] or "",
+            "symplectic": (s.get("symplectic") or {}).get("state", ""),
+            "symmetric": (s.get("symmetric") or {}).get("state", ""),
+            "error_constant": (s.get("error_constant") or {}).get("value", ""),
         })
     return buf.getvalue()
 
@@ -235,7 +239,20 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
 # ---------------------------------------------------------------------- text
 
 
-def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False) -> None:
+def compact_constant(value: float) -> str:
+    """An error constant in at most 7 characters: ``0.15``, ``0.042``, ``1.5e-4``."""
+    if value == 0:
+        return "0"
+    if 0.01 <= value < 100:
+        return f"{value:.2g}"
+    mant, exp = f"{value:.1e}".split("e")
+    return f"{mant}e{int(exp)}"
+
+
+def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
+                     constants: bool = False) -> None:
+    """The scan table; ``constants``: with a column C (the energy error constant), as
+    ``scan --sort energy`` shows it."""
     import os
 
     from rich import box
@@ -257,7 +274,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False, title=title, title_justify="left")
     t.add_column("file", no_wrap=True, overflow="fold")
     t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=26)
-    for col in ("s", "m", "classical", "energy"):
+    for col in ("s", "m", "classical", "energy") + (("C",) if constants else ()):
         t.add_column(col, justify="right", no_wrap=True)
     t.add_column("AVF", justify="center", no_wrap=True)
     t.add_column("claims", justify="center", no_wrap=True)
@@ -268,7 +285,8 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         if o["status"] in ("error", "skipped"):
             style = "bold red" if o["status"] == "error" else "dim"
             label = "ERROR (see below)" if o["status"] == "error" else "skipped: not a tableau"
-            t.add_row(*plain(shown(o["path"]), Text(label, style=style), "", "", "", "", "", "", f"{o['time']:.2f}"))
+            blanks = [""] * (7 if constants else 6)
+            t.add_row(*plain(shown(o["path"]), Text(label, style=style), *blanks, f"{o['time']:.2f}"))
             continue
         avf = {True: "yes", False: "no", None: "—"}[s.get("equals_avf")]
         claims = s.get("claims_ok")
@@ -278,8 +296,10 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         classical = s.get("classical_order", "")
         if s and s.get("classical_first_failure") is None:
             classical = f"≥ {classical}"
+        ec = s.get("error_constant")
+        extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
         t.add_row(*plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
-                         "—" if deg is None else deg, classical, energy, avf, claims_t, f"{o['time']:.2f}"))
+                         "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}"))
     console.print(t)
     for o in outcomes:
         if o["status"] == "error":

@@ -9,12 +9,13 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
-from rkcheck.energy.check import CheckResult, ConditionResult, overall
+from rkcheck.energy.check import CheckResult, ConditionResult, inconsistent, overall, requirement_shortfall
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 MAX_FAILURES_SHOWN = 20
@@ -138,11 +139,13 @@ def render_check(
             kv.add_row(*plain(f"AVF (degree {a.degree})", label))
             for note in a.notes:
                 kv.add_row(*plain("", note))
-        if res.certificate is not None and res.certificate.certified and res.certificate.sigma != 1:
+        if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
             kv.add_row(*plain("certificate", res.certificate.reason))
         kv.add_row(*plain("energy order", _energy_text(res)))
         if res.theorem1:
             kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
+        for label, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
+            kv.add_row(*plain(label, value))
         console.print(kv)
         console.print()
         console.print(per_order_table(res))
@@ -178,18 +181,29 @@ def _order_text(r, what: str) -> str:
 
 
 def _certificate_name(res: CheckResult) -> str:
+    """The certificate's name; one that holds only numerically is not called a
+    certificate (definitions §5.3): ``line-integral criterion, to 5 digits``."""
     cert = res.certificate
-    if cert is None or cert.sigma is None:
+    if cert is None:
         return "certificate"
-    name = "AVF certificate" if cert.sigma == 1 else f"line-integral certificate, σ = {cert.sigma}"
+    name = cert.name
     if cert.verdict.state == HOLDS_TO_DIGITS:
-        name += f", to {cert.verdict.digits} digits"
+        name = name.replace("certificate", "criterion") + f", to {cert.verdict.digits} digits"
     return name
+
+
+def _numeric_certificate(res: CheckResult) -> int | None:
+    cert = res.certificate
+    return cert.verdict.digits if cert is not None and cert.verdict.state == HOLDS_TO_DIGITS else None
 
 
 def _energy_text(res: CheckResult) -> Text:
     o = res.options
     if res.energy_order_all:
+        digits = _numeric_certificate(res)
+        if digits is not None:
+            return Text(f"to {digits} digits: all orders for degree ≤ {o.degree} ({_certificate_name(res)}, "
+                        f"not a proof); {o.order} verified", style="yellow")
         return Text(f"all orders for degree ≤ {o.degree} ({_certificate_name(res)}); {o.order} verified", style="green")
     first = res.first_failure
     if first is None:
@@ -220,9 +234,28 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
 
 
 def final_line(res: CheckResult) -> Text:
+    """The verdict line (definitions §5.3): a proof says OK; a numerical result says
+    "to D digits" first and never "certificate"; ``--require`` turns a shortfall into
+    FAIL; a certain ``Σb ≠ 1`` fails the method."""
     v = overall(res)
     n = len(res.results)
+    if len(res.failures):
+        return Text(f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
+                    style="bold red")
+    if inconsistent(res):
+        return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {n} energy conditions say",
+                    style="bold red")
+    shortfall = requirement_shortfall(res)
+    if shortfall is not None:
+        return Text(f"FAIL: {shortfall.text()}", style="bold red")
     if res.energy_order_all:
+        digits = _numeric_certificate(res)
+        if digits is not None:
+            return Text(
+                f"OK to {digits} digits (not a proof): energy preserved to all orders for degree ≤ "
+                f"{res.options.degree} ({_certificate_name(res)}); {n} conditions checked",
+                style="bold yellow",
+            )
         return Text(
             f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({_certificate_name(res)}); "
             f"{n} conditions checked",
@@ -230,15 +263,11 @@ def final_line(res: CheckResult) -> Text:
         )
     if v.state == HOLDS:
         return Text(f"OK: all {n} conditions hold exactly", style="bold green")
-    if v.state == HOLDS_TO_DIGITS:
-        return Text(f"OK: all {n} conditions hold to at least {v.digits} digits", style="bold yellow")
-    return Text(
-        f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
-        style="bold red",
-    )
+    return Text(f"OK to {v.digits} digits (not a proof): all {n} conditions hold to at least {v.digits} digits",
+                style="bold yellow")
 
 
-def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", warnings: list[str] | None = None) -> None:
+def render_tableau(tab: Tableau, console: Console, decimals: str = "auto", warnings: list[str] | None = None) -> None:
     """``show``: the Butcher table ``c | A`` over ``| bᵀ`` with the entries as written."""
     console.print(header(tab, decimals))
     if tab.description:
@@ -262,6 +291,7 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "rounded", wa
     console.print(t)
     if c_entries is None:
         console.print(Text("c not given: the row sums A·1 are shown (dim) and used", style="dim"))
+    console.print(Text(stability_line(tableau_stability(tab, decimals))))  # R(z), R(z)R(−z) − 1
     for w in warnings or []:
         console.print(Text(f"warning: {w}", style="yellow"))
 

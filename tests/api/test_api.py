@@ -281,3 +281,25 @@ def test_tableau_from_arrays_is_the_same_constructor():
     b = rkcheck.from_arrays([[0, 0], [0.5, 0]], ["0", 1], name="m")
     assert [[e.exact for e in r] for r in a.A] == [[e.exact for e in r] for r in b.A] == [[0, 0], [Fraction(1, 2), 0]]
     assert a.name == b.name == "m"
+
+
+@pytest.mark.parametrize("require", ["any", "proof", "digits:40"])
+def test_require_gate_same_as_the_cli(capsys, tmp_path, require):
+    # AVF over 2-point Gauss in 16-digit decimals: every condition holds only to digits
+    c = ["0.2113248654051871", "0.7886751345948129"]
+    doc = {"A": [[f"{ci}*0.5", f"{ci}*0.5"] for ci in c], "b": ["0.5", "0.5"]}
+    f = tmp_path / "avf16.json"
+    f.write_text(json.dumps(doc))
+    run = run_cli(capsys, "verify", str(f), "--degree", "3", "--order", "5", "--require", require, "--format", "json")
+    result = rkcheck.verify(str(f), degree=3, order=5, require=require)
+    assert result.options.require == require
+    assert result.ok == (run.code == 0)
+    assert without_timings(result.to_dict()) == without_timings(json.loads(run.out))
+    if require == "any":
+        assert result.ok and result.verdict == "holds_to_digits"
+
+
+def test_bad_require_is_an_option_error():
+    with pytest.raises(rkcheck.OptionError) as err:
+        rkcheck.verify("@heun", require="maybe")
+    assert err.value.place == "require"

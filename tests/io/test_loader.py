@@ -217,3 +217,16 @@ def test_internal_errors_are_one_line_with_exit_3(capsys, monkeypatch):
     assert r.code == 3
     assert r.err.strip().startswith("rkcheck: internal error: RuntimeError: simulated bug")
     assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
+
+
+def test_memory_error_is_a_limit_not_a_bug(capsys, monkeypatch):
+    import rkcheck.energy.check
+
+    def exhausted(*args, **kwargs):
+        raise MemoryError()
+
+    monkeypatch.setattr(rkcheck.energy.check.CheckRunner, "__call__", lambda self, t, o: exhausted())
+    r = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"))
+    assert r.code == 2
+    assert "out of memory" in r.err and "internal error" not in r.err
+    assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1

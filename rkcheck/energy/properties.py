@@ -1,0 +1,58 @@
+"""Everything the tableau itself says, computed once per check: the irreducible form, the
+stability function, symplecticity, symmetry, and the certificates of every order.
+
+This is the entry point :func:`rkcheck.energy.check.check` calls (one call) and the
+reports read.  The scalars are exact whenever the tableau is (rational, or algebraic
+through the tableau's ``exact_values()``), otherwise the enclosures the check already
+made (:mod:`rkcheck.energy.scalars`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rkcheck.energy import scalars as sc
+from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
+from rkcheck.energy.lineintegral import certificate_of_reduction
+from rkcheck.energy.reduction import Reduction, reduce_tableau
+from rkcheck.energy.stability import StabilityFunction, prefer, quadratic_certificate, stability_function
+from rkcheck.energy.symplectic import PropertyVerdict, symmetry, symplecticity
+
+
+@dataclass(frozen=True)
+class TableauProperties:
+    exact: bool  # computed over exact scalars (holds/fails only)
+    reduction: Reduction
+    stability: StabilityFunction
+    symplectic: PropertyVerdict
+    symmetric: PropertyVerdict
+
+    def certificates(self, degree: int) -> tuple[AvfVerdict, object]:
+        """The AVF verdict for ``degree`` and the best certificate of every order: the
+        line-integral one (σ = 1 is AVF), and for degree 2 the stability function's
+        ``R(z)R(−z) ≡ 1`` when it proves more (exactly where the other holds only to digits,
+        or at all)."""
+        avf = avf_of_reduction(self.reduction, degree)
+        cert = certificate_of_reduction(self.reduction, degree)
+        if degree == 2:
+            cert = prefer(cert, quadratic_certificate(self.stability, degree))
+        return avf, cert
+
+
+def tableau_properties(tableau, A, b, exact: bool, decimals: str) -> TableauProperties:
+    """The properties of ``tableau``; ``A``, ``b`` are the enclosures of the check (exact
+    points when ``exact``), used when the tableau has no exact values."""
+    values = sc.tableau_values(tableau, A, b, exact, decimals)
+    return properties_of_values(*values)
+
+
+def properties_of_values(A: sc.Matrix, b: sc.Vector) -> TableauProperties:
+    """The properties of the tableau with these scalars (exact or intervals)."""
+    red = reduce_tableau(A, b)
+    return TableauProperties(
+        exact=sc.is_exact(sc.sample(A, b)),
+        reduction=red,
+        stability=stability_function(A, b),
+        symplectic=symplecticity(red),
+        symmetric=symmetry(red),
+    )

@@ -1,0 +1,229 @@
+"""The scalars of the tableau-level algebra: exact numbers, or certified intervals.
+
+The algebra on the s×s tableau itself — stage reduction, the AVF and line-integral
+tests, the stability function, symplecticity, symmetry — is written once, generically,
+over three kinds of scalar (definitions §5):
+
+* ``Fraction`` — an exact rational tableau;
+* an exact algebraic number (``rkcheck.numbers.algebraic.FieldElement``: ``+ − × ÷``
+  with ints and Fractions, ``is_zero()``, ``enclosure(bits)``, ``text(style)``) — an
+  exact tableau with roots;
+* :class:`~rkcheck.numbers.intervals.Interval` — everything else (rounded decimals,
+  families computed at a working precision): a rigorous enclosure.
+
+A zero test on an exact scalar is ``holds`` or ``fails``; on an interval it is
+``holds to D digits`` (the enclosure contains 0) or ``fails`` (it excludes 0), so no
+interval result is ever a false ``fails``.  Constants enter through :func:`const`, which
+lifts a rational to the kind of its neighbour (intervals do not mix with Fractions).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Sequence
+
+from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval
+from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.intervals import Interval
+
+Scalar = Any  # Fraction | FieldElement | Interval
+Matrix = list[list[Scalar]]
+Vector = list[Scalar]
+
+
+# ------------------------------------------------------------------ the tableau's values
+
+
+def exact_values_or_none(tableau, decimals: str = "auto") -> tuple[Matrix, Vector] | None:
+    """``(A, b)`` as exact scalars, or None when the tableau is not exact.
+
+    Uses the tableau's own ``exact_values()`` hook when it has one (exact number fields),
+    else Fractions for a rational tableau.  A tableau with decimals read as rounded
+    (definitions §5) is never exact."""
+    if tableau.is_box(decimals):
+        return None
+    hook = getattr(tableau, "exact_values", None)
+    if hook is not None:
+        values = hook()
+        if values is not None:
+            A, b = values
+            return [list(row) for row in A], list(b)
+        return None
+    if tableau.is_rational:
+        return tableau.exact_A(), tableau.exact_b()
+    return None
+
+
+def values_from_enclosures(A: list[list[Interval]], b: list[Interval], exact: bool) -> tuple[Matrix, Vector]:
+    """Exact Fractions when the enclosures are exact points, else the intervals."""
+    if exact and all(x.is_point for row in A for x in row) and all(x.is_point for x in b):
+        return [[x.lo for x in row] for row in A], [x.lo for x in b]
+    return [[tidy(x) for x in row] for row in A], [tidy(x) for x in b]
+
+
+#: bits kept below the width of an interval when its end points are rounded outwards
+GUARD_BITS = 64
+
+
+def tidy(x: Scalar) -> Scalar:
+    """An interval with its end points rounded outwards to ``GUARD_BITS`` bits below its
+    own width (a relative widening of at most 2^-64), so that long computations do not
+    carry end points of thousands of bits; other scalars unchanged."""
+    if not isinstance(x, Interval) or x.is_point:
+        return x
+    width = x.hi - x.lo
+    bits = max(GUARD_BITS, width.denominator.bit_length() - width.numerator.bit_length() + GUARD_BITS)
+    return x.round_out(bits)
+
+
+def tableau_values(tableau, A: list[list[Interval]], b: list[Interval], exact: bool, decimals: str) -> tuple[Matrix, Vector]:
+    """The best scalars for the tableau: exact (rational or algebraic) when possible, else
+    the enclosures ``A``, ``b`` already computed by the caller."""
+    values = exact_values_or_none(tableau, decimals)
+    if values is not None:
+        return values
+    return values_from_enclosures(A, b, exact)
+
+
+# ------------------------------------------------------------------------ the kinds
+
+
+def is_interval(x: Scalar) -> bool:
+    return isinstance(x, Interval)
+
+
+def is_exact(x: Scalar) -> bool:
+    return not isinstance(x, Interval)
+
+
+def const(q: Fraction | int, like: Scalar) -> Scalar:
+    """The rational ``q`` as a scalar of the same kind as ``like``."""
+    return Interval.point(Fraction(q)) if isinstance(like, Interval) else Fraction(q)
+
+
+def verdict(x: Scalar) -> Verdict:
+    """Is ``x`` zero?  ``holds``/``fails`` for exact scalars; for an interval
+    ``holds to D digits`` when it contains 0 (``holds`` for the point 0), else ``fails``."""
+    if isinstance(x, Interval):
+        return classify_interval(x, False)
+    if isinstance(x, (Fraction, int)):
+        return Verdict(HOLDS) if x == 0 else Verdict(FAILS)
+    return Verdict(HOLDS) if x.is_zero() else Verdict(FAILS)
+
+
+def certainly_nonzero(x: Scalar) -> bool:
+    return verdict(x).state == FAILS
+
+
+def enclosure(x: Scalar, bits: int = 128) -> Interval:
+    """A rigorous rational interval around ``x``."""
+    if isinstance(x, Interval):
+        return x
+    if isinstance(x, (Fraction, int)):
+        return Interval.point(Fraction(x))
+    return x.enclosure(bits)
+
+
+def approx(x: Scalar) -> float:
+    return float(enclosure(x, 64).mid)
+
+
+def rational(x: Scalar) -> Fraction | None:
+    """``x`` as a Fraction when it is an exact rational, else None."""
+    if isinstance(x, (Fraction, int)):
+        return Fraction(x)
+    if isinstance(x, Interval):
+        return None
+    r = getattr(x, "rational", None)
+    return r() if r is not None else None
+
+
+def text(x: Scalar, sig: int = 12) -> str:
+    """``x`` for people: ``p/q`` (with a decimal when it is not short), the exact algebraic
+    text, or ``mid ± radius`` for an interval."""
+    q = rational(x)
+    if q is not None:
+        dec = decimal_string(q, sig)
+        s = str(q)
+        if s == dec:
+            return s
+        return f"{s} = {dec}" if Fraction(dec) == q else f"{s} ≈ {dec}"
+    if isinstance(x, Interval):
+        if x.is_point:
+            return decimal_string(x.lo, sig)
+        return f"{decimal_string(x.mid, sig)} ± {radius_string(x.rad)}"
+    return f"{exact_text(x)} ≈ {decimal_string(x.enclosure(64).mid, sig)}"
+
+
+def exact_text(x: Scalar) -> str:
+    """The exact text of an exact scalar (Fraction ``p/q`` or the field element's own)."""
+    q = rational(x)
+    if q is not None:
+        return str(q)
+    render = getattr(x, "text", None)
+    if render is not None:
+        try:
+            return render("plain")
+        except TypeError:
+            return render()
+    return str(x)
+
+
+def magnitude_key(x: Scalar) -> Fraction:
+    """An upper bound of ``|x|`` for ranking entries (exact for rationals)."""
+    q = rational(x)
+    if q is not None:
+        return abs(q)
+    e = enclosure(x, 128)
+    return max(abs(e.lo), abs(e.hi))
+
+
+# ------------------------------------------------------------- vectors and matrices
+
+
+def total(xs: Sequence[Scalar], like: Scalar) -> Scalar:
+    """The sum (``0`` of the kind of ``like`` for none)."""
+    acc = const(0, like)
+    for x in xs:
+        acc = acc + x
+    return tidy(acc)
+
+
+def row_sums(A: Matrix, like: Scalar) -> Vector:
+    return [total(row, like) for row in A]
+
+
+def matvec(A: Matrix, v: Vector, like: Scalar) -> Vector:
+    return [total([a * x for a, x in zip(row, v)], like) for row in A]
+
+
+def dot(u: Vector, v: Vector, like: Scalar) -> Scalar:
+    return total([x * y for x, y in zip(u, v)], like)
+
+
+def sample(A: Matrix, b: Vector) -> Scalar:
+    """A scalar of the tableau's kind (for :func:`const`)."""
+    return b[0] if b else (A[0][0] if A else Fraction(0))
+
+
+def poly_at(coeffs: Sequence[Fraction], x: Scalar) -> Scalar:
+    """The rational polynomial ``coeffs`` (ascending powers) at ``x`` (Horner)."""
+    acc = const(0, x)
+    for c in reversed(coeffs):
+        acc = acc * x + const(c, x)
+    return acc
+
+
+def power(x: Scalar, k: int) -> Scalar:
+    if isinstance(x, Interval):
+        return x.power(k)
+    acc = const(1, x)
+    for _ in range(k):
+        acc = acc * x
+    return acc
+
+
+def quadrature_residual(b: Vector, c: Vector, k: int) -> Scalar:
+    """``Σ b_i c_i^(k−1) − 1/k`` (definitions §2)."""
+    like = b[0]
+    return total([bi * power(ci, k - 1) for bi, ci in zip(b, c)], like) - const(Fraction(1, k), like)

@@ -1,0 +1,475 @@
+"""The stability function R(z), and the certificate for quadratic Hamiltonians at every order.
+
+Applied to ``y' = λy`` a Runge–Kutta method gives ``y₁ = R(hλ) y₀`` with
+
+    R(z) = 1 + z bᵀ(I − zA)⁻¹1 = det(I − zA + z 1bᵀ) / det(I − zA) = P(z)/Q(z)
+
+(matrix determinant lemma), a rational function with ``deg P, deg Q ≤ s``.  Its power
+series is ``R(z) = Σ_k r_k z^k`` with ``r_0 = 1`` and ``r_k = bᵀA^(k−1)1`` — the
+elementary weights of the tall trees.
+
+**Quadratic Hamiltonians** (definitions §3: m = 2 leaves the odd paths, one condition per
+even order).  The path with ``2k+1`` vertices rooted at its centre has residual
+
+    R(path) = Σ_{j<k} (−1)^(k−j) r_j r_(2k−j) + r_k²/2 = (−1)^k e_(2k) / 2,
+
+where ``e_n`` are the coefficients of ``R(z)R(−z) − 1 = Σ e_n z^n`` (odd ones vanish).  So
+the m = 2 energy conditions up to order 2k are exactly ``e_2 = … = e_2k = 0``, and
+
+    R(z)R(−z) − 1 = (P(z)P(−z) − Q(z)Q(−z)) / (Q(z)Q(−z)),
+
+whose numerator has degree ≤ 2s and whose denominator is 1 at z = 0.  Hence
+**R(z)R(−z) ≡ 1 iff e_2 = … = e_2s = 0**: finitely many exact tests prove energy
+preservation for every quadratic H at every order (a certificate, like AVF).  Otherwise
+the first nonzero ``e_2k z^2k`` is the leading term, and the m = 2 energy order is 2k − 1.
+
+Everything is computed over the tableau's own scalars (:mod:`rkcheck.energy.scalars`):
+exact over Q or the tableau's number field, certified for enclosures.  ``det(I − zA)``
+comes from a Hessenberg reduction for exact scalars and from the Faddeev–LeVerrier
+recursion (divisions by integers only) for enclosures; ``P = Q·R`` truncated to degree s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from rkcheck.energy import scalars as sc
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
+from rkcheck.numbers.formatting import decimal_string
+from rkcheck.numbers.intervals import Interval
+
+#: enclosures: above this many stages det(I − zA) is not expanded (the certificate,
+#: which needs only the series, is still decided)
+MAX_INTERVAL_DET_STAGES = 16
+
+_SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+# ---------------------------------------------------------------- polynomials
+# lists of scalars, ascending powers
+
+
+def _trim(p: list) -> list:
+    p = list(p)
+    while len(p) > 1 and sc.verdict(p[-1]).state == HOLDS:
+        p.pop()
+    return p
+
+
+def _mul(p: list, q: list, like) -> list:
+    out = [sc.const(0, like) for _ in range(len(p) + len(q) - 1)]
+    for i, a in enumerate(p):
+        for j, b in enumerate(q):
+            out[i + j] = out[i + j] + a * b
+    return out
+
+
+def _reflect(p: list) -> list:
+    """``p(−z)``."""
+    return [-a if k % 2 else a for k, a in enumerate(p)]
+
+
+def _sub(p: list, q: list, like) -> list:
+    n = max(len(p), len(q))
+    zero = sc.const(0, like)
+    return [(p[k] if k < len(p) else zero) - (q[k] if k < len(q) else zero) for k in range(n)]
+
+
+def _divmod(p: list, d: list, like) -> tuple[list, list]:
+    """Exact polynomial division (``d`` trimmed, leading coefficient nonzero)."""
+    p = list(p)
+    if len(p) < len(d):
+        return [sc.const(0, like)], p
+    quot = [sc.const(0, like) for _ in range(len(p) - len(d) + 1)]
+    lead = d[-1]
+    for k in range(len(p) - len(d), -1, -1):
+        coef = p[k + len(d) - 1] / lead
+        quot[k] = coef
+        for j, dj in enumerate(d):
+            p[k + j] = p[k + j] - coef * dj
+    return quot, _trim(p[: len(d) - 1] or [sc.const(0, like)])
+
+
+def _is_zero_poly(p: list) -> bool:
+    return all(sc.verdict(a).state == HOLDS for a in p)
+
+
+def _gcd(p: list, q: list, like) -> list:
+    """A gcd of two exact polynomials (Euclid)."""
+    a, b = _trim(p), _trim(q)
+    while not _is_zero_poly(b):
+        _, r = _divmod(a, b, like)
+        a, b = b, r
+    return a
+
+
+def _det_I_minus_zA(A: sc.Matrix, like) -> list | None:
+    """Coefficients of ``det(I − zA)`` (ascending), or None when not expanded."""
+    n = len(A)
+    exact = sc.is_exact(like)
+    if not exact and n > MAX_INTERVAL_DET_STAGES:
+        return None
+    charpoly = _charpoly_hessenberg(A, like) if exact else _charpoly_faddeev(A, like)
+    assert len(charpoly) == n + 1
+    # det(xI − A) = Σ c_k x^k  ⇒  det(I − zA) = z^n det(z⁻¹I − A) = Σ c_(n−k) z^k
+    return list(reversed(charpoly))
+
+
+def _charpoly_faddeev(A: sc.Matrix, like) -> list:
+    """``det(xI − A)`` by Faddeev–LeVerrier: only divisions by integers."""
+    n = len(A)
+    zero, one = sc.const(0, like), sc.const(1, like)
+    coeffs = [zero] * (n + 1)
+    coeffs[n] = one
+    M = [[zero] * n for _ in range(n)]
+    for k in range(1, n + 1):
+        AM = [[sc.total([A[i][l] * M[l][j] for l in range(n)], like) for j in range(n)] for i in range(n)]
+        M = [[AM[i][j] + (coeffs[n - k + 1] if i == j else zero) for j in range(n)] for i in range(n)]
+        trace = sc.total([sc.total([A[i][l] * M[l][i] for l in range(n)], like) for i in range(n)], like)
+        coeffs[n - k] = -(trace * sc.const(Fraction(1, k), like))
+    return coeffs
+
+
+def _charpoly_hessenberg(A: sc.Matrix, like) -> list:
+    """``det(xI − A)`` of an exact matrix: similarity to upper Hessenberg form, then the
+    recurrence on leading principal minors (H. Cohen, A Course in Computational Algebraic
+    Number Theory, Algorithm 2.2.9)."""
+    n = len(A)
+    H = [list(row) for row in A]
+    for m in range(1, n - 1):
+        piv = next((i for i in range(m, n) if sc.certainly_nonzero(H[i][m - 1])), None)
+        if piv is None:
+            continue
+        if piv != m:
+            H[piv], H[m] = H[m], H[piv]
+            for row in H:
+                row[piv], row[m] = row[m], row[piv]
+        t = H[m][m - 1]
+        for i in range(m + 1, n):
+            if not sc.certainly_nonzero(H[i][m - 1]):
+                continue
+            u = H[i][m - 1] / t
+            for j in range(n):
+                H[i][j] = H[i][j] - u * H[m][j]
+            for j in range(n):
+                H[j][m] = H[j][m] + u * H[j][i]
+    zero, one = sc.const(0, like), sc.const(1, like)
+    polys = [[one]]  # p_0 = 1; p_k = charpoly of the leading k×k block
+    for k in range(1, n + 1):
+        hkk = H[k - 1][k - 1]
+        p = _sub([zero] + polys[k - 1], [hkk * a for a in polys[k - 1]] + [zero], like)
+        prod = one
+        for i in range(k - 1, 0, -1):
+            prod = prod * H[i][i - 1]
+            coef = H[i - 1][k - 1] * prod
+            term = [coef * a for a in polys[i - 1]]
+            p = _sub(p, term + [zero] * (len(p) - len(term)), like)
+        polys.append(p)
+    return polys[n]
+
+
+# ---------------------------------------------------------- the stability function
+
+
+@dataclass(frozen=True)
+class StabilityFunction:
+    """``R(z) = P(z)/Q(z)`` and ``R(z)R(−z) − 1`` of one tableau.
+
+    ``series`` = ``r_0 … r_2s``; ``defect`` = ``e_0 … e_2s`` (``R(z)R(−z) − 1``);
+    ``identity`` = the verdict of ``e_2 = … = e_2s = 0`` (``R(z)R(−z) ≡ 1``);
+    ``leading_power`` / ``leading_coefficient`` = the first ``e_2k`` that certainly
+    differs from 0 (None when the identity holds); ``numerator``/``denominator`` = P, Q
+    in lowest terms with ``Q(0) = 1`` for exact tableaux (None when not expanded)."""
+
+    stages: int
+    exact: bool
+    series: list
+    defect: list
+    identity: Verdict
+    leading_power: int | None
+    leading_coefficient: object | None
+    numerator: list | None
+    denominator: list | None
+
+    @property
+    def quadratic_energy_order(self) -> int | None:
+        """The energy order for m = 2 (None: every order, R(z)R(−z) ≡ 1)."""
+        return None if self.leading_power is None else self.leading_power - 1
+
+    @property
+    def defect_numerator(self) -> list | None:
+        """``P(z)P(−z) − Q(z)Q(−z)`` (so ``R(z)R(−z) − 1`` = it over ``Q(z)Q(−z)``)."""
+        if self.numerator is None or self.denominator is None:
+            return None
+        like = self.series[0]
+        P, Q = self.numerator, self.denominator
+        return _trim(_sub(_mul(P, _reflect(P), like), _mul(Q, _reflect(Q), like), like))
+
+    def text(self) -> str:
+        """``R(z) = …`` for people."""
+        if self.numerator is None or self.denominator is None:
+            return f"R(z) = {poly_text(self.series[: 6])} + …"
+        num, den = poly_text(self.numerator), poly_text(self.denominator)
+        eq = "=" if self.exact else "≈"
+        if den == "1":
+            return f"R(z) {eq} {num}"
+        return f"R(z) {eq} ({num}) / ({den})"
+
+    def defect_text(self) -> str:
+        """``R(z)R(−z) − 1 = …``: the exact rational function when it is short, else its
+        leading term."""
+        if self.leading_power is None:
+            how = "exactly" if self.identity.state == HOLDS else f"to {self.identity.digits} digits"
+            return f"R(z)R(−z) = 1 ({how})"
+        lead = monomial_text(self.leading_coefficient, self.leading_power)
+        num = self.defect_numerator
+        den = None
+        if num is not None and self.denominator is not None:
+            like = self.series[0]
+            den = _trim(_mul(self.denominator, _reflect(self.denominator), like))
+        if num is not None and den is not None and len(den) == 1 and self.exact:
+            return f"R(z)R(−z) − 1 = {poly_text(num)}"
+        return f"R(z)R(−z) − 1 = {lead} + O(z{str(self.leading_power + 2).translate(_SUP)})"
+
+
+def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | None:
+    """For a rational tableau: the series r_0 … r_2s, and P, Q in lowest terms with
+    Q(0) = 1, computed with FLINT (exact rational matrices and polynomials: Fraction
+    arithmetic and Euclid's algorithm on Fractions grow too fast beyond ~15 stages)."""
+    if not all(isinstance(x, (Fraction, int)) for row in A for x in row) or not all(isinstance(x, (Fraction, int)) for x in b):
+        return None
+    from flint import fmpq, fmpq_mat, fmpq_poly
+
+    def q(x) -> fmpq:
+        x = Fraction(x)
+        return fmpq(x.numerator, x.denominator)
+
+    def frac(x) -> Fraction:
+        return Fraction(int(x.p), int(x.q))
+
+    s = len(b)
+    M = fmpq_mat(s, s, [q(x) for row in A for x in row])
+    B = fmpq_mat(1, s, [q(x) for x in b])
+    v = fmpq_mat(s, 1, [fmpq(1)] * s)
+    series = [Fraction(1)]
+    for _ in range(2 * s):
+        series.append(frac((B * v)[0, 0]))
+        v = M * v
+    Q = fmpq_poly(list(reversed(M.charpoly().coeffs())))  # det(I − zA) = z^s det(z⁻¹I − A)
+    P = (Q * fmpq_poly([q(r) for r in series[: s + 1]])).coeffs()[: s + 1]
+    P = fmpq_poly(P)
+    g = P.gcd(Q)
+    if g.degree() > 0:
+        P, Q = P // g, Q // g
+    q0 = Q.coeffs()[0]
+    P, Q = P / q0, Q / q0
+    return series, [frac(c) for c in P.coeffs()] or [Fraction(0)], [frac(c) for c in Q.coeffs()]
+
+
+def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
+    """For enclosures: the series r_0 … r_2s and det(I − zA), enclosed with FLINT's ball
+    matrices (rigorous: every input interval is enclosed by a ball, every result ball is
+    returned as the interval it certifies); O(s³) instead of interval Faddeev–LeVerrier's
+    O(s⁴) on rationals with long end points."""
+    if not all(isinstance(x, Interval) for row in A for x in row) or not all(isinstance(x, Interval) for x in b):
+        return None
+    import flint
+    from flint import arb, arb_mat, fmpq
+
+    widths = [x.hi - x.lo for row in A for x in row if not x.is_point] + [x.hi - x.lo for x in b if not x.is_point]
+    need = max((w.denominator.bit_length() - w.numerator.bit_length() for w in widths), default=64)
+    bits = max(128, need + 64)
+
+    def ball(x: Interval):
+        lo, hi = arb(fmpq(x.lo.numerator, x.lo.denominator)), arb(fmpq(x.hi.numerator, x.hi.denominator))
+        return lo.union(hi)
+
+    def interval(x) -> Interval:
+        mid, rad = _exact(x.mid()), _exact(x.rad())
+        return Interval(mid - rad, mid + rad)
+
+    saved = flint.ctx.prec
+    flint.ctx.prec = bits
+    try:
+        n = len(b)
+        M = arb_mat(n, n, [ball(x) for row in A for x in row])
+        B = arb_mat(1, n, [ball(x) for x in b])
+        v = arb_mat(n, 1, [arb(1)] * n)
+        series = [Interval.point(1)]
+        for _ in range(2 * n):
+            series.append(interval((B * v)[0, 0]))
+            v = M * v
+        Q = [interval(c) for c in reversed(M.charpoly().coeffs())]
+    finally:
+        flint.ctx.prec = saved
+    return [sc.tidy(x) for x in series], [sc.tidy(x) for x in Q]
+
+
+def _exact(x) -> Fraction:
+    """An exact FLINT number (an arb point, arf or mag) as a Fraction."""
+    man, exp = x.mid().man_exp() if hasattr(x, "mid") else x.man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
+def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
+    """``R(z)`` of the tableau ``(A, b)`` over its own scalars (see the module docstring)."""
+    s = len(b)
+    like = sc.sample(A, b)
+    rational = _rational_parts(A, b)
+    if rational is not None:
+        series, P, Q = rational
+        return _from_parts(s, True, series, _trim(P), _trim(Q))
+    enclosed = _interval_parts(A, b)
+    if enclosed is not None:
+        series, Q = enclosed
+        P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
+        return _from_parts(s, False, series, _trim(P), _trim(Q))
+    one = sc.const(1, like)
+    series = [one]
+    v = [sc.const(1, like) for _ in range(s)]  # A^(k−1) 1
+    for _ in range(2 * s):
+        series.append(sc.dot(b, v, like))
+        v = sc.matvec(A, v, like)
+    numerator = denominator = None
+    Q = _det_I_minus_zA(A, like)
+    if Q is not None:
+        P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
+        if sc.is_exact(like):
+            g = _gcd(P, Q, like)
+            if len(g) > 1:
+                P, _ = _divmod(P, g, like)
+                Q, _ = _divmod(Q, g, like)
+            q0 = Q[0]
+            P = [a / q0 for a in P]
+            Q = [a / q0 for a in Q]
+        numerator, denominator = _trim(P), _trim(Q)
+    return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
+
+
+def _from_parts(s: int, exact: bool, series: list, numerator, denominator) -> StabilityFunction:
+    """The defect coefficients e_n and the identity verdict from the series."""
+    like = series[0]
+    defect = [sc.const(0, like)]
+    for n in range(1, 2 * s + 1):
+        if n % 2:
+            defect.append(sc.const(0, like))  # e_odd = 0 identically
+            continue
+        defect.append(sc.total([(series[j] if j % 2 == 0 else -series[j]) * series[n - j] for j in range(n + 1)], like))
+    verdicts = []
+    leading_power = leading = None
+    for n in range(2, 2 * s + 1, 2):
+        v_n = sc.verdict(defect[n])
+        if v_n.state == FAILS:
+            leading_power, leading = n, defect[n]
+            break
+        verdicts.append(v_n)
+    identity = Verdict(FAILS) if leading_power is not None else combine(verdicts)
+    return StabilityFunction(s, exact, series, defect, identity, leading_power, leading, numerator, denominator)
+
+
+# ------------------------------------------------------------------ the certificate
+
+
+@dataclass(frozen=True)
+class StabilityCertificate:
+    """Energy preservation for every quadratic Hamiltonian at every order, proven by
+    ``R(z)R(−z) ≡ 1`` (the same interface as the line-integral certificate)."""
+
+    degree: int
+    verdict: Verdict
+    reason: str
+    sigma: None = None
+    kind: str = "stability"
+
+    @property
+    def certified(self) -> bool:
+        return self.verdict.state != FAILS
+
+    @property
+    def name(self) -> str:
+        return "stability-function certificate"
+
+    @property
+    def claim_note(self) -> str:
+        return "stability-function certificate (R(z)R(−z) ≡ 1): every order"
+
+    def refuted(self, condition_id: str) -> "StabilityCertificate":
+        return StabilityCertificate(
+            self.degree, Verdict(FAILS),
+            f"R(z)R(−z) = 1 only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",
+        )
+
+
+def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCertificate:
+    """The certificate for degree ≤ 2 from the stability function."""
+    if stab.identity.state == FAILS:
+        return StabilityCertificate(
+            degree, Verdict(FAILS),
+            f"{stab.defect_text()}: quadratic energy is preserved to order {stab.leading_power - 1} only",
+        )
+    how = "exactly" if stab.identity.state == HOLDS else f"to {stab.identity.digits} digits"
+    return StabilityCertificate(
+        degree, stab.identity,
+        f"R(z)R(−z) = 1 {how} (e_2 = … = e_{2 * stab.stages} = 0 and deg(P(z)P(−z) − Q(z)Q(−z)) ≤ "
+        f"{2 * stab.stages}): ΔH = 0 for every H of degree ≤ 2",
+    )
+
+
+def prefer(first, second):
+    """The better of two certificates for the same degree: an exact proof over one that
+    holds to digits, a certified one over none; ``first`` on ties."""
+    def rank(cert) -> int:
+        if cert is None or not cert.certified:
+            return 0
+        return 2 if cert.verdict.state == HOLDS else 1
+
+    return second if rank(second) > rank(first) else first
+
+
+# ------------------------------------------------------------------------ text
+
+
+def monomial_text(coef, k: int) -> str:
+    """``c z^k`` for people: ``z⁶/72``, ``−3z²/4``, ``(1/2 + √3/6) z``, ``0.0833 z²``."""
+    z = "" if k == 0 else ("z" if k == 1 else "z" + str(k).translate(_SUP))
+    q = sc.rational(coef)
+    if q is not None:
+        sign = "−" if q < 0 else ""
+        a, d = abs(q.numerator), q.denominator
+        if not z:
+            return sign + (str(a) if d == 1 else f"{a}/{d}")
+        num = z if a == 1 else f"{a}{z}"
+        return sign + (num if d == 1 else f"{num}/{d}")
+    if sc.is_interval(coef):
+        # an enclosure: its mid-point to 10 digits (the text says "≈"; JSON has the bounds)
+        mid = coef.mid
+        body = decimal_string(abs(mid), 10)
+        sign = "−" if mid < 0 else ""
+        if not z:
+            return sign + body
+        return sign + (z if body == "1" else f"{body}{z}")
+    return f"({sc.exact_text(coef)}){' ' + z if z else ''}"
+
+
+def poly_text(p: list) -> str:
+    """A polynomial (ascending coefficients) for people, zero terms left out."""
+    # zero terms are left out; for an enclosure, one that may be zero (it is shown with ≈)
+    terms = [(k, a) for k, a in enumerate(p) if sc.verdict(a).state == FAILS]
+    if not terms:
+        return "0"
+    out = ""
+    for i, (k, a) in enumerate(terms):
+        t = monomial_text(a, k)
+        if i == 0:
+            out = t
+        elif t.startswith("−"):
+            out += " − " + t[1:]
+        else:
+            out += " + " + t
+    return out
+
+
+def digits_of(v: Verdict) -> str:
+    return "exactly" if v.state == HOLDS else (f"to {v.digits} digits" if v.state == HOLDS_TO_DIGITS else "fails")

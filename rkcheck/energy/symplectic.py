@@ -1,0 +1,158 @@
+"""Symplecticity and symmetry of a Runge–Kutta method, certified.
+
+Both are properties of the *method*, so both are decided on its irreducible form
+(:mod:`rkcheck.energy.reduction`), which is unique up to a permutation of the stages:
+
+* **symplectic** — ``M = BA + AᵀB − bbᵀ = 0`` with ``B = diag(b)``
+  (Lasagni, Sanz-Serna, Suris 1988; Hairer–Lubich–Wanner, *Geometric Numerical
+  Integration*, Theorem VI.4.3).  For an irreducible method the condition is also
+  necessary (HLW, §VI.7.3), which is why it is tested after the reduction: a symplectic
+  method written with a dead stage or a split stage has ``M ≠ 0`` as written, yet is
+  the same symplectic map.  Where it fails the report gives the largest entry of M,
+  exactly.
+* **symmetric** — the adjoint method ``A* = 1bᵀ − A``, ``b* = b`` (HLW, §V.1.3: the
+  adjoint of ``(A, b)``, stages taken in reversed order, is ``a*_ij = b_(s+1−j) −
+  a_(s+1−i,s+1−j)``) equals the method up to a permutation of its stages.  The
+  permutation is searched (nodes ``c*_i = Σb − c_i`` must match), not assumed to be the
+  reversal.
+
+Over exact scalars both verdicts are ``holds``/``fails``; over enclosures ``holds to D
+digits``/``fails`` (:mod:`rkcheck.energy.scalars`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rkcheck.energy import scalars as sc
+from rkcheck.energy.reduction import Reduction
+from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
+
+
+@dataclass(frozen=True)
+class PropertyVerdict:
+    """``symplectic`` or ``symmetric``: holds / holds to D digits / fails, and why."""
+
+    name: str
+    verdict: Verdict
+    reason: str
+    defect: object | None = None  # symplectic: the largest entry of M (a scalar)
+    defect_entry: tuple[int, int] | None = None  # its place (1-based original stages)
+    permutation: tuple[int, ...] | None = None  # symmetric: stage i of the adjoint ↦ stage π(i)
+
+    @property
+    def holds(self) -> bool:
+        return self.verdict.state != FAILS
+
+    def label(self) -> str:
+        if self.verdict.state == FAILS:
+            return "no"
+        return "yes" if self.verdict.state == HOLDS else f"yes, to {self.verdict.digits} digits"
+
+
+def _how(v: Verdict) -> str:
+    return "exactly" if v.state == HOLDS else f"to {v.digits} digits"
+
+
+def _after(red: Reduction) -> str:
+    return f" (of the reduced {red.reduced_stages}-stage method)" if red.reducible else ""
+
+
+def symplecticity(red: Reduction) -> PropertyVerdict:
+    """``BA + AᵀB − bbᵀ = 0`` on the irreducible form ``red``."""
+    A, b = red.A, red.b
+    n = len(b)
+    if n == 0:
+        return PropertyVerdict("symplectic", Verdict(FAILS), "every weight is zero: the method does not move")
+    verdicts = list(red.decisions)
+    worst = None
+    for i in range(n):
+        for j in range(i, n):
+            m = b[i] * A[i][j] + b[j] * A[j][i] - b[i] * b[j]
+            v = sc.verdict(m)
+            verdicts.append(v)
+            if v.state == FAILS and (worst is None or sc.magnitude_key(m) > sc.magnitude_key(worst[0])):
+                worst = (m, i, j)
+    verdict = combine(verdicts)
+    if worst is not None:
+        m, i, j = worst
+        gi, gj = red.kept[i] + 1, red.kept[j] + 1
+        q = sc.rational(m)
+        if q is not None:
+            value = f"|M[{gi}][{gj}]| = {sc.text(abs(q), 12)}"
+        elif sc.is_interval(m):
+            value = f"M[{gi}][{gj}] ≈ {sc.approx(m):.12g}"
+        else:
+            value = f"M[{gi}][{gj}] = {sc.text(m, 12)}"
+        return PropertyVerdict(
+            "symplectic", Verdict(FAILS),
+            f"BA + AᵀB − bbᵀ ≠ 0{_after(red)}: largest entry {value}",
+            m, (gi, gj),
+        )
+    return PropertyVerdict("symplectic", verdict, f"BA + AᵀB − bbᵀ = 0 {_how(verdict)}{_after(red)}")
+
+
+def symmetry(red: Reduction) -> PropertyVerdict:
+    """Does the adjoint ``(1bᵀ − A, b)`` equal the method up to a stage permutation?"""
+    A, b = red.A, red.b
+    n = len(b)
+    if n == 0:
+        return PropertyVerdict("symmetric", Verdict(FAILS), "every weight is zero: the method does not move")
+    like = sc.sample(A, b)
+    adjoint = [[b[j] - A[i][j] for j in range(n)] for i in range(n)]
+    decisions: list[Verdict] = []
+
+    def equal(x, y) -> bool:
+        v = sc.verdict(x - y)
+        if v.state == FAILS:
+            return False
+        if v.state != HOLDS:
+            decisions.append(v)
+        return True
+
+    c = sc.row_sums(A, like)
+    c_adj = sc.row_sums(adjoint, like)
+    candidates = [
+        [k for k in range(n) if equal(b[i], b[k]) and equal(c_adj[i], c[k]) and equal(adjoint[i][i], A[k][k])]
+        for i in range(n)
+    ]
+    order = sorted(range(n), key=lambda i: len(candidates[i]))
+    image: dict[int, int] = {}
+    used: set[int] = set()
+
+    def extend(pos: int) -> bool:
+        if pos == n:
+            return True
+        i = order[pos]
+        for k in candidates[i]:
+            if k in used:
+                continue
+            if all(equal(adjoint[i][j], A[k][image[j]]) and equal(adjoint[j][i], A[image[j]][k]) for j in image):
+                image[i] = k
+                used.add(k)
+                if extend(pos + 1):
+                    return True
+                del image[i]
+                used.discard(k)
+        return False
+
+    if not extend(0):
+        return PropertyVerdict(
+            "symmetric", Verdict(FAILS),
+            f"no stage permutation maps the adjoint method (1bᵀ − A, b){_after(red)} onto it"
+            + ("" if any(candidates) and all(candidates) else ": the nodes Σb − c_i and weights do not match"),
+        )
+    verdict = combine(list(red.decisions) + decisions)
+    perm = tuple(red.kept[image[i]] + 1 for i in range(n))
+    stages = tuple(k + 1 for k in red.kept)
+    if perm == tuple(reversed(stages)):
+        how = "with the stages in reversed order"
+    elif perm == stages:
+        how = "with the stages in the same order"
+    else:
+        how = "under the stage permutation " + ", ".join(f"{a}→{p}" for a, p in zip(stages, perm))
+    return PropertyVerdict(
+        "symmetric", verdict,
+        f"the adjoint (1bᵀ − A, b) equals the method {how}, {_how(verdict)}{_after(red)}",
+        permutation=perm,
+    )

@@ -1,0 +1,221 @@
+"""Decimal tableaux judged over their whole box of inputs, jointly (definitions §5.2).
+
+A tableau written in rounded decimals stands for every tableau in a box ``X`` (one
+interval per entry).  Evaluating the conditions in interval arithmetic over ``X`` treats
+two occurrences of one entry as independent, so the enclosure of ``R`` can contain 0
+although ``R`` is nonzero on the whole box (``b(b − 1)/2`` with ``b ≈ 0.9999999999``).
+The *mean value form* removes that dependency to first order: for the face value
+``x̃ ∈ X``,
+
+    R(x) = R(x̃) + ∇R(ξ)·(x − x̃)   for some ξ on the segment, so
+    |R(x) − R(x̃)| ≤ V = Σ_e  sup_X |∂R/∂x_e| · r_e,   r_e = max |x_e − x̃_e|.
+
+``R(x̃)`` is computed exactly (residues modulo primes on the face values), the partial
+derivatives are enclosed over ``X`` by forward-mode differentiation on the float64 screen
+(certified: every operation carries its rounding bound; the derivatives only need a
+few correct digits).  Then
+
+* ``|R(x̃)| > V``: R has the sign of ``R(x̃)`` on all of X: the condition **fails**;
+* otherwise it holds to the digits of ``min(ball bound, |R(x̃)| + V)``.
+
+The gradient costs ``E`` (the number of entries that are intervals) times the float
+screen; :func:`box_refinement_fits` says when that is affordable.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Sequence
+
+import numpy as np
+
+from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext
+from rkcheck.numbers.intervals import Interval
+
+#: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
+#: mid and radius each); the refinement is skipped above :data:`MAX_GRADIENT_BYTES`.
+MAX_GRADIENT_BYTES = 1 << 30
+
+
+def _add(p, q):
+    m = p[0] + q[0]
+    return m, (p[1] + q[1] + U * np.abs(m)) * INFLATE + ETA
+
+
+def _expand(x):
+    return x[0][..., None], x[1][..., None]
+
+
+class GradientContext:
+    """Values and their partial derivatives with respect to the interval entries, over
+    the whole box, on the float screen: a value is ``(value, gradient)``, each a
+    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of length ``E``."""
+
+    exact = False
+
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval]):
+        self.f = FloatContext(A, b)
+        s = len(b)
+        self.a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
+        self.b_vars = [i for i in range(s) if not b[i].is_point]
+        self.E = len(self.a_vars) + len(self.b_vars)
+
+    def _zeros(self, shape):
+        return np.zeros(shape + (self.E,)), np.zeros(shape + (self.E,))
+
+    def vectors(self, n: int, s: int):
+        return self.f.vectors(n, s), self._zeros((n, s))
+
+    def scalars(self, n: int):
+        return self.f.scalars(n), self._zeros((n,))
+
+    def ones(self, k: int, s: int):
+        return self.f.ones(k, s), self._zeros((k, s))
+
+    def one(self, k: int):
+        return self.f.one(k), self._zeros((k,))
+
+    def take(self, x, idx):
+        return self.f.take(x[0], idx), self.f.take(x[1], idx)
+
+    def put(self, store, lo: int, x) -> None:
+        self.f.put(store[0], lo, x[0])
+        self.f.put(store[1], lo, x[1])
+
+    def mul(self, x, y):
+        value = self.f.mul(x[0], y[0])
+        grad = _add(self.f.mul(_expand(x[0]), y[1]), self.f.mul(_expand(y[0]), x[1]))
+        return value, grad
+
+    def matvec(self, x):
+        value = self.f.matvec(x[0])
+        gm, gr = x[1]
+        dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
+        grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
+        # ∂(Ax)_i/∂a_ij = x_j
+        em, er = self._zeros(x[0][0].shape)
+        for e, (i, j) in enumerate(self.a_vars):
+            em[..., i, e] = x[0][0][..., j]
+            er[..., i, e] = x[0][1][..., j]
+        return value, _add(grad, (em, er))
+
+    def dot(self, x):
+        value = self.f.dot(x[0])
+        gm, gr = x[1]
+        grad = self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
+        # ∂(bᵀx)/∂b_i = x_i
+        em, er = self._zeros(x[0][0].shape[:-1])
+        offset = len(self.a_vars)
+        for e, i in enumerate(self.b_vars):
+            em[..., offset + e] = x[0][0][..., i]
+            er[..., offset + e] = x[0][1][..., i]
+        return value, _add(grad, (em, er))
+
+    def sums(self, k: int, n: int):
+        return [self.f.sums(k, n) for _ in range(self.E)]
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        gm, gr = w_terms[1]
+        for e in range(self.E):
+            self.f.add_terms(acc[e], (gm[:, e], gr[:, e]), terms, n, i0, i1)
+
+    def finish_sums(self, acc, k: int, n: int) -> np.ndarray:
+        """``G[k, e]``: an upper bound of ``sup_X |∂R_k/∂x_e|``."""
+        cols = [self.f.finish_sums(a, k, n).magnitude_bound() for a in acc]
+        return np.stack(cols, axis=1) if cols else np.zeros((k, 0))
+
+
+def gradient_bytes(listing, s: int, E: int) -> int:
+    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext` keeps)."""
+    top = max(listing.orders, default=1)
+    kept = listing.first[min(top, len(listing.first) - 1)]
+    return int(kept) * (2 * s + 2) * E * 16
+
+
+@dataclass
+class BoxRefinement:
+    """The mean value form of every condition of one order (representative sign):
+    ``centre[k] = R(x̃)`` exactly, ``variation[k] = V`` (a float, rounded up)."""
+
+    centre: list[Fraction]
+    variation: np.ndarray
+
+    def fails(self) -> np.ndarray:
+        return np.array([abs(c) > Fraction(v) for c, v in zip(self.centre, self.variation.tolist())], dtype=bool)
+
+    def bound(self) -> np.ndarray:
+        """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up)."""
+        c = np.array([float(abs(x)) for x in self.centre])
+        return (c * (1 + 4 * U) + self.variation) * INFLATE + ETA
+
+
+def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, centre_b, ctx: GradientContext) -> np.ndarray:
+    """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up."""
+    out = []
+    for i, j in ctx.a_vars:
+        x, c = A[i][j], Fraction(centre_A[i][j])
+        out.append(max(c - x.lo, x.hi - c))
+    for i in ctx.b_vars:
+        x, c = b[i], Fraction(centre_b[i])
+        out.append(max(c - x.lo, x.hi - c))
+    return np.array([math.nextafter(float(r), math.inf) for r in out], dtype=float)
+
+
+def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict[int, BoxRefinement]:
+    """The mean value form (module docstring) of the conditions of ``orders``, for the box
+    ``(A, b)`` of intervals and its point ``(centre_A, centre_b)`` (exact rationals)."""
+    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+
+    wanted = sorted(orders)
+    if not wanted:
+        return {}
+    exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, wanted)
+    ctx = GradientContext(A, b)
+    grads = condition_sums(listing, ctx, len(b), wanted)
+    r = box_radii(A, b, centre_A, centre_b, ctx)
+    out = {}
+    for n in wanted:
+        G = grads[n]
+        V = (G @ r) * (1 + (ctx.E + 2) * U) * INFLATE + ETA if ctx.E else np.zeros(len(G))
+        out[n] = BoxRefinement(exact[n].values(), V)
+    return out
+
+
+def box_refinement_fits(listing, A, b) -> bool:
+    """Whether the gradient fits in :data:`MAX_GRADIENT_BYTES`."""
+    E = sum(1 for row in A for x in row if not x.is_point) + sum(1 for x in b if not x.is_point)
+    return gradient_bytes(listing, len(b), E) <= MAX_GRADIENT_BYTES
+
+
+__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "MAX_GRADIENT_BYTES"]
+
+
+class RefinedSums:
+    """Ball sums of one order with the mean value form folded in: where it proves a
+    failure, the enclosure shown is ``R(x̃) ± V`` (it excludes 0); elsewhere the tighter of
+    the two magnitude bounds counts.  Everything else is the ball sums'."""
+
+    def __init__(self, balls, refinement: BoxRefinement):
+        self.balls = balls
+        self.refinement = refinement
+        self._fails = refinement.fails()
+        self._ball_excludes = np.asarray(balls.excludes_zero(), dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self.balls)
+
+    def excludes_zero(self) -> np.ndarray:
+        return self._ball_excludes | self._fails
+
+    def magnitude_bound(self) -> np.ndarray:
+        return np.minimum(np.asarray(self.balls.magnitude_bound(), dtype=float), self.refinement.bound())
+
+    def enclosure(self, k: int):
+        from rkcheck.numbers.enclosure import Enclosure
+
+        if self._fails[k] and not self._ball_excludes[k]:
+            return Enclosure(self.refinement.centre[k], Fraction(float(self.refinement.variation[k])), False)
+        return self.balls.enclosure(k)

@@ -1,0 +1,166 @@
+"""The tableau's own properties in reports: the stage reduction, symplecticity, symmetry,
+the stability function R(z) and the energy error constant (text rows and JSON keys).
+
+JSON (added to ``summary``; keys are a public interface, see README "JSON schema"):
+
+* ``reduction``: ``stages``, ``reduced_stages``, ``classes`` (1-based original stages of
+  each reduced stage), ``dropped`` (dead stages), ``exact``;
+* ``symplectic`` / ``symmetric``: ``state``, ``digits``, ``reason``; symplectic adds
+  ``defect`` (largest |entry| of BA + AᵀB − bbᵀ, exact text or decimal) and
+  ``defect_entry``; symmetric adds ``permutation``;
+* ``stability``: ``R`` (text), ``numerator``/``denominator`` (coefficient texts, ascending
+  powers, or null), ``identity`` (``state``, ``digits`` of R(z)R(−z) ≡ 1), ``defect``
+  (text of R(z)R(−z) − 1), ``leading_power``, ``leading_coefficient``,
+  ``quadratic_energy_order`` (null = every order);
+* ``error_constant``: null, or ``norm`` ("euclidean"), ``degree``, ``energy_order``,
+  ``order``, ``conditions``, ``failing``, ``value`` (decimal), ``squared`` (exact p/q or
+  null), ``lower``, ``upper``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rich.text import Text
+
+from rkcheck.energy import scalars as sc
+from rkcheck.energy.error_constants import ErrorConstant, error_constant
+from rkcheck.energy.stability import StabilityFunction, monomial_text
+from rkcheck.energy.verdicts import FAILS, HOLDS
+from rkcheck.numbers.formatting import decimal_string
+
+_SUP = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+STYLE = {HOLDS: "green", "holds_to_digits": "yellow", FAILS: "red"}
+
+
+def _coefficient_text(x) -> str:
+    q = sc.rational(x)
+    if q is not None:
+        return str(q)
+    if sc.is_interval(x):
+        return sc.text(x, 20)
+    return sc.exact_text(x)
+
+
+def stability_doc(stab: StabilityFunction) -> dict[str, Any]:
+    return {
+        "R": stab.text(),
+        "numerator": None if stab.numerator is None else [_coefficient_text(a) for a in stab.numerator],
+        "denominator": None if stab.denominator is None else [_coefficient_text(a) for a in stab.denominator],
+        "identity": {"state": stab.identity.state, "digits": stab.identity.digits},
+        "defect": stab.defect_text(),
+        "leading_power": stab.leading_power,
+        "leading_coefficient": None if stab.leading_coefficient is None else _coefficient_text(stab.leading_coefficient),
+        "quadratic_energy_order": stab.quadratic_energy_order,
+    }
+
+
+def error_constant_doc(ec: ErrorConstant | None) -> dict[str, Any] | None:
+    if ec is None:
+        return None
+    lo, hi = ec.bounds
+    return {
+        "norm": "euclidean",
+        "degree": ec.degree,
+        "energy_order": ec.energy_order,
+        "order": ec.order,
+        "conditions": ec.conditions,
+        "failing": ec.failing,
+        "value": ec.short(12),
+        "squared": str(ec.squared) if ec.exact else None,
+        "lower": repr(lo),
+        "upper": repr(hi),
+    }
+
+
+def properties_doc(res) -> dict[str, Any]:
+    """The keys this module adds to ``summary`` (empty when the check has no properties)."""
+    props = res.properties
+    if props is None:
+        return {}
+    red = props.reduction
+    sym, symm = props.symplectic, props.symmetric
+    defect = None
+    if sym.defect is not None:
+        q = sc.rational(sym.defect)
+        defect = str(abs(q)) if q is not None else _coefficient_text(sym.defect)
+    return {
+        "reduction": {
+            "stages": red.stages,
+            "reduced_stages": red.reduced_stages,
+            "classes": [[i + 1 for i in c] for c in red.classes],
+            "dropped": sorted(i + 1 for i in red.dropped),
+            "exact": not red.decisions,
+        },
+        "symplectic": {
+            "state": sym.verdict.state, "digits": sym.verdict.digits, "reason": sym.reason,
+            "defect": defect, "defect_entry": None if sym.defect_entry is None else list(sym.defect_entry),
+        },
+        "symmetric": {
+            "state": symm.verdict.state, "digits": symm.verdict.digits, "reason": symm.reason,
+            "permutation": None if symm.permutation is None else list(symm.permutation),
+        },
+        "stability": stability_doc(props.stability),
+        "error_constant": error_constant_doc(error_constant(res)),
+    }
+
+
+def _verdict_text(pv) -> Text:
+    label = pv.label()
+    t = Text(label, style=STYLE.get(pv.verdict.state, ""))
+    t.append(f" — {pv.reason}", style="")
+    return t
+
+
+def property_rows(res) -> list[tuple[str, Text | str]]:
+    """Rows for the ``verify`` report (label, value)."""
+    rows: list[tuple[str, Text | str]] = []
+    ec = error_constant(res)
+    if ec is not None:
+        n = ec.conditions
+        o = str(ec.order).translate(_SUP)
+        o1 = str(ec.order + 1).translate(_SUP)
+        rows.append((
+            "error constant",
+            f"C = {ec.text()}, the Euclidean norm of the {n} residual{'s' if n != 1 else ''} of order {ec.order} "
+            f"(ΔH = h{o} Σ R(t̄)F_t̄(H) + O(h{o1}))",
+        ))
+    props = res.properties
+    if props is None:
+        return rows
+    rows.append(("symplectic", _verdict_text(props.symplectic)))
+    rows.append(("symmetric", _verdict_text(props.symmetric)))
+    stab = props.stability
+    rows.append(("stability", f"{stab.text()};  {stab.defect_text()}"))
+    return rows
+
+
+def stability_line(stab: StabilityFunction) -> str:
+    """``R(z) = …`` and ``R(z)R(−z) − 1`` on one line (for ``show``)."""
+    return f"{stab.text()};  {stab.defect_text()}"
+
+
+def tableau_stability(tab, decimals: str = "auto", dps: int = 50) -> StabilityFunction:
+    """R(z) of a tableau without running a check (for ``show``): exact when the tableau
+    is, else from enclosures at ``dps`` digits."""
+    from rkcheck.energy.stability import stability_function
+    from rkcheck.numbers.precision import entry_bits
+
+    values = sc.exact_values_or_none(tab, decimals)
+    if values is None:
+        A, b = tab.enclosures(entry_bits(dps), decimals)
+        values = sc.values_from_enclosures(A, b, False)
+    return stability_function(*values)
+
+
+def leading_term_text(stab: StabilityFunction) -> str:
+    if stab.leading_power is None:
+        return "0"
+    return monomial_text(stab.leading_coefficient, stab.leading_power)
+
+
+def constant_cell(ec: ErrorConstant | None) -> str:
+    """A short catalogue cell: ``C`` to 3 digits, or ``—``."""
+    if ec is None:
+        return "—"
+    return decimal_string(ec.value, 3) if ec.value else "0"

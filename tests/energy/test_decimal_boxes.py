@@ -1,0 +1,195 @@
+"""Decimal tableaux as one box of inputs (definitions §5.2), the three decimals modes and
+the proof gate (§5.3), against values derived independently:
+
+* the residuals on the box come from the brute-force reference (``reference``: exact
+  Fractions, SPEC §3), evaluated at the box's corners, centre and random points;
+* the 1-stage case ``A = [[1/2]]``: by hand, ``R([τ²]) = (Σb)²/2 − bᵀc = b(b − 1)/2`` (for
+  one stage c = 1/2, so ``bᵀc = b/2``);
+* RK4's classical order 4 (Kutta 1901) and energy order 4 for general H (its conditions
+  at five vertices fail: Hairer–Lubich–Wanner, and the engine's exact check);
+* the binary64 rounding interval from Python's own ``math.nextafter``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import random
+from decimal import Decimal
+from fractions import Fraction
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from support import reference as ref
+from support.clirun import run_subprocess
+
+from rkcheck.energy.check import check
+from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.grammar import double_interval, parse
+from rkcheck.options import CheckOptions
+
+
+def _write(tmp_path, name: str, doc: dict) -> str:
+    p = tmp_path / name
+    p.write_text(json.dumps(doc))
+    return str(p)
+
+
+def _json(run) -> dict:
+    assert run.code in (0, 1), run.err
+    return json.loads(run.out)
+
+
+# ------------------------------------------------------------------ literal intervals
+
+
+@pytest.mark.parametrize("x", [1 / 6, 1 / 3, 0.1, 2.0**-30, 1e300, 1.0, 3.0])
+def test_double_interval_is_the_set_of_reals_rounding_to_the_double(x):
+    lo, hi = double_interval(Fraction(repr(x)))
+    below, above = Fraction(math.nextafter(x, -math.inf)), Fraction(math.nextafter(x, math.inf))
+    assert lo == (Fraction(x) + below) / 2 and hi == (Fraction(x) + above) / 2
+    # just inside rounds to x, just outside does not (ties aside, float() rounds correctly)
+    eps = (hi - lo) / 10**6
+    assert float(lo + eps) == x and float(hi - eps) == x
+    assert float(lo - eps) != x and float(hi + eps) != x
+
+
+def test_auto_covers_the_double_only_for_shortest_reprs():
+    sixth = parse("0.16666666666666666")  # repr(1/6)
+    lo, hi = sixth.interval("auto")
+    assert lo <= Fraction(1, 6) <= hi  # the double's interval contains 1/6
+    lo_r, hi_r = sixth.interval("rounded")
+    assert hi_r < Fraction(1, 6)  # 1/6 − 0.16666666666666666 = 6.7e-18 > half a unit, 5e-18
+    longer = parse("0.166666666666666666666")  # not a double's shortest repr: half-unit only
+    assert longer.interval("auto") == longer.interval("rounded")
+    assert parse("0.5").interval("auto") is None and parse("0.5").interval("float64") is not None
+    assert parse("0.0").interval("float64") is None  # zero keeps the structure exact
+
+
+# ------------------------------------------------------------------ the issue's cases
+
+
+def test_b_close_to_one_fails_on_the_whole_box(tmp_path):
+    path = _write(tmp_path, "b.json", {"tableau": {"A": [["1/2"]], "b": ["0.9999999999"]}})
+    # by hand: R = b(b − 1)/2 on b ∈ [0.99999999985, 0.99999999995]: both ends negative
+    h = Fraction(1, 2 * 10**10)
+    for b in (Fraction("0.9999999999") - h, Fraction("0.9999999999") + h):
+        assert b * (b - 1) / 2 < 0
+    doc = _json(run_subprocess("verify", path, "--degree", "2", "--order", "4", "--format", "json"))
+    assert doc["summary"]["verdict"] == "fails"
+    assert doc["summary"]["inconsistent"] is True
+    assert doc["summary"]["first_failure"]["id"] == "1,2,2"
+    row = next(c for c in doc["conditions"] if c["id"] == "1,2,2")
+    assert row["state"] == "fails"
+
+
+def test_rk4_from_json_dumps_keeps_order_four(tmp_path):
+    A = [[0, 0, 0, 0], [0.5, 0, 0, 0], [0, 0.5, 0, 0], [0, 0, 1.0, 0]]
+    b = [1 / 6, 1 / 3, 1 / 3, 1 / 6]
+    path = tmp_path / "rk4.json"
+    path.write_text(json.dumps({"tableau": {"A": A, "b": b}}))  # 0.16666666666666666, ...
+    doc = _json(run_subprocess("verify", str(path), "--order", "5", "--format", "json"))
+    s = doc["summary"]
+    assert s["classical_order"] == 4
+    assert s["energy_order"] == 4
+    held = [c for c in doc["conditions"] if c["order"] <= 4]
+    assert held and all(c["state"] == "holds to digits" or c["digits"] for c in held)
+    assert 14 <= s["per_order"][0]["min_digits"] <= 17
+    rounded = _json(run_subprocess("verify", str(path), "--order", "5", "--decimals", "rounded", "--format", "json"))
+    assert rounded["summary"]["classical_order"] == 3  # half a unit of the 17th digit excludes 1/6
+
+
+def test_six_digit_gauss2_is_not_called_a_certificate(tmp_path):
+    r3 = 3**0.5 / 6
+    A = [[f"{0.25:.6f}", f"{0.25 - r3:.6g}"], [f"{0.25 + r3:.6g}", f"{0.25:.6f}"]]
+    path = _write(tmp_path, "g2.json", {"tableau": {"A": A, "b": ["0.500000", "0.500000"]}})
+    run = run_subprocess("verify", path, "--degree", "2", "--order", "6")
+    assert run.code == 0
+    last = run.out.strip().splitlines()
+    text = " ".join(last[-3:])
+    assert "OK to" in text and "not a proof" in text and "certificate" not in text
+    gate = run_subprocess("verify", path, "--degree", "2", "--order", "6", "--require", "proof")
+    assert gate.code == 1 and "--require proof" in gate.out
+    assert run_subprocess("verify", path, "--degree", "2", "--order", "6", "--require", "digits:3").code == 0
+    assert run_subprocess("verify", path, "--degree", "2", "--order", "6", "--require", "digits:30").code == 1
+
+
+def test_require_proof_passes_exact_tableaux(tmp_path):
+    path = _write(tmp_path, "mid.json", {"tableau": {"A": [["1/2"]], "b": ["1"]}})
+    run = run_subprocess("verify", path, "--degree", "2", "--order", "6", "--require", "proof")
+    assert run.code == 0
+
+
+@pytest.mark.parametrize("bad", ["maybe", "digits:", "digits:0", "digits:x", "proof:3"])
+def test_require_rejects_bad_values_in_one_line(tmp_path, bad):
+    path = _write(tmp_path, "mid.json", {"tableau": {"A": [["1/2"]], "b": ["1"]}})
+    run = run_subprocess("verify", path, "--require", bad)
+    assert run.code == 2 and len(run.err.strip().splitlines()) == 1 and "Traceback" not in run.err
+
+
+# ------------------------------------------------------------------ box soundness
+
+
+def _reference_conditions(max_vertices: int, degree: int):
+    out = []
+    for n in range(3, max_vertices + 1):
+        for cond in ref.energy_conditions(n, degree):
+            keys = {ref.canonicalize(u) for u, *_ in cond["terms"]}
+            out.append((keys, cond))
+    return out
+
+
+REFERENCE = _reference_conditions(5, 3)
+
+
+def _decimal(x: Fraction, digits: int) -> str:
+    if x == 0:
+        return "0"
+    e = math.floor(math.log10(abs(float(x))))
+    q = round(x * Fraction(10) ** (digits - 1 - e))
+    return format(Decimal(q).scaleb(e - digits + 1), "f")  # exactly `digits` significant digits
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 10**9), digits=st.integers(6, 9))
+def test_box_verdicts_hold_at_every_point_of_the_box(seed, digits):
+    rng = random.Random(seed)
+    # near a consistent method, so that conditions are small and the box matters
+    b0 = Fraction(rng.randint(1, 11), 12)
+    b = [b0, 1 - b0]
+    if seed % 2:  # AVF over a 2-point rule (A = c bᵀ): its low conditions vanish exactly
+        c = [Fraction(rng.randint(-12, 12), rng.randint(1, 12)) for _ in range(2)]
+        A = [[ci * bj for bj in b] for ci in c]
+    else:
+        A = [[Fraction(rng.randint(-12, 12), rng.randint(1, 12)) for _ in range(2)] for _ in range(2)]
+    texts_A = [[_decimal(x, digits) for x in row] for row in A]
+    texts_b = [_decimal(x, digits) for x in b]
+    tab = Tableau.from_values(texts_A, texts_b)
+    if not tab.is_box("auto"):
+        return
+    res = check(tab, CheckOptions(degree=3, order=4))
+    centre_A = [[Fraction(t) for t in row] for row in texts_A]
+    centre_b = [Fraction(t) for t in texts_b]
+    boxes = [(e.enclosure(200, "auto").lo, e.enclosure(200, "auto").hi) for row in tab.A for e in row]
+    boxes += [(e.enclosure(200, "auto").lo, e.enclosure(200, "auto").hi) for e in tab.b]
+    points = [list(corner) for corner in itertools.product(*boxes)]
+    points.append([x for row in centre_A for x in row] + centre_b)
+    for _ in range(4):
+        points.append([lo + (hi - lo) * Fraction(rng.randint(0, 1000), 1000) for lo, hi in boxes])
+    states = set()
+    for r in res.results:
+        states.add(r.verdict.state)
+        key = ref.canonicalize(r.condition.level_sequence)
+        cond = next(c for keys, c in REFERENCE if key in keys)
+        values = []
+        for p in points:
+            Ap = [p[0:2], p[2:4]]
+            values.append(ref.energy_residual(cond, Ap, p[4:6]))
+        if r.verdict.state == FAILS:
+            assert all(v > 0 for v in values) or all(v < 0 for v in values), r.condition.id
+        elif r.verdict.state == HOLDS_TO_DIGITS:
+            assert all(abs(v) <= Fraction(1, 10**r.verdict.digits) for v in values), r.condition.id
