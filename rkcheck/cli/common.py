@@ -264,17 +264,58 @@ def rational_option(text: str, place: str):
     return Fraction(e.exact)
 
 
+def check_output_target(output: str | None) -> None:
+    """Refuse, before any work, an output file whose folder does not exist or is a file
+    (rather than after a whole scan)."""
+    if not output or output == "-":
+        return
+    from pathlib import Path
+
+    target = Path(output)
+    folder = target.resolve().parent if target.is_symlink() else (target.parent if str(target.parent) else Path("."))
+    if not folder.is_dir():
+        raise UserError("cannot write the report: its folder does not exist", source=output)
+    if target.is_dir():
+        raise UserError("cannot write the report: is a directory", source=output)
+
+
 def write_text(text: str, output: str | None) -> None:
-    """Write a report to stdout (no output or ``-``) or, atomically, to a file."""
+    """Write a report to stdout (no output or ``-``) or to a file.
+
+    A regular file (or a new one) is replaced atomically: written to a temporary file in
+    the same folder with the permissions the umask gives, then renamed, so a reader never
+    sees half a report.  A symbolic link is followed (its target is replaced, the link
+    stays); anything else that exists and is not a regular file (``/dev/null``, a FIFO, a
+    terminal) is written to directly, never replaced.
+    """
     if not output or output == "-":
         click.echo(text, nl=False)
         return
     import os
+    import stat
     import tempfile
     from pathlib import Path
 
-    target = Path(output)
-    fd, tmp = tempfile.mkstemp(dir=target.parent if str(target.parent) else ".", prefix=".rkcheck-", suffix=".tmp")
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    os.replace(tmp, target)
+    target = Path(os.path.realpath(output))
+    try:
+        mode = target.stat().st_mode
+    except FileNotFoundError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode):
+        with open(target, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        return
+    umask = os.umask(0)
+    os.umask(umask)
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")
+    try:
+        os.fchmod(fd, (stat.S_IMODE(mode) if mode is not None else 0o666 & ~umask))
+        with os.fdopen(fd, "w", encoding="utf-8", errors="surrogateescape") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
