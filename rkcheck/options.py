@@ -27,6 +27,11 @@ DEFAULT_MAX_STAGES = 64
 #: resource guard from exact condition counts (rkcheck.energy.budget): order 20 needs
 #: about 2 GB, order 24 about 140 GB.
 MAX_ORDER = 30
+#: The highest degree bound m any source accepts.  Conditions up to order N never need
+#: m > N (a free tree with N+1 vertices has degrees <= N); the AVF and line-integral
+#: certificates build quadrature rules exact to degree about m, whose cost grows
+#: quadratically (m = 5000 took 40 s).
+MAX_DEGREE = 200
 #: Working precisions any source accepts (decimal digits).
 DPS_RANGE = (10, 5000)
 #: Energy orders any source accepts.
@@ -78,8 +83,10 @@ def parse_degree(value: Any, place: str, source: str | None = None) -> int | Non
         return None
     if isinstance(value, str) and value.strip().isdigit():
         value = int(value)
-    if _is_int(value) and value >= 1:
+    if _is_int(value) and 1 <= value <= MAX_DEGREE:
         return value
+    if _is_int(value) and value > MAX_DEGREE:
+        raise UserError(f"expected a degree from 1 to {MAX_DEGREE} or 'none', got {_shown(value)}", place, source)
     raise UserError(f"expected a positive integer or 'none', got {_shown(value)}", place, source)
 
 

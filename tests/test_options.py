@@ -25,6 +25,7 @@ MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
         ("dps", 10_000_000, f"expected an integer from {DPS_RANGE[0]} to {DPS_RANGE[1]}, got 10000000"),
         ("dps", "1e7", f"expected an integer from {DPS_RANGE[0]} to {DPS_RANGE[1]}, got '1e7'"),
         ("degree", 0, "expected a positive integer or 'none', got 0"),
+        ("degree", 201, "expected a degree from 1 to 200 or 'none', got 201"),
         ("decimals", "round", "expected one of 'rounded', 'exact', got 'round'"),
     ],
 )
@@ -68,6 +69,7 @@ def test_file_check_table_is_refused_like_the_command_line(tmp_path, capsys, che
 def test_command_line_refuses_the_same_order_and_dps(tmp_path, capsys):
     f = tmp_path / "t.toml"
     f.write_text(MIDPOINT, encoding="utf-8")
-    for args in (["--order", str(MAX_ORDER + 1)], ["--dps", "1"], ["--dps", str(DPS_RANGE[1] + 1)]):
+    for args in (["--order", str(MAX_ORDER + 1)], ["--dps", "1"], ["--dps", str(DPS_RANGE[1] + 1)],
+                 ["--degree", "5001"]):
         r = run_cli(capsys, "verify", str(f), *args)
         assert r.code == 2 and r.err.count("\n") == 1, args

@@ -19,6 +19,7 @@ from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     DPS_RANGE,
     FAIL_ON,
+    MAX_DEGREE,
     MAX_ORDER,
     parse_degree,
 )
@@ -36,7 +37,7 @@ class DegreeType(click.ParamType):
         try:
             return parse_degree(value, "degree")
         except UserError:
-            self.fail(f"{value!r} is not a degree (a positive integer or 'none')", param, ctx)
+            self.fail(f"{value!r} is not a degree (an integer from 1 to {MAX_DEGREE}, or 'none')", param, ctx)
 
 
 DEGREE = DegreeType()
@@ -77,12 +78,23 @@ def stdout_console():
     return make_console(settings())
 
 
+def _stderr_is_terminal() -> bool:
+    import sys
+
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 @contextmanager
 def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
     """A rich progress bar on stderr driven by ``update(done, total)`` (hidden when stderr
     is not a terminal or --quiet); it disappears when the work is done."""
     console = make_console(settings(), stderr=True)
-    if settings().quiet or not console.is_terminal:
+    # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
+    # terminal, and a progress bar in a log file is noise
+    if settings().quiet or not _stderr_is_terminal():
         yield lambda done, total: None
         return
     from rich.progress import (
@@ -103,7 +115,9 @@ def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
 def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
     console = make_console(settings(), stderr=True)
-    if settings().quiet or not console.is_terminal:
+    # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
+    # terminal, and a progress bar in a log file is noise
+    if settings().quiet or not _stderr_is_terminal():
         yield lambda: None
         return
     from rich.progress import (
