@@ -32,6 +32,9 @@ MAX_ORDER = 30
 #: certificates build quadrature rules exact to degree about m, whose cost grows
 #: quadratically (m = 5000 took 40 s).
 MAX_DEGREE = 200
+#: The most stages of a generated family (``rkcheck new``, ``[family]``): beyond it the
+#: quadrature nodes take minutes (Gauss s = 20: about 50 s) or fail (s = 60).
+MAX_FAMILY_STAGES = 20
 #: Working precisions any source accepts (decimal digits).
 DPS_RANGE = (10, 5000)
 #: Energy orders any source accepts.

@@ -16,6 +16,7 @@ from rkcheck.cli.common import (
 )
 from rkcheck.errors import UserError
 from rkcheck.methods.families import FAMILIES
+from rkcheck.options import MAX_FAMILY_STAGES
 
 
 def _command_line(spec, mode: str, digits: int | None) -> str:
@@ -39,8 +40,9 @@ def _command_line(spec, mode: str, digits: int | None) -> str:
 
 @click.command()
 @click.argument("family", metavar="FAMILY", type=click.Choice(FAMILIES))
-@click.option("--stages", "-s", "s", type=click.IntRange(1, 64), default=None, help="Number of stages s.")
-@click.option("-k", "k", type=click.IntRange(1, 64), default=None, help="HBVM: number of Gauss nodes k (>= s).")
+@click.option("--stages", "-s", "s", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None, help="Number of stages s.")
+@click.option("-k", "k", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None,
+              help="HBVM: number of Gauss nodes k (>= s).")
 @click.option("--rule", default="gauss", show_default=True,
               help="AVF: quadrature rule gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
 @click.option("--zeta", default="0", show_default=True, help="kernel: the rule parameter ζ (nodes = zeros of P_2 − ζP_1).")

@@ -89,7 +89,10 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     tab = load_tableau(file)
     deg, N = _degree_and_order(tab)
     D, desc = make_direction(tab, direction, deg, seed)
-    res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, dps_list(dps_text))
+    eps = parse_eps(eps_text)
+    if not eps or any(not 0 < e <= 1 for e in eps):  # log10(ε) and float radii need 0 < ε <= 1
+        raise UserError(f"every ε must be in (0, 1], got {eps_text!r}", "--eps")
+    res = perturb_sweep(tab, D, desc, eps, deg, N, dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart

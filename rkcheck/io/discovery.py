@@ -25,7 +25,9 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
         p = Path(raw)
         if p.is_dir():
             for f in sorted(p.rglob("*")):
-                if f.is_file() and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
+                # a dangling link or a link loop is kept: it becomes an error row, not a
+                # silently missing file (issue 16)
+                if (f.is_file() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)
         elif p.exists() or raw == "-":

@@ -154,3 +154,18 @@ def test_output_targets_are_respected(tmp_path, capsys):
     # a missing folder is refused before any work
     r = run_cli(capsys, "scan", str(src), "--jobs", "1", "-o", str(tmp_path / "nope" / "r.json"))
     assert r.code == 2 and r.err == f"rkcheck: error: {tmp_path / 'nope' / 'r.json'}: cannot write the report: its folder does not exist\n"
+
+
+def test_dangling_links_and_link_loops_are_error_rows(tmp_path, capsys):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    (folder / "b-dangling.toml").symlink_to(folder / "missing.toml")
+    (folder / "c-loop.toml").symlink_to(folder / "c-loop.toml")
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1", "--format", "json", "--degree", "2", "--order", "3")
+    doc = json.loads(r.out)
+    rows = [(Path(f["file"]).name, f["status"]) for f in doc["files"]]
+    assert rows == [("a.toml", "ok"), ("b-dangling.toml", "error"), ("c-loop.toml", "error")]
+    assert doc["files"][1]["error"].endswith("no such file")
+    assert "Too many levels of symbolic links" in doc["files"][2]["error"]
+    assert r.code == 1

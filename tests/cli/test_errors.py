@@ -125,3 +125,33 @@ def test_residuals_longer_than_4300_digits_are_printed(tmp_path):
     r = run_subprocess("verify", path, "--decimals", "exact", "--order", "6", "--format", "json")
     assert r.code in (0, 1), r.err
     json.loads(r.out)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["new", "gauss", "-s", "64"], "Invalid value for '--stages' / '-s': 64 is not in the range 1<=x<=20"),
+        (["new", "hbvm", "-k", "64", "-s", "2"], "Invalid value for '-k': 64 is not in the range 1<=x<=20"),
+        (["perturb", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--direction", "random", "--eps", "-1"],
+         "--eps: every ε must be in (0, 1], got '-1'"),
+        (["perturb", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--direction", "random", "--eps", "1e300"],
+         "--eps: every ε must be in (0, 1], got '1e300'"),
+    ],
+)
+def test_command_options_out_of_range_are_one_line(capsys, args, message):
+    r = run_cli(capsys, *args)
+    assert r.code == 2 and len(r.err.splitlines()) == 1 and message in r.err, r.err
+
+
+def test_family_stages_are_bounded_in_files_too(tmp_path, capsys):
+    path = write(tmp_path, "f.toml", '[family]\nname = "gauss"\ns = 64\n')
+    one_line_exit_2(run_cli(capsys, "verify", path), path, "family.s: at most 20, got 64")
+
+
+def test_explain_names_indices_past_sixteen_vertices(capsys):
+    # a path with 21 vertices, shown rooted at its centre: the root and 9 inner vertices on
+    # each side get an index (the two ends are c_x factors): 19 indices, the 16 letters
+    # then i17, i18, i19
+    r = run_cli(capsys, "explain", ",".join(str(i) for i in range(1, 22)))
+    assert r.code == 0, r.err
+    assert "i19" in r.out and "i20" not in r.out
