@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import signal
 import sys
+import warnings
 
 import click
 
@@ -87,7 +88,13 @@ def main(argv: list[str] | None = None) -> None:
     previous = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
     install_signal_handlers()
     try:
-        _run(argv)
+        with warnings.catch_warnings():
+            # numpy's "overflow encountered" is how a float radius becomes inf, which the
+            # certified arithmetic reads as "no claim" (and then refuses or raises the
+            # precision): an expected event, not a message for the user (issue 16)
+            warnings.filterwarnings("ignore", message="overflow encountered", category=RuntimeWarning)
+            warnings.filterwarnings("ignore", message="invalid value encountered", category=RuntimeWarning)
+            _run(argv)
     finally:
         import threading
 
