@@ -73,3 +73,21 @@ def test_command_line_refuses_the_same_order_and_dps(tmp_path, capsys):
                  ["--degree", "5001"]):
         r = run_cli(capsys, "verify", str(f), *args)
         assert r.code == 2 and r.err.count("\n") == 1, args
+
+
+@pytest.mark.parametrize(
+    "claim, message",
+    [
+        ("classical_order = 100000", "expect.classical_order: expected an integer from 0 to 29, got 100000"),
+        ("energy_order = {degree = 2, value = 100000}",
+         "expect.energy_order.value: expected an integer from 1 to 29, got 100000"),
+        ("energy_order = {degree = 2, value = 3, order = 99999}",
+         "expect.energy_order.order: expected an integer from 1 to 30, got 99999"),
+    ],
+)
+def test_claims_cannot_ask_for_orders_past_the_limit(tmp_path, capsys, claim, message):
+    # judging a claim of order N checks order N + 1: the claim is bounded by MAX_ORDER - 1
+    f = tmp_path / "t.toml"
+    f.write_text(MIDPOINT + "[expect]\n" + claim + "\n", encoding="utf-8")
+    r = run_cli(capsys, "verify", str(f))
+    assert r.code == 2 and r.err == f"rkcheck: error: {f}: {message}\n"
