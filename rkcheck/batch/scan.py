@@ -50,8 +50,10 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
-              max_stages: int = DEFAULT_MAX_STAGES) -> FileOutcome:
-    """Check one file; never raises for a bad file (it becomes an ``error`` outcome)."""
+              max_stages: int = DEFAULT_MAX_STAGES, budget=None) -> FileOutcome:
+    """Check one file; never raises for a bad file (it becomes an ``error`` outcome).
+    ``budget`` (:class:`rkcheck.energy.budget.Budget`) refuses a file whose own
+    ``[check]`` asks for more than fits: that file's row says so."""
     from rkcheck.energy.claims import judge_tableau
     from rkcheck.io.loader import (
         build_tableau,
@@ -76,7 +78,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             return out
         tab = build_tableau(data, path, max_stages)
         tab.lines = out.lines
-        out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on)
+        out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
         out.status = "failed" if failed else "ok"
     except UserError as err:
         out.error = str(err.located(source=path) if not err.source else err)
@@ -94,7 +96,8 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
 # ------------------------------------------------------------------- workers
 
 
-def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: str, max_stages: int) -> None:
+def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: str, max_stages: int,
+                 budget=None) -> None:
     """One worker: check the files the parent sends, one at a time, until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C ...
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ... and stops us with SIGTERM
@@ -106,7 +109,7 @@ def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: 
         if task is None:
             return
         index, path = task
-        outcome = scan_file(path, flags, project, fail_on, max_stages)
+        outcome = scan_file(path, flags, project, fail_on, max_stages, budget)
         try:
             conn.send((index, outcome))
         except (EOFError, OSError):
@@ -151,15 +154,17 @@ def run_scan(
     jobs: int,
     max_stages: int = DEFAULT_MAX_STAGES,
     on_result: Callable[[FileOutcome], None] = lambda r: None,
+    budget=None,
 ) -> tuple[list[FileOutcome], bool]:
     """All outcomes in input order, and whether the scan was interrupted (Ctrl-C or
-    SIGTERM: then the outcomes are those that finished, still in input order)."""
+    SIGTERM: then the outcomes are those that finished, still in input order).
+    ``budget`` goes to every file's check (see :func:`scan_file`)."""
     jobs = max(1, min(jobs, len(files)))  # never more workers than files
     if jobs <= 1:
         results: list[FileOutcome] = []
         try:
             for f in files:
-                r = scan_file(f, flags, project, fail_on, max_stages)
+                r = scan_file(f, flags, project, fail_on, max_stages, budget)
                 results.append(r)
                 on_result(r)
         except KeyboardInterrupt:
@@ -177,7 +182,8 @@ def run_scan(
 
     def start_worker() -> _Worker:
         parent_end, child_end = ctx.Pipe()
-        proc = ctx.Process(target=_worker_main, args=(child_end, flags, project, fail_on, max_stages), daemon=True)
+        proc = ctx.Process(target=_worker_main, args=(child_end, flags, project, fail_on, max_stages, budget),
+                           daemon=True)
         proc.start()
         child_end.close()
         worker = _Worker(proc, parent_end)

@@ -213,6 +213,20 @@ def budget(max_conditions: int | None):
     return Budget(available_memory(), max_conditions, announce)
 
 
+def guard(order: int, degree: int | None, runs: int = 1) -> None:
+    """The resource guard for commands that run checks without a budget of their own
+    (bench, perturb, catalog): refuse, in one line with exit 2, an order whose condition
+    tables would not fit in the available memory (issue 16: the guard applies to every
+    command).  ``runs`` is how many checks the command makes, for the announcement."""
+    from rkcheck.energy.budget import Budget, check_budget, estimate
+    from rkcheck.io.machine import available_memory
+
+    est = estimate(order, degree, "exact")
+    announce = None if settings().quiet or runs <= 0 else (
+        lambda text: click.echo(f"rkcheck: {text}" + (f", {runs} times" if runs > 1 else ""), err=True))
+    check_budget(est, Budget(available_memory(), None, announce), order)
+
+
 def fail_on_option(f: Callable) -> Callable:
     return click.option(
         "--fail-on", type=click.Choice(FAIL_ON), default=None,

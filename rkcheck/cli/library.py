@@ -9,6 +9,7 @@ import click
 
 from rkcheck.cli.common import (
     DEGREE,
+    guard,
     order_option,
     output_options,
     progress,
@@ -110,6 +111,7 @@ def catalog(paths, degrees, order, output) -> None:
     from rkcheck.reports.markdown import catalog_markdown
 
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
+    guard(order, None if None in degs else max(degs), runs=0)  # the resource guard (issue 16)
     files = find_tableau_files(list(paths), exclude=["README*", "*/README*"])
     root = Path(paths[0]) if len(paths) == 1 and Path(paths[0]).is_dir() else None
     rows = []

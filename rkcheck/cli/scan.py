@@ -23,7 +23,7 @@ from rkcheck.cli.common import (
 )
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
-from rkcheck.options import SCAN_FORMATS
+from rkcheck.options import DEFAULT_ORDER, SCAN_FORMATS
 
 
 @click.command()
@@ -64,6 +64,15 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     fmt = fmt or config.format or "text"
     fail_on = fail_on or config.fail_on or "claims"
     jobs = jobs or config.jobs or default_jobs()
+    from rkcheck.energy.budget import Budget, check_budget, estimate
+    from rkcheck.io.machine import available_memory
+
+    # the resource guard (issue 16): the scan's default options must fit before the tables
+    # are built; each file's own [check] is judged against the same budget (an error row)
+    files_budget = Budget(available_memory(), max_conditions, None)
+    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
+    default_degree = flags.get("degree", config.check.get("degree"))
+    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
     t0 = time.perf_counter()
     outcomes, interrupted, files = [], False, []
     try:
@@ -75,7 +84,8 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
                 advance()
                 announce(r)
 
-            outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result)
+            outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
+                                             files_budget)
     except KeyboardInterrupt:  # before or between files: the report still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0

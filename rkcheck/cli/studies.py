@@ -9,6 +9,7 @@ from rkcheck.cli.common import (
     dps_list,
     flag_values,
     load_tableau,
+    guard,
     order_option,
     output_options,
     stdout_console,
@@ -18,8 +19,10 @@ from rkcheck.options import DEFAULT_DPS, resolve_check_options
 
 
 def _degree_and_order(tab):
-    """--degree and --order, else the file's [check], else none and 8."""
+    """--degree and --order, else the file's [check], else none and 8 (refused when the
+    condition tables would not fit in memory: the resource guard)."""
     options = resolve_check_options(flag_values("degree", "order"), tab.check, {})
+    guard(options.order, options.degree, runs=0)
     return options.degree, options.order
 
 

@@ -10,6 +10,7 @@ import sys
 
 import pytest
 from support.clirun import run_cli, run_subprocess
+from support.guards import hang_guard
 from support.paths import TABLEAUX
 
 
@@ -155,3 +156,37 @@ def test_explain_names_indices_past_sixteen_vertices(capsys):
     r = run_cli(capsys, "explain", ",".join(str(i) for i in range(1, 22)))
     assert r.code == 0, r.err
     assert "i19" in r.out and "i20" not in r.out
+
+
+GUARDED = {
+    "bench": ["bench", str(TABLEAUX / "explicit" / "rk4.toml"), "--order", "30"],
+    "perturb": ["perturb", str(TABLEAUX / "explicit" / "rk4.toml"), "--direction", "random", "--order", "30"],
+    "catalog": ["catalog", str(TABLEAUX / "explicit"), "--order", "30"],
+    "scan": ["scan", str(TABLEAUX / "explicit"), "--order", "30", "--jobs", "1"],
+}
+
+
+@pytest.mark.parametrize("args", list(GUARDED.values()), ids=list(GUARDED))
+def test_the_resource_guard_applies_to_every_command(capsys, args):
+    # order 30 has 63 853 307 421 conditions (A000055 - A000081 summed to 31 vertices):
+    # tens of terabytes, refused before any table is built
+    with hang_guard(30):
+        r = run_cli(capsys, *args)
+    assert r.code == 2 and len(r.err.splitlines()) == 1, r.err
+    assert r.err.startswith("rkcheck: error: order 30 needs about") and "63 853 307 421 conditions" in r.err
+
+
+def test_a_file_asking_for_too_much_is_an_error_row_in_a_scan(tmp_path, capsys):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / "a-big.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n[check]\norder = 30\n', encoding="utf-8")
+    (folder / "b-ok.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    for jobs in ("1", "2"):
+        with hang_guard(60):
+            r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--order", "4")
+        doc = json.loads(r.out)
+        assert [f["status"] for f in doc["files"]] == ["ok", "ok"]  # --order 4 overrides [check]
+        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json")
+        doc = json.loads(r.out)
+        assert [f["status"] for f in doc["files"]] == ["error", "ok"], jobs
+        assert "order 30 needs about" in doc["files"][0]["error"]
