@@ -169,3 +169,23 @@ def test_dangling_links_and_link_loops_are_error_rows(tmp_path, capsys):
     assert doc["files"][1]["error"].endswith("no such file")
     assert "Too many levels of symbolic links" in doc["files"][2]["error"]
     assert r.code == 1
+
+
+@pytest.mark.parametrize("delay", [0.05, 0.15, 0.3, 0.5])
+def test_an_early_interrupt_is_quiet(tmp_path, delay):
+    # a Ctrl-C while Python and rkcheck are still starting: exit 130 (or, before Python
+    # installs its handler, the default death by SIGINT), never a traceback
+    import time
+
+    folder = dense_folder(tmp_path, 4)
+    out = tmp_path / "report.json"
+    proc = start_scan(folder, out)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    _, stderr = finish(proc)
+    if "init_import_site" in stderr:  # Python's own start-up, before any rkcheck code runs
+        return
+    assert proc.returncode in (130, -signal.SIGINT), (proc.returncode, stderr)
+    assert "Traceback" not in stderr
+    if out.exists():
+        assert json.loads(out.read_text())["interrupted"] is True
