@@ -66,6 +66,8 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     t0 = time.perf_counter()
     out = FileOutcome(path)
     try:
+        if os.path.isdir(path):  # discovery lists a folder only when it could not be read
+            raise UserError("cannot read this folder (permission denied?)", source=path)
         text = read_text(path)
         fmt = detect_format(path, text)
         try:

@@ -189,3 +189,27 @@ def test_an_early_interrupt_is_quiet(tmp_path, delay):
     assert "Traceback" not in stderr
     if out.exists():
         assert json.loads(out.read_text())["interrupted"] is True
+
+
+def test_unreadable_folders_are_reported_not_skipped(tmp_path, capsys, monkeypatch):
+    # simulated with os.scandir (the tests may run as root, who can read every folder)
+    folder = tmp_path / "in"
+    (folder / "locked").mkdir(parents=True)
+    (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    real_scandir = os.scandir
+    locked = {str(folder / "locked")}
+
+    def scandir(path="."):
+        if str(path) in locked:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real_scandir(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1", "--format", "json", "--degree", "2", "--order", "3")
+    doc = json.loads(r.out)
+    rows = [(Path(f["file"]).name, f["status"]) for f in doc["files"]]
+    assert rows == [("locked", "error"), ("a.toml", "ok")]
+    assert "cannot read this folder" in doc["files"][0]["error"] and r.code == 1
+    locked.add(str(folder))
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1")
+    assert r.code == 2 and r.err == f"rkcheck: error: {folder}: cannot read this folder (permission denied)\n"
