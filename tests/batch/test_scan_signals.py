@@ -107,10 +107,10 @@ def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch)
 
     real = rkcheck.energy.claims.judge_tableau
 
-    def buggy(tab, options, fail_on):
+    def buggy(tab, *args, **kwargs):
         if tab.source.endswith("t01.toml"):
             raise RuntimeError("simulated bug")
-        return real(tab, options, fail_on)
+        return real(tab, *args, **kwargs)
 
     monkeypatch.setattr(rkcheck.energy.claims, "judge_tableau", buggy)
     folder = tmp_path / "in"
