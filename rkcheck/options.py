@@ -12,6 +12,7 @@ This module is shared vocabulary: it imports nothing from rkcheck but the errors
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -26,8 +27,20 @@ DEFAULT_MAX_STAGES = 64
 #: resource guard from exact condition counts (rkcheck.energy.budget): order 20 needs
 #: about 2 GB, order 24 about 140 GB.
 MAX_ORDER = 30
-#: Working precisions the command line accepts.
+#: The highest degree bound m any source accepts.  Conditions up to order N never need
+#: m > N (a free tree with N+1 vertices has degrees <= N); the AVF and line-integral
+#: certificates build quadrature rules exact to degree about m, whose cost grows
+#: quadratically (m = 5000 took 40 s).
+MAX_DEGREE = 200
+#: The most stages of a generated family (``rkcheck new``, ``[family]``): beyond it the
+#: quadrature nodes take minutes (Gauss s = 20: about 50 s) or fail (s = 60).
+MAX_FAMILY_STAGES = 20
+#: Working precisions any source accepts (decimal digits).
 DPS_RANGE = (10, 5000)
+#: Energy orders any source accepts.
+ORDER_RANGE = (1, MAX_ORDER)
+#: Worker processes of ``scan`` any source accepts (never more than the files to check).
+JOBS_RANGE = (1, 256)
 
 #: Decimals modes (docs/definitions.md §5): 'rounded' (default) or 'exact' (face value).
 DECIMALS_MODES = ("auto", "rounded", "float64", "exact")
@@ -58,6 +71,13 @@ class CheckOptions:
         """D of ``digits:D`` (None for ``any`` and ``proof``)."""
         return int(self.require.split(":", 1)[1]) if self.require.startswith("digits:") else None
 
+    def __post_init__(self) -> None:
+        # the API is a source of options too: the same ranges and messages as the CLI
+        parse_degree(self.degree, "degree")
+        parse_int_in(self.order, ORDER_RANGE, "order")
+        parse_int_in(self.dps, DPS_RANGE, "dps")
+        parse_choice(self.decimals, DECIMALS_MODES, "decimals")
+
 
 # ------------------------------------------------------------------ single values
 
@@ -72,23 +92,48 @@ def parse_degree(value: Any, place: str, source: str | None = None) -> int | Non
         return None
     if isinstance(value, str) and value.strip().isdigit():
         value = int(value)
-    if _is_int(value) and value >= 1:
+    if _is_int(value) and 1 <= value <= MAX_DEGREE:
         return value
-    raise UserError(f"expected a positive integer or 'none', got {value!r}", place, source)
+    if _is_int(value) and value > MAX_DEGREE:
+        raise UserError(f"expected a degree from 1 to {MAX_DEGREE} or 'none', got {_shown(value)}", place, source)
+    raise UserError(f"expected a positive integer or 'none', got {_shown(value)}", place, source)
 
 
 def parse_positive(value: Any, place: str, source: str | None = None) -> int:
     """A positive integer (an order, a precision, a number of jobs)."""
     if _is_int(value) and value >= 1:
         return value
-    raise UserError(f"expected a positive integer, got {value!r}", place, source)
+    raise UserError(f"expected a positive integer, got {_shown(value)}", place, source)
+
+
+def parse_int_in(value: Any, bounds: tuple[int, int], place: str, source: str | None = None) -> int:
+    """An integer within ``bounds`` (inclusive): an order, a precision, a number of jobs."""
+    lo, hi = bounds
+    if _is_int(value) and lo <= value <= hi:
+        return value
+    raise UserError(f"expected an integer from {lo} to {hi}, got {_shown(value)}", place, source)
+
+
+def _shown(value: Any) -> str:
+    """A value for a message: short, one line (repr of a huge integer is refused by Python
+    past 4 300 digits, and would not be one line anyway)."""
+    if _is_int(value) and value.bit_length() > 128:
+        return f"an integer of about {int(value.bit_length() * 0.30103) + 1:,} digits"
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def nearest(name: str, known: tuple[str, ...]) -> str:
+    """`` (did you mean 'order'?)`` for a misspelt key, else ``""``."""
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def parse_choice(value: Any, choices: tuple[str, ...], place: str, source: str | None = None) -> str:
     if value in choices:
         return value
     names = ", ".join(f"'{c}'" for c in choices)
-    raise UserError(f"expected one of {names}, got {value!r}", place, source)
+    raise UserError(f"expected one of {names}, got {_shown(value)}", place, source)
 
 
 def parse_require(value: Any, place: str, source: str | None = None) -> str:
@@ -134,15 +179,17 @@ def validate_check_table(table: Mapping[str, Any], prefix: str = "check", source
         name = key.replace("-", "_")
         if name == "degree":
             out[name] = parse_degree(value, place, source)
-        elif name in ("order", "dps"):
-            out[name] = parse_positive(value, place, source)
+        elif name == "order":
+            out[name] = parse_int_in(value, ORDER_RANGE, place, source)
+        elif name == "dps":
+            out[name] = parse_int_in(value, DPS_RANGE, place, source)
         elif name == "decimals":
             out[name] = parse_choice(value, DECIMALS_MODES, place, source)
         elif name == "require":
             out[name] = parse_require(value, place, source)
         elif name not in extra_keys:
             known = ", ".join(CHECK_KEYS + extra_keys)
-            raise UserError(f"unknown key (known: {known})", place, source)
+            raise UserError(f"unknown key{nearest(name, CHECK_KEYS + extra_keys)} (known: {known})", place, source)
     return out
 
 

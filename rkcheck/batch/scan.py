@@ -50,8 +50,10 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
-              max_stages: int = DEFAULT_MAX_STAGES) -> FileOutcome:
-    """Check one file; never raises for a bad file (it becomes an ``error`` outcome)."""
+              max_stages: int = DEFAULT_MAX_STAGES, budget=None) -> FileOutcome:
+    """Check one file; never raises for a bad file (it becomes an ``error`` outcome).
+    ``budget`` (:class:`rkcheck.energy.budget.Budget`) refuses a file whose own
+    ``[check]`` asks for more than fits: that file's row says so."""
     from rkcheck.energy.claims import judge_tableau
     from rkcheck.io.loader import (
         build_tableau,
@@ -64,6 +66,8 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     t0 = time.perf_counter()
     out = FileOutcome(path)
     try:
+        if os.path.isdir(path):  # discovery lists a folder only when it could not be read
+            raise UserError("cannot read this folder (permission denied?)", source=path)
         text = read_text(path)
         fmt = detect_format(path, text)
         try:
@@ -76,12 +80,16 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             return out
         tab = build_tableau(data, path, max_stages)
         tab.lines = out.lines
-        out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on)
+        out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
         out.status = "failed" if failed else "ok"
     except UserError as err:
         out.error = str(err.located(source=path) if not err.source else err)
     except RecursionError:
         out.error = f"{path}: nesting too deep"
+    except MemoryError:
+        out.error = f"{path}: out of memory; lower --order or --degree"
+    except Exception as err:  # a bug: this file's row says so, the other files go on
+        out.error = f"{path}: internal error: {type(err).__name__}: {err} (a bug in rkcheck; please report it)"
     finally:
         out.time = round(time.perf_counter() - t0, 6)
     return out
@@ -89,16 +97,46 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
 
 # ------------------------------------------------------------------- workers
 
-_WORKER: dict[str, Any] = {}
+
+def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: str, max_stages: int,
+                 budget=None) -> None:
+    """One worker: check the files the parent sends, one at a time, until told to stop."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C ...
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ... and stops us with SIGTERM
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        index, path = task
+        outcome = scan_file(path, flags, project, fail_on, max_stages, budget)
+        try:
+            conn.send((index, outcome))
+        except (EOFError, OSError):
+            return
+        except Exception as err:  # the result cannot be pickled: still one row, not a lost worker
+            conn.send((index, FileOutcome(path, error=f"{path}: internal error: the result cannot be sent back "
+                                                     f"({type(err).__name__}: {err})", time=outcome.time)))
 
 
-def _init_worker(flags: dict[str, Any], project: dict[str, Any], fail_on: str, max_stages: int) -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
-    _WORKER.update(flags=flags, project=project, fail_on=fail_on, max_stages=max_stages)
+@dataclass
+class _Worker:
+    process: Any
+    conn: Any
+    task: tuple[int, str] | None = None
 
 
-def _work(path: str) -> FileOutcome:
-    return scan_file(path, _WORKER["flags"], _WORKER["project"], _WORKER["fail_on"], _WORKER["max_stages"])
+def _death_message(path: str, exitcode: int | None) -> str:
+    if exitcode is not None and exitcode < 0:
+        try:
+            how = f"was killed by {signal.Signals(-exitcode).name}"
+        except ValueError:
+            how = f"was killed by signal {-exitcode}"
+    else:
+        how = f"exited with code {exitcode}"
+    return f"{path}: the worker process checking this file {how} (out of memory?); the other files went on"
 
 
 def warm_tables(flags: dict[str, Any], project: dict[str, Any]) -> None:
@@ -118,13 +156,17 @@ def run_scan(
     jobs: int,
     max_stages: int = DEFAULT_MAX_STAGES,
     on_result: Callable[[FileOutcome], None] = lambda r: None,
+    budget=None,
 ) -> tuple[list[FileOutcome], bool]:
-    """All outcomes in input order, and whether the scan was interrupted (Ctrl-C)."""
-    results: list[FileOutcome] = []
-    if jobs <= 1 or len(files) <= 1:
+    """All outcomes in input order, and whether the scan was interrupted (Ctrl-C or
+    SIGTERM: then the outcomes are those that finished, still in input order).
+    ``budget`` goes to every file's check (see :func:`scan_file`)."""
+    jobs = max(1, min(jobs, len(files)))  # never more workers than files
+    if jobs <= 1:
+        results: list[FileOutcome] = []
         try:
             for f in files:
-                r = scan_file(f, flags, project, fail_on, max_stages)
+                r = scan_file(f, flags, project, fail_on, max_stages, budget)
                 results.append(r)
                 on_result(r)
         except KeyboardInterrupt:
@@ -132,23 +174,87 @@ def run_scan(
         return results, False
 
     import multiprocessing as mp
+    from multiprocessing.connection import wait
 
-    warm_tables(flags, project)
-    method = "fork" if "fork" in mp.get_all_start_methods() else None
-    ctx = mp.get_context(method)
-    pool = ctx.Pool(jobs, initializer=_init_worker, initargs=(flags, project, fail_on, max_stages))
+    done: dict[int, FileOutcome] = {}
+    workers: list[_Worker] = []
+    queue = list(enumerate(files))[::-1]  # pop() from the end = input order
     interrupted = False
+    ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
+
+    def start_worker() -> _Worker:
+        parent_end, child_end = ctx.Pipe()
+        proc = ctx.Process(target=_worker_main, args=(child_end, flags, project, fail_on, max_stages, budget),
+                           daemon=True)
+        proc.start()
+        child_end.close()
+        worker = _Worker(proc, parent_end)
+        workers.append(worker)
+        return worker
+
+    def finish(index: int, outcome: FileOutcome) -> None:
+        done[index] = outcome
+        on_result(outcome)
+
     try:
-        for r in pool.imap(_work, files, chunksize=1):
-            results.append(r)
-            on_result(r)
-        pool.close()
+        warm_tables(flags, project)
+        for _ in range(jobs):
+            start_worker()
+        while len(done) < len(files):
+            for w in workers:
+                if w.task is None and queue:
+                    w.task = queue.pop()
+                    try:
+                        w.conn.send(w.task)
+                    except (EOFError, OSError):
+                        pass  # died already: found below through its sentinel
+            busy = [w for w in workers if w.task is not None]
+            ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
+            for w in busy:
+                if w.conn not in ready and w.process.sentinel not in ready:
+                    continue
+                try:
+                    if w.conn.poll():
+                        index, outcome = w.conn.recv()
+                        w.task = None
+                        finish(index, outcome)
+                        continue
+                except (EOFError, OSError):
+                    pass
+                if w.process.is_alive():
+                    continue
+                # the worker died while holding w.task: that file is an error row, and a
+                # new worker takes the dead one's place
+                index, path = w.task
+                w.process.join()
+                finish(index, FileOutcome(path, error=_death_message(path, w.process.exitcode)))
+                w.conn.close()
+                workers.remove(w)
+                if queue:
+                    start_worker()
     except KeyboardInterrupt:
         interrupted = True
-        pool.terminate()
     finally:
-        pool.join()
-    return results, interrupted
+        _stop(workers)
+    return [done[i] for i in sorted(done)], interrupted
+
+
+def _stop(workers: list[_Worker]) -> None:
+    """Stop every worker: idle ones are told to, busy ones are terminated; none is left."""
+    for w in workers:
+        try:
+            if w.task is None:
+                w.conn.send(None)
+            else:
+                w.process.terminate()
+        except (EOFError, OSError, ValueError):
+            pass
+    for w in workers:
+        w.process.join(timeout=5)
+        if w.process.is_alive():
+            w.process.kill()
+            w.process.join()
+        w.conn.close()
 
 
 def default_jobs() -> int:

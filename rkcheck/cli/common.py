@@ -20,6 +20,7 @@ from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     DPS_RANGE,
     FAIL_ON,
+    MAX_DEGREE,
     MAX_ORDER,
     parse_degree,
     parse_require,
@@ -38,7 +39,7 @@ class DegreeType(click.ParamType):
         try:
             return parse_degree(value, "degree")
         except UserError:
-            self.fail(f"{value!r} is not a degree (a positive integer or 'none')", param, ctx)
+            self.fail(f"{value!r} is not a degree (an integer from 1 to {MAX_DEGREE}, or 'none')", param, ctx)
 
 
 DEGREE = DegreeType()
@@ -79,12 +80,23 @@ def stdout_console():
     return make_console(settings())
 
 
+def _stderr_is_terminal() -> bool:
+    import sys
+
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 @contextmanager
 def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
     """A rich progress bar on stderr driven by ``update(done, total)`` (hidden when stderr
     is not a terminal or --quiet); it disappears when the work is done."""
     console = make_console(settings(), stderr=True)
-    if settings().quiet or not console.is_terminal:
+    # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
+    # terminal, and a progress bar in a log file is noise
+    if settings().quiet or not _stderr_is_terminal():
         yield lambda done, total: None
         return
     from rich.progress import (
@@ -121,7 +133,9 @@ def busy(label: str) -> Iterator[None]:
 def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
     """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
     console = make_console(settings(), stderr=True)
-    if settings().quiet or not console.is_terminal:
+    # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
+    # terminal, and a progress bar in a log file is noise
+    if settings().quiet or not _stderr_is_terminal():
         yield lambda: None
         return
     from rich.progress import (
@@ -242,6 +256,20 @@ def budget(max_conditions: int | None):
     return Budget(available_memory(), max_conditions, announce)
 
 
+def guard(order: int, degree: int | None, runs: int = 1) -> None:
+    """The resource guard for commands that run checks without a budget of their own
+    (bench, perturb, catalog): refuse, in one line with exit 2, an order whose condition
+    tables would not fit in the available memory (issue 16: the guard applies to every
+    command).  ``runs`` is how many checks the command makes, for the announcement."""
+    from rkcheck.energy.budget import Budget, check_budget, estimate
+    from rkcheck.io.machine import available_memory
+
+    est = estimate(order, degree, "exact")
+    announce = None if settings().quiet or runs <= 0 else (
+        lambda text: click.echo(f"rkcheck: {text}" + (f", {runs} times" if runs > 1 else ""), err=True))
+    check_budget(est, Budget(available_memory(), None, announce), order)
+
+
 def fail_on_option(f: Callable) -> Callable:
     return click.option(
         "--fail-on", type=click.Choice(FAIL_ON), default=None,
@@ -307,17 +335,58 @@ def rational_option(text: str, place: str):
     return Fraction(e.exact)
 
 
+def check_output_target(output: str | None) -> None:
+    """Refuse, before any work, an output file whose folder does not exist or is a file
+    (rather than after a whole scan)."""
+    if not output or output == "-":
+        return
+    from pathlib import Path
+
+    target = Path(output)
+    folder = target.resolve().parent if target.is_symlink() else (target.parent if str(target.parent) else Path("."))
+    if not folder.is_dir():
+        raise UserError("cannot write the report: its folder does not exist", source=output)
+    if target.is_dir():
+        raise UserError("cannot write the report: is a directory", source=output)
+
+
 def write_text(text: str, output: str | None) -> None:
-    """Write a report to stdout (no output or ``-``) or, atomically, to a file."""
+    """Write a report to stdout (no output or ``-``) or to a file.
+
+    A regular file (or a new one) is replaced atomically: written to a temporary file in
+    the same folder with the permissions the umask gives, then renamed, so a reader never
+    sees half a report.  A symbolic link is followed (its target is replaced, the link
+    stays); anything else that exists and is not a regular file (``/dev/null``, a FIFO, a
+    terminal) is written to directly, never replaced.
+    """
     if not output or output == "-":
         click.echo(text, nl=False)
         return
     import os
+    import stat
     import tempfile
     from pathlib import Path
 
-    target = Path(output)
-    fd, tmp = tempfile.mkstemp(dir=target.parent if str(target.parent) else ".", prefix=".rkcheck-", suffix=".tmp")
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    os.replace(tmp, target)
+    target = Path(os.path.realpath(output))
+    try:
+        mode = target.stat().st_mode
+    except FileNotFoundError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode):
+        with open(target, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        return
+    umask = os.umask(0)
+    os.umask(umask)
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")
+    try:
+        os.fchmod(fd, (stat.S_IMODE(mode) if mode is not None else 0o666 & ~umask))
+        with os.fdopen(fd, "w", encoding="utf-8", errors="surrogateescape") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise

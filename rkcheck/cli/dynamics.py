@@ -81,7 +81,10 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
     y0 = start_point(ham)
     all_series = []
     for tab in tabs:
-        t, dH = energy_series(tab, ham, y0, h, steps, dps)
+        try:
+            t, dH = energy_series(tab, ham, y0, h, steps, dps)
+        except UserError as err:  # diverged, Newton failed: say which tableau
+            raise err.located(source=tab.source) from None
         render_series(tab, ham, h, steps, dps, t, dH, console)
         all_series.append((tab.name, t, dH))
     if chart:

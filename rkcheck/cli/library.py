@@ -9,6 +9,7 @@ import click
 
 from rkcheck.cli.common import (
     DEGREE,
+    guard,
     order_option,
     output_options,
     busy,
@@ -18,6 +19,7 @@ from rkcheck.cli.common import (
 from rkcheck.errors import UserError
 from rkcheck.methods.classics import NAMES as CLASSIC_NAMES
 from rkcheck.methods.families import FAMILIES
+from rkcheck.options import MAX_FAMILY_STAGES
 
 
 def _command_line(spec, mode: str, digits: int | None) -> str:
@@ -41,8 +43,9 @@ def _command_line(spec, mode: str, digits: int | None) -> str:
 
 @click.command()
 @click.argument("family", metavar="FAMILY|METHOD", type=click.Choice(FAMILIES + tuple(CLASSIC_NAMES)))
-@click.option("--stages", "-s", "s", type=click.IntRange(1, 64), default=None, help="Number of stages s.")
-@click.option("-k", "k", type=click.IntRange(1, 64), default=None, help="HBVM: number of Gauss nodes k (>= s).")
+@click.option("--stages", "-s", "s", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None, help="Number of stages s.")
+@click.option("-k", "k", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None,
+              help="HBVM: number of Gauss nodes k (>= s).")
 @click.option("--rule", default="gauss", show_default=True,
               help="AVF: quadrature rule gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
 @click.option("--zeta", default="0", show_default=True, help="kernel: the rule parameter ζ (nodes = zeros of P_2 − ζP_1).")
@@ -135,6 +138,7 @@ def catalog(paths, degrees, order, output) -> None:
         paths = (str(root_dir),)
 
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
+    guard(order, None if None in degs else max(degs), runs=0)  # the resource guard (issue 16)
     files = find_tableau_files(list(paths), exclude=["README*", "*/README*"])
     root = Path(paths[0]) if len(paths) == 1 and Path(paths[0]).is_dir() else None
     rows = []

@@ -3,7 +3,10 @@ one line on stderr and an exit code (0 ok, 1 fail, 2 user error, 3 bug, 130 inte
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
+import warnings
 
 import click
 
@@ -21,6 +24,7 @@ from rkcheck.cli.library import catalog, new
 from rkcheck.cli.scan import scan
 from rkcheck.cli.studies import bench, kernel, perturb
 from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
@@ -45,45 +49,114 @@ for command in (verify, show, conditions, explain, new, scan, catalog, bench, pe
     cli.add_command(command)
 
 
+#: Python refuses to convert integers of more than 4 300 digits to or from text (a guard
+#: against quadratic-time conversions).  rkcheck's own values are bounded (entries by
+#: MAX_BITS, about 60 000 digits), but exact residuals can be longer: allow this many
+#: digits (about 0.2 s per conversion) and refuse beyond with one line.
+MAX_PRINTED_DIGITS = 100_000
+
+
+def _interrupt_once(signum: int, frame) -> None:
+    """SIGINT and SIGTERM: the first one interrupts (KeyboardInterrupt, so that what
+    finished is still reported); later ones are ignored, so that a second Ctrl-C cannot
+    cut the partial report short."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    raise KeyboardInterrupt
+
+
+def install_signal_handlers() -> None:
+    """SIGTERM is handled like SIGINT (issue 16); only in the main thread of the main
+    interpreter (the API and tests may call :func:`main` from elsewhere)."""
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, _interrupt_once)
+        signal.signal(signal.SIGTERM, _interrupt_once)
+
+
+def _error(text: str, code: int) -> None:
+    click.echo(f"rkcheck: error: {printable(text)}", err=True)
+    sys.exit(code)
+
+
 def main(argv: list[str] | None = None) -> None:
     """Entry point: one-line errors with exit code 2, never a traceback for user errors."""
+    limit = sys.get_int_max_str_digits()
+    if limit and limit < MAX_PRINTED_DIGITS:  # 0 = no limit: leave it
+        sys.set_int_max_str_digits(MAX_PRINTED_DIGITS)
+    previous = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    install_signal_handlers()
+    try:
+        with warnings.catch_warnings():
+            # numpy's "overflow encountered" is how a float radius becomes inf, which the
+            # certified arithmetic reads as "no claim" (and then refuses or raises the
+            # precision): an expected event, not a message for the user (issue 16)
+            warnings.filterwarnings("ignore", message="overflow encountered", category=RuntimeWarning)
+            warnings.filterwarnings("ignore", message="invalid value encountered", category=RuntimeWarning)
+            _run(argv)
+    finally:
+        import threading
+
+        if threading.current_thread() is threading.main_thread():
+            for sig, handler in previous.items():
+                signal.signal(sig, handler)
+
+
+def _run(argv: list[str] | None) -> None:
     try:
         cli.main(args=argv, prog_name="rkcheck", standalone_mode=False)
     except UserError as err:
-        click.echo(f"rkcheck: error: {err}", err=True)
-        sys.exit(EXIT_USAGE)
+        _error(str(err), EXIT_USAGE)
     except click.UsageError as err:
         if type(err).__name__ == "NoArgsIsHelpError":  # click >= 8.2: bare `rkcheck`
             click.echo(err.ctx.get_help() if err.ctx else err.format_message())
             sys.exit(EXIT_USAGE)
         where = f"{err.ctx.command_path}: " if err.ctx is not None else ""
-        click.echo(f"rkcheck: error: {where}{err.format_message()} (see --help)", err=True)
-        sys.exit(EXIT_USAGE)
+        _error(f"{where}{err.format_message()} (see --help)", EXIT_USAGE)
     except click.Abort:
         click.echo("rkcheck: aborted", err=True)
         sys.exit(EXIT_INTERRUPTED)
     except click.exceptions.Exit as err:
         sys.exit(err.exit_code)
     except click.ClickException as err:
-        click.echo(f"rkcheck: error: {err.format_message()}", err=True)
-        sys.exit(EXIT_USAGE)
+        _error(err.format_message(), EXIT_USAGE)
     except BrokenPipeError:  # `rkcheck ... | head`
+        _quiet_stdout()
         sys.exit(EXIT_OK)
     except KeyboardInterrupt:
         click.echo("rkcheck: interrupted", err=True)
         sys.exit(EXIT_INTERRUPTED)
-    except MemoryError:  # the estimate let it through, the machine did not: a limit, not a bug
-        click.echo("rkcheck: error: out of memory; lower --order or --dps, or set --max-conditions to refuse "
-                   "such checks before they start", err=True)
-        sys.exit(EXIT_USAGE)
+    except MemoryError:
+        _error("out of memory; lower --order, --degree or --dps (README \"Errors and limits\")", EXIT_USAGE)
+    except OSError as err:  # -o into a missing folder, a full disk, ...: the environment, not a bug
+        where = f"{err.filename}: " if getattr(err, "filename", None) else ""
+        _error(f"{where}{err.strerror or err}", EXIT_USAGE)
+    except ValueError as err:
+        if "integer string conversion" not in str(err):
+            _internal(err)
+        _error(f"a number has more than {MAX_PRINTED_DIGITS:,} digits, too many to print "
+               "(README \"Errors and limits\")", EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
-        import os
+        _internal(err)
 
-        if os.environ.get("RKCHECK_DEBUG"):
-            raise
-        click.echo(
-            f"rkcheck: internal error: {type(err).__name__}: {err} — this is a bug in rkcheck; please report "
-            "it with the command and the file (RKCHECK_DEBUG=1 shows the traceback)",
-            err=True,
-        )
-        sys.exit(EXIT_INTERNAL)
+
+def _quiet_stdout() -> None:
+    """After a broken pipe, point stdout at /dev/null so that the interpreter's final flush
+    does not print a second BrokenPipeError."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
+def _internal(err: BaseException) -> None:
+    if os.environ.get("RKCHECK_DEBUG"):
+        raise err
+    click.echo(
+        printable(f"rkcheck: internal error: {type(err).__name__}: {err}") + " — this is a bug in rkcheck; please "
+        "report it with the command and the file (RKCHECK_DEBUG=1 shows the traceback)",
+        err=True,
+    )
+    sys.exit(EXIT_INTERNAL)

@@ -11,6 +11,7 @@ from rkcheck.cli.common import (
     EXIT_INTERRUPTED,
     EXIT_OK,
     check_options,
+    check_output_target,
     fail_on_option,
     flag_values,
     output_options,
@@ -21,7 +22,8 @@ from rkcheck.cli.common import (
     write_text,
 )
 from rkcheck.errors import UserError
-from rkcheck.options import SCAN_FORMATS
+from rkcheck.io.printable import printable
+from rkcheck.options import DEFAULT_ORDER, SCAN_FORMATS
 
 
 @click.command()
@@ -60,14 +62,35 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     roots = list(paths) or config.paths
     if not roots:
         raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
-    files = find_tableau_files(roots, list(exclude) + config.exclude)
+    check_output_target(output)
     flags = flag_values()
     fmt = fmt or config.format or "text"
     fail_on = fail_on or config.fail_on or "claims"
     jobs = jobs or config.jobs or default_jobs()
+    from rkcheck.energy.budget import Budget, check_budget, estimate
+    from rkcheck.io.machine import available_memory
+
+    # the resource guard (issue 16): the scan's default options must fit before the tables
+    # are built; each file's own [check] is judged against the same budget (an error row)
+    files_budget = Budget(available_memory(), max_conditions, None)
+    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
+    default_degree = flags.get("degree", config.check.get("degree"))
+    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
     t0 = time.perf_counter()
-    with progress("checking", len(files)) as advance:
-        outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, lambda r: advance())
+    outcomes, interrupted, files = [], False, []
+    try:
+        files = find_tableau_files(roots, list(exclude) + config.exclude)
+        with progress("checking", len(files)) as advance:
+            announce = _announcer(len(files))
+
+            def on_result(r) -> None:
+                advance()
+                announce(r)
+
+            outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
+                                             files_budget)
+    except KeyboardInterrupt:  # before or between files: the report still says what finished
+        interrupted = True
     elapsed = time.perf_counter() - t0
     if sort == "energy":  # methods of equal energy order compared by their error constant
         from rkcheck.batch.ranking import rank_outcomes
@@ -85,3 +108,20 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
         click.echo("rkcheck: interrupted; the report holds the files that finished", err=True)
         sys.exit(EXIT_INTERRUPTED)
     sys.exit(EXIT_OK if fail_on == "never" else exit_status(outcomes))
+
+
+def _announcer(total: int):
+    """With --verbose and stderr not a terminal (CI logs, a calling program), one line per
+    finished file on stderr: ``rkcheck: [3/40] ok path`` (on a terminal the progress bar
+    says the same)."""
+    import os
+
+    if not settings().verbose or settings().quiet or os.isatty(2):
+        return lambda r: None
+    count = [0]
+
+    def announce(r) -> None:
+        count[0] += 1
+        click.echo(f"rkcheck: [{count[0]}/{total}] {r.status} {printable(r.path)}", err=True)
+
+    return announce

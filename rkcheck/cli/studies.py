@@ -10,6 +10,7 @@ from rkcheck.cli.common import (
     dps_list,
     flag_values,
     load_tableau,
+    guard,
     order_option,
     output_options,
     stdout_console,
@@ -19,8 +20,10 @@ from rkcheck.options import DEFAULT_DPS, resolve_check_options
 
 
 def _degree_and_order(tab):
-    """--degree and --order, else the file's [check], else none and 8."""
+    """--degree and --order, else the file's [check], else none and 8 (refused when the
+    condition tables would not fit in memory: the resource guard)."""
     options = resolve_check_options(flag_values("degree", "order"), tab.check, {})
+    guard(options.order, options.degree, runs=0)
     return options.degree, options.order
 
 
@@ -89,9 +92,12 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 
     tab = load_tableau(file)
     deg, N = _degree_and_order(tab)
+    eps = parse_eps(eps_text)
+    if not eps or any(not 0 < e <= 1 for e in eps):  # log10(ε) and float radii need 0 < ε <= 1
+        raise UserError(f"every ε must be in (0, 1], got {eps_text!r}", "--eps")
     with busy("perturbing"):
         D, desc = make_direction(tab, direction, deg, seed)
-        res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, dps_list(dps_text))
+        res = perturb_sweep(tab, D, desc, eps, deg, N, dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart

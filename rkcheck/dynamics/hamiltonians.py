@@ -25,6 +25,7 @@ seed=S``                                 k/8 with k uniform in {−8..8}; a zero
 
 from __future__ import annotations
 
+import math
 import random
 import re
 from dataclasses import dataclass, field
@@ -193,6 +194,10 @@ def fpu() -> Hamiltonian:
     return Hamiltonian("fpu", d, Polynomial(2 * d, {e: c for e, c in terms.items() if c}))
 
 
+#: The most monomials a random Hamiltonian may have (README "Errors and limits").
+MAX_RANDOM_MONOMIALS = 20_000
+
+
 def random_hamiltonian(degree: int, d: int = 2, seed: int = 1) -> Hamiltonian:
     """Every monomial of degree 1..m gets k/8, k uniform in {−8, ..., 8}; the degree-m
     part is redrawn until nonzero, so the degree is exactly m."""
@@ -233,5 +238,11 @@ def problem(spec: str) -> Hamiltonian:
         degree, dim, seed = int(params["degree"]), int(params["dim"]), int(params["seed"])
         if not 1 <= degree <= 12 or not 1 <= dim <= 6:
             raise UserError("random needs 1 <= degree <= 12 and 1 <= dim <= 6", "--problem")
+        # H, its gradient and its Hessian hold (1 + 2d + 4d²) polynomials of up to this many
+        # terms: degree 12 with dim 6 would be 2.7 million monomials and gigabytes
+        monomials = math.comb(2 * dim + degree, degree) - 1
+        if monomials > MAX_RANDOM_MONOMIALS:
+            raise UserError(f"random:degree={degree},dim={dim} has {monomials:,} monomials; the limit is "
+                            f"{MAX_RANDOM_MONOMIALS:,} (lower the degree or dim)", "--problem")
         return random_hamiltonian(degree, dim, seed)
     raise UserError(f"unknown problem {spec!r} ({', '.join(PROBLEMS)}, random:degree=m,dim=d,seed=S)", "--problem")

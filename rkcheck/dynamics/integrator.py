@@ -27,6 +27,16 @@ class NewtonError(UserError):
     """The stage equations could not be solved (the step is probably too large)."""
 
 
+class DivergedError(UserError):
+    """The numerical solution left the representable numbers (NaN or ±inf): an explicit
+    method blew up.  Never a column of ``nan`` and a zero energy error (issue 16)."""
+
+
+def _finite(ctx, y: Sequence[Any]) -> bool:
+    size = ctx.norm(y)
+    return size == size and size != float("inf")  # NaN != NaN; mpf('inf') == inf
+
+
 class Float64:
     name = "float64"
 
@@ -216,15 +226,28 @@ def _implicit_stages(method, ham, y, h, ctx, where, guess=None):
 
 
 def integrate(method: RKMethod, ham, y0, h, steps: int, ctx, record_every: int = 1):
-    """(times, states, energies) every ``record_every`` steps, from t = 0."""
+    """(times, states, energies) every ``record_every`` steps, from t = 0.  Raises
+    :class:`DivergedError` when the solution overflows (NaN or ±inf), and a UserError for a
+    step size that is zero in the number context (``--h 1e-1000`` in float64)."""
+    if not ctx.num(h):
+        raise UserError(f"the step size is 0 in {ctx.name} (it underflows); use a larger --h, or --dps", "--h")
     y = list(y0)
     H0 = ham.energy(y)
     times, states, energies = [0], [list(y)], [H0]
     guess: list = []
     for k in range(1, steps + 1):
-        y = step(method, ham, y, h, ctx, f" at step {k}", guess)
-        if k % record_every == 0 or k == steps:
+        try:
+            y = step(method, ham, y, h, ctx, f" at step {k}", guess)
+            finite = _finite(ctx, y)
+            energy = ham.energy(y) if finite and (k % record_every == 0 or k == steps) else None
+        except OverflowError:
+            finite = False
+        if not finite or (energy is not None and not _finite(ctx, [energy])):
+            raise DivergedError(
+                f"the solution diverged at step {k} (t = {float(k * h):.6g}): it overflowed {ctx.name}; the step "
+                "is probably too large for this method and problem; try a smaller --h", "--h")
+        if energy is not None:
             times.append(k * h)
             states.append(list(y))
-            energies.append(ham.energy(y))
+            energies.append(energy)
     return times, states, energies

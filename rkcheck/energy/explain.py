@@ -16,6 +16,7 @@ centre — a second route to the conditions, independent of the bulk listing of
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -41,7 +42,8 @@ def sigma_notation(seq: tuple[int, ...]) -> str:
     Leaves hanging from a vertex with index x give ``c_x`` (``c = A·1``); every other
     child gets a new index y and the factor ``a_xy`` followed by its own factors.
     """
-    counter = iter(_INDICES)
+    # 16 letters, then i17, i18, ...: a tree may have up to 31 vertices (issue 16)
+    counter = itertools.chain(_INDICES, (f"i{n}" for n in itertools.count(len(_INDICES) + 1)))
 
     def factors(sub: tuple[int, ...], x: str) -> list[str]:
         kids = children_of_level_sequence(sub)

@@ -15,11 +15,13 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
 from rkcheck.options import (
     FAIL_ON,
+    JOBS_RANGE,
     SCAN_FORMATS,
     parse_choice,
-    parse_positive,
+    parse_int_in,
     parse_strings,
     validate_check_table,
 )
@@ -56,12 +58,17 @@ def load_config(start: Path | None = None) -> Config:
         return Config()
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as err:
-        raise UserError(f"cannot read [tool.rkcheck]: {err}", source=str(path)) from None
-    table = data.get("tool", {}).get("rkcheck")
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError, ValueError) as err:
+        raise UserError(f"cannot read [tool.rkcheck]: {printable(str(err))}", source=str(path)) from None
+    except RecursionError:
+        raise UserError("cannot read [tool.rkcheck]: nesting too deep", source=str(path)) from None
+    src = str(path)
+    tool = data.get("tool", {})
+    if not isinstance(tool, dict):  # `tool = "x"`: not ours to judge, but not a crash either
+        raise UserError("[tool] must be a table", "tool", src)
+    table = tool.get("rkcheck")
     if table is None:
         return Config()
-    src = str(path)
     if not isinstance(table, dict):
         raise UserError("[tool.rkcheck] must be a table", source=src)
     cfg = Config(source=src, root=path.parent)
@@ -74,7 +81,7 @@ def load_config(start: Path | None = None) -> Config:
         elif key_n == "exclude":
             cfg.exclude = parse_strings(value, place, src)
         elif key_n == "jobs":
-            cfg.jobs = parse_positive(value, place, src)
+            cfg.jobs = parse_int_in(value, JOBS_RANGE, place, src)
         elif key_n == "format":
             cfg.format = parse_choice(value, SCAN_FORMATS, place, src)
         elif key_n == "fail_on":

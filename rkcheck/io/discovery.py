@@ -15,6 +15,17 @@ def _excluded(path: Path, patterns: list[str]) -> bool:
     return any(fnmatch.fnmatch(text, p) or fnmatch.fnmatch(path.name, p) for p in patterns)
 
 
+def _unreadable_folders(root: Path) -> list[Path]:
+    """Folders under ``root`` (itself included) that cannot be listed: ``rglob`` skips
+    them silently, so a scan of an unreadable folder would report 0 files (issue 16)."""
+    import os
+
+    bad: list[Path] = []
+    for _ in os.walk(root, onerror=lambda err: bad.append(Path(err.filename))):
+        pass
+    return sorted(bad)
+
+
 def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> list[str]:
     """Every ``*.toml``/``*.json`` under ``paths`` (files given explicitly are kept whatever
     their suffix), sorted, without duplicates, minus the ``exclude`` glob patterns (matched
@@ -24,8 +35,14 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
     for raw in paths:
         p = Path(raw)
         if p.is_dir():
+            unreadable = _unreadable_folders(p)
+            if p in unreadable:
+                raise UserError("cannot read this folder (permission denied)", source=raw)
+            found.extend(unreadable)  # each becomes an error row of the scan, not 0 files
             for f in sorted(p.rglob("*")):
-                if f.is_file() and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
+                # a dangling link or a link loop is kept: it becomes an error row, not a
+                # silently missing file (issue 16)
+                if (f.is_file() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)
         elif p.exists() or raw == "-":

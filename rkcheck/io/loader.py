@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
 from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
@@ -52,6 +53,17 @@ def _bare_float(text: str) -> BareFloat:
 
 def _reject_constant(text: str) -> Any:
     raise ValueError(f"{text} is not a finite number")
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object, refusing a key given twice (json keeps the last one silently; TOML
+    refuses duplicates itself)."""
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise ValueError(f"key {printable(key)!r} is given twice")
+        out[key] = value
+    return out
 
 
 # ------------------------------------------------------------------ reading
@@ -100,7 +112,8 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
     """TOML or JSON text -> dict, syntax errors as UserError with their line."""
     try:
         if fmt == "json":
-            data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant)
+            data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant,
+                              object_pairs_hook=_unique_keys)
         else:
             data = tomllib.loads(text, parse_float=_bare_float)
     except tomllib.TOMLDecodeError as err:
@@ -112,8 +125,8 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
         raise UserError(f"TOML syntax error: {msg}") from None
     except json.JSONDecodeError as err:
         raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
-    except ValueError as err:  # NaN/Infinity in JSON
-        raise UserError(f"JSON: {err}") from None
+    except ValueError as err:  # NaN/Infinity or a duplicate key in JSON, an integer too long in either
+        raise UserError(f"{fmt.upper()}: {err}") from None
     except RecursionError:
         raise UserError("nesting too deep") from None
     if not isinstance(data, dict):
@@ -246,7 +259,7 @@ def _build(
     warnings: list[str] = []
     for key in data:
         if key not in KNOWN_TABLES:
-            warnings.append(f"unknown table [{key}] ignored (known: {', '.join(KNOWN_TABLES)})")
+            warnings.append(f"unknown table [{printable(key)}] ignored (known: {', '.join(KNOWN_TABLES)})")
     if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):
         # the short form: A/b/c at the top level stand for the [tableau] table
         data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
@@ -260,6 +273,9 @@ def _build(
     if not isinstance(description, str):
         raise UserError("expected a string", "method.description")
     references = tuple(parse_strings(method["references"], "method.references")) if "references" in method else ()
+    # shown on terminals: no control characters or lone surrogates from the file (issue 16)
+    name, description = printable(name), printable(description)
+    references = tuple(printable(r) for r in references)
     check = validate_check_table(_table(data, "check"))
     expect = _table(data, "expect")
     claims = parse_claims(expect)
@@ -283,7 +299,7 @@ def _build(
     tab = _table(data, "tableau", required=True)
     for key in tab:
         if key not in ("A", "b", "c"):
-            warnings.append(f"unknown key tableau.{key} ignored (known: A, b, c)")
+            warnings.append(f"unknown key tableau.{printable(key)} ignored (known: A, b, c)")
     constants = _constants(_table(data, "constants"))
     if "A" not in tab:
         raise UserError("missing A", "tableau")

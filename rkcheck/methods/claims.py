@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.options import parse_degree
+from rkcheck.options import MAX_ORDER, parse_degree
 
 CLAIM_KINDS = ("energy_order", "avf", "classical_order", "quadrature_order", "symplectic", "symmetric",
                "stability_defect")
@@ -47,9 +47,12 @@ class Claim:
         return self.kind
 
 
-def _int(value: Any, place: str, minimum: int = 0) -> int:
+def _int(value: Any, place: str, minimum: int = 0, maximum: int | None = None) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
+        raise UserError(f"expected an integer >= {minimum}, got {value!r}"[:120], place)
+    if maximum is not None and value > maximum:
+        # judging the claim checks one order beyond it: keep that within MAX_ORDER (issue 16)
+        raise UserError(f"expected an integer from {minimum} to {maximum}, got {value}"[:120], place)
     return value
 
 
@@ -97,7 +100,7 @@ def _one(kind: str, raw: Any, place: str) -> Claim:
     if kind in ("classical_order", "quadrature_order"):
         if isinstance(raw, dict):
             raw = raw.get("value")
-        return Claim(kind, _int(raw, place), place=place)
+        return Claim(kind, _int(raw, place, 0, MAX_ORDER - 1 if kind == "classical_order" else None), place=place)
     if not isinstance(raw, dict):
         raise UserError("expected a table like {degree = 4, value = ...}", place)
     unknown = set(raw) - {"degree", "order", "value"}
@@ -108,7 +111,7 @@ def _one(kind: str, raw: Any, place: str) -> Claim:
     if kind == "avf" and "degree" not in raw:
         raise UserError("missing degree (AVF is defined for a polynomial degree m)", place)
     degree = parse_degree(raw.get("degree"), f"{place}.degree")
-    order = _int(raw["order"], f"{place}.order", 1) if "order" in raw else None
+    order = _int(raw["order"], f"{place}.order", 1, MAX_ORDER) if "order" in raw else None
     value = raw["value"]
     if kind == "avf":
         if not isinstance(value, bool):
@@ -116,7 +119,7 @@ def _one(kind: str, raw: Any, place: str) -> Claim:
         if degree is None:
             raise UserError("AVF needs a polynomial degree", f"{place}.degree")
     elif value != "all":
-        value = _int(value, f"{place}.value", 1)
+        value = _int(value, f"{place}.value", 1, MAX_ORDER - 1)
     return Claim(kind, value, degree, order, place)
 
 

@@ -40,6 +40,7 @@ from rkcheck.methods.quadrature import (
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.entries import Entry
 from rkcheck.numbers.intervals import Interval
+from rkcheck.options import MAX_FAMILY_STAGES
 
 FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
 TITLES = {
@@ -122,8 +123,8 @@ def _exact(text: Any, place: str) -> Fraction:
 def _positive(value: Any, place: str, minimum: int = 1) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
-    if value > 64:
-        raise UserError(f"at most 64, got {value}", place)
+    if value > MAX_FAMILY_STAGES:
+        raise UserError(f"at most {MAX_FAMILY_STAGES}, got {value}", place)
     return value
 
 

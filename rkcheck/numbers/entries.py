@@ -51,27 +51,34 @@ class Constants:
             )
 
     def _topological_order(self) -> list[str]:
+        """The constants in an order where each comes after those it uses (depth first,
+        with an explicit stack: a chain of thousands of constants needs no recursion)."""
         order: list[str] = []
-        state: dict[str, int] = {}  # 1 = visiting, 2 = done
-
-        def visit(name: str, chain: list[str]) -> None:
-            if state.get(name) == 2:
-                return
-            if state.get(name) == 1:
-                cycle = " -> ".join(chain[chain.index(name):] + [name])
-                raise UserError(f"constants refer to each other in a cycle: {cycle}", f"constants.{chain[0]}")
-            state[name] = 1
-            for used in ex.names(self.definitions[name]):
+        state: dict[str, int] = {}  # 1 = on the current path, 2 = done
+        for root in self.definitions:
+            if state.get(root) == 2:
+                continue
+            path: list[str] = [root]
+            state[root] = 1
+            pending = [iter(ex.names(self.definitions[root]))]
+            while pending:
+                used = next(pending[-1], None)
+                if used is None:
+                    done = path.pop()
+                    pending.pop()
+                    state[done] = 2
+                    order.append(done)
+                    continue
                 if used.name not in self.definitions:
-                    raise UserError(
-                        f"unknown name {used.name!r} at column {used.column}", f"constants.{name}"
-                    )
-                visit(used.name, chain + [used.name])
-            state[name] = 2
-            order.append(name)
-
-        for name in self.definitions:
-            visit(name, [name])
+                    raise UserError(f"unknown name {used.name!r} at column {used.column}", f"constants.{path[-1]}")
+                if state.get(used.name) == 2:
+                    continue
+                if state.get(used.name) == 1:
+                    cycle = " -> ".join(path[path.index(used.name):] + [used.name])
+                    raise UserError(f"constants refer to each other in a cycle: {cycle}", f"constants.{path[0]}")
+                state[used.name] = 1
+                path.append(used.name)
+                pending.append(iter(ex.names(self.definitions[used.name])))
         return order
 
     def check_names(self, node: ex.Expr) -> None:

@@ -14,13 +14,19 @@ associative, binding tighter than unary minus, so ``-2^2 = -4`` and ``2^-1 = 1/2
     FUNC   := 'sqrt' (one argument) | 'root' (two: root(p, k))
 
 Numbers are integers, decimals (``0.25``, ``.5``, ``2.``) and scientific notation
-(``1.5e-3``).  A decimal literal keeps the number of significant digits it was
+(``1.5e-3``), in ASCII digits.  Besides the ASCII operators, the typographic minus ``−``
+(U+2212), the multiplication sign ``×`` (U+00D7) and the middle dot ``·`` (U+00B7) are
+read as ``-``, ``*`` and ``*`` (text copied from papers uses them); every other character
+outside ASCII letters, digits, ``_ + - * / ^ ( ) , .`` and spaces is refused, naming it.  A decimal literal keeps the number of significant digits it was
 written with, which definitions §5 uses as its precision.
 
 Hostile input is refused early and cheaply: entries longer than
 :data:`MAX_ENTRY_LENGTH` characters, nesting deeper than :data:`MAX_DEPTH`, exponents
-outside ``±MAX_EXPONENT`` and powers whose exact result would exceed
-:data:`MAX_BITS` bits.
+outside ``±MAX_EXPONENT``, and any intermediate value (a power, a product, a sum, an
+interval end point) whose exact size would exceed :data:`MAX_BITS` bits — so that chains of
+allowed steps (``c1 = "c0*c0"``, ``2^1000*2^1000*…``) cannot grow without bound.  Nothing
+here recurses in proportion to the length of an entry: the parser's recursion is bounded by
+:data:`MAX_DEPTH`, and evaluation and rendering walk the tree with an explicit stack.
 """
 
 from __future__ import annotations
@@ -29,7 +35,7 @@ import math
 import re
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Mapping
+from typing import Any, Callable, Mapping
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.intervals import Interval, exact_sqrt
@@ -46,8 +52,14 @@ MAX_BITS = 200_000
 #: ``0.5`` mean [0.45, 0.55]).
 ROUNDED_MIN_DIGITS = 6
 
-_NUMBER = re.compile(r"(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+# ASCII digits only: ``\d`` would also match other scripts' digits (``١``), which int() accepts.
+_NUMBER = re.compile(r"([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?")
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_DIGITS = frozenset("0123456789")
+_NAME_START = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
+_SPACES = frozenset(" \t\r\n")
+#: Typographic operators read as their ASCII equivalents (README "The tableau file").
+UNICODE_OPERATORS = {"\u2212": "-", "\u00d7": "*", "\u00b7": "*"}
 #: Functions and their number of arguments.  ``root(p, k)`` is the k-th smallest real root
 #: of the polynomial p in the variable :data:`ROOT_VARIABLE` (rational coefficients).
 FUNCTIONS = {"sqrt": 1, "root": 2}
@@ -184,6 +196,14 @@ class _Token:
     column: int  # 1-based
 
 
+def _describe(ch: str) -> str:
+    """A character as a message shows it: quoted, escaped when not printable, and with
+    its code point when not ASCII (so that ``'π' (U+03C0)`` and a lone surrogate are one
+    readable line)."""
+    shown = repr(ch) if ch.isprintable() else ascii(ch)
+    return shown if ch.isascii() else f"{shown} (U+{ord(ch):04X})"
+
+
 def _tokenize(text: str) -> list[_Token]:
     tokens: list[_Token] = []
     i, n = 0, len(text)
@@ -191,18 +211,18 @@ def _tokenize(text: str) -> list[_Token]:
     while i < n:
         ch = text[i]
         col = i + 1
-        if ch.isspace():
+        if ch in _SPACES:
             i += 1
             continue
-        if ch.isdigit() or (ch == "." and i + 1 < n and text[i + 1].isdigit()):
+        if ch in _DIGITS or (ch == "." and i + 1 < n and text[i + 1] in _DIGITS):
             m = _NUMBER.match(text, i)
-            assert m is not None
+            assert m is not None  # the first character is a digit or '.digit'
             tokens.append(_Token("num", m.group(0), col))
             i = m.end()
             continue
-        if ch.isalpha() or ch == "_":
+        if ch in _NAME_START:
             m = _NAME.match(text, i)
-            assert m is not None
+            assert m is not None  # the first character is a name start
             tokens.append(_Token("name", m.group(0), col))
             i = m.end()
             continue
@@ -212,6 +232,10 @@ def _tokenize(text: str) -> list[_Token]:
             continue
         if ch in "+-*/^":
             tokens.append(_Token("op", ch, col))
+            i += 1
+            continue
+        if ch in UNICODE_OPERATORS:
+            tokens.append(_Token("op", UNICODE_OPERATORS[ch], col))
             i += 1
             continue
         if ch == "(":
@@ -230,7 +254,7 @@ def _tokenize(text: str) -> list[_Token]:
             tokens.append(_Token(",", ch, col))
             i += 1
             continue
-        raise UserError(f"unexpected character {ch!r} at column {col}")
+        raise UserError(f"unexpected character {_describe(ch)} at column {col}")
     tokens.append(_Token("end", "", n + 1))
     return tokens
 
@@ -360,13 +384,27 @@ def _number(tok: _Token) -> Num:
     else:
         whole, frac = mantissa, ""
     digits_str = (whole + frac).lstrip("0")
-    value = Fraction(int(whole + frac or "0")) * Fraction(10) ** (exp10 - len(frac))
+    value = Fraction(_int_of_digits(whole + frac or "0")) * Fraction(10) ** (exp10 - len(frac))
     is_decimal = "." in mantissa or exp_part is not None
     if not is_decimal:
         return Num(value, tok.text, None, 0)
     # A written zero (0.000) carries no significant digits: it is exact.
     digits = len(digits_str) if digits_str else None
     return Num(value, tok.text, digits, exp10 - len(frac))
+
+
+#: int() refuses digit strings longer than this (Python's default int_max_str_digits
+#: guard); longer literals are converted in halves, which is bounded by MAX_ENTRY_LENGTH.
+_INT_CHUNK = 4000
+
+
+def _int_of_digits(digits: str) -> int:
+    """``int(digits)`` for ASCII digit strings of any length (the README promises decimals
+    of any length; Python refuses more than 4 300 digits in one conversion)."""
+    if len(digits) <= _INT_CHUNK:
+        return int(digits)
+    low = len(digits) // 2
+    return _int_of_digits(digits[:-low]) * 10**low + _int_of_digits(digits[-low:])
 
 
 def parse(text: str) -> Expr:
@@ -397,6 +435,61 @@ def walk(node: Expr):
             stack.extend((n.exponent, n.base))
 
 
+def _operands(node: Expr) -> tuple[Expr, ...]:
+    """The sub-expressions whose values an evaluation of ``node`` combines, in order
+    (root's polynomial is not one: its x is a bound variable, see :func:`root_polynomial`)."""
+    if isinstance(node, Unary):
+        return (node.operand,)
+    if isinstance(node, (Binary,)):
+        return (node.left, node.right)
+    if isinstance(node, Power):
+        return (node.base, node.exponent)
+    if isinstance(node, Call):
+        return node.args[1:] if node.func == "root" else node.args
+    return ()
+
+
+def fold(node: Expr, combine: Callable[[Expr, list[Any]], Any],
+         operands: Callable[[Expr], tuple[Expr, ...]] = _operands) -> Any:
+    """``combine(n, [values of n's operands])`` for every node, operands first, left to
+    right: a post-order evaluation with an explicit stack, so that a sum of 10 000 terms
+    (a left-leaning tree 10 000 deep) needs no recursion."""
+    values: list[Any] = []
+    stack: list[tuple[Expr, bool]] = [(node, False)]
+    while stack:
+        n, expanded = stack.pop()
+        kids = operands(n)
+        if expanded or not kids:
+            k = len(kids)
+            args = values[len(values) - k:] if k else []
+            if k:
+                del values[len(values) - k:]
+            values.append(combine(n, args))
+        else:
+            stack.append((n, True))
+            stack.extend((kid, False) for kid in reversed(kids))
+    return values[0]
+
+
+def _bits(q: Fraction) -> int:
+    return q.numerator.bit_length() + q.denominator.bit_length()
+
+
+def _check_value_bits(values: tuple[Fraction, ...], column: int) -> None:
+    """Refuse an intermediate value larger than :data:`MAX_BITS` (the size budget)."""
+    bits = max(_bits(v) for v in values)
+    if bits > MAX_BITS:
+        raise UserError(f"value at column {column} is too large (about {bits:,} bits; the limit is {MAX_BITS:,})")
+
+
+def _check_operand_bits(values: tuple[Fraction, ...], column: int) -> None:
+    """Refuse before computing a sum, product or quotient whose operands together exceed
+    twice the budget (the result could not fit, and computing it would cost time)."""
+    bits = sum(_bits(v) for v in values)
+    if bits > 2 * MAX_BITS:
+        raise UserError(f"value at column {column} is too large (about {bits:,} bits; the limit is {MAX_BITS:,})")
+
+
 # ------------------------------------------------------------------- root(p, k)
 
 MAX_ROOT_DEGREE = 100
@@ -422,13 +515,18 @@ def root_polynomial(call: Call) -> list[Fraction]:
             raise UserError(f"root's polynomial has degree above {MAX_ROOT_DEGREE} at column {call.column}")
         return out
 
-    def const(node: Expr, what: str) -> Fraction:
-        p = trim(go(node))
+    def constant(poly: list[Fraction], what: str) -> Fraction:
+        p = trim(poly)
         if len(p) > 1:
             raise UserError(f"{what} in root's polynomial must not depend on x (column {call.column})")
         return p[0]
 
-    def go(node: Expr) -> list[Fraction]:
+    def operands(node: Expr) -> tuple[Expr, ...]:
+        if isinstance(node, Call):
+            return ()  # refused in combine
+        return _operands(node)
+
+    def combine(node: Expr, vals: list[list[Fraction]]) -> list[Fraction]:
         if isinstance(node, Num):
             return [node.value]
         if isinstance(node, Name):
@@ -437,29 +535,35 @@ def root_polynomial(call: Call) -> list[Fraction]:
                                 f"not {node.name!r} (column {node.column})")
             return [Fraction(0), Fraction(1)]
         if isinstance(node, Unary):
-            return [-c for c in go(node.operand)]
+            return [-c for c in vals[0]]
         if isinstance(node, Call):
             raise UserError(f"no function inside root's polynomial (column {node.column})")
         if isinstance(node, Power):
-            n = _check_exponent(const(node.exponent, "an exponent"), node.column)
+            n = _check_exponent(constant(vals[1], "an exponent"), node.column)
             if n < 0:
                 raise UserError(f"negative power in root's polynomial at column {node.column}")
-            base, out = go(node.base), [Fraction(1)]
+            base, out = vals[0], [Fraction(1)]
             for _ in range(n):
                 out = pmul(out, base)
+                _check_value_bits(tuple(out), node.column)
             return out
         assert isinstance(node, Binary)
-        left, right = go(node.left), go(node.right)
+        left, right = vals
         if node.op == "+":
             return padd(left, right)
         if node.op == "-":
             return padd(left, [-c for c in right])
         if node.op == "*":
-            return pmul(left, right)
-        divisor = const(node.right, "a divisor")
+            out = pmul(left, right)
+            _check_value_bits(tuple(out), node.column)
+            return out
+        divisor = constant(right, "a divisor")
         if divisor == 0:
             raise UserError(f"division by zero at column {node.column}")
         return [c / divisor for c in left]
+
+    def go(node: Expr) -> list[Fraction]:
+        return fold(node, combine, operands)
 
     coeffs = trim(go(call.args[0]))
     if len(coeffs) < 2:
@@ -515,51 +619,57 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
 
     ``constants`` maps names to their exact values (None = irrational).  Square roots of
     rational squares are exact (``sqrt(9/4) = 3/2``).  Raises :class:`UserError` for a
-    division by zero or the root of a negative number.
+    division by zero, the root of a negative number, or a value past :data:`MAX_BITS`.
     """
-    if isinstance(node, Num):
-        return node.value
-    if isinstance(node, Name):
-        return constants[node.name]
-    if isinstance(node, Unary):
-        v = evaluate_exact(node.operand, constants)
-        return None if v is None else -v
-    if isinstance(node, Call):
-        if node.func == "root":
-            iv = root_enclosure(node, evaluate_exact(node.args[1], constants), 64)
-            return iv.lo if iv.is_point else None
-        v = evaluate_exact(node.arg, constants)
-        if v is None:
+
+    def combine(n: Expr, vals: list[Fraction | None]) -> Fraction | None:
+        if isinstance(n, Num):
+            return n.value
+        if isinstance(n, Name):
+            return constants[n.name]
+        if isinstance(n, Unary):
+            v = vals[0]
+            return None if v is None else -v
+        if isinstance(n, Call):
+            if n.func == "root":
+                iv = root_enclosure(n, vals[0], 64)
+                return iv.lo if iv.is_point else None
+            v = vals[0]
+            if v is None:
+                return None
+            if v < 0:
+                raise UserError(f"square root of a negative number ({v}) at column {n.column}")
+            return exact_sqrt(v)
+        if isinstance(n, Power):
+            b, e = vals
+            if e is None:
+                raise UserError(f"exponent at column {n.column} is not an integer")
+            k = _check_exponent(e, n.column)
+            if b is None:
+                return None
+            if b == 0 and k < 0:
+                raise UserError(f"division by zero (0 to a negative power) at column {n.column}")
+            _check_size(b, k, n.column)
+            return b**k
+        assert isinstance(n, Binary)
+        left, right = vals
+        if n.op == "/" and right == 0:
+            raise UserError(f"division by zero at column {n.column}")
+        if left is None or right is None:
             return None
-        if v < 0:
-            raise UserError(f"square root of a negative number ({v}) at column {node.column}")
-        return exact_sqrt(v)
-    if isinstance(node, Power):
-        e = evaluate_exact(node.exponent, constants)
-        if e is None:
-            raise UserError(f"exponent at column {node.column} is not an integer")
-        n = _check_exponent(e, node.column)
-        b = evaluate_exact(node.base, constants)
-        if b is None:
-            return None
-        if b == 0 and n < 0:
-            raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-        _check_size(b, n, node.column)
-        return b**n
-    assert isinstance(node, Binary)
-    left = evaluate_exact(node.left, constants)
-    right = evaluate_exact(node.right, constants)
-    if node.op == "/" and right == 0:
-        raise UserError(f"division by zero at column {node.column}")
-    if left is None or right is None:
-        return None
-    if node.op == "+":
-        return left + right
-    if node.op == "-":
-        return left - right
-    if node.op == "*":
-        return left * right
-    return left / right
+        _check_operand_bits((left, right), n.column)
+        if n.op == "+":
+            out = left + right
+        elif n.op == "-":
+            out = left - right
+        elif n.op == "*":
+            out = left * right
+        else:
+            out = left / right
+        _check_value_bits((out,), n.column)
+        return out
+
+    return fold(node, combine)
 
 
 def enclose(
@@ -575,77 +685,103 @@ def enclose(
     of non-squares are rounded outwards to ``bits`` bits.  ``constants`` maps names to
     their enclosures.
     """
-    if isinstance(node, Num):
-        mode = rounded if isinstance(rounded, str) else ("rounded" if rounded else "exact")
-        box = node.interval(mode)
-        return Interval(*box) if box is not None else Interval.point(node.value)
-    if isinstance(node, Name):
-        return constants[node.name]
-    if isinstance(node, Unary):
-        return -enclose(node.operand, bits, rounded, constants)
-    if isinstance(node, Call) and node.func == "root":
-        k = enclose(node.args[1], bits, rounded, constants)
-        return root_enclosure(node, k.lo if k.is_point else None, bits)
-    if isinstance(node, Call):
-        v = enclose(node.arg, bits, rounded, constants)
-        if v.hi < 0:
-            raise UserError(f"square root of a negative number at column {node.column}")
-        if v.lo < 0:
-            raise UserError(
-                f"square root at column {node.column}: the argument cannot be shown to be >= 0 "
-                f"(it lies in [{float(v.lo):.3g}, {float(v.hi):.3g}])"
-            )
-        return v.sqrt(bits)
-    if isinstance(node, Power):
-        e = enclose(node.exponent, bits, rounded, constants)
-        if not e.is_point:
-            raise UserError(f"exponent at column {node.column} is not an exact integer")
-        n = _check_exponent(e.lo, node.column)
-        b = enclose(node.base, bits, rounded, constants)
-        if n < 0 and b.contains_zero():
-            raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-        _check_size(max(abs(b.lo), abs(b.hi)) or Fraction(1), n, node.column)
-        return b.power(n)
-    assert isinstance(node, Binary)
-    left = enclose(node.left, bits, rounded, constants)
-    right = enclose(node.right, bits, rounded, constants)
-    if node.op == "+":
-        return left + right
-    if node.op == "-":
-        return left - right
-    if node.op == "*":
-        return left * right
-    if right.contains_zero():
-        if right.is_point:
-            raise UserError(f"division by zero at column {node.column}")
-        raise UserError(
-            f"division at column {node.column}: the divisor cannot be shown to be nonzero"
-        )
-    return left / right
+    mode = rounded if isinstance(rounded, str) else ("rounded" if rounded else "exact")
+
+    def combine(n: Expr, vals: list[Interval]) -> Interval:
+        if isinstance(n, Num):
+            box = n.interval(mode)
+            return Interval(*box) if box is not None else Interval.point(n.value)
+        if isinstance(n, Name):
+            return constants[n.name]
+        if isinstance(n, Unary):
+            return -vals[0]
+        if isinstance(n, Call) and n.func == "root":
+            k = vals[0]
+            return root_enclosure(n, k.lo if k.is_point else None, bits)
+        if isinstance(n, Call):
+            v = vals[0]
+            if v.hi < 0:
+                raise UserError(f"square root of a negative number at column {n.column}")
+            if v.lo < 0:
+                raise UserError(
+                    f"square root at column {n.column}: the argument cannot be shown to be >= 0 "
+                    f"(it lies in [{_short(v.lo)}, {_short(v.hi)}])"
+                )
+            return v.sqrt(bits)
+        if isinstance(n, Power):
+            b, e = vals
+            if not e.is_point:
+                raise UserError(f"exponent at column {n.column} is not an exact integer")
+            k = _check_exponent(e.lo, n.column)
+            if k < 0 and b.contains_zero():
+                raise UserError(f"division by zero (0 to a negative power) at column {n.column}")
+            _check_size(max(abs(b.lo), abs(b.hi)) or Fraction(1), k, n.column)
+            out = b.power(k)
+            _check_value_bits((out.lo, out.hi), n.column)
+            return out
+        assert isinstance(n, Binary)
+        left, right = vals
+        _check_operand_bits((left.lo, left.hi, right.lo, right.hi), n.column)
+        if n.op == "+":
+            out = left + right
+        elif n.op == "-":
+            out = left - right
+        elif n.op == "*":
+            out = left * right
+        else:
+            if right.contains_zero():
+                if right.is_point:
+                    raise UserError(f"division by zero at column {n.column}")
+                raise UserError(f"division at column {n.column}: the divisor cannot be shown to be nonzero")
+            out = left / right
+        _check_value_bits((out.lo, out.hi), n.column)
+        return out
+
+    return fold(node, combine)
+
+
+def _short(q: Fraction) -> str:
+    """A rational for a message, as ``1.23e+45`` (float() overflows past 1e308, and str()
+    of a huge integer is refused past 4 300 digits)."""
+    try:
+        return f"{float(q):.3g}"
+    except OverflowError:
+        exponent = round((q.numerator.bit_length() - q.denominator.bit_length()) * 0.30103)
+        return f"{'-' if q < 0 else ''}about 1e{exponent:+d}"
 
 
 def to_text(node: Expr) -> str:
     """A canonical, fully parenthesised-where-needed rendering (used for constants inlined in output)."""
     prec = {"+": 1, "-": 1, "*": 2, "/": 2}
 
-    def go(n: Expr, parent: int) -> str:
+    def wrap(child: Expr, text: str, context: int) -> str:
+        # context: how tightly the parent binds this operand (0 = not at all)
+        if isinstance(child, Binary):
+            return f"({text})" if context > prec[child.op] else text
+        if isinstance(child, Unary):
+            return f"({text})" if context >= 3 else text
+        if isinstance(child, Power):
+            return f"({text})" if context >= 4 else text
+        return text
+
+    def operands(n: Expr) -> tuple[Expr, ...]:
+        return n.args if isinstance(n, Call) else _operands(n)
+
+    def combine(n: Expr, texts: list[str]) -> str:
         if isinstance(n, Num):
             return n.text
         if isinstance(n, Name):
             return n.name
         if isinstance(n, Call):
-            return f"{n.func}({', '.join(go(a, 0) for a in n.args)})"
+            return f"{n.func}({', '.join(texts)})"
         if isinstance(n, Unary):
-            s = "-" + go(n.operand, 3)
-            return f"({s})" if parent >= 3 else s
+            return "-" + wrap(n.operand, texts[0], 3)
         if isinstance(n, Power):
-            s = f"{go(n.base, 4)}^{go(n.exponent, 3)}"
-            return f"({s})" if parent >= 4 else s
+            return f"{wrap(n.base, texts[0], 4)}^{wrap(n.exponent, texts[1], 3)}"
         assert isinstance(n, Binary)
         p = prec[n.op]
-        right_parent = p + 1 if n.op in "-/" else p
-        s = f"{go(n.left, p)} {n.op} {go(n.right, right_parent)}" if p == 1 else f"{go(n.left, p)}{n.op}{go(n.right, right_parent)}"
-        return f"({s})" if parent > p else s
+        left = wrap(n.left, texts[0], p)
+        right = wrap(n.right, texts[1], p + 1 if n.op in "-/" else p)
+        return f"{left} {n.op} {right}" if p == 1 else f"{left}{n.op}{right}"
 
-    return go(node, 0)
-
+    return fold(node, combine, operands)

@@ -1,8 +1,10 @@
 """The rich consoles rkcheck prints on, and the output settings of one run.
 
-Colour is off when ``NO_COLOR`` is set, when ``--no-color`` is given, or when the stream
-is not a terminal (rich's own rule).  Output that is not a terminal gets a fixed width
-so that piped reports and the README examples are stable.
+Colour (https://no-color.org, https://force-color.org): off with ``--no-color`` or a
+non-empty ``NO_COLOR``; otherwise on with a non-empty ``FORCE_COLOR``; otherwise on only
+when the stream is a terminal.  An empty ``NO_COLOR=`` changes nothing, as no-color.org
+says.  Output that is not a terminal gets a fixed width, so that piped reports and the
+README examples are stable, and no trailing spaces (rich pads table rows to the width).
 
 Settings are plain values passed to whoever prints (never module-global state), so that
 one run's ``--quiet`` cannot leak into the next run in the same process.
@@ -28,16 +30,60 @@ class OutputSettings:
     verbose: bool = False
 
 
+def color_wanted(settings: OutputSettings, tty: bool, environ=None) -> bool:
+    """Whether to colour a stream (module docstring has the rule)."""
+    env = os.environ if environ is None else environ
+    if not settings.color or env.get("NO_COLOR"):
+        return False
+    if env.get("FORCE_COLOR"):
+        return True
+    return tty
+
+
+class _StripTrailingSpaces:
+    """A text stream that drops spaces before each line break (for piped output: rich
+    pads table rows and blank lines to the console width)."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self._pending = ""
+
+    def write(self, text: str) -> int:
+        data = self._pending + text
+        head, sep, tail = data.rpartition("\n")
+        if sep:
+            self._stream.write("\n".join(line.rstrip(" ") for line in head.split("\n")) + "\n")
+        self._pending = tail
+        return len(text)
+
+    def flush(self) -> None:
+        if self._pending:
+            self._stream.write(self._pending)
+            self._pending = ""
+        self._stream.flush()
+
+    def isatty(self) -> bool:
+        return False
+
+    def fileno(self) -> int:
+        return self._stream.fileno()
+
+    @property
+    def encoding(self) -> str:
+        return getattr(self._stream, "encoding", "utf-8")
+
+
 def make_console(settings: OutputSettings = OutputSettings(), stderr: bool = False) -> Console:
     stream = sys.stderr if stderr else sys.stdout
     tty = stream.isatty()
-    no_color = not settings.color or "NO_COLOR" in os.environ or not tty
+    color = color_wanted(settings, tty)
     return Console(
-        file=stream,
-        no_color=no_color,
+        file=stream if tty else _StripTrailingSpaces(stream),
+        no_color=not color,
+        force_terminal=True if color and not tty else None,
         highlight=False,
         width=None if tty else PIPE_WIDTH,
         soft_wrap=False,
         emoji=False,
-        color_system=None if no_color else "auto",
+        color_system="auto" if color and tty else ("standard" if color else None),
     )

@@ -120,6 +120,9 @@ def render_check(
     o = res.options
     deg = "all Hamiltonians" if o.degree is None else f"degree ≤ {o.degree}"
     total = sum(p.conditions for p in res.per_order)
+    if quiet:  # the warnings that matter (c ≠ A·1, Σb ≠ 1, bare floats) survive --quiet
+        for w in res.warnings:
+            console.print(Text(f"warning: {w}", style="yellow"))
     if not quiet:
         console.print(header(res.tableau, o.decimals))
         console.print(f"{deg}, order ≤ {o.order}: {total} conditions, {_backend_text(res)}")
@@ -160,7 +163,7 @@ def render_check(
             )
     if show_all:
         console.print(conditions_table(res.results, f"All conditions ({len(res.results)} checked)"))
-    elif res.failures:
+    elif res.failures and not quiet:  # --quiet: the verdict line says how many fail
         shown = res.failures[:MAX_FAILURES_SHOWN]
         title = f"Failing conditions ({len(res.failures)} of {len(res.results)} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"

@@ -176,25 +176,4 @@ def test_pyproject_configuration_and_flags_override(tmp_path, capsys, folder, mo
     assert r.code == 2 and "tool.rkcheck.degre: unknown key" in r.err
 
 
-def test_ctrl_c_leaves_a_valid_partial_json_report(tmp_path):
-    # slow files (order 15 on a dense 4-stage tableau, about half a second each) so that the
-    # interrupt arrives while the scan is running
-    dense = ('[tableau]\nA = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],'
-             ' ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]\nb = ["1/5", "3/10", "1/4", "1/4"]\n')
-    for i in range(40):
-        (tmp_path / f"t{i:02d}.toml").write_text(dense, encoding="utf-8")
-    out = tmp_path / "report.json"
-    env = dict(os.environ, NO_COLOR="1")
-    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(tmp_path), "--order", "15",
-                             "--jobs", "2", "--format", "json", "-o", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    deadline = time.time() + 60
-    time.sleep(3.0)
-    proc.send_signal(signal.SIGINT)
-    stdout, stderr = proc.communicate(timeout=max(1, deadline - time.time()))
-    assert proc.returncode == 130, stderr
-    assert "Traceback" not in stderr
-    doc = json.loads(out.read_text())
-    assert doc["interrupted"] is True
-    assert 0 < len(doc["files"]) < 40
-    assert all(f["status"] == "ok" for f in doc["files"])
+# Ctrl-C, SIGTERM and worker death: tests/batch/test_scan_signals.py

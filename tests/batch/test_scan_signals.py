@@ -1,0 +1,215 @@
+"""Signals during a scan (issue 16): Ctrl-C, a second Ctrl-C, SIGTERM and a worker killed
+with SIGKILL all leave a valid report, and the scan never hangs.
+
+Deterministic: instead of sleeping and hoping the scan is running, each test waits for
+the scan's own readiness signal, the ``rkcheck: [k/N] ...`` line ``--verbose`` prints on
+a non-terminal stderr when a file has finished.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from support.clirun import run_cli
+from support.guards import hang_guard
+
+# about half a second each at order 15: the scan is still running when the signal comes
+DENSE = ('[tableau]\nA = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],'
+         ' ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]\nb = ["1/5", "3/10", "1/4", "1/4"]\n')
+
+
+def dense_folder(tmp_path: Path, n: int) -> Path:
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i in range(n):
+        (folder / f"t{i:02d}.toml").write_text(DENSE, encoding="utf-8")
+    return folder
+
+
+def start_scan(folder: Path, out: Path, *extra: str, order: int = 15) -> subprocess.Popen:
+    env = dict(os.environ, NO_COLOR="1")
+    return subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(folder), "--order", str(order), "--jobs", "2",
+                             "--format", "json", "-o", str(out), "--verbose", *extra],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+
+
+def wait_until_a_file_finished(proc: subprocess.Popen) -> list[str]:
+    """Read stderr until the first ``rkcheck: [1/N]`` line: the scan is running."""
+    lines = []
+    with hang_guard(60):
+        while True:
+            line = proc.stderr.readline()
+            assert line, f"scan ended before any file finished: {lines}"
+            lines.append(line)
+            if line.startswith("rkcheck: [1/"):
+                return lines
+
+
+def finish(proc: subprocess.Popen) -> tuple[str, str]:
+    stdout, stderr = proc.communicate(timeout=60)
+    return stdout, stderr
+
+
+@pytest.mark.parametrize("signals", [(signal.SIGINT,), (signal.SIGINT, signal.SIGINT), (signal.SIGTERM,)],
+                         ids=["ctrl-c", "double ctrl-c", "sigterm"])
+def test_interrupts_leave_a_valid_partial_json_report(tmp_path, signals):
+    folder = dense_folder(tmp_path, 40)
+    out = tmp_path / "report.json"
+    proc = start_scan(folder, out)
+    wait_until_a_file_finished(proc)
+    for sig in signals:
+        proc.send_signal(sig)
+    _, stderr = finish(proc)
+    assert proc.returncode == 130, stderr
+    assert "Traceback" not in stderr
+    doc = json.loads(out.read_text())
+    assert doc["interrupted"] is True
+    assert 0 < len(doc["files"]) < 40
+    assert all(f["status"] == "ok" for f in doc["files"])
+    files = [f["file"] for f in doc["files"]]
+    assert files == sorted(files)  # input order, even with gaps
+    assert not list(tmp_path.glob(".rkcheck-*")), "no temporary file left behind"
+    children = Path(f"/proc/{proc.pid}/task/{proc.pid}/children")
+    assert not children.exists() or not children.read_text().split()
+
+
+def test_a_worker_killed_with_sigkill_is_one_error_row_and_the_scan_goes_on(tmp_path):
+    # order 10: quick files (and a quick report of every condition of 60 files); the
+    # queue is still long when the worker dies, so it certainly held a file
+    folder = dense_folder(tmp_path, 60)
+    out = tmp_path / "report.json"
+    proc = start_scan(folder, out, order=10)
+    wait_until_a_file_finished(proc)
+    children = Path(f"/proc/{proc.pid}/task/{proc.pid}/children").read_text().split()
+    assert children, "no worker processes"
+    os.kill(int(children[0]), signal.SIGKILL)
+    _, stderr = finish(proc)
+    assert proc.returncode == 1, stderr  # one file could not be checked
+    doc = json.loads(out.read_text())
+    assert doc["interrupted"] is False
+    statuses = [f["status"] for f in doc["files"]]
+    assert len(statuses) == 60
+    assert statuses.count("error") == 1 and statuses.count("ok") == 59
+    dead = next(f for f in doc["files"] if f["status"] == "error")
+    assert "killed by SIGKILL" in dead["error"]
+
+
+def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch):
+    # a simulated bug on one file: that file is an error row, the others are checked
+    # (workers are forked, so they inherit the patch)
+    import rkcheck.energy.claims
+
+    real = rkcheck.energy.claims.judge_tableau
+
+    def buggy(tab, *args, **kwargs):
+        if tab.source.endswith("t01.toml"):
+            raise RuntimeError("simulated bug")
+        return real(tab, *args, **kwargs)
+
+    monkeypatch.setattr(rkcheck.energy.claims, "judge_tableau", buggy)
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i in range(4):
+        (folder / f"t{i:02d}.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    for jobs in ("1", "2"):
+        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--degree", "2", "--order", "4")
+        doc = json.loads(r.out)
+        assert [f["status"] for f in doc["files"]] == ["ok", "error", "ok", "ok"], jobs
+        assert "internal error: RuntimeError: simulated bug" in doc["files"][1]["error"]
+        assert r.code == 1
+
+
+def test_output_targets_are_respected(tmp_path, capsys):
+    src = tmp_path / "m.toml"
+    src.write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    # a symbolic link is followed: the link stays, its target gets the report
+    real = tmp_path / "real.json"
+    real.write_text("old", encoding="utf-8")
+    link = tmp_path / "link.json"
+    link.symlink_to(real)
+    r = run_cli(capsys, "scan", str(src), "--jobs", "1", "--format", "json", "-o", str(link))
+    assert r.code == 0, r.err
+    assert link.is_symlink() and json.loads(real.read_text())["files"][0]["status"] == "ok"
+    # a new file gets the permissions of the umask, not 0600
+    old = os.umask(0o022)
+    try:
+        new = tmp_path / "new.json"
+        run_cli(capsys, "scan", str(src), "--jobs", "1", "--format", "json", "-o", str(new))
+        assert new.stat().st_mode & 0o777 == 0o644
+    finally:
+        os.umask(old)
+    # a FIFO (like /dev/null) is written to, never replaced by a regular file
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    reader = subprocess.Popen(["cat", str(fifo)], stdout=subprocess.PIPE, text=True)
+    run_cli(capsys, "scan", str(src), "--jobs", "1", "--format", "json", "-o", str(fifo))
+    assert json.loads(reader.communicate(timeout=30)[0])["files"][0]["status"] == "ok"
+    assert Path(fifo).is_fifo()
+    # a missing folder is refused before any work
+    r = run_cli(capsys, "scan", str(src), "--jobs", "1", "-o", str(tmp_path / "nope" / "r.json"))
+    assert r.code == 2 and r.err == f"rkcheck: error: {tmp_path / 'nope' / 'r.json'}: cannot write the report: its folder does not exist\n"
+
+
+def test_dangling_links_and_link_loops_are_error_rows(tmp_path, capsys):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    (folder / "b-dangling.toml").symlink_to(folder / "missing.toml")
+    (folder / "c-loop.toml").symlink_to(folder / "c-loop.toml")
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1", "--format", "json", "--degree", "2", "--order", "3")
+    doc = json.loads(r.out)
+    rows = [(Path(f["file"]).name, f["status"]) for f in doc["files"]]
+    assert rows == [("a.toml", "ok"), ("b-dangling.toml", "error"), ("c-loop.toml", "error")]
+    assert doc["files"][1]["error"].endswith("no such file")
+    assert "Too many levels of symbolic links" in doc["files"][2]["error"]
+    assert r.code == 1
+
+
+@pytest.mark.parametrize("delay", [0.05, 0.15, 0.3, 0.5])
+def test_an_early_interrupt_is_quiet(tmp_path, delay):
+    # a Ctrl-C while Python and rkcheck are still starting: exit 130 (or, before Python
+    # installs its handler, the default death by SIGINT), never a traceback
+    import time
+
+    folder = dense_folder(tmp_path, 4)
+    out = tmp_path / "report.json"
+    proc = start_scan(folder, out)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    _, stderr = finish(proc)
+    if "init_import_site" in stderr:  # Python's own start-up, before any rkcheck code runs
+        return
+    assert proc.returncode in (130, -signal.SIGINT), (proc.returncode, stderr)
+    assert "Traceback" not in stderr
+    if out.exists():
+        assert json.loads(out.read_text())["interrupted"] is True
+
+
+def test_unreadable_folders_are_reported_not_skipped(tmp_path, capsys, monkeypatch):
+    # simulated with os.scandir (the tests may run as root, who can read every folder)
+    folder = tmp_path / "in"
+    (folder / "locked").mkdir(parents=True)
+    (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    real_scandir = os.scandir
+    locked = {str(folder / "locked")}
+
+    def scandir(path="."):
+        if str(path) in locked:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real_scandir(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1", "--format", "json", "--degree", "2", "--order", "3")
+    doc = json.loads(r.out)
+    rows = [(Path(f["file"]).name, f["status"]) for f in doc["files"]]
+    assert rows == [("locked", "error"), ("a.toml", "ok")]
+    assert "cannot read this folder" in doc["files"][0]["error"] and r.code == 1
+    locked.add(str(folder))
+    r = run_cli(capsys, "scan", str(folder), "--jobs", "1")
+    assert r.code == 2 and r.err == f"rkcheck: error: {folder}: cannot read this folder (permission denied)\n"

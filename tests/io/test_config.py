@@ -1,0 +1,37 @@
+"""[tool.rkcheck] in pyproject.toml: validated like every other source (issue 16)."""
+
+from __future__ import annotations
+
+import pytest
+from support.clirun import run_cli
+
+MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
+
+
+@pytest.mark.parametrize(
+    "pyproject, message",
+    [
+        ('tool = "x"\n', "tool: [tool] must be a table"),
+        ("tool = 1\n", "tool: [tool] must be a table"),
+        ("[tool]\nrkcheck = 1\n", "[tool.rkcheck] must be a table"),
+        ("[tool.rkcheck]\njobs = 2000\n", "tool.rkcheck.jobs: expected an integer from 1 to 256, got 2000"),
+        ("[tool.rkcheck]\norder = 99\n", "tool.rkcheck.order: expected an integer from 1 to 30, got 99"),
+        ("[tool.rkcheck]\ndps = 1\n", "tool.rkcheck.dps: expected an integer from 10 to 5000, got 1"),
+        ("[tool.rkcheck]\nformt = 'json'\n", "tool.rkcheck.formt: unknown key (did you mean 'format'?)"),
+        ("[tool.rkcheck]\nx = 1\nx = 2\n", "cannot read [tool.rkcheck]"),
+        (b"[tool]\nname = '\xff'\n", "cannot read [tool.rkcheck]"),
+    ],
+)
+def test_bad_project_configuration_is_one_line_exit_2(tmp_path, capsys, monkeypatch, pyproject, message):
+    project = tmp_path / "pyproject.toml"
+    if isinstance(pyproject, bytes):
+        project.write_bytes(pyproject)
+    else:
+        project.write_text(pyproject, encoding="utf-8")
+    (tmp_path / "t.toml").write_text(MIDPOINT, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    for command in (["verify", "t.toml"], ["scan", "t.toml", "--jobs", "1"]):
+        r = run_cli(capsys, *command)
+        assert r.code == 2, (command, r.err)
+        assert r.err.count("\n") == 1 and "Traceback" not in r.err
+        assert r.err.startswith(f"rkcheck: error: {project}: {message}"), r.err
