@@ -165,6 +165,32 @@ def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]],
     return consts, A, bn, c
 
 
+def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c: list[str]):
+    """The same entries as exact values in their number field
+    (:mod:`rkcheck.numbers.algebraic`): ``5/36 - sqrt(15)/30`` when the entries are
+    rational or one square root suffices; otherwise (nested roots, ``root(p, k)``) the
+    node constants and Lagrange forms, which are exact too."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+    s = len(b)
+    flat = [x for row in A for x in row] + list(b) + list(c)
+    try:
+        found = field_of([ex.parse(x) for x in flat], {k: ex.parse(v) for k, v in consts.items()})
+    except NotAlgebraic:
+        return consts, A, b, c
+    if found.field is None:
+        texts = [str(v) for v in found.values]
+    elif found.field.sqrt_of:
+        texts = [v.text() for v in found.values]
+    else:
+        # in a field of higher degree the coefficients in a primitive element are long
+        # and opaque; the node constants and Lagrange forms say more (and are exact)
+        return consts, A, b, c
+    A_t = [texts[i * s:(i + 1) * s] for i in range(s)]
+    return {}, A_t, texts[s * s:s * s + s], texts[s * s + s:]
+
+
 # ------------------------------------------------------------------ writing
 
 
@@ -205,10 +231,12 @@ def render_toml(
         lines += [f"  {_toml_list([str(x.lo) for x in row])}," for row in A]
         lines += ["]", f"b = {_toml_list([str(x.lo) for x in b])}", f"c = {_toml_list([str(x.lo) for x in c])}"]
     elif texts is not None:
-        consts, A_t, b_t, c_t = texts
-        lines.append("[constants]")
-        lines += [f"{k} = {_toml_str(v)}" for k, v in consts.items()]
-        lines += ["", "[tableau]", "A = ["]
+        consts, A_t, b_t, c_t = simplified_texts(*texts)
+        if consts:
+            lines.append("[constants]")
+            lines += [f"{k} = {_toml_str(v)}" for k, v in consts.items()]
+            lines.append("")
+        lines += ["[tableau]", "A = ["]
         lines += [f"  {_toml_list(row)}," for row in A_t]
         lines += ["]", f"b = {_toml_list(b_t)}", f"c = {_toml_list(c_t)}"]
     else:

@@ -50,7 +50,12 @@ def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "roun
             zero = o.is_zero()
             for k in range(len(zero)):
                 v = o.value(k)
-                out[(n, k)] = (Enclosure.of(v), Verdict(HOLDS) if zero[k] else Verdict(FAILS))
+                if not isinstance(v, Fraction):  # a number-field element: a tight enclosure of it
+                    iv = v.enclosure(256)
+                    enc = Enclosure(iv.mid, iv.rad, v.rational() is not None)
+                else:
+                    enc = Enclosure.of(v)
+                out[(n, k)] = (enc, Verdict(HOLDS) if zero[k] else Verdict(FAILS))
         return out
     ctx = float_context(tableau, decimals) if name == "float64" else ball_context(tableau, int(name[4:]), decimals)
     sums = condition_sums(listing, ctx, tableau.stages)
