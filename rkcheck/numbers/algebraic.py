@@ -176,8 +176,25 @@ class FieldElement:
             raise ZeroDivisionError("division by zero in a number field")
         if self.poly.degree() <= 0:
             return FieldElement(self.field, _poly([1 / _frac(self.poly.coeffs()[0])]))
-        d, s, _ = self.poly.xgcd(self.field.g)
-        return FieldElement(self.field, (s / d) % self.field.g)
+        if self.field.degree <= 8:
+            d, s, _ = self.poly.xgcd(self.field.g)
+            return FieldElement(self.field, (s / d) % self.field.g)
+        # in larger fields the rational extended gcd swells its intermediate coefficients;
+        # FLINT's (multimodular) solve of  M_α x = e_0  (M_α: multiplication by α) does not
+        from flint import fmpq_mat
+
+        D = self.field.degree
+        M = fmpq_mat(D, D)
+        x = self
+        theta = self.field.gen
+        for j in range(D):  # column j: α·θ^j
+            for i, c in enumerate(x.poly.coeffs()):
+                M[i, j] = c
+            x = x * theta
+        e0 = fmpq_mat(D, 1)
+        e0[0, 0] = 1
+        sol = M.solve(e0)
+        return FieldElement(self.field, _poly([_frac(sol[i, 0]) for i in range(D)]))
 
     def __truediv__(self, y: Any) -> "FieldElement":
         if isinstance(y, FieldElement):
@@ -413,18 +430,21 @@ class _Builder:
             self.generators[gamma] = L.gen
             return L.gen
         D = K.degree * f.degree()
-        if D > self.max_degree:
+        # the compositum's degree is only known after factoring; the product bounds the
+        # work of finding it (a characteristic polynomial of a D×D matrix)
+        if D > 4 * self.max_degree:
             raise NotAlgebraic(f"the entries generate a number field of degree up to {D} "
                                f"(more than {self.max_degree})")
-        for t in (1, -1, 2, -2, 3, -3, 5, 7, 11, 13):
+        for t in _separating_multipliers(K.g, f):
             R = _charpoly_sum(K.g, f, t)
-            if R.gcd(R.derivative()).degree() > 0:
-                continue
 
             def eta_enc(bits: int, t=t) -> Interval:
                 return K.theta_enclosure(bits + 4) + Interval.point(t) * gamma.enclosure(bits + 8)
 
             h = _identify([fac for fac, _ in R.factor()[1]], eta_enc)
+            if h.degree() > self.max_degree:
+                raise NotAlgebraic(f"the entries generate a number field of degree {h.degree()} "
+                                   f"(more than {self.max_degree})")
             eta = _real_of(h, eta_enc)
             L = NumberField(list(eta.f), eta.index)
             theta_old = _theta_in(L, K.g, f, t)
@@ -520,6 +540,22 @@ class _Builder:
         if f.degree() == 1:
             return self.field(-_frac(f.coeffs()[0]) / _frac(f.coeffs()[1]))
         return self.adjoin(_real_of(f, enc))
+
+
+def _separating_multipliers(g, f, candidates=(1, -1, 2, -2, 3, -3, 5, 7, 11, 13)):
+    """The integers t (from ``candidates``) for which the sums ``θ_i + t·γ_j`` over all
+    conjugates are pairwise distinct — proven with certified complex balls (FLINT acb):
+    two balls whose difference excludes 0 are distinct numbers.  Then the characteristic
+    polynomial of ``θ + tγ`` is square-free without computing a gcd."""
+    from flint import ctx
+
+    with ctx.workprec(256):
+        thetas = [r for r, _ in g.numer().complex_roots()]
+        gammas = [r for r, _ in f.numer().complex_roots()]
+        for t in candidates:
+            sums = [a + t * b for a in thetas for b in gammas]
+            if all(not (sums[i] - sums[j]).contains(0) for i in range(len(sums)) for j in range(i)):
+                yield t
 
 
 def _companion(g):

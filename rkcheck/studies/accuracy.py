@@ -168,8 +168,8 @@ def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024,
                 f"the double-bush map for degree {degree} has no kernel direction with zero row sums at this rule "
                 f"(rank {k.rank} of {s * s})", "--direction")
         N = k.zero_row_sum[0]
-        if exact:
-            D = [[Fraction(x) for x in row] for row in N]
+        if exact:  # Fractions, or exact number-field elements (their text parses back)
+            D = [[x if hasattr(x, "field") else Fraction(x) for x in row] for row in N]
         else:  # a rational approximation to 2·dps digits: in the kernel up to ~10^-dps
             D = [[Fraction(str(x)).limit_denominator(10 ** (dps // 2)) for x in row] for row in N]
         desc = (f"the zero-row-sum kernel direction of the double-bush map for degree {degree} "
