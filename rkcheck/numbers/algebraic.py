@@ -684,6 +684,7 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     builder = _Builder(constants, max_degree)
     values = [builder.value(n) for n in nodes]
     values = [builder.lift(v) for v in values]
-    if builder.field.is_rational:
+    # sqrt(2) - sqrt(2) needs no field: when every value is rational, Q is the field
+    if builder.field.is_rational or all(v.rational() is not None for v in values):
         return FieldValues(None, [v.rational() for v in values])
     return FieldValues(builder.field, values)
