@@ -342,6 +342,24 @@ class _Real:
         return real_root_intervals(list(self.f), bits)[self.index - 1]
 
 
+def integral_scale(monic: Sequence[Fraction]) -> int:
+    """The least positive integer λ with ``λ^n f(x/λ)`` integral, for the monic rational
+    ``f`` (ascending coefficients): λθ is then an algebraic integer."""
+    from flint import fmpz
+
+    n = len(monic) - 1
+    need: dict[int, int] = {}
+    for k, c in enumerate(monic[:-1]):
+        den = Fraction(c).denominator
+        if den > 1:
+            for q, e in fmpz(den).factor():
+                need[int(q)] = max(need.get(int(q), 0), -(-int(e) // (n - k)))
+    lam = 1
+    for q, e in need.items():
+        lam *= q**e
+    return lam
+
+
 def _squarefree_split(n: int) -> tuple[int, int]:
     """``n = s²·m``, with m free of squares of primes below 10^4 (square-free when n is
     small): good enough for readable names; correctness never depends on it."""
@@ -422,6 +440,16 @@ class _Builder:
         """γ in the current field, extending it when γ is new."""
         if gamma in self.generators:
             return self.lift(self.generators[gamma])
+        lam = integral_scale(gamma.f)
+        if lam != 1:
+            # adjoin the algebraic integer λγ instead: sums of algebraic integers keep the
+            # primitive element's minimal polynomial integral with small coefficients,
+            # which keeps the exact engine's size bounds (and its number of primes) small
+            n = len(gamma.f) - 1
+            scaled = _Real(tuple(c * lam ** (n - k) for k, c in enumerate(gamma.f)), gamma.index)
+            value = self.adjoin(scaled) / lam
+            self.generators[gamma] = value
+            return value
         f = _poly(list(gamma.f))
         K = self.field
         if K.is_rational:
@@ -688,3 +716,4 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     if builder.field.is_rational or all(v.rational() is not None for v in values):
         return FieldValues(None, [v.rational() for v in values])
     return FieldValues(builder.field, values)
+

@@ -154,8 +154,7 @@ def test_perturbed_algebraic_tableau_gives_the_exact_irrational_residual():
 
 
 def test_degree_8_field_avf_over_gauss_4():
-    # Gauss-4's nodes 1/2 ± sqrt(3/28 ± sqrt(30)/70) generate a degree-8 field with a
-    # non-integral minimal polynomial (θ is scaled to an algebraic integer); AVF over the
+    # Gauss-4's nodes 1/2 ± sqrt(3/28 ± sqrt(30)/70) generate a degree-8 field; AVF over the
     # 4-point rule (q = 8) satisfies every condition of degree ≤ 8
     from support.paths import TABLEAUX
 
@@ -165,7 +164,7 @@ def test_degree_8_field_avf_over_gauss_4():
     values = tab.exact_values()
     assert values.field.degree == 8
     scaled = scaled_field(values)
-    assert scaled.theta_scale > 1 and scaled.minpoly[-1] == 1
+    assert scaled.minpoly[-1] == 1 and all(isinstance(c, int) for c in scaled.minpoly)
     _, sums = engine_residuals(tab, 7, 8)
     assert all(o.is_zero().all() for o in sums.values())
 
@@ -182,3 +181,20 @@ def test_vandermonde_bound_is_an_upper_bound():
     W = V**-1
     norm = max(sum(abs(W[i, j]) for j in range(W.cols)) for i in range(W.rows))
     assert mpmath.log(norm, 2) <= scaled.log2_Vinv <= mpmath.log(norm, 2) + 1e-6
+
+
+def test_scaled_field_makes_theta_an_algebraic_integer():
+    # θ = √3/2 (minimal polynomial x² − 3/4): λ = 2 gives θ̃ = √3 with x² − 3, and the
+    # entries' coefficients are rewritten in the basis 1, √3 (by hand: 1/2 + θ = 1/2 + √3/2)
+    from rkcheck.methods.tableau import ExactValues
+    from rkcheck.numbers.algebraic import NumberField
+
+    K = NumberField([Fraction(-3, 4), 0, 1], 2)
+    theta = K.gen
+    values = ExactValues(K, [[theta, K(Fraction(1, 2)) + theta], [K(0), K(1)]], [K(Fraction(1, 2)), K(Fraction(1, 2))], None)
+    scaled = scaled_field(values)
+    assert scaled.theta_scale == 2 and scaled.minpoly == [-3, 0, 1]
+    assert scaled.d == 2
+    assert scaled.A == [[[0, 1], [1, 1]], [[0, 0], [2, 0]]]  # 2·(√3/2) = √3, 2·(1/2 + √3/2)
+    back = scaled.field_element([1, 1], 2)  # (1 + √3)/2 = 1/2 + θ
+    assert back == K(Fraction(1, 2)) + theta
