@@ -200,10 +200,13 @@ def rule_values(rule_name: str, s: int, dps: int):
     return b, c, False
 
 
+ALGEBRAIC_RULE_MAX_DEGREE = 12
+
+
 def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
     """(b, c) of a quadrature rule exactly in the number field of its nodes (the weights
     from ``Σ b_i c_i^(k−1) = 1/k``, k = 1..s, solved in the field), or None when the field
-    is beyond :data:`rkcheck.numbers.algebraic.MAX_FIELD_DEGREE`."""
+    is beyond :data:`ALGEBRAIC_RULE_MAX_DEGREE`."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.algebraic import NotAlgebraic, field_of
 
@@ -211,7 +214,10 @@ def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
     if forms is None:
         return None
     try:
-        c = field_of([ex.parse(t) for t in forms]).values
+        # elimination on an s² × s² map in a field of degree D costs about D² times the
+        # rational one: beyond degree 12 (e.g. the degree-24 fields of Radau 5) the
+        # numerical rank, with its singular values printed, is the practical answer
+        c = field_of([ex.parse(t) for t in forms], max_degree=ALGEBRAIC_RULE_MAX_DEGREE).values
     except NotAlgebraic:
         return None
     s = len(c)
@@ -247,7 +253,7 @@ def tableau_rule(tableau, dps: int):
 
 def seed_N(zeta: Any, b: Sequence[Any], c: Sequence[Any]) -> list[list[Any]]:
     """The seed's s = 2, m = 3 direction N = ((ζ−1)1 − 2ζc) bᵀ(I − 2C)."""
-    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction):
+    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction) and not hasattr(b[0], "field"):
         import mpmath
 
         zeta = mpmath.mpf(zeta.numerator) / zeta.denominator

@@ -280,11 +280,23 @@ class FieldElement:
                 return -1
             bits *= 2
 
+    def _diff_sign(self, y: Any) -> int:
+        """sign(self − y), exactly; a float is taken at its exact binary value."""
+        if isinstance(y, float):
+            y = Fraction(y)
+        return (self - y).sign()
+
     def __lt__(self, y: Any) -> bool:
-        return (self - y).sign() < 0
+        return self._diff_sign(y) < 0
+
+    def __le__(self, y: Any) -> bool:
+        return self._diff_sign(y) <= 0
 
     def __gt__(self, y: Any) -> bool:
-        return (self - y).sign() > 0
+        return self._diff_sign(y) > 0
+
+    def __ge__(self, y: Any) -> bool:
+        return self._diff_sign(y) >= 0
 
     def __abs__(self) -> "FieldElement":
         return -self if self.sign() < 0 else self
