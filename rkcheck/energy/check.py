@@ -23,6 +23,7 @@ from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.lineintegral import LineIntegralCertificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.energy import scalars as sc
 from rkcheck.energy.properties import tableau_properties
 from rkcheck.energy.verdicts import (
     FAILS,
@@ -438,7 +439,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
     if box_warning:
         warnings.append(box_warning)
-    quad = quadrature_order(A, b, exact)
+    quad = quadrature_order(*sc.tableau_values(tableau, A, b, exact, options.decimals))
     classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
     # Tableau-level algebra (rkcheck.energy.properties): the irreducible form, R(z),

@@ -10,9 +10,13 @@ proves ``rank M = s²−1`` with kernel ``(1−c)bᵀ`` for Gauss and m = 2s, an
 with nodes the zeros of ``P_s − ζP_{s−1}``: ``s²−3`` (ζ ≠ −1) and ``s²−s−1`` (ζ = −1);
 the part of the kernel with zero row sums is one-dimensional ("onedim").
 
-Rational rules are handled exactly (Gaussian elimination over Q).  Otherwise the rank is
-numerical: singular values of M at the working precision (mpmath), the cut placed at
-the largest gap, and the singular values around the cut reported so the gap can be seen.
+Rational and algebraic rules are handled exactly: Gaussian elimination over Q or over the
+number field of the nodes (:mod:`rkcheck.numbers.algebraic`; square roots, nested roots,
+``root(P, k)``), so the rank is exact — a numerical cut-off can sit above the true
+smallest singular values (REVIEW: s = 6, m = 12 at 15 digits gave 31 instead of 35).
+Only rules whose field is beyond the degree limit fall back to a numerical rank:
+singular values of M at the working precision (mpmath), the cut placed at the largest
+gap, and the singular values around the cut reported so the gap can be seen.
 """
 
 from __future__ import annotations
@@ -49,9 +53,11 @@ def row_sum_rows(s: int) -> list[list[int]]:
 # ------------------------------------------------------------------- exact
 
 
-def nullspace_exact(rows: list[list[Fraction]], n: int) -> tuple[int, list[list[Fraction]]]:
-    """(rank, basis of the null space) over Q, by reduced row echelon form."""
-    M = [list(map(Fraction, r)) for r in rows]
+def nullspace_exact(rows: list[list[Any]], n: int) -> tuple[int, list[list[Any]]]:
+    """(rank, basis of the null space) over Q or a number field (entries Fractions or
+    field elements of one field), by reduced row echelon form with exact zero tests."""
+    M = [[x if hasattr(x, "field") else Fraction(x) for x in r] for r in rows]
+    zero = next((x * 0 for r in M for x in r if hasattr(x, "field")), Fraction(0))
     pivots: list[int] = []
     r = 0
     for col in range(n):
@@ -72,8 +78,8 @@ def nullspace_exact(rows: list[list[Fraction]], n: int) -> tuple[int, list[list[
     free = [j for j in range(n) if j not in pivots]
     basis = []
     for fj in free:
-        v = [Fraction(0)] * n
-        v[fj] = Fraction(1)
+        v = [zero] * n
+        v[fj] = zero + 1
         for k, pc in enumerate(pivots):
             v[pc] = -M[k][fj]
         basis.append(v)
@@ -183,12 +189,50 @@ def rule_values(rule_name: str, s: int, dps: int):
     if r.is_rational:
         c, b = r.exact_nodes_weights()
         return b, c, True
+    exact = algebraic_rule(r)
+    if exact is not None:
+        return exact[0], exact[1], True
     bits = mpmath_bits(dps)
     c_i, b_i = r.enclosures(bits)
     with mpmath.workdps(dps + 10):
         c = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in c_i]
         b = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in b_i]
     return b, c, False
+
+
+ALGEBRAIC_RULE_MAX_DEGREE = 12
+
+
+def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
+    """(b, c) of a quadrature rule exactly in the number field of its nodes (the weights
+    from ``Σ b_i c_i^(k−1) = 1/k``, k = 1..s, solved in the field), or None when the field
+    is beyond :data:`ALGEBRAIC_RULE_MAX_DEGREE`."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+    forms = r.node_closed_forms()
+    if forms is None:
+        return None
+    try:
+        # elimination on an s² × s² map in a field of degree D costs about D² times the
+        # rational one: beyond degree 12 (e.g. the degree-24 fields of Radau 5) the
+        # numerical rank, with its singular values printed, is the practical answer
+        c = field_of([ex.parse(t) for t in forms], max_degree=ALGEBRAIC_RULE_MAX_DEGREE).values
+    except NotAlgebraic:
+        return None
+    s = len(c)
+    rows = [[ci ** k for ci in c] + [c[0] * 0 + Fraction(1, k + 1)] for k in range(s)]
+    # Gauss–Jordan on the Vandermonde system (nodes distinct: always solvable)
+    for col in range(s):
+        piv = next(k for k in range(col, s) if rows[k][col] != 0)
+        rows[col], rows[piv] = rows[piv], rows[col]
+        inv = 1 / rows[col][col]
+        rows[col] = [x * inv for x in rows[col]]
+        for k in range(s):
+            if k != col and rows[k][col] != 0:
+                f = rows[k][col]
+                rows[k] = [x - f * y for x, y in zip(rows[k], rows[col])]
+    return [rows[i][s] for i in range(s)], list(c)
 
 
 def tableau_rule(tableau, dps: int):
@@ -209,7 +253,7 @@ def tableau_rule(tableau, dps: int):
 
 def seed_N(zeta: Any, b: Sequence[Any], c: Sequence[Any]) -> list[list[Any]]:
     """The seed's s = 2, m = 3 direction N = ((ζ−1)1 − 2ζc) bᵀ(I − 2C)."""
-    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction):
+    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction) and not hasattr(b[0], "field"):
         import mpmath
 
         zeta = mpmath.mpf(zeta.numerator) / zeta.denominator

@@ -18,17 +18,15 @@ from typing import Any
 
 import numpy as np
 
+from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import (
     FAILS,
     HOLDS,
     Verdict,
     classify,
-    classify_interval,
     combine,
 )
-from rkcheck.methods.quadrature import quadrature_residual
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.intervals import Interval, interval_sum
 from rkcheck.trees.rooted import bracket_of_forest
 from rkcheck.trees.table import TreeTable
 
@@ -41,18 +39,16 @@ class OrderResult:
     first_failure: str | None = None  # e.g. "Σ b_i c_i^3 = 1/4" or a tree
 
 
-def row_sums(A: list[list[Interval]]) -> list[Interval]:
-    """``A·1``: the nodes ``c`` every B-series quantity uses (definitions §1)."""
-    return [interval_sum(row) for row in A]
+def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
+    """Quadrature order of the rule ``(b, A·1)`` (checked up to ``2s``, its maximum).
 
-
-def quadrature_order(A: list[list[Interval]], b: list[Interval], exact: bool) -> OrderResult:
-    """Quadrature order of the rule ``(b, A·1)`` (checked up to ``2s``, its maximum)."""
-    c = row_sums(A)
+    ``A``, ``b`` are scalars of :mod:`rkcheck.energy.scalars` (Fractions, field elements
+    or intervals), so an algebraic rule such as Gauss's gets an exact order."""
+    c = sc.row_sums(A, sc.sample(A, b))
     top = 2 * len(b)
     verdicts = []
     for k in range(1, top + 1):
-        v = classify_interval(quadrature_residual(b, c, k), exact)
+        v = sc.verdict(sc.quadrature_residual(b, c, k))
         if v.state == FAILS:
             power = "" if k == 1 else ("_i" if k == 2 else f"_i^{k - 1}")
             label = "Σ b_i = 1" if k == 1 else f"Σ b_i c{power} = 1/{k}"

@@ -44,10 +44,9 @@ def exact_values_or_none(tableau, decimals: str = "auto") -> tuple[Matrix, Vecto
         return None
     hook = getattr(tableau, "exact_values", None)
     if hook is not None:
-        values = hook()
+        values = hook(decimals)
         if values is not None:
-            A, b = values
-            return [list(row) for row in A], list(b)
+            return [list(row) for row in values.A], list(values.b)
         return None
     if tableau.is_rational:
         return tableau.exact_A(), tableau.exact_b()
@@ -152,7 +151,14 @@ def text(x: Scalar, sig: int = 12) -> str:
         if x.is_point:
             return decimal_string(x.lo, sig)
         return f"{decimal_string(x.mid, sig)} ± {radius_string(x.rad)}"
-    return f"{exact_text(x)} ≈ {decimal_string(x.enclosure(64).mid, sig)}"
+    exact, approx_text = exact_text(x), decimal_string(x.enclosure(64).mid, sig)
+    # a field element of a large field has a page-long exact text: the decimal then
+    # stands alone (the zero test behind it was exact all the same)
+    return f"{exact} ≈ {approx_text}" if len(exact) <= MAX_EXACT_TEXT else f"≈ {approx_text}"
+
+
+#: longest exact algebraic text printed beside its decimal
+MAX_EXACT_TEXT = 60
 
 
 def exact_text(x: Scalar) -> str:
@@ -161,12 +167,7 @@ def exact_text(x: Scalar) -> str:
     if q is not None:
         return str(q)
     render = getattr(x, "text", None)
-    if render is not None:
-        try:
-            return render("plain")
-        except TypeError:
-            return render()
-    return str(x)
+    return render() if render is not None else str(x)
 
 
 def magnitude_key(x: Scalar) -> Fraction:

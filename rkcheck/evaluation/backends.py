@@ -24,6 +24,7 @@ from rkcheck.evaluation.balls import BallContext, FloatContext
 from rkcheck.evaluation.modular import (
     ScaledTableau,
     exact_condition_sums,
+    scaled_field,
     scaled_rational,
 )
 from rkcheck.numbers.precision import bits_for_dps, entry_bits
@@ -46,7 +47,9 @@ def scaled_tableau(tableau, decimals: str) -> ScaledTableau | None:
     """The exact scaled data of the tableau, or None when its entries are not exact
     (definitions §5: rounded decimals are a box of inputs, not numbers)."""
     if tableau.is_exact(decimals):
-        return scaled_rational(tableau.exact_A(), tableau.exact_b())
+        if tableau.is_rational:
+            return scaled_rational(tableau.exact_A(), tableau.exact_b())
+        return scaled_field(tableau.exact_values(decimals))  # entries in a number field
     return None
 
 

@@ -198,6 +198,12 @@ class ScaledTableau:
     log2_M: float  # upper bound of log2 M
     log2_Vinv: float = 0.0  # upper bound of log2 ‖V⁻¹‖_∞ (0 for Q)
     number_field: Any = None  # the number field of the entries (None: Q)
+    theta_scale: int = 1  # λ: the power basis is that of λθ, θ the field's generator
+
+    def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
+        """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
+        lam = self.theta_scale
+        return self.number_field([Fraction(int(c) * lam**k, scale) for k, c in enumerate(coeffs)])
 
     @property
     def degree(self) -> int:
@@ -216,18 +222,26 @@ class ScaledTableau:
     def primes_for(self, bits: int) -> list[tuple[int, list[int]]]:
         """Enough channel primes for coefficients of ``bits`` bits: each (p, roots of
         the minimal polynomial mod p), in a fixed order, with ``Π p > 2^bits``."""
+        # the split primes found so far are kept: in a field of degree D only about one
+        # prime in D (or in the Galois group's order) splits, and every order asks again
+        if not hasattr(self, "_split"):
+            self._split: list[tuple[int, list[int]]] = []
+            self._scanned = 0
         chosen: list[tuple[int, list[int]]] = []
         total = 0.0
-        skip = 0
+        i = 0
         while total <= bits:
-            for p in primes(16, skip):
-                if total > bits:
-                    break
-                roots = self._roots_mod(p)
-                if roots is not None:
-                    chosen.append((p, roots))
-                    total += math.log2(p)
-            skip += 16
+            if i == len(self._split):
+                for p in primes(64, self._scanned):
+                    roots = self._roots_mod(p)
+                    if roots is not None:
+                        self._split.append((p, roots))
+                self._scanned += 64
+                continue
+            p, roots = self._split[i]
+            chosen.append((p, roots))
+            total += math.log2(p)
+            i += 1
         return chosen
 
     def _roots_mod(self, p: int) -> list[int] | None:
@@ -266,6 +280,68 @@ def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> S
     beta = sum(abs(x[0]) for x in bi)
     M = max(alpha, beta, 1)
     return ScaledTableau(Ai, bi, d, [0, 1], float(M.bit_length()))
+
+
+def scaled_field(exact_values: Any) -> ScaledTableau:
+    """The scaled data of a tableau with entries in a number field ``Q(θ)``
+    (``exact_values``: :meth:`rkcheck.methods.tableau.Tableau.exact_values`).
+
+    ``θ̃ = λθ`` is an algebraic integer (λ the least positive integer that clears the
+    denominators of ``λ^D g(x/λ)``); entries are rewritten in the basis of θ̃ and scaled by
+    the common denominator ``d``.  ``M`` and ``‖V⁻¹‖_∞`` (module docstring) are bounded
+    over every complex embedding with certified Arb/Acb enclosures of the conjugates."""
+    field = exact_values.field
+    if field is None:
+        return scaled_rational(exact_values.A, exact_values.b)
+    from flint import acb, acb_mat, arb, ctx, fmpz, fmpz_poly
+
+    g = [Fraction(c) for c in field.minpoly]  # monic
+    D = len(g) - 1
+    lam = 1
+    need: dict[int, int] = {}
+    for k, c in enumerate(g[:-1]):
+        if c.denominator > 1:
+            for q, e in fmpz(c.denominator).factor():
+                need[int(q)] = max(need.get(int(q), 0), -(-int(e) // (D - k)))
+    for q, e in need.items():
+        lam *= q**e
+    minpoly = [int(c * lam ** (D - k)) for k, c in enumerate(g)]
+    assert minpoly[-1] == 1 and all(Fraction(c) * lam ** (D - k) == minpoly[k] for k, c in enumerate(g))
+
+    def tilde(x: Any) -> list[Fraction]:
+        coeffs = x.coeffs if hasattr(x, "coeffs") else [Fraction(x)] + [Fraction(0)] * (D - 1)
+        return [Fraction(c) / lam**k for k, c in enumerate(coeffs)]
+
+    At = [[tilde(x) for x in row] for row in exact_values.A]
+    bt = [tilde(x) for x in exact_values.b]
+    d = 1
+    for v in [v for row in At for v in row] + bt:
+        for c in v:
+            d = math.lcm(d, c.denominator)
+    Ai = [[[int(c * d) for c in v] for v in row] for row in At]
+    bi = [[int(c * d) for c in v] for v in bt]
+
+    with ctx.workprec(128):
+        roots = [r for r, _ in fmpz_poly(minpoly).complex_roots()]
+
+        def conj(v: list[int], r) -> Any:
+            acc = acb(0)
+            for c in reversed(v):
+                acc = acc * r + c
+            return acc
+
+        def upper(x: Any) -> float:  # an arb as a float upper bound
+            return float(x.abs_upper()) * (1 + 2.0**-40)
+
+        M = 1.0
+        for r in roots:
+            alpha = max(upper(sum((abs(conj(v, r)) for v in row), arb(0))) for row in Ai)
+            beta = upper(sum((abs(conj(v, r)) for v in bi), arb(0)))
+            M = max(M, alpha, beta)
+        V = acb_mat([[r**k for k in range(D)] for r in roots])
+        W = V.inv()
+        vinv = max(upper(sum((abs(W[i, j]) for j in range(D)), arb(0))) for i in range(D))
+    return ScaledTableau(Ai, bi, d, minpoly, math.log2(M) + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam)
 
 
 # ---------------------------------------------------------------------- results

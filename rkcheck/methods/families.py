@@ -26,6 +26,7 @@ expressions over closed-form node constants, for ``rkcheck new``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -248,14 +249,33 @@ class ComputedEntry:
 class _Shared:
     spec: FamilySpec
     cache: dict[int, tuple[list[list[Interval]], list[Interval]]] = field(default_factory=dict)
+    exact: tuple[Any, str | None] | None = None
 
     def get(self, bits: int) -> tuple[list[list[Interval]], list[Interval]]:
         if bits not in self.cache:
             self.cache[bits] = coefficients(self.spec, bits)
         return self.cache[bits]
 
+    def exact_values(self) -> tuple[Any, str | None]:
+        """``(ExactValues or None, reason)`` for the family's tableau (computed once)."""
+        if self.exact is None:
+            from rkcheck.methods.closed_forms import family_exact_values
+            from rkcheck.methods.tableau import ExactValues
+
+            found, reason = family_exact_values(self.spec)
+            if found is None:
+                self.exact = (None, reason)
+            else:
+                v = found.values
+                n = math.isqrt(len(v) + 1) - 1  # A, b and the nodes c: n² + 2n values
+                A = [v[i * n:(i + 1) * n] for i in range(n)]
+                self.exact = (ExactValues(found.field, A, v[n * n:n * n + n], None), None)
+        return self.exact
+
     def __getstate__(self) -> dict[str, Any]:
-        return {"spec": self.spec, "cache": {}}  # coefficients are recomputed where needed
+        # coefficients are recomputed where needed; the exact values travel (they are
+        # the slow part, and plain data)
+        return {"spec": self.spec, "cache": {}, "exact": self.exact}
 
 
 def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
@@ -280,7 +300,11 @@ def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
         name = base.name if base.name and base.source and base.name != _stem(base.source) else spec.title()
     else:
         name = spec.title()
-    return Tableau(A=A, b=b, c=None, name=name, family=spec.params(), **kw)
+    tab = Tableau(A=A, b=b, c=None, name=name, family=spec.params(), **kw)
+    # the same coefficients exactly, in their number field, when the nodes have a closed
+    # form (Tableau.exact_values; issue 12): then the check is exact, not to digits
+    tab.family_exact = shared.exact_values
+    return tab
 
 
 def _stem(source: str) -> str:

@@ -287,6 +287,16 @@ def closed_forms(nodes: list[Node]) -> list[str] | None:
     return [t for _, t in texts]
 
 
+def root_forms(nodes: list[Node]) -> list[str]:
+    """``root(P, k)`` for every irrational zero (k-th smallest real zero of the node
+    polynomial P; the nodes are all of P's zeros, simple and increasing) and the exact
+    value of a rational one."""
+    from rkcheck.numbers.polynomials import poly_text
+
+    text = poly_text(nodes[0].poly)
+    return [str(n.exact) if n.exact is not None else f"root({text}, {k})" for k, n in enumerate(nodes, start=1)]
+
+
 def _shift(p: list[Fraction], h: Fraction) -> list[Fraction]:
     """Coefficients of p(h + y) in y."""
     out = [Fraction(0)]
@@ -332,7 +342,9 @@ class Rule:
         return [x.lo for x in c], [x.lo for x in b]
 
     def node_closed_forms(self) -> list[str] | None:
-        return closed_forms(self.nodes)
+        """Exact entry texts of the nodes, increasing: square roots where they suffice,
+        else ``root(P, k)`` (the k-th real zero of the node polynomial P)."""
+        return closed_forms(self.nodes) or root_forms(self.nodes)
 
     def order(self, bits: int = 200) -> int:
         """Quadrature order: the largest q with Σ b c^(k−1) = 1/k for all k <= q (certified:

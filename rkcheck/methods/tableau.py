@@ -33,6 +33,8 @@ class Tableau:
     lines: dict[str, int] = field(default_factory=dict)  # "tableau", "expect.avf", ... -> line
     constants: Constants = field(default_factory=Constants)
     claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.energy.claims.Claim)
+    exact_reason: str | None = field(default=None, repr=False, compare=False)
+    _exact_values: dict = field(default_factory=dict, repr=False, compare=False)
 
     # ------------------------------------------------------------- construction
 
@@ -92,13 +94,28 @@ class Tableau:
         return min(digits) if digits else None
 
     def is_exact(self, decimals: str) -> bool:
-        """True when the check runs in exact rational arithmetic (definitions §5)."""
-        return self.is_rational and not self.is_box(decimals)
+        """True when the check runs in exact arithmetic (definitions §5): no entry is a box
+        under ``decimals``, and the entries are rationals or elements of a number field
+        (:meth:`exact_values`)."""
+        if self.is_box(decimals):
+            return False
+        return self.is_rational or self.exact_values(decimals) is not None
 
     def is_box(self, decimals: str) -> bool:
         """Some entry of A or b stands for an interval of numbers under the decimals mode
         (definitions §5.2): the tableau is a box of tableaux, judged jointly."""
         return any(e.is_box(decimals) for row in self.A for e in row) or any(e.is_box(decimals) for e in self.b)
+
+    def exact_values(self, decimals: str = "rounded"):
+        """The entries exactly, in one number field (:mod:`rkcheck.numbers.algebraic`):
+        an object with ``.field`` (None for Q) and ``.A``, ``.b``, ``.c`` (``c`` None when
+        the file left it out) as Fractions or field elements; None when the entries are
+        not exact numbers (a box of inputs under ``decimals``, computed coefficients,
+        or a field beyond the degree limit: then ``exact_reason`` says why)."""
+        key = not self.is_box(decimals)
+        if key not in self._exact_values:
+            self._exact_values[key] = _exact_values(self) if key else None
+        return self._exact_values[key]
 
     @property
     def structure(self) -> str:
@@ -125,19 +142,62 @@ class Tableau:
 
     # ------------------------------------------------------------------- values
 
-    def exact_A(self) -> list[list[Fraction]]:
-        assert self.is_rational
-        return [[e.exact for e in row] for row in self.A]  # type: ignore[misc]
+    def exact_A(self) -> list[list[Any]]:
+        """A exactly: Fractions, or field elements for algebraic entries (is_exact)."""
+        if self.is_rational:
+            return [[e.exact for e in row] for row in self.A]  # type: ignore[misc]
+        values = self.exact_values("exact")
+        assert values is not None
+        return values.A
 
-    def exact_b(self) -> list[Fraction]:
-        assert self.is_rational
-        return [e.exact for e in self.b]  # type: ignore[misc]
+    def exact_b(self) -> list[Any]:
+        if self.is_rational:
+            return [e.exact for e in self.b]  # type: ignore[misc]
+        values = self.exact_values("exact")
+        assert values is not None
+        return values.b
 
     def enclosures(self, bits: int, decimals: str) -> tuple[list[list[Interval]], list[Interval]]:
         """Rigorous enclosures of A and b at ``bits`` bits (definitions §5)."""
         A = [[e.enclosure(bits, decimals) for e in row] for row in self.A]
         b = [e.enclosure(bits, decimals) for e in self.b]
         return A, b
+
+
+@dataclass
+class ExactValues:
+    """A tableau's entries in one number field (``field`` None: rationals)."""
+
+    field: Any
+    A: list[list[Any]]
+    b: list[Any]
+    c: list[Any] | None
+
+
+def _exact_values(tab: Tableau) -> ExactValues | None:
+    if tab.is_rational:
+        c = None if tab.c is None or any(e.exact is None for e in tab.c) else [e.exact for e in tab.c]
+        return ExactValues(None, tab.exact_A(), tab.exact_b(), c)
+    entries = tab.entries()
+    if any(getattr(e, "node", None) is None for e in entries):
+        exact = getattr(tab, "family_exact", None)
+        values, reason = exact() if exact is not None else (None, None)
+        if values is None:
+            tab.exact_reason = reason or "the coefficients are computed numerically by the family"
+        return values
+    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+    try:
+        found = field_of([e.node for e in entries], tab.constants.definitions)
+    except NotAlgebraic as err:
+        tab.exact_reason = str(err)
+        return None
+    s = tab.stages
+    values = found.values
+    A = [values[i * s:(i + 1) * s] for i in range(s)]
+    b = values[s * s:s * s + s]
+    c = values[s * s + s:] if tab.c is not None else None
+    return ExactValues(found.field, A, b, c)
 
 
 def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:

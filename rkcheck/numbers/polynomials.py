@@ -9,6 +9,7 @@ the end points are exact rationals read off the Arb balls.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Sequence
 
@@ -90,3 +91,38 @@ def real_root_intervals(coeffs: Sequence[Fraction], bits: int) -> list[Interval]
 def root_count_message(coeffs: Sequence[Fraction]) -> str:
     n = len(real_root_intervals(coeffs, 8))
     return f"{n} real root{'s' if n != 1 else ''}"
+
+
+def poly_text(coeffs: Sequence[Fraction], variable: str = "x") -> str:
+    """The polynomial as entry text (``x^2 - 15``), scaled to primitive integer
+    coefficients with a positive leading one (same roots), highest power first."""
+    coeffs = trim(coeffs)
+    den = 1
+    for c in coeffs:
+        den = den * c.denominator // math.gcd(den, c.denominator)
+    ints = [int(c * den) for c in coeffs]
+    g = 0
+    for c in ints:
+        g = math.gcd(g, c)
+    g = g or 1
+    if ints[-1] < 0:
+        g = -g
+    ints = [c // g for c in ints]
+    parts: list[tuple[int, str]] = []
+    for k in range(len(ints) - 1, -1, -1):
+        c = ints[k]
+        if c == 0:
+            continue
+        mag = abs(c)
+        power = "" if k == 0 else (variable if k == 1 else f"{variable}^{k}")
+        if not power:
+            text = str(mag)
+        else:
+            text = power if mag == 1 else f"{mag}*{power}"
+        parts.append((1 if c > 0 else -1, text))
+    if not parts:
+        return "0"
+    out = ("-" if parts[0][0] < 0 else "") + parts[0][1]
+    for sign, text in parts[1:]:
+        out += (" - " if sign < 0 else " + ") + text
+    return out

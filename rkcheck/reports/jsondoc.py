@@ -78,6 +78,11 @@ def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]
 
 def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
     enc = r.enclosure
+    if r.value is not None and hasattr(r.value, "rational"):  # exact, in a number field
+        q = r.value.rational()
+        text = r.value.text() if q is None else str(q)
+        return {"residual": decimal_string(enc.mid, dps), "residual_exact": text,
+                "radius": "0" if q is not None else radius_string(enc.rad), "digits": None}
     if enc.exact:
         residual = decimal_string(enc.mid, dps)
         return {"residual": residual, "residual_exact": str(enc.mid), "radius": "0", "digits": None}

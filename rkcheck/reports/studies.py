@@ -92,6 +92,8 @@ def perturb_doc(file: str, degree, order: int, res) -> dict:
 def _fmt(x) -> str:
     if isinstance(x, Fraction):
         return str(x)
+    if hasattr(x, "text"):  # an exact number-field element
+        return x.text()
     import mpmath
 
     return mpmath.nstr(x, 8, min_fixed=-3, max_fixed=3) if x != 0 else "0"
@@ -100,9 +102,9 @@ def _fmt(x) -> str:
 def render_kernel(res, console: Console, title: str) -> None:
     console.print(Text(title, style="bold"))
     s = res.s
-    kind = "exact (rational rule)" if res.exact else "numerical (singular values at the working precision)"
+    kind = "exact: rational or number-field arithmetic" if res.exact else "numerical (singular values at the working precision)"
     console.print(f"M: R^({s}×{s}) → R^{res.conditions} (double-bush conditions 1 ≤ p < q ≤ {res.degree - 1})")
-    console.print(f"rank M = {res.rank}   dim ker M = {s * s - res.rank}   [{kind}]")
+    console.print(f"rank M = {res.rank}   dim ker M = {s * s - res.rank}   \\[{kind}]")
     if res.singular_values:
         around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.singular_values)
         console.print(f"singular values around the cut: {around}")

@@ -25,8 +25,14 @@ def state_text(v: Verdict) -> Text:
     return Text(v.label(), style=STYLE[v.state])
 
 
-def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12) -> str:
-    """A residual for people: exact value, or mid ± radius, or a certified bound."""
+def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) -> str:
+    """A residual for people: exact value, or mid ± radius, or a certified bound.  An
+    exact algebraic ``value`` (number-field element) is shown exactly and numerically."""
+    if value is not None and hasattr(value, "rational"):
+        r = value.rational()
+        if r is None:
+            return f"{value.text()} ≈ {decimal_string(enc.mid, sig)}"
+        enc = Enclosure.of(r)
     if enc.exact:
         if enc.mid == 0:
             return "0"
@@ -72,7 +78,7 @@ def conditions_table(results: list[ConditionResult], title: str) -> Table:
         c = r.condition
         t.add_row(*plain(
             c.id, c.bracket, c.vertices, c.max_degree,
-            enclosure_text(r.enclosure, r.verdict), state_text(r.verdict),
+            enclosure_text(r.enclosure, r.verdict, value=r.value), state_text(r.verdict),
         ))
     return t
 
@@ -95,7 +101,11 @@ def per_order_table(res: CheckResult) -> Table:
 
 def _backend_text(res: CheckResult) -> str:
     if res.backend == "exact":
-        return "exact rational arithmetic"
+        field = None if res.tableau.is_rational else getattr(res.tableau.exact_values("exact"), "field", None)
+        if field is None:
+            return "exact rational arithmetic"
+        where = f"Q({field.name})" if field.sqrt_of else f"a number field of degree {field.degree}"
+        return f"exact arithmetic in {where}"
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 

@@ -50,7 +50,12 @@ def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "roun
             zero = o.is_zero()
             for k in range(len(zero)):
                 v = o.value(k)
-                out[(n, k)] = (Enclosure.of(v), Verdict(HOLDS) if zero[k] else Verdict(FAILS))
+                if not isinstance(v, Fraction):  # a number-field element: a tight enclosure of it
+                    iv = v.enclosure(256)
+                    enc = Enclosure(iv.mid, iv.rad, v.rational() is not None)
+                else:
+                    enc = Enclosure.of(v)
+                out[(n, k)] = (enc, Verdict(HOLDS) if zero[k] else Verdict(FAILS))
         return out
     ctx = float_context(tableau, decimals) if name == "float64" else ball_context(tableau, int(name[4:]), decimals)
     sums = condition_sums(listing, ctx, tableau.stages)
@@ -163,8 +168,8 @@ def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024,
                 f"the double-bush map for degree {degree} has no kernel direction with zero row sums at this rule "
                 f"(rank {k.rank} of {s * s})", "--direction")
         N = k.zero_row_sum[0]
-        if exact:
-            D = [[Fraction(x) for x in row] for row in N]
+        if exact:  # Fractions, or exact number-field elements (their text parses back)
+            D = [[x if hasattr(x, "field") else Fraction(x) for x in row] for row in N]
         else:  # a rational approximation to 2·dps digits: in the kernel up to ~10^-dps
             D = [[Fraction(str(x)).limit_denominator(10 ** (dps // 2)) for x in row] for row in N]
         desc = (f"the zero-row-sum kernel direction of the double-bush map for degree {degree} "

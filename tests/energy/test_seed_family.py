@@ -26,7 +26,7 @@ from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.methods.tableau import Tableau
 
 beta = sp.Symbol("beta")
@@ -164,14 +164,13 @@ def test_family_closed_form_nodes():
 @pytest.mark.parametrize("zeta", list(ZETAS))
 @pytest.mark.parametrize("b_value", ["1/10", "1/1000000000000"])
 def test_double_bush_holds_in_the_family(zeta, b_value):
-    # (a) shows DB_{1,2} = 0 exactly for all β; the tableau has square roots, so the
-    # engine can only certify digits
+    # (a) shows DB_{1,2} = 0 exactly for all β; the square roots are decided exactly in
+    # their number field (issue 12), so the verdict is an exact `holds`
     assert DB12_ID == (1, 2, 3, 3, 2)  # hand: [τ[τ²]], rooted at the 1-leaf bush
     res = family_check(zeta, b_value)
-    assert res.backend == "ball"
+    assert res.backend == "exact"
     r = result_by_id(res, DB12_ID)
-    assert r.verdict.state == HOLDS_TO_DIGITS
-    assert r.verdict.digits >= 40
+    assert r.verdict.state == HOLDS
 
 
 # ------------------------------------------- (c) β = 1/10 fails, β = 0 is AVF
@@ -206,7 +205,7 @@ def test_beta_tenth_fails_exactly_where_sympy_says(zeta):
 def test_beta_zero_is_avf(zeta):
     res = family_check(zeta, "0")
     assert res.failures == []
-    assert all(r.verdict.state == HOLDS_TO_DIGITS and r.verdict.digits >= 40 for r in res.results)
+    assert all(r.verdict.state == HOLDS for r in res.results)
     assert res.avf is not None and res.avf.equals_avf
     assert res.energy_order_all and res.energy_order == 8
     assert res.quadrature.order == (4 if zeta == "0" else 3)  # bᵀc³ = 1/4 + ζ/36
@@ -314,7 +313,10 @@ def test_gauss2_collocation_degree4_energy_order():
     assert nonzero, "Gauss collocation is not energy preserving for quartic H"
     first_bad = min(len(i) for i in nonzero)  # number of vertices of the first failure
     res = check(Tableau.from_values(GAUSS2_A, GAUSS2_B), CheckOptions(degree=4, order=8))
-    assert res.backend == "ball"
+    assert res.backend == "exact"
+    for r in res.results:  # the exact residuals in Q(√3) are sympy's
+        v = r.value if isinstance(r.value, F) else sp.sympify(r.value.text().replace("^", "**"))
+        assert sp.simplify(sp.sympify(v) - exact[r.condition.level_sequence]) == 0
     assert res.energy_order == first_bad - 2
     assert res.classical.order == 4  # 2-stage Gauss: order 2s (Butcher), hand value
     failing_at_first = {r.condition.level_sequence for r in res.failures

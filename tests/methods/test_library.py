@@ -53,7 +53,7 @@ def _reference_energy_order(A, b, degree, max_vertices):
     return None  # every condition up to max_vertices holds
 
 
-RATIONAL = [f for f in FILES if load(f).is_exact("rounded") and load(f).family is None]
+RATIONAL = [f for f in FILES if load(f).is_rational and load(f).is_exact("rounded") and load(f).family is None]
 
 
 @pytest.mark.parametrize("path", RATIONAL, ids=[str(Path(f).relative_to(TABLEAUX)) for f in RATIONAL])
@@ -153,7 +153,9 @@ def test_hbvm_holds_to_2k_over_s_and_fails_beyond(k, s, dps):
 def test_new_pipes_into_verify_from_stdin():
     new = subprocess.run([sys.executable, "-m", "rkcheck", "new", "gauss", "-s", "3"],
                          capture_output=True, text=True, check=True)
-    assert 'c1 = "1/2 - sqrt(15)/10"' in new.stdout
+    # exact entries in Q(√15), as published (Hairer–Wanner II, Table 7.4)
+    assert '["5/36", "2/9 - sqrt(15)/15", "5/36 - sqrt(15)/30"]' in new.stdout
+    assert 'c = ["1/2 - sqrt(15)/10", "1/2", "1/2 + sqrt(15)/10"]' in new.stdout
     ver = subprocess.run([sys.executable, "-m", "rkcheck", "verify", "-", "--degree", "2", "--format", "json"],
                          input=new.stdout, capture_output=True, text=True)
     assert ver.returncode == 0, ver.stderr
@@ -180,10 +182,24 @@ def test_new_files_reproduce_the_family_verdicts(tmp_path, args):
         assert _states(written, degree, order=6) == _states(family, degree, order=6)
 
 
-def test_new_exact_refuses_when_there_is_no_closed_form():
-    r = subprocess.run([sys.executable, "-m", "rkcheck", "new", "radau-iia", "-s", "4", "--exact"],
+def test_new_exact_uses_root_forms_when_square_roots_do_not_suffice(tmp_path):
+    # Radau IIA 4: after removing the node 1 an irreducible cubic remains; its zeros are
+    # written root(P, k) and the tableau is checked exactly in their field
+    out = tmp_path / "radau4.toml"
+    r = subprocess.run([sys.executable, "-m", "rkcheck", "new", "radau-iia", "-s", "4", "--exact", "-o", str(out)],
                        capture_output=True, text=True)
-    assert r.returncode == 2 and "no closed form in square roots" in r.stderr
+    assert r.returncode == 0, r.stderr
+    text = out.read_text()
+    assert "root(" in text and "sqrt" not in text
+    tab = load(str(out))
+    values = tab.exact_values()
+    assert values is not None and values.field.degree in (3, 6)
+    # Radau IIA s = 4 has quadrature order 2s − 1 = 7 (published): Σ b c^(k−1) = 1/k
+    # exactly for k ≤ 7 and not for k = 8
+    b, c = values.b, values.c
+    for k in range(1, 9):
+        residual = sum((bi * ci ** (k - 1) for bi, ci in zip(b, c)), Fraction(0)) - Fraction(1, k)
+        assert residual.is_zero() == (k <= 7), k
 
 
 @pytest.mark.slow

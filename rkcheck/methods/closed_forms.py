@@ -1,0 +1,196 @@
+"""A family's coefficients as exact entry texts, and as exact values in their field.
+
+The nodes of a family's rule are written in closed form (square roots, or ``root(p, k)``
+for a root of a named polynomial; :meth:`QuadratureRule.node_closed_forms`), every
+weight and coefficient as an exact expression over them (Lagrange integrals written out
+with elementary symmetric sums; definitions §1).  :func:`family_exact_values` places them
+in one number field (:mod:`rkcheck.numbers.algebraic`), which is what makes ``[family]``
+tableaux and ``rkcheck new`` files exact wherever the nodes are algebraic of modest degree
+(issue 12).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import combinations
+from typing import TYPE_CHECKING, Any
+
+from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+
+if TYPE_CHECKING:
+    from rkcheck.methods.families import FamilySpec
+
+
+def _par(text: str) -> str:
+    return text if _atomic(text) else f"({text})"
+
+
+def _atomic(text: str) -> bool:
+    depth = 0
+    for i, ch in enumerate(text):
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth -= 1
+        elif depth == 0 and ch in "+-" and i > 0:
+            return False
+        elif depth == 0 and ch in "*/" :
+            return False
+    return not text.startswith("-")
+
+
+def _esym(names: list[str], k: int) -> str:
+    """Elementary symmetric polynomial e_k of the names, as text."""
+    if k == 0:
+        return "1"
+    return " + ".join("*".join(c) for c in combinations(names, k))
+
+
+def _power(x: str, k: int) -> str:
+    if x == "1" or k == 1:
+        return x
+    return f"{_par(x)}^{k}"
+
+
+def lagrange_integral_text(names: list[str], i: int, lo: str, hi: str) -> str:
+    """``∫_lo^hi ℓ_i(x) dx`` over the nodes ``names`` as an exact expression."""
+    others = names[:i] + names[i + 1:]
+    n = len(others)
+    num = ""
+    for k in range(n + 1):  # coefficient of x^k in Π (x − c_j) is (−1)^(n−k) e_(n−k)
+        e = _esym(others, n - k)
+        if hi == "1" and lo == "0":
+            upper = "1"
+        elif lo == "0":
+            upper = _power(hi, k + 1)
+        else:
+            upper = f"({_power(hi, k + 1)} - {_power(lo, k + 1)})"
+        if e == "1":
+            factor = upper
+        elif upper == "1":
+            factor = _par(e)
+        else:
+            factor = f"{_par(e)}*{upper}"
+        term = factor if k == 0 else f"{factor}/{k + 1}"
+        negative = (n - k) % 2 == 1
+        if not num:
+            num = f"-{term}" if negative else term
+        else:
+            num = f"{num} {'-' if negative else '+'} {term}"
+    factors = [f"({names[i]} - {o})" for o in others]
+    if not factors:
+        return num
+    den = factors[0] if len(factors) == 1 else "(" + "*".join(factors) + ")"
+    return f"({num})/{den}"
+
+
+def _poly_text(p: list[Fraction], x: str) -> str:
+    out = ""
+    for k, coeff in enumerate(p):
+        if coeff == 0:
+            continue
+        mag = abs(coeff)
+        body = _power(x, k) if k else ""
+        if not body:
+            t = str(mag)
+        elif mag == 1:
+            t = body
+        else:
+            t = f"{mag}*{body}"
+        if not out:
+            out = t if coeff > 0 else f"-{t}"
+        else:
+            out += f" {'+' if coeff > 0 else '-'} {t}"
+    return out or "0"
+
+
+def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]], list[str], list[str]] | None:
+    """(constants, A, b, c) as exact entry texts, or None without closed-form nodes."""
+    r = spec.base_rule()
+    forms = r.node_closed_forms()
+    if forms is None:
+        return None
+    n = len(forms)
+    c = [f"c{i + 1}" for i in range(n)]
+    bn = [f"b{i + 1}" for i in range(n)]
+    consts = {c[i]: forms[i] for i in range(n)}
+    for j in range(n):
+        consts[bn[j]] = lagrange_integral_text(c, j, "0", "1")
+    name = spec.name
+    if name == "avf":
+        A = [[f"{c[i]}*{bn[j]}" for j in range(n)] for i in range(n)]
+    elif name in ("gauss", "lobatto-iiia", "radau-iia"):
+        A = [[lagrange_integral_text(c, j, "0", c[i]) for j in range(n)] for i in range(n)]
+    elif name in ("lobatto-iiib", "radau-ia"):
+        A = [
+            [
+                (f"{bn[j]}/{bn[i]}*" if i != j else "") + lagrange_integral_text(c, i, c[j], "1")
+                for j in range(n)
+            ]
+            for i in range(n)
+        ]
+    elif name == "hbvm":
+        A = []
+        for i in range(n):
+            row = []
+            for l in range(n):
+                parts = []
+                for j in range(spec.s):
+                    P = shifted_legendre(j)
+                    g = _poly_text(poly_integral(P), c[i])
+                    p = _poly_text(P, c[l])
+                    parts.append(f"{2 * j + 1}*({g})*({p})")
+                row.append(f"{bn[l]}*({' + '.join(parts)})")
+            A.append(row)
+    else:
+        z, beta = spec.zeta, spec.beta
+        A = [
+            [f"{c[i]}*{bn[j]} + ({beta})*(({z - 1}) - 2*({z})*{c[i]})*{bn[j]}*(1 - 2*{c[j]})" for j in range(n)]
+            for i in range(n)
+        ]
+    return consts, A, bn, c
+
+
+def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c: list[str]):
+    """The same entries as exact values in their number field
+    (:mod:`rkcheck.numbers.algebraic`): ``5/36 - sqrt(15)/30`` when the entries are
+    rational or one square root suffices; otherwise (nested roots, ``root(p, k)``) the
+    node constants and Lagrange forms, which are exact too."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+    s = len(b)
+    flat = [x for row in A for x in row] + list(b) + list(c)
+    try:
+        found = field_of([ex.parse(x) for x in flat], {k: ex.parse(v) for k, v in consts.items()})
+    except NotAlgebraic:
+        return consts, A, b, c
+    if found.field is None:
+        texts = [str(v) for v in found.values]
+    elif found.field.sqrt_of:
+        texts = [v.text() for v in found.values]
+    else:
+        # in a field of higher degree the coefficients in a primitive element are long
+        # and opaque; the node constants and Lagrange forms say more (and are exact)
+        return consts, A, b, c
+    A_t = [texts[i * s:(i + 1) * s] for i in range(s)]
+    return {}, A_t, texts[s * s:s * s + s], texts[s * s + s:]
+
+
+def family_exact_values(spec: FamilySpec) -> Any:
+    """The family's ``(field, A, b, c)`` exactly (a :class:`~rkcheck.numbers.algebraic.FieldValues`
+    with ``field`` None over Q), or None with the reason when the nodes have no closed form
+    or their field exceeds the degree limit."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+    texts = expression_texts(spec)
+    if texts is None:
+        return None, "the nodes have no closed form in roots"
+    consts, A, b, c = texts
+    flat = [x for row in A for x in row] + list(b) + list(c)
+    try:
+        found = field_of([ex.parse(x) for x in flat], {k: ex.parse(v) for k, v in consts.items()})
+    except NotAlgebraic as err:
+        return None, str(err)
+    return found, None

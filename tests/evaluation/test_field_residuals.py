@@ -1,0 +1,200 @@
+"""Exact energy residuals of tableaux with entries in a number field (the modular engine
+over ``Z[θ]``) against sympy arithmetic on the reference's conditions.
+
+Independent route: the conditions (rootings, signs, σ) come from
+``support.reference.energy_conditions`` (brute force, nothing from rkcheck); elementary
+weights are recomputed here with sympy in ``Q(√n)`` (polynomials in ``r`` reduced modulo
+``r² − n``).  Published facts used: AVF over a rule of quadrature order q preserves every
+polynomial Hamiltonian of degree ≤ q (seed §1), so AVF over Gauss-2 (q = 4) and Gauss-3
+(q = 6) satisfy every condition of degree ≤ q; Gauss collocation preserves quadratic
+Hamiltonians (degree 2: every condition holds).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from functools import lru_cache
+
+import pytest
+import sympy as sp
+from support import reference as ref
+
+from rkcheck.evaluation.modular import exact_condition_sums, scaled_field
+from rkcheck.methods.tableau import Tableau
+from rkcheck.trees.listing import ConditionListing
+
+R = sp.Symbol("r")
+
+GAUSS2 = {  # c = 1/2 ∓ √3/6
+    "A": [["1/4", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4"]],
+    "b": ["1/2", "1/2"],
+}
+GAUSS3 = {
+    "A": [["5/36", "2/9 - sqrt(15)/15", "5/36 - sqrt(15)/30"],
+          ["5/36 + sqrt(15)/24", "2/9", "5/36 - sqrt(15)/24"],
+          ["5/36 + sqrt(15)/30", "2/9 + sqrt(15)/15", "5/36"]],
+    "b": ["5/18", "4/9", "5/18"],
+}
+
+
+def avf(rule):
+    """A = c bᵀ over the rule's nodes c = A·1 (as text)."""
+    c = [" + ".join(f"({x})" for x in row) for row in rule["A"]]
+    return {"A": [[f"({ci})*({bj})" for bj in rule["b"]] for ci in c], "b": rule["b"]}
+
+
+def tableau(spec):
+    return Tableau.from_values(spec["A"], spec["b"])
+
+
+# --------------------------------------------------------------- sympy reference
+
+def _sym(text: str, n: int):
+    """An entry text as a sympy polynomial in r = √n (only sqrt(n) occurs)."""
+    e = sp.sympify(text.replace("^", "**"), locals={"sqrt": sp.sqrt})
+    return sp.Poly(sp.expand(e.subs(sp.sqrt(n), R)), R, domain="QQ").rem(sp.Poly(R**2 - n, R))
+
+
+def sympy_residuals(spec, n: int, vertices: int):
+    """{centre canonical id: residual as (a, b) meaning a + b√n} for every condition."""
+    mod = sp.Poly(R**2 - n, R)
+    A = [[_sym(x, n) for x in row] for row in spec["A"]]
+    b = [_sym(x, n) for x in spec["b"]]
+    s = len(b)
+    one = sp.Poly(1, R, domain="QQ")
+
+    @lru_cache(maxsize=None)
+    def phi(t):
+        out = [one] * s
+        for child in ref.split_children(t):
+            v = phi(child)
+            Av = [sum((A[i][j] * v[j] for j in range(s)), sp.Poly(0, R, domain="QQ")).rem(mod) for i in range(s)]
+            out = [(out[i] * Av[i]).rem(mod) for i in range(s)]
+        return tuple(out)
+
+    def weight(t):
+        v = phi(t)
+        return sum((b[i] * v[i] for i in range(s)), sp.Poly(0, R, domain="QQ")).rem(mod)
+
+    out = {}
+    for cond in ref.energy_conditions(vertices):
+        total = sp.Poly(0, R, domain="QQ")
+        for _u, sign, sig, forest in cond["terms"]:
+            w = one
+            for t in forest:
+                w = (w * weight(t)).rem(mod)
+            total += w * sp.Rational(sign, sig)
+        c = total.all_coeffs()[::-1] + [0, 0]
+        out[cond["id"]] = (Fraction(str(c[0])), Fraction(str(c[1])))
+    return out
+
+
+# --------------------------------------------------------------- engine
+
+def engine_residuals(tab, max_order: int, degree=None):
+    listing = ConditionListing(max_order, degree)
+    values = tab.exact_values()
+    scaled = scaled_field(values)
+    sums = exact_condition_sums(scaled, listing)
+    return listing, sums
+
+
+@pytest.mark.parametrize("rule, degree", [(GAUSS2, 4), (GAUSS3, 6)])
+def test_avf_over_gauss_holds_exactly_through_order_8(rule, degree):
+    tab = tableau(avf(rule))
+    assert tab.is_exact("rounded") and tab.exact_values().field is not None
+    listing, sums = engine_residuals(tab, 8, degree)
+    for n, o in sums.items():
+        assert o.is_zero().all(), n
+    # one degree beyond the quadrature order the star condition Σ b c^q = 1/(q+1) fails
+    _, over = engine_residuals(tab, degree + 1, degree + 1)
+    assert not over[degree + 2].is_zero().all()
+
+
+@pytest.mark.parametrize("rule", [GAUSS2, GAUSS3])
+def test_gauss_collocation_degree_2_holds_exactly(rule):
+    _, sums = engine_residuals(tableau(rule), 8, 2)
+    assert all(o.is_zero().all() for o in sums.values())
+
+
+def _compare(spec, n, vertices_max):
+    tab = tableau(spec)
+    listing, sums = engine_residuals(tab, vertices_max - 1)
+    nonzero = 0
+    for vertices in range(3, vertices_max + 1):
+        want = sympy_residuals(spec, n, vertices)
+        o = sums[vertices]
+        assert len(o.residues) == len(want)
+        for k in range(len(o.residues)):
+            rec = listing.record(vertices, k)
+            v = o.value(k) * rec.flip
+            if isinstance(v, Fraction):
+                got = (v, Fraction(0))
+            else:
+                got = (v.coeffs[0], v.coeffs[1])
+                assert v.field.sqrt_of == n
+            assert got == want[rec.level_sequence], (vertices, rec.level_sequence)
+            assert bool(o.is_zero()[k]) == (got == (0, 0))
+            nonzero += got != (0, 0)
+    return nonzero
+
+
+def test_gauss2_residuals_equal_sympy_and_the_issue_values():
+    # the issue's sympy cross-check: R = −1/432 for 1,2,3,3,3,2 and 1/288 for 1,2,3,2,3,2
+    assert _compare(GAUSS2, 3, 6) > 0
+    want = sympy_residuals(GAUSS2, 3, 6)
+    assert want[(1, 2, 3, 3, 3, 2)] == (Fraction(-1, 432), 0)
+    assert want[(1, 2, 3, 2, 3, 2)] == (Fraction(1, 288), 0)
+
+
+def test_perturbed_algebraic_tableau_gives_the_exact_irrational_residual():
+    spec = {"A": [["1/4 + sqrt(3)/100", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4 - 2/7"]],
+            "b": ["1/2 + sqrt(3)/11", "1/2"]}
+    assert _compare(spec, 3, 7) > 10
+
+
+def test_degree_8_field_avf_over_gauss_4():
+    # Gauss-4's nodes 1/2 ± sqrt(3/28 ± sqrt(30)/70) generate a degree-8 field; AVF over the
+    # 4-point rule (q = 8) satisfies every condition of degree ≤ 8
+    from support.paths import TABLEAUX
+
+    from rkcheck.io.loader import load
+
+    tab = load(TABLEAUX / "avf" / "avf-gauss-4.toml")
+    values = tab.exact_values()
+    assert values.field.degree == 8
+    scaled = scaled_field(values)
+    assert scaled.minpoly[-1] == 1 and all(isinstance(c, int) for c in scaled.minpoly)
+    _, sums = engine_residuals(tab, 7, 8)
+    assert all(o.is_zero().all() for o in sums.values())
+
+
+def test_vandermonde_bound_is_an_upper_bound():
+    import mpmath
+
+    tab = tableau(GAUSS3)
+    scaled = scaled_field(tab.exact_values())
+    mpmath.mp.dps = 50
+    g = [mpmath.mpf(c) for c in reversed(scaled.minpoly)]
+    roots = mpmath.polyroots(g, maxsteps=200, extraprec=200)
+    V = mpmath.matrix([[r**k for k in range(len(roots))] for r in roots])
+    W = V**-1
+    norm = max(sum(abs(W[i, j]) for j in range(W.cols)) for i in range(W.rows))
+    assert mpmath.log(norm, 2) <= scaled.log2_Vinv <= mpmath.log(norm, 2) + 1e-6
+
+
+def test_scaled_field_makes_theta_an_algebraic_integer():
+    # θ = √3/2 (minimal polynomial x² − 3/4): λ = 2 gives θ̃ = √3 with x² − 3, and the
+    # entries' coefficients are rewritten in the basis 1, √3 (by hand: 1/2 + θ = 1/2 + √3/2)
+    from rkcheck.methods.tableau import ExactValues
+    from rkcheck.numbers.algebraic import NumberField
+
+    K = NumberField([Fraction(-3, 4), 0, 1], 2)
+    theta = K.gen
+    values = ExactValues(K, [[theta, K(Fraction(1, 2)) + theta], [K(0), K(1)]], [K(Fraction(1, 2)), K(Fraction(1, 2))], None)
+    scaled = scaled_field(values)
+    assert scaled.theta_scale == 2 and scaled.minpoly == [-3, 0, 1]
+    assert scaled.d == 2
+    assert scaled.A == [[[0, 1], [1, 1]], [[0, 0], [2, 0]]]  # 2·(√3/2) = √3, 2·(1/2 + √3/2)
+    back = scaled.field_element([1, 1], 2)  # (1 + √3)/2 = 1/2 + θ
+    assert back == K(Fraction(1, 2)) + theta

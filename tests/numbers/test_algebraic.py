@@ -1,0 +1,108 @@
+"""Exact number fields (rkcheck.numbers.algebraic) against sympy's exact algebra."""
+
+from fractions import Fraction
+
+import pytest
+import sympy as sp
+
+from rkcheck.errors import UserError
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+
+
+def _values(*texts, constants=None):
+    return field_of([ex.parse(t) for t in texts], {k: ex.parse(v) for k, v in (constants or {}).items()})
+
+
+def _same(v, expr):
+    """v is a root of sympy's minimal polynomial of ``expr`` (exactly, in v's field); with
+    the 40-digit agreement of the enclosures this pins v to expr."""
+    y = sp.Symbol("y")
+    mp = sp.Poly(sp.minimal_polynomial(expr, y), y)
+    acc = v * 0
+    for c in mp.all_coeffs():
+        acc = acc * v + Fraction(int(sp.Rational(c).p), int(sp.Rational(c).q))
+    return acc.is_zero()
+
+
+def test_rationals_stay_rational():
+    r = _values("1/3", "sqrt(9/4)", "2^-2", "root(x^2 - 4, 2)")
+    assert r.field is None
+    assert r.values == [Fraction(1, 3), Fraction(3, 2), Fraction(1, 4), Fraction(2)]
+
+
+def test_one_square_root_is_named_and_printed():
+    r = _values("1/4 - sqrt(3)/6", "sqrt(12)", "1/(2 + sqrt(3))")
+    assert r.field.name == "sqrt(3)" and r.field.degree == 2
+    assert r.values[0].text() == "1/4 - sqrt(3)/6"
+    assert r.values[1].text() == "2*sqrt(3)"
+    assert r.values[2].text() == "2 - sqrt(3)"  # (2+√3)(2−√3) = 1
+
+
+def test_gauss3_entry_text():
+    r = _values("5/36 - sqrt(15)/30", "2/9 - sqrt(15)/15")
+    assert [v.text() for v in r.values] == ["5/36 - sqrt(15)/30", "2/9 - sqrt(15)/15"]
+
+
+@pytest.mark.parametrize("texts, sympy_exprs", [
+    (["sqrt(3)", "sqrt(15)", "sqrt(5)", "sqrt(3)*sqrt(5) - sqrt(15)"],
+     [sp.sqrt(3), sp.sqrt(15), sp.sqrt(5), 0]),
+    (["sqrt(5/36 + sqrt(70)/126)", "sqrt(5/36 - sqrt(70)/126)", "sqrt(70)"],
+     [sp.sqrt(sp.Rational(5, 36) + sp.sqrt(70) / 126), sp.sqrt(sp.Rational(5, 36) - sp.sqrt(70) / 126), sp.sqrt(70)]),
+    (["root(x^3 - 3*x + 1, 2)", "root(x^3 - 3*x + 1, 1)^2", "sqrt(2)/(1 + sqrt(2))"],
+     [sp.CRootOf(sp.Symbol("x")**3 - 3 * sp.Symbol("x") + 1, 1), sp.CRootOf(sp.Symbol("x")**3 - 3 * sp.Symbol("x") + 1, 0)**2,
+      sp.sqrt(2) / (1 + sp.sqrt(2))]),
+])
+def test_compositum_values_agree_with_sympy(texts, sympy_exprs):
+    r = _values(*texts)
+    for v, e in zip(r.values, sympy_exprs):
+        if isinstance(v, Fraction):
+            assert sp.Rational(v.numerator, v.denominator) == sp.nsimplify(e)
+            continue
+        enc = v.enclosure(80)
+        assert enc.lo <= sp.Rational(str(sp.N(e, 60))) + sp.Rational(1, 10**40)
+        assert sp.Rational(str(sp.N(e, 60))) - sp.Rational(1, 10**40) <= enc.hi
+        assert _same(v, e)
+
+
+def test_field_degree_is_the_compositum_degree():
+    # Q(√3, √5) has degree 4 although three square roots appear
+    assert _values("sqrt(3)", "sqrt(15)", "sqrt(5)").field.degree == 4
+    # Gauss-5's nodes: the splitting field of 63x^4 − 70x^2 + 15 (dihedral, degree 8)
+    assert _values("sqrt(5/36 + sqrt(70)/126)", "sqrt(5/36 - sqrt(70)/126)").field.degree == 8
+
+
+def test_arithmetic_identities_exactly():
+    r = _values("sqrt(2)", "sqrt(3)")
+    a, b = r.values
+    assert (a * a) == 2 and (b * b) == 3
+    assert ((a + b) * (a - b)) == -1
+    assert ((a + b) / (a + b)) == 1
+    assert (a + b).inverse() * (a + b) == 1
+    assert (a - b).sign() == -1 and (a * b - 2).sign() == 1
+    assert ((a + b) ** 2 - 5 - 2 * a * b).is_zero()
+
+
+def test_constants_and_zero_division():
+    r = _values("c1*c1", constants={"c1": "1/2 - sqrt(3)/6"})
+    assert r.values[0].text() == "1/3 - sqrt(3)/6"  # (1/2 − √3/6)² = 1/4 + 1/12 − √3/6
+    with pytest.raises(UserError, match="division by zero"):
+        _values("1/(sqrt(2)*sqrt(2) - 2)")
+    with pytest.raises(UserError, match="negative"):
+        _values("sqrt(1 - sqrt(2))")
+
+
+def test_degree_cap_is_a_clear_refusal():
+    with pytest.raises(NotAlgebraic, match="degree"):
+        field_of([ex.parse(f"sqrt({p})") for p in (2, 3, 5, 7, 11, 13)], max_degree=16)
+
+
+def test_enclosure_width_and_sign_of_tiny_differences():
+    # 99/70 − √2 ≈ 7.2e-5 > 0 and (99/70 − √2)^8 ≈ 7e-34: signs and widths decided exactly
+    r = _values("(99/70 - sqrt(2))^8")
+    v = r.values[0]
+    assert v.sign() == 1
+    iv = v.enclosure(200)
+    assert iv.hi - iv.lo <= Fraction(1, 2**200)
+    truth = sp.Rational(str(sp.N((sp.Rational(99, 70) - sp.sqrt(2)) ** 8, 120)))
+    assert abs(iv.mid - Fraction(int(truth.p), int(truth.q))) < Fraction(1, 10**100)
