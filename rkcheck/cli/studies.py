@@ -84,12 +84,13 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     failure) and each backend's detection threshold ε*.
     """
     from rkcheck.studies.accuracy import direction as make_direction
-    from rkcheck.studies.accuracy import parse_eps, perturb_sweep
+    from rkcheck.studies.accuracy import direction_dps, parse_eps, perturb_sweep
 
     tab = load_tableau(file)
     deg, N = _degree_and_order(tab)
-    D, desc = make_direction(tab, direction, deg, seed)
-    res = perturb_sweep(tab, D, desc, parse_eps(eps_text), deg, N, dps_list(dps_text))
+    eps = parse_eps(eps_text)
+    D, desc = make_direction(tab, direction, deg, seed, direction_dps(eps, dps_list(dps_text)))
+    res = perturb_sweep(tab, D, desc, eps, deg, N, dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart
