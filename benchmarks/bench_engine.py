@@ -1,23 +1,28 @@
-"""The performance table: energy checks to order 16, one command.
+"""The performance table of the condition engine, one command.
 
-    python benchmarks/bench_engine.py                 # orders 10 12 14 16, degrees none/3/4
-    python benchmarks/bench_engine.py --orders 10 12  # a quicker subset
+    python benchmarks/bench_engine.py                       # orders 10 12 14 16, degrees none/3
+    python benchmarks/bench_engine.py --orders 18 20        # up to order 20 (minutes, GBs)
+    python benchmarks/bench_engine.py --orders 10 --degrees none --startup-runs 1
 
-Every measurement runs in a fresh Python process (so that tables are really built and
-the peak memory is that order's own), timed inside the process: interpreter start-up is
-excluded.  Tableaux (fixed entries):
+The tableau is a dense rational 4-stage implicit tableau (fixed entries, below).  Every
+measurement runs in a fresh Python process, timed inside it (interpreter start-up and
+module imports excluded) and with that process's own peak resident memory
+(``resource.getrusage(RUSAGE_SELF).ru_maxrss``):
 
-* exact   — a dense rational 4-stage implicit tableau;
-* balls   — the same entries written ``x + sqrt(2) - sqrt(2)``: algebraic, so checked in
-            certified ball arithmetic at dps 50 (identical values, comparable work);
-* float64 — the float64 screen on the algebraic tableau.
+* listing  — ``condition_listing(order, degree)``: free trees, rootings, term arrays;
+* exact    — ``evaluate(listing, tableau, arithmetic="exact")``: residues modulo primes,
+             given the listing (built first, not timed);
+* balls    — the same with ``arithmetic="ball"`` at 50 digits: certified balls;
+* float64  — the float screen (``float_context`` + ``condition_sums``);
+* check    — ``energy.check.check`` from nothing (listing, evaluation, verdicts, orders):
+             what a ``verify`` costs after start-up.
 
-Columns: ``tables`` = rooted trees, free trees, rootings and the flattened term arrays
-(built once per (order, degree) and shared by every file of a scan); the backend columns
-are the evaluation of every condition given those tables; ``total exact`` is what
-``check()`` costs from nothing once the modules are imported.  Module imports (numpy,
-mpmath) are start-up cost: the last line times ``rkcheck verify`` from process start to
-exit, imports included.
+Columns: conditions and terms (rootings summed over the listing: the floor of the work),
+seconds for each measurement (the best of ``--repeat`` processes below order 16),
+balls/exact, ns per term of the exact evaluation, the peak memory of the ``check``
+process (what a ``verify`` needs) and the largest peak of all five (the balls, as a rule).  The last lines time ``rkcheck verify
+tableaux/explicit/rk4.toml`` and ``rkcheck --help`` from process start to exit (median
+of ``--startup-runs``, default 5).
 """
 
 from __future__ import annotations
@@ -25,6 +30,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import subprocess
 import sys
 import time
@@ -40,72 +46,113 @@ A_DENSE = [
 ]
 B_DENSE = ["1/5", "3/10", "1/4", "1/4"]
 
+MEASUREMENTS = ("listing", "exact", "balls", "float64", "check")
+
+# One measurement per process: the listing is cached per (order, degree) inside a
+# process, so two measurements in one process would share it and the second's memory.
 CHILD = r"""
 import gc, json, resource, sys, time
 sys.path.insert(0, {root!r})
-import numpy, mpmath  # imports are start-up, timed separately (last line of the table)
+import numpy, mpmath  # start-up, not timed here
 from rkcheck.methods.tableau import Tableau
-from rkcheck.trees.conditions import ConditionTable
-from rkcheck.energy.check import evaluate_conditions
-from rkcheck.studies.accuracy import backend_for
-A, B = {A!r}, {B!r}
-order, degree, repeat = {order!r}, {degree!r}, {repeat!r}
-rational = Tableau.from_values(A, B)
-algebraic = Tableau.from_values([[x + " + sqrt(2) - sqrt(2)" for x in row] for row in A], B)
-t0 = time.perf_counter()
-table = ConditionTable(order, degree)
-table.term_arrays
-t_tables = time.perf_counter() - t0
-out = {{"conditions": len(table), "tables": t_tables}}
-for name, tab, key in [("exact", rational, "exact"), ("dps:50", algebraic, "balls"), ("float64", algebraic, "float64")]:
-    best = 1e9
-    for _ in range(repeat):
-        gc.collect()
-        backend = backend_for(tab, name)
-        t1 = time.perf_counter()
-        evaluate_conditions(table, backend)
-        best = min(best, time.perf_counter() - t1)
-    out[key] = best
+from rkcheck.trees.listing import condition_listing
+from rkcheck.evaluation.backends import evaluate, float_context
+from rkcheck.evaluation.algorithm import condition_sums
+from rkcheck.energy.check import check
+from rkcheck.options import CheckOptions
+what, order, degree = {what!r}, {order!r}, {degree!r}
+tableau = Tableau.from_values({A!r}, {B!r})
+out = {{}}
+gc.collect()
+if what in ("listing", "check"):
+    t0 = time.perf_counter()
+    if what == "listing":
+        listing = condition_listing(order, degree)
+        out["conditions"], out["terms"] = len(listing), listing.terms()
+    else:
+        check(tableau, CheckOptions(degree=degree, order=order, dps=50))
+    out["seconds"] = time.perf_counter() - t0
+else:
+    listing = condition_listing(order, degree)
+    gc.collect()
+    t0 = time.perf_counter()
+    if what == "exact":
+        evaluate(listing, tableau, 50, "rounded", arithmetic="exact")
+    elif what == "balls":
+        evaluate(listing, tableau, 50, "rounded", arithmetic="ball")
+    else:
+        condition_sums(listing, float_context(tableau), tableau.stages)
+    out["seconds"] = time.perf_counter() - t0
 out["rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 print(json.dumps(out))
 """
 
 
-def measure(order: int, degree: int | None, repeat: int) -> dict:
-    code = CHILD.format(root=str(ROOT), A=A_DENSE, B=B_DENSE, order=order, degree=degree, repeat=repeat)
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    return json.loads(proc.stdout.strip().splitlines()[-1])
+def measure(what: str, order: int, degree: int | None, repeat: int = 1) -> dict:
+    """The best of ``repeat`` measurements, each in a fresh interpreter:
+    ``{"seconds", "rss_mb", ...}`` (seconds the minimum, memory the maximum: on a shared
+    machine the fastest run is the least disturbed one, memory does not depend on it)."""
+    code = CHILD.format(root=str(ROOT), A=A_DENSE, B=B_DENSE, what=what, order=order, degree=degree)
+    runs = []
+    for _ in range(max(1, repeat)):
+        proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise SystemExit(f"{what} at order {order}, degree {degree} failed:\n{proc.stderr.strip()}")
+        runs.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+    best = min(runs, key=lambda r: r["seconds"])
+    return dict(best, rss_mb=max(r["rss_mb"] for r in runs))
 
 
-def startup() -> float:
+def start_to_exit(args: list[str], runs: int) -> float:
+    """Median wall time of ``python -m rkcheck ARGS`` from process start to exit."""
     env = dict(os.environ, NO_COLOR="1")
-    best = 1e9
-    for _ in range(5):
+    times = []
+    for _ in range(runs):
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "rkcheck", "verify", "tableaux/explicit/rk4.toml", "-q"],
-                       cwd=ROOT, env=env, capture_output=True)
-        best = min(best, time.perf_counter() - t0)
-    return best
+        subprocess.run([sys.executable, "-m", "rkcheck", *args], cwd=ROOT, env=env, capture_output=True)
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
 
 
-def main() -> None:
+HEADER = ("| order | m | conditions | terms | listing s | exact s | balls50 s | balls/exact | float64 s "
+          "| check s | ns/term | check peak MB | max peak MB |")
+
+
+def row(order: int, degree: int | None, repeat: int) -> str:
+    r = {what: measure(what, order, degree, repeat) for what in MEASUREMENTS}
+    lst = r["listing"]
+    exact, balls = r["exact"]["seconds"], r["balls"]["seconds"]
+    peak = max(x["rss_mb"] for x in r.values())
+    return (f"| {order} | {'none' if degree is None else degree} | {lst['conditions']:,} | {lst['terms']:,} "
+            f"| {lst['seconds']:.3f} | {exact:.3f} | {balls:.3f} | {balls / exact:.2f} "
+            f"| {r['float64']['seconds']:.3f} | {r['check']['seconds']:.3f} "
+            f"| {exact / lst['terms'] * 1e9:.0f} | {r['check']['rss_mb']:.0f} | {peak:.0f} |").replace(",", "\u202f")
+
+
+def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--orders", type=int, nargs="+", default=[10, 12, 14, 16])
-    parser.add_argument("--degrees", nargs="+", default=["none", "3", "4"])
-    parser.add_argument("--repeat", type=int, default=3)
-    args = parser.parse_args()
-    print(f"{'order':>5} {'m':>4} {'conditions':>10} {'tables s':>9} {'exact s':>8} {'balls50 s':>9} "
-          f"{'float64 s':>9} {'total exact s':>13} {'balls/exact':>11} {'dps50/float':>11} {'peak MB':>8}")
+    parser.add_argument("--orders", type=int, nargs="+", default=[10, 12, 14, 16], metavar="N",
+                        help="energy orders (2 to 20; default 10 12 14 16)")
+    parser.add_argument("--degrees", nargs="+", default=["none", "3"], metavar="M",
+                        help="degree bounds, 'none' for no bound (default none 3)")
+    parser.add_argument("--repeat", type=int, default=3, metavar="K",
+                        help="best of K fresh processes per measurement below order 16 (default 3)")
+    parser.add_argument("--startup-runs", type=int, default=5, metavar="K",
+                        help="runs whose median times start-to-exit (0: skip; default 5)")
+    args = parser.parse_args(argv)
+    if any(not 2 <= n <= 20 for n in args.orders):
+        parser.error("--orders: each order must be between 2 and 20")
+    degrees = [None if d.lower() == "none" else int(d) for d in args.degrees]
+    print(HEADER)
+    print("|" + "---|" * (HEADER.count("|") - 1))
     for order in args.orders:
-        for deg_text in args.degrees:
-            degree = None if deg_text == "none" else int(deg_text)
-            repeat = 1 if order >= 16 else args.repeat
-            r = measure(order, degree, repeat)
-            print(f"{order:>5} {deg_text:>4} {r['conditions']:>10} {r['tables']:>9.3f} {r['exact']:>8.3f} "
-                  f"{r['balls']:>9.3f} {r['float64']:>9.3f} {r['tables'] + r['exact']:>13.3f} "
-                  f"{r['balls'] / r['exact']:>11.2f} {r['balls'] / r['float64']:>11.1f} {r['rss_mb']:>8.0f}",
-                  flush=True)
-    print(f"rkcheck verify tableaux/explicit/rk4.toml, process start to exit: {startup():.3f} s")
+        for degree in degrees:
+            print(row(order, degree, args.repeat if order < 16 else 1), flush=True)
+    if args.startup_runs > 0:
+        verify = start_to_exit(["verify", "tableaux/explicit/rk4.toml"], args.startup_runs)
+        helptext = start_to_exit(["--help"], args.startup_runs)
+        print(f"\nprocess start to exit (median of {args.startup_runs}): "
+              f"rkcheck verify tableaux/explicit/rk4.toml {verify:.3f} s, rkcheck --help {helptext:.3f} s")
 
 
 if __name__ == "__main__":

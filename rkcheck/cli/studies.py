@@ -88,7 +88,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     failure) and each backend's detection threshold ε*.
     """
     from rkcheck.studies.accuracy import direction as make_direction
-    from rkcheck.studies.accuracy import parse_eps, perturb_sweep
+    from rkcheck.studies.accuracy import direction_dps, parse_eps, perturb_sweep
 
     tab = load_tableau(file)
     deg, N = _degree_and_order(tab)
@@ -96,7 +96,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     if not eps or any(not 0 < e <= 1 for e in eps):  # log10(ε) and float radii need 0 < ε <= 1
         raise UserError(f"every ε must be in (0, 1], got {eps_text!r}", "--eps")
     with busy("perturbing"):
-        D, desc = make_direction(tab, direction, deg, seed)
+        D, desc = make_direction(tab, direction, deg, seed, direction_dps(eps, dps_list(dps_text)))
         res = perturb_sweep(tab, D, desc, eps, deg, N, dps_list(dps_text))
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:

@@ -56,6 +56,8 @@ def render_perturb(res, console: Console, title: str) -> None:
     console.print(f"slope of log max|R| against log ε: {slope} (1 for a generic direction, 2 along the kernel)")
     th = ", ".join(f"{label(n)}: {_eps(v)}" for n, v in res.thresholds.items())
     console.print(f"detection threshold ε* (smallest ε certified to fail): {th}")
+    for w in res.warnings:
+        console.print(Text(f"warning: {w}", style="yellow"))
 
 
 def bench_doc(file: str, degree, order: int, rows, t_tables: float) -> dict:
@@ -86,6 +88,7 @@ def perturb_doc(file: str, degree, order: int, res) -> dict:
                   "max_residual": None if r.max_residual is None else decimal_string(r.max_residual, 12),
                   "first_failing_order": r.first_failing_order, "failing": r.failing, "detected": r.detected}
                  for r in res.rows],
+        "warnings": res.warnings,
     }
 
 

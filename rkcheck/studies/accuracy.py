@@ -140,8 +140,44 @@ def parse_eps(text: str) -> list[Fraction]:
         raise UserError(f"cannot read {text!r} (examples: 1e-1..1e-40, 1e-2..1e-30:2, 1e-3,1e-6)", "--eps") from None
 
 
-def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024, dps: int = 60):
-    """(D as a matrix of Fractions with max |d_ij| = 1, a description)."""
+def mpf_fraction(x) -> Fraction:
+    """The exact value of an mpmath number as a Fraction (mantissa · 2^exponent): every
+    bit kept, whatever the current mpmath precision (``str()`` would round it to the
+    global ``mp.dps``, 15 digits by default)."""
+    import mpmath
+
+    if not isinstance(x, mpmath.mpf):  # mpf(x) of an mpf would round it to the global precision
+        x = mpmath.mpf(x)
+    if not mpmath.isfinite(x):
+        raise ValueError(f"not a finite number: {x}")
+    sign, man, exp, _ = x._mpf_  # (sign, |mantissa|, exponent, bits); zero is (0, 0, 0, 0)
+    man = -int(man) if sign else int(man)  # int(): gmpy2 mantissas would leak into Fraction
+    return Fraction(man * 2 ** exp) if exp >= 0 else Fraction(man, 2 ** -exp)
+
+
+def direction_dps(eps_list, dps_list=(15, 50), dps: int = 60) -> int:
+    """The precision at which a numerical kernel direction is computed for a sweep.
+
+    With D = N + η (N in the kernel, |η| ≈ 10^-P at P digits), the perturbed tableau
+    has R(ε) = K ε² + O(ε|η|): the conditions linear in A really fail, at about
+    ε·10^-P.  Computing D 20 digits beyond the reference backend
+    (:func:`reference_dps`) keeps that part inside every backend's radius for all
+    ε ≤ 1, so that what the sweep certifies is the kernel direction's own quadratic
+    failure (seed §2.4), not the rounding of D."""
+    return max(dps, reference_dps(eps_list, dps_list) + 20)
+
+
+def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024, dps: int | None = None):
+    """(D as a matrix of Fractions with max |d_ij| = 1, a description).
+
+    The kernel direction (seed §2.4, §3–4: ker M ∩ {N·1 = 0} of the double-bush map) is
+    exact when the tableau is rational (elimination over Q); otherwise it is computed at
+    ``dps`` digits and every bit of that numerical vector is kept (:func:`mpf_fraction`),
+    so that D is within ~10^-dps of the kernel: choose ``dps`` with
+    :func:`direction_dps` for the sweep (default: the CLI's default sweep, ε down to
+    10^-30 with balls at 15 and 50 digits)."""
+    if dps is None:
+        dps = direction_dps(parse_eps("1e-1..1e-30"))
     s = tableau.stages
     if kind == "random":
         rng = random.Random(seed)
@@ -170,8 +206,11 @@ def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024,
         N = k.zero_row_sum[0]
         if exact:  # Fractions, or exact number-field elements (their text parses back)
             D = [[x if hasattr(x, "field") else Fraction(x) for x in row] for row in N]
-        else:  # a rational approximation to 2·dps digits: in the kernel up to ~10^-dps
-            D = [[Fraction(str(x)).limit_denominator(10 ** (dps // 2)) for x in row] for row in N]
+        else:  # the numerical kernel vector, exactly as computed (no rounding to a short decimal),
+            # with the row sums then made exactly zero: that constraint is rational, so
+            # only the double-bush part M(D) = 0 is left at ~10^-dps
+            D = [[mpf_fraction(x) for x in row] for row in N]
+            D = [[x - sum(row) / s for x in row] for row in D]
         desc = (f"the zero-row-sum kernel direction of the double-bush map for degree {degree} "
                 f"({'exact' if exact else f'to {dps} digits'}; {len(k.zero_row_sum)}-dimensional)")
     else:
@@ -214,6 +253,7 @@ class PerturbResult:
     floors: dict[str, float]  # each backend's detection floor: its radius level at ε = 0
     direction: str
     backends: list[str]
+    warnings: list[str] = field(default_factory=list)
 
 
 def fit_slope(xs: list[float], ys: list[float]) -> float | None:
@@ -230,13 +270,42 @@ def _log10(x: Fraction) -> float:
     return math.log10(x.numerator) - math.log10(x.denominator)
 
 
+def reference_dps(eps_list, dps_list) -> int:
+    """The precision of the reference backend of a non-exact sweep: beyond every backend
+    compared (2·max + 20), and fine enough to certify a quadratic residual K ε² at the
+    smallest ε (its radius ≈ 10^-dps must be far below ε²; 30 digits of margin)."""
+    smallest = min((e for e in eps_list if e > 0), default=None)
+    need = 0 if smallest is None else math.ceil(-2 * _log10(smallest)) + 30
+    return max(max(dps_list) * 2 + 20, need)
+
+
+def base_failure_warning(results, degree: int | None, order: int) -> str | None:
+    """A warning when the unperturbed tableau already certainly fails a condition at
+    this degree and order: then max|R| does not vanish as ε → 0 and the slope measures
+    nothing (definitions §3: the conditions of the check asked for)."""
+    fails = [key for key, (_, v) in results.items() if v.state == FAILS]
+    if not fails:
+        return None
+    first = min(key[0] for key in fails) - 1
+    return (f"the unperturbed tableau already fails {len(fails)} of {len(results)} conditions at degree "
+            f"{'none' if degree is None else degree}, order {order} (the first at order {first}): "
+            f"max|R| does not tend to 0 with ε, so the slope means nothing; lower --order or --degree")
+
+
 def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degree: int | None, order: int,
                   dps_list=(15, 50), decimals: str = "rounded") -> PerturbResult:
+    """The sweep of the module docstring.  The reference backend (exact when the tableau
+    is, else balls at :func:`reference_dps`) gives max|R| and the first failing order."""
     listing = condition_listing(order, degree)
     names = backend_names(tableau, dps_list, decimals)
     if "exact" not in names:
-        names.append(f"dps:{max(dps_list) * 2 + 20}")  # the reference: well beyond the others
+        names.append(f"dps:{reference_dps(eps_list, dps_list)}")  # the reference: well beyond the others
     reference = names[-1]
+    warnings = []
+    base_reference = evaluate_backend(listing, tableau, reference, decimals)
+    warning = base_failure_warning(base_reference, degree, order)
+    if warning:
+        warnings.append(warning)
     rows: list[PerturbRow] = []
     for eps in eps_list:
         tab = perturbed(tableau, D, eps)
@@ -261,6 +330,7 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
     for name in names:
         if name == "exact":
             continue
-        res = base if name == names[0] else evaluate_backend(listing, tableau, name, decimals)
+        res = base if name == names[0] else (
+            base_reference if name == reference else evaluate_backend(listing, tableau, name, decimals))
         floors[name] = max(float(abs(e.mid) + e.rad) for e, _ in res.values()) if res else 0.0
-    return PerturbResult(rows, slope, thresholds, floors, desc, names)
+    return PerturbResult(rows, slope, thresholds, floors, desc, names, warnings)

@@ -12,7 +12,14 @@ from support.paths import TABLEAUX  # noqa: E402
 
 from rkcheck.energy.double_bush import kernel_of, rule_values, seed_N
 from rkcheck.io.loader import load
-from rkcheck.studies.accuracy import bench_backends, direction, parse_eps, perturb_sweep
+from rkcheck.studies.accuracy import (
+    bench_backends,
+    direction,
+    direction_dps,
+    mpf_fraction,
+    parse_eps,
+    perturb_sweep,
+)
 
 
 def proportional(X, Y, tol) -> bool:
@@ -72,21 +79,142 @@ def test_s2_m3_kernel_direction_is_the_seeds_N(zeta):
     assert proportional(k.zero_row_sum[0], N, tol)
 
 
-@pytest.mark.parametrize("name", ["avf/avf-radau-ii-2.toml", "avf/avf-gauss-2.toml"])
-def test_perturbation_slopes_and_detection_thresholds(name):
+# ------------------------------------------------------------------ perturbation slopes
+#
+# The model (seed §2.4): along a direction N with M(N) = 0 and N·1 = 0 every condition
+# linear in A holds, and max|R|(ε) = K ε² (1 + ρ(ε)) with ρ(ε) = O(ε); along a generic
+# direction max|R|(ε) = K ε (1 + ρ(ε)).  We allow |ρ| ≤ RHO = 10 % over the sweep
+# (ε ≤ 10^-2, so a cubic coefficient up to 10 K) and check that directly: R/ε^p varies by
+# at most that factor.  Then every point lies within δ = log10(1 + RHO) of the line
+# log R = p log ε + log K, and the least-squares slope is off by at most
+#     |Σ (x_k − x̄) δ_k| / Σ (x_k − x̄)²  ≤  δ · Σ|x_k − x̄| / Σ (x_k − x̄)²,
+# the tolerance below (0.0041 for the 15 decades 10^-2 … 10^-30).  The rounding of the
+# kernel direction to 15 digits (issue 12) gave slopes 1.44–1.55 on these tableaux.
+
+RHO = Fraction(1, 10)
+SWEEP = "1e-2..1e-30:2"
+
+
+def slope_tolerance(eps) -> float:
+    import math
+
+    xs = [math.log10(e) for e in eps]
+    mean = sum(xs) / len(xs)
+    delta = math.log10(1 + float(RHO))
+    return delta * sum(abs(x - mean) for x in xs) / sum((x - mean) ** 2 for x in xs)
+
+
+def assert_power_law(result, power: int, eps) -> None:
+    ratios = [r.max_residual / r.eps ** power for r in result.rows]
+    assert all(x is not None and x > 0 for x in [r.max_residual for r in result.rows])  # every ε certified
+    assert max(ratios) <= (1 + RHO) * min(ratios), [float(x) for x in ratios]
+    assert abs(result.slope - power) <= slope_tolerance(eps), (result.slope, slope_tolerance(eps))
+
+
+def sweep(name: str, kind: str, degree: int, order: int = 8, dps_list=(50,)):
     tab = load(str(TABLEAUX / name))
-    eps = parse_eps("1e-2..1e-30:2")
-    D, desc = direction(tab, "kernel", 3)
-    kern = perturb_sweep(tab, D, desc, eps, 3, 8, (50,))
-    assert abs(kern.slope - 2) <= 0.1  # quadratic failure along the kernel (seed)
-    # float64 cannot see ε = 1e-9 along the kernel (residual ~1e-18 < its bound)...
+    eps = parse_eps(SWEEP)
+    D, desc = direction(tab, kind, degree, dps=direction_dps(eps, dps_list))
+    return tab, D, eps, perturb_sweep(tab, D, desc, eps, degree, order, dps_list)
+
+
+def double_bush_defect(D, b, c, m: int):
+    """max over 1 ≤ p < q ≤ m−1 of |Σ_ij D_ij (p b_i c_i^(p−1) c_j^q − q b_i c_i^(q−1) c_j^p)| (seed
+    Lemma DBmono), with b, c sympy numbers, evaluated to 300 digits."""
+    import sympy
+
+    worst = 0
+    for q in range(2, m):
+        for p in range(1, q):
+            expr = sum(sympy.Rational(D[i][j].numerator, D[i][j].denominator)
+                       * (p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
+                       for i in range(len(b)) for j in range(len(b)))
+            worst = max(worst, abs(sympy.N(expr, 300)))
+    return worst
+
+
+@pytest.mark.parametrize("name, s", [("avf/avf-gauss-2.toml", 2), ("avf/avf-gauss-3.toml", 3)])
+def test_kernel_direction_of_an_algebraic_tableau_is_in_the_kernel_far_beyond_15_digits(name, s):
+    import sympy
+
+    tab = load(str(TABLEAUX / name))
+    D, desc = direction(tab, "kernel", 3, dps=140)
+    assert "to 140 digits" in desc
+    assert all(sum(row) == 0 for row in D)  # zero row sums exactly
+    assert max(abs(x) for row in D for x in row) == 1
+    # the s-point Gauss rule: c = roots of the shifted Legendre polynomial, b by sympy
+    x = sympy.Symbol("x")
+    c = sorted(sympy.Poly(sympy.legendre(s, 2 * x - 1), x).all_roots(), key=lambda r: sympy.N(r, 50))
+    b = [sympy.integrate(sympy.prod([(x - cj) / (ci - cj) for cj in c if cj != ci]), (x, 0, 1)) for ci in c]
+    assert double_bush_defect(D, b, c, 3) < sympy.Float("1e-120")
+
+
+@pytest.mark.parametrize("name", ["avf/avf-gauss-2.toml", "avf/avf-gauss-3.toml", "avf/avf-lobatto-3.toml"])
+def test_kernel_direction_fails_quadratically_down_to_1e_30(name):
+    # Gauss-2/3: algebraic (√3, √15) entries, numerical kernel; Lobatto-3: rational, exact kernel
+    tab, D, eps, kern = sweep(name, "kernel", 3)
+    assert kern.warnings == []
+    assert_power_law(kern, 2, eps)
+    # float64 cannot see ε = 1e-9 along the kernel (residual ~1e-19 < its radius) ...
     assert kern.thresholds["float64"] is not None and kern.thresholds["float64"] > Fraction(1, 10**9)
-    # ... while 50 digits certify the failure at ε = 1e-20 (residual ~1e-40)
+    # ... while 50 digits certify the failure at ε = 1e-20 (residual ~1e-41)
     row20 = next(r for r in kern.rows if r.eps == Fraction(1, 10**20))
     assert row20.detected["dps:50"]
-    D, desc = direction(tab, "random", 3)
-    rand = perturb_sweep(tab, D, desc, eps, 3, 8, (50,))
-    assert abs(rand.slope - 1) <= 0.1  # a generic direction fails linearly
+
+
+def test_kernel_direction_on_gauss_2_first_fails_at_six_vertices():
+    # seed §2.4 (s = 2, m = 3, ζ = 0): along N every condition with ≤ 5 vertices holds to
+    # second order too; the first failure is at 6 vertices (order 5).  A direction rounded
+    # to its working precision would fail the linear conditions at order 3 or 4 already.
+    _, _, _, kern = sweep("avf/avf-gauss-2.toml", "kernel", 3)
+    assert {r.first_failing_order for r in kern.rows} == {5}
+
+
+@pytest.mark.parametrize("name", ["avf/avf-gauss-2.toml", "avf/avf-lobatto-3.toml"])
+def test_generic_direction_fails_linearly(name):
+    _, _, eps, rand = sweep(name, "random", 3)
+    assert rand.warnings == []
+    assert_power_law(rand, 1, eps)
+
+
+def test_mpf_fraction_keeps_every_bit_at_any_global_precision():
+    import mpmath
+
+    with mpmath.workdps(200):
+        third = mpmath.mpf(1) / 3
+        minus = -mpmath.sqrt(2)
+    assert mpmath.mp.dps == 15  # converted outside the working precision, as perturb does
+    f = mpf_fraction(third)
+    assert abs(f - Fraction(1, 3)) < Fraction(1, 10**199)
+    assert abs(Fraction(str(third)) - Fraction(1, 3)) > Fraction(1, 10**17)  # what str() kept
+    g = mpf_fraction(minus)
+    assert g < 0 and abs(g * g - 2) < Fraction(1, 10**198)
+    assert type(f.numerator) is int and mpf_fraction(mpmath.mpf(0)) == 0
+
+
+def test_warns_when_the_unperturbed_tableau_already_fails():
+    # AVF over 3-point Lobatto (Simpson, quadrature order 4) is AVF only up to degree 4:
+    # at degree 5 its conditions fail at ε = 0.  The failing conditions, by the
+    # brute-force reference: every free tree with ≤ 7 vertices and maximum degree ≤ 5.
+    from support import reference as ref
+
+    c, b = [Fraction(0), Fraction(1, 2), Fraction(1)], [Fraction(1, 6), Fraction(2, 3), Fraction(1, 6)]
+    A = [[ci * bj for bj in b] for ci in c]
+    failing, total = [], 0
+    for n in range(3, 8):
+        for cond in ref.energy_conditions(n, 5):
+            total += 1
+            if ref.energy_residual(cond, A, b) != 0:
+                failing.append(n - 1)
+    assert failing  # the premise: the base tableau fails
+    tab = load(str(TABLEAUX / "avf" / "avf-lobatto-3.toml"))
+    eps = parse_eps("1e-2..1e-6")
+    D, desc = direction(tab, "random", 5)
+    res = perturb_sweep(tab, D, desc, eps, 5, 6, (15,))
+    assert len(res.warnings) == 1
+    assert (f"already fails {len(failing)} of {total} conditions at degree 5, order 6 (the first at order "
+            f"{min(failing)})") in res.warnings[0]
+    assert "slope means nothing" in res.warnings[0]
 
 
 def test_bench_backends_agree_with_exact_and_digits_grow_with_dps():
@@ -128,3 +256,18 @@ def test_bad_inputs_are_one_line_errors(capsys):
     assert r.code == 2 and "needs --degree m >= 3" in r.err
     r = run_cli(capsys, "perturb", path, "--direction", "random", "--eps", "1e-1..banana")
     assert r.code == 2 and "--eps" in r.err
+
+
+def test_perturb_command_reports_the_base_failure_in_text_and_json(capsys):
+    import json
+
+    path = str(TABLEAUX / "avf" / "avf-lobatto-3.toml")
+    args = ("perturb", path, "--direction", "random", "--degree", "5", "--order", "6", "--eps", "1e-2,1e-4", "--dps", "15")
+    r = run_cli(capsys, *args)
+    assert r.code == 0 and "warning: the unperturbed tableau already fails" in r.out
+    r = run_cli(capsys, *args, "--format", "json")
+    doc = json.loads(r.out)
+    assert len(doc["warnings"]) == 1 and "slope means nothing" in doc["warnings"][0]
+    r = run_cli(capsys, "perturb", path, "--direction", "random", "--degree", "3", "--order", "6",
+                "--eps", "1e-2,1e-4", "--dps", "15", "--format", "json")
+    assert json.loads(r.out)["warnings"] == []  # Simpson: AVF for degree 3, nothing fails at ε = 0

@@ -1,0 +1,43 @@
+"""benchmarks/bench_engine.py runs against the current engine (it once imported removed
+modules and nobody noticed): order 6, no degree bound, no start-up timing.  The counts it
+prints are checked against the brute-force reference (tests/support/reference.py)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+from support import reference as ref
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "benchmarks" / "bench_engine.py"
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(SCRIPT), *args], capture_output=True, text=True, cwd=ROOT, timeout=120)
+
+
+def test_order_6_row_has_the_reference_counts_and_sane_measurements():
+    proc = run("--orders", "6", "--degrees", "none", "--startup-runs", "0", "--repeat", "1")
+    assert proc.returncode == 0, proc.stderr
+    lines = [line for line in proc.stdout.splitlines() if line.startswith("|")]
+    header = [h.strip() for h in lines[0].strip("|").split("|")]
+    cells = dict(zip(header, (c.strip().replace("\u202f", "") for c in lines[2].strip("|").split("|"))))
+    # energy conditions to order 6: free trees with 3..7 vertices, superfluous ones removed
+    conditions = [c for n in range(3, 8) for c in ref.energy_conditions(n)]
+    assert (cells["order"], cells["m"]) == ("6", "none")
+    assert int(cells["conditions"]) == len(conditions) == 20
+    assert int(cells["terms"]) == sum(len(c["terms"]) for c in conditions)
+    seconds = {k: float(cells[k]) for k in ("listing s", "exact s", "balls50 s", "float64 s", "check s")}
+    assert all(0 <= v < 60 for v in seconds.values())
+    # the ratio is printed from the unrounded times: it lies in the range the 3-decimal times allow
+    balls, exact, half = seconds["balls50 s"], seconds["exact s"], 0.0005
+    if exact > half:
+        assert (balls - half) / (exact + half) - 0.005 <= float(cells["balls/exact"]) <= (balls + half) / (exact - half) + 0.005
+    assert 20 < float(cells["check peak MB"]) <= float(cells["max peak MB"]) < 2000
+
+
+def test_orders_beyond_20_are_refused_before_any_work():
+    proc = run("--orders", "21", "--startup-runs", "0", "--repeat", "1")
+    assert proc.returncode == 2 and "between 2 and 20" in proc.stderr
