@@ -17,6 +17,32 @@ rkcheck`` (and the CLI's start-up) stays fast.
 
 from __future__ import annotations
 
+import os as _os
+import signal as _signal
+import sys as _sys
+
+
+def _running_as_program() -> bool:
+    """The ``rkcheck`` console script or ``python -m rkcheck`` — never a library import."""
+    if _os.path.basename(_sys.argv[0] if _sys.argv else "") in ("rkcheck", "__main__.py"):
+        return True
+    argv = getattr(_sys, "orig_argv", [])
+    return "-m" in argv and argv.index("-m") + 1 < len(argv) and argv[argv.index("-m") + 1] == "rkcheck"
+
+
+def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-dependent by nature
+    """Ctrl-C or SIGTERM while the program is still starting (importing click, rich, ...):
+    nothing has begun, so end quietly with exit 130 instead of an import traceback."""
+    _os.write(2, b"rkcheck: interrupted\n")
+    _os._exit(130)
+
+
+# As early as possible (this is the first module any start-up imports); the CLI's main()
+# replaces these handlers as soon as it starts (issue 16).
+if _running_as_program():
+    _signal.signal(_signal.SIGINT, _early_interrupt)
+    _signal.signal(_signal.SIGTERM, _early_interrupt)
+
 from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"

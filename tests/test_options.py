@@ -26,7 +26,7 @@ MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
         ("dps", "1e7", f"expected an integer from {DPS_RANGE[0]} to {DPS_RANGE[1]}, got '1e7'"),
         ("degree", 0, "expected a positive integer or 'none', got 0"),
         ("degree", 201, "expected a degree from 1 to 200 or 'none', got 201"),
-        ("decimals", "round", "expected one of 'rounded', 'exact', got 'round'"),
+        ("decimals", "round", "expected one of 'auto', 'rounded', 'float64', 'exact', got 'round'"),
     ],
 )
 def test_the_same_ranges_from_every_source(key, value, message):
@@ -41,7 +41,7 @@ def test_the_same_ranges_from_every_source(key, value, message):
 def test_unknown_keys_name_the_nearest_valid_one():
     with pytest.raises(UserError) as err:
         validate_check_table({"ordr": 4})
-    assert str(err.value) == "check.ordr: unknown key (did you mean 'order'?) (known: degree, order, dps, decimals)"
+    assert str(err.value) == "check.ordr: unknown key (did you mean 'order'?) (known: degree, order, dps, decimals, require)"
     with pytest.raises(UserError) as err:
         validate_check_table({"zzz": 4})
     assert "did you mean" not in str(err.value)

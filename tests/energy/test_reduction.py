@@ -134,11 +134,26 @@ def test_theorem1_needs_exact_holds_to_conclude_beyond_order_n():
     from rkcheck.methods.families import family_tableau, parse_spec
 
     tab = family_tableau(parse_spec({"name": "kernel", "zeta": "1/2", "beta": "1e-30"}))
-    res = check(tab, CheckOptions(degree=3, order=7, dps=50))
+    res = check(tab, CheckOptions(degree=3, order=7, dps=50), arithmetic="ball")
     assert res.first_failure is None and res.avf is not None and not res.avf.equals_avf
     assert "beyond order 7" not in res.theorem1 and "hold only to" in res.theorem1
-    truth = check(tab, CheckOptions(degree=3, order=4, dps=100))
+    truth = check(tab, CheckOptions(degree=3, order=4, dps=100), arithmetic="ball")
     assert truth.first_failure is not None and truth.first_failure.condition.order == 4
+
+
+def test_the_kernel_family_is_exact_in_its_field_and_fails_by_beta_squared_over_36():
+    # the same family checked by default: its nodes (Gauss, sqrt(3)) have a closed form,
+    # so the check is exact and finds the order-4 failure at once, of size β²/36
+    # (REVIEW.md's estimate, now exact: the residual is rational).
+    from rkcheck.methods.families import family_tableau, parse_spec
+
+    tab = family_tableau(parse_spec({"name": "kernel", "zeta": "1/2", "beta": "1e-30"}))
+    res = check(tab, CheckOptions(degree=3, order=7))
+    assert res.backend == "exact"
+    first = res.first_failure
+    assert first is not None and first.condition.order == 4
+    assert abs(first.value) == F(1, 36) * F(1, 10**30) ** 2
+    assert "beyond order" not in res.theorem1
 
 
 def test_theorem1_concludes_beyond_order_n_from_exact_holds():

@@ -92,6 +92,39 @@ def test_chunked_evaluation_is_bit_identical(seed, monkeypatch):
         assert list(balls_chunked[n].mids) == list(balls_whole[n].mids)
 
 
+def random_algebraic_tableau(seed: int):
+    """Entries ``p + q·sqrt(d)`` (and once ``root(x^3 - 2, 1)``, a cubic field)."""
+    from rkcheck.methods.tableau import Tableau
+
+    rng = random.Random(1000 + seed)
+    s = rng.randint(2, 3)
+    root = "sqrt(2)" if seed % 2 else ("sqrt(3)" if seed % 3 else "root(x^3 - 2, 1)")
+
+    def entry() -> str:
+        return f"{rng.randint(-6, 6)}/{rng.randint(1, 9)} + {rng.randint(-4, 4)}/{rng.randint(1, 9)}*{root}"
+
+    return Tableau.from_values([[entry() for _ in range(s)] for _ in range(s)], [entry() for _ in range(s)])
+
+
+def field_sums(listing, tab):
+    from rkcheck.evaluation.modular import scaled_field
+
+    sums = exact_condition_sums(scaled_field(tab.exact_values("exact")), listing)
+    return {n: [o.value(k) for k in range(len(listing.orders[n]))] for n, o in sums.items()}
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_chunked_evaluation_is_bit_identical_in_number_fields(seed, monkeypatch):
+    # issue 15: the same for algebraic tableaux to order 10, exact field elements
+    tab = random_algebraic_tableau(seed)
+    assert tab.exact_values("exact").field is not None
+    whole = field_sums(ConditionListing(10, None), tab)
+    monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
+    monkeypatch.setattr(classes, "_CHUNK", 7)
+    monkeypatch.setattr(table_module, "_CHUNK", 7)
+    assert field_sums(ConditionListing(10, None), tab) == whole
+
+
 @pytest.mark.parametrize("seed", range(6))
 @pytest.mark.parametrize("dps", [15, 50, 400, 1000])
 def test_balls_enclose_the_exact_values_at_every_precision(seed, dps):

@@ -160,7 +160,7 @@ def test_degree_8_field_avf_over_gauss_4():
 
     from rkcheck.io.loader import load
 
-    tab = load(TABLEAUX / "avf" / "avf-gauss-4.toml")
+    tab = load(str(TABLEAUX / "avf" / "avf-gauss-4.toml"))
     values = tab.exact_values()
     assert values.field.degree == 8
     scaled = scaled_field(values)
