@@ -90,6 +90,11 @@ class NumberField:
     def __repr__(self) -> str:
         return f"NumberField(θ = {self.name}, degree {self.degree})"
 
+    def __reduce__(self):
+        # FLINT polynomials do not pickle; a field travels (to and from scan workers) as
+        # its minimal polynomial, and pickle's memo keeps one field per message
+        return (NumberField, (self.minpoly, self.index, self.name))
+
     @property
     def is_rational(self) -> bool:
         return self.degree == 1
@@ -129,6 +134,11 @@ class NumberField:
             return [r for r, _ in numer.complex_roots()]
 
 
+def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":
+    """Unpickling: the element with these coefficients in the powers of θ."""
+    return FieldElement(field, _poly(coeffs))
+
+
 class FieldElement:
     """An element of a :class:`NumberField`: a polynomial in θ reduced modulo g."""
 
@@ -137,6 +147,9 @@ class FieldElement:
     def __init__(self, field: NumberField, poly):
         self.field = field
         self.poly = poly
+
+    def __reduce__(self):
+        return (_element, (self.field, list(self.coeffs)))
 
     # ------------------------------------------------------------- arithmetic
     def _other(self, y: Any):

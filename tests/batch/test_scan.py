@@ -113,6 +113,25 @@ def test_jobs_1_and_2_give_identical_results(capsys, folder):
     assert strip_times(one) == strip_times(two)
 
 
+def test_workers_send_back_exact_algebraic_results(capsys, tmp_path):
+    # results of tableaux checked in a number field (FLINT polynomials inside) cross the
+    # process boundary: jobs 2 gives the rows and residuals that jobs 1 gives
+    from support.paths import TABLEAUX
+
+    folder = tmp_path / "alg"
+    folder.mkdir()
+    for rel in ("collocation/gauss-2.toml", "collocation/gauss-3.toml", "counterexamples/kernel-gauss-beta-0.1.toml"):
+        (folder / Path(rel).name).write_text((TABLEAUX / rel).read_text(encoding="utf-8"), encoding="utf-8")
+    docs = []
+    for jobs in ("1", "2"):
+        r = run_cli(capsys, "scan", str(folder), "--format", "json", "--jobs", jobs, "--degree", "4")
+        doc = json.loads(r.out)
+        assert [f["status"] for f in doc["files"]] == ["ok", "ok", "ok"], doc["files"]
+        docs.append([(f["file"], f["result"]["summary"]["energy_order"],
+                      [c.get("residual_exact") for c in f["result"]["conditions"]]) for f in doc["files"]])
+    assert docs[0] == docs[1]
+
+
 def test_junit_parses_with_the_right_counts(capsys, folder):
     r = run_cli(capsys, "scan", str(folder), "--format", "junit", "--jobs", "1")
     root = ET.fromstring(r.out)
