@@ -58,6 +58,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     from rkcheck.io.loader import (
         build_tableau,
         detect_format,
+        load_named,
         locate_lines,
         parse_document,
         read_text,
@@ -68,18 +69,21 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     try:
         if os.path.isdir(path):  # discovery lists a folder only when it could not be read
             raise UserError("cannot read this folder (permission denied?)", source=path)
-        text = read_text(path)
-        fmt = detect_format(path, text)
-        try:
-            data = parse_document(text, fmt)
-        except UserError as err:
-            raise err.located(source=path) from None
-        out.lines = locate_lines(text, fmt)
-        if not _is_tableau_document(data):
-            out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
-            return out
-        tab = build_tableau(data, path, max_stages)
-        tab.lines = out.lines
+        if path.startswith("@"):  # a shipped tableau or classical method by name
+            tab = load_named(path[1:], max_stages)
+        else:
+            text = read_text(path)
+            fmt = detect_format(path, text)
+            try:
+                data = parse_document(text, fmt)
+            except UserError as err:
+                raise err.located(source=path) from None
+            out.lines = locate_lines(text, fmt)
+            if not _is_tableau_document(data):
+                out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
+                return out
+            tab = build_tableau(data, path, max_stages)
+            tab.lines = out.lines
         out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
         out.status = "failed" if failed else "ok"
     except UserError as err:

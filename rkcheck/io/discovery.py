@@ -28,8 +28,9 @@ def _unreadable_folders(root: Path) -> list[Path]:
 
 def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> list[str]:
     """Every ``*.toml``/``*.json`` under ``paths`` (files given explicitly are kept whatever
-    their suffix), sorted, without duplicates, minus the ``exclude`` glob patterns (matched
-    against the path and the file name)."""
+    their suffix; ``@name`` stands for a shipped tableau or classical method), sorted,
+    without duplicates, minus the ``exclude`` glob patterns (matched against the path and
+    the file name)."""
     exclude = list(exclude or [])
     found: list[Path] = []
     for raw in paths:
@@ -45,6 +46,11 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
                 if (f.is_file() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)
+        elif raw.startswith("@"):  # a shipped tableau or classical method by name
+            from rkcheck.io.loader import load_named
+
+            load_named(raw[1:])  # an unknown name is refused here, with the nearest names
+            found.append(p)
         elif p.exists() or raw == "-":
             if not _excluded(p, exclude):
                 found.append(p)

@@ -132,6 +132,21 @@ def test_workers_send_back_exact_algebraic_results(capsys, tmp_path):
     assert docs[0] == docs[1]
 
 
+def test_names_of_the_shipped_library_scan_like_their_files(capsys):
+    # issue 13: @name works wherever a file does; same verdicts as the file itself
+    from support.paths import TABLEAUX
+
+    by_name = json.loads(run_cli(capsys, "scan", "@rk4", "@heun", "--format", "json", "--degree", "3").out)
+    by_path = json.loads(run_cli(capsys, "scan", str(TABLEAUX / "explicit" / "rk4.toml"),
+                                 str(TABLEAUX / "explicit" / "heun.toml"), "--format", "json", "--degree", "3").out)
+    assert [f["file"] for f in by_name["files"]] == ["@rk4", "@heun"]
+    assert [f["status"] for f in by_name["files"]] == ["ok", "ok"]
+    summaries = [[f["result"]["summary"]["energy_order"] for f in d["files"]] for d in (by_name, by_path)]
+    assert summaries[0] == summaries[1]
+    r = run_cli(capsys, "scan", "@rk5")
+    assert r.code == 2 and "@rk4" in r.err and len(r.err.strip().splitlines()) == 1
+
+
 def test_junit_parses_with_the_right_counts(capsys, folder):
     r = run_cli(capsys, "scan", str(folder), "--format", "junit", "--jobs", "1")
     root = ET.fromstring(r.out)
