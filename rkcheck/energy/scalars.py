@@ -211,7 +211,7 @@ def poly_at(coeffs: Sequence[Fraction], x: Scalar) -> Scalar:
     """The rational polynomial ``coeffs`` (ascending powers) at ``x`` (Horner)."""
     acc = const(0, x)
     for c in reversed(coeffs):
-        acc = acc * x + const(c, x)
+        acc = tidy(acc * x + const(c, x))  # intervals: end points stay near their width
     return acc
 
 

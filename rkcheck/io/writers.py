@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from rkcheck.errors import UserError
 from rkcheck.methods.families import FamilySpec, coefficients
-from rkcheck.methods.closed_forms import expression_texts, simplified_texts
+from rkcheck.methods.closed_forms import MAX_EXACT_NODES, expression_texts, simplified_texts
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.precision import bits_for_digits
 
@@ -61,7 +61,8 @@ def render_toml(
         texts = expression_texts(spec)
         if texts is None and mode == "exact":
             raise UserError(
-                f"the nodes of {spec.title()} have no closed form in square roots; use --digits D for decimals"
+                f"the nodes of {spec.title()} have no closed form in roots (or more than {MAX_EXACT_NODES} nodes); "
+                "use --digits D for decimals"
             )
     if r.is_rational and mode != "digits":
         A, b = coefficients(spec, 64)

@@ -104,9 +104,18 @@ def _poly_text(p: list[Fraction], x: str) -> str:
     return out or "0"
 
 
+#: most nodes written as exact Lagrange forms: their texts grow like 2^s (symmetric sums
+#: over the other nodes; 19 MB of text at s = 20), and the field of 9 or more nodes is far
+#: beyond the degree limit of :mod:`rkcheck.numbers.algebraic` anyway
+MAX_EXACT_NODES = 8
+
+
 def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]], list[str], list[str]] | None:
-    """(constants, A, b, c) as exact entry texts, or None without closed-form nodes."""
+    """(constants, A, b, c) as exact entry texts, or None without closed-form nodes or
+    with more than :data:`MAX_EXACT_NODES` of them."""
     r = spec.base_rule()
+    if r.s > MAX_EXACT_NODES:
+        return None
     forms = r.node_closed_forms()
     if forms is None:
         return None
@@ -186,7 +195,7 @@ def family_exact_values(spec: FamilySpec) -> Any:
 
     texts = expression_texts(spec)
     if texts is None:
-        return None, "the nodes have no closed form in roots"
+        return None, f"the nodes have no closed form in roots, or there are more than {MAX_EXACT_NODES}"
     consts, A, b, c = texts
     flat = [x for row in A for x in row] + list(b) + list(c)
     try:

@@ -407,6 +407,10 @@ def lagrange_integral(c: list[Interval], i: int, lo: Interval, hi: Interval, bit
     return (total / denom).round_out(bits + 32)
 
 
+#: largest |ζ| of a ``zeta:<value>`` rule (README "Errors and limits")
+MAX_ZETA = 10**6
+
+
 def _parse_zeta(text: str) -> Fraction:
     from rkcheck.numbers.entries import Entry
 
@@ -434,5 +438,7 @@ def rule(name: str, s: int) -> Rule:
         if not name.startswith("zeta:"):
             raise UserError(f"unknown rule {name!r} ({', '.join(RULES)}, zeta:<value>)")
         zeta = _parse_zeta(name[5:])
+    if abs(zeta) > MAX_ZETA:  # the root finder's domain (nodes beyond ~|ζ|); no use past it
+        raise UserError(f"zeta must lie in [-{MAX_ZETA:,}, {MAX_ZETA:,}], got {float(zeta):.3g}")
     poly = poly_add(shifted_legendre(s), poly_scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))

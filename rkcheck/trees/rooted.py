@@ -99,8 +99,11 @@ def canonical_level_sequence(seq: Sequence[int]) -> tuple[int, ...]:
 def parse_level_sequence(text: str) -> tuple[int, ...]:
     """Parse ``"1,2,3,2"``, ``"[1, 2, 3, 2]"`` or ``"1 2 3 2"``; raises ValueError."""
     cleaned = text.strip().strip("[]()")
-    parts = [p for p in cleaned.replace(",", " ").split() if p]
-    if not parts or not all(p.isdigit() for p in parts):
+    if "," in cleaned:  # commas separate: an empty place (``1,,2``) is a typo, not a skip
+        parts = [p.strip() for p in cleaned.split(",")]
+    else:
+        parts = cleaned.split()
+    if not parts or not all(p.isascii() and p.isdigit() for p in parts):
         raise ValueError(f"not a level sequence: {text!r} (expected e.g. 1,2,3,2)")
     seq = tuple(int(p) for p in parts)
     _split_children(seq)  # validates

@@ -174,12 +174,12 @@ def test_vandermonde_bound_is_an_upper_bound():
 
     tab = tableau(GAUSS3)
     scaled = scaled_field(tab.exact_values())
-    mpmath.mp.dps = 50
-    g = [mpmath.mpf(c) for c in reversed(scaled.minpoly)]
-    roots = mpmath.polyroots(g, maxsteps=200, extraprec=200)
-    V = mpmath.matrix([[r**k for k in range(len(roots))] for r in roots])
-    W = V**-1
-    norm = max(sum(abs(W[i, j]) for j in range(W.cols)) for i in range(W.rows))
+    with mpmath.workdps(50):  # never the global precision: other tests rely on its default
+        g = [mpmath.mpf(c) for c in reversed(scaled.minpoly)]
+        roots = mpmath.polyroots(g, maxsteps=200, extraprec=200)
+        V = mpmath.matrix([[r**k for k in range(len(roots))] for r in roots])
+        W = V**-1
+        norm = max(sum(abs(W[i, j]) for j in range(W.cols)) for i in range(W.rows))
     assert mpmath.log(norm, 2) <= scaled.log2_Vinv <= mpmath.log(norm, 2) + 1e-6
 
 

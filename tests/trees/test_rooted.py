@@ -210,6 +210,14 @@ def _table9_cached() -> TreeTable:
     return TreeTable(9)
 
 
+def test_parse_refuses_empty_places_between_commas():
+    # "1,,2" is a typo, not the tree 1,2 (issue 16); spaces alone still separate
+    for text in ("1,,2", "1,2,2,", ",1,2"):
+        with pytest.raises(ValueError):
+            parse_level_sequence(text)
+    assert parse_level_sequence("1 2 2") == parse_level_sequence("[1, 2, 2]") == (1, 2, 2)
+
+
 @pytest.mark.parametrize("text", ["1,3", "2,3", "1,2,4", "", "a,b", "1,1"])
 def test_parse_rejects_invalid_level_sequences(text):
     # invalid by the definition of a level sequence (reference.is_level_sequence)
