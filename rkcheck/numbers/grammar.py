@@ -658,18 +658,22 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
         if left is None or right is None:
             return None
         _check_operand_bits((left, right), n.column)
-        if n.op == "+":
-            out = left + right
-        elif n.op == "-":
-            out = left - right
-        elif n.op == "*":
-            out = left * right
-        else:
-            out = left / right
+        out = _arithmetic(n.op, left, right)
         _check_value_bits((out,), n.column)
         return out
 
     return fold(node, combine)
+
+
+def _arithmetic(op: str, left: Any, right: Any) -> Any:
+    """``left op right`` for Fractions and Intervals alike (the division checks are the caller's)."""
+    if op == "+":
+        return left + right
+    if op == "-":
+        return left - right
+    if op == "*":
+        return left * right
+    return left / right
 
 
 def enclose(
@@ -722,18 +726,11 @@ def enclose(
         assert isinstance(n, Binary)
         left, right = vals
         _check_operand_bits((left.lo, left.hi, right.lo, right.hi), n.column)
-        if n.op == "+":
-            out = left + right
-        elif n.op == "-":
-            out = left - right
-        elif n.op == "*":
-            out = left * right
-        else:
-            if right.contains_zero():
-                if right.is_point:
-                    raise UserError(f"division by zero at column {n.column}")
-                raise UserError(f"division at column {n.column}: the divisor cannot be shown to be nonzero")
-            out = left / right
+        if n.op == "/" and right.contains_zero():
+            if right.is_point:
+                raise UserError(f"division by zero at column {n.column}")
+            raise UserError(f"division at column {n.column}: the divisor cannot be shown to be nonzero")
+        out = _arithmetic(n.op, left, right)
         _check_value_bits((out.lo, out.hi), n.column)
         return out
 

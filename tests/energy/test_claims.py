@@ -3,31 +3,10 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
+from support.claimfiles import MIDPOINT, RK4, write  # noqa: F401
 from support.clirun import run_cli
-
-RK4 = """
-[method]
-name = "RK4"
-[tableau]
-A = [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]]
-b = ["1/6", "1/3", "1/3", "1/6"]
-"""
-
-MIDPOINT = """
-[tableau]
-A = [["1/2"]]
-b = [1]
-"""
-
-
-def write(tmp_path: Path, text: str, expect: str) -> str:
-    p = tmp_path / "t.toml"
-    p.write_text(text + "\n[expect]\n" + expect + "\n", encoding="utf-8")
-    return str(p)
-
 
 # RK4: classical order 4 (Kutta), quadrature order 4 (Simpson's rule: nodes 0, 1/2, 1
 # with weights 1/6, 2/3, 1/6 is exact to degree 3), energy order 4 for all H (its h^5

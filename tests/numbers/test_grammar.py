@@ -3,32 +3,15 @@
 from __future__ import annotations
 
 import math
-import signal
-from contextlib import contextmanager
 from fractions import Fraction
 
 import pytest
+from support.guards import hang_guard
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
 from rkcheck.numbers.intervals import Interval
-
-
-@contextmanager
-def hang_guard(seconds: int = 10):
-    """Turn a hang into a test failure (a guard, not a timing target)."""
-
-    def boom(signum, frame):  # pragma: no cover - only on a hang
-        raise AssertionError(f"did not finish within {seconds} s")
-
-    old = signal.signal(signal.SIGALRM, boom)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
 
 
 def exact(text: str, **consts: str) -> Fraction | None:
