@@ -41,11 +41,7 @@ def input_format_option(f):
 
 def load_input(file: str, max_stages: int, input_format: str | None):
     """The tableau of FILE (or @name), in the format asked for, if any."""
-    if input_format is None:
-        return load_tableau(file, max_stages)
-    from rkcheck.io.loader import load
-
-    return load(file, max_stages=max_stages, fmt=input_format)
+    return load_tableau(file, max_stages, input_format)
 
 
 @click.command()

@@ -296,10 +296,12 @@ def flag_values(*names: str) -> dict[str, Any]:
 # ------------------------------------------------------------------ inputs
 
 
-def load_tableau(path: str, max_stages: int = DEFAULT_MAX_STAGES):
-    from rkcheck.io.loader import load
+def load_tableau(path: str, max_stages: int = DEFAULT_MAX_STAGES, input_format: str | None = None):
+    """FILE or @name through the public API's :func:`rkcheck.load` (issue 13: the CLI
+    reads tableaux the way a library user does)."""
+    from rkcheck.api.tableaux import load
 
-    return load(path, max_stages=max_stages)
+    return load(path, max_stages=max_stages, format=input_format)
 
 
 def project_config():
