@@ -113,7 +113,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
 
     tab = load_input(file, max_stages, input_format)
     if fmt not in ("text", "json"):
-        from rkcheck.io.formats import write
+        from rkcheck.api.tableaux import write  # the public rkcheck.write
 
         click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)
         return
