@@ -23,9 +23,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from rkcheck.energy import scalars as sc
-from rkcheck.energy.reduction import Reduction, reduce_tableau
+from rkcheck.energy.reduction import Reduction
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
-from rkcheck.numbers.intervals import Interval
 
 
 @dataclass(frozen=True)
@@ -43,20 +42,6 @@ class AvfVerdict:
     @property
     def equals_avf(self) -> bool:
         return self.verdict.state != FAILS
-
-
-def reduce_stages(A: list[list[Interval]], b: list[Interval], exact: bool) -> Reduction:
-    """The irreducible form of a tableau given by enclosures (exact points when ``exact``)."""
-    return reduce_tableau(*sc.values_from_enclosures(A, b, exact))
-
-
-def avf_verdict(A, b, degree: int, exact: bool = True, reduced: Reduction | None = None) -> AvfVerdict:
-    """Decide whether ``(A, b)`` equals AVF for Hamiltonians of degree ≤ ``degree``.
-
-    ``A``, ``b`` are enclosures (exact points when ``exact``) or exact scalars;
-    ``reduced``: their :class:`~rkcheck.energy.reduction.Reduction`, if already computed."""
-    red = reduced if reduced is not None else reduce_tableau(*sc.values_from_enclosures(A, b, exact))
-    return avf_of_reduction(red, degree)
 
 
 def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:

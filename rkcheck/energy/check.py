@@ -24,7 +24,7 @@ from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.lineintegral import LineIntegralCertificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.energy import scalars as sc
-from rkcheck.energy.properties import tableau_properties
+from rkcheck.energy.properties import properties_of_values
 from rkcheck.energy.verdicts import (
     FAILS,
     HOLDS,
@@ -439,13 +439,15 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     warnings = list(tableau.warnings) + consistency_warnings(tableau, bits, options.decimals)
     if box_warning:
         warnings.append(box_warning)
-    quad = quadrature_order(*sc.tableau_values(tableau, A, b, exact, options.decimals))
+    # the tableau's own scalars, once: exact (rational or in its field) or the enclosures
+    values = sc.tableau_values(tableau, A, b, exact, options.decimals)
+    quad = quadrature_order(*values)
     classical = classical_order(tableau, options.order, options.dps, options.decimals, arithmetic)
     avf = cert = None
     # Tableau-level algebra (rkcheck.energy.properties): the irreducible form, R(z),
     # symplecticity, symmetry; the AVF verdict and the certificate of every order (AVF,
     # line integral, and for m = 2 the stability function). Exact for exact tableaux.
-    props = tableau_properties(tableau, A, b, exact, options.decimals)
+    props = properties_of_values(*values)
     if options.degree is not None:
         avf, cert = props.certificates(options.degree)
     t3 = time.perf_counter()

@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rkcheck.energy import scalars as sc
-from rkcheck.energy.reduction import Reduction, reduce_tableau
+from rkcheck.energy.reduction import Reduction
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.methods.quadrature import poly_integral, shifted_legendre
 
@@ -106,15 +106,6 @@ def _check_entries(A, rhs) -> list[Verdict] | None:
                 return None
             out.append(v)
     return out
-
-
-def line_integral_certificate(A, b, degree: int, exact: bool = True, reduced: Reduction | None = None) -> LineIntegralCertificate:
-    """Search the smallest σ for which (LI) holds and the rule has order ≥ degree·σ.
-
-    ``A``, ``b`` are enclosures (exact points when ``exact``) or exact scalars;
-    ``reduced``: their :class:`~rkcheck.energy.reduction.Reduction`, if already computed."""
-    red = reduced if reduced is not None else reduce_tableau(*sc.values_from_enclosures(A, b, exact))
-    return certificate_of_reduction(red, degree)
 
 
 def certificate_of_reduction(red: Reduction, degree: int) -> LineIntegralCertificate:

@@ -1,7 +1,7 @@
 """Everything the tableau itself says, computed once per check: the irreducible form, the
 stability function, symplecticity, symmetry, and the certificates of every order.
 
-This is the entry point :func:`rkcheck.energy.check.check` calls (one call) and the
+This is what :func:`rkcheck.energy.check.check` calls (one call) and the
 reports read.  The scalars are exact whenever the tableau is (rational, or algebraic
 through the tableau's ``exact_values()``), otherwise the enclosures the check already
 made (:mod:`rkcheck.energy.scalars`).
@@ -39,15 +39,9 @@ class TableauProperties:
         return avf, cert
 
 
-def tableau_properties(tableau, A, b, exact: bool, decimals: str) -> TableauProperties:
-    """The properties of ``tableau``; ``A``, ``b`` are the enclosures of the check (exact
-    points when ``exact``), used when the tableau has no exact values."""
-    values = sc.tableau_values(tableau, A, b, exact, decimals)
-    return properties_of_values(*values)
-
-
 def properties_of_values(A: sc.Matrix, b: sc.Vector) -> TableauProperties:
-    """The properties of the tableau with these scalars (exact or intervals)."""
+    """The properties of the tableau with these scalars: exact ones, or the check's
+    enclosures (:func:`rkcheck.energy.scalars.tableau_values` chooses)."""
     red = reduce_tableau(A, b)
     return TableauProperties(
         exact=sc.is_exact(sc.sample(A, b)),
