@@ -43,6 +43,11 @@ from rkcheck.numbers.intervals import Interval
 #: which needs only the series, is still decided)
 MAX_INTERVAL_DET_STAGES = 16
 
+#: rational tableaux with at most this many stages stay in Python's Fractions (the generic
+#: exact path); larger ones go to FLINT, whose import (~50 ms) would otherwise dominate a
+#: small check's start-up, while Fraction growth only hurts beyond ~15 stages
+MAX_FRACTION_STAGES = 8
+
 _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
@@ -234,9 +239,11 @@ class StabilityFunction:
 
 
 def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | None:
-    """For a rational tableau: the series r_0 … r_2s, and P, Q in lowest terms with
-    Q(0) = 1, computed with FLINT (exact rational matrices and polynomials: Fraction
+    """For a rational tableau of more than :data:`MAX_FRACTION_STAGES` stages: the series
+    r_0 … r_2s, and P, Q in lowest terms with Q(0) = 1, computed with FLINT (exact rational matrices and polynomials: Fraction
     arithmetic and Euclid's algorithm on Fractions grow too fast beyond ~15 stages)."""
+    if len(b) <= MAX_FRACTION_STAGES:
+        return None
     if not all(isinstance(x, (Fraction, int)) for row in A for x in row) or not all(isinstance(x, (Fraction, int)) for x in b):
         return None
     from flint import fmpq, fmpq_mat, fmpq_poly

@@ -173,9 +173,11 @@ class TreeTable:
             # chunk boundaries on the right factors: about _CHUNK pairs each (one factor
             # with more partners than that is a chunk of its own)
             ends = np.cumsum(counts)
-            cuts = np.unique(np.searchsorted(ends, np.arange(_CHUNK, int(ends[-1]) + _CHUNK, _CHUNK), side="right"))
+            cuts = np.searchsorted(ends, np.arange(_CHUNK, int(ends[-1]) + _CHUNK, _CHUNK), side="right")
             i = 0
-            for j in cuts.tolist():
+            # sorted already: dict.fromkeys drops the repeats (np.unique would also import
+            # numpy.ma, 15 ms of start-up)
+            for j in dict.fromkeys(cuts.tolist()):
                 j = max(j, i + 1)
                 if j > len(v_ids):
                     j = len(v_ids)
