@@ -61,8 +61,8 @@ def measure(order: int, s: int, field_tableau: Tableau, repeat: int) -> dict:
     t_fld = best(lambda: exact_condition_sums(fld_scaled, listing), repeat)
     return {"order": order, "conditions": sum(len(o) for o in listing.orders.values()), "listing": t_list,
             "field": t_field, "degree": values.field.degree, "rational": t_rat, "algebraic": t_fld,
-            "ratio": t_fld / t_rat, "primes_rat": len(rat_scaled.primes_for(rat_scaled.coefficient_bits(order + 1, 1))),
-            "primes_fld": len(fld_scaled.primes_for(fld_scaled.coefficient_bits(order + 1, 1)))}
+            "ratio": t_fld / t_rat, "primes_rat": len(rat_scaled.primes_for(rat_scaled.decision_bits(order, listing.orders[order].max_terms))),
+            "primes_fld": len(fld_scaled.primes_for(fld_scaled.decision_bits(order, listing.orders[order].max_terms)))}
 
 
 def main() -> None:

@@ -92,5 +92,5 @@ def channels_for(tableau, order: int, decimals: str, arithmetic: str = "auto") -
     if choose_backend(tableau, decimals, arithmetic) != "exact":
         return 0
     scaled = scaled_tableau(tableau, decimals)
-    bits = scaled.coefficient_bits(order + 1, order + 1)
+    bits = scaled.decision_bits(order + 1, order + 1)
     return len(scaled.primes_for(bits)) * scaled.degree

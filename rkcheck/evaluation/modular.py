@@ -8,26 +8,40 @@ weights computed from them are ``Φ̂(t) = d^(|t|−1)Φ(t)``, ``â(t) = d^|t| a
 the element ``N = (n−1)!·d^(n−1)·R = Σ_u ±((n−1)!/σ(u))·ŵ(u)`` of ``Z[θ]`` (σ(u) divides
 ``(n−1)!``: it is the order of a group of permutations of the ``n − 1`` non-root vertices).
 
-Channels.  For a prime ``p`` over which ``g`` has ``D = deg g`` distinct roots ``r``,
+Channels.  For a prime ``p ∤ d`` over which ``g`` has ``D = deg g`` distinct roots ``r``,
 ``θ ↦ r`` is a ring homomorphism ``Z[θ] → Z/p``; every weight is computed in int64 numpy
 arrays modulo ``p`` (``p < 2^29``, so a row of ``s ≤ 32`` products sums without
-overflow).  A nonzero residue proves ``N ≠ 0``: the condition **fails**.  Zero is proven
-by size: the ``D`` residues at one prime determine the coefficients of ``N`` modulo
-``p``; when every coefficient is known to be smaller than ``Π p / 2`` in absolute value,
-residues that are all zero mean ``N = 0``: the condition **holds**.
+overflow).  A nonzero residue proves ``N ≠ 0``: the condition **fails**.
+
+Zero is proven through the norm.  Let ``e`` be the least positive integer with ``e·A`` and
+``e·b`` algebraic integers (the *integrality* denominator, from each entry's
+characteristic polynomial; ``e | d``, often far smaller: 23 bits against 65 for Gauss-5),
+and ``N_e = (n−1)!·e^(n−1)·R = N/(d/e)^(n−1)``, an algebraic integer.  If ``N`` vanishes
+at the ``D`` roots modulo ``p``, its ``D`` coefficients are ``≡ 0 (mod p)`` (Vandermonde
+modulo p), so ``N = p·N'`` with ``N' ∈ Z[θ]``, and ``N_e/p = N'/(d/e)^(n−1)`` is integral
+at every prime (``p ∤ d``): ``p^D`` divides the norm of ``N_e``.  Over a set of such primes,
+``N_e ≠ 0`` would force ``|Norm N_e| ≥ (Π p)^D``, while ``|Norm N_e| = Π_j |σ_j(N_e)| ≤
+Π_j B_j`` over the ``D`` complex embeddings (bound below, with ``e`` in place of ``d``).
+So residues that are all zero with ``log₂ Π p > (1/D) Σ_j log₂ B_j`` prove ``N = 0``: the
+condition **holds**.  For Q (D = 1, e = d) this is the familiar ``|N| < Π p``.  The
+geometric mean over embeddings, the smaller denominator and the absence of ``‖V⁻¹‖``
+make this far cheaper than bounding the coefficients (issue 12: Gauss-5 to order 10 needs
+9 primes instead of 21).
 
 The bound.  In each complex embedding ``σ_j`` (for rationals: the value itself),
 ``|σ_j(Φ̂(t))_i| ≤ α_j^(|t|−1)`` with ``α_j = max_i Σ_k |σ_j(Â_ik)|``, so
 ``|σ_j(â(t))| ≤ β_j α_j^(|t|−1)`` (``β_j = Σ_i |σ_j(b̂_i)|``) and
-``|σ_j(N)| ≤ (n−1)!·T·M^(n−1)`` with ``T`` the number of terms and
-``M = max_j max(α_j, β_j, 1)``.  The coefficients of ``N`` are ``V⁻¹`` times its
+``|σ_j(N)| ≤ B_j = (n−1)!·T·M_j^(n−1)`` with ``T`` the number of terms and
+``M_j = max(α_j, β_j, 1)``.  The coefficients of ``N`` are ``V⁻¹`` times its
 conjugates (``V`` the Vandermonde matrix of the conjugates of ``θ``), so
-``|coefficient| ≤ ‖V⁻¹‖_∞ (n−1)! T M^(n−1)``; all of it is computed with exact integers
-or certified Arb balls, rounded up.
+``|coefficient| ≤ ‖V⁻¹‖_∞ (n−1)! T M^(n−1)`` with ``M = max_j M_j``; all of it is computed
+with exact integers or certified Arb balls, rounded up.
 
 Values.  Residues are kept; the exact residual is rebuilt only when asked for (Chinese
 remaindering, Garner's mixed-radix form), so that deciding ``holds``/``fails`` costs
-nothing more.
+nothing more.  A residual proven zero is 0; a nonzero one in a number field needs its
+coefficients, whose bound is larger than the decision's: the missing primes are then
+evaluated for that order, once, on first demand.
 """
 
 from __future__ import annotations
@@ -199,6 +213,10 @@ class ScaledTableau:
     log2_Vinv: float = 0.0  # upper bound of log2 ‖V⁻¹‖_∞ (0 for Q)
     number_field: Any = None  # the number field of the entries (None: Q)
     theta_scale: int = 1  # λ: the power basis is that of λθ, θ the field's generator
+    #: log2 max(α_j, β_j) of the d-scaled data in each complex embedding j (None: Q,
+    #: where the one embedding's value is log2_M)
+    log2_M_embeddings: list[float] | None = None
+    integral_d: int | None = None  # e: the integrality denominator (None: e = d)
 
     def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
         """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
@@ -218,6 +236,17 @@ class ScaledTableau:
         ``terms`` terms (rounded up, plus one for the sign)."""
         bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
         return math.ceil(bits) + 2
+
+    def decision_bits(self, n: int, terms: int) -> int:
+        """Bits ``b`` such that all-zero residues over primes with ``Π p > 2^b`` prove a
+        condition with ``n`` vertices and ``terms`` terms zero: ``(1/D) Σ_j log₂ B_j``
+        with the integrality denominator (the norm argument of the module docstring)."""
+        if self.log2_M_embeddings is None or self.integral_d is None:
+            return self.coefficient_bits(n, terms)
+        shift = math.log2(self.d) - math.log2(self.integral_d)  # scaling by e instead of d
+        mean = sum(max(m - shift, 0.0) for m in self.log2_M_embeddings) / len(self.log2_M_embeddings)
+        bits = (n - 1) * mean + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+        return math.ceil(bits + 1e-6) + 1
 
     def primes_for(self, bits: int) -> list[tuple[int, list[int]]]:
         """Enough channel primes for coefficients of ``bits`` bits: each (p, roots of
@@ -334,14 +363,44 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
             return float(x.abs_upper()) * (1 + 2.0**-40)
 
         M = 1.0
+        per_embedding = []
         for r in roots:
             alpha = max(upper(sum((abs(conj(v, r)) for v in row), arb(0))) for row in Ai)
             beta = upper(sum((abs(conj(v, r)) for v in bi), arb(0)))
             M = max(M, alpha, beta)
+            per_embedding.append(math.log2(max(alpha, beta, 2.0**-1000)) + 1e-9)
         V = acb_mat([[r**k for k in range(D)] for r in roots])
         W = V.inv()
         vinv = max(upper(sum((abs(W[i, j]) for j in range(D)), arb(0))) for i in range(D))
-    return ScaledTableau(Ai, bi, d, minpoly, math.log2(M) + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam)
+    e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
+    assert d % e == 0  # d·x ∈ Z[θ̃] ⊂ O_K, so the least e divides d
+    return ScaledTableau(Ai, bi, d, minpoly, math.log2(M) + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
+                         per_embedding, e)
+
+
+def integrality_denominator(values: Sequence[Any], field: Any) -> int:
+    """The least positive integer ``e`` with ``e·x`` an algebraic integer for every ``x``:
+    the lcm over the entries of the least ``λ`` that makes ``λ^D χ_x(X/λ)`` integral, with
+    ``χ_x`` the characteristic polynomial of multiplication by ``x`` (a power of ``x``'s
+    minimal polynomial, so integral exactly when ``x`` is; Gauss's lemma)."""
+    from flint import fmpq, fmpq_mat
+
+    from rkcheck.numbers.algebraic import integral_scale
+
+    D = len(field.minpoly) - 1
+    basis = [field([Fraction(int(i == k)) for i in range(D)]) for k in range(D)]
+    e = 1
+    for x in values:
+        x = field(x)
+        q = x.rational()
+        if q is not None:
+            e = math.lcm(e, q.denominator)
+            continue
+        columns = [(x * bk).coeffs for bk in basis]
+        m = fmpq_mat(D, D, [fmpq(c.numerator, c.denominator) for i in range(D) for c in [columns[k][i] for k in range(D)]])
+        chi = [Fraction(int(c.p), int(c.q)) for c in m.charpoly().coeffs()]
+        e = math.lcm(e, integral_scale(chi))
+    return e
 
 
 # ---------------------------------------------------------------------- results
@@ -360,16 +419,39 @@ class ExactOrderSums:
     primes: list[tuple[int, list[int]]]
     scale: int
     tableau: ScaledTableau
+    listing: Any = None  # to evaluate more primes when a value needs them
+    value_bits: int = 0  # the coefficients' bound: primes beyond the decision's, on demand
 
     def is_zero(self) -> np.ndarray:
         return ~np.any(self.residues != 0, axis=(1, 2))
 
     def value(self, k: int) -> Any:
         """The exact residual of condition k: a Fraction (rationals) or a field element."""
+        if self.tableau.number_field is not None and not np.any(self.residues[k]):
+            return self.tableau.field_element([0], 1)  # proven zero (module docstring)
+        self._complete()
         coeffs = self._coefficients(k)
         if self.tableau.number_field is None:
             return Fraction(coeffs[0], self.scale)
         return self.tableau.field_element(coeffs, self.scale)
+
+    def _complete(self) -> None:
+        """Evaluate the primes the coefficients' bound needs beyond the decision's."""
+        if self.listing is None or not self.value_bits:
+            return
+        from rkcheck.evaluation.algorithm import condition_sums
+
+        chosen = self.tableau.primes_for(self.value_bits)
+        extra = chosen[len(self.primes):]
+        if extra:
+            more = np.zeros((len(self.residues), len(extra), self.tableau.degree), dtype=self.residues.dtype)
+            for i, (p, roots) in enumerate(extra):
+                for j, r in enumerate(roots):
+                    more[:, i, j] = condition_sums(self.listing, self.tableau.channel(p, r), self.tableau.s,
+                                                   [self.vertices])[self.vertices]
+            self.residues = np.concatenate([self.residues, more], axis=1)
+            self.primes = list(self.primes) + list(extra)
+        self.value_bits = 0
 
     def values(self) -> list[Any]:
         """Every condition's exact residual (Garner's algorithm vectorised over the
@@ -435,7 +517,8 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
 
     wanted = sorted(listing.orders if orders is None else orders)
-    need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
+    need = {n: scaled.decision_bits(n, listing.orders[n].max_terms) for n in wanted}
+    value_need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
     channels = scaled.primes_for(max(need.values(), default=1))
     D = scaled.degree
     count = {n: 0 for n in wanted}
@@ -449,7 +532,9 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
 
     def result(n: int) -> ExactOrderSums:
-        return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled)
+        extra = (listing, value_need[n]) if value_need[n] > need[n] else (None, 0)
+        return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
+                              *extra)
 
     done = 0
     try:

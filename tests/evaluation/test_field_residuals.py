@@ -198,3 +198,60 @@ def test_scaled_field_makes_theta_an_algebraic_integer():
     assert scaled.A == [[[0, 1], [1, 1]], [[0, 0], [2, 0]]]  # 2·(√3/2) = √3, 2·(1/2 + √3/2)
     back = scaled.field_element([1, 1], 2)  # (1 + √3)/2 = 1/2 + θ
     assert back == K(Fraction(1, 2)) + theta
+
+
+@pytest.mark.parametrize("spec", [GAUSS3, avf(GAUSS2)], ids=["gauss-3", "avf-gauss-2"])
+def test_integrality_denominator_is_the_least_that_makes_every_entry_integral(spec):
+    # definition, checked with sympy's minimal polynomials (not FLINT's charpoly): e·x is
+    # an algebraic integer for every entry, and no proper divisor e/q does that
+    from rkcheck.evaluation.modular import integrality_denominator
+
+    values = tableau(spec).exact_values()
+    e = integrality_denominator([x for row in values.A for x in row] + list(values.b), values.field)
+    texts = [x for row in spec["A"] for x in row] + list(spec["b"])
+    X = sp.Symbol("X")
+
+    def integral(k: int, text: str) -> bool:
+        x = sp.sympify(text.replace("^", "**"), locals={"sqrt": sp.sqrt})
+        poly = sp.Poly(sp.minimal_polynomial(k * x, X), X)
+        return all(c.is_integer for c in poly.monic().all_coeffs())
+
+    assert all(integral(e, t) for t in texts)
+    for q in sp.primefactors(e):
+        assert not all(integral(e // q, t) for t in texts), q
+
+
+def test_values_complete_on_demand(monkeypatch):
+    # a nonzero residual in a field needs the coefficients' bound, larger than the
+    # decision's: the missing primes are evaluated once, on demand.  The decision is made
+    # to stop 2 primes short here so that the path runs on a small field whose values
+    # sympy checks independently.
+    from rkcheck.evaluation.modular import ScaledTableau
+
+    spec = {"A": [["1/4 + sqrt(3)/100", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4 - 2/7"]],
+            "b": ["1/2 + sqrt(3)/11", "1/2"]}
+    monkeypatch.setattr(ScaledTableau, "decision_bits", lambda self, n, t: self.coefficient_bits(n, t) - 58)
+    listing, sums = engine_residuals(tableau(spec), 6)
+    o = sums[7]
+    decided = len(o.primes)
+    want = sympy_residuals(spec, 3, 7)
+    k = next(k for k in range(len(o.residues)) if not o.is_zero()[k])
+    rec = listing.record(7, k)
+    v = o.value(k) * rec.flip
+    assert len(o.primes) == decided + 2
+    assert (v.coeffs[0], v.coeffs[1]) == want[rec.level_sequence]
+
+
+def test_the_norm_decision_needs_fewer_primes_for_gauss_5():
+    # issue 12's Gauss-5 case: the integrality denominator is a proper divisor of the power
+    # basis's, and with the geometric mean over embeddings the decision at order 10 needs
+    # fewer than half the primes the coefficients would
+    from support.paths import TABLEAUX
+
+    from rkcheck.io.loader import load
+
+    scaled = scaled_field(load(str(TABLEAUX / "collocation" / "gauss-5.toml")).exact_values())
+    assert scaled.d % scaled.integral_d == 0 and scaled.integral_d < scaled.d
+    listing = ConditionListing(10, None)
+    terms = listing.orders[10].max_terms
+    assert len(scaled.primes_for(scaled.decision_bits(10, terms))) < len(scaled.primes_for(scaled.coefficient_bits(10, terms))) / 2
