@@ -84,10 +84,11 @@ def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, An
     ctx.put(a, 0, ctx.dot(phi0))
     ctx.put(w, 0, ctx.one(1))
     left, right = listing.left, listing.right
+    chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)  # several channels per row: fewer rows
     for n in range(2, top + 1):
         lo, hi = first[n], first[n + 1] if n + 1 < len(first) else first[n]
-        for a0 in range(lo, hi if n < top else lo, _TERM_CHUNK):  # weights of the trees with n vertices
-            a1 = min(hi, a0 + _TERM_CHUNK)
+        for a0 in range(lo, hi if n < top else lo, chunk):  # weights of the trees with n vertices
+            a1 = min(hi, a0 + chunk)
             U, V = left[a0:a1], right[a0:a1]
             ctx.put(w, a0, ctx.mul(ctx.take(w, U), ctx.take(a, V)))
             phi_n = ctx.mul(ctx.take(phi, U), ctx.take(psi, V))
@@ -99,8 +100,8 @@ def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, An
         terms = listing.orders.get(n) if n in wanted else None
         if terms is not None:
             acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
-            for t0 in range(0, len(terms.condition), _TERM_CHUNK):
-                t1 = min(len(terms.condition), t0 + _TERM_CHUNK)
+            for t0 in range(0, len(terms.condition), chunk):
+                t1 = min(len(terms.condition), t0 + chunk)
                 if terms.first_id is not None and n < top:  # their weights w are stored
                     w_terms = ctx.take(w, np.arange(terms.first_id + t0, terms.first_id + t1))
                 else:  # w(u ∘ v) = w(u)·a(v), from the factors

@@ -255,3 +255,24 @@ def test_the_norm_decision_needs_fewer_primes_for_gauss_5():
     listing = ConditionListing(10, None)
     terms = listing.orders[10].max_terms
     assert len(scaled.primes_for(scaled.decision_bits(10, terms))) < len(scaled.primes_for(scaled.coefficient_bits(10, terms))) / 2
+
+
+@pytest.mark.parametrize("path", ["collocation/gauss-5.toml", "avf/avf-gauss-4.toml", "collocation/radau-iia-3.toml"])
+def test_all_roots_in_one_pass_equal_root_by_root(path, monkeypatch):
+    # the batched channel (every root of a prime in one pass) against separate passes:
+    # the same residues, bit for bit, for every condition up to order 9
+    import numpy as np
+    from support.paths import TABLEAUX
+
+    import rkcheck.evaluation.modular as modular
+    from rkcheck.io.loader import load
+
+    scaled = scaled_field(load(str(TABLEAUX / path)).exact_values())
+    assert scaled.degree > 1
+    listing = ConditionListing(9, None)
+    monkeypatch.setattr(modular, "MAX_BATCHED_TREES", 0)
+    one_by_one = exact_condition_sums(scaled, listing)
+    monkeypatch.setattr(modular, "MAX_BATCHED_TREES", 10**9)
+    batched = exact_condition_sums(scaled, listing)
+    for n in one_by_one:
+        assert np.array_equal(one_by_one[n].residues, batched[n].residues), n
