@@ -37,7 +37,7 @@ class Constants:
         self.definitions: dict[str, ex.Expr] = dict(definitions or {})
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
-        self._enclosures: dict[tuple[int, bool], dict[str, Interval]] = {}
+        self._enclosures: dict[tuple[int, bool | str], dict[str, Interval]] = {}
         self._rounded: dict[str, bool] = {}
         self._decimal: dict[str, bool] = {}
         for name in self._order:
@@ -138,7 +138,7 @@ class Entry:
         node = ex.parse(text)
         constants.check_names(node)
         used = {n.name for n in ex.names(node)}
-        rounded = [lit.digits for lit in ex.literals(node) if lit.is_rounded_decimal]
+        rounded = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
         via_constant = [u for u in used if constants.is_rounded(u)]
         rounded_digits = min(rounded) if rounded else None
         if via_constant and rounded_digits is None:
@@ -146,7 +146,7 @@ class Entry:
                 lit.digits
                 for u in via_constant
                 for lit in ex.literals(constants.definitions[u])
-                if lit.is_rounded_decimal
+                if lit.digits is not None and lit.is_rounded_decimal
             )
         exact = ex.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
