@@ -43,7 +43,7 @@ def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) 
         return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
     if verdict.state == FAILS:
         return f"{decimal_string(enc.mid, sig)} ± {radius_string(enc.rad)}"
-    return f"|R| ≤ {radius_string(abs(enc.mid) + enc.rad)}"
+    return f"|R| ≤ {radius_string(enc.magnitude() + enc.rad)}"
 
 
 def plain(*values) -> list:
