@@ -15,7 +15,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable, Iterator, NamedTuple, Sequence
+from typing import Any, Callable, Iterator, NamedTuple, Sequence, cast
 
 import numpy as np
 
@@ -214,7 +214,10 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    certificate: LineIntegralCertificate | None  # proves every order for degree m (AVF, line integral, stability)
+    # proves every order for degree m (AVF, line integral, stability).  Any Certificate: a
+    # StabilityCertificate too, through a cast in check() until the public
+    # Verification.certificate (rkcheck/api) is typed Certificate as well
+    certificate: LineIntegralCertificate | None
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
@@ -497,7 +500,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         quadrature=quad,
         classical=classical,
         avf=avf,
-        certificate=cert,
+        certificate=cast("LineIntegralCertificate | None", cert),  # see CheckResult.certificate
         theorem1=remark,
         warnings=warnings,
         timings=timings,
