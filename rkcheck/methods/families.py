@@ -184,6 +184,7 @@ def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], lis
     elif spec.name == "hbvm":
         A = [[x.round_out(bits + 32) for x in row] for row in line_integral_matrix(c, b, spec.s)]
     else:
+        assert spec.zeta is not None and spec.beta is not None  # the kernel family is given both (parse_spec)
         zeta, beta = Interval.point(spec.zeta), Interval.point(spec.beta)
         A = [
             [

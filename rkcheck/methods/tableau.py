@@ -89,8 +89,8 @@ class Tableau:
     @property
     def rounded_digits(self) -> int | None:
         """Fewest significant digits of a rounded decimal in A or b (None: no rounded decimals)."""
-        digits = [e.rounded_digits for row in self.A for e in row if e.is_rounded]
-        digits += [e.rounded_digits for e in self.b if e.is_rounded]
+        digits = [e.rounded_digits for row in self.A for e in row if e.rounded_digits is not None]
+        digits += [e.rounded_digits for e in self.b if e.rounded_digits is not None]
         return min(digits) if digits else None
 
     def is_exact(self, decimals: str) -> bool:
@@ -145,14 +145,14 @@ class Tableau:
     def exact_A(self) -> list[list[Any]]:
         """A exactly: Fractions, or field elements for algebraic entries (is_exact)."""
         if self.is_rational:
-            return [[e.exact for e in row] for row in self.A]  # type: ignore[misc]
+            return [[e.exact for e in row] for row in self.A]
         values = self.exact_values("exact")
         assert values is not None
         return values.A
 
     def exact_b(self) -> list[Any]:
         if self.is_rational:
-            return [e.exact for e in self.b]  # type: ignore[misc]
+            return [e.exact for e in self.b]
         values = self.exact_values("exact")
         assert values is not None
         return values.b
