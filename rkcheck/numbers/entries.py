@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Mapping
+from typing import Mapping, Protocol
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
@@ -116,6 +116,30 @@ class Constants:
 
     def has_decimal(self, name: str) -> bool:
         return self._decimal[name]
+
+
+class TableauEntry(Protocol):
+    """What a tableau and its checks read of a coefficient: an :class:`Entry` as written,
+    or a coefficient computed by a family
+    (:class:`~rkcheck.methods.families.ComputedEntry`, which has no expression ``node``)."""
+
+    @property
+    def text(self) -> str: ...
+    @property
+    def exact(self) -> Fraction | None: ...
+    @property
+    def uses_sqrt(self) -> bool: ...
+    @property
+    def rounded_digits(self) -> int | None: ...
+    @property
+    def bare_number(self) -> bool: ...
+    @property
+    def is_rational(self) -> bool: ...
+    @property
+    def is_rounded(self) -> bool: ...
+    def is_box(self, decimals: str) -> bool: ...
+    def enclosure(self, bits: int, decimals: str = "auto") -> Interval: ...
+    def is_zero(self) -> bool: ...
 
 
 @dataclass(frozen=True)
