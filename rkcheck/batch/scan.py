@@ -229,6 +229,7 @@ def run_scan(
                     continue
                 # the worker died while holding w.task: that file is an error row, and a
                 # new worker takes the dead one's place
+                assert w.task is not None  # busy, and no outcome came back
                 index, path = w.task
                 w.process.join()
                 finish(index, FileOutcome(path, error=_death_message(path, w.process.exitcode)))

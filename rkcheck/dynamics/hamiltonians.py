@@ -156,7 +156,7 @@ def harmonic() -> Hamiltonian:
 
 
 def henon_heiles() -> Hamiltonian:
-    t = {
+    t: dict[tuple[int, ...], Fraction | int] = {
         (0, 0, 2, 0): Fraction(1, 2), (0, 0, 0, 2): Fraction(1, 2),
         (2, 0, 0, 0): Fraction(1, 2), (0, 2, 0, 0): Fraction(1, 2),
         (2, 1, 0, 0): 1, (0, 3, 0, 0): Fraction(-1, 3),
@@ -210,10 +210,10 @@ def random_hamiltonian(degree: int, d: int = 2, seed: int = 1) -> Hamiltonian:
             for k in combo:
                 e[k] += 1
             terms[tuple(e)] = Fraction(rng.randint(-8, 8), 8)
-    while not any(c for e, c in terms.items() if sum(e) == degree):
-        for e in terms:
-            if sum(e) == degree:
-                terms[e] = Fraction(rng.randint(-8, 8), 8)
+    while not any(c for key, c in terms.items() if sum(key) == degree):
+        for key in terms:
+            if sum(key) == degree:
+                terms[key] = Fraction(rng.randint(-8, 8), 8)
     name = f"random:degree={degree},dim={d},seed={seed}"
     return Hamiltonian(name, d, Polynomial(n, {e: c for e, c in terms.items() if c}))
 
@@ -226,14 +226,14 @@ def problem(spec: str) -> Hamiltonian:
     if spec in PROBLEMS:
         return PROBLEMS[spec]()
     if spec.startswith("random"):
-        params = {"degree": None, "dim": "2", "seed": "1"}
+        params = {"dim": "2", "seed": "1"}  # degree: required
         rest = spec[len("random"):].lstrip(":")
         for part in filter(None, rest.split(",")):
             m = re.fullmatch(r"\s*(degree|dim|seed)\s*=\s*(-?\d+)\s*", part)
             if not m:
                 raise UserError(f"cannot read {part!r} (expected degree=m, dim=d, seed=S)", "--problem")
             params[m.group(1)] = m.group(2)
-        if params["degree"] is None:
+        if "degree" not in params:
             raise UserError("random needs degree=m, e.g. random:degree=4", "--problem")
         degree, dim, seed = int(params["degree"]), int(params["dim"]), int(params["seed"])
         if not 1 <= degree <= 12 or not 1 <= dim <= 6:

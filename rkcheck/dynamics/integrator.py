@@ -154,7 +154,7 @@ def step(method: RKMethod, ham, y: Sequence[Any], h: Any, ctx, where: str = "", 
     s = len(method.b)
     A, b = method.A, method.b
     if method.explicit:
-        F = []
+        F: list[list[Any]] = []  # f at each stage
         for i in range(s):
             Yi = list(y)
             for j in range(i):

@@ -213,6 +213,7 @@ def energy_series(tableau, ham, y0: list[Fraction], h: Fraction, steps: int, dps
     import mpmath
 
     every = max(1, steps // record)
+    ctx: MP | Float64
     if dps:
         with mpmath.workdps(dps):
             ctx = MP(dps)

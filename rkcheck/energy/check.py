@@ -15,7 +15,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable, Iterator, NamedTuple, Sequence
+from typing import Any, Callable, Iterator, NamedTuple, Sequence, cast
 
 import numpy as np
 
@@ -115,7 +115,7 @@ class ConditionResults(Sequence[ConditionResult]):
         value = (o._exact[k] if o._exact is not None else o.values.value(k)) * record.flip
         return ConditionResult(record, _enclosure_of(value), verdict, value)
 
-    def __getitem__(self, i):  # type: ignore[override]
+    def __getitem__(self, i):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
         if i < 0:
@@ -140,7 +140,7 @@ class ConditionResults(Sequence[ConditionResult]):
             for k in sorted(seqs, key=seqs.__getitem__):
                 yield self.result(o.vertices, k)
 
-    def count(self, state: str) -> int:  # type: ignore[override]
+    def count(self, state: str) -> int:
         code = _CODE[state]
         return int(sum(int(np.count_nonzero(o.state == code)) for o in self.orders.values()))
 
@@ -170,7 +170,7 @@ class Failures(Sequence[ConditionResult]):
         while len(self._built) < min(upto, self._count):
             self._built.append(next(self._source))
 
-    def __getitem__(self, i):  # type: ignore[override]
+    def __getitem__(self, i):
         if isinstance(i, slice):
             start, stop, step = i.indices(self._count)
             self._build(stop)
@@ -214,7 +214,10 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    certificate: LineIntegralCertificate | None  # proves every order for degree m (AVF, line integral, stability)
+    # proves every order for degree m (AVF, line integral, stability).  Any Certificate: a
+    # StabilityCertificate too, through a cast in check() until the public
+    # Verification.certificate (rkcheck/api) is typed Certificate as well
+    certificate: LineIntegralCertificate | None
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
@@ -321,7 +324,7 @@ def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckO
         while i < len(wanted):
             batch = wanted[i:i + step]
             try:
-                ev = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, batch, enclosures)
+                ev: Evaluation = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, batch, enclosures)
             except EvaluationInterrupted as stop:
                 stop.finished = {**{n: o.values for n, o in orders.items()}, **stop.finished}
                 raise
@@ -336,7 +339,7 @@ def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckO
             i += step
             step *= 2
         return backend, orders
-    ev: Evaluation = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, None, enclosures, progress)
+    ev = evaluate(listing, tableau, options.dps, options.decimals, arithmetic, None, enclosures, progress)
     return ev.backend, {n: order_verdicts(n, v) for n, v in ev.orders.items()}
 
 
@@ -497,7 +500,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         quadrature=quad,
         classical=classical,
         avf=avf,
-        certificate=cert,
+        certificate=cast("LineIntegralCertificate | None", cert),  # see CheckResult.certificate
         theorem1=remark,
         warnings=warnings,
         timings=timings,

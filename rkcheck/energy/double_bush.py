@@ -172,11 +172,12 @@ def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps:
     import mpmath
 
     num = nullspace_numeric(rows, n, dps)
-    zr = nullspace_numeric(stacked, n, dps)
+    num_zr = nullspace_numeric(stacked, n, dps)
     with mpmath.workdps(dps + 10):  # normalise at the working precision, not at 15 digits
         kernel = [_matrix(_normalise(v), s) for v in num.basis]
-        zero_row_sum = [_matrix(_normalise(v), s) for v in zr.basis]
-    return KernelResult(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(), zr.around_cut())
+        zero_row_sum = [_matrix(_normalise(v), s) for v in num_zr.basis]
+    return KernelResult(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(),
+                        num_zr.around_cut())
 
 
 def rule_values(rule_name: str, s: int, dps: int):

@@ -233,6 +233,7 @@ def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "
     condition = ExplainedCondition(id_seq, bracket(id_seq), n)
     weight = None
     if tableau is not None:
+        one: Fraction | Interval
         if tableau.is_exact(decimals):
             A, b, one = tableau.exact_A(), tableau.exact_b(), Fraction(1)
         else:

@@ -26,11 +26,36 @@ exactly for exact tableaux and certified for enclosures (:mod:`rkcheck.energy.sc
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.reduction import Reduction
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+
+
+class Certificate(Protocol):
+    """What the check and the reports read of a certificate of every order: a
+    :class:`LineIntegralCertificate` or a
+    :class:`~rkcheck.energy.stability.StabilityCertificate`."""
+
+    @property
+    def degree(self) -> int: ...
+    @property
+    def verdict(self) -> Verdict: ...
+    @property
+    def reason(self) -> str: ...
+    @property
+    def sigma(self) -> int | None: ...
+    @property
+    def kind(self) -> str | None: ...
+    @property
+    def certified(self) -> bool: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def claim_note(self) -> str: ...
+    def refuted(self, condition_id: str) -> Certificate: ...
 
 
 @dataclass(frozen=True)

@@ -46,7 +46,7 @@ def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
     or intervals), so an algebraic rule such as Gauss's gets an exact order."""
     c = sc.row_sums(A, sc.sample(A, b))
     top = 2 * len(b)
-    verdicts = []
+    verdicts: list[Verdict] = []
     for k in range(1, top + 1):
         v = sc.verdict(sc.quadrature_residual(b, c, k))
         if v.state == FAILS:
@@ -126,6 +126,7 @@ def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arith
     verdicts: list[Verdict] = []
     if choose_backend(tableau, decimals, arithmetic) == "exact":
         scaled = scaled_tableau(tableau, decimals)
+        assert scaled is not None  # the exact backend is chosen only for exact entries
         channels: list[tuple[int, int, _Weights]] = []
         for p in range(1, max_order + 1):
             table.grow_to(p)
@@ -156,13 +157,13 @@ def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arith
         values = weights.ctx.enclosures(weights.extend(table, p))
         gamma = table.gamma(ids)
         order_verdicts = []
-        failing = []
+        failed: list[int] = []
         for t, e, g in zip(ids, values, gamma):
             v = classify(Enclosure(e.mid - Fraction(1, int(g)), e.rad, False))
             if v.state == FAILS:
-                failing.append(t)
+                failed.append(int(t))
             order_verdicts.append(v)
-        if failing:
-            return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, np.array(failing)))
+        if failed:
+            return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, np.array(failed)))
         verdicts.extend(order_verdicts)
     return OrderResult(max_order, max_order, combine(verdicts))

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
-from rkcheck.energy.lineintegral import certificate_of_reduction
+from rkcheck.energy.lineintegral import Certificate, certificate_of_reduction
 from rkcheck.energy.reduction import Reduction, reduce_tableau
 from rkcheck.energy.stability import StabilityFunction, prefer, quadratic_certificate, stability_function
 from rkcheck.energy.symplectic import PropertyVerdict, symmetry, symplecticity
@@ -27,13 +27,13 @@ class TableauProperties:
     symplectic: PropertyVerdict
     symmetric: PropertyVerdict
 
-    def certificates(self, degree: int) -> tuple[AvfVerdict, object]:
+    def certificates(self, degree: int) -> tuple[AvfVerdict, Certificate]:
         """The AVF verdict for ``degree`` and the best certificate of every order: the
         line-integral one (σ = 1 is AVF), and for degree 2 the stability function's
         ``R(z)R(−z) ≡ 1`` when it proves more (exactly where the other holds only to digits,
         or at all)."""
         avf = avf_of_reduction(self.reduction, degree)
-        cert = certificate_of_reduction(self.reduction, degree)
+        cert: Certificate = certificate_of_reduction(self.reduction, degree)
         if degree == 2:
             cert = prefer(cert, quadratic_certificate(self.stability, degree))
         return avf, cert

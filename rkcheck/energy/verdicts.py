@@ -60,7 +60,7 @@ def classify(enc: Enclosure) -> Verdict:
         return Verdict(HOLDS) if enc.mid == 0 else Verdict(FAILS)
     if not enc.contains_zero():
         return Verdict(FAILS)
-    bound = abs(enc.mid) + enc.rad
+    bound = enc.magnitude() + enc.rad
     if bound == 0:
         return Verdict(HOLDS)
     if isinstance(bound, float):

@@ -14,9 +14,10 @@ from __future__ import annotations
 import json
 from typing import Any, Callable
 
-from rkcheck.errors import UserError
+from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.entries import Entry, TableauEntry
 
 WRITE_FORMATS = ("toml", "json", "latex", "julia", "python")
 
@@ -230,9 +231,20 @@ class _Latex(_Code):
         return rf"\frac{{{left}}}{{{right}}}"
 
 
+def _node(e: TableauEntry) -> ex.Expr:
+    """The expression of an entry.  A coefficient computed by a family has none: a rational
+    one is its value; the others are known only numerically."""
+    if isinstance(e, Entry):
+        return e.node
+    if e.exact is not None:
+        return ex.parse(str(e.exact))
+    raise TableauError("a family computed at the working precision has no exact entries; write it with "
+                       "rkcheck new first")
+
+
 def _entries(tab: Tableau) -> tuple[list[list[ex.Expr]], list[ex.Expr], list[ex.Expr] | None]:
-    return ([[e.node for e in row] for row in tab.A], [e.node for e in tab.b],
-            None if tab.c is None else [e.node for e in tab.c])
+    return ([[_node(e) for e in row] for row in tab.A], [_node(e) for e in tab.b],
+            None if tab.c is None else [_node(e) for e in tab.c])
 
 
 def _row_sums(A: list[list[ex.Expr]]) -> list[ex.Expr]:
@@ -291,7 +303,7 @@ def to_julia(tab: Tableau) -> str:
 def to_python(tab: Tableau) -> str:
     """Python code defining ``A``, ``b``, ``c`` exactly (``Fraction``; ``sympy.sqrt`` when
     the tableau has square roots)."""
-    uses_sqrt = any(isinstance(n, ex.Call) for e in tab.entries() for n in ex.walk(e.node)) or any(
+    uses_sqrt = any(isinstance(n, ex.Call) for e in tab.entries() for n in ex.walk(_node(e))) or any(
         isinstance(n, ex.Call) for d in tab.constants.definitions.values() for n in ex.walk(d))
     lines = [f"# {tab.name} (written by rkcheck; exact entries)", "from fractions import Fraction"]
     if uses_sqrt:

@@ -153,6 +153,7 @@ def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]],
             A.append(row)
     else:
         z, beta = spec.zeta, spec.beta
+        assert z is not None and beta is not None  # the kernel family is given both (parse_spec)
         A = [
             [f"{c[i]}*{bn[j]} + ({beta})*(({z - 1}) - 2*({z})*{c[i]})*{bn[j]}*(1 - 2*{c[j]})" for j in range(n)]
             for i in range(n)

@@ -184,6 +184,7 @@ def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], lis
     elif spec.name == "hbvm":
         A = [[x.round_out(bits + 32) for x in row] for row in line_integral_matrix(c, b, spec.s)]
     else:
+        assert spec.zeta is not None and spec.beta is not None  # the kernel family is given both (parse_spec)
         zeta, beta = Interval.point(spec.zeta), Interval.point(spec.beta)
         A = [
             [
@@ -300,11 +301,9 @@ def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
         name = base.name if base.name and base.source and base.name != _stem(base.source) else spec.title()
     else:
         name = spec.title()
-    tab = Tableau(A=A, b=b, c=None, name=name, family=spec.params(), **kw)
-    # the same coefficients exactly, in their number field, when the nodes have a closed
-    # form (Tableau.exact_values; issue 12): then the check is exact, not to digits
-    tab.family_exact = shared.exact_values
-    return tab
+    # family_exact: the same coefficients exactly, in their number field, when the nodes
+    # have a closed form (Tableau.exact_values; issue 12): then the check is exact, not to digits
+    return Tableau(A=A, b=b, c=None, name=name, family=spec.params(), family_exact=shared.exact_values, **kw)
 
 
 def _stem(source: str) -> str:

@@ -43,7 +43,7 @@ def shifted_legendre(q: int) -> list[Fraction]:
 
 def poly_add(p: list[Fraction], q: list[Fraction]) -> list[Fraction]:
     n = max(len(p), len(q))
-    return [(p[i] if i < len(p) else 0) + (q[i] if i < len(q) else 0) for i in range(n)]
+    return [(p[i] if i < len(p) else Fraction(0)) + (q[i] if i < len(q) else Fraction(0)) for i in range(n)]
 
 
 def poly_scale(p: list[Fraction], a: Fraction) -> list[Fraction]:

@@ -9,19 +9,21 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Sequence
+from typing import Any, Callable, Sequence
 
-from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.numbers.entries import Constants, Entry, TableauEntry
 from rkcheck.numbers.intervals import Interval, interval_sum
 
 
 @dataclass
 class Tableau:
-    """An s-stage Runge–Kutta method; ``c`` is None when the file left it out."""
+    """An s-stage Runge–Kutta method; ``c`` is None when the file left it out.  Its entries
+    are :class:`~rkcheck.numbers.entries.Entry` objects, or for a family the coefficients
+    the family computes (then ``family_exact`` gives them exactly when it can)."""
 
-    A: tuple[tuple[Entry, ...], ...]
-    b: tuple[Entry, ...]
-    c: tuple[Entry, ...] | None = None
+    A: tuple[tuple[TableauEntry, ...], ...]
+    b: tuple[TableauEntry, ...]
+    c: tuple[TableauEntry, ...] | None = None
     name: str = "unnamed tableau"
     description: str = ""
     references: tuple[str, ...] = ()
@@ -35,6 +37,9 @@ class Tableau:
     claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.energy.claims.Claim)
     exact_reason: str | None = field(default=None, repr=False, compare=False)
     _exact_values: dict = field(default_factory=dict, repr=False, compare=False)
+    # a family's coefficients exactly: () -> (ExactValues or None, why not)
+    family_exact: Callable[[], tuple[ExactValues | None, str | None]] | None = field(
+        default=None, repr=False, compare=False)
 
     # ------------------------------------------------------------- construction
 
@@ -73,7 +78,7 @@ class Tableau:
     def stages(self) -> int:
         return len(self.b)
 
-    def entries(self) -> list[Entry]:
+    def entries(self) -> list[TableauEntry]:
         out = [e for row in self.A for e in row] + list(self.b)
         return out + list(self.c or ())
 
@@ -89,8 +94,8 @@ class Tableau:
     @property
     def rounded_digits(self) -> int | None:
         """Fewest significant digits of a rounded decimal in A or b (None: no rounded decimals)."""
-        digits = [e.rounded_digits for row in self.A for e in row if e.is_rounded]
-        digits += [e.rounded_digits for e in self.b if e.is_rounded]
+        digits = [e.rounded_digits for row in self.A for e in row if e.rounded_digits is not None]
+        digits += [e.rounded_digits for e in self.b if e.rounded_digits is not None]
         return min(digits) if digits else None
 
     def is_exact(self, decimals: str) -> bool:
@@ -145,14 +150,14 @@ class Tableau:
     def exact_A(self) -> list[list[Any]]:
         """A exactly: Fractions, or field elements for algebraic entries (is_exact)."""
         if self.is_rational:
-            return [[e.exact for e in row] for row in self.A]  # type: ignore[misc]
+            return [[e.exact for e in row] for row in self.A]
         values = self.exact_values("exact")
         assert values is not None
         return values.A
 
     def exact_b(self) -> list[Any]:
         if self.is_rational:
-            return [e.exact for e in self.b]  # type: ignore[misc]
+            return [e.exact for e in self.b]
         values = self.exact_values("exact")
         assert values is not None
         return values.b
@@ -179,8 +184,9 @@ def _exact_values(tab: Tableau) -> ExactValues | None:
         c = None if tab.c is None or any(e.exact is None for e in tab.c) else [e.exact for e in tab.c]
         return ExactValues(None, tab.exact_A(), tab.exact_b(), c)
     entries = tab.entries()
-    if any(getattr(e, "node", None) is None for e in entries):
-        exact = getattr(tab, "family_exact", None)
+    nodes = [e.node for e in entries if isinstance(e, Entry)]
+    if len(nodes) < len(entries):  # computed by a family
+        exact = tab.family_exact
         values, reason = exact() if exact is not None else (None, None)
         if values is None:
             tab.exact_reason = reason or "the coefficients are computed numerically by the family"
@@ -188,15 +194,15 @@ def _exact_values(tab: Tableau) -> ExactValues | None:
     from rkcheck.numbers.algebraic import NotAlgebraic, field_of
 
     try:
-        found = field_of([e.node for e in entries], tab.constants.definitions)
+        found = field_of(nodes, tab.constants.definitions)
     except NotAlgebraic as err:
         tab.exact_reason = str(err)
         return None
     s = tab.stages
-    values = found.values
-    A = [values[i * s:(i + 1) * s] for i in range(s)]
-    b = values[s * s:s * s + s]
-    c = values[s * s + s:] if tab.c is not None else None
+    v = found.values
+    A = [v[i * s:(i + 1) * s] for i in range(s)]
+    b = v[s * s:s * s + s]
+    c = v[s * s + s:] if tab.c is not None else None
     return ExactValues(found.field, A, b, c)
 
 

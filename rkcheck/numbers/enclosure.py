@@ -9,7 +9,9 @@ than ``holds to D digits``.
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import NamedTuple
+from typing import NamedTuple, TypeAlias
+
+Real: TypeAlias = Fraction | float  # an exact rational, or a float (an exact dyadic one)
 
 
 class Enclosure(NamedTuple):
@@ -20,12 +22,19 @@ class Enclosure(NamedTuple):
     per condition and evaluation, and tuples are much cheaper to build than frozen
     dataclasses."""
 
-    mid: Fraction | float
-    rad: Fraction | float
+    mid: Real
+    rad: Real
     exact: bool
 
     def contains_zero(self) -> bool:
-        return abs(self.mid) <= self.rad
+        return self.magnitude() <= self.rad
+
+    def magnitude(self) -> Real:
+        """``|mid|``."""
+        # abs() of the union: mypy solves abs's type variable to object (the join of
+        # Fraction and float), so each branch takes its own abs
+        mid = self.mid
+        return abs(mid) if isinstance(mid, float) else abs(mid)
 
     @staticmethod
     def of(x: Fraction | int) -> "Enclosure":

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Mapping
+from typing import Mapping, Protocol
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
@@ -37,7 +37,7 @@ class Constants:
         self.definitions: dict[str, ex.Expr] = dict(definitions or {})
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
-        self._enclosures: dict[tuple[int, bool], dict[str, Interval]] = {}
+        self._enclosures: dict[tuple[int, bool | str], dict[str, Interval]] = {}
         self._rounded: dict[str, bool] = {}
         self._decimal: dict[str, bool] = {}
         for name in self._order:
@@ -118,6 +118,30 @@ class Constants:
         return self._decimal[name]
 
 
+class TableauEntry(Protocol):
+    """What a tableau and its checks read of a coefficient: an :class:`Entry` as written,
+    or a coefficient computed by a family
+    (:class:`~rkcheck.methods.families.ComputedEntry`, which has no expression ``node``)."""
+
+    @property
+    def text(self) -> str: ...
+    @property
+    def exact(self) -> Fraction | None: ...
+    @property
+    def uses_sqrt(self) -> bool: ...
+    @property
+    def rounded_digits(self) -> int | None: ...
+    @property
+    def bare_number(self) -> bool: ...
+    @property
+    def is_rational(self) -> bool: ...
+    @property
+    def is_rounded(self) -> bool: ...
+    def is_box(self, decimals: str) -> bool: ...
+    def enclosure(self, bits: int, decimals: str = "auto") -> Interval: ...
+    def is_zero(self) -> bool: ...
+
+
 @dataclass(frozen=True)
 class Entry:
     """One coefficient of a tableau, as written, with its exact value when it has one."""
@@ -138,7 +162,7 @@ class Entry:
         node = ex.parse(text)
         constants.check_names(node)
         used = {n.name for n in ex.names(node)}
-        rounded = [lit.digits for lit in ex.literals(node) if lit.is_rounded_decimal]
+        rounded = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
         via_constant = [u for u in used if constants.is_rounded(u)]
         rounded_digits = min(rounded) if rounded else None
         if via_constant and rounded_digits is None:
@@ -146,7 +170,7 @@ class Entry:
                 lit.digits
                 for u in via_constant
                 for lit in ex.literals(constants.definitions[u])
-                if lit.is_rounded_decimal
+                if lit.digits is not None and lit.is_rounded_decimal
             )
         exact = ex.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an

@@ -43,10 +43,11 @@ def _digits(x: Fraction, sig: int, up: bool = False) -> tuple[int, int]:
     return n, e
 
 
-def decimal_string(x: Fraction | int, sig: int = 20, up: bool = False, keep_zeros: bool = False) -> str:
+def decimal_string(x: Fraction | int | float, sig: int = 20, up: bool = False, keep_zeros: bool = False) -> str:
     """``x`` rounded to ``sig`` significant digits (``up``: away from zero), e.g.
     ``-3.4722222222222222222e-4``, ``0.5``, ``12.25``.  Trailing zeros are dropped unless
-    ``keep_zeros`` (then the text states exactly ``sig`` significant digits)."""
+    ``keep_zeros`` (then the text states exactly ``sig`` significant digits).  A float is
+    taken at its exact binary value."""
     x = Fraction(x)
     if x == 0:
         return "0"
@@ -64,7 +65,7 @@ def decimal_string(x: Fraction | int, sig: int = 20, up: bool = False, keep_zero
     return f"{sign}{mant}e{e}"
 
 
-def radius_string(r: Fraction) -> str:
+def radius_string(r: Fraction | float) -> str:
     """A radius rounded *up* to 2 significant digits (an upper bound stays an upper bound)."""
     if r == 0:
         return "0"

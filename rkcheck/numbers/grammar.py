@@ -503,7 +503,7 @@ def root_polynomial(call: Call) -> list[Fraction]:
 
     def padd(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
         n = max(len(a), len(b))
-        return [(a[i] if i < len(a) else 0) + (b[i] if i < len(b) else 0) for i in range(n)]
+        return [(a[i] if i < len(a) else Fraction(0)) + (b[i] if i < len(b) else Fraction(0)) for i in range(n)]
 
     def pmul(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
         out = [Fraction(0)] * (len(a) + len(b) - 1)
@@ -700,8 +700,8 @@ def enclose(
         if isinstance(n, Unary):
             return -vals[0]
         if isinstance(n, Call) and n.func == "root":
-            k = vals[0]
-            return root_enclosure(n, k.lo if k.is_point else None, bits)
+            index = vals[0]
+            return root_enclosure(n, index.lo if index.is_point else None, bits)
         if isinstance(n, Call):
             v = vals[0]
             if v.hi < 0:

@@ -63,6 +63,7 @@ def real_root_intervals(coeffs: Sequence[Fraction], bits: int) -> list[Interval]
     squarefree = None
     for f, _ in factors:
         squarefree = f if squarefree is None else squarefree * f
+    assert squarefree is not None  # degree >= 1 (trimmed, len >= 2): at least one factor
     numer = squarefree.numer()
     exact = {r: None for r in rational_roots(coeffs)}
     width = Fraction(1, 2**bits)
@@ -102,24 +103,24 @@ def poly_text(coeffs: Sequence[Fraction], variable: str = "x") -> str:
         den = den * c.denominator // math.gcd(den, c.denominator)
     ints = [int(c * den) for c in coeffs]
     g = 0
-    for c in ints:
-        g = math.gcd(g, c)
+    for n in ints:
+        g = math.gcd(g, n)
     g = g or 1
     if ints[-1] < 0:
         g = -g
-    ints = [c // g for c in ints]
+    ints = [n // g for n in ints]
     parts: list[tuple[int, str]] = []
     for k in range(len(ints) - 1, -1, -1):
-        c = ints[k]
-        if c == 0:
+        n = ints[k]
+        if n == 0:
             continue
-        mag = abs(c)
+        mag = abs(n)
         power = "" if k == 0 else (variable if k == 1 else f"{variable}^{k}")
         if not power:
             text = str(mag)
         else:
             text = power if mag == 1 else f"{mag}*{power}"
-        parts.append((1 if c > 0 else -1, text))
+        parts.append((1 if n > 0 else -1, text))
     if not parts:
         return "0"
     out = ("-" if parts[0][0] < 0 else "") + parts[0][1]

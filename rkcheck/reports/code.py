@@ -211,7 +211,7 @@ def _python_like(code: ConditionCode, sym: bool) -> str:
             lines.append(f"        {_residual_text(r, lambda k: f'w[{k}]', '*', div)},  # {r.label}")
         lines.append("    ]")
     if code.stages is not None:
-        lines += _python_stages(code, sym)
+        lines += _python_stages(code, code.stages, sym)
     return "\n".join(lines) + "\n"
 
 
@@ -220,8 +220,7 @@ def _free_entries(code: ConditionCode) -> list[tuple[int, int]]:
     return [(i, j) for i in range(s) for j in range(s) if not code.explicit or j < i]
 
 
-def _python_stages(code: ConditionCode, sym: bool) -> list[str]:
-    s = code.stages
+def _python_stages(code: ConditionCode, s: int, sym: bool) -> list[str]:
     free = _free_entries(code)
     shape = "strictly lower triangular A (explicit), " if code.explicit else ""
     out = ["", "", f"STAGES = {s}", f"FREE_A = {free}  # (row, column) of the free entries of A, 0-based", ""]

@@ -15,6 +15,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass
+from typing import IO, cast
 
 from rich.console import Console
 
@@ -77,8 +78,10 @@ def make_console(settings: OutputSettings = OutputSettings(), stderr: bool = Fal
     stream = sys.stderr if stderr else sys.stdout
     tty = stream.isatty()
     color = color_wanted(settings, tty)
+    # rich asks for an IO[str] but writes through write/flush only (and asks isatty,
+    # fileno, encoding), all of which _StripTrailingSpaces has
     return Console(
-        file=stream if tty else _StripTrailingSpaces(stream),
+        file=stream if tty else cast(IO[str], _StripTrailingSpaces(stream)),
         no_color=not color,
         force_terminal=True if color and not tty else None,
         highlight=False,

@@ -89,7 +89,7 @@ def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
     sig = dps
     if enc.rad > 0 and enc.mid != 0:
         # digits of the mid-point that the radius leaves meaningful, plus one
-        ratio = abs(enc.mid) / enc.rad
+        ratio = enc.magnitude() / enc.rad
         sig = max(1, min(dps, len(str(int(ratio))) + 1))
     return {
         "residual": decimal_string(enc.mid, sig),

@@ -63,19 +63,19 @@ def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -
         out.append(f"| `{r.path}` | " + " | ".join(cells) + " |")
     out += ["", "## Methods of equal energy order, ranked by C", ""]
     for lbl in degrees_labels:
-        groups: dict[int, list[CatalogRow]] = {}
+        groups: dict[int, list[tuple[float, CatalogRow]]] = {}  # order -> (C, row)
         for r in ok:
-            q = r.energy_orders.get(lbl)
-            if q is not None and r.constants.get(lbl) is not None:
-                groups.setdefault(q, []).append(r)
+            q, c = r.energy_orders.get(lbl), r.constants.get(lbl)
+            if q is not None and c is not None:
+                groups.setdefault(q, []).append((c, r))
         for q in sorted(groups, reverse=True):
             members = groups[q]
             if len(members) < 2:
                 continue
-            members.sort(key=lambda r: (r.constants[lbl], r.path))
-            ranked = f"`{members[0].path}` {_c(members[0].constants[lbl])}"
-            for prev, r in zip(members, members[1:]):
-                sign = "=" if r.constants[lbl] == prev.constants[lbl] else "<"
-                ranked += f" {sign} `{r.path}` {_c(r.constants[lbl])}"
+            members.sort(key=lambda m: (m[0], m[1].path))
+            ranked = f"`{members[0][1].path}` {_c(members[0][0])}"
+            for (prev_c, _), (c, r) in zip(members, members[1:]):
+                sign = "=" if c == prev_c else "<"
+                ranked += f" {sign} `{r.path}` {_c(c)}"
             out.append(f"- {lbl}, energy order {q}: {ranked}")
     return out

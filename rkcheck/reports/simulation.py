@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from rich import box
-from rich.console import Console
+from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
@@ -52,8 +52,9 @@ def render_series(tab, ham, h, steps, dps, times, dH, console: Console) -> None:
 def render_workprec(wp, ham, console: Console) -> None:
     console.print(Text(f"work–precision on {ham.name}, T = {wp.T}; reference: {wp.reference}", style="bold"))
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
-    for col, just in [("method", "left"), ("steps", "right"), ("h", "right"), ("time s", "right"),
-                      ("error at T", "right"), ("max |ΔH|", "right")]:
+    columns: list[tuple[str, JustifyMethod]] = [("method", "left"), ("steps", "right"), ("h", "right"),
+                                                ("time s", "right"), ("error at T", "right"), ("max |ΔH|", "right")]
+    for col, just in columns:
         t.add_column(col, justify=just)
     for r in wp.rows:
         t.add_row(*plain(r.name, r.steps, f"{float(r.h):.4g}", f"{r.seconds:.4f}", _e(r.error), _e(r.energy_error)))

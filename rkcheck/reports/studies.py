@@ -5,7 +5,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 from rich import box
-from rich.console import Console
+from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
@@ -23,8 +23,10 @@ def render_bench(rows, t_tables: float, console: Console, title: str) -> None:
     console.print(Text(title, style="bold"))
     console.print(f"tree and condition tables: {t_tables:.3f} s (shared by all backends)")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
-    for col, just in [("backend", "left"), ("time s", "right"), ("conditions/s", "right"),
-                      ("min certified digits", "right"), ("certified failures", "right"), ("agrees", "center")]:
+    columns: list[tuple[str, JustifyMethod]] = [("backend", "left"), ("time s", "right"), ("conditions/s", "right"),
+                                                ("min certified digits", "right"), ("certified failures", "right"),
+                                                ("agrees", "center")]
+    for col, just in columns:
         t.add_column(col, justify=just, no_wrap=True)
     for r in rows:
         digits = "exact" if r.min_digits is None and r.backend == "exact" else ("—" if r.min_digits is None else str(r.min_digits))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import Sequence
 
 from rich import box
 from rich.console import Console, Group
@@ -43,7 +44,7 @@ def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) 
         return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
     if verdict.state == FAILS:
         return f"{decimal_string(enc.mid, sig)} ± {radius_string(enc.rad)}"
-    return f"|R| ≤ {radius_string(abs(enc.mid) + enc.rad)}"
+    return f"|R| ≤ {radius_string(enc.magnitude() + enc.rad)}"
 
 
 def plain(*values) -> list:
@@ -66,7 +67,7 @@ def header(tab: Tableau, decimals: str) -> Group:
     return Group(title, Text(facts))
 
 
-def conditions_table(results: list[ConditionResult], title: str) -> Table:
+def conditions_table(results: Sequence[ConditionResult], title: str) -> Table:
     t = Table(title=Text(title), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("id", no_wrap=True)
     t.add_column("bracket", no_wrap=True)
@@ -157,8 +158,8 @@ def render_check(
         kv.add_row(*plain("energy order", _energy_text(res)))
         if res.theorem1:
             kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
-        for label, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
-            kv.add_row(*plain(label, value))
+        for name, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
+            kv.add_row(*plain(name, value))
         console.print(kv)
         console.print()
         console.print(per_order_table(res))
@@ -311,8 +312,9 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "auto", warni
 
 def _row_sum_text(tab: Tableau, i: int) -> str:
     row = tab.A[i]
-    if all(e.exact is not None for e in row):
-        return str(sum((e.exact for e in row), Fraction(0)))
+    exact = [e.exact for e in row if e.exact is not None]
+    if len(exact) == len(row):
+        return str(sum(exact, Fraction(0)))
     enc = sum((e.enclosure(80, "exact") for e in row[1:]), row[0].enclosure(80, "exact"))
     return "≈ " + decimal_string(enc.mid, 12)
 

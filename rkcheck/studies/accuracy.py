@@ -44,9 +44,10 @@ def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "roun
     from rkcheck.evaluation.modular import exact_condition_sums
 
     if name == "exact":
-        sums = exact_condition_sums(scaled_tableau(tableau, "exact"), listing)
+        scaled = scaled_tableau(tableau, "exact")
+        assert scaled is not None  # backend_names offers "exact" only for exact tableaux
         out = {}
-        for n, o in sums.items():
+        for n, o in exact_condition_sums(scaled, listing).items():
             zero = o.is_zero()
             for k in range(len(zero)):
                 v = o.value(k)
@@ -210,7 +211,7 @@ def direction(tableau: Tableau, kind: str, degree: int | None, seed: int = 2024,
             # with the row sums then made exactly zero: that constraint is rational, so
             # only the double-bush part M(D) = 0 is left at ~10^-dps
             D = [[mpf_fraction(x) for x in row] for row in N]
-            D = [[x - sum(row) / s for x in row] for row in D]
+            D = [[x - sum(row, Fraction(0)) / s for x in row] for row in D]
         desc = (f"the zero-row-sum kernel direction of the double-bush map for degree {degree} "
                 f"({'exact' if exact else f'to {dps} digits'}; {len(k.zero_row_sum)}-dimensional)")
     else:

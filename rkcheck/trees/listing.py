@@ -71,6 +71,7 @@ class OrderTerms:
         if self.first_id is not None:
             t = self.first_id + i
             return int(listing.left[t]), int(listing.right[t])
+        assert self.left is not None and self.right is not None  # the top order keeps its factors
         return int(self.left[i]), int(self.right[i])
 
     def sign(self, i: int) -> int:

@@ -30,10 +30,15 @@ centre of every tree's free tree without building it (:mod:`rkcheck.trees.classe
 
 from __future__ import annotations
 
+from typing import Any, TypeAlias
+
 import numpy as np
+import numpy.typing as npt
 
 TAU = 0
 _NONE = -1
+
+IdArray: TypeAlias = npt.NDArray[np.int32]  # tree ids (and −1 for "none")
 
 
 _FIELDS = {  # per-tree arrays and their dtypes
@@ -47,6 +52,21 @@ _CHUNK = 1 << 20  # rows per vectorised step: bounds the temporaries
 class TreeTable:
     """Every rooted tree with at most ``max_order`` vertices within the degree bounds
     (``None`` = unbounded), generated order by order into preallocated arrays."""
+
+    # the per-tree arrays of _FIELDS (set through setattr); after release() only
+    # left/right remain and the others are None
+    left: IdArray
+    right: IdArray
+    nchild: npt.NDArray[np.int8]
+    h1: npt.NDArray[np.int8]
+    h2: npt.NDArray[np.int8]
+    tall: IdArray
+    rest: IdArray
+    sigma: npt.NDArray[np.int64]
+    mult: npt.NDArray[np.int8]
+    order: npt.NDArray[np.int8]
+    rank: IdArray
+    inner_max: npt.NDArray[np.int8]
 
     def __init__(self, max_order: int, root_bound: int | None = None, inner_bound: int | None = None):
         if max_order < 1:
@@ -212,8 +232,9 @@ class TreeTable:
         del self._block_cache[n]
         self._prepare_lefts(n)
 
-    def attributes(self, n: int, U: np.ndarray, V: np.ndarray) -> dict[str, np.ndarray]:
-        """The per-tree attributes of the trees ``U ∘ V`` (all of order ``n``)."""
+    def attributes(self, n: int, U: np.ndarray, V: np.ndarray) -> dict[str, npt.NDArray[Any] | int]:
+        """The per-tree attributes of the trees ``U ∘ V`` (all of order ``n``; ``order``
+        and ``rank`` are the same for all of them, given as one int)."""
         h1u = self.h1[U].astype(np.int16)
         dv = self.h1[V].astype(np.int16) + 1
         taller = dv > h1u

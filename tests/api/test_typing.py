@@ -1,5 +1,6 @@
 """The public surface is typed (py.typed, PEP 561) and mypy accepts it: a typed user
-script passes, misuse is caught, and rkcheck/api itself checks cleanly."""
+script passes, misuse is caught, rkcheck/api itself checks cleanly, and so does the rest
+of the package (mypy settings: [tool.mypy] in pyproject.toml)."""
 
 from __future__ import annotations
 
@@ -25,6 +26,25 @@ def test_api_and_typed_usage_pass_mypy():
     run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/errors.py", "rkcheck/io/library.py",
                "rkcheck/io/formats.py", "rkcheck/io/delimited.py", "rkcheck/io/nodepy_text.py", "rkcheck/io/loader.py",
                "rkcheck/methods/classics.py", "rkcheck/methods/arrays.py", str(HERE / "typed_usage.py"))
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+# not yet checked: being edited elsewhere (mypy still follows them, silently, for the
+# types the checked modules import)
+NOT_CHECKED = ("rkcheck/cli/", "rkcheck/api/", "rkcheck/__init__.py", "rkcheck/evaluation/",
+               "rkcheck/numbers/algebraic.py", "rkcheck/energy/stability.py")
+
+
+def checked_modules() -> list[str]:
+    modules = sorted(p.relative_to(REPO).as_posix() for p in (REPO / "rkcheck").rglob("*.py"))
+    return [m for m in modules if not m.startswith(NOT_CHECKED)]
+
+
+@pytest.mark.slow
+def test_package_passes_mypy():
+    modules = checked_modules()
+    assert len(modules) > 50 and "rkcheck/energy/check.py" in modules  # a real list, not an empty one
+    run = mypy(*modules)
     assert run.returncode == 0, run.stdout + run.stderr
 
 

@@ -104,6 +104,29 @@ def test_cli_show_formats(capsys, fmt):
         assert [[e.exact for e in r] for r in back.A] == [[0, 0], [1, 0]]
 
 
+@pytest.mark.parametrize("fmt", ["latex", "julia", "python"])
+def test_code_writers_take_family_tableaux(capsys, fmt):
+    """A family's coefficients are computed (no expression): the code writers wrote
+    ``e.node`` and crashed.  A rational family is written exactly; one known only
+    numerically is a user error, as for to_nodepy."""
+    from rkcheck.errors import TableauError
+    from rkcheck.methods.families import family_tableau, parse_spec
+
+    lobatto = family_tableau(parse_spec({"name": "lobatto-iiia", "s": 3}))
+    assert lobatto.is_rational
+    text = write(lobatto, fmt)
+    if fmt == "python":
+        ns: dict = {}
+        exec(text, ns)  # our own output
+        assert ns["A"][1] == [Fraction(5, 24), Fraction(1, 3), Fraction(-1, 24)]
+    else:
+        assert ("5}{24}" if fmt == "latex" else "big(5)//24") in text
+    with pytest.raises(TableauError, match="no exact entries"):
+        write(family_tableau(parse_spec({"name": "hbvm", "k": 6, "s": 3})), fmt)
+    run = run_cli(capsys, "show", str(TABLEAUX / "hbvm" / "hbvm-6-3.toml"), "--format", fmt)
+    assert run.code == 2 and "internal error" not in run.err and "no exact entries" in run.err
+
+
 def test_cli_new_classic_round_trip(capsys):
     run = run_cli(capsys, "new", "rk4")
     assert run.code == 0
