@@ -264,8 +264,7 @@ def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | Non
         series.append(frac((B * v)[0, 0]))
         v = M * v
     Q = fmpq_poly(list(reversed(M.charpoly().coeffs())))  # det(I − zA) = z^s det(z⁻¹I − A)
-    P = (Q * fmpq_poly([q(r) for r in series[: s + 1]])).coeffs()[: s + 1]
-    P = fmpq_poly(P)
+    P = fmpq_poly((Q * fmpq_poly([q(r) for r in series[: s + 1]])).coeffs()[: s + 1])
     g = P.gcd(Q)
     if g.degree() > 0:
         P, Q = P // g, Q // g
@@ -339,9 +338,11 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
     for _ in range(2 * s):
         series.append(sc.dot(b, v, like))
         v = sc.matvec(A, v, like)
-    numerator = denominator = None
-    Q = _det_I_minus_zA(A, like)
-    if Q is not None:
+    numerator: list | None = None
+    denominator: list | None = None
+    charpoly = _det_I_minus_zA(A, like)
+    if charpoly is not None:
+        Q = charpoly
         P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
         if sc.is_exact(like):
             g = _gcd(P, Q, like)
@@ -412,6 +413,7 @@ class StabilityCertificate:
 def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCertificate:
     """The certificate for degree ≤ 2 from the stability function."""
     if stab.identity.state == FAILS:
+        assert stab.leading_power is not None  # a failing identity has a leading term
         return StabilityCertificate(
             degree, Verdict(FAILS),
             f"{stab.defect_text()}: quadratic energy is preserved to order {stab.leading_power - 1} only",

@@ -80,6 +80,7 @@ def evaluate(listing, tableau, dps: int, decimals: str, arithmetic: str = "auto"
     backend = choose_backend(tableau, decimals, arithmetic)
     if backend == "exact":
         scaled = scaled_tableau(tableau, decimals)
+        assert scaled is not None  # choose_backend said the entries are exact
         return Evaluation("exact", exact_condition_sums(scaled, listing, orders, progress), scaled)
     ctx = ball_context(tableau, dps, decimals, enclosures)
     wanted = sorted(listing.orders if orders is None else orders)
@@ -92,5 +93,6 @@ def channels_for(tableau, order: int, decimals: str, arithmetic: str = "auto") -
     if choose_backend(tableau, decimals, arithmetic) != "exact":
         return 0
     scaled = scaled_tableau(tableau, decimals)
+    assert scaled is not None  # choose_backend said the entries are exact
     bits = scaled.decision_bits(order + 1, order + 1)
     return len(scaled.primes_for(bits)) * scaled.degree

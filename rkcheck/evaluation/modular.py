@@ -50,7 +50,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, Sequence
+from typing import Any, Sequence, cast
 
 import numpy as np
 
@@ -94,7 +94,7 @@ def is_prime(n: int) -> bool:
 @lru_cache(maxsize=4)
 def _primes_below(limit: int, count: int) -> tuple[int, ...]:
     """The ``count`` largest primes below ``limit`` (deterministic)."""
-    out = []
+    out: list[int] = []
     q = limit - 1
     while len(out) < count:
         if is_prime(q):
@@ -417,14 +417,9 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
 
     g = [Fraction(c) for c in field.minpoly]  # monic
     D = len(g) - 1
-    lam = 1
-    need: dict[int, int] = {}
-    for k, c in enumerate(g[:-1]):
-        if c.denominator > 1:
-            for q, e in fmpz(c.denominator).factor():
-                need[int(q)] = max(need.get(int(q), 0), -(-int(e) // (D - k)))
-    for q, e in need.items():
-        lam *= q**e
+    from rkcheck.numbers.algebraic import integral_scale
+
+    lam = integral_scale(g)
     minpoly = [int(c * lam ** (D - k)) for k, c in enumerate(g)]
     assert minpoly[-1] == 1 and all(Fraction(c) * lam ** (D - k) == minpoly[k] for k, c in enumerate(g))
 
@@ -442,7 +437,9 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     bi = [[int(c * d) for c in v] for v in bt]
 
     with ctx.workprec(128):
-        roots = [r for r, _ in fmpz_poly(minpoly).complex_roots()]
+        # python-flint's stubs type complex_roots() as acb; it is a list of (acb, multiplicity)
+        found: list[tuple[Any, int]] = cast(list, fmpz_poly(minpoly).complex_roots())
+        roots = [root for root, _ in found]
 
         def conj(v: list[int], r) -> Any:
             acc = acb(0)
@@ -547,7 +544,7 @@ class ExactOrderSums:
             return [self.value(k) for k in range(len(self.residues))]
         mods = [p for p, _ in self.primes]
         r = self.residues[:, :, 0].astype(np.int64)
-        digits = []
+        digits: list[np.ndarray] = []
         for i, p in enumerate(mods):
             # x_i = (r_i − (x_0 + x_1 m_0 + …)) / (m_0 … m_{i−1})  (mod p_i)
             acc = np.zeros(len(r), dtype=np.int64)

@@ -377,8 +377,8 @@ def integral_scale(monic: Sequence[Fraction]) -> int:
     for k, c in enumerate(monic[:-1]):
         den = Fraction(c).denominator
         if den > 1:
-            for q, e in fmpz(den).factor():
-                need[int(q)] = max(need.get(int(q), 0), -(-int(e) // (n - k)))
+            for fq, fe in fmpz(den).factor():
+                need[int(fq)] = max(need.get(int(fq), 0), -(-int(fe) // (n - k)))
     lam = 1
     for q, e in need.items():
         lam *= q**e
@@ -446,7 +446,7 @@ class _Builder:
         self.generators: dict[_Real, FieldElement] = {}
         self.definitions = dict(constants or {})
         self.constants: dict[str, FieldElement] = {}
-        self._sqrt_cache: dict[Fraction, FieldElement] = {}
+        self._sqrt_cache: dict[int, FieldElement] = {}  # keyed by the square-free m
 
     # ------------------------------------------------------------- lifting
     def lift(self, x: FieldElement) -> FieldElement:
