@@ -320,7 +320,25 @@ WRITERS: dict[str, Callable[[Tableau], str]] = {
 
 
 def write(tab: Tableau, fmt: str) -> str:
-    """The tableau in one of :data:`WRITE_FORMATS`."""
+    """The tableau in one of :data:`WRITE_FORMATS`.  A ``[family]`` tableau is first
+    written out as ``rkcheck new`` writes it — closed forms where its nodes have them,
+    else 60-digit decimals — so every format reads back (never the "≈" display texts)."""
     if fmt not in WRITERS:
         raise UserError(f"unknown output format {fmt!r} (known: {', '.join(WRITE_FORMATS)})")
-    return WRITERS[fmt](tab)
+    return WRITERS[fmt](_as_written(tab))
+
+
+def _as_written(tab: Tableau) -> Tableau:
+    """A family's tableau as a written one (its own name, description, references and
+    claims kept); any other tableau unchanged."""
+    if tab.family is None:
+        return tab
+    import dataclasses
+
+    from rkcheck.io.loader import loads
+    from rkcheck.io.writers import render_toml
+    from rkcheck.methods.families import parse_spec
+
+    written = loads(render_toml(parse_spec(tab.family)), source=tab.source, fmt="toml")
+    return dataclasses.replace(written, name=tab.name, description=tab.description, references=tab.references,
+                               expect=tab.expect, claims=tab.claims, check=tab.check)
