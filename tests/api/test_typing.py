@@ -1,5 +1,6 @@
 """The public surface is typed (py.typed, PEP 561) and mypy accepts it: a typed user
-script passes, misuse is caught, and rkcheck/api itself checks cleanly."""
+script passes, misuse is caught, and rkcheck/api and rkcheck/cli (which uses only the
+API) check cleanly."""
 
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ def mypy(*paths: str) -> subprocess.CompletedProcess:
 
 @pytest.mark.slow
 def test_api_and_typed_usage_pass_mypy():
-    run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/errors.py", "rkcheck/io/library.py",
+    run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/cli", "rkcheck/errors.py", "rkcheck/io/library.py",
                "rkcheck/io/formats.py", "rkcheck/io/delimited.py", "rkcheck/io/nodepy_text.py", "rkcheck/io/loader.py",
                "rkcheck/methods/classics.py", "rkcheck/methods/arrays.py", str(HERE / "typed_usage.py"))
     assert run.returncode == 0, run.stdout + run.stderr
