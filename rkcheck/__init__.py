@@ -9,6 +9,8 @@ The public API (docs/api.md)::
     result.verdict, result.energy_order, result.failures[:3], result.to_json()
     rkcheck.free_trees(6, max_degree=3)             # the conditions with 6 vertices
     rkcheck.energy_condition("1,2,3,2", tab)        # one condition, taken apart
+    rkcheck.new("gauss", stages=3), rkcheck.scan(["tableaux/"]), rkcheck.kernel(4, 2), ...
+                                                    # one function per command of the CLI
 
 Errors rkcheck raises on purpose are :class:`RkcheckError` subclasses whose ``str`` is
 the CLI's one-line message.  The names are loaded on first use, so that ``import
@@ -49,20 +51,42 @@ __version__ = "0.1.0"
 
 if TYPE_CHECKING:  # what type checkers and IDEs see; at run time __getattr__ loads it
     from rkcheck.api import (
+        Bench,
+        Catalog,
         Condition,
+        ConditionList,
         EnergyCondition,
+        EnergyOrderFit,
         FreeTree,
+        Kernel,
+        Perturbation,
         RootingTerm,
+        ScanResult,
+        ScanRow,
+        Simulation,
         Verification,
+        WorkPrecision,
+        bench,
+        catalog,
+        conditions,
+        empirical_energy_order,
         energy_condition,
         free_trees,
         from_arrays,
         from_nodepy,
+        hamiltonian,
+        kernel,
         library,
         load,
         loads,
+        new,
+        new_toml,
+        perturb,
+        scan,
+        simulate,
         to_nodepy,
         verify,
+        work_precision,
         write,
     )
     from rkcheck.api.errors import (
@@ -75,8 +99,11 @@ if TYPE_CHECKING:  # what type checkers and IDEs see; at run time __getattr__ lo
     )
     from rkcheck.api.types import CheckOptions, Tableau
 
-_API = ("Condition", "EnergyCondition", "FreeTree", "RootingTerm", "Verification", "energy_condition", "free_trees",
-        "from_arrays", "from_nodepy", "library", "load", "loads", "to_nodepy", "verify", "write")
+_API = ("Bench", "Catalog", "Condition", "ConditionList", "EnergyCondition", "EnergyOrderFit", "FreeTree", "Kernel",
+        "Perturbation", "RootingTerm", "ScanResult", "ScanRow", "Simulation", "Verification", "WorkPrecision",
+        "bench", "catalog", "conditions", "empirical_energy_order", "energy_condition", "free_trees", "from_arrays",
+        "from_nodepy", "hamiltonian", "kernel", "library", "load", "loads", "new", "new_toml", "perturb", "scan",
+        "simulate", "to_nodepy", "verify", "work_precision", "write")
 _ERRORS = ("InputError", "OptionError", "RkcheckError", "TableauError", "UnknownMethodError", "UserError")
 _TYPES = ("CheckOptions", "Tableau")
 

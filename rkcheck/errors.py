@@ -8,12 +8,16 @@
   (``@name`` not in the library); the resource guard's ``ResourceError`` and the
   integrator's ``NewtonError`` are UserErrors too.
 * Anything else that escapes is a bug (the CLI's exit code 3).
+* :class:`CheckInterrupted` is not an error: Ctrl-C during a check, carrying what
+  finished (a ``KeyboardInterrupt``, so it stops a library caller as Ctrl-C does).
 
 Library callers catch ``rkcheck.RkcheckError`` for everything rkcheck refuses, and read
 ``str(err)``: the same one line the CLI prints after ``rkcheck: error:``.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 
 class RkcheckError(Exception):
@@ -57,3 +61,13 @@ class OptionError(UserError):
 
 class UnknownMethodError(UserError):
     """An ``@name`` that names no tableau of the installed library."""
+
+
+class CheckInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a check: ``result`` holds the orders that were finished (a
+    KeyboardInterrupt for library callers, a partial report for the CLI).  ``result`` is
+    a :class:`rkcheck.energy.check.CheckResult`."""
+
+    def __init__(self, result: Any):
+        super().__init__()
+        self.result = result

@@ -41,6 +41,18 @@ DPS_RANGE = (10, 5000)
 ORDER_RANGE = (1, MAX_ORDER)
 #: Worker processes of ``scan`` any source accepts (never more than the files to check).
 JOBS_RANGE = (1, 256)
+#: Decimal digits ``rkcheck new --digits`` writes.
+DIGITS_RANGE = (1, 5000)
+#: ``kernel``: stages s of a named rule, degrees m of the double-bush map (m >= 3: it has
+#: conditions), working precisions of its numerical ranks (also ``simulate --dps``).
+KERNEL_STAGES_RANGE = (1, 12)
+KERNEL_DEGREE_RANGE = (3, 40)
+STUDY_DPS_RANGE = (15, 2000)
+#: ``bench --repeat``: best of this many runs.
+REPEAT_RANGE = (1, 50)
+#: ``simulate --steps`` and ``simulate --energy-order --points``.
+STEPS_RANGE = (1, 10_000_000)
+POINTS_RANGE = (1, 100)
 
 #: Decimals modes (docs/definitions.md §5): 'rounded' (default) or 'exact' (face value).
 DECIMALS_MODES = ("auto", "rounded", "float64", "exact")
@@ -52,6 +64,10 @@ SCAN_FORMATS = ("text", "json", "csv", "junit", "github")
 NO_DEGREE = ("none", "all", "any")
 #: Keys of a tableau file's ``[check]`` table.
 CHECK_KEYS = ("degree", "order", "dps", "decimals", "require")
+#: What ``load`` reads: TOML and JSON documents, delimited Butcher arrays, nodepy text.
+INPUT_FORMATS = ("toml", "json", "csv", "nodepy")
+#: What ``scan --sort`` orders rows by.
+SCAN_SORTS = ("path", "energy")
 
 
 @dataclass(frozen=True)
@@ -112,6 +128,48 @@ def parse_int_in(value: Any, bounds: tuple[int, int], place: str, source: str | 
     if _is_int(value) and lo <= value <= hi:
         return value
     raise UserError(f"expected an integer from {lo} to {hi}, got {_shown(value)}", place, source)
+
+
+def parse_integer(value: Any, place: str, source: str | None = None) -> int:
+    """Any integer (a seed)."""
+    if _is_int(value):
+        return value
+    raise UserError(f"expected an integer, got {_shown(value)}", place, source)
+
+
+def parse_dps_list(value: Any, place: str = "--dps", source: str | None = None) -> list[int]:
+    """Working precisions: ``"15,50"`` (the CLI's text) or a sequence of integers, each
+    within :data:`DPS_RANGE` (``bench --dps``, ``perturb --dps``)."""
+    if isinstance(value, str):
+        try:
+            values = [int(x) for x in value.split(",") if x.strip()]
+        except ValueError:
+            raise UserError(f"expected a comma-separated list of integers, got {value!r}", place, source) from None
+    elif isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
+        values = list(value)
+    else:
+        raise UserError(f"expected a comma-separated list of integers, got {_shown(value)}", place, source)
+    lo, hi = DPS_RANGE
+    if not values or any(d < lo or d > hi for d in values):
+        raise UserError(f"each dps must be between {lo} and {hi}", place, source)
+    return values
+
+
+def parse_step_counts(value: Any, place: str = "--steps", source: str | None = None) -> list[int]:
+    """Numbers of steps: ``"20,40,80"`` (the CLI's text) or a sequence of positive integers
+    (``workprec --steps``)."""
+    if isinstance(value, str):
+        try:
+            counts = [int(x) for x in value.split(",") if x.strip()]
+        except ValueError:
+            raise UserError(f"expected comma-separated integers, got {value!r}", place, source) from None
+    elif isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
+        counts = list(value)
+    else:
+        raise UserError(f"expected comma-separated integers, got {_shown(value)}", place, source)
+    if not counts or min(counts) < 1:
+        raise UserError("step counts must be positive", place, source)
+    return counts
 
 
 def _shown(value: Any) -> str:

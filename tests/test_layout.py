@@ -29,8 +29,7 @@ ALLOWED: dict[str, set[str]] = {
                        "studies", "batch"},
     "api": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
                    "studies", "batch", "reports"},
-    "cli": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
-                   "studies", "batch", "reports", "api"},
+    "cli": BASE | {"options", "io", "reports", "api"},  # io: only io.printable (test_cli_uses_only_the_api)
     "__init__": {"api"},
     "__main__": {"cli"},
 }
@@ -63,8 +62,9 @@ def imported_units(module: str, names: list[str]) -> set[str]:
     parts = module.split(".")
     if len(parts) > 1:
         return {parts[1]}
-    # `from rkcheck import X`: the version string is the only thing the root may give
-    return {"__version__" if n == "__version__" else n for n in names}
+    # `from rkcheck import X`: the version string, or a public name (loaded from rkcheck.api)
+    public = root_public_names()
+    return {"__version__" if n == "__version__" else ("api" if n in public else n) for n in names}
 
 
 def test_every_unit_has_a_rule():
@@ -81,6 +81,52 @@ def test_imports_follow_the_flow():
                 if target not in ALLOWED[unit]:
                     bad.append(f"{path.relative_to(REPO)}:{line}: {unit} imports {target} ({module})")
     assert not bad, "imports against the flow:\n" + "\n".join(bad)
+
+
+#: What rkcheck/cli may import of rkcheck (issue 13: "the CLI uses this API, nothing
+#: else"): the package root (its version, its public names), the API, the renderers,
+#: itself, the errors, the shared option vocabulary, and making file text printable.
+CLI_MAY_IMPORT = ("rkcheck.api", "rkcheck.reports", "rkcheck.cli")
+CLI_MAY_IMPORT_EXACTLY = ("rkcheck", "rkcheck.errors", "rkcheck.options", "rkcheck.io.printable")
+
+
+def cli_import_allowed(module: str) -> bool:
+    return module in CLI_MAY_IMPORT_EXACTLY or any(module == p or module.startswith(p + ".") for p in CLI_MAY_IMPORT)
+
+
+def root_public_names() -> set[str]:
+    """The names ``rkcheck/__init__.py`` exports (its tuples ``_API``, ``_ERRORS``,
+    ``_TYPES``, read from the source), and ``__version__``."""
+    tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
+    names = {"__version__"}
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id in ("_API", "_ERRORS", "_TYPES")
+                                                for t in node.targets):
+            names |= set(ast.literal_eval(node.value))
+    return names
+
+
+def test_cli_uses_only_the_api():
+    public = root_public_names()
+    bad = []
+    for path in sorted((PACKAGE / "cli").rglob("*.py")):
+        for line, module, names in imports(path):
+            # `from rkcheck import verify` takes a public name (loaded from rkcheck.api);
+            # `from rkcheck import energy` would take a subpackage
+            targets = [f"rkcheck.{n}" for n in names if n not in public] if module == "rkcheck" else [module]
+            bad += [f"{path.relative_to(REPO)}:{line}: imports {t}" for t in targets if not cli_import_allowed(t)]
+    assert not bad, "the CLI must go through rkcheck.api (issue 13):\n" + "\n".join(bad)
+
+
+def test_the_cli_rule_catches_core_imports(tmp_path):
+    """The rule above is not vacuous: core modules, also inside functions, are caught."""
+    assert not cli_import_allowed("rkcheck.energy.check") and not cli_import_allowed("rkcheck.io.loader")
+    assert not cli_import_allowed("rkcheck.apis") and not cli_import_allowed("rkcheck.options_extra")
+    assert cli_import_allowed("rkcheck.api.batch") and cli_import_allowed("rkcheck.io.printable")
+    sample = tmp_path / "cmd.py"
+    sample.write_text("def f():\n    from rkcheck.trees.listing import condition_listing\n    import rkcheck.numbers\n")
+    assert [m for _, m, _ in imports(sample)] == ["rkcheck.trees.listing", "rkcheck.numbers"]
+    assert {"scan", "verify", "OptionError", "__version__"} <= root_public_names() and "energy" not in root_public_names()
 
 
 def test_core_does_no_io_and_knows_no_cli():

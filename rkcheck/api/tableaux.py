@@ -48,6 +48,23 @@ def write(tableau: Tableau, format: str = "toml") -> str:
     return write_tableau(tableau, format)
 
 
+def tableau_warnings(tableau: Tableau, decimals: str = "auto") -> list[str]:
+    """Everything ``rkcheck show`` warns about: the warnings made while reading the
+    tableau, then the consistency warnings of definitions §1 (a given ``c`` that certainly
+    differs from ``A·1``, a certain ``Σb ≠ 1``), judged at the default precision with
+    decimals read as ``decimals`` says (definitions §5)."""
+    from rkcheck.errors import OptionError, UserError
+    from rkcheck.methods.tableau import consistency_warnings
+    from rkcheck.numbers.precision import bits_for_dps
+    from rkcheck.options import DECIMALS_MODES, DEFAULT_DPS, parse_choice
+
+    try:
+        decimals = parse_choice(decimals, DECIMALS_MODES, "decimals")
+    except UserError as err:
+        raise OptionError(err.message, err.place) from None
+    return list(tableau.warnings) + consistency_warnings(tableau, bits_for_dps(DEFAULT_DPS), decimals)
+
+
 # ------------------------------------------------------------------ from arrays
 
 
@@ -80,4 +97,4 @@ def as_tableau(tableau: Tableau | str | os.PathLike[str]) -> Tableau:
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
-__all__: Sequence[str] = ("as_tableau", "entry_of", "from_arrays", "library", "load", "loads", "write")
+__all__: Sequence[str] = ("as_tableau", "entry_of", "from_arrays", "library", "load", "loads", "tableau_warnings", "write")

@@ -7,13 +7,19 @@ centres, the larger of the two (definitions §3).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import os
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import Tableau
-from rkcheck.options import DEFAULT_DPS, MAX_ORDER
+from rkcheck.options import DECIMALS_MODES, DEFAULT_DPS, DEFAULT_MAX_STAGES, DPS_RANGE, MAX_ORDER, ORDER_RANGE
+
+if TYPE_CHECKING:
+    from rkcheck.energy.explain import Explanation
+    from rkcheck.trees.counting import CountOnly
+    from rkcheck.trees.listing import ConditionListing
 
 
 @dataclass(frozen=True)
@@ -96,6 +102,10 @@ class EnergyCondition:
     enclosure: tuple[Fraction, Fraction] | None = None
     state: str | None = None
     digits: int | None = None
+    #: the tableau the terms were evaluated on (None: none given)
+    tableau: Tableau | None = field(default=None, repr=False, compare=False)
+    #: the underlying :class:`~rkcheck.energy.explain.Explanation` (the report's input)
+    explanation: "Explanation | None" = field(default=None, repr=False, compare=False)
 
     @property
     def id(self) -> str | None:
@@ -124,21 +134,30 @@ def _level_sequence(tree: Any) -> tuple[int, ...]:
     raise OptionError(f"expected a level sequence (e.g. '1,2,3,2' or (1, 2, 3, 2)), got {tree!r}", "tree")
 
 
-def energy_condition(tree: Any, tableau: Tableau | None = None, *, dps: int = DEFAULT_DPS,
-                     decimals: str = "auto") -> EnergyCondition:
+def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | None" = None, *,
+                     dps: int = DEFAULT_DPS, decimals: str = "auto",
+                     max_stages: int = DEFAULT_MAX_STAGES) -> EnergyCondition:
     """The energy condition of the free tree underlying ``tree`` — any rooting of it,
     as a level sequence (``"1,2,3,2"``, ``(1, 2, 3, 2)``), a :class:`FreeTree` or a
     checked :class:`~rkcheck.api.verification.Condition` — with its terms; evaluated on
-    ``tableau`` when one is given (exactly for exact tableaux, else a certified
-    enclosure at ``dps`` digits).  Computed directly on the tree, independently of the
-    bulk listing that :func:`~rkcheck.api.verification.verify` uses."""
-    from rkcheck.api.tableaux import as_tableau
+    ``tableau`` when one is given (a Tableau, or a path or ``"@name"`` loaded with
+    ``max_stages``; exactly for exact tableaux, else a certified enclosure at ``dps``
+    digits, decimals read as ``decimals`` says: definitions §5).  Computed directly on
+    the tree, independently of the bulk listing that
+    :func:`~rkcheck.api.verification.verify` uses — ``rkcheck explain ID``."""
+    from rkcheck.api.tableaux import as_tableau, load
     from rkcheck.energy.explain import explain
+    from rkcheck.options import parse_choice, parse_int_in
 
     seq = _level_sequence(tree)
     if len(seq) > MAX_ORDER + 1:
         raise OptionError(f"at most {MAX_ORDER + 1} vertices", "tree")
-    tab = as_tableau(tableau) if tableau is not None else None
+    dps = _checked(lambda: parse_int_in(dps, DPS_RANGE, "dps"))
+    decimals = _checked(lambda: parse_choice(decimals, DECIMALS_MODES, "decimals"))
+    if isinstance(tableau, (str, os.PathLike)):
+        tab: Tableau | None = load(tableau, max_stages=max_stages)
+    else:
+        tab = as_tableau(tableau) if tableau is not None else None
     ex = explain(seq, tab, dps, decimals)
 
     def value(enc: Any) -> Any:
@@ -150,10 +169,89 @@ def energy_condition(tree: Any, tableau: Tableau | None = None, *, dps: int = DE
                               tuple(f[2] for f in t.forest), value(t.value)) for t in ex.terms)
     cond = ex.condition
     out = EnergyCondition(seq, None if cond is None else tuple(cond.level_sequence),
-                          None if cond is None else cond.bracket, ex.superfluous, ex.vertices, ex.max_degree, terms)
+                          None if cond is None else cond.bracket, ex.superfluous, ex.vertices, ex.max_degree, terms,
+                          tableau=tab, explanation=ex)
     if ex.residual is not None and ex.verdict is not None:
         enc = ex.residual
-        out = EnergyCondition(out.given, out.level_sequence, out.bracket, out.superfluous, out.vertices,
-                              out.max_degree, terms, Fraction(enc.mid) if enc.exact else None,
-                              (Fraction(enc.mid), Fraction(enc.rad)), ex.verdict.state, ex.verdict.digits)
+        out = replace(out, residual=Fraction(enc.mid) if enc.exact else None,
+                      enclosure=(Fraction(enc.mid), Fraction(enc.rad)), state=ex.verdict.state,
+                      digits=ex.verdict.digits)
     return out
+
+
+def _checked(parse: Callable[[], Any]) -> Any:
+    try:
+        return parse()
+    except UserError as err:
+        raise OptionError(err.message, err.place, err.source) from None
+
+
+# ------------------------------------------------------------------ the listing
+
+
+@dataclass(frozen=True)
+class ConditionList:
+    """What :func:`conditions` gives: the number of energy conditions per energy order
+    2 … N (``counts``: order → conditions with order + 1 vertices), their ``total`` and,
+    unless only counted, every condition as a :class:`FreeTree` by vertices and then
+    canonical id.  ``listing`` is the underlying table (the reports' input)."""
+
+    order: int
+    degree: int | None
+    listing: "ConditionListing | CountOnly"
+    counted_only: bool
+
+    @property
+    def total(self) -> int:
+        return len(self.listing)
+
+    @property
+    def counts(self) -> dict[int, int]:
+        return self.listing.counts_by_order()
+
+    @property
+    def free_trees(self) -> list[FreeTree]:
+        """Every condition (empty when only counted: ``count=True``)."""
+        if self.counted_only:
+            return []
+        records = self.listing.sorted_records()  # type: ignore[union-attr]
+        return [FreeTree(tuple(r.level_sequence), r.bracket, r.max_degree, r.rootings) for r in records]
+
+    def __len__(self) -> int:
+        return self.total
+
+    def __repr__(self) -> str:
+        deg = "no degree bound" if self.degree is None else f"degree ≤ {self.degree}"
+        return f"<ConditionList: {self.total} conditions up to order {self.order}, {deg}>"
+
+
+def conditions(order: int, degree: int | str | None = None, *, count: bool = False,
+               max_conditions: int | None = None, announce: Callable[[str], None] | None = None) -> ConditionList:
+    """The energy conditions up to energy order ``order`` — the non-superfluous free trees
+    with 3 … order+1 vertices (definitions §3) whose vertices have at most ``degree``
+    edges (None or ``"none"``: no bound; a bound m gives the conditions for Hamiltonians
+    of degree ≤ m) — as ``rkcheck conditions`` lists them.
+
+    ``count=True`` only counts them, from generating functions (instant at any order);
+    otherwise the listing is built, refused (``ResourceError``) when it would not fit in
+    memory or exceeds ``max_conditions``; ``announce(text)`` hears the estimate of a
+    listing longer than 5 s.  :func:`free_trees` gives the conditions of one size."""
+    from rkcheck.options import parse_degree, parse_int_in, parse_positive
+
+    order = _checked(lambda: parse_int_in(order, ORDER_RANGE, "order"))
+    bound: int | None = _checked(lambda: parse_degree(degree, "degree"))
+    if max_conditions is not None:
+        max_conditions = _checked(lambda: parse_positive(max_conditions, "max_conditions"))
+    listing: ConditionListing | CountOnly
+    if count:
+        from rkcheck.trees.counting import CountOnly
+
+        listing = CountOnly(order, bound)
+    else:
+        from rkcheck.api.settings import budget
+        from rkcheck.energy.budget import check_budget, estimate
+        from rkcheck.trees.listing import condition_listing
+
+        check_budget(estimate(order, bound, "exact", 0), budget(max_conditions, announce), order)
+        listing = condition_listing(order, bound)
+    return ConditionList(order, bound, listing, count)

@@ -251,7 +251,7 @@ def run_check(tableau: Tableau, flags: Mapping[str, Any], project: Mapping[str, 
               progress: Callable[[int, int], None] | None = None, arithmetic: str = "auto") -> Verification:
     """The check behind :func:`verify` and ``rkcheck verify``: options resolved
     (flags, ``[check]``, ``project``, defaults), then every condition and every claim.
-    Ctrl-C raises :class:`~rkcheck.energy.check.CheckInterrupted` with what finished."""
+    Ctrl-C raises :class:`~rkcheck.errors.CheckInterrupted` with what finished."""
     from rkcheck.energy.claims import judge_tableau
 
     options = resolve_check_options(flags, tableau.check, project or {})

@@ -11,6 +11,7 @@ from rkcheck.cli.common import (
     EXIT_FAIL,
     EXIT_INTERRUPTED,
     EXIT_OK,
+    announce_estimate,
     budget,
     check_options,
     decimals_option,
@@ -27,14 +28,12 @@ from rkcheck.cli.common import (
     settings,
     stdout_console,
 )
-from rkcheck.errors import UserError
-from rkcheck.options import DEFAULT_DPS, MAX_ORDER
+from rkcheck.errors import CheckInterrupted, OptionError, UserError
+from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS
 
 
 def input_format_option(f):
     """--input-format: read FILE as this format instead of guessing by suffix and content."""
-    from rkcheck.io.loader import INPUT_FORMATS
-
     return click.option("--input-format", type=click.Choice(INPUT_FORMATS), default=None,
                         help="Read FILE as this format [default: by suffix, then content].")(f)
 
@@ -64,7 +63,6 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
     from rkcheck.api.verification import run_check
-    from rkcheck.energy.check import CheckInterrupted
 
     config = project_config()
     tab = load_input(file, max_stages, input_format)
@@ -108,16 +106,13 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 def show(file, fmt, decimals, max_stages, input_format) -> None:
     """Print the tableau in FILE as a Butcher table, with its kind and any warnings
     (FILE may be @name, a shipped tableau; .csv/.tsv and nodepy .txt files are read too)."""
-    from rkcheck.methods.tableau import consistency_warnings
-    from rkcheck.numbers.precision import bits_for_dps
+    from rkcheck.api.tableaux import tableau_warnings, write  # the public rkcheck.write
 
     tab = load_input(file, max_stages, input_format)
     if fmt not in ("text", "json"):
-        from rkcheck.api.tableaux import write  # the public rkcheck.write
-
         click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)
         return
-    warnings = list(tab.warnings) + consistency_warnings(tab, bits_for_dps(DEFAULT_DPS), decimals)
+    warnings = tableau_warnings(tab, decimals)
     if fmt == "json":
         from rkcheck.reports.jsondoc import dumps, show_doc
 
@@ -154,8 +149,7 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
       rkcheck conditions --order 30 --count
       rkcheck conditions --emit python --degree 4 --order 6 --stages 3 --explicit -o conditions.py
     """
-    from rkcheck.energy.budget import check_budget, estimate
-    from rkcheck.trees.listing import condition_listing
+    from rkcheck.api.trees import conditions as list_conditions
 
     if emit is None and (classical or stages or explicit or output):
         raise UserError("--classical, --stages, --explicit and --output go with --emit")
@@ -163,13 +157,8 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
         raise UserError("--explicit needs --stages")
     if emit is not None and count:
         raise UserError("--count and --emit do not go together")
-    if count:
-        from rkcheck.trees.counting import CountOnly
-
-        listing = CountOnly(order, degree)
-    else:
-        check_budget(estimate(order, degree, "exact", 0), budget(max_conditions), order)
-        listing = condition_listing(order, degree)
+    listing = list_conditions(order, degree, count=count, max_conditions=max_conditions,
+                              announce=announce_estimate()).listing
     if emit is not None:  # conditions as code (rkcheck.reports.code)
         from rkcheck.cli.common import write_text
         from rkcheck.reports.code import emit as emit_code
@@ -199,15 +188,13 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
     ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
     the id column of verify and conditions).
     """
-    from rkcheck.energy.explain import explain as explain_condition
+    from rkcheck.api.trees import energy_condition
     from rkcheck.reports.text import render_explanation
-    from rkcheck.trees.rooted import parse_level_sequence
 
     try:
-        seq = parse_level_sequence(tree_id)
-    except ValueError as err:
-        raise UserError(str(err), "ID") from None
-    if len(seq) > MAX_ORDER + 1:
-        raise UserError(f"at most {MAX_ORDER + 1} vertices", "ID")
-    tab = load_tableau(tableau_file, max_stages) if tableau_file else None
-    render_explanation(explain_condition(seq, tab, dps, decimals), stdout_console(), tab)
+        cond = energy_condition(tree_id, tableau_file or None, dps=dps, decimals=decimals, max_stages=max_stages)
+    except OptionError as err:
+        if err.place != "tree":
+            raise
+        raise UserError(err.message, "ID") from None  # the API's argument is this command's ID
+    render_explanation(cond.explanation, stdout_console(), cond.tableau)

@@ -1,9 +1,11 @@
 """What every command shares: option decorators, exit codes, the output settings of the
 run, progress bars, and loading a tableau.
 
-Commands stay thin: they parse options (here), call the core, and hand the result to a
-report.  Heavy modules (numpy, mpmath, the reports) are imported inside the commands that
-need them, so that ``rkcheck verify`` starts quickly.
+Commands stay thin: they parse options (here), call one function of the public API
+(:mod:`rkcheck.api`), and hand its result to a report (:mod:`rkcheck.reports`); they
+import nothing else of rkcheck (tests/test_layout.py).  Heavy modules (numpy, mpmath,
+the reports) are imported inside the commands that need them, so that ``rkcheck
+verify`` starts quickly.
 """
 
 from __future__ import annotations
@@ -129,29 +131,6 @@ def busy(label: str) -> Iterator[None]:
         yield
 
 
-@contextmanager
-def progress(label: str, total: int) -> Iterator[Callable[[], None]]:
-    """A rich progress bar on stderr (hidden when stderr is not a terminal or --quiet)."""
-    console = make_console(settings(), stderr=True)
-    # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
-    # terminal, and a progress bar in a log file is noise
-    if settings().quiet or not _stderr_is_terminal():
-        yield lambda: None
-        return
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeRemainingColumn,
-    )
-
-    with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=console, transient=True) as bar:
-        task = bar.add_task(label, total=total)
-        yield lambda: bar.advance(task)
-
-
 # ------------------------------------------------------------------ check options
 
 
@@ -249,25 +228,16 @@ def budget(max_conditions: int | None):
     """The resource budget of a check run from the command line: the memory this
     machine has available, an explicit --max-conditions, and estimates of long checks
     said on stderr (unless --quiet)."""
-    from rkcheck.energy.budget import Budget
-    from rkcheck.io.machine import available_memory
+    from rkcheck.api.settings import budget as machine_budget
 
-    announce = None if settings().quiet else (lambda text: click.echo(f"rkcheck: {text}", err=True))
-    return Budget(available_memory(), max_conditions, announce)
+    return machine_budget(max_conditions, announce_estimate())
 
 
-def guard(order: int, degree: int | None, runs: int = 1) -> None:
-    """The resource guard for commands that run checks without a budget of their own
-    (bench, perturb, catalog): refuse, in one line with exit 2, an order whose condition
-    tables would not fit in the available memory (issue 16: the guard applies to every
-    command).  ``runs`` is how many checks the command makes, for the announcement."""
-    from rkcheck.energy.budget import Budget, check_budget, estimate
-    from rkcheck.io.machine import available_memory
-
-    est = estimate(order, degree, "exact")
-    announce = None if settings().quiet or runs <= 0 else (
-        lambda text: click.echo(f"rkcheck: {text}" + (f", {runs} times" if runs > 1 else ""), err=True))
-    check_budget(est, Budget(available_memory(), None, announce), order)
+def announce_estimate() -> Callable[[str], None] | None:
+    """Where the estimate of a long check is said: stderr, unless --quiet."""
+    if settings().quiet:
+        return None
+    return lambda text: click.echo(f"rkcheck: {text}", err=True)
 
 
 def fail_on_option(f: Callable) -> Callable:
@@ -305,36 +275,10 @@ def load_tableau(path: str, max_stages: int = DEFAULT_MAX_STAGES, input_format: 
 
 
 def project_config():
-    from rkcheck.io.config import load_config
+    """``[tool.rkcheck]`` of the nearest pyproject.toml, through the API."""
+    from rkcheck.api.settings import project_config as load_project_config
 
-    return load_config()
-
-
-def dps_list(text: str) -> list[int]:
-    """A comma-separated list of working precisions (``--dps 15,50``)."""
-    try:
-        values = [int(x) for x in text.split(",") if x.strip()]
-    except ValueError:
-        raise UserError(f"expected a comma-separated list of integers, got {text!r}", "--dps") from None
-    lo, hi = DPS_RANGE
-    if not values or any(d < lo or d > hi for d in values):
-        raise UserError(f"each dps must be between {lo} and {hi}", "--dps")
-    return values
-
-
-def rational_option(text: str, place: str):
-    """A positive rational number from an option (``--h 1/100``, ``--T 10``)."""
-    from fractions import Fraction
-
-    from rkcheck.numbers.entries import Entry
-
-    try:
-        e = Entry.parse(text)
-    except UserError as err:
-        raise err.located(place) from None
-    if e.exact is None or e.exact <= 0:
-        raise UserError(f"expected a positive rational number, got {text!r}", place)
-    return Fraction(e.exact)
+    return load_project_config()
 
 
 def check_output_target(output: str | None) -> None:

@@ -13,10 +13,9 @@ from rkcheck.cli.common import (
     load_tableau,
     max_stages_option,
     output_options,
-    rational_option,
     stdout_console,
 )
-from rkcheck.errors import UserError
+from rkcheck.options import POINTS_RANGE, STEPS_RANGE, STUDY_DPS_RANGE
 
 
 @click.command()
@@ -24,14 +23,14 @@ from rkcheck.errors import UserError
 @click.option("--problem", "-p", "problem_spec", required=True,
               help="harmonic | henon-heiles | quartic | fpu | random:degree=m[,dim=d][,seed=S].")
 @click.option("--h", "h_text", default="1/10", show_default=True, help="Step size (a rational: 0.1, 1/16).")
-@click.option("--steps", type=click.IntRange(1, 10_000_000), default=1000, show_default=True)
-@click.option("--dps", type=click.IntRange(15, 2000), default=None,
+@click.option("--steps", type=click.IntRange(*STEPS_RANGE), default=1000, show_default=True)
+@click.option("--dps", type=click.IntRange(*STUDY_DPS_RANGE), default=None,
               help="Integrate in mpmath at this precision [default: float64; --energy-order: 40, or more "
               "when verify's first failing residual is too small to be seen in one step].")
 @click.option("--energy-order", is_flag=True,
               help="One step from random points at h = 2^-3..2^-10: fit the empirical energy order and "
               "compare it with verify's algebraic one (exit 1 when they disagree).")
-@click.option("--points", type=click.IntRange(1, 100), default=4, show_default=True, help="--energy-order: starting points.")
+@click.option("--points", type=click.IntRange(*POINTS_RANGE), default=4, show_default=True, help="--energy-order: starting points.")
 @click.option("--seed", type=int, default=7, show_default=True, help="--energy-order: seed of the starting points.")
 @click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw |ΔH| over time (or against h).")
 @max_stages_option
@@ -52,19 +51,18 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
       rkcheck simulate tableaux/collocation/gauss-2.toml tableaux/avf/avf-gauss-2.toml \\
           --problem henon-heiles --h 1/10 --steps 2000 --chart drift.png
     """
-    from rkcheck.dynamics.hamiltonians import problem
+    from rkcheck.api.dynamics import empirical_energy_order, hamiltonian, simulate as run_simulation
     from rkcheck.reports.simulation import render_energy_fit, render_series
 
-    ham = problem(problem_spec)
+    ham = hamiltonian(problem_spec)
     tabs = [load_tableau(f, max_stages) for f in files]
     console = stdout_console()
     if energy_order:
-        from rkcheck.dynamics.simulate import energy_order_agreement
-
         disagree = 0
         series = []
         for tab in tabs:
-            fit, agreement = energy_order_agreement(tab, ham, dps=dps, points=points, seed=seed)
+            measured = empirical_energy_order(tab, ham, dps=dps, points=points, seed=seed)
+            fit, agreement = measured.fit, measured.agreement
             render_energy_fit(tab, ham, fit, agreement, console)
             disagree += not agreement.agree
             series.append((tab.name, [float(r.h) for r in fit.rows], [float(r.delta) for r in fit.rows]))
@@ -75,18 +73,13 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
                          ylabel="|ΔH| (geometric mean)", loglog=True)
             click.echo(f"chart written to {chart}")
         sys.exit(EXIT_FAIL if disagree else EXIT_OK)
-    from rkcheck.dynamics.simulate import energy_series, start_point
-
-    h = rational_option(h_text, "--h")
-    y0 = start_point(ham)
     all_series = []
+    h = None
     for tab in tabs:
-        try:
-            t, dH = energy_series(tab, ham, y0, h, steps, dps)
-        except UserError as err:  # diverged, Newton failed: say which tableau
-            raise err.located(source=tab.source) from None
-        render_series(tab, ham, h, steps, dps, t, dH, console)
-        all_series.append((tab.name, t, dH))
+        run = run_simulation(tab, ham, h=h_text, steps=steps, dps=dps)
+        h = run.h
+        render_series(tab, ham, h, steps, dps, run.times, run.energy_errors, console)
+        all_series.append((tab.name, run.times, run.energy_errors))
     if chart:
         from rkcheck.reports.charts import energy_chart
 
@@ -109,24 +102,14 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
     Each tableau runs in float64 over the step counts; the error is measured against a
     reference solution computed with 6-stage Gauss collocation (order 12) at 20 digits.
     """
-    from rkcheck.dynamics.hamiltonians import problem
-    from rkcheck.dynamics.simulate import work_precision
+    from rkcheck.api.dynamics import work_precision
     from rkcheck.reports.simulation import render_workprec
 
-    ham = problem(problem_spec)
-    T = rational_option(T_text, "--T")
-    try:
-        counts = [int(x) for x in steps_text.split(",") if x.strip()]
-    except ValueError:
-        raise UserError(f"expected comma-separated integers, got {steps_text!r}", "--steps") from None
-    if not counts or min(counts) < 1:
-        raise UserError("step counts must be positive", "--steps")
-    tabs = [load_tableau(f, max_stages) for f in files]
     with busy("work–precision runs"):
-        wp = work_precision(tabs, ham, T, counts)
-    render_workprec(wp, ham, stdout_console())
+        wp = work_precision(files, problem_spec, T=T_text, steps=steps_text, max_stages=max_stages)
+    render_workprec(wp.result, wp.problem, stdout_console())
     if chart:
         from rkcheck.reports.charts import workprec_chart
 
-        workprec_chart(wp, f"work–precision on {ham.name}, T = {T}", chart)
+        workprec_chart(wp.result, f"work–precision on {wp.problem.name}, T = {wp.T}", chart)
         click.echo(f"chart written to {chart}")

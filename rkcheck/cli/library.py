@@ -2,47 +2,24 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-from typing import Any
+from contextlib import nullcontext
 
 import click
 
+from rkcheck.api.methods import CLASSICAL_METHODS, FAMILIES
 from rkcheck.cli.common import (
     DEGREE,
-    guard,
+    busy,
     order_option,
     output_options,
-    busy,
-    progress,
+    progress_steps,
     write_text,
 )
-from rkcheck.errors import UserError
-from rkcheck.methods.classics import NAMES as CLASSIC_NAMES
-from rkcheck.methods.families import FAMILIES
-from rkcheck.options import MAX_FAMILY_STAGES
-
-
-def _command_line(spec, mode: str, digits: int | None) -> str:
-    """The ``rkcheck new`` command that writes ``spec`` (recorded in the file's description)."""
-    parts = ["rkcheck new", spec.name]
-    params = spec.params()
-    if spec.name == "kernel":
-        parts += [f"--zeta {params['zeta']}", f"--beta {params['beta']}"]
-    else:
-        parts.append(f"-s {spec.s}")
-        if spec.name == "hbvm":
-            parts.append(f"-k {spec.k}")
-        if spec.name == "avf" and spec.rule != "gauss":
-            parts.append(f"--rule {spec.rule}")
-    if mode == "exact":
-        parts.append("--exact")
-    elif digits is not None:
-        parts.append(f"--digits {digits}")
-    return " ".join(parts)
+from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES
 
 
 @click.command()
-@click.argument("family", metavar="FAMILY|METHOD", type=click.Choice(FAMILIES + tuple(CLASSIC_NAMES)))
+@click.argument("family", metavar="FAMILY|METHOD", type=click.Choice(FAMILIES + CLASSICAL_METHODS))
 @click.option("--stages", "-s", "s", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None, help="Number of stages s.")
 @click.option("-k", "k", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None,
               help="HBVM: number of Gauss nodes k (>= s).")
@@ -50,7 +27,7 @@ def _command_line(spec, mode: str, digits: int | None) -> str:
               help="AVF: quadrature rule gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
 @click.option("--zeta", default="0", show_default=True, help="kernel: the rule parameter ζ (nodes = zeros of P_2 − ζP_1).")
 @click.option("--beta", default="1/10", show_default=True, help="kernel: the perturbation size β.")
-@click.option("--digits", type=click.IntRange(1, 5000), default=None,
+@click.option("--digits", type=click.IntRange(*DIGITS_RANGE), default=None,
               help="Write D-digit decimals (default: exact expressions when the nodes have a closed form "
               "in square roots, else 60-digit decimals).")
 @click.option("--exact", is_flag=True, help="Require exact entries (fails if the nodes have no closed form).")
@@ -73,38 +50,12 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
       rkcheck new kernel --zeta 1/3 --beta 1e-12  # the seed's counterexample family
       rkcheck new gauss -s 2 | rkcheck verify - --degree 4
     """
-    from rkcheck.io.writers import render_toml
-    from rkcheck.methods.families import parse_spec
+    from rkcheck.api.methods import new_toml
 
-    if family in CLASSIC_NAMES:
-        from rkcheck.io.formats import document_toml
-        from rkcheck.methods.classics import CLASSICS
-
-        doc = CLASSICS[CLASSIC_NAMES[family]].document()
-        if name:
-            doc["method"]["name"] = name
-        write_text(document_toml(doc), output)
-        return
-
-    if exact and digits is not None:
-        raise UserError("give either --exact or --digits, not both")
-    table: dict[str, Any] = {"name": family}
-    if family == "kernel":
-        table.update(zeta=zeta, beta=beta)
-    else:
-        if s is None:
-            raise UserError(f"{family} needs --stages/-s")
-        table["s"] = s
-        if family == "hbvm":
-            if k is None:
-                raise UserError("hbvm needs -k (the number of Gauss nodes, k >= s)")
-            table["k"] = k
-        if family == "avf":
-            table["rule"] = rule
-    spec = parse_spec(table)
-    mode = "exact" if exact else ("digits" if digits is not None else "auto")
-    with busy(f"computing the {family} coefficients"):
-        text = render_toml(spec, mode, digits or 60, name, _command_line(spec, mode, digits))
+    # a family's coefficients can take a while (Gauss s = 20: about 50 s); a classical
+    # method is written at once
+    with busy(f"computing the {family} coefficients") if family in FAMILIES else nullcontext():
+        text = new_toml(family, stages=s, k=k, rule=rule, zeta=zeta, beta=beta, digits=digits, exact=exact, name=name)
     write_text(text, output)
 
 
@@ -125,31 +76,13 @@ def catalog(paths, degrees, order, output) -> None:
       rkcheck catalog tableaux/ -o tableaux/README.md
       rkcheck catalog --order 4            # the shipped library
     """
-    from rkcheck.batch.catalog import catalog_row
-    from rkcheck.io.discovery import find_tableau_files
-    from rkcheck.io.library import library_root
+    from rkcheck.api.batch import catalog as make_catalog
     from rkcheck.reports.markdown import catalog_markdown
 
-    shown = paths  # the command line the header records: no path stays no path
-    if not paths:
-        root_dir = library_root()
-        if root_dir is None:
-            raise UserError("no tableaux are installed with rkcheck; give a PATH")
-        paths = (str(root_dir),)
-
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
-    guard(order, None if None in degs else max(degs), runs=0)  # the resource guard (issue 16)
-    files = find_tableau_files(list(paths), exclude=["README*", "*/README*"])
-    root = Path(paths[0]) if len(paths) == 1 and Path(paths[0]).is_dir() else None
-    rows = []
-    with progress("catalog", len(files)) as advance:
-        for f in files:
-            row = catalog_row(f, degs, order)
-            if root is not None:
-                row.path = str(Path(f).relative_to(root))
-            rows.append(row)
-            advance()
-    labels = ["all H" if d is None else f"m={d}" for d in degs]
-    command = " ".join(["rkcheck catalog", *shown] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
+    with progress_steps("catalog") as update:
+        result = make_catalog(paths, degrees=degs, order=order, progress=update)
+    # the command line the header records: no path stays no path
+    command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
                        + ([f"--order {order}"] if order != 8 else []) + ([f"-o {output}"] if output else []))
-    write_text(catalog_markdown(rows, labels, order, command), output)
+    write_text(catalog_markdown(result.rows, result.labels, result.order, command), output)

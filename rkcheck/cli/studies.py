@@ -7,24 +7,13 @@ import click
 from rkcheck.cli.common import (
     busy,
     degree_option,
-    dps_list,
     flag_values,
     load_tableau,
-    guard,
     order_option,
     output_options,
     stdout_console,
 )
-from rkcheck.errors import UserError
-from rkcheck.options import DEFAULT_DPS, resolve_check_options
-
-
-def _degree_and_order(tab):
-    """--degree and --order, else the file's [check], else none and 8 (refused when the
-    condition tables would not fit in memory: the resource guard)."""
-    options = resolve_check_options(flag_values("degree", "order"), tab.check, {})
-    guard(options.order, options.degree, runs=0)
-    return options.degree, options.order
+from rkcheck.options import DEFAULT_DPS, KERNEL_DEGREE_RANGE, KERNEL_STAGES_RANGE, REPEAT_RANGE, STUDY_DPS_RANGE
 
 
 @click.command()
@@ -32,7 +21,7 @@ def _degree_and_order(tab):
 @degree_option(help="Degree m ('none' = all) [default: file's [check]].")
 @order_option(help="Order N [default: file's [check], else 8].")
 @click.option("--dps", "dps_text", default="15,30,50,100,200,400", show_default=True, help="Ball precisions to run.")
-@click.option("--repeat", type=click.IntRange(1, 50), default=3, show_default=True, help="Best of this many runs.")
+@click.option("--repeat", type=click.IntRange(*REPEAT_RANGE), default=3, show_default=True, help="Best of this many runs.")
 @click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw time against certified digits (needs matplotlib).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @output_options
@@ -42,11 +31,11 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
     One row per backend: wall time, conditions per second, the weakest certified digits,
     the certified failures, and whether the verdicts agree with the most precise backend.
     """
-    from rkcheck.studies.accuracy import bench_backends
+    from rkcheck.api.studies import bench as run_bench
 
     tab = load_tableau(file)
-    deg, N = _degree_and_order(tab)
-    rows, t_tables = bench_backends(tab, deg, N, dps_list(dps_text), repeat=repeat)
+    result = run_bench(tab, **flag_values("degree", "order"), dps=dps_text, repeat=repeat)
+    rows, t_tables, deg, N = result.rows, result.tables_seconds, result.degree, result.order
     title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {rows[0].conditions} conditions"
     if chart:
         from rkcheck.reports.charts import bench_chart
@@ -87,17 +76,12 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     log ε (1 for generic directions, 2 for kernel directions: the seed's quadratic
     failure) and each backend's detection threshold ε*.
     """
-    from rkcheck.studies.accuracy import direction as make_direction
-    from rkcheck.studies.accuracy import direction_dps, parse_eps, perturb_sweep
+    from rkcheck.api.studies import perturb as run_perturb
 
     tab = load_tableau(file)
-    deg, N = _degree_and_order(tab)
-    eps = parse_eps(eps_text)
-    if not eps or any(not 0 < e <= 1 for e in eps):  # log10(ε) and float radii need 0 < ε <= 1
-        raise UserError(f"every ε must be in (0, 1], got {eps_text!r}", "--eps")
     with busy("perturbing"):
-        D, desc = make_direction(tab, direction, deg, seed, direction_dps(eps, dps_list(dps_text)))
-        res = perturb_sweep(tab, D, desc, eps, deg, N, dps_list(dps_text))
+        result = run_perturb(tab, direction, **flag_values("degree", "order"), eps=eps_text, dps=dps_text, seed=seed)
+    res, deg, N = result.result, result.degree, result.order
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart
@@ -117,11 +101,11 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 
 
 @click.command()
-@click.option("--stages", "-s", type=click.IntRange(1, 12), default=None, help="Number of stages s.")
-@click.option("--degree", "-m", type=click.IntRange(3, 40), required=True, help="Polynomial degree m (>= 3).")
+@click.option("--stages", "-s", type=click.IntRange(*KERNEL_STAGES_RANGE), default=None, help="Number of stages s.")
+@click.option("--degree", "-m", type=click.IntRange(*KERNEL_DEGREE_RANGE), required=True, help="Polynomial degree m (>= 3).")
 @click.option("--rule", default="gauss", show_default=True, help="gauss | radau-i | radau-ii | lobatto | zeta:<value>.")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Use this tableau's b and c = A·1 instead of a rule.")
-@click.option("--dps", type=click.IntRange(15, 2000), default=DEFAULT_DPS, show_default=True)
+@click.option("--dps", type=click.IntRange(*STUDY_DPS_RANGE), default=DEFAULT_DPS, show_default=True)
 @output_options
 def kernel(stages, degree, rule, tableau_file, dps) -> None:
     """Rank and kernel of the double-bush map M (seed Lemma 2) on s×s matrices.
@@ -136,18 +120,14 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
       rkcheck kernel -s 3 -m 5 --rule radau-i   # ζ = −1: rank s²−s−1
       rkcheck kernel -m 3 --tableau tableaux/avf/avf-radau-ii-2.toml
     """
-    from rkcheck.energy.double_bush import kernel_of, rule_values, tableau_rule
+    from rkcheck.api.studies import kernel as double_bush_kernel
     from rkcheck.reports.studies import render_kernel
 
-    if tableau_file:
-        tab = load_tableau(tableau_file)
-        b, c, exact = tableau_rule(tab, dps)
+    tab = load_tableau(tableau_file) if tableau_file else None
+    with busy("ranks of the double-bush map"):
+        result = double_bush_kernel(degree, stages, rule=rule, tableau=tab, dps=dps)
+    if tab is not None:
         title = f"double-bush map of {tab.name} (b and c = A·1), degree {degree}"
     else:
-        if stages is None:
-            raise UserError("give --stages/-s (or --tableau FILE)")
-        b, c, exact = rule_values(rule, stages, dps)
         title = f"double-bush map at the {stages}-point {rule} rule, degree {degree}"
-    with busy("ranks of the double-bush map"):
-        result = kernel_of(b, c, degree, exact, dps)
-    render_kernel(result, stdout_console(), title)
+    render_kernel(result.result, stdout_console(), title)

@@ -33,6 +33,7 @@ from rkcheck.energy.verdicts import (
     classify_bounds,
     classify_many,
 )
+from rkcheck.errors import CheckInterrupted  # noqa: F401 (re-exported: it lives with the errors)
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import (
     Evaluation,
@@ -299,15 +300,6 @@ def energy_order_of(per_order: list[OrderCounts], order: int) -> int:
 
 
 # ---------------------------------------------------------------------- check
-
-
-class CheckInterrupted(KeyboardInterrupt):
-    """Ctrl-C during a check: ``result`` holds the orders that were finished (a
-    KeyboardInterrupt for library callers, a partial report for the CLI)."""
-
-    def __init__(self, result: "CheckResult"):
-        super().__init__()
-        self.result = result
 
 
 def evaluate_orders(listing: ConditionListing, tableau: Tableau, options: CheckOptions, enclosures=None,

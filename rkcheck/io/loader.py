@@ -32,12 +32,10 @@ from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
-from rkcheck.options import DEFAULT_MAX_STAGES, parse_strings, validate_check_table
+from rkcheck.options import DEFAULT_MAX_STAGES, INPUT_FORMATS, parse_strings, validate_check_table
 
 MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
-#: what ``load`` reads: TOML and JSON documents, delimited Butcher arrays, nodepy text
-INPUT_FORMATS = ("toml", "json", "csv", "nodepy")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")

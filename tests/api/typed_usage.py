@@ -26,3 +26,25 @@ def use() -> str:
     except rkcheck.RkcheckError as err:
         label += str(err)
     return f"{order}{label}{digits}{residual}{names[0]}" + result.to_json() + rkcheck.write(tab, "latex")
+
+
+def use_commands() -> list[object]:
+    """One function per command of the CLI, with the types a caller relies on."""
+    gauss: rkcheck.Tableau = rkcheck.new("gauss", stages=2)
+    text: str = rkcheck.new_toml("rk4", name="mine")
+    scanned: rkcheck.ScanResult = rkcheck.scan(["tableaux"], order=4, jobs=1)
+    rows: list[rkcheck.ScanRow] = scanned.rows
+    checked: rkcheck.Verification | None = rows[0].verification
+    cat: rkcheck.Catalog = rkcheck.catalog(degrees=[2, None], order=4)
+    ker: rkcheck.Kernel = rkcheck.kernel(4, 2)
+    rank: int = ker.rank
+    sweep: rkcheck.Perturbation = rkcheck.perturb(gauss, "random", degree=4, eps=[Fraction(1, 100)])
+    slope: float | None = sweep.slope
+    timed: rkcheck.Bench = rkcheck.bench("@heun", order=4, dps=[15], repeat=1)
+    drift: rkcheck.Simulation = rkcheck.simulate(gauss, rkcheck.hamiltonian("harmonic"), h=Fraction(1, 10))
+    fit: rkcheck.EnergyOrderFit = rkcheck.empirical_energy_order("@rk4", "harmonic")
+    measured: float | None = fit.empirical_order
+    wp: rkcheck.WorkPrecision = rkcheck.work_precision(["@rk4", gauss], "harmonic", T=1, steps=[10, 20])
+    listed: rkcheck.ConditionList = rkcheck.conditions(6, 3)
+    counts: dict[int, int] = listed.counts
+    return [text, checked, cat, rank, slope, timed, drift.max_energy_error, measured, wp.rows, counts]

@@ -1,0 +1,292 @@
+"""Many tableaux at once: ``scan`` (every file under some folders, checked in parallel)
+and ``catalog`` (orders per degree, for a Markdown table) — the work of ``rkcheck scan``
+and ``rkcheck catalog``, for Python callers.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Sequence
+
+from rkcheck.api.settings import ProjectConfig, budget, guard, project_config
+from rkcheck.api.verification import UNSET, Verification, _option, check_flags
+from rkcheck.errors import UserError
+from rkcheck.options import (
+    DEFAULT_MAX_STAGES,
+    DEFAULT_ORDER,
+    FAIL_ON,
+    JOBS_RANGE,
+    ORDER_RANGE,
+    SCAN_SORTS,
+    parse_choice,
+    parse_degree,
+    parse_int_in,
+    parse_positive,
+)
+
+if TYPE_CHECKING:
+    from rkcheck.batch.catalog import CatalogRow
+    from rkcheck.batch.scan import FileOutcome
+
+# ------------------------------------------------------------------ scan
+
+
+@dataclass(frozen=True)
+class ScanRow:
+    """One file of a scan: ``status`` is ``ok``, ``failed`` (fails under ``fail_on``),
+    ``error`` (could not be read or checked: ``error`` is its one-line message) or
+    ``skipped`` (a TOML/JSON document that is not a tableau, such as pyproject.toml);
+    ``verification`` is the file's check when it was checked (as :func:`rkcheck.verify`
+    gives it), else None; ``seconds`` the time the file took."""
+
+    path: str
+    status: str
+    error: str | None
+    seconds: float
+    verification: Verification | None
+
+    @staticmethod
+    def of(outcome: "FileOutcome") -> "ScanRow":
+        verification = None
+        if outcome.result is not None:
+            verification = Verification(outcome.result, outcome.claims, outcome.status == "failed")
+        return ScanRow(outcome.path, outcome.status, outcome.error, outcome.time, verification)
+
+
+@dataclass(frozen=True)
+class ScanResult:
+    """What :func:`scan` gives: the rows in path order (or ranked, ``sort="energy"``),
+    whether Ctrl-C cut the scan short (then the rows are the files that finished), the
+    wall time, and the options as the JSON report records them.
+
+    ``outcomes`` are the underlying :class:`~rkcheck.batch.scan.FileOutcome` values (the
+    reports' input); ``rows`` is the stable surface."""
+
+    outcomes: "list[FileOutcome]"
+    interrupted: bool
+    elapsed: float
+    options: dict[str, Any]
+    fail_on: str
+    sort: str
+
+    @property
+    def rows(self) -> list[ScanRow]:
+        return [ScanRow.of(o) for o in self.outcomes]
+
+    @property
+    def failed(self) -> bool:
+        """True when ``rkcheck scan`` would exit 1: a file fails under ``fail_on`` or could
+        not be checked (never with ``fail_on="never"``)."""
+        from rkcheck.batch.scan import exit_status
+
+        return self.fail_on != "never" and exit_status(self.outcomes) == 1
+
+    @property
+    def ok(self) -> bool:
+        return not self.failed
+
+    def report(self, format: str = "json") -> str:
+        """The report of ``rkcheck scan --format FORMAT`` (json, csv, junit, github; text:
+        the table as plain text, as ``--output`` writes it)."""
+        from rkcheck.reports import scan as scan_report
+
+        if format == "text":
+            return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,
+                                         constants=self.sort == "energy")
+        return scan_report.scan_document(format, self.outcomes, self.interrupted, self.options, self.elapsed)
+
+    def __repr__(self) -> str:
+        counts: dict[str, int] = {}
+        for o in self.outcomes:
+            counts[o.status] = counts.get(o.status, 0) + 1
+        told = ", ".join(f"{v} {k}" for k, v in sorted(counts.items())) or "no files"
+        return f"<ScanResult: {told}{' (interrupted)' if self.interrupted else ''}>"
+
+
+def _config(project: bool | ProjectConfig) -> ProjectConfig:
+    if isinstance(project, ProjectConfig):
+        return project
+    if project:
+        return project_config()
+    return ProjectConfig()
+
+
+def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectConfig = False) -> list[str]:
+    """The roots a scan starts from: ``paths``, else the ``paths`` of ``[tool.rkcheck]``
+    (with ``project``); none at all is an error (the CLI's message)."""
+    roots = [os.fspath(p) for p in paths] or _config(project).paths
+    if not roots:
+        raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
+    return roots
+
+
+def scan(
+    paths: Sequence[str | os.PathLike[str]] = (),
+    *,
+    degree: int | str | None = UNSET,
+    order: int = UNSET,
+    dps: int = UNSET,
+    decimals: str = UNSET,
+    require: str = UNSET,
+    exclude: Sequence[str] = (),
+    fail_on: str | None = None,
+    jobs: int | None = None,
+    sort: str = "path",
+    max_stages: int = DEFAULT_MAX_STAGES,
+    max_conditions: int | None = None,
+    project: bool | ProjectConfig = False,
+    progress: Callable[[int, int], None] | None = None,
+    on_file: Callable[[ScanRow, int, int], None] | None = None,
+) -> ScanResult:
+    """Check every ``*.toml``/``*.json`` tableau under ``paths`` (folders recursively,
+    files, ``"@name"``) — the work of ``rkcheck scan``, with the same rows, order and exit
+    status.
+
+    Never raises for a bad file: it is a row with status ``error`` and its one-line
+    message (a file that is not a tableau is ``skipped``).  Raises
+    :class:`~rkcheck.errors.RkcheckError` only for what stops the whole scan: a bad
+    option, a path that does not exist, no paths at all, or default options whose
+    condition tables would not fit in memory (``ResourceError``).
+
+    Check options (``degree``, ``order``, ``dps``, ``decimals``, ``require``) mean what
+    they mean for :func:`~rkcheck.api.verification.verify` (definitions §3, §5); left
+    out, each file's ``[check]`` table and then the defaults apply.  ``fail_on`` (default
+    ``"claims"``) says what makes a file ``failed``; ``jobs`` worker processes (default:
+    every core); ``exclude`` glob patterns on path or name; ``sort="energy"`` ranks the
+    rows by energy order, then by the error constant C.  ``project=True`` (or a
+    :class:`ProjectConfig`) applies ``[tool.rkcheck]`` of the nearest pyproject.toml
+    (paths, exclude, check options, fail_on, jobs) under the arguments, as the CLI does.
+
+    ``progress(done, total)`` is called when the files are known and after each one;
+    ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers and returns
+    the files that finished, with ``interrupted`` set."""
+    from rkcheck.batch.scan import default_jobs, run_scan
+    from rkcheck.energy.budget import check_budget, estimate
+    from rkcheck.io.discovery import find_tableau_files
+
+    config = _config(project)
+    roots = scan_roots(paths, config)
+    flags = check_flags(degree, order, dps, decimals, False, require)
+    fail_on = _option(lambda: parse_choice(fail_on or config.fail_on or "claims", FAIL_ON, "fail_on"))
+    if jobs is not None:
+        jobs = _option(lambda: parse_int_in(jobs, JOBS_RANGE, "jobs"))
+    jobs = jobs or config.jobs or default_jobs()
+    sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
+    max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
+    if max_conditions is not None:
+        max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
+    # the resource guard (issue 16): the scan's default options must fit before the tables
+    # are built; each file's own [check] is judged against the same budget (an error row)
+    files_budget = budget(max_conditions)
+    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
+    default_degree = flags.get("degree", config.check.get("degree"))
+    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
+    t0 = time.perf_counter()
+    outcomes: list[FileOutcome] = []
+    interrupted = False
+    try:
+        files = find_tableau_files(roots, list(exclude) + config.exclude)
+        if progress is not None:
+            progress(0, len(files))
+        done = [0]
+
+        def on_result(outcome: "FileOutcome") -> None:
+            done[0] += 1
+            if progress is not None:
+                progress(done[0], len(files))
+            if on_file is not None:
+                on_file(ScanRow.of(outcome), done[0], len(files))
+
+        outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
+                                         files_budget)
+    except KeyboardInterrupt:  # before or between files: the result still says what finished
+        interrupted = True
+    elapsed = time.perf_counter() - t0
+    if sort == "energy":  # methods of equal energy order compared by their error constant
+        from rkcheck.batch.ranking import rank_outcomes
+
+        outcomes = rank_outcomes(outcomes)
+    options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
+    return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
+
+
+# ------------------------------------------------------------------ catalog
+
+DEFAULT_CATALOG_DEGREES: tuple[int | None, ...] = (2, 3, 4, 6, None)
+
+
+@dataclass(frozen=True)
+class Catalog:
+    """What :func:`catalog` gives: one :class:`~rkcheck.batch.catalog.CatalogRow` per file
+    (``name``, ``stages``, ``classical``, ``quadrature``, ``energy`` by degree label,
+    ``avf_degrees``, ``claims``, ``symplectic``, ``symmetric``, ``constants``, or
+    ``error``), the degree labels (``m=4``, ``all H``) and the order checked."""
+
+    rows: "list[CatalogRow]"
+    labels: list[str]
+    degrees: list[int | None]
+    order: int
+
+    def to_markdown(self, command: str = "") -> str:
+        """The Markdown page of ``rkcheck catalog`` (``command`` is recorded in its header)."""
+        from rkcheck.reports.markdown import catalog_markdown
+
+        return catalog_markdown(self.rows, self.labels, self.order, command)
+
+    def __repr__(self) -> str:
+        return f"<Catalog: {len(self.rows)} files, {', '.join(self.labels)}, order {self.order}>"
+
+
+def catalog(
+    paths: Sequence[str | os.PathLike[str]] = (),
+    *,
+    degrees: Sequence[int | str | None] = DEFAULT_CATALOG_DEGREES,
+    order: int = 8,
+    progress: Callable[[int, int], None] | None = None,
+) -> Catalog:
+    """The catalogue of ``rkcheck catalog``: every tableau file under ``paths`` (without
+    paths, the tableaux shipped with rkcheck — the names ``@name`` accepts), each checked
+    for every degree bound m in ``degrees`` (None or ``"none"``: all Hamiltonians) up to
+    energy order ``order``: classical, quadrature and energy orders (definitions §3–4),
+    whether it is AVF, its claims, symplecticity and symmetry, and the energy error
+    constants.  A file that cannot be read is a row with its ``error``.  With a single
+    folder, row paths are relative to it.  ``progress(done, total)`` is called as files
+    finish.  Refuses orders whose tables do not fit in memory (``ResourceError``)."""
+    from pathlib import Path as FsPath
+
+    from rkcheck.batch.catalog import catalog_row
+    from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.io.library import library_root
+
+    roots = [os.fspath(p) for p in paths]
+    if not roots:
+        root_dir = library_root()
+        if root_dir is None:
+            raise UserError("no tableaux are installed with rkcheck; give a PATH")
+        roots = [str(root_dir)]
+    order = _option(lambda: parse_int_in(order, ORDER_RANGE, "order"))
+    if isinstance(degrees, (str, int)) or degrees is None:
+        raise UserError(f"expected a list of degrees, got {degrees!r}", "degrees")
+    degs = [_option(lambda: parse_degree(d, "degrees")) for d in degrees]
+    if not degs:
+        raise UserError("expected at least one degree", "degrees")
+    guard(order, None if None in degs else max(d for d in degs if d is not None))  # the resource guard (issue 16)
+    files = find_tableau_files(roots, exclude=["README*", "*/README*"])
+    root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
+    rows = []
+    if progress is not None:
+        progress(0, len(files))
+    for f in files:
+        row = catalog_row(f, degs, order)
+        if root is not None:
+            row.path = str(FsPath(f).relative_to(root))
+        rows.append(row)
+        if progress is not None:
+            progress(len(rows), len(files))
+    labels = ["all H" if d is None else f"m={d}" for d in degs]
+    return Catalog(rows, labels, degs, order)
+
+
+__all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan", "scan_roots"]

@@ -1,0 +1,264 @@
+"""Studies of the check itself: the double-bush map's rank and kernel (``rkcheck
+kernel``), perturbation sweeps (``rkcheck perturb``) and backends compared (``rkcheck
+bench``), for Python callers.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any, Sequence
+
+from rkcheck.api.settings import guard
+from rkcheck.api.verification import UNSET, _option, check_flags
+from rkcheck.errors import OptionError
+from rkcheck.methods.tableau import Tableau
+from rkcheck.options import (
+    DEFAULT_DPS,
+    KERNEL_DEGREE_RANGE,
+    KERNEL_STAGES_RANGE,
+    REPEAT_RANGE,
+    STUDY_DPS_RANGE,
+    parse_dps_list,
+    parse_int_in,
+    parse_integer,
+    resolve_check_options,
+)
+
+if TYPE_CHECKING:
+    from rkcheck.energy.double_bush import KernelResult
+    from rkcheck.studies.accuracy import BenchRow, PerturbResult, PerturbRow
+
+TableauLike = Tableau | str | os.PathLike[str]
+
+#: The working precisions ``bench`` compares by default, and those ``perturb`` reports.
+BENCH_DPS: tuple[int, ...] = (15, 30, 50, 100, 200, 400)
+PERTURB_DPS: tuple[int, ...] = (15, 50)
+#: The ε values ``perturb`` sweeps by default: every decade from 10⁻¹ to 10⁻³⁰.
+PERTURB_EPS = "1e-1..1e-30"
+
+
+def _degree_and_order(tab: Tableau, degree: Any, order: Any) -> tuple[int | None, int]:
+    """``degree`` and ``order`` when given, else the tableau's ``[check]``, else none and
+    8; refused when the condition tables would not fit in memory (the resource guard)."""
+    options = resolve_check_options(check_flags(degree, order), tab.check, {})
+    guard(options.order, options.degree)
+    return options.degree, options.order
+
+
+# ------------------------------------------------------------------ kernel
+
+
+@dataclass(frozen=True)
+class Kernel:
+    """What :func:`kernel` gives: the rank of the double-bush map ``M`` on s×s matrices,
+    a basis of ``ker M`` and of its part with zero row sums (each matrix scaled so that
+    its largest entry is 1), exact (Fractions or number-field elements) or numerical
+    (mpmath, with the singular values around the cut)."""
+
+    result: "KernelResult"
+    tableau: Tableau | None
+    rule: str | None
+
+    @property
+    def s(self) -> int:
+        return self.result.s
+
+    @property
+    def degree(self) -> int:
+        return self.result.degree
+
+    @property
+    def exact(self) -> bool:
+        """Whether the rank is exact (rational or number-field elimination)."""
+        return self.result.exact
+
+    @property
+    def rank(self) -> int:
+        return self.result.rank
+
+    @property
+    def dimension(self) -> int:
+        """dim ker M = s² − rank M."""
+        return self.s * self.s - self.rank
+
+    @property
+    def conditions(self) -> int:
+        """Rows of M: the double-bush conditions 1 ≤ p < q ≤ m−1."""
+        return self.result.conditions
+
+    @property
+    def basis(self) -> list[list[list[Any]]]:
+        """A basis of ker M, as s×s matrices."""
+        return self.result.kernel
+
+    @property
+    def zero_row_sum(self) -> list[list[list[Any]]]:
+        """A basis of ker M ∩ {N·1 = 0}: the directions A → A + βN that keep every
+        condition linear in A (seed Lemma "onedim")."""
+        return self.result.zero_row_sum
+
+    def __repr__(self) -> str:
+        return (f"<Kernel: s = {self.s}, degree {self.degree}, rank {self.rank}, dim ker {self.dimension}, "
+                f"{len(self.zero_row_sum)} with zero row sums{'' if self.exact else ' (numerical)'}>")
+
+
+def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", tableau: TableauLike | None = None,
+           dps: int = DEFAULT_DPS) -> Kernel:
+    """Rank and kernel of the double-bush map M for polynomial degree ``degree`` (m ≥ 3)
+    at a quadrature rule — the ``stages``-point ``rule`` (``gauss``, ``radau-i``,
+    ``radau-ii``, ``lobatto``, ``zeta:<value>``) or the ``b`` and ``c = A·1`` of
+    ``tableau`` (a Tableau, path or ``"@name"``) — as ``rkcheck kernel`` prints it.
+
+    M maps A to the double-bush conditions ``p bᵀC^(p−1)Ac^q − q bᵀC^(q−1)Ac^p``,
+    1 ≤ p < q ≤ m−1 (definitions §3–4, seed Lemma 2): for Gauss and m = 2s, rank M = s²−1
+    with kernel ``(1−c)bᵀ``; for m = 2s−1 and nodes the zeros of ``P_s − ζP_{s−1}``,
+    s²−3 (ζ ≠ −1) or s²−s−1 (ζ = −1, Radau I).  Exact for rational and algebraic rules,
+    else numerical at ``dps`` digits."""
+    from rkcheck.api.tableaux import as_tableau
+    from rkcheck.energy.double_bush import kernel_of, rule_values, tableau_rule
+
+    degree = _option(lambda: parse_int_in(degree, KERNEL_DEGREE_RANGE, "degree"))
+    if stages is not None:
+        stages = _option(lambda: parse_int_in(stages, KERNEL_STAGES_RANGE, "stages"))
+    dps = _option(lambda: parse_int_in(dps, STUDY_DPS_RANGE, "dps"))
+    if tableau is not None:
+        tab: Tableau | None = as_tableau(tableau)
+        b, c, exact = tableau_rule(tab, dps)
+        rule_name = None
+    else:
+        if stages is None:
+            raise OptionError("give --stages/-s (or --tableau FILE)")
+        tab, rule_name = None, rule
+        b, c, exact = rule_values(rule, stages, dps)
+    return Kernel(kernel_of(b, c, degree, exact, dps), tab, rule_name)
+
+
+# ------------------------------------------------------------------ perturb
+
+
+@dataclass(frozen=True)
+class Perturbation:
+    """What :func:`perturb` gives: for each ε, max |R| over the failing conditions of
+    ``A + εD``, the first failing order and which backends certify a failure; the fitted
+    slope of log max|R| against log ε; each backend's detection threshold ε*."""
+
+    tableau: Tableau
+    degree: int | None
+    order: int
+    result: "PerturbResult"
+
+    @property
+    def rows(self) -> "list[PerturbRow]":
+        return self.result.rows
+
+    @property
+    def slope(self) -> float | None:
+        """1 for a generic direction, 2 along the kernel (the seed's quadratic failure)."""
+        return self.result.slope
+
+    @property
+    def thresholds(self) -> dict[str, Fraction | None]:
+        """Smallest ε at which each backend (``float64``, ``dps:D``, ``exact``) certifies a failure."""
+        return self.result.thresholds
+
+    @property
+    def floors(self) -> dict[str, float]:
+        return self.result.floors
+
+    @property
+    def direction(self) -> str:
+        """The direction D, described."""
+        return self.result.direction
+
+    @property
+    def backends(self) -> list[str]:
+        return self.result.backends
+
+    @property
+    def warnings(self) -> list[str]:
+        return self.result.warnings
+
+    def __repr__(self) -> str:
+        slope = "—" if self.slope is None else f"{self.slope:.3f}"
+        return f"<Perturbation of {self.tableau.name!r}: {len(self.rows)} ε values, slope {slope}>"
+
+
+def _eps_list(eps: str | Sequence[Any]) -> list[Fraction]:
+    from rkcheck.studies.accuracy import parse_eps
+
+    text = eps if isinstance(eps, str) else ",".join(str(x) for x in eps)
+    values: list[Fraction] = _option(lambda: parse_eps(text))
+    if not values or any(not 0 < e <= 1 for e in values):  # log10(ε) and float radii need 0 < ε <= 1
+        raise OptionError(f"every ε must be in (0, 1], got {text!r}", "--eps")
+    return values
+
+
+def perturb(tableau: TableauLike, direction: str, *, degree: int | str | None = UNSET, order: int = UNSET,
+            eps: str | Sequence[Any] = PERTURB_EPS, dps: str | Sequence[int] = PERTURB_DPS,
+            seed: int = 2024) -> Perturbation:
+    """Perturb the tableau's A by ε·D and watch the energy conditions fail, as
+    ``rkcheck perturb`` does.
+
+    ``direction``: ``"random"`` (fixed-seed random matrix, ``seed``), ``"kernel"`` (the
+    zero-row-sum kernel direction of the double-bush map: the seed's §2.3–2.4 direction
+    that keeps every linear condition; needs ``degree`` ≥ 3) or ``"entry:i,j"`` (1-based).
+    D is scaled to max |d_ij| = 1, b stays.  ``eps``: ``"1e-1..1e-30"`` (every decade),
+    ``"1e-2..1e-30:2"``, ``"1e-3,1e-6"`` or a list of numbers, each in (0, 1];
+    ``dps``: the ball precisions whose detection is reported.  ``degree`` and ``order``
+    default to the tableau's ``[check]``, then none and 8 (definitions §3).  The residuals
+    are judged as definitions §5 says; the reference backend is exact for exact tableaux."""
+    from rkcheck.api.tableaux import as_tableau
+    from rkcheck.studies.accuracy import direction as make_direction
+    from rkcheck.studies.accuracy import direction_dps, perturb_sweep
+
+    tab = as_tableau(tableau)
+    deg, N = _degree_and_order(tab, degree, order)
+    eps_values = _eps_list(eps)
+    dps_values = _option(lambda: parse_dps_list(dps))
+    seed = _option(lambda: parse_integer(seed, "seed"))
+    D, desc = _option(lambda: make_direction(tab, direction, deg, seed, direction_dps(eps_values, dps_values)))
+    return Perturbation(tab, deg, N, perturb_sweep(tab, D, desc, eps_values, deg, N, dps_values))
+
+
+# ------------------------------------------------------------------ bench
+
+
+@dataclass(frozen=True)
+class Bench:
+    """What :func:`bench` gives: one row per backend (``float64``, ``dps:D``, ``exact``)
+    with ``seconds`` (best of the repeats), ``conditions``, ``per_second``,
+    ``min_digits`` (the weakest certified digits of the conditions that hold),
+    ``failures`` (certified) and ``agrees`` (same failures as the last, most precise
+    backend); and the time to build the shared condition tables."""
+
+    tableau: Tableau
+    degree: int | None
+    order: int
+    rows: "list[BenchRow]"
+    tables_seconds: float
+
+    def __repr__(self) -> str:
+        return f"<Bench of {self.tableau.name!r}: {', '.join(r.backend for r in self.rows)}>"
+
+
+def bench(tableau: TableauLike, *, degree: int | str | None = UNSET, order: int = UNSET,
+          dps: str | Sequence[int] = BENCH_DPS, repeat: int = 3) -> Bench:
+    """The same check on every backend — float64 screen, certified balls at each of
+    ``dps`` digits, exact when the tableau is — timed (best of ``repeat``), as
+    ``rkcheck bench`` runs it.  ``degree`` and ``order`` default to the tableau's
+    ``[check]``, then none and 8 (definitions §3); verdicts as definitions §5."""
+    from rkcheck.api.tableaux import as_tableau
+    from rkcheck.studies.accuracy import bench_backends
+
+    tab = as_tableau(tableau)
+    deg, N = _degree_and_order(tab, degree, order)
+    dps_values = _option(lambda: parse_dps_list(dps))
+    repeat = _option(lambda: parse_int_in(repeat, REPEAT_RANGE, "repeat"))
+    rows, t_tables = bench_backends(tab, deg, N, dps_values, repeat=repeat)
+    return Bench(tab, deg, N, rows, t_tables)
+
+
+__all__ = ["BENCH_DPS", "Bench", "Kernel", "PERTURB_DPS", "PERTURB_EPS", "Perturbation", "bench", "kernel",
+           "perturb"]
