@@ -92,11 +92,15 @@ def per_order_table(res: CheckResult) -> Table:
     t.add_column("checked", justify="right")
     t.add_column("held", justify="right")
     t.add_column("failed", justify="right")
-    t.add_column("min digits", justify="right")
+    # exact arithmetic proves or refutes every condition: a digits column would only say
+    # "exact" on every row, so it is shown for balls alone
+    show_digits = res.backend != "exact"
+    if show_digits:
+        t.add_column("min digits", justify="right")
     for p in res.per_order:
         failed = Text(str(p.failed), style="bold red" if p.failed else "")
         digits = "exact" if p.checked and p.min_digits is None and p.held else (str(p.min_digits) if p.min_digits is not None else "")
-        t.add_row(*plain(p.order, p.order + 1, p.conditions, p.checked, p.held, failed, digits))
+        t.add_row(*plain(p.order, p.order + 1, p.conditions, p.checked, p.held, failed, *([digits] if show_digits else [])))
     return t
 
 

@@ -164,3 +164,14 @@ def test_conditions_count_matches_spec(capsys):
     doc = json.loads(r.out)
     # SPEC §3: non-superfluous free trees with n = 3..12 vertices
     assert [c["conditions"] for c in doc["counts"]] == [1, 1, 3, 4, 11, 19, 47, 97, 235, 531]
+
+
+def test_an_exact_algebraic_verify_never_mentions_digits(capsys):
+    # issue 12, done when: AVF over Gauss-2 ends with an exact certificate and no
+    # "digits" anywhere (the per-order table has no digits column for exact arithmetic)
+    run = run_cli(capsys, "verify", str(TABLEAUX / "avf" / "avf-gauss-2.toml"))
+    assert run.code == 0
+    assert "digits" not in run.out.lower()
+    assert run.out.rstrip().endswith("(AVF certificate); 66 conditions checked)")
+    balls = run_cli(capsys, "verify", str(TABLEAUX / "avf" / "avf-gauss-2.toml"), "--arithmetic", "ball")
+    assert "min digits" in balls.out
