@@ -140,15 +140,7 @@ def parse_integer(value: Any, place: str, source: str | None = None) -> int:
 def parse_dps_list(value: Any, place: str = "--dps", source: str | None = None) -> list[int]:
     """Working precisions: ``"15,50"`` (the CLI's text) or a sequence of integers, each
     within :data:`DPS_RANGE` (``bench --dps``, ``perturb --dps``)."""
-    if isinstance(value, str):
-        try:
-            values = [int(x) for x in value.split(",") if x.strip()]
-        except ValueError:
-            raise UserError(f"expected a comma-separated list of integers, got {value!r}", place, source) from None
-    elif isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
-        values = list(value)
-    else:
-        raise UserError(f"expected a comma-separated list of integers, got {_shown(value)}", place, source)
+    values = _integer_list(value, "a comma-separated list of integers", place, source)
     lo, hi = DPS_RANGE
     if not values or any(d < lo or d > hi for d in values):
         raise UserError(f"each dps must be between {lo} and {hi}", place, source)
@@ -158,18 +150,22 @@ def parse_dps_list(value: Any, place: str = "--dps", source: str | None = None) 
 def parse_step_counts(value: Any, place: str = "--steps", source: str | None = None) -> list[int]:
     """Numbers of steps: ``"20,40,80"`` (the CLI's text) or a sequence of positive integers
     (``workprec --steps``)."""
-    if isinstance(value, str):
-        try:
-            counts = [int(x) for x in value.split(",") if x.strip()]
-        except ValueError:
-            raise UserError(f"expected comma-separated integers, got {value!r}", place, source) from None
-    elif isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
-        counts = list(value)
-    else:
-        raise UserError(f"expected comma-separated integers, got {_shown(value)}", place, source)
+    counts = _integer_list(value, "comma-separated integers", place, source)
     if not counts or min(counts) < 1:
         raise UserError("step counts must be positive", place, source)
     return counts
+
+
+def _integer_list(value: Any, expected: str, place: str, source: str | None) -> list[int]:
+    """Integers from the CLI's comma-separated text or from a sequence (the API's form)."""
+    if isinstance(value, str):
+        try:
+            return [int(x) for x in value.split(",") if x.strip()]
+        except ValueError:
+            raise UserError(f"expected {expected}, got {value!r}", place, source) from None
+    if isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
+        return list(value)
+    raise UserError(f"expected {expected}, got {_shown(value)}", place, source)
 
 
 def _shown(value: Any) -> str:

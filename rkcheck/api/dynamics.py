@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 from rkcheck.api.verification import _option
 from rkcheck.errors import OptionError, UserError
+from rkcheck.api.tableaux import TableauLike, as_tableau
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
@@ -29,7 +30,6 @@ if TYPE_CHECKING:
     from rkcheck.dynamics.simulate import Agreement, EnergyFit, WorkRow
     from rkcheck.dynamics.simulate import WorkPrecision as WorkPrecisionRuns
 
-TableauLike = Tableau | str | os.PathLike[str]
 #: The step counts ``work_precision`` runs by default (step sizes T/N).
 WORKPREC_STEPS: tuple[int, ...] = (20, 40, 80, 160, 320, 640)
 
@@ -68,14 +68,6 @@ def _rational(value: Any, place: str) -> Fraction:
     return Fraction(e.exact)
 
 
-def _as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
-    from rkcheck.api.tableaux import as_tableau, load
-
-    if isinstance(tableau, Tableau):
-        return tableau
-    return load(tableau, max_stages=max_stages) if isinstance(tableau, (str, os.PathLike)) else as_tableau(tableau)
-
-
 # ------------------------------------------------------------------ simulate
 
 
@@ -112,7 +104,7 @@ def simulate(tableau: TableauLike, problem: "str | Hamiltonian", *, h: str | int
     from rkcheck.dynamics.simulate import energy_series, start_point
 
     ham = _problem(problem)
-    tab = _as_tableau(tableau)
+    tab = as_tableau(tableau)
     h_value = _rational(h, "--h")
     steps = _option(lambda: parse_int_in(steps, STEPS_RANGE, "steps"))
     if dps is not None:
@@ -174,7 +166,7 @@ def empirical_energy_order(tableau: TableauLike, problem: "str | Hamiltonian", *
     from rkcheck.dynamics.simulate import energy_order_agreement
 
     ham = _problem(problem)
-    tab = _as_tableau(tableau)
+    tab = as_tableau(tableau)
     if dps is not None:
         dps = _option(lambda: parse_int_in(dps, STUDY_DPS_RANGE, "dps"))
     points = _option(lambda: parse_int_in(points, POINTS_RANGE, "points"))
@@ -227,7 +219,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
     if isinstance(tableaux, (str, os.PathLike, Tableau)):
         raise OptionError("expected a list of tableaux", "tableaux")
-    tabs = [_as_tableau(t, max_stages) for t in tableaux]
+    tabs = [as_tableau(t, max_stages) for t in tableaux]
     return WorkPrecision(ham, run(tabs, ham, T_value, counts))
 
 

@@ -5,7 +5,6 @@ bench``), for Python callers.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
@@ -13,6 +12,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 from rkcheck.api.settings import guard
 from rkcheck.api.verification import UNSET, _option, check_flags
 from rkcheck.errors import OptionError
+from rkcheck.api.tableaux import TableauLike
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     DEFAULT_DPS,
@@ -30,7 +30,6 @@ if TYPE_CHECKING:
     from rkcheck.energy.double_bush import KernelResult
     from rkcheck.studies.accuracy import BenchRow, PerturbResult, PerturbRow
 
-TableauLike = Tableau | str | os.PathLike[str]
 
 #: The working precisions ``bench`` compares by default, and those ``perturb`` reports.
 BENCH_DPS: tuple[int, ...] = (15, 30, 50, 100, 200, 400)

@@ -88,13 +88,17 @@ def from_arrays(
     return tableau_from_arrays(A, b, c, name=name, floats=floats, max_stages=max_stages)
 
 
-def as_tableau(tableau: Tableau | str | os.PathLike[str]) -> Tableau:
-    """A tableau given as itself, a path or ``@name``."""
+#: What the API functions accept for a tableau: the object, a path or ``@name``.
+TableauLike = Tableau | str | os.PathLike[str]
+
+
+def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
+    """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``)."""
     if isinstance(tableau, Tableau):
         return tableau
     if isinstance(tableau, (str, os.PathLike)):
-        return load(tableau)
+        return load(tableau, max_stages=max_stages)
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
-__all__: Sequence[str] = ("as_tableau", "entry_of", "from_arrays", "library", "load", "loads", "tableau_warnings", "write")
+__all__: Sequence[str] = ("TableauLike", "as_tableau", "entry_of", "from_arrays", "library", "load", "loads", "tableau_warnings", "write")
