@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from rkcheck.energy.budget import Budget
     from rkcheck.energy.check import CheckResult, ConditionResult
     from rkcheck.energy.claims import ClaimResult
-    from rkcheck.energy.lineintegral import LineIntegralCertificate
+    from rkcheck.energy.lineintegral import Certificate
 
 ARITHMETIC = ("auto", "exact", "ball")
 
@@ -179,8 +179,9 @@ class Verification:
         return self.result.avf
 
     @property
-    def certificate(self) -> "LineIntegralCertificate | None":
-        """The line-integral (σ = 1: AVF) certificate for the degree, proving every order."""
+    def certificate(self) -> "Certificate | None":
+        """The certificate proving every order for the degree: line-integral (σ = 1 is
+        AVF), or for degree 2 the stability-function certificate (R(z)R(−z) ≡ 1)."""
         return self.result.certificate
 
     @property

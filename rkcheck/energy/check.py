@@ -15,13 +15,13 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable, Iterator, NamedTuple, Sequence, cast
+from typing import Any, Callable, Iterator, NamedTuple, Sequence
 
 import numpy as np
 
 from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
-from rkcheck.energy.lineintegral import LineIntegralCertificate
+from rkcheck.energy.lineintegral import Certificate
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.properties import properties_of_values
@@ -215,10 +215,9 @@ class CheckResult:
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
-    # proves every order for degree m (AVF, line integral, stability).  Any Certificate: a
-    # StabilityCertificate too, through a cast in check() until the public
-    # Verification.certificate (rkcheck/api) is typed Certificate as well
-    certificate: LineIntegralCertificate | None
+    # proves every order for degree m: the line-integral certificate (AVF is σ = 1) or,
+    # for degree 2, the stability-function certificate
+    certificate: Certificate | None
     theorem1: str | None
     warnings: list[str]
     timings: dict[str, float] = field(default_factory=dict)
@@ -492,7 +491,7 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
         quadrature=quad,
         classical=classical,
         avf=avf,
-        certificate=cast("LineIntegralCertificate | None", cert),  # see CheckResult.certificate
+        certificate=cert,
         theorem1=remark,
         warnings=warnings,
         timings=timings,
