@@ -49,7 +49,16 @@ def scaled_tableau(tableau, decimals: str) -> ScaledTableau | None:
     if tableau.is_exact(decimals):
         if tableau.is_rational:
             return scaled_rational(tableau.exact_A(), tableau.exact_b())
-        return scaled_field(tableau.exact_values(decimals))  # entries in a number field
+        values = tableau.exact_values(decimals)
+        # kept with the values: in a field of high degree the bounds and the integrality
+        # denominator take seconds (30 s for HBVM(6, 3), degree 48), and one check asks
+        # for them once per pass (classical order, energy conditions, channel estimate);
+        # the split primes found so far are kept with them
+        scaled = getattr(values, "_scaled", None)
+        if scaled is None:
+            scaled = scaled_field(values)  # entries in a number field
+            values._scaled = scaled
+        return scaled
     return None
 
 

@@ -291,6 +291,7 @@ class ScaledTableau:
     #: where the one embedding's value is log2_M)
     log2_M_embeddings: list[float] | None = None
     integral_d: int | None = None  # e: the integrality denominator (None: e = d)
+    log2_gprime: float | None = None  # upper bound of log2 max_j |g'(σ_j θ)| (None: Q)
 
     def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
         """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
@@ -309,6 +310,22 @@ class ScaledTableau:
         """Bits that bound ``|coefficient of N|`` for a condition with ``n`` vertices and
         ``terms`` terms (rounded up, plus one for the sign)."""
         bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
+        return math.ceil(bits) + 2
+
+    def dual_value_bits(self, n: int, terms: int) -> int | None:
+        """Bits that bound the coefficients of ``X = g'(θ)·N_e`` (None without the
+        embeddings' data).  ``N_e = N/(d/e)^(n−1)`` is an algebraic integer and
+        ``O_K ⊆ Z[θ]/g'(θ)`` (g the minimal polynomial of the algebraic integer θ: the
+        dual basis of the power basis under the trace), so ``X ∈ Z[θ]``; its conjugates
+        are at most ``max_j |g'(σ_j θ)| · B_j`` with ``e`` in place of ``d``.  In a field of
+        high degree this is far below :meth:`coefficient_bits`, which grows with log₂ d
+        per vertex (1236 bits for HBVM(6, σ), against log₂ e = 19)."""
+        if self.log2_M_embeddings is None or self.integral_d is None or self.log2_gprime is None:
+            return None
+        shift = math.log2(self.d) - math.log2(self.integral_d)
+        top = max(max(m - shift, 0.0) for m in self.log2_M_embeddings)
+        bits = ((n - 1) * top + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+                + self.log2_Vinv + self.log2_gprime)
         return math.ceil(bits) + 2
 
     def decision_bits(self, n: int, terms: int) -> int:
@@ -436,34 +453,101 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     Ai = [[[int(c * d) for c in v] for v in row] for row in At]
     bi = [[int(c * d) for c in v] for v in bt]
 
-    with ctx.workprec(128):
-        # python-flint's stubs type complex_roots() as acb; it is a list of (acb, multiplicity)
-        found: list[tuple[Any, int]] = cast(list, fmpz_poly(minpoly).complex_roots())
-        roots = [root for root, _ in found]
+    def upper(x: Any) -> float:  # an arb as a float upper bound
+        return float(x.abs_upper()) * (1 + 2.0**-40)
 
-        def conj(v: list[int], r) -> Any:
-            acc = acb(0)
-            for c in reversed(v):
-                acc = acc * r + c
-            return acc
-
-        def upper(x: Any) -> float:  # an arb as a float upper bound
-            return float(x.abs_upper()) * (1 + 2.0**-40)
-
-        M = 1.0
-        per_embedding = []
-        for r in roots:
-            alpha = max(upper(sum((abs(conj(v, r)) for v in row), arb(0))) for row in Ai)
-            beta = upper(sum((abs(conj(v, r)) for v in bi), arb(0)))
-            M = max(M, alpha, beta)
-            per_embedding.append(math.log2(max(alpha, beta, 2.0**-1000)) + 1e-9)
-        V = acb_mat([[r**k for k in range(D)] for r in roots])
-        W = V.inv()
-        vinv = max(upper(sum((abs(W[i, j]) for j in range(D)), arb(0))) for i in range(D))
+    log2_M, per_embedding = _embedding_bounds(minpoly, Ai, bi)
+    vinv = _vandermonde_inverse_norm(minpoly, upper)
+    log2_gprime = _log2_derivative_bound(minpoly)
     e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
     assert d % e == 0  # d·x ∈ Z[θ̃] ⊂ O_K, so the least e divides d
-    return ScaledTableau(Ai, bi, d, minpoly, math.log2(M) + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
-                         per_embedding, e)
+    return ScaledTableau(Ai, bi, d, minpoly, log2_M + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
+                         per_embedding, e, log2_gprime)
+
+
+def _log2_upper(x: Any) -> float:
+    """An upper bound of ``log₂ |x|`` for an arb (−1000 for 0): in the log domain, since
+    the scaled entries of a field of high degree exceed a float (2^1236 for HBVM(6, 3))."""
+    from flint import arb
+
+    u = x.abs_upper()
+    if u == 0:
+        return -1000.0
+    return float((u.log() / arb(2).log()).upper()) + 1e-9
+
+
+def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, list[float]]:
+    """``log₂ M`` (``M = max_j M_j``) and ``log₂ max(α_j, β_j)`` per complex embedding
+    (module docstring), certified.  The working precision starts at 128 bits and doubles
+    while a bound exceeds its ball's lower end by more than one bit: in fields of high
+    degree (48 for the six Gauss-6 nodes) the entries' coefficients are large and cancel,
+    and 128 bits leave balls too wide to bound anything."""
+    from flint import acb, arb, ctx, fmpz_poly
+
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            roots = [root for root, _ in cast(list, fmpz_poly(minpoly).complex_roots())]
+
+            def conj(v: list[int], r) -> Any:
+                acc = acb(0)
+                for c in reversed(v):
+                    acc = acc * r + c
+                return acc
+
+            log2_M = 0.0
+            per_embedding = []
+            tight = True
+            for r in roots:
+                sums = [sum((abs(conj(v, r)) for v in row), arb(0)) for row in Ai]
+                sums.append(sum((abs(conj(v, r)) for v in bi), arb(0)))
+                for x in sums:
+                    if not x.is_finite() or (x.abs_upper() > 0 and not x.abs_upper() <= 2 * x.abs_lower()):
+                        tight = False
+                top = max(_log2_upper(x) for x in sums)
+                log2_M = max(log2_M, top)
+                per_embedding.append(top)
+            if tight or prec >= 1 << 14:
+                return log2_M, per_embedding
+            prec *= 2
+
+
+def _log2_derivative_bound(minpoly: list[int]) -> float:
+    """An upper bound of ``log₂ max_j |g'(σ_j θ)|`` over the roots of ``g = minpoly``."""
+    from flint import acb, ctx, fmpz_poly
+
+    g = fmpz_poly(minpoly)
+    dg = g.derivative()
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            values = [abs(dg(acb(r))) for r, _ in cast(list, g.complex_roots())]
+            if all(v.is_finite() for v in values) or prec >= 1 << 14:
+                return max(_log2_upper(v) for v in values)
+        prec *= 2
+
+
+def _vandermonde_inverse_norm(minpoly: list[int], upper: Any) -> float:
+    """``‖V⁻¹‖_∞`` for the Vandermonde matrix ``V`` of the roots of ``minpoly``, certified:
+    Arb inverts ``V`` only when its balls prove it invertible, so the working precision is
+    doubled until they do (128 bits suffice up to degree ~30; the degree-48 field of the
+    six Gauss-6 nodes needs more, its conjugates lie close together)."""
+    from flint import acb_mat, arb, ctx, fmpz_poly
+
+    D = len(minpoly) - 1
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            roots = [root for root, _ in cast(list, fmpz_poly(minpoly).complex_roots())]
+            V = acb_mat([[r**k for k in range(D)] for r in roots])
+            try:
+                W = V.inv()
+            except ZeroDivisionError:
+                if prec >= 1 << 14:
+                    raise
+                prec *= 2
+                continue
+            return max(upper(sum((abs(W[i, j]) for j in range(D)), arb(0))) for i in range(D))
 
 
 def integrality_denominator(values: Sequence[Any], field: Any) -> int:
@@ -509,6 +593,7 @@ class ExactOrderSums:
     tableau: ScaledTableau
     listing: Any = None  # to evaluate more primes when a value needs them
     value_bits: int = 0  # the coefficients' bound: primes beyond the decision's, on demand
+    dual: bool = False  # values from g'(θ)·N_e (ScaledTableau.dual_value_bits), not from N
 
     def is_zero(self) -> np.ndarray:
         return ~np.any(self.residues != 0, axis=(1, 2))
@@ -518,10 +603,36 @@ class ExactOrderSums:
         if self.tableau.number_field is not None and not np.any(self.residues[k]):
             return self.tableau.field_element([0], 1)  # proven zero (module docstring)
         self._complete()
+        if self.dual:
+            return self._dual_value(k)
         coeffs = self._coefficients(k)
         if self.tableau.number_field is None:
             return Fraction(coeffs[0], self.scale)
         return self.tableau.field_element(coeffs, self.scale)
+
+    def _dual_value(self, k: int) -> Any:
+        """The residual from the coefficients of ``X = g'(θ)·N_e``
+        (:meth:`ScaledTableau.dual_value_bits`): at a root r modulo p, ``X(r) = g'(r)·N(r)/
+        (d/e)^(n−1)``; then ``R = X / (g'(θ)·(n−1)!·e^(n−1))``."""
+        t = self.tableau
+        assert t.integral_d is not None
+        D, n = t.degree, self.vertices
+        ratio = t.d // t.integral_d
+        dg = [k * c for k, c in enumerate(t.minpoly)][1:]
+        per_prime = []
+        for i, (p, roots) in enumerate(self.primes):
+            inv = pow(pow(ratio, n - 1, p), -1, p)
+            vals = []
+            for j, r in enumerate(roots):
+                gp = 0
+                for c in reversed(dg):
+                    gp = (gp * r + c) % p
+                vals.append(int(self.residues[k, i, j]) * gp % p * inv % p)
+            per_prime.append(_vandermonde_solve(roots, vals, p))
+        mods = [p for p, _ in self.primes]
+        X = [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
+        scale = math.factorial(n - 1) * t.integral_d ** (n - 1)
+        return t.field_element(X, scale) / t.field_element(dg, 1)
 
     def _complete(self) -> None:
         """Evaluate the primes the coefficients' bound needs beyond the decision's."""
@@ -603,6 +714,12 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     wanted = sorted(listing.orders if orders is None else orders)
     need = {n: scaled.decision_bits(n, listing.orders[n].max_terms) for n in wanted}
     value_need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
+    dual = {}  # values from g'(θ)·N_e when its bound is the smaller (ScaledTableau.dual_value_bits)
+    for n in wanted:
+        dual_bits = scaled.dual_value_bits(n, listing.orders[n].max_terms)
+        dual[n] = dual_bits is not None and dual_bits < value_need[n]
+        if dual_bits is not None and dual[n]:
+            value_need[n] = dual_bits
     channels = scaled.primes_for(max(need.values(), default=1))
     D = scaled.degree
     count = {n: 0 for n in wanted}
@@ -616,9 +733,9 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
 
     def result(n: int) -> ExactOrderSums:
-        extra = (listing, value_need[n]) if value_need[n] > need[n] else (None, 0)
+        more = value_need[n] > need[n]
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
-                              *extra)
+                              listing if more else None, value_need[n] if more else 0, dual[n])
 
     done = 0
     try:

@@ -477,6 +477,10 @@ class _Builder:
             return value
         f = _poly(list(gamma.f))
         K = self.field
+        mirror = self._mirror_image(gamma)
+        if mirror is not None:
+            self.generators[gamma] = mirror
+            return mirror
         if K.is_rational:
             L = NumberField(list(gamma.f), gamma.index)
             self._push(L, L(0))
@@ -506,6 +510,30 @@ class _Builder:
             self.generators[gamma] = gamma_new
             return gamma_new
         raise NotAlgebraic("no primitive element θ + tγ with small t (unexpected)")
+
+    def _mirror_image(self, gamma: _Real) -> FieldElement | None:
+        """γ as ``a − δ`` when its minimal polynomial f is symmetric about ``a/2``
+        (``f(a − x) = ±f(x)``, as for the nodes of every symmetric quadrature rule) and
+        the root δ of f mirrored to γ is already in the field; else None.
+
+        ``x ↦ a − x`` maps the roots of f onto themselves and reverses the order of the
+        real ones, so the mirror of the k-th smallest real root is the (r + 1 − k)-th of
+        the r real roots: exact, no enclosure needed.  Without this, adjoining the six
+        Gauss-6 nodes one by one asks for a compositum of degree 48·6 = 288 although
+        the field of the first three (degree 48) already holds all six."""
+        n = len(gamma.f) - 1
+        if n < 2:
+            return None
+        a = -2 * gamma.f[n - 1] / n  # twice the mean of the roots
+        f = _poly(list(gamma.f))
+        reflected = f(_poly([a, -1]))  # f(a − x)
+        if reflected != f and reflected != -f:
+            return None
+        r = len(real_root_intervals(list(gamma.f), 8))
+        partner = _Real(gamma.f, r + 1 - gamma.index)
+        if partner == gamma or partner not in self.generators:
+            return None
+        return a - self.lift(self.generators[partner])
 
     def _push(self, L: NumberField, theta_old: FieldElement) -> None:
         self.chain.append(L)

@@ -276,3 +276,27 @@ def test_all_roots_in_one_pass_equal_root_by_root(path, monkeypatch):
     batched = exact_condition_sums(scaled, listing)
     for n in one_by_one:
         assert np.array_equal(one_by_one[n].residues, batched[n].residues), n
+
+
+def test_values_through_the_dual_basis_bound_equal_sympy(monkeypatch):
+    # a nonzero residual is rebuilt from g'(θ)·N_e ∈ Z[θ] (O_K ⊆ Z[θ]/g'(θ)) when that
+    # bound is below the power basis's (in fields of high degree: HBVM(6, σ)).  Here the
+    # power basis's bound is made huge so that the dual route runs on a small field,
+    # whose values sympy computes independently
+    from rkcheck.evaluation.modular import ScaledTableau
+
+    spec = {"A": [["1/4 + sqrt(5)/100", "1/4 - (1 + sqrt(5))/6"], ["1/4 + sqrt(5)/6", "1/4 - 2/7"]],
+            "b": ["1/2 + (1 + sqrt(5))/22", "1/2"]}
+    monkeypatch.setattr(ScaledTableau, "coefficient_bits", lambda self, n, t: 10**6)
+    listing, sums = engine_residuals(tableau(spec), 6)
+    o = sums[7]
+    assert o.dual
+    want = sympy_residuals(spec, 5, 7)
+    checked = 0
+    for k in range(len(o.residues)):
+        if not o.is_zero()[k]:
+            rec = listing.record(7, k)
+            v = o.value(k) * rec.flip
+            assert (v.coeffs[0], v.coeffs[1]) == want[rec.level_sequence]
+            checked += 1
+    assert checked > 5

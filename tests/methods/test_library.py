@@ -45,8 +45,9 @@ def test_every_shipped_tableau_meets_its_claims(path):
 # polynomial (directly or as a [family]) is decided exactly, so its claims are met by
 # proof, not to digits; only decimal tableaux are numerical.
 ALGEBRAIC = [f for f in FILES if not load(f).is_rational and not load(f).is_box("auto")]
-#: HBVM(6, σ) over 6 Gauss nodes: their field has degree up to 144, beyond the limit of 32
-#: (definitions: the field-degree cap); checked in balls, to digits
+#: HBVM(6, σ) over 6 Gauss nodes: their field is the splitting field of P6, of degree
+#: |Gal| = 48 (tests/numbers/test_algebraic.py), beyond the limit of 32 (definitions: the
+#: field-degree cap; the builder refuses at its estimate "up to 144"); checked in balls
 BEYOND_FIELD_LIMIT = {"hbvm-6-2", "hbvm-6-3"}
 
 

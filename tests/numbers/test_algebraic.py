@@ -106,3 +106,38 @@ def test_enclosure_width_and_sign_of_tiny_differences():
     assert iv.hi - iv.lo <= Fraction(1, 2**200)
     truth = sp.Rational(str(sp.N((sp.Rational(99, 70) - sp.sqrt(2)) ** 8, 120)))
     assert abs(iv.mid - Fraction(int(truth.p), int(truth.q))) < Fraction(1, 10**100)
+
+
+def _galois_order(text):
+    x = sp.Symbol("x")
+    group, _ = sp.polys.numberfields.galois_group(sp.Poly(sp.sympify(text.replace("^", "**")), x))
+    return group.order()
+
+
+GAUSS4 = "70*x^4 - 140*x^3 + 90*x^2 - 20*x + 1"  # the shifted Legendre P4 (Gauss-4's nodes)
+GAUSS6 = "924*x^6 - 2772*x^5 + 3150*x^4 - 1680*x^3 + 420*x^2 - 42*x + 1"
+
+
+def test_mirrored_roots_of_a_symmetric_polynomial_are_not_adjoined_again():
+    # P4(1 − x) = P4(x): the largest node is 1 − the smallest, already in Q(c1); with a
+    # cap below the compositum's work (4·4 > 4·3) only the mirror can place it
+    r = field_of([ex.parse(f"root({GAUSS4}, {k})") for k in (1, 4)], max_degree=3)
+    assert r.field.degree == 4
+    c1, c4 = r.values
+    assert c4 == 1 - c1
+    # all four nodes: the splitting field, of the degree of the Galois group (sympy)
+    r = _values(*[f"root({GAUSS4}, {k})" for k in range(1, 5)])
+    assert r.field.degree == _galois_order(GAUSS4) == 8
+    assert r.values[2] == 1 - r.values[1] and r.values[3] == 1 - r.values[0]
+
+
+@pytest.mark.slow
+def test_the_six_gauss_6_nodes_generate_a_field_of_the_galois_groups_order():
+    # three nodes generate the splitting field (degree |Gal| = 48, by sympy); the other
+    # three are their mirrors, so the builder stops at 48 instead of asking for 48·6
+    r = field_of([ex.parse(f"root({GAUSS6}, {k})") for k in range(1, 7)], max_degree=48)
+    assert r.field.degree == _galois_order(GAUSS6) == 48
+    assert all(r.values[5 - i] == 1 - r.values[i] for i in range(3))
+    # with the cap of 32 it is still a clear refusal
+    with pytest.raises(NotAlgebraic, match="more than 32"):
+        field_of([ex.parse(f"root({GAUSS6}, {k})") for k in range(1, 7)])
