@@ -10,9 +10,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
+from rkcheck.api.tableaux import TableauLike, as_tableau
 from rkcheck.api.verification import _option
 from rkcheck.errors import OptionError, UserError
-from rkcheck.api.tableaux import TableauLike, as_tableau
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,

@@ -14,8 +14,9 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.api.tableaux import FloatMode, from_arrays
+from rkcheck.api.tableaux import from_arrays
 from rkcheck.errors import TableauError
+from rkcheck.methods.arrays import FloatMode
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 

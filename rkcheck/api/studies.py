@@ -10,9 +10,9 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
 from rkcheck.api.settings import guard
+from rkcheck.api.tableaux import TableauLike
 from rkcheck.api.verification import UNSET, _option, check_flags
 from rkcheck.errors import OptionError
-from rkcheck.api.tableaux import TableauLike
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     DEFAULT_DPS,

@@ -4,10 +4,10 @@ says what each kind of value means), and written forms."""
 from __future__ import annotations
 
 import os
-from typing import Any, Sequence
+from typing import Sequence
 
 from rkcheck.errors import TableauError
-from rkcheck.methods.arrays import FloatMode, entry_of, tableau_from_arrays
+from rkcheck.methods.arrays import entry_of, from_arrays  # from_arrays: public as is
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import DEFAULT_MAX_STAGES
 
@@ -63,29 +63,6 @@ def tableau_warnings(tableau: Tableau, decimals: str = "auto") -> list[str]:
     except UserError as err:
         raise OptionError(err.message, err.place) from None
     return list(tableau.warnings) + consistency_warnings(tableau, bits_for_dps(DEFAULT_DPS), decimals)
-
-
-# ------------------------------------------------------------------ from arrays
-
-
-def from_arrays(
-    A: Any,
-    b: Any,
-    c: Any = None,
-    *,
-    name: str = "unnamed tableau",
-    floats: FloatMode = "exact",
-    max_stages: int = DEFAULT_MAX_STAGES,
-) -> Tableau:
-    """A tableau from arrays: ``A`` (s×s), ``b`` and optionally ``c`` (length s); the same
-    as ``Tableau.from_arrays``.
-
-    Values may be ints, Fractions, strings in rkcheck's grammar, floats (``floats="exact"``:
-    the exact binary value, the default; ``"shortest"``: ``repr(x)`` read as a rounded
-    decimal), Decimals, numpy scalars and arrays, sympy numbers and matrices (see
-    :mod:`rkcheck.methods.arrays` for what each means).  Problems raise
-    :class:`~rkcheck.errors.TableauError` naming the place (``A[2][3]``, 1-based)."""
-    return tableau_from_arrays(A, b, c, name=name, floats=floats, max_stages=max_stages)
 
 
 #: What the API functions accept for a tableau: the object, a path or ``@name``.

@@ -136,7 +136,7 @@ def _as_list(value: Any, place: str) -> list[Any]:
     raise TableauError(f"expected a list or an array, got {type(value).__name__}", place)
 
 
-def tableau_from_arrays(
+def from_arrays(
     A: Any,
     b: Any,
     c: Any = None,
@@ -145,7 +145,8 @@ def tableau_from_arrays(
     floats: FloatMode = "exact",
     max_stages: int = DEFAULT_MAX_STAGES,
 ) -> Tableau:
-    """A tableau from arrays: ``A`` (s×s), ``b`` and optionally ``c`` (length s).
+    """A tableau from arrays: ``A`` (s×s), ``b`` and optionally ``c`` (length s); public
+    as ``rkcheck.from_arrays`` and ``Tableau.from_arrays``.
 
     Values may be ints, Fractions, strings in rkcheck's grammar, floats (``floats="exact"``:
     the exact binary value, the default; ``"shortest"``: ``repr(x)`` read as a rounded

@@ -68,9 +68,9 @@ class Tableau:
     def from_arrays(A: Any, b: Any, c: Any = None, **kwargs: Any) -> "Tableau":
         """A tableau from arrays of ints, Fractions, strings, floats, numpy or sympy values
         (what each means: :mod:`rkcheck.methods.arrays`); ``rkcheck.from_arrays``."""
-        from rkcheck.methods.arrays import tableau_from_arrays
+        from rkcheck.methods.arrays import from_arrays
 
-        return tableau_from_arrays(A, b, c, **kwargs)
+        return from_arrays(A, b, c, **kwargs)
 
     # ----------------------------------------------------------------- structure
 
