@@ -430,8 +430,6 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     field = exact_values.field
     if field is None:
         return scaled_rational(exact_values.A, exact_values.b)
-    from flint import acb, acb_mat, arb, ctx, fmpz, fmpz_poly
-
     g = [Fraction(c) for c in field.minpoly]  # monic
     D = len(g) - 1
     from rkcheck.numbers.algebraic import integral_scale
@@ -453,16 +451,24 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     Ai = [[[int(c * d) for c in v] for v in row] for row in At]
     bi = [[int(c * d) for c in v] for v in bt]
 
-    def upper(x: Any) -> float:  # an arb as a float upper bound
-        return float(x.abs_upper()) * (1 + 2.0**-40)
-
     log2_M, per_embedding = _embedding_bounds(minpoly, Ai, bi)
-    vinv = _vandermonde_inverse_norm(minpoly, upper)
+    vinv = _vandermonde_inverse_norm(minpoly)
     log2_gprime = _log2_derivative_bound(minpoly)
     e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
     assert d % e == 0  # d·x ∈ Z[θ̃] ⊂ O_K, so the least e divides d
     return ScaledTableau(Ai, bi, d, minpoly, log2_M + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
                          per_embedding, e, log2_gprime)
+
+
+@lru_cache(maxsize=8)
+def _complex_roots(minpoly: tuple[int, ...], prec: int) -> list[Any]:
+    """The complex roots of ``minpoly`` as Acb balls at ``prec`` bits, computed once per
+    precision for the three bounds below (use them under the same working precision)."""
+    from flint import ctx, fmpz_poly
+
+    with ctx.workprec(prec):
+        # python-flint's stubs type complex_roots() as acb; it is a list of (acb, multiplicity)
+        return [root for root, _ in cast(list, fmpz_poly(list(minpoly)).complex_roots())]
 
 
 def _log2_upper(x: Any) -> float:
@@ -482,12 +488,12 @@ def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, li
     while a bound exceeds its ball's lower end by more than one bit: in fields of high
     degree (48 for the six Gauss-6 nodes) the entries' coefficients are large and cancel,
     and 128 bits leave balls too wide to bound anything."""
-    from flint import acb, arb, ctx, fmpz_poly
+    from flint import acb, arb, ctx
 
     prec = 128
     while True:
         with ctx.workprec(prec):
-            roots = [root for root, _ in cast(list, fmpz_poly(minpoly).complex_roots())]
+            roots = _complex_roots(tuple(minpoly), prec)
 
             def conj(v: list[int], r) -> Any:
                 acc = acb(0)
@@ -516,29 +522,31 @@ def _log2_derivative_bound(minpoly: list[int]) -> float:
     """An upper bound of ``log₂ max_j |g'(σ_j θ)|`` over the roots of ``g = minpoly``."""
     from flint import acb, ctx, fmpz_poly
 
-    g = fmpz_poly(minpoly)
-    dg = g.derivative()
+    dg = fmpz_poly(minpoly).derivative()
     prec = 128
     while True:
         with ctx.workprec(prec):
-            values = [abs(dg(acb(r))) for r, _ in cast(list, g.complex_roots())]
+            values = [abs(dg(acb(r))) for r in _complex_roots(tuple(minpoly), prec)]
             if all(v.is_finite() for v in values) or prec >= 1 << 14:
                 return max(_log2_upper(v) for v in values)
         prec *= 2
 
 
-def _vandermonde_inverse_norm(minpoly: list[int], upper: Any) -> float:
+def _vandermonde_inverse_norm(minpoly: list[int]) -> float:
     """``‖V⁻¹‖_∞`` for the Vandermonde matrix ``V`` of the roots of ``minpoly``, certified:
     Arb inverts ``V`` only when its balls prove it invertible, so the working precision is
     doubled until they do (128 bits suffice up to degree ~30; the degree-48 field of the
     six Gauss-6 nodes needs more, its conjugates lie close together)."""
-    from flint import acb_mat, arb, ctx, fmpz_poly
+    from flint import acb_mat, arb, ctx
+
+    def upper(x: Any) -> float:  # an arb as a float upper bound
+        return float(x.abs_upper()) * (1 + 2.0**-40)
 
     D = len(minpoly) - 1
     prec = 128
     while True:
         with ctx.workprec(prec):
-            roots = [root for root, _ in cast(list, fmpz_poly(minpoly).complex_roots())]
+            roots = _complex_roots(tuple(minpoly), prec)
             V = acb_mat([[r**k for k in range(D)] for r in roots])
             try:
                 W = V.inv()
