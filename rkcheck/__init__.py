@@ -99,11 +99,9 @@ if TYPE_CHECKING:  # what type checkers and IDEs see; at run time __getattr__ lo
     )
     from rkcheck.api.types import CheckOptions, Tableau
 
-_API = ("Bench", "Catalog", "Condition", "ConditionList", "EnergyCondition", "EnergyOrderFit", "FreeTree", "Kernel",
-        "Perturbation", "RootingTerm", "ScanResult", "ScanRow", "Simulation", "Verification", "WorkPrecision",
-        "bench", "catalog", "conditions", "empirical_energy_order", "energy_condition", "free_trees", "from_arrays",
-        "from_nodepy", "hamiltonian", "kernel", "library", "load", "loads", "new", "new_toml", "perturb", "scan",
-        "simulate", "to_nodepy", "verify", "work_precision", "write")
+# the names rkcheck.api exports (that module imports nothing heavy: each name loads on use)
+from rkcheck.api import __all__ as _API  # noqa: E402
+
 _ERRORS = ("InputError", "OptionError", "RkcheckError", "TableauError", "UnknownMethodError", "UserError")
 _TYPES = ("CheckOptions", "Tableau")
 
