@@ -717,7 +717,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     enough channels for each order's bound.  ``on_pass(done, total)`` after each prime.
     On Ctrl-C, :class:`~rkcheck.evaluation.algorithm.EvaluationInterrupted` carries the
     orders whose primes were all done (low orders need fewer primes: they finish first)."""
-    from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
 
     wanted = sorted(listing.orders if orders is None else orders)
     need = {n: scaled.decision_bits(n, listing.orders[n].max_terms) for n in wanted}
@@ -749,14 +749,9 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     try:
         for i, (p, roots) in enumerate(channels[:passes]):
             orders_i = [n for n in wanted if i < count[n]]
-            if D == 1:
-                sums = condition_sums(listing, scaled.channel(p, roots[0]), scaled.s, orders_i)
-                for n in orders_i:
-                    residues[n][:, i, 0] = sums[n]
-            else:
-                at_p = scaled.residues_at(listing, p, roots, orders_i)
-                for n in orders_i:
-                    residues[n][:, i, :] = at_p[n]
+            at_p = scaled.residues_at(listing, p, roots, orders_i)
+            for n in orders_i:
+                residues[n][:, i, :] = at_p[n]
             done = i + 1
             if on_pass is not None:
                 on_pass(done, passes)
