@@ -312,6 +312,14 @@ class ScaledTableau:
         bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
         return math.ceil(bits) + 2
 
+    def _log2_M_integral(self) -> list[float] | None:
+        """``log₂ M_j`` per complex embedding for the data scaled by the integrality
+        denominator ``e`` instead of ``d`` (None for Q or without the embeddings' data)."""
+        if self.log2_M_embeddings is None or self.integral_d is None:
+            return None
+        shift = math.log2(self.d) - math.log2(self.integral_d)  # scaling by e instead of d
+        return [max(m - shift, 0.0) for m in self.log2_M_embeddings]
+
     def dual_value_bits(self, n: int, terms: int) -> int | None:
         """Bits that bound the coefficients of ``X = g'(θ)·N_e`` (None without the
         embeddings' data).  ``N_e = N/(d/e)^(n−1)`` is an algebraic integer and
@@ -320,10 +328,10 @@ class ScaledTableau:
         are at most ``max_j |g'(σ_j θ)| · B_j`` with ``e`` in place of ``d``.  In a field of
         high degree this is far below :meth:`coefficient_bits`, which grows with log₂ d
         per vertex (1236 bits for HBVM(6, σ), against log₂ e = 19)."""
-        if self.log2_M_embeddings is None or self.integral_d is None or self.log2_gprime is None:
+        per_embedding = self._log2_M_integral()
+        if per_embedding is None or self.log2_gprime is None:
             return None
-        shift = math.log2(self.d) - math.log2(self.integral_d)
-        top = max(max(m - shift, 0.0) for m in self.log2_M_embeddings)
+        top = max(per_embedding)
         bits = ((n - 1) * top + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
                 + self.log2_Vinv + self.log2_gprime)
         return math.ceil(bits) + 2
@@ -332,10 +340,10 @@ class ScaledTableau:
         """Bits ``b`` such that all-zero residues over primes with ``Π p > 2^b`` prove a
         condition with ``n`` vertices and ``terms`` terms zero: ``(1/D) Σ_j log₂ B_j``
         with the integrality denominator (the norm argument of the module docstring)."""
-        if self.log2_M_embeddings is None or self.integral_d is None:
+        per_embedding = self._log2_M_integral()
+        if per_embedding is None:
             return self.coefficient_bits(n, terms)
-        shift = math.log2(self.d) - math.log2(self.integral_d)  # scaling by e instead of d
-        mean = sum(max(m - shift, 0.0) for m in self.log2_M_embeddings) / len(self.log2_M_embeddings)
+        mean = sum(per_embedding) / len(per_embedding)
         bits = (n - 1) * mean + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
         return math.ceil(bits + 1e-6) + 1
 
