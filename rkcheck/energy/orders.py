@@ -132,17 +132,14 @@ def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arith
             table.grow_to(p)
             ids = np.arange(table.first[p], table.first[p + 1])
             gamma = table.gamma(ids)
-            # |γ(t)·â(t)| <= p!·M^p (the bound of an order-p sum with one term) and
-            # d^p has p·log2(d) bits
-            bits = scaled.coefficient_bits(p + 1, 1) + math.ceil(p * math.log2(scaled.d)) + 1
-            if scaled.log2_M_embeddings is not None and scaled.integral_d is not None:
-                # in a number field, the norm argument of rkcheck.evaluation.modular:
-                # γ(t)·e^p·a(t) − e^p is an algebraic integer, in embedding j at most
-                # p!·M_j^p + e^p (M_j with e in place of d) <= 2^(log2 B_j + p·log2 e + 1)
-                # (B_j >= 1), so zero residues over Π q > 2^bits prove it zero.  The
-                # coefficient bound above grows with log2 d per vertex (1236 bits for
-                # HBVM(6, σ)), this one with log2 e (19 bits there)
-                bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(scaled.integral_d)) + 1
+            # γ(t)·e^p·a(t) − e^p is an algebraic integer (e the integrality denominator,
+            # = d over Q), in embedding j at most p!·M_j^p + e^p (M_j with e in place of
+            # d) <= 2^(log2 B_j + p·log2 e + 1) (B_j >= 1): zero residues over
+            # Π q > 2^bits prove it zero (the norm argument of rkcheck.evaluation.modular;
+            # over Q its one embedding).  With d instead of e the bound would grow with
+            # log2 d per vertex (1236 bits for HBVM(6, σ), against 19 for e)
+            e = scaled.integral_d or scaled.d
+            bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(e)) + 1
             primes = scaled.primes_for(bits)
             while len(channels) < sum(len(r) for _, r in primes):
                 q, roots = primes[len({c[0] for c in channels})]
