@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 from typing import Any, Callable
 
-from rkcheck.errors import TableauError, UserError
+from rkcheck.errors import UserError
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry, TableauEntry
@@ -232,14 +232,10 @@ class _Latex(_Code):
 
 
 def _node(e: TableauEntry) -> ex.Expr:
-    """The expression of an entry.  A coefficient computed by a family has none: a rational
-    one is its value; the others are known only numerically."""
-    if isinstance(e, Entry):
-        return e.node
-    if e.exact is not None:
-        return ex.parse(str(e.exact))
-    raise TableauError("a family computed at the working precision has no exact entries; write it with "
-                       "rkcheck new first")
+    """The expression of an entry.  :func:`write` has already turned a family's computed
+    coefficients into written entries (:func:`_as_written`), so every entry has one."""
+    assert isinstance(e, Entry), "write() passes written tableaux only"
+    return e.node
 
 
 def _entries(tab: Tableau) -> tuple[list[list[ex.Expr]], list[ex.Expr], list[ex.Expr] | None]:
