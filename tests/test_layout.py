@@ -95,14 +95,16 @@ def cli_import_allowed(module: str) -> bool:
 
 
 def root_public_names() -> set[str]:
-    """The names ``rkcheck/__init__.py`` exports (its tuples ``_API``, ``_ERRORS``,
-    ``_TYPES``, read from the source), and ``__version__``."""
-    tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
+    """The names ``rkcheck/__init__.py`` exports (its tuples ``_ERRORS`` and ``_TYPES``,
+    and ``_API``, which is ``rkcheck/api/__init__.py``'s ``__all__``; read from the
+    sources), and ``__version__``."""
     names = {"__version__"}
-    for node in tree.body:
-        if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id in ("_API", "_ERRORS", "_TYPES")
-                                                for t in node.targets):
-            names |= set(ast.literal_eval(node.value))
+    for path, wanted in ((PACKAGE / "__init__.py", ("_ERRORS", "_TYPES")), (PACKAGE / "api" / "__init__.py", ("__all__",))):
+        for node in ast.parse(path.read_text(encoding="utf-8")).body:
+            if isinstance(node, (ast.Assign, ast.AnnAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                if any(isinstance(t, ast.Name) and t.id in wanted for t in targets) and node.value is not None:
+                    names |= set(ast.literal_eval(node.value))
     return names
 
 
