@@ -272,7 +272,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
 
     title = f"files under {root}/" if root else None
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False, title=title, title_justify="left")
-    t.add_column("file", no_wrap=True, overflow="fold")
+    t.add_column("file", overflow="fold")  # a long path folds; the columns after it never shrink
     t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=26)
     for col in ("s", "m", "classical", "energy") + (("C",) if constants else ()):
         t.add_column(col, justify="right", no_wrap=True)
@@ -300,6 +300,13 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
         t.add_row(*plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
                          "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}"))
+    # rich shrinks every column of a table wider than the console, truncating short ones
+    # ("ener…"): the verdict columns keep their full width, the file path folds instead
+    from rich.cells import cell_len
+
+    for column in t.columns[2:]:
+        texts = [str(column.header)] + [c.plain if isinstance(c, Text) else str(c) for c in column.cells]
+        column.min_width = max(cell_len(x) for x in texts)
     console.print(t)
     for o in outcomes:
         if o["status"] == "error":

@@ -81,3 +81,16 @@ def test_catalog_columns_and_ranking():
     line = next(x for x in text.splitlines() if x.startswith("- m=4, energy order 3:"))
     ranked = [part.split("`")[1] for part in line.split(":", 1)[1].split(" < ")]
     assert ranked == sorted(ORDER3, key=lambda p: reference_constant_squared(p, 4)[1])
+
+
+def test_a_long_path_folds_and_the_verdict_columns_keep_their_width(capsys, tmp_path):
+    # found by a new user: in a clone under a long folder, the one-file scan's absolute
+    # path squeezed every column to "ener…"; the path must fold instead
+    deep = tmp_path / ("a" * 60) / ("b" * 60)
+    deep.mkdir(parents=True)
+    (deep / "rk4.toml").write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    out = run_cli(capsys, "scan", str(deep / "rk4.toml"), "--jobs", "1", "--sort", "energy").out
+    header = next(line for line in out.splitlines() if "energy" in line)
+    assert header.split()[:7] == ["file", "method", "s", "m", "classical", "energy", "C"]
+    assert "0.015 " in out  # RK4's C in full, not "0.0…"
+    assert "rk4.toml" in out and "…" not in header
