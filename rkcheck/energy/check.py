@@ -130,8 +130,8 @@ class ConditionResults(Sequence[ConditionResult]):
             for k in self._presentation(o):
                 yield self.result(o.vertices, int(k))
 
-    def with_state(self, state: str) -> Iterator[ConditionResult]:
-        """The conditions in a state, in presentation order, without building the others."""
+    def _positions(self, state: str) -> Iterator[tuple[int, int]]:
+        """``(vertices, k)`` of the conditions in a state, in presentation order."""
         code = _CODE[state]
         for o in self.orders.values():
             hits = np.flatnonzero(o.state == code)
@@ -139,7 +139,20 @@ class ConditionResults(Sequence[ConditionResult]):
                 continue
             seqs = {int(k): self.listing.record(o.vertices, int(k)).level_sequence for k in hits}
             for k in sorted(seqs, key=seqs.__getitem__):
-                yield self.result(o.vertices, k)
+                yield o.vertices, k
+
+    def with_state(self, state: str) -> Iterator[ConditionResult]:
+        """The conditions in a state, in presentation order, without building the others."""
+        for n, k in self._positions(state):
+            yield self.result(n, k)
+
+    def first_record(self, state: str) -> ConditionRecord | None:
+        """The record of the first condition in a state, without its value: an exact
+        value in a field of high degree needs the coefficients' prime budget for the
+        whole order (7 s for HBVM(6, 3) at 14 vertices), where the id needs nothing."""
+        for n, k in self._positions(state):
+            return self._record(self.orders[n], k)
+        return None
 
     def count(self, state: str) -> int:
         code = _CODE[state]
@@ -250,7 +263,7 @@ class CheckResult:
         to the checked order N holds, not proven beyond) or the exact energy order ``n``."""
         if self.energy_order_all:
             return "all"
-        if self.first_failure is None:
+        if not len(self.failures):
             return f"≥ {self.options.order}"
         return str(self.energy_order)
 
@@ -451,24 +464,24 @@ def check(tableau: Tableau, options: CheckOptions, arithmetic: str = "auto", bud
     per_order = per_order_counts(listing, orders)
     energy_order = energy_order_of(per_order, options.order)
     failures = Failures(results)
-    first = failures[0] if len(failures) else None
+    first = results.first_record(FAILS)
     if first is not None:
         # A certificate "to D digits" is refuted by a condition that certainly fails; an
         # exact certificate cannot be, so that would be a bug.
         if avf is not None and avf.equals_avf:
             if avf.verdict.state != HOLDS_TO_DIGITS:
-                raise AssertionError(f"internal inconsistency: exact AVF but {first.condition.id} fails")
+                raise AssertionError(f"internal inconsistency: exact AVF but {first.id} fails")
             avf = AvfVerdict(
                 avf.degree, Verdict(FAILS),
-                f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.condition.id} certainly fails",
+                f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.id} certainly fails",
                 avf.reduced_stages, avf.stages, avf.kept, avf.s_min, avf.notes,
             )
         if cert is not None and cert.certified:
             if cert.verdict.state != HOLDS_TO_DIGITS:
-                raise AssertionError(f"internal inconsistency: exact certificate but {first.condition.id} fails")
-            cert = cert.refuted(first.condition.id)
+                raise AssertionError(f"internal inconsistency: exact certificate but {first.id} fails")
+            cert = cert.refuted(first.id)
     energy_all = bool(cert and cert.certified)
-    first_label = f"condition {first.condition.id} ({first.condition.bracket})" if first else None
+    first_label = f"condition {first.id} ({first.bracket})" if first else None
     # Theorem 1 concludes "beyond order N" only from exact holds (per-order counts, so
     # that millions of conditions are not visited one by one)
     min_digits = min((p.min_digits for p in per_order if p.min_digits is not None), default=None)

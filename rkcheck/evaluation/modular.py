@@ -386,15 +386,36 @@ class ScaledTableau:
         return roots if len(roots) == self.degree else None
 
     def _images(self, p: int, root: int) -> tuple[np.ndarray, np.ndarray]:
-        def image(coeffs: Sequence[int]) -> int:
-            acc = 0
-            for c in reversed(coeffs):
-                acc = (acc * root + c) % p
-            return acc
+        """The entries' images under θ ↦ root (mod p): int64 arrays shaped like A and b."""
+        cache = self.__dict__.setdefault("_image_cache", {})
+        if p not in cache:
+            cache.clear()  # primes are visited one after another: keep one
+            roots = self._roots_of(p)
+            # all entries at all roots of p as one product (coefficients × powers of the
+            # roots) over Python integers: Horner's scheme per entry and root cost 3 s of
+            # a 48-degree field's check
+            D = self.degree
+            coeffs = np.array([[c % p for c in x] for x in [x for row in self.A for x in row] + self.b], dtype=object)
+            powers = np.empty((D, len(roots)), dtype=object)
+            for j, r in enumerate(roots):
+                acc = 1
+                for k in range(D):
+                    powers[k, j] = acc
+                    acc = acc * r % p
+            values = (coeffs[:, :D].dot(powers) % p).astype(np.int64)
+            s = self.s
+            cache[p] = ({r: j for j, r in enumerate(roots)}, values[: s * s].reshape(s, s, -1), values[s * s:])
+        index, A, b = cache[p]
+        j = index[root]
+        return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
 
-        A = np.array([[image(x) for x in row] for row in self.A], dtype=np.int64)
-        b = np.array([image(x) for x in self.b], dtype=np.int64)
-        return A, b
+    def _roots_of(self, p: int) -> list[int]:
+        for q, roots in getattr(self, "_split", ()):
+            if q == p:
+                return roots
+        roots = self._roots_mod(p)
+        assert roots is not None, "a channel prime must split the minimal polynomial"
+        return roots
 
     def channel(self, p: int, root: int) -> ModularChannel:
         return ModularChannel(p, *self._images(p, root))
@@ -568,26 +589,23 @@ def _vandermonde_inverse_norm(minpoly: list[int]) -> float:
 
 def integrality_denominator(values: Sequence[Any], field: Any) -> int:
     """The least positive integer ``e`` with ``e·x`` an algebraic integer for every ``x``:
-    the lcm over the entries of the least ``λ`` that makes ``λ^D χ_x(X/λ)`` integral, with
-    ``χ_x`` the characteristic polynomial of multiplication by ``x`` (a power of ``x``'s
-    minimal polynomial, so integral exactly when ``x`` is; Gauss's lemma)."""
-    from flint import fmpq, fmpq_mat
-
+    the lcm over the entries of the least ``λ`` that makes ``λ^m P(X/λ)`` integral, with
+    ``P`` the minimal polynomial of ``x`` (of degree m; by Gauss's lemma ``x`` is integral
+    exactly when P has integer coefficients)."""
     from rkcheck.numbers.algebraic import integral_scale
 
-    D = len(field.minpoly) - 1
-    basis = [field([Fraction(int(i == k)) for i in range(D)]) for k in range(D)]
     e = 1
+    seen = set()
     for x in values:
         x = field(x)
         q = x.rational()
         if q is not None:
             e = math.lcm(e, q.denominator)
             continue
-        columns = [(x * bk).coeffs for bk in basis]
-        m = fmpq_mat(D, D, [fmpq(c.numerator, c.denominator) for i in range(D) for c in [columns[k][i] for k in range(D)]])
-        chi = [Fraction(int(c.p), int(c.q)) for c in m.charpoly().coeffs()]
-        e = math.lcm(e, integral_scale(chi))
+        key = tuple(x.coeffs)
+        if key not in seen:
+            seen.add(key)
+            e = math.lcm(e, integral_scale(x.minimal_polynomial()))
     return e
 
 

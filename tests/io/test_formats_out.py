@@ -146,9 +146,9 @@ def test_family_tableaux_write_files_that_read_back(params, fmt):
     got_A, got_b = back.enclosures(200, "auto")
     for w, g in zip([x for row in want_A for x in row] + list(want_b), [x for row in got_A for x in row] + list(got_b)):
         assert abs(w.mid - g.mid) < Fraction(1, 10**55), (w, g)
-    # Gauss-3 is exact in Q(√15); HBVM(6, 3)'s field (degree 144) is above the cap of 32,
-    # and 60-digit decimals are a box
-    assert back.is_exact("auto") == (params == {"name": "gauss", "s": 3})
+    # Gauss-3 is exact in Q(√15), HBVM(6, 3) in the field of degree 48 of its root(p, k)
+    # nodes; Gauss-9's 60-digit decimals are a box
+    assert back.is_exact("auto") == (params != {"name": "gauss", "s": 9})
 
 
 def test_cli_new_classic_round_trip(capsys):

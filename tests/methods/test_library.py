@@ -45,10 +45,6 @@ def test_every_shipped_tableau_meets_its_claims(path):
 # polynomial (directly or as a [family]) is decided exactly, so its claims are met by
 # proof, not to digits; only decimal tableaux are numerical.
 ALGEBRAIC = [f for f in FILES if not load(f).is_rational and not load(f).is_box("auto")]
-#: HBVM(6, σ) over 6 Gauss nodes: their field is the splitting field of P6, of degree
-#: |Gal| = 48 (tests/numbers/test_algebraic.py), beyond the limit of 32 (definitions: the
-#: field-degree cap; the builder refuses at its estimate "up to 144"); checked in balls
-BEYOND_FIELD_LIMIT = {"hbvm-6-2", "hbvm-6-3"}
 
 
 def test_the_library_has_algebraic_tableaux():
@@ -57,10 +53,9 @@ def test_the_library_has_algebraic_tableaux():
 
 @pytest.mark.parametrize("path", ALGEBRAIC, ids=[str(Path(f).relative_to(TABLEAUX)) for f in ALGEBRAIC])
 def test_every_shipped_algebraic_tableau_is_checked_exactly(path):
+    # HBVM(6, σ) included: the six Gauss-6 nodes generate the splitting field of P6, of
+    # degree |Gal| = 48 (tests/numbers/test_algebraic.py), the largest field shipped
     tab = load(path)
-    if Path(path).stem in BEYOND_FIELD_LIMIT:
-        assert not tab.is_exact("auto") and "more than 32" in tab.exact_reason
-        return
     assert tab.is_exact("auto"), getattr(tab, "exact_reason", None)
     res = check(tab, CheckOptions(order=8))
     assert res.backend == "exact"

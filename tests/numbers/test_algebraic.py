@@ -138,6 +138,60 @@ def test_the_six_gauss_6_nodes_generate_a_field_of_the_galois_groups_order():
     r = field_of([ex.parse(f"root({GAUSS6}, {k})") for k in range(1, 7)], max_degree=48)
     assert r.field.degree == _galois_order(GAUSS6) == 48
     assert all(r.values[5 - i] == 1 - r.values[i] for i in range(3))
-    # with the cap of 32 it is still a clear refusal
+    # below the field's degree the cap is a clear refusal
     with pytest.raises(NotAlgebraic, match="more than 32"):
-        field_of([ex.parse(f"root({GAUSS6}, {k})") for k in range(1, 7)])
+        field_of([ex.parse(f"root({GAUSS6}, {k})") for k in range(1, 7)], max_degree=32)
+
+
+# ------------------------------------------------ minimal polynomials, enclosures
+
+MINPOLY_CASES = [
+    ("sqrt(2) + sqrt(3)", sp.sqrt(2) + sp.sqrt(3)),
+    ("(1 + sqrt(5))/2 - 3/7", (1 + sp.sqrt(5)) / 2 - sp.Rational(3, 7)),
+    ("root(x^3 - 3*x + 1, 2)^2 + 1/3", sp.CRootOf(sp.Symbol("x")**3 - 3 * sp.Symbol("x") + 1, 1)**2 + sp.Rational(1, 3)),
+    ("sqrt(5/36 + sqrt(70)/126)/7", sp.sqrt(sp.Rational(5, 36) + sp.sqrt(70) / 126) / 7),
+]
+
+
+def _sympy_minpoly(expr):
+    X = sp.Symbol("X")
+    coeffs = sp.Poly(sp.minimal_polynomial(expr, X), X).monic().all_coeffs()[::-1]
+    return [Fraction(int(sp.Rational(c).p), int(sp.Rational(c).q)) for c in coeffs]
+
+
+@pytest.mark.parametrize("text, expr", MINPOLY_CASES, ids=[t for t, _ in MINPOLY_CASES])
+def test_minimal_polynomial_agrees_with_sympy(text, expr):
+    # the element sits in a larger field (with sqrt(11) and a Gauss-4 node adjoined), so
+    # its minimal polynomial is a proper factor of its characteristic polynomial
+    r = _values(text, "sqrt(11)", f"root({GAUSS4}, 1)")
+    assert r.field.degree > len(_sympy_minpoly(expr)) - 1
+    assert r.values[0].minimal_polynomial() == _sympy_minpoly(expr)
+
+
+def test_minimal_polynomial_without_the_numerics_is_the_same(monkeypatch):
+    # the exact route (factoring the characteristic polynomial) where the numerical
+    # candidate is unavailable gives the same answer
+    from rkcheck.numbers.algebraic import FieldElement
+
+    r = _values("sqrt(2) + sqrt(3)/5", f"root({GAUSS4}, 2)")
+    fast = r.values[0].minimal_polynomial()
+    monkeypatch.setattr(FieldElement, "_minpoly_candidate", lambda self, prec: None)
+    assert r.values[0].minimal_polynomial() == fast == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3) / 5)
+
+
+def test_a_wrong_numerical_candidate_is_never_returned(monkeypatch):
+    # the numerics only propose: a candidate that is not a root is refused, exactly
+    from rkcheck.numbers.algebraic import FieldElement
+
+    r = _values("sqrt(2) + sqrt(3)")
+    monkeypatch.setattr(FieldElement, "_minpoly_candidate", lambda self, prec: [Fraction(-1), Fraction(0), Fraction(1)])
+    assert r.values[0].minimal_polynomial() == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3))
+
+
+@pytest.mark.parametrize("text, expr", MINPOLY_CASES, ids=[t for t, _ in MINPOLY_CASES])
+def test_enclosure_contains_the_value_in_a_larger_field(text, expr):
+    r = _values(text, "sqrt(11)", f"root({GAUSS4}, 3)")
+    iv = r.values[0].enclosure(300)
+    assert iv.hi - iv.lo <= Fraction(1, 2**300)
+    truth = sp.Rational(str(sp.N(expr, 150)))
+    assert abs(iv.mid - Fraction(int(truth.p), int(truth.q))) < Fraction(1, 10**140)
