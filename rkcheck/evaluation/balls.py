@@ -58,11 +58,11 @@ def _ball_at(x: Interval, bits: int, shift: int) -> tuple[int, float, float]:
 
 def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
                       vertices: int | None = None):
-    """The ball context for trees with up to ``vertices`` vertices: float64 digit
-    mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster) when the
-    precision and the size of the weights allow it, else :class:`BallContext`
-    (``vertices=None``: always)."""
-    if vertices is not None and bits <= LIMB_MAX_BITS:
+    """The ball context for trees with up to ``vertices`` vertices: int64 digit
+    mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster on large
+    listings) when the listing is large and the precision and the size of the weights
+    allow it, else :class:`BallContext` (``vertices=None``: always)."""
+    if vertices is not None and vertices >= LIMB_MIN_VERTICES and bits <= LIMB_MAX_BITS:
         from rkcheck.evaluation.limbs import LimbBallContext
 
         ctx = LimbBallContext.create(A, b, bits, vertices)
@@ -71,9 +71,12 @@ def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bi
     return BallContext(A, b, bits)
 
 
-#: Up to this many working bits the float64 digits are faster than Python integers
-#: (measured: benchmarks/bench_engine.py and the module docstring of limbs).
+#: Up to this many working bits the int64 digits are faster than Python integers, from
+#: this many vertices on (below, numpy's cost per call dominates: at 11 to 13 vertices
+#: the digits took 1.2–3× the time of Python integers, at 15 and 17 about 0.7×; measured
+#: with benchmarks/bench_engine.py's tableau at 15, 50, 80 and 110 digits).
 LIMB_MAX_BITS = 400
+LIMB_MIN_VERTICES = 15
 
 
 class BallContext:

@@ -25,7 +25,7 @@ import rkcheck.evaluation.algorithm as algorithm
 import rkcheck.trees.classes as classes
 import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
-from rkcheck.evaluation.balls import BallContext, certified_context
+from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext, certified_context
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
 from rkcheck.numbers.intervals import Interval
@@ -63,16 +63,16 @@ def assert_encloses(listing, A, b, ctx, tol):
 @pytest.mark.parametrize("dps", [15, 50, 110])
 def test_digit_balls_enclose_the_exact_values(seed, dps):
     A, b = small_tableau(seed)
-    ctx = certified_context(*points(A, b), bits_for_dps(dps), vertices=9)
-    assert isinstance(ctx, LimbBallContext)
+    ctx = LimbBallContext.create(*points(A, b), bits_for_dps(dps), vertices=9)
+    assert ctx is not None
     assert_encloses(ConditionListing(8, None), A, b, ctx, Fraction(1, 10**dps))
 
 
 @pytest.mark.parametrize("seed", range(3))
 def test_tiny_entries_keep_absolute_precision(seed):
     A, b = small_tableau(seed, Fraction(1, 10**30))
-    ctx = certified_context(*points(A, b), bits_for_dps(50), vertices=8)
-    assert isinstance(ctx, LimbBallContext)
+    ctx = LimbBallContext.create(*points(A, b), bits_for_dps(50), vertices=8)
+    assert ctx is not None
     assert_encloses(ConditionListing(7, None), A, b, ctx, Fraction(1, 10**50))
 
 
@@ -87,8 +87,8 @@ def test_wide_intervals_enclose_every_point_of_the_box(seed):
         return Interval(m - half, m + half)
 
     S, P = [[box(x) for x in r] for r in A], [box(x) for x in b]
-    ctx = certified_context(S, P, bits_for_dps(50), vertices=9)
-    assert isinstance(ctx, LimbBallContext)
+    ctx = LimbBallContext.create(S, P, bits_for_dps(50), vertices=9)
+    assert ctx is not None
     listing = ConditionListing(8, None)
     sums = condition_sums(listing, ctx, len(b))
     rng = random.Random(seed)
@@ -106,21 +106,29 @@ def test_wide_intervals_enclose_every_point_of_the_box(seed):
 def test_chunked_digit_balls_are_bit_identical(monkeypatch):
     A, b = small_tableau(4)
     S, P = points(A, b)
-    whole = condition_sums(ConditionListing(9, None), certified_context(S, P, 200, vertices=10), len(b))
+    whole = condition_sums(ConditionListing(9, None), LimbBallContext.create(S, P, 200, vertices=10), len(b))
     monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
     monkeypatch.setattr(classes, "_CHUNK", 7)
     monkeypatch.setattr(table_module, "_CHUNK", 7)
     monkeypatch.setattr("rkcheck.evaluation.limbs._BLOCK", 3)
-    chunked = condition_sums(ConditionListing(9, None), certified_context(S, P, 200, vertices=10), len(b))
+    chunked = condition_sums(ConditionListing(9, None), LimbBallContext.create(S, P, 200, vertices=10), len(b))
     for n in whole:
         assert list(chunked[n].mids) == list(whole[n].mids)
+
+
+def test_large_listings_of_small_weights_use_digits():
+    A = [[Fraction(1, 3), Fraction(1, 7)], [Fraction(-2, 9), Fraction(1, 3)]]
+    b = [Fraction(1, 2), Fraction(1, 2)]
+    assert isinstance(certified_context(*points(A, b), bits_for_dps(50), vertices=LIMB_MIN_VERTICES), LimbBallContext)
+    assert type(certified_context(*points(A, b), bits_for_dps(50), vertices=LIMB_MIN_VERTICES - 1)) is BallContext
+    assert type(certified_context(*points(A, b), bits_for_dps(50))) is BallContext
 
 
 @pytest.mark.parametrize("entries, dps", [(Fraction(10**6), 50), (Fraction(1, 3), 200), (Fraction(1, 3), 1000)])
 def test_large_entries_and_high_precision_use_python_integers(entries, dps):
     A = [[entries, Fraction(1, 7)], [Fraction(-2, 9), entries]]
     b = [Fraction(1, 2), Fraction(1, 2)]
-    ctx = certified_context(*points(A, b), bits_for_dps(dps), vertices=7)
+    ctx = certified_context(*points(A, b), bits_for_dps(dps), vertices=LIMB_MIN_VERTICES)
     assert type(ctx) is BallContext
     assert_encloses(ConditionListing(6, None), A, b, ctx, Fraction(1, 10**dps) * 10**40)
 
@@ -182,3 +190,24 @@ def _mid(iv: Interval, P: int) -> int:
     from rkcheck.evaluation.balls import _ball_at
 
     return _ball_at(iv, P, 0)[0]
+
+
+@pytest.mark.slow
+def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
+    # the benchmark's dense tableau to 15 vertices (13 102 conditions): the path of
+    # `verify --arithmetic ball`, against the exact engine's values
+    from rkcheck.evaluation.backends import evaluate
+    from rkcheck.methods.tableau import Tableau
+    from rkcheck.trees.listing import condition_listing
+
+    A = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],
+         ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]
+    tableau = Tableau.from_values(A, ["1/5", "3/10", "1/4", "1/4"])
+    listing = condition_listing(14, None)
+    assert max(listing.orders) >= LIMB_MIN_VERTICES
+    balls = evaluate(listing, tableau, 50, "rounded", arithmetic="ball")
+    exact = evaluate(listing, tableau, 50, "rounded", arithmetic="exact")
+    for n, sums in balls.orders.items():
+        for k in range(len(sums)):
+            e, t = sums.enclosure(k), exact.orders[n].value(k)
+            assert abs(e.mid - t) <= e.rad and e.rad < Fraction(1, 10**50), (n, k)
