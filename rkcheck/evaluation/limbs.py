@@ -1,11 +1,11 @@
-"""Certified balls whose mid-points are multi-digit fixed-point numbers in int64 arrays
+"""Certified balls whose mid-points are multi-digit fixed-point numbers in integer arrays
 (definitions §5): the faster form of :class:`~rkcheck.evaluation.balls.BallContext` for
 working precisions up to a few hundred bits (:func:`~rkcheck.evaluation.balls.certified_context`
 chooses).
 
 A value is a ball ``m·2^−P ± r`` as in :class:`~rkcheck.evaluation.balls.BallContext`,
 but the mid-point ``m = Σ_j d_j·2^(β·j)`` is held as ``L = F + 1`` *digits* ``d_j`` of
-``β`` bits in the last axis of an int64 array (``P = F·β ≥`` the working bits; digit
+``β ≤ 30`` bits in the last axis of an int32 array (``P = F·β ≥`` the working bits; digit
 ``F`` is the integer part, signed; the others lie in ``[0, 2^β)``).  ``β`` is the widest
 such that ``s·L`` digit products sum below ``2^62``: every digit convolution (an
 elementwise product) and every digit matrix product (``x Aᵀ``, ``x b``) is exact in
@@ -27,11 +27,13 @@ anyway.  The condition sums ``Σ c·w`` are exact (each ``c·w`` carried to digi
 — and carried again) and end as Python integers in the
 :class:`~rkcheck.evaluation.balls.BallSums` of the object context.
 
-Measured (dense 4-stage tableau, 50 digits, β = 28, L = 9): about 30 % less CPU time than
-the Python-integer balls at orders 14 and 16; the digit convolution costs about as much
-as a 200-bit Python product, the gain is in the matrix products (16 products and 4 shifts
-of Python integers per row).  float64 digits with BLAS products were slower (two carry
-passes per product, BLAS threads on small matrices).
+Measured (dense 4-stage tableau, 50 digits, β = 28, L = 9, A/B in one session): about
+30 % less time than the Python-integer balls at orders 14, 16 and 18, and 26–30 % less
+peak memory (digits stored as int32: 36 bytes a mid-point against about 64).  The digit
+convolution costs about as much as a 200-bit Python product; the gain is in the matrix
+products (16 products and 4 shifts of Python integers per row) and the smaller gathers.
+float64 digits with BLAS products were slower (two carry passes per product, BLAS
+threads on small matrices).
 """
 
 from __future__ import annotations
@@ -50,6 +52,8 @@ from rkcheck.numbers.intervals import Interval
 _EXACT = 2.0**62
 #: rows per block of the digit arithmetic (its temporaries stay in the cache)
 _BLOCK = 8192
+#: stored digits: below 2^30 (β <= 30), so int32 holds them; the arithmetic is int64
+_STORE = np.int32
 
 
 def _layout(bits: int, s: int) -> tuple[int, int] | None:
@@ -125,7 +129,7 @@ class LimbBallContext:
         """The integers ``Σ_j d_j 2^(β·j)`` of int64 digits ``(n, K)`` (any K, each digit
         below 2^(62−β) in magnitude), as Python ints."""
         beta = self.digit_bits
-        d = digits
+        d = digits.astype(np.int64)
         if d.shape[1] % 2:
             d = np.concatenate([d, np.zeros((d.shape[0], 1), dtype=np.int64)], axis=1)
         # pairs of digits first, in int64: |d_0 + d_1·2^β| < 2^(62−β)·(1 + 2^β) < 2^63
@@ -159,18 +163,18 @@ class LimbBallContext:
     # ------------------------------------------------------------- kernel
 
     def vectors(self, n: int, s: int):
-        return (np.zeros((n, s, self.L), dtype=np.int64), np.zeros((n, s)), np.zeros((n, s)))
+        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)))
 
     def scalars(self, n: int):
-        return (np.zeros((n, self.L), dtype=np.int64), np.zeros(n), np.zeros(n))
+        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n))
 
     def ones(self, k: int, s: int):
-        mid = np.zeros((k, s, self.L), dtype=np.int64)
+        mid = np.zeros((k, s, self.L), dtype=_STORE)
         mid[..., self.F] = 1
         return (mid, np.zeros((k, s)), np.ones((k, s)))
 
     def one(self, k: int):
-        mid = np.zeros((k, self.L), dtype=np.int64)
+        mid = np.zeros((k, self.L), dtype=_STORE)
         mid[:, self.F] = 1
         return (mid, np.zeros(k), np.ones(k))
 
@@ -186,10 +190,11 @@ class LimbBallContext:
         ym, yr, yg = y
         L, K0 = self.L, self.K0
         xf, yf = xm.reshape(-1, L), ym.reshape(-1, L)
-        out = np.empty_like(xf)
+        out = np.empty(xf.shape, dtype=_STORE)
         for a0 in range(0, len(xf), _BLOCK):
             # digits first within the block: every numpy call runs over contiguous rows
-            xb, yb = xf[a0:a0 + _BLOCK].T.copy(), yf[a0:a0 + _BLOCK].T.copy()
+            xb = np.ascontiguousarray(xf[a0:a0 + _BLOCK].T, dtype=np.int64)
+            yb = np.ascontiguousarray(yf[a0:a0 + _BLOCK].T, dtype=np.int64)
             z = np.zeros((self.K, xb.shape[1]), dtype=np.int64)
             for i in range(L):
                 jlo = max(0, K0 - i)
@@ -205,9 +210,9 @@ class LimbBallContext:
         """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b."""
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
-        out = np.empty((n, outputs, L), dtype=np.int64)
+        out = np.empty((n, outputs, L), dtype=_STORE)
         for a0 in range(0, n, _BLOCK):
-            xb = np.ascontiguousarray(xm[a0:a0 + _BLOCK].transpose(1, 2, 0))  # (s, L, m)
+            xb = np.ascontiguousarray(xm[a0:a0 + _BLOCK].transpose(1, 2, 0), dtype=np.int64)  # (s, L, m)
             z = np.zeros((self.K, outputs, xb.shape[2]), dtype=np.int64)
             for j in range(self.s):
                 for l in range(L):
@@ -273,7 +278,7 @@ class LimbBallContext:
         cond = terms.condition[i0:i1]
         for a0 in range(0, i1 - i0, _BLOCK):
             a1 = min(i1 - i0, a0 + _BLOCK)
-            w_t = w_terms[0][a0:a1].T.copy()  # (L, m)
+            w_t = np.ascontiguousarray(w_terms[0][a0:a1].T, dtype=np.int64)  # (L, m)
             cw_t = cdig[idx[a0:a1]].T.copy()  # (C, m)
             V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
             for j in range(C):
