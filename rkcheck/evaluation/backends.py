@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.algorithm import condition_sums
-from rkcheck.evaluation.balls import BallContext, FloatContext
+from rkcheck.evaluation.balls import BallContext, FloatContext, certified_context
 from rkcheck.evaluation.modular import (
     ScaledTableau,
     exact_condition_sums,
@@ -62,9 +62,9 @@ def scaled_tableau(tableau, decimals: str) -> ScaledTableau | None:
     return None
 
 
-def ball_context(tableau, dps: int, decimals: str, enclosures=None) -> BallContext:
+def ball_context(tableau, dps: int, decimals: str, enclosures=None, vertices: int | None = None) -> BallContext:
     A, b = enclosures or tableau.enclosures(entry_bits(dps), decimals)
-    return BallContext(A, b, bits_for_dps(dps))
+    return certified_context(A, b, bits_for_dps(dps), vertices)
 
 
 def float_context(tableau, decimals: str = "auto") -> FloatContext:
@@ -91,8 +91,8 @@ def evaluate(listing, tableau, dps: int, decimals: str, arithmetic: str = "auto"
         scaled = scaled_tableau(tableau, decimals)
         assert scaled is not None  # choose_backend said the entries are exact
         return Evaluation("exact", exact_condition_sums(scaled, listing, orders, progress), scaled)
-    ctx = ball_context(tableau, dps, decimals, enclosures)
     wanted = sorted(listing.orders if orders is None else orders)
+    ctx = ball_context(tableau, dps, decimals, enclosures, vertices=wanted[-1] if wanted else None)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
     return Evaluation("ball", condition_sums(listing, ctx, tableau.stages, wanted, on_order))
 

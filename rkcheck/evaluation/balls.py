@@ -46,6 +46,39 @@ def _fraction_float_up(x: Fraction) -> float:
     return math.nextafter(f, math.inf) if Fraction(f) < x else f
 
 
+def _ball_at(x: Interval, bits: int, shift: int) -> tuple[int, float, float]:
+    """(mid-point at scale 2^−bits, radius in units of 2^−shift, magnitude bound) of a
+    ball enclosing ``x``."""
+    one = 1 << bits
+    lo, hi = x.lo * one, x.hi * one
+    m = math.floor((lo + hi) / 2)
+    r = max(hi - m, m - lo) / one * (1 << shift)  # in units of 2^−shift
+    return m, _fraction_float_up(r) * _UP1, _fraction_float_up(abs(Fraction(m, one))) * _UP1
+
+
+def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
+                      vertices: int | None = None):
+    """The ball context for trees with up to ``vertices`` vertices: int64 digit
+    mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster on large
+    listings) when the listing is large and the precision and the size of the weights
+    allow it, else :class:`BallContext` (``vertices=None``: always)."""
+    if vertices is not None and vertices >= LIMB_MIN_VERTICES and bits <= LIMB_MAX_BITS:
+        from rkcheck.evaluation.limbs import LimbBallContext
+
+        ctx = LimbBallContext.create(A, b, bits, vertices)
+        if ctx is not None:
+            return ctx
+    return BallContext(A, b, bits)
+
+
+#: Up to this many working bits the int64 digits are faster than Python integers, from
+#: this many vertices on (below, numpy's cost per call dominates: at 11 to 13 vertices
+#: the digits took 1.2–3× the time of Python integers, at 15 and 17 about 0.7×; measured
+#: with benchmarks/bench_engine.py's tableau at 15, 50, 80 and 110 digits).
+LIMB_MAX_BITS = 400
+LIMB_MIN_VERTICES = 15
+
+
 class BallContext:
     """Certified fixed-point balls at ``bits`` bits (see the module docstring).
 
@@ -74,12 +107,7 @@ class BallContext:
         self._dot_up = 1.0 + (2 * self.s + 8) * 2.0**-52
 
     def _ball(self, x: Interval) -> tuple[int, float, float]:
-        """(mid-point at scale 2^−P, radius in units of 2^−S, magnitude bound) of a ball
-        enclosing ``x``."""
-        lo, hi = x.lo * self.fixed_one, x.hi * self.fixed_one
-        m = math.floor((lo + hi) / 2)
-        r = max(hi - m, m - lo) / self.fixed_one * (1 << self.shift)  # in units of 2^−S
-        return m, _fraction_float_up(r) * _UP1, _fraction_float_up(abs(Fraction(m, self.fixed_one))) * _UP1
+        return _ball_at(x, self.bits, self.shift)
 
     # ------------------------------------------------------------- kernel
 

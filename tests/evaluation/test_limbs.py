@@ -1,0 +1,213 @@
+"""The int64-digit balls (``rkcheck.evaluation.limbs``) against exact values.
+
+* every condition enclosure contains the exact residual of the exact tableau, computed
+  independently (multi-modular exact arithmetic; those residues are checked against the
+  brute-force Fraction reference in ``test_contexts.py``), on random tableaux with small,
+  tiny, cancelling and interval (6-digit decimal) entries, at 15 to 110 digits;
+* single products, matrix products and dot products of random digit values lie within
+  the stated ``e`` units of the exact product of their mid-points (Python integers);
+* chunked evaluation gives the same mid-points as one chunk;
+* large entries, high precision and weights beyond the integer digit use the
+  Python-integer balls instead (and still enclose).
+"""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import rkcheck.evaluation.algorithm as algorithm
+import rkcheck.trees.classes as classes
+import rkcheck.trees.table as table_module
+from rkcheck.evaluation.algorithm import condition_sums
+from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext, certified_context
+from rkcheck.evaluation.limbs import LimbBallContext
+from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.trees.listing import ConditionListing
+
+
+def small_tableau(seed: int, scale: Fraction = Fraction(1)):
+    """Entries of size about 1/s·scale (so that the weights fit the integer digit)."""
+    rng = random.Random(seed)
+    s = rng.randint(1, 5)
+    A = [[Fraction(rng.randint(-9, 9), 9 * s) * scale for _ in range(s)] for _ in range(s)]
+    b = [Fraction(rng.randint(-9, 9), 9 * s) * scale for _ in range(s)]
+    if rng.random() < 0.5:  # Σb = 1: some conditions vanish exactly (cancellation)
+        b[-1] = 1 - sum(b[:-1])
+    return A, b
+
+
+def points(A, b):
+    return [[Interval.point(x) for x in r] for r in A], [Interval.point(x) for x in b]
+
+
+def assert_encloses(listing, A, b, ctx, tol):
+    truth = exact_condition_sums(scaled_rational(A, b), listing)
+    sums = condition_sums(listing, ctx, len(b))
+    for n, o in sums.items():
+        for k in range(len(o)):
+            e, t = o.enclosure(k), truth[n].value(k)
+            assert abs(e.mid - t) <= e.rad, (n, k)
+            assert e.rad < tol * max(1, abs(t)), (n, k, float(e.rad))
+    return sums
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("dps", [15, 50, 110])
+def test_digit_balls_enclose_the_exact_values(seed, dps):
+    A, b = small_tableau(seed)
+    ctx = LimbBallContext.create(*points(A, b), bits_for_dps(dps), vertices=9)
+    assert ctx is not None
+    assert_encloses(ConditionListing(8, None), A, b, ctx, Fraction(1, 10**dps))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_tiny_entries_keep_absolute_precision(seed):
+    A, b = small_tableau(seed, Fraction(1, 10**30))
+    ctx = LimbBallContext.create(*points(A, b), bits_for_dps(50), vertices=8)
+    assert ctx is not None
+    assert_encloses(ConditionListing(7, None), A, b, ctx, Fraction(1, 10**50))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_wide_intervals_enclose_every_point_of_the_box(seed):
+    # 6-digit decimals: the exact tableau (and the box's corners) lie in the intervals
+    A, b = small_tableau(seed)
+    half = Fraction(1, 2 * 10**6)
+
+    def box(x):
+        m = Fraction(round(x * 10**6), 10**6)
+        return Interval(m - half, m + half)
+
+    S, P = [[box(x) for x in r] for r in A], [box(x) for x in b]
+    ctx = LimbBallContext.create(S, P, bits_for_dps(50), vertices=9)
+    assert ctx is not None
+    listing = ConditionListing(8, None)
+    sums = condition_sums(listing, ctx, len(b))
+    rng = random.Random(seed)
+    for corner in range(3):  # the exact tableau, then random corners of the box
+        pick = (lambda iv: rng.choice([iv.lo, iv.hi])) if corner else None
+        Ax = [[pick(iv) if pick else x for iv, x in zip(rs, ra)] for rs, ra in zip(S, A)]
+        bx = [pick(iv) if pick else x for iv, x in zip(P, b)]
+        truth = exact_condition_sums(scaled_rational(Ax, bx), listing)
+        for n, o in sums.items():
+            for k in range(len(o)):
+                e = o.enclosure(k)
+                assert abs(e.mid - truth[n].value(k)) <= e.rad
+
+
+def test_chunked_digit_balls_are_bit_identical(monkeypatch):
+    A, b = small_tableau(4)
+    S, P = points(A, b)
+    whole = condition_sums(ConditionListing(9, None), LimbBallContext.create(S, P, 200, vertices=10), len(b))
+    monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
+    monkeypatch.setattr(classes, "_CHUNK", 7)
+    monkeypatch.setattr(table_module, "_CHUNK", 7)
+    monkeypatch.setattr("rkcheck.evaluation.limbs._BLOCK", 3)
+    chunked = condition_sums(ConditionListing(9, None), LimbBallContext.create(S, P, 200, vertices=10), len(b))
+    for n in whole:
+        assert list(chunked[n].mids) == list(whole[n].mids)
+
+
+def test_large_listings_of_small_weights_use_digits():
+    A = [[Fraction(1, 3), Fraction(1, 7)], [Fraction(-2, 9), Fraction(1, 3)]]
+    b = [Fraction(1, 2), Fraction(1, 2)]
+    assert isinstance(certified_context(*points(A, b), bits_for_dps(50), vertices=LIMB_MIN_VERTICES), LimbBallContext)
+    assert type(certified_context(*points(A, b), bits_for_dps(50), vertices=LIMB_MIN_VERTICES - 1)) is BallContext
+    assert type(certified_context(*points(A, b), bits_for_dps(50))) is BallContext
+
+
+@pytest.mark.parametrize("entries, dps", [(Fraction(10**6), 50), (Fraction(1, 3), 200), (Fraction(1, 3), 1000)])
+def test_large_entries_and_high_precision_use_python_integers(entries, dps):
+    A = [[entries, Fraction(1, 7)], [Fraction(-2, 9), entries]]
+    b = [Fraction(1, 2), Fraction(1, 2)]
+    ctx = certified_context(*points(A, b), bits_for_dps(dps), vertices=LIMB_MIN_VERTICES)
+    assert type(ctx) is BallContext
+    assert_encloses(ConditionListing(6, None), A, b, ctx, Fraction(1, 10**dps) * 10**40)
+
+
+def test_weights_beyond_the_integer_digit_are_refused():
+    # M = 2: weights up to 2^n; the integer digit holds 2^(β−4) with β <= 30
+    A = [[Fraction(2)]]
+    b = [Fraction(1)]
+    assert LimbBallContext.create(*points(A, b), 200, vertices=10) is not None
+    assert LimbBallContext.create(*points(A, b), 200, vertices=40) is None
+
+
+# ------------------------------------------------------------------ single operations
+
+def digit_values(ctx, draw_ints):
+    """Digits (n, L) of the given integers (mid-points at scale 2^−P) and the values."""
+    return np.array([ctx._digits(m) for m in draw_ints], dtype=np.int64).reshape(len(draw_ints), ctx.L)
+
+
+def as_int(ctx, digits):
+    return sum(int(d) << (ctx.digit_bits * j) for j, d in enumerate(digits))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(1, 6), st.sampled_from([60, 200, 400]), st.data())
+def test_single_operations_are_within_their_error_units(s, bits, data):
+    A = [[Interval.point(Fraction(data.draw(st.integers(-10**6, 10**6)), 10**6 * s)) for _ in range(s)]
+         for _ in range(s)]
+    b = [Interval.point(Fraction(data.draw(st.integers(-10**6, 10**6)), 10**6 * s)) for _ in range(s)]
+    ctx = LimbBallContext.create(A, b, bits, vertices=4)
+    assert ctx is not None
+    P = ctx.bits
+    bound = 1 << (P + ctx.digit_bits - 5)  # |x| < 2^(β−5): inside the integer digit
+    mids = st.integers(-bound, bound)
+    n = data.draw(st.integers(1, 5))
+    xs = [data.draw(mids) for _ in range(n * s)]
+    ys = [data.draw(mids) for _ in range(n * s)]
+    X = digit_values(ctx, xs).reshape(n, s, ctx.L)
+    Y = digit_values(ctx, ys).reshape(n, s, ctx.L)
+    zero, one = np.zeros((n, s)), np.ones((n, s))
+    for a, x, y in zip(ctx.mul((X, zero, one), (Y, zero, one))[0].reshape(-1, ctx.L), xs, ys):
+        err = as_int(ctx, a) - Fraction(x * y, 1 << P)
+        assert -ctx.e_mul <= err <= 0
+    Am = [[_mid(e, P) for e in row] for row in A]
+    bm = [_mid(e, P) for e in b]
+    psi = ctx.matvec((X, zero, one))[0]
+    a = ctx.dot((X, zero, one))[0]
+    for t in range(n):
+        xt = xs[t * s:(t + 1) * s]
+        for i in range(s):
+            err = as_int(ctx, psi[t, i]) - Fraction(sum(Am[i][j] * xt[j] for j in range(s)), 1 << P)
+            assert -ctx.e_dot <= err <= 0
+        err = as_int(ctx, a[t]) - Fraction(sum(bm[j] * xt[j] for j in range(s)), 1 << P)
+        assert -ctx.e_dot <= err <= 0
+
+
+def _mid(iv: Interval, P: int) -> int:
+    """The mid-point the context builds for an entry (floor of the centre at scale 2^−P)."""
+    from rkcheck.evaluation.balls import _ball_at
+
+    return _ball_at(iv, P, 0)[0]
+
+
+@pytest.mark.slow
+def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
+    # the benchmark's dense tableau to 15 vertices (13 102 conditions): the path of
+    # `verify --arithmetic ball`, against the exact engine's values
+    from rkcheck.evaluation.backends import evaluate
+    from rkcheck.methods.tableau import Tableau
+    from rkcheck.trees.listing import condition_listing
+
+    A = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],
+         ["-1/12", "5/9", "1/4", "2/15"], ["3/8", "1/3", "-2/7", "1/5"]]
+    tableau = Tableau.from_values(A, ["1/5", "3/10", "1/4", "1/4"])
+    listing = condition_listing(14, None)
+    assert max(listing.orders) >= LIMB_MIN_VERTICES
+    balls = evaluate(listing, tableau, 50, "rounded", arithmetic="ball")
+    exact = evaluate(listing, tableau, 50, "rounded", arithmetic="exact")
+    for n, sums in balls.orders.items():
+        for k in range(len(sums)):
+            e, t = sums.enclosure(k), exact.orders[n].value(k)
+            assert abs(e.mid - t) <= e.rad and e.rad < Fraction(1, 10**50), (n, k)
