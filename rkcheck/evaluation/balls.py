@@ -171,13 +171,19 @@ class BallContext:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
         rounded up (the float additions into each bin, at most a few hundred, covered by
         γ_256)."""
-        rads = acc[1][:k] * (1.0 + 256 * U)
-        if not np.all(np.isfinite(rads)):
-            from rkcheck.errors import UserError
+        return BallSums(acc[0][:k], summed_radii(acc[1], k, self.bits), self.bits, self.shift, math.factorial(n - 1))
 
-            raise UserError(f"the certified radii exceed the floating-point range at {self.bits} bits; "
-                            "use a lower --dps (or exact arithmetic)")
-        return BallSums(acc[0][:k], rads, self.bits, self.shift, math.factorial(n - 1))
+
+def summed_radii(radii: np.ndarray, k: int, bits: int) -> np.ndarray:
+    """The first k summed radii rounded up (the float additions into each bin, at most a
+    few hundred, covered by γ_256); refused when they overflowed the float range."""
+    rads = radii[:k] * (1.0 + 256 * U)
+    if not np.all(np.isfinite(rads)):
+        from rkcheck.errors import UserError
+
+        raise UserError(f"the certified radii exceed the floating-point range at {bits} bits; "
+                        "use a lower --dps (or exact arithmetic)")
+    return rads
 
 
 class BallSums:

@@ -39,12 +39,20 @@ threads on small matrices).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from fractions import Fraction
-from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import _UP1, _UP4, U, BallSums, _ball_at, _coefficients
+from rkcheck.evaluation.balls import (
+    _UP1,
+    _UP4,
+    BallContext,
+    BallSums,
+    _ball_at,
+    _coefficients,
+    summed_radii,
+)
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -74,7 +82,7 @@ class LimbBallContext:
 
     @classmethod
     def create(cls, A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
-               vertices: int) -> "LimbBallContext | None":
+               vertices: int) -> LimbBallContext | None:
         """The context, or None when the digits cannot hold the weights of trees with up
         to ``vertices`` vertices (module docstring) or ``bits`` is out of its range."""
         s = len(b)
@@ -178,12 +186,9 @@ class LimbBallContext:
         mid[:, self.F] = 1
         return (mid, np.zeros(k), np.ones(k))
 
-    def take(self, x, idx):
-        return (x[0][idx], x[1][idx], x[2][idx])
-
-    def put(self, store, lo: int, x) -> None:
-        for part, value in zip(store, x):
-            part[lo:lo + len(value)] = value
+    # a ball is the same (mid, radius, magnitude) triple as BallContext's: the same moves
+    take = BallContext.take
+    put = BallContext.put
 
     def mul(self, x, y):
         xm, xr, xg = x
@@ -294,12 +299,7 @@ class LimbBallContext:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
         rounded up (the float additions into each bin, at most a few hundred, covered by
         γ_256)."""
-        rads = acc[1][:k] * (1.0 + 256 * U)
-        if not np.all(np.isfinite(rads)):
-            from rkcheck.errors import UserError
-
-            raise UserError(f"the certified radii exceed the floating-point range at {self.bits} bits; "
-                            "use a lower --dps (or exact arithmetic)")
+        rads = summed_radii(acc[1], k, self.bits)
         if acc[0] is None:
             mids = np.zeros(k, dtype=object)
         else:
