@@ -44,6 +44,13 @@ def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-depend
 if _running_as_program():
     _signal.signal(_signal.SIGINT, _early_interrupt)
     _signal.signal(_signal.SIGTERM, _early_interrupt)
+    # numpy's bundled OpenBLAS starts a worker thread per core when numpy is imported, and
+    # each idle worker spins for 2^28 cycles (~0.1 s) before it sleeps: on a 2-core machine
+    # that takes a core from every command's start-up (~60 ms of rkcheck verify's ~0.4 s,
+    # issue 15).  2^4 cycles: idle workers sleep at once and are woken (microseconds) when
+    # a large matrix product needs them; BLAS still uses every core.  Set before numpy is
+    # loaded (OpenBLAS reads it then); a value the user set wins.
+    _os.environ.setdefault("OPENBLAS_THREAD_TIMEOUT", "4")
 
 from typing import TYPE_CHECKING, Any
 
