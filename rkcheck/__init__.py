@@ -40,9 +40,13 @@ def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-depend
     _os._exit(130)
 
 
+#: True in the ``rkcheck`` program (the process ends when its command does), False when
+#: rkcheck is imported as a library: only the program tunes process-wide settings.
+_PROGRAM = _running_as_program()
+
 # As early as possible (this is the first module any start-up imports); the CLI's main()
 # replaces these handlers as soon as it starts (issue 16).
-if _running_as_program():
+if _PROGRAM:
     _signal.signal(_signal.SIGINT, _early_interrupt)
     _signal.signal(_signal.SIGTERM, _early_interrupt)
     # numpy's bundled OpenBLAS starts a worker thread per core when numpy is imported, and
