@@ -27,8 +27,10 @@ import sys as _sys
 
 def _running_as_program() -> bool:
     """The ``rkcheck`` console script or ``python -m rkcheck`` — never a library import."""
-    if _os.path.basename(_sys.argv[0] if _sys.argv else "") in ("rkcheck", "__main__.py"):
-        return True
+    argv0 = _sys.argv[0] if _sys.argv else ""
+    name = _os.path.basename(argv0)
+    if name == "rkcheck" or (name == "__main__.py" and _os.path.basename(_os.path.dirname(argv0)) == "rkcheck"):
+        return True  # (not another package's __main__.py that imports rkcheck as a library)
     argv = getattr(_sys, "orig_argv", [])
     return "-m" in argv and argv.index("-m") + 1 < len(argv) and argv[argv.index("-m") + 1] == "rkcheck"
 

@@ -92,13 +92,30 @@ def test_the_api_verify_loads_no_cli_and_nothing_heavy(tmp_path):
     assert present(modules, ("click", "rich", "rkcheck.cli", "rkcheck.reports") + HEAVY + NUMPY_LAZY) == []
 
 
-@pytest.mark.parametrize("variable", ["OPENBLAS_THREAD_TIMEOUT"])
-def test_a_library_import_leaves_the_process_settings_alone(tmp_path, variable):
+@pytest.mark.parametrize("how", ["-c", "__main__.py"])
+def test_a_library_import_leaves_the_process_settings_alone(tmp_path, how):
     # only the program tunes the collector and OpenBLAS (rkcheck/__init__.py): a library
-    # user's process keeps its own settings
-    code = f"import gc, os, rkcheck; print(gc.get_threshold()[0], {variable!r} in os.environ)"
-    env = {k: v for k, v in os.environ.items() if k != variable}
-    threshold = subprocess.run([sys.executable, "-c", "import gc; print(gc.get_threshold()[0])"], capture_output=True,
-                               text=True, env=env).stdout.split()
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, env=env)
-    assert run.stdout.split() == [threshold[0], "False"], run.stderr
+    # user's process keeps its own settings, also when it is another package's
+    # __main__.py (the program's own is rkcheck/__main__.py)
+    code = "import gc, os, rkcheck; print(gc.get_threshold()[0], 'OPENBLAS_THREAD_TIMEOUT' in os.environ, rkcheck._PROGRAM)"
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_THREAD_TIMEOUT"}
+    default = subprocess.run([sys.executable, "-c", "import gc; print(gc.get_threshold()[0])"], capture_output=True,
+                             text=True, env=env).stdout.strip()
+    if how == "-c":
+        args = ["-c", code]
+    else:
+        (tmp_path / "tool").mkdir()
+        (tmp_path / "tool" / "__main__.py").write_text(code)
+        args = [str(tmp_path / "tool" / "__main__.py")]
+    run = subprocess.run([sys.executable, *args], capture_output=True, text=True, cwd=tmp_path, env=env)
+    assert run.stdout.split() == [default, "False", "False"], run.stderr
+
+
+def test_the_program_knows_it_is_the_program(tmp_path):
+    # the console script's argv[0] and `python -m rkcheck` (the settings above apply there)
+    code = "import sys; sys.argv = ['/usr/bin/rkcheck']; import rkcheck, gc; print(rkcheck._PROGRAM, gc.get_threshold()[0])"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.split() == ["True", "100000"]
+    module = subprocess.run([sys.executable, "-c", "import sys; sys.argv = ['-m']; sys.orig_argv[:] = "
+                             "[sys.executable, '-m', 'rkcheck']; import rkcheck; print(rkcheck._PROGRAM)"],
+                            capture_output=True, text=True)
+    assert module.stdout.split() == ["True"], module.stderr
