@@ -21,8 +21,9 @@ Columns: conditions and terms (rootings summed over the listing: the floor of th
 seconds for each measurement (the best of ``--repeat`` processes below order 16),
 balls/exact, ns per term of the exact evaluation, the peak memory of the ``check``
 process (what a ``verify`` needs) and the largest peak of all five (the balls, as a rule).  The last lines time ``rkcheck verify
-tableaux/explicit/rk4.toml`` and ``rkcheck --help`` from process start to exit (median
-of ``--startup-runs``, default 5).
+tableaux/explicit/rk4.toml`` and ``rkcheck --help`` (as ``python -m rkcheck`` from this
+checkout) from process start to exit, best and median of ``--startup-runs`` (default 9),
+interleaved with ``python -c pass`` and ``python -c "import numpy"`` for scale.
 """
 
 from __future__ import annotations
@@ -103,15 +104,31 @@ def measure(what: str, order: int, degree: int | None, repeat: int = 1) -> dict:
     return dict(best, rss_mb=max(r["rss_mb"] for r in runs))
 
 
-def start_to_exit(args: list[str], runs: int) -> float:
-    """Median wall time of ``python -m rkcheck ARGS`` from process start to exit."""
+#: What the start-up lines time, each from process start to exit: the two commands of
+#: issue 15's target (≤ 0.4 s) and, for scale, bare Python and ``import numpy``.
+STARTUP_COMMANDS = {
+    "rkcheck verify tableaux/explicit/rk4.toml": ["-m", "rkcheck", "verify", "tableaux/explicit/rk4.toml"],
+    "rkcheck --help": ["-m", "rkcheck", "--help"],
+    'python -c "import numpy"': ["-c", "import numpy"],
+    "python -c pass": ["-c", "pass"],
+}
+
+
+def start_to_exit(runs: int) -> dict[str, list[float]]:
+    """Wall times of :data:`STARTUP_COMMANDS` (``python -m rkcheck`` from the checkout),
+    from process start to exit, ``runs`` rounds with the commands interleaved so that all
+    see the same load.  Byte code is cached as in an installed package (a first, untimed
+    round writes it even when ``PYTHONDONTWRITEBYTECODE`` is set here)."""
     env = dict(os.environ, NO_COLOR="1")
-    times = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "rkcheck", *args], cwd=ROOT, env=env, capture_output=True)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    times: dict[str, list[float]] = {name: [] for name in STARTUP_COMMANDS}
+    for round_ in range(runs + 1):
+        for name, args in STARTUP_COMMANDS.items():
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, *args], cwd=ROOT, env=env, capture_output=True)
+            if round_:
+                times[name].append(time.perf_counter() - t0)
+    return times
 
 
 HEADER = ("| order | m | conditions | terms | listing s | exact s | balls50 s | balls/exact | float64 s "
@@ -137,8 +154,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="degree bounds, 'none' for no bound (default none 3)")
     parser.add_argument("--repeat", type=int, default=3, metavar="K",
                         help="best of K fresh processes per measurement below order 16 (default 3)")
-    parser.add_argument("--startup-runs", type=int, default=5, metavar="K",
-                        help="runs whose median times start-to-exit (0: skip; default 5)")
+    parser.add_argument("--startup-runs", type=int, default=9, metavar="K",
+                        help="runs of each start-to-exit measurement, best and median (0: skip; default 9)")
     args = parser.parse_args(argv)
     if any(not 2 <= n <= 20 for n in args.orders):
         parser.error("--orders: each order must be between 2 and 20")
@@ -149,10 +166,12 @@ def main(argv: list[str] | None = None) -> None:
         for degree in degrees:
             print(row(order, degree, args.repeat if order < 16 else 1), flush=True)
     if args.startup_runs > 0:
-        verify = start_to_exit(["verify", "tableaux/explicit/rk4.toml"], args.startup_runs)
-        helptext = start_to_exit(["--help"], args.startup_runs)
-        print(f"\nprocess start to exit (median of {args.startup_runs}): "
-              f"rkcheck verify tableaux/explicit/rk4.toml {verify:.3f} s, rkcheck --help {helptext:.3f} s")
+        load = os.getloadavg()[0]
+        times = start_to_exit(args.startup_runs)
+        print(f"\nprocess start to exit (python -m rkcheck, {args.startup_runs} interleaved runs, "
+              f"load average {load:.1f} before): best / median")
+        for name, runs in times.items():
+            print(f"  {name:42s} {min(runs):.3f} s / {statistics.median(runs):.3f} s")
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ rkcheck`` (and the CLI's start-up) stays fast.
 
 from __future__ import annotations
 
+import gc as _gc
 import os as _os
 import signal as _signal
 import sys as _sys
@@ -26,8 +27,10 @@ import sys as _sys
 
 def _running_as_program() -> bool:
     """The ``rkcheck`` console script or ``python -m rkcheck`` — never a library import."""
-    if _os.path.basename(_sys.argv[0] if _sys.argv else "") in ("rkcheck", "__main__.py"):
-        return True
+    argv0 = _sys.argv[0] if _sys.argv else ""
+    name = _os.path.basename(argv0)
+    if name == "rkcheck" or (name == "__main__.py" and _os.path.basename(_os.path.dirname(argv0)) == "rkcheck"):
+        return True  # (not another package's __main__.py that imports rkcheck as a library)
     argv = getattr(_sys, "orig_argv", [])
     return "-m" in argv and argv.index("-m") + 1 < len(argv) and argv[argv.index("-m") + 1] == "rkcheck"
 
@@ -39,11 +42,28 @@ def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-depend
     _os._exit(130)
 
 
+#: True in the ``rkcheck`` program (the process ends when its command does), False when
+#: rkcheck is imported as a library: only the program tunes process-wide settings.
+_PROGRAM = _running_as_program()
+
 # As early as possible (this is the first module any start-up imports); the CLI's main()
 # replaces these handlers as soon as it starts (issue 16).
-if _running_as_program():
+if _PROGRAM:
     _signal.signal(_signal.SIGINT, _early_interrupt)
     _signal.signal(_signal.SIGTERM, _early_interrupt)
+    # numpy's bundled OpenBLAS starts a worker thread per core when numpy is imported, and
+    # each idle worker spins for 2^28 cycles (~0.1 s) before it sleeps: on a 2-core machine
+    # that takes a core from every command's start-up (~60 ms of rkcheck verify's ~0.4 s,
+    # issue 15).  2^4 cycles: idle workers sleep at once and are woken (microseconds) when
+    # a large matrix product needs them; BLAS still uses every core.  Set before numpy is
+    # loaded (OpenBLAS reads it then); a value the user set wins.
+    _os.environ.setdefault("OPENBLAS_THREAD_TIMEOUT", "4")
+    # Start-up allocates ~50 000 containers (modules, classes, functions) that live until
+    # exit; with the default first threshold (700) the cyclic collector runs ~70 times
+    # over them (12-22 ms of verify's start-up on RK4).  Young cyclic garbage is rare
+    # here (refcounting frees the rest at once), so a later first collection costs
+    # nothing in memory (same peak at order 16) and collections still run.
+    _gc.set_threshold(100_000, *_gc.get_threshold()[1:])
 
 from typing import TYPE_CHECKING, Any
 

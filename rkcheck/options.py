@@ -12,7 +12,6 @@ This module is shared vocabulary: it imports nothing from rkcheck but the errors
 
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -179,6 +178,8 @@ def _shown(value: Any) -> str:
 
 def nearest(name: str, known: tuple[str, ...]) -> str:
     """`` (did you mean 'order'?)`` for a misspelt key, else ``""``."""
+    import difflib  # only for a misspelt key: not at start-up
+
     close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
     return f" (did you mean {close[0]!r}?)" if close else ""
 

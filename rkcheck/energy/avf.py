@@ -29,6 +29,8 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, comb
 
 @dataclass(frozen=True)
 class AvfVerdict:
+    """Whether the reduced method equals the AVF method for Hamiltonians of degree ``degree``, and why."""
+
     degree: int
     verdict: Verdict  # holds / holds_to_digits = equals AVF; fails = it does not
     reason: str

@@ -43,6 +43,8 @@ class ResourceError(UserError):
 
 @dataclass(frozen=True)
 class Estimate:
+    """The predicted size and cost of a check: conditions, terms, factors, seconds and bytes."""
+
     conditions: int
     terms: int
     factors: int

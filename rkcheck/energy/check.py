@@ -208,6 +208,8 @@ class Failures(Sequence[ConditionResult]):
 
 @dataclass(frozen=True)
 class OrderCounts:
+    """One row of the per-order table: conditions, checked, held, failed, weakest digits."""
+
     order: int
     conditions: int  # how many conditions this order has
     checked: int
@@ -218,6 +220,8 @@ class OrderCounts:
 
 @dataclass
 class CheckResult:
+    """Everything ``verify`` reports about one tableau: conditions, orders, certificates."""
+
     tableau: Tableau
     options: CheckOptions
     backend: str  # "exact" or "ball"

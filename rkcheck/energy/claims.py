@@ -27,6 +27,8 @@ from rkcheck.options import FAIL_ON  # noqa: F401 (re-exported)
 
 @dataclass(frozen=True)
 class ClaimResult:
+    """One claim judged: met or not, what was found, and a note."""
+
     claim: Claim
     met: bool
     found: str

@@ -60,6 +60,8 @@ class Certificate(Protocol):
 
 @dataclass(frozen=True)
 class LineIntegralCertificate:
+    """The line-integral certificate for degree ``degree``: the stage path's degree σ, the verdict and why."""
+
     degree: int
     sigma: int | None  # the degree of the stage path; None when no σ works
     verdict: Verdict  # holds / holds_to_digits: certified; fails: not certified

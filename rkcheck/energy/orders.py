@@ -33,6 +33,8 @@ from rkcheck.trees.table import TreeTable
 
 @dataclass(frozen=True)
 class OrderResult:
+    """A classical or quadrature order, how far it was checked, and its first failing condition."""
+
     order: int  # the largest order whose conditions all hold (capped at ``checked``)
     checked: int  # the highest order examined
     verdict: Verdict  # of the conditions up to ``order``: holds or holds_to_digits

@@ -21,6 +21,8 @@ from rkcheck.energy.symplectic import PropertyVerdict, symmetry, symplecticity
 
 @dataclass(frozen=True)
 class TableauProperties:
+    """The order-free properties of a tableau: its reduction, R(z), symplecticity and symmetry."""
+
     exact: bool  # computed over exact scalars (holds/fails only)
     reduction: Reduction
     stability: StabilityFunction

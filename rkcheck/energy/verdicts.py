@@ -24,6 +24,8 @@ FAILS = "fails"
 
 @dataclass(frozen=True, slots=True)
 class Verdict:
+    """holds, holds to ``digits`` digits, or fails (definitions §5.3)."""
+
     state: str
     digits: int | None = None  # only for holds_to_digits
 

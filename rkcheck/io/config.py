@@ -32,6 +32,8 @@ EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs")
 
 @dataclass
 class Config:
+    """The ``[tool.rkcheck]`` table of a pyproject.toml (defaults when there is none)."""
+
     source: str | None = None  # the pyproject.toml it came from
     root: Path | None = None
     paths: list[str] = field(default_factory=list)

@@ -19,7 +19,6 @@ shipped tableau (:mod:`rkcheck.io.library`) or a classical method
 
 from __future__ import annotations
 
-import json
 import re
 import sys
 import tomllib
@@ -108,6 +107,8 @@ def detect_format(path: str, text: str) -> str:
 
 def parse_document(text: str, fmt: str) -> dict[str, Any]:
     """TOML or JSON text -> dict, syntax errors as UserError with their line."""
+    if fmt == "json":
+        import json  # TOML files (the usual input) do not need it: start-up
     try:
         if fmt == "json":
             data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant,
@@ -121,9 +122,9 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
             msg = msg[: m.start()].strip()
             raise UserError(f"TOML syntax error: {msg}", f"line {m.group(1)}, column {m.group(2)}") from None
         raise UserError(f"TOML syntax error: {msg}") from None
-    except json.JSONDecodeError as err:
-        raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
     except ValueError as err:  # NaN/Infinity or a duplicate key in JSON, an integer too long in either
+        if fmt == "json" and isinstance(err, json.JSONDecodeError):
+            raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
         raise UserError(f"{fmt.upper()}: {err}") from None
     except RecursionError:
         raise UserError("nesting too deep") from None

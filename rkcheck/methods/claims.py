@@ -32,6 +32,8 @@ BOOLEAN_KINDS = ("symplectic", "symmetric")
 
 @dataclass(frozen=True)
 class Claim:
+    """One claim of a tableau's ``[expect]`` table: its kind, the claimed value and where it was written."""
+
     kind: str
     value: int | str | bool
     degree: int | None = None

@@ -144,18 +144,24 @@ def double_interval(value: Fraction, shortest_only: bool = False) -> tuple[Fract
 
 @dataclass(frozen=True, slots=True)
 class Name:
+    """A constant's name, at 1-based ``column`` of the entry."""
+
     name: str
     column: int
 
 
 @dataclass(frozen=True, slots=True)
 class Unary:
+    """Unary minus."""
+
     op: str  # '-' only; unary '+' is dropped by the parser
     operand: "Expr"
 
 
 @dataclass(frozen=True, slots=True)
 class Binary:
+    """``left op right`` for ``+ - * /``."""
+
     op: str  # '+', '-', '*', '/'
     left: "Expr"
     right: "Expr"
@@ -164,6 +170,8 @@ class Binary:
 
 @dataclass(frozen=True, slots=True)
 class Power:
+    """``base ^ exponent`` (or ``**``)."""
+
     base: "Expr"
     exponent: "Expr"
     column: int
@@ -191,6 +199,8 @@ Expr = Num | Name | Unary | Binary | Power | Call
 
 @dataclass(frozen=True, slots=True)
 class _Token:
+    """One token of an entry and its 1-based column."""
+
     kind: str  # 'num', 'name', 'op', '(', ')', 'end'
     text: str
     column: int  # 1-based

@@ -15,9 +15,10 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass
-from typing import IO, cast
+from typing import IO, TYPE_CHECKING, cast
 
-from rich.console import Console
+if TYPE_CHECKING:  # imported by make_console: `rkcheck --help` needs no rich (start-up)
+    from rich.console import Console
 
 PIPE_WIDTH = 132
 
@@ -75,6 +76,8 @@ class _StripTrailingSpaces:
 
 
 def make_console(settings: OutputSettings = OutputSettings(), stderr: bool = False) -> Console:
+    from rich.console import Console
+
     stream = sys.stderr if stderr else sys.stdout
     tty = stream.isatty()
     color = color_wanted(settings, tty)
