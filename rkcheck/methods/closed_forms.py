@@ -11,6 +11,7 @@ tableaux and ``rkcheck new`` files exact wherever the nodes are algebraic of mod
 
 from __future__ import annotations
 
+from functools import lru_cache
 from fractions import Fraction
 from itertools import combinations
 from typing import TYPE_CHECKING, Any
@@ -187,10 +188,13 @@ def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c
     return {}, A_t, texts[s * s:s * s + s], texts[s * s + s:]
 
 
+@lru_cache(maxsize=16)
 def family_exact_values(spec: FamilySpec) -> Any:
     """The family's ``(field, A, b, c)`` exactly (a :class:`~rkcheck.numbers.algebraic.FieldValues`
     with ``field`` None over Q), or None with the reason when the nodes have no closed form
-    or their field exceeds the degree limit."""
+    or their field exceeds the degree limit.  Kept per spec (the values are never mutated):
+    the field of the six Gauss-6 nodes, of degree 48, takes seconds to build, and a
+    catalogue or a scan meets the same family in several files and checks."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.algebraic import NotAlgebraic, field_of
 
