@@ -20,7 +20,7 @@ from typing import Any, Callable
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.algorithm import condition_sums
-from rkcheck.evaluation.balls import BallContext, FloatContext, certified_context
+from rkcheck.evaluation.balls import FloatContext, certified_context
 from rkcheck.evaluation.modular import (
     ScaledTableau,
     exact_condition_sums,
@@ -62,7 +62,9 @@ def scaled_tableau(tableau, decimals: str) -> ScaledTableau | None:
     return None
 
 
-def ball_context(tableau, dps: int, decimals: str, enclosures=None, vertices: int | None = None) -> BallContext:
+def ball_context(tableau, dps: int, decimals: str, enclosures=None, vertices: int | None = None) -> Any:
+    """The certified ball context (:func:`~rkcheck.evaluation.balls.certified_context`:
+    Python-integer or int64-digit mid-points) for trees with up to ``vertices`` vertices."""
     A, b = enclosures or tableau.enclosures(entry_bits(dps), decimals)
     return certified_context(A, b, bits_for_dps(dps), vertices)
 

@@ -22,8 +22,8 @@ integer ``t`` for which the characteristic polynomial ``R`` of ``η`` on
 ``Q[y, z]/(g(y), f(z))`` (``f`` the minimal polynomial of ``γ``) is square-free: then the
 conjugates ``θ_i + tγ_j`` are distinct, ``Q(η) = Q(θ, γ)`` (the primitive element
 theorem's proof), the minimal polynomial of ``η`` is the irreducible factor of ``R`` that
-vanishes at ``η`` (found by enclosures), and ``θ`` is the root of the linear
-``gcd(g(y), f((η − y)/t))`` over ``Q(η)``.
+vanishes at ``η`` (found by enclosures), and ``θ = η − tγ`` with ``γ`` the root of the
+linear ``gcd(f(z), g(η − tz))`` over ``Q(η)``, read off two minors (:func:`_theta_in`).
 """
 
 from __future__ import annotations
@@ -812,7 +812,7 @@ def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
     line = [L.gen, L(-t)]  # η − t·z
     r: list[FieldElement] = []
     for c in reversed(_coeffs(g)):
-        r = _prem_rational(_padd(_pmul(r, line), [L(c)]) if r else [L(c)], monic)
+        r = _prem_rational(_padd(_pmul(r, line), [L(c)]), monic)
     zero = L(0)
     rows = []
     for _ in range(n - 1):
@@ -874,20 +874,6 @@ def _pmul(a: list[FieldElement], b: list[FieldElement]) -> list[FieldElement]:
         for j, y in enumerate(b):
             out[i + j] = out[i + j] + x * y
     return _ptrim(out)
-
-
-def _pgcd(a: list[FieldElement], b: list[FieldElement]) -> list[FieldElement]:
-    a, b = _ptrim(a), _ptrim(b)
-    while b:
-        # a mod b
-        inv = b[-1].inverse()
-        while len(a) >= len(b):
-            q = a[-1] * inv
-            shift = len(a) - len(b)
-            a = _ptrim([a[i] - (q * b[i - shift] if i >= shift else 0) for i in range(len(a) - 1)]
-                       + [a[-1] - q * b[-1]])
-        a, b = b, a
-    return a
 
 
 def _is_root(P: Sequence[Fraction], x: FieldElement) -> bool:
