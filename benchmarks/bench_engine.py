@@ -10,7 +10,7 @@ module imports excluded) and with that process's own peak resident memory
 (``resource.getrusage(RUSAGE_SELF).ru_maxrss``):
 
 * listing  — ``condition_listing(order, degree)``: free trees, rootings, term arrays;
-* exact    — ``evaluate(listing, tableau, arithmetic="exact")``: residues modulo primes,
+* exact    — ``evaluate(listing, TableauValues(tableau, Reading(arithmetic="exact")))``: residues modulo primes,
              given the listing (built first, not timed);
 * balls    — the same with ``arithmetic="ball"`` at 50 digits: certified balls;
 * float64  — the float screen (``float_context`` + ``condition_sums``);
@@ -58,6 +58,8 @@ import numpy, mpmath  # start-up, not timed here
 from rkcheck.methods.tableau import Tableau
 from rkcheck.trees.listing import condition_listing
 from rkcheck.evaluation.backends import evaluate, float_context
+from rkcheck.evaluation.values import TableauValues
+from rkcheck.numbers.reading import Reading
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.energy.check import check
 from rkcheck.options import CheckOptions
@@ -78,11 +80,11 @@ else:
     gc.collect()
     t0 = time.perf_counter()
     if what == "exact":
-        evaluate(listing, tableau, 50, "rounded", arithmetic="exact")
+        evaluate(listing, TableauValues(tableau, Reading(arithmetic="exact")))
     elif what == "balls":
-        evaluate(listing, tableau, 50, "rounded", arithmetic="ball")
+        evaluate(listing, TableauValues(tableau, Reading(arithmetic="ball")))
     else:
-        condition_sums(listing, float_context(tableau), tableau.stages)
+        condition_sums(listing, float_context(TableauValues(tableau, Reading())), tableau.stages)
     out["seconds"] = time.perf_counter() - t0
 out["rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 print(json.dumps(out))

@@ -1,6 +1,6 @@
-"""``python -m rkcheck`` = the ``rkcheck`` command."""
+"""``python -m rkcheck`` = the ``rkcheck`` program."""
 
-from rkcheck.cli import main
+from rkcheck.program import main
 
 if __name__ == "__main__":
     main()

@@ -7,7 +7,8 @@ resolved by one rule, most specific first: flags, then ``[check]``, then
 source is validated by the same functions, so a value means the same everywhere and is
 refused with the same one-line message.
 
-This module is shared vocabulary: it imports nothing from rkcheck but the errors.
+This module is shared vocabulary: it imports nothing from rkcheck but the errors and
+the number model's reading (:mod:`rkcheck.numbers.reading`).
 """
 
 from __future__ import annotations
@@ -16,10 +17,10 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.reading import DEFAULT_DPS, Arithmetic, DecimalsMode, Reading
 
 DEFAULT_ORDER = 8
-DEFAULT_DPS = 50
-DEFAULT_DECIMALS = "auto"
+DEFAULT_DECIMALS = DecimalsMode.AUTO
 DEFAULT_MAX_STAGES = 64
 
 #: The highest energy order any source may ask for.  What actually fits is decided by the
@@ -53,8 +54,10 @@ REPEAT_RANGE = (1, 50)
 STEPS_RANGE = (1, 10_000_000)
 POINTS_RANGE = (1, 100)
 
-#: Decimals modes (docs/definitions.md §5): 'rounded' (default) or 'exact' (face value).
-DECIMALS_MODES = ("auto", "rounded", "float64", "exact")
+#: Decimals modes (definitions §5), as the CLI, the files and the JSON spell them.
+DECIMALS_MODES = tuple(m.value for m in DecimalsMode)
+#: Arithmetics of the conditions (``--arithmetic``).
+ARITHMETICS = tuple(a.value for a in Arithmetic)
 #: What makes a checked file count as failed (exit code 1).
 FAIL_ON = ("auto", "conditions", "claims", "never")
 #: Output formats of ``rkcheck scan``.
@@ -72,26 +75,35 @@ SCAN_SORTS = ("path", "energy")
 @dataclass(frozen=True)
 class CheckOptions:
     """What one check runs: degree bound m (None = all Hamiltonians), energy order N,
-    working precision, decimals mode, and whether to stop after the first failing order."""
+    working precision, decimals mode, arithmetic, the proof gate, and whether to stop
+    after the first failing order.  The number options travel below as one
+    :class:`~rkcheck.numbers.reading.Reading` (:attr:`reading`)."""
 
     degree: int | None = None
     order: int = DEFAULT_ORDER
     dps: int = DEFAULT_DPS
-    decimals: str = DEFAULT_DECIMALS
+    decimals: DecimalsMode = DEFAULT_DECIMALS
     fail_fast: bool = False
     require: str = "any"  # the gate of definitions §5.3: "any", "proof" or "digits:D"
+    arithmetic: Arithmetic = Arithmetic.AUTO
 
     @property
     def required_digits(self) -> int | None:
         """D of ``digits:D`` (None for ``any`` and ``proof``)."""
         return int(self.require.split(":", 1)[1]) if self.require.startswith("digits:") else None
 
+    @property
+    def reading(self) -> Reading:
+        """How the check reads and computes numbers."""
+        return Reading(self.decimals, self.dps, self.arithmetic)
+
     def __post_init__(self) -> None:
         # the API is a source of options too: the same ranges and messages as the CLI
         parse_degree(self.degree, "degree")
         parse_int_in(self.order, ORDER_RANGE, "order")
         parse_int_in(self.dps, DPS_RANGE, "dps")
-        parse_choice(self.decimals, DECIMALS_MODES, "decimals")
+        object.__setattr__(self, "decimals", DecimalsMode(parse_choice(self.decimals, DECIMALS_MODES, "decimals")))
+        object.__setattr__(self, "arithmetic", Arithmetic(parse_choice(self.arithmetic, ARITHMETICS, "arithmetic")))
 
 
 # ------------------------------------------------------------------ single values
@@ -214,11 +226,6 @@ def parse_strings(value: Any, place: str, source: str | None = None) -> list[str
     raise UserError("expected a string or a list of strings", place, source)
 
 
-def degree_label(degree: int | None) -> str:
-    """How a degree bound is written back: ``4`` or ``none``."""
-    return "none" if degree is None else str(degree)
-
-
 # ------------------------------------------------------------------ tables
 
 
@@ -239,7 +246,7 @@ def validate_check_table(table: Mapping[str, Any], prefix: str = "check", source
         elif name == "dps":
             out[name] = parse_int_in(value, DPS_RANGE, place, source)
         elif name == "decimals":
-            out[name] = parse_choice(value, DECIMALS_MODES, place, source)
+            out[name] = DecimalsMode(parse_choice(value, DECIMALS_MODES, place, source))
         elif name == "require":
             out[name] = parse_require(value, place, source)
         elif name not in extra_keys:
@@ -266,4 +273,5 @@ def resolve_check_options(flags: Mapping[str, Any], file: Mapping[str, Any],
         decimals=pick("decimals", DEFAULT_DECIMALS),
         require=pick("require", "any"),
         fail_fast=bool(flags.get("fail_fast", False)),
+        arithmetic=flags.get("arithmetic", Arithmetic.AUTO),
     )

@@ -11,11 +11,12 @@ from support.paths import REPO
 
 PACKAGE = REPO / "rkcheck"
 
-BASE = {"errors"}
+BASE = {"errors", "version"}
 #: unit -> the units it may import (a unit is a subpackage or a top-level module)
 ALLOWED: dict[str, set[str]] = {
+    "version": set(),
     "errors": set(),
-    "options": BASE,
+    "options": BASE | {"numbers"},
     "numbers": BASE,
     "trees": BASE,
     "methods": BASE | {"options", "numbers"},
@@ -30,8 +31,9 @@ ALLOWED: dict[str, set[str]] = {
     "api": BASE | {"options", "numbers", "trees", "methods", "io", "evaluation", "energy", "dynamics",
                    "studies", "batch", "reports"},
     "cli": BASE | {"options", "io", "reports", "api"},  # io: only io.printable (test_cli_uses_only_the_api)
-    "__init__": {"api"},
-    "__main__": {"cli"},
+    "__init__": BASE | {"api"},
+    "program": BASE | {"cli"},
+    "__main__": {"program"},
 }
 #: the core computes; it never prints, parses command lines or renders
 CORE = ("numbers", "trees", "methods", "evaluation", "energy")
@@ -87,24 +89,29 @@ def test_imports_follow_the_flow():
 #: else"): the package root (its version, its public names), the API, the renderers,
 #: itself, the errors, the shared option vocabulary, and making file text printable.
 CLI_MAY_IMPORT = ("rkcheck.api", "rkcheck.reports", "rkcheck.cli")
-CLI_MAY_IMPORT_EXACTLY = ("rkcheck", "rkcheck.errors", "rkcheck.options", "rkcheck.io.printable")
+CLI_MAY_IMPORT_EXACTLY = ("rkcheck", "rkcheck.errors", "rkcheck.version", "rkcheck.options", "rkcheck.io.printable")
 
 
 def cli_import_allowed(module: str) -> bool:
     return module in CLI_MAY_IMPORT_EXACTLY or any(module == p or module.startswith(p + ".") for p in CLI_MAY_IMPORT)
 
 
+def _assigned(path: Path, name: str):
+    """The literal value assigned to ``name`` at the top of a module (read from the source)."""
+    for node in ast.parse(path.read_text(encoding="utf-8")).body:
+        if isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            if any(isinstance(t, ast.Name) and t.id == name for t in targets) and node.value is not None:
+                return ast.literal_eval(node.value)
+    raise AssertionError(f"{path}: no literal {name}")
+
+
 def root_public_names() -> set[str]:
-    """The names ``rkcheck/__init__.py`` exports (its tuples ``_ERRORS`` and ``_TYPES``,
-    and ``_API``, which is ``rkcheck/api/__init__.py``'s ``__all__``; read from the
-    sources), and ``__version__``."""
+    """The names ``rkcheck`` exports: ``__version__`` and the ``__all__`` of each module
+    listed in ``rkcheck/api/__init__.py``'s ``MODULES`` (read from the sources)."""
     names = {"__version__"}
-    for path, wanted in ((PACKAGE / "__init__.py", ("_ERRORS", "_TYPES")), (PACKAGE / "api" / "__init__.py", ("__all__",))):
-        for node in ast.parse(path.read_text(encoding="utf-8")).body:
-            if isinstance(node, (ast.Assign, ast.AnnAssign)):
-                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
-                if any(isinstance(t, ast.Name) and t.id in wanted for t in targets) and node.value is not None:
-                    names |= set(ast.literal_eval(node.value))
+    for module in _assigned(PACKAGE / "api" / "__init__.py", "MODULES"):
+        names |= set(_assigned(PACKAGE / "api" / f"{module}.py", "__all__"))
     return names
 
 
@@ -152,3 +159,92 @@ def test_every_subpackage_says_what_it_takes_gives_and_may_import():
         doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
         assert "May import" in doc or init.parent.name == "cli", f"{init}: docstring lacks the import rule"
         assert len(doc.split()) >= 20, f"{init}: docstring too short to say what the stage takes and gives"
+
+
+# ------------------------------------------------------------------ no cycles
+
+
+def module_of(path: Path) -> str:
+    rel = path.relative_to(REPO).with_suffix("")
+    parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
+    return ".".join(parts)
+
+
+def import_graph() -> dict[str, set[str]]:
+    """module -> the rkcheck modules it imports, at the top or inside a function alike
+    (``from rkcheck.x import y`` counts as importing ``rkcheck.x.y`` when that is a
+    module, else ``rkcheck.x``)."""
+    modules = {module_of(p): p for p in PACKAGE.rglob("*.py")}
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        targets = set()
+        for _, module, names in imports(path):
+            subs = [f"{module}.{n}" for n in names if f"{module}.{n}" in modules]
+            targets |= set(subs) if subs and len(subs) == len(names) else {module}
+        graph[name] = {t for t in targets if t in modules and t != name}
+    return graph
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components with more than one module (Tarjan's algorithm,
+    iterative)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    out: list[list[str]] = []
+    counter = 0
+    for root in sorted(graph):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            v, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = counter
+                    counter += 1
+                    stack.append(w)
+                    on_stack.add(w)
+                    work.append((w, iter(sorted(graph.get(w, ())))))
+                elif w in on_stack:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                component = []
+                while True:
+                    w = stack.pop()
+                    on_stack.discard(w)
+                    component.append(w)
+                    if w == v:
+                        break
+                if len(component) > 1:
+                    out.append(sorted(component))
+    return out
+
+
+#: Package ``__init__`` modules that load their public names lazily from their own
+#: submodules (PEP 562): the submodule importing its package is Python's import
+#: machinery, not a dependency.
+LAZY_PACKAGES = {"rkcheck", "rkcheck.api"}
+
+
+def test_no_module_imports_in_a_cycle():
+    """No two modules need each other, not even through an import inside a function:
+    such an import hides a cycle rather than removing it."""
+    graph = {m: {t for t in targets if t not in LAZY_PACKAGES} for m, targets in import_graph().items()}
+    found = cycles(graph)
+    assert not found, "import cycles:\n" + "\n".join(" <-> ".join(c) for c in found)
+
+
+def test_the_cycle_finder_finds_cycles():
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []

@@ -8,128 +8,58 @@ energy conditions, tableaux written in other formats, and one function per comma
 whose result the CLI hands to :mod:`rkcheck.reports`.  Every refusal is an
 :class:`~rkcheck.errors.RkcheckError` with the CLI's one-line message.
 
+Each public name is declared once, in the ``__all__`` of the submodule that defines or
+re-exports it (:data:`MODULES`); a name is loaded on first use, so that importing one
+submodule (as the CLI does for ``verify``) does not load the others.
+
 May import every stage of the flow (:mod:`rkcheck.options`, ``numbers``, ``trees``,
 ``methods``, ``io``, ``evaluation``, ``energy``, ``dynamics``, ``studies``, ``batch``,
 ``reports``) and :mod:`rkcheck.errors`; never :mod:`rkcheck.cli` (the CLI calls this).
 """
 
+from __future__ import annotations
+
+import importlib
 from typing import TYPE_CHECKING, Any
 
-if TYPE_CHECKING:  # what type checkers see; at run time __getattr__ loads each name on first use
-    from rkcheck.api.batch import Catalog, ScanResult, ScanRow, catalog, scan
-    from rkcheck.api.dynamics import (
-        EnergyOrderFit,
-        Simulation,
-        WorkPrecision,
-        empirical_energy_order,
-        hamiltonian,
-        simulate,
-        work_precision,
-    )
-    from rkcheck.api.interop import from_nodepy, to_nodepy
-    from rkcheck.api.methods import new, new_toml
-    from rkcheck.api.studies import Bench, Kernel, Perturbation, bench, kernel, perturb
-    from rkcheck.api.tableaux import from_arrays, library, load, loads, write
-    from rkcheck.api.trees import (
-        ConditionList,
-        EnergyCondition,
-        FreeTree,
-        RootingTerm,
-        conditions,
-        energy_condition,
-        free_trees,
-    )
-    from rkcheck.api.verification import Condition, Verification, verify
+if TYPE_CHECKING:  # what type checkers see; at run time __getattr__ loads each name
+    from rkcheck.api.batch import *  # noqa: F403
+    from rkcheck.api.dynamics import *  # noqa: F403
+    from rkcheck.api.errors import *  # noqa: F403
+    from rkcheck.api.interop import *  # noqa: F403
+    from rkcheck.api.methods import *  # noqa: F403
+    from rkcheck.api.studies import *  # noqa: F403
+    from rkcheck.api.tableaux import *  # noqa: F403
+    from rkcheck.api.trees import *  # noqa: F403
+    from rkcheck.api.types import *  # noqa: F403
+    from rkcheck.api.verification import *  # noqa: F403
 
-#: each public name and the module that defines it: importing one submodule (as the CLI
-#: does for ``verify``) must not load the others (scan, simulation, studies: start-up)
-_WHERE = {
-    'Bench': 'rkcheck.api.studies',
-    'Catalog': 'rkcheck.api.batch',
-    'Condition': 'rkcheck.api.verification',
-    'ConditionList': 'rkcheck.api.trees',
-    'EnergyCondition': 'rkcheck.api.trees',
-    'EnergyOrderFit': 'rkcheck.api.dynamics',
-    'FreeTree': 'rkcheck.api.trees',
-    'Kernel': 'rkcheck.api.studies',
-    'Perturbation': 'rkcheck.api.studies',
-    'RootingTerm': 'rkcheck.api.trees',
-    'ScanResult': 'rkcheck.api.batch',
-    'ScanRow': 'rkcheck.api.batch',
-    'Simulation': 'rkcheck.api.dynamics',
-    'Verification': 'rkcheck.api.verification',
-    'WorkPrecision': 'rkcheck.api.dynamics',
-    'bench': 'rkcheck.api.studies',
-    'catalog': 'rkcheck.api.batch',
-    'conditions': 'rkcheck.api.trees',
-    'empirical_energy_order': 'rkcheck.api.dynamics',
-    'energy_condition': 'rkcheck.api.trees',
-    'free_trees': 'rkcheck.api.trees',
-    'from_arrays': 'rkcheck.api.tableaux',
-    'from_nodepy': 'rkcheck.api.interop',
-    'hamiltonian': 'rkcheck.api.dynamics',
-    'kernel': 'rkcheck.api.studies',
-    'library': 'rkcheck.api.tableaux',
-    'load': 'rkcheck.api.tableaux',
-    'loads': 'rkcheck.api.tableaux',
-    'new': 'rkcheck.api.methods',
-    'new_toml': 'rkcheck.api.methods',
-    'perturb': 'rkcheck.api.studies',
-    'scan': 'rkcheck.api.batch',
-    'simulate': 'rkcheck.api.dynamics',
-    'to_nodepy': 'rkcheck.api.interop',
-    'verify': 'rkcheck.api.verification',
-    'work_precision': 'rkcheck.api.dynamics',
-    'write': 'rkcheck.api.tableaux',
-}
+#: The submodules whose ``__all__`` make the public API, cheapest to import first.
+MODULES = ("errors", "types", "tableaux", "verification", "trees", "methods", "interop", "batch", "studies",
+           "dynamics")
+
+
+def _module(name: str) -> Any:
+    return importlib.import_module(f"rkcheck.api.{name}")
+
+
+def public_names() -> list[str]:
+    """Every public name (imports every submodule)."""
+    return sorted(n for m in MODULES for n in _module(m).__all__)
 
 
 def __getattr__(name: str) -> Any:
-    module = _WHERE.get(name)
-    if module is None:
-        raise AttributeError(f"module 'rkcheck.api' has no attribute {name!r}")
-    import importlib
+    """Load a public name from its submodule on first use (PEP 562); ``__all__`` too."""
+    if name == "__all__":
+        return public_names()
+    for m in MODULES:
+        module = _module(m)
+        if name in module.__all__:
+            value = getattr(module, name)
+            globals()[name] = value
+            return value
+    raise AttributeError(f"module 'rkcheck.api' has no attribute {name!r}")
 
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
 
-__all__ = [
-    "Bench",
-    "Catalog",
-    "Condition",
-    "ConditionList",
-    "EnergyCondition",
-    "EnergyOrderFit",
-    "FreeTree",
-    "Kernel",
-    "Perturbation",
-    "RootingTerm",
-    "ScanResult",
-    "ScanRow",
-    "Simulation",
-    "Verification",
-    "WorkPrecision",
-    "bench",
-    "catalog",
-    "conditions",
-    "empirical_energy_order",
-    "energy_condition",
-    "free_trees",
-    "from_arrays",
-    "from_nodepy",
-    "hamiltonian",
-    "kernel",
-    "library",
-    "load",
-    "loads",
-    "new",
-    "new_toml",
-    "perturb",
-    "scan",
-    "simulate",
-    "to_nodepy",
-    "verify",
-    "work_precision",
-    "write",
-]
+def __dir__() -> list[str]:
+    return public_names()

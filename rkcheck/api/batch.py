@@ -51,7 +51,7 @@ class ScanRow:
     def of(outcome: "FileOutcome") -> "ScanRow":
         verification = None
         if outcome.result is not None:
-            verification = Verification(outcome.result, outcome.claims, outcome.status == "failed")
+            verification = Verification.of(outcome.result, failed=outcome.status == "failed")
         return ScanRow(outcome.path, outcome.status, outcome.error, outcome.time, verification)
 
 
@@ -130,6 +130,8 @@ def scan(
     dps: int = UNSET,
     decimals: str = UNSET,
     require: str = UNSET,
+    arithmetic: str = UNSET,
+    fail_fast: bool = False,
     exclude: Sequence[str] = (),
     fail_on: str | None = None,
     jobs: int | None = None,
@@ -150,7 +152,8 @@ def scan(
     option, a path that does not exist, no paths at all, or default options whose
     condition tables would not fit in memory (``ResourceError``).
 
-    Check options (``degree``, ``order``, ``dps``, ``decimals``, ``require``) mean what
+    Check options (``degree``, ``order``, ``dps``, ``decimals``, ``require``,
+    ``arithmetic``, ``fail_fast``) mean what
     they mean for :func:`~rkcheck.api.verification.verify` (definitions §3, §5); left
     out, each file's ``[check]`` table and then the defaults apply.  ``fail_on`` (default
     ``"claims"``) says what makes a file ``failed``; ``jobs`` worker processes (default:
@@ -168,7 +171,7 @@ def scan(
 
     config = _config(project)
     roots = scan_roots(paths, config)
-    flags = check_flags(degree, order, dps, decimals, False, require)
+    flags = check_flags(degree, order, dps, decimals, fail_fast, require, arithmetic)
     fail_on = _option(lambda: parse_choice(fail_on or config.fail_on or "claims", FAIL_ON, "fail_on"))
     if jobs is not None:
         jobs = _option(lambda: parse_int_in(jobs, JOBS_RANGE, "jobs"))
@@ -177,7 +180,7 @@ def scan(
     max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
     if max_conditions is not None:
         max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
-    # the resource guard (issue 16): the scan's default options must fit before the tables
+    # the resource guard: the scan's default options must fit before the tables
     # are built; each file's own [check] is judged against the same budget (an error row)
     files_budget = budget(max_conditions)
     default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
@@ -289,4 +292,4 @@ def catalog(
     return Catalog(rows, labels, degs, order)
 
 
-__all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan", "scan_roots"]
+__all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan"]

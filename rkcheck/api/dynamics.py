@@ -112,7 +112,7 @@ def simulate(tableau: TableauLike, problem: "str | Hamiltonian", *, h: str | int
     try:
         times, errors = energy_series(tab, ham, start_point(ham), h_value, steps, dps)
     except UserError as err:  # diverged, Newton failed: say which tableau
-        raise err.located(source=tab.source) from None
+        raise err.located(source=tab.info.source) from None
     return Simulation(tab, ham, h_value, steps, dps, times, errors)
 
 
@@ -223,5 +223,4 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     return WorkPrecision(ham, run(tabs, ham, T_value, counts))
 
 
-__all__ = ["EnergyOrderFit", "Simulation", "WORKPREC_STEPS", "WorkPrecision", "empirical_energy_order",
-           "hamiltonian", "simulate", "work_precision"]
+__all__ = ["EnergyOrderFit", "Simulation", "WorkPrecision", "empirical_energy_order", "hamiltonian", "simulate", "work_precision"]

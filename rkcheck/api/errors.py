@@ -4,7 +4,13 @@
 ``OptionError``, ``UnknownMethodError``; ``str(err)`` is the CLI's one-line message.
 """
 
-from rkcheck.errors import OptionError, RkcheckError, TableauError, UnknownMethodError, UserError
+from rkcheck.errors import (
+    OptionError,
+    RkcheckError,
+    TableauError,
+    UnknownMethodError,
+    UserError,
+)
 
 InputError = UserError
 

@@ -64,10 +64,10 @@ def to_nodepy(tableau: Tableau) -> Any:
         from nodepy import runge_kutta_method as rk
     except ImportError as err:
         raise TableauError(f"nodepy is not installed ({err}); pip install 'rkcheck[nodepy]'") from None
-    if tableau.family is not None and not tableau.is_rational:
+    if tableau.info.family is not None and not tableau.is_rational:
         raise TableauError("a family computed at the working precision has no exact entries; write it with "
                            "rkcheck new first")
-    consts = tableau.constants.definitions
+    consts = tableau.info.constants.definitions
 
     def value(e: Any) -> Any:
         import sympy
@@ -81,3 +81,6 @@ def to_nodepy(tableau: Tableau) -> Any:
     b = np.array([value(e) for e in tableau.b], dtype=object)
     cls = rk.ExplicitRungeKuttaMethod if tableau.structure == "explicit" else rk.RungeKuttaMethod
     return cls(A=A, b=b, name=tableau.name)
+
+
+__all__ = ["from_nodepy", "to_nodepy"]

@@ -10,12 +10,12 @@ from typing import TYPE_CHECKING, Any
 
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.classics import NAMES as _CLASSIC_NAMES
-from rkcheck.methods.families import FAMILIES as _FAMILIES
+from rkcheck.methods.family_spec import FAMILIES as _FAMILIES
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES, parse_choice, parse_int_in
 
 if TYPE_CHECKING:
-    from rkcheck.methods.families import FamilySpec
+    from rkcheck.methods.family_spec import FamilySpec
 
 #: The families ``new`` computes (``[family]`` tables name them too).
 FAMILIES: tuple[str, ...] = _FAMILIES
@@ -35,7 +35,7 @@ def _option(parse: Any) -> Any:
 
 def _spec(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, beta: Any) -> "FamilySpec":
     """The family's parameters, validated with the CLI's messages."""
-    from rkcheck.methods.families import parse_spec
+    from rkcheck.methods.family_spec import parse_spec
 
     table: dict[str, Any] = {"name": method}
     if method == "kernel":
@@ -88,9 +88,7 @@ def new(method: str, *, stages: int | None = None, k: int | None = None, rule: s
         from rkcheck.methods.families import family_tableau
 
         tab = family_tableau(_option(lambda: _spec(method, stages, k, rule, zeta, beta)))
-    if name:
-        tab.name = name
-    return tab
+    return tab.replace(name=name) if name else tab
 
 
 def _command_line(spec: "FamilySpec", mode: str, digits: int | None) -> str:
@@ -142,4 +140,4 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
     return render_toml(spec, mode, digits or 60, name, _command_line(spec, mode, digits))
 
 
-__all__ = ["CLASSICAL_METHODS", "FAMILIES", "new", "new_toml"]
+__all__ = ["new", "new_toml"]

@@ -41,7 +41,7 @@ PERTURB_EPS = "1e-1..1e-30"
 def _degree_and_order(tab: Tableau, degree: Any, order: Any) -> tuple[int | None, int]:
     """``degree`` and ``order`` when given, else the tableau's ``[check]``, else none and
     8; refused when the condition tables would not fit in memory (the resource guard)."""
-    options = resolve_check_options(check_flags(degree, order), tab.check, {})
+    options = resolve_check_options(check_flags(degree, order), tab.info.check, {})
     guard(options.order, options.degree)
     return options.degree, options.order
 
@@ -259,5 +259,4 @@ def bench(tableau: TableauLike, *, degree: int | str | None = UNSET, order: int 
     return Bench(tab, deg, N, rows, t_tables)
 
 
-__all__ = ["BENCH_DPS", "Bench", "Kernel", "PERTURB_DPS", "PERTURB_EPS", "Perturbation", "bench", "kernel",
-           "perturb"]
+__all__ = ["Bench", "Kernel", "Perturbation", "bench", "kernel", "perturb"]

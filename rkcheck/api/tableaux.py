@@ -4,11 +4,13 @@ says what each kind of value means), and written forms."""
 from __future__ import annotations
 
 import os
-from typing import Sequence
 
 from rkcheck.errors import TableauError
-from rkcheck.methods.arrays import entry_of, from_arrays  # from_arrays: public as is
 from rkcheck.methods.tableau import Tableau
+
+#: ``rkcheck.from_arrays``: :meth:`Tableau.from_arrays`
+from_arrays = Tableau.from_arrays
+from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.options import DEFAULT_MAX_STAGES
 
 
@@ -54,15 +56,15 @@ def tableau_warnings(tableau: Tableau, decimals: str = "auto") -> list[str]:
     differs from ``A·1``, a certain ``Σb ≠ 1``), judged at the default precision with
     decimals read as ``decimals`` says (definitions §5)."""
     from rkcheck.errors import OptionError, UserError
-    from rkcheck.methods.tableau import consistency_warnings
-    from rkcheck.numbers.precision import bits_for_dps
-    from rkcheck.options import DECIMALS_MODES, DEFAULT_DPS, parse_choice
+    from rkcheck.evaluation.values import TableauValues
+    from rkcheck.numbers.reading import Reading
+    from rkcheck.options import DECIMALS_MODES, parse_choice
 
     try:
         decimals = parse_choice(decimals, DECIMALS_MODES, "decimals")
     except UserError as err:
         raise OptionError(err.message, err.place) from None
-    return list(tableau.warnings) + consistency_warnings(tableau, bits_for_dps(DEFAULT_DPS), decimals)
+    return list(tableau.info.warnings) + TableauValues(tableau, Reading(DecimalsMode(decimals))).consistency_warnings()
 
 
 #: What the API functions accept for a tableau: the object, a path or ``@name``.
@@ -78,4 +80,4 @@ def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Ta
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
-__all__: Sequence[str] = ("TableauLike", "as_tableau", "entry_of", "from_arrays", "library", "load", "loads", "tableau_warnings", "write")
+__all__ = ["from_arrays", "library", "load", "loads", "write"]

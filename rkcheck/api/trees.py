@@ -8,41 +8,27 @@ centres, the larger of the two (definitions §3).
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field, replace
-from fractions import Fraction
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
+from rkcheck.energy.explain import EnergyCondition, RootingTerm, explain
 from rkcheck.errors import OptionError, UserError
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.methods.tableau import Tableau
-from rkcheck.options import DECIMALS_MODES, DEFAULT_DPS, DEFAULT_MAX_STAGES, DPS_RANGE, MAX_ORDER, ORDER_RANGE
+from rkcheck.numbers.reading import DecimalsMode, Reading
+from rkcheck.options import (
+    DECIMALS_MODES,
+    DEFAULT_DPS,
+    DEFAULT_MAX_STAGES,
+    DPS_RANGE,
+    MAX_ORDER,
+    ORDER_RANGE,
+)
+from rkcheck.trees.free import FreeTree
 
 if TYPE_CHECKING:
-    from rkcheck.energy.explain import Explanation
     from rkcheck.trees.counting import CountOnly
     from rkcheck.trees.listing import ConditionListing
-
-
-@dataclass(frozen=True)
-class FreeTree:
-    """A non-superfluous free tree: one energy condition (definitions §3)."""
-
-    level_sequence: tuple[int, ...]  # canonical id: the rooting at the (larger) centre
-    bracket: str  # Butcher's bracket notation of that rooting
-    max_degree: int  # the largest number of edges at a vertex
-    rootings: int  # distinct rooted trees in its class π⁻¹(t̄)
-
-    @property
-    def id(self) -> str:
-        return ",".join(map(str, self.level_sequence))
-
-    @property
-    def vertices(self) -> int:
-        return len(self.level_sequence)
-
-    @property
-    def order(self) -> int:
-        """The energy order at which it is a condition: vertices − 1."""
-        return self.vertices - 1
 
 
 def free_trees(n: int, max_degree: int | None = None) -> list[FreeTree]:
@@ -65,56 +51,7 @@ def free_trees(n: int, max_degree: int | None = None) -> list[FreeTree]:
     if n < 3:
         return []
     listing = condition_listing(n - 1, degree)
-    records = sorted(listing.records(n), key=lambda r: r.level_sequence)
-    return [FreeTree(tuple(r.level_sequence), r.bracket, r.max_degree, r.rootings) for r in records]
-
-
-@dataclass(frozen=True)
-class RootingTerm:
-    """One term ``(−1)^κ(t,u) / σ(u) · a(B₋(u))`` of a condition: the rooting ``u``
-    (canonical level sequence), the sign, σ(u), the forest B₋(u) as brackets, the
-    elementary weights in Σ-notation, and the term's value when a tableau was given."""
-
-    level_sequence: tuple[int, ...]
-    sign: int
-    sigma: int
-    forest: tuple[str, ...]
-    weights: tuple[str, ...]
-    value: Any  # Fraction (exact), (mid, radius) Fractions (enclosed), or None
-
-
-@dataclass(frozen=True)
-class EnergyCondition:
-    """The energy condition of one free tree, taken apart (definitions §3):
-    ``R(t̄) = Σ_u (−1)^κ(t,u) / σ(u) · a(B₋(u))`` over the rootings u, with the sign of
-    the designated rooting (the centre).  With a tableau, ``residual`` is R (exact
-    Fraction when the tableau is exact, else None), ``enclosure`` (mid, radius) and
-    ``state`` its verdict (definitions §5)."""
-
-    given: tuple[int, ...]
-    level_sequence: tuple[int, ...] | None  # canonical id; None when superfluous
-    bracket: str | None
-    superfluous: bool
-    vertices: int
-    max_degree: int
-    terms: tuple[RootingTerm, ...]
-    residual: Fraction | None = None
-    enclosure: tuple[Fraction, Fraction] | None = None
-    state: str | None = None
-    digits: int | None = None
-    #: the tableau the terms were evaluated on (None: none given)
-    tableau: Tableau | None = field(default=None, repr=False, compare=False)
-    #: the underlying :class:`~rkcheck.energy.explain.Explanation` (the report's input)
-    explanation: "Explanation | None" = field(default=None, repr=False, compare=False)
-
-    @property
-    def id(self) -> str | None:
-        return None if self.level_sequence is None else ",".join(map(str, self.level_sequence))
-
-    @property
-    def is_condition(self) -> bool:
-        """Whether the tree gives a condition (3 or more vertices, not superfluous)."""
-        return self.level_sequence is not None
+    return sorted(listing.records(n), key=lambda r: r.level_sequence)
 
 
 def _level_sequence(tree: Any) -> tuple[int, ...]:
@@ -146,7 +83,6 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
     the tree, independently of the bulk listing that
     :func:`~rkcheck.api.verification.verify` uses — ``rkcheck explain ID``."""
     from rkcheck.api.tableaux import as_tableau, load
-    from rkcheck.energy.explain import explain
     from rkcheck.options import parse_choice, parse_int_in
 
     seq = _level_sequence(tree)
@@ -158,25 +94,7 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
         tab: Tableau | None = load(tableau, max_stages=max_stages)
     else:
         tab = as_tableau(tableau) if tableau is not None else None
-    ex = explain(seq, tab, dps, decimals)
-
-    def value(enc: Any) -> Any:
-        if enc is None:
-            return None
-        return Fraction(enc.mid) if enc.exact else (Fraction(enc.mid), Fraction(enc.rad))
-
-    terms = tuple(RootingTerm(tuple(t.level_sequence), t.sign, t.sigma, tuple(f[1] for f in t.forest),
-                              tuple(f[2] for f in t.forest), value(t.value)) for t in ex.terms)
-    cond = ex.condition
-    out = EnergyCondition(seq, None if cond is None else tuple(cond.level_sequence),
-                          None if cond is None else cond.bracket, ex.superfluous, ex.vertices, ex.max_degree, terms,
-                          tableau=tab, explanation=ex)
-    if ex.residual is not None and ex.verdict is not None:
-        enc = ex.residual
-        out = replace(out, residual=Fraction(enc.mid) if enc.exact else None,
-                      enclosure=(Fraction(enc.mid), Fraction(enc.rad)), state=ex.verdict.state,
-                      digits=ex.verdict.digits)
-    return out
+    return explain(seq, None if tab is None else TableauValues(tab, Reading(DecimalsMode(decimals), dps)))
 
 
 def _checked(parse: Callable[[], Any]) -> Any:
@@ -214,8 +132,7 @@ class ConditionList:
         """Every condition (empty when only counted: ``count=True``)."""
         if self.counted_only:
             return []
-        records = self.listing.sorted_records()  # type: ignore[union-attr]
-        return [FreeTree(tuple(r.level_sequence), r.bracket, r.max_degree, r.rootings) for r in records]
+        return list(self.listing.sorted_records())  # type: ignore[union-attr]
 
     def __len__(self) -> int:
         return self.total
@@ -255,3 +172,6 @@ def conditions(order: int, degree: int | str | None = None, *, count: bool = Fal
         check_budget(estimate(order, bound, "exact", 0), budget(max_conditions, announce), order)
         listing = condition_listing(order, bound)
     return ConditionList(order, bound, listing, count)
+
+
+__all__ = ["ConditionList", "EnergyCondition", "FreeTree", "RootingTerm", "conditions", "energy_condition", "free_trees"]

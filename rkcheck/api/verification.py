@@ -10,18 +10,18 @@ flags), the tableau's own ``[check]`` table, ``[tool.rkcheck]`` of the nearest
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
-from fractions import Fraction
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Sequence, overload
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
+from rkcheck.energy.check import CheckResult
+from rkcheck.energy.results import Condition
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
+    ARITHMETICS,
     DECIMALS_MODES,
     DPS_RANGE,
     FAIL_ON,
     MAX_ORDER,
-    CheckOptions,
     parse_choice,
     parse_degree,
     parse_positive,
@@ -30,13 +30,7 @@ from rkcheck.options import (
 )
 
 if TYPE_CHECKING:
-    from rkcheck.energy.avf import AvfVerdict
     from rkcheck.energy.budget import Budget
-    from rkcheck.energy.check import CheckResult, ConditionResult
-    from rkcheck.energy.claims import ClaimResult
-    from rkcheck.energy.lineintegral import Certificate
-
-ARITHMETIC = ("auto", "exact", "ball")
 
 
 class _Unset:
@@ -49,158 +43,21 @@ class _Unset:
 UNSET: Any = _Unset()
 
 
-@dataclass(frozen=True)
-class Condition:
-    """One checked energy condition (definitions §3): the free tree by its canonical id
-    (level sequence of the rooting at the centre), its verdict (definitions §5), and its
-    residual R for that designated rooting.
+class Verification(CheckResult):
+    """The result of :func:`verify` (and of ``rkcheck verify``): the check of every
+    energy condition, the orders, the AVF verdict and certificate, and the tableau's
+    ``[expect]`` claims — a :class:`~rkcheck.energy.check.CheckResult` with the JSON
+    document added.
 
-    ``residual`` is the exact value when the check was exact (a ``Fraction``, or an exact
-    algebraic number), else None; ``enclosure`` is ``(mid, radius)``, rational, always
-    given: R lies in ``[mid − radius, mid + radius]``."""
-
-    id: str
-    level_sequence: tuple[int, ...]
-    bracket: str
-    vertices: int
-    max_degree: int
-    state: str  # "holds" | "holds_to_digits" | "fails"
-    digits: int | None
-    residual: Any
-    enclosure: tuple[Fraction, Fraction]
-
-    @property
-    def order(self) -> int:
-        """The energy order this condition belongs to: vertices − 1."""
-        return self.vertices - 1
-
-    @property
-    def holds(self) -> bool:
-        """``holds`` or ``holds to D digits``."""
-        return self.state != "fails"
-
-    @staticmethod
-    def of(r: "ConditionResult") -> "Condition":
-        c, e = r.condition, r.enclosure
-        return Condition(c.id, tuple(c.level_sequence), c.bracket, c.vertices, c.max_degree, r.verdict.state,
-                         r.verdict.digits, r.value, (Fraction(e.mid), Fraction(e.rad)))
-
-
-class _Conditions(Sequence[Condition]):
-    """A lazy view: conditions are built when read (there may be millions)."""
-
-    def __init__(self, results: Sequence["ConditionResult"]):
-        self._results = results
-
-    def __len__(self) -> int:
-        return len(self._results)
-
-    @overload
-    def __getitem__(self, i: int) -> Condition: ...
-
-    @overload
-    def __getitem__(self, i: slice) -> list[Condition]: ...
-
-    def __getitem__(self, i: int | slice) -> Condition | list[Condition]:
-        if isinstance(i, slice):
-            return [Condition.of(r) for r in self._results[i]]
-        return Condition.of(self._results[i])
-
-    def __iter__(self) -> Iterator[Condition]:
-        return (Condition.of(r) for r in self._results)
-
-    def __repr__(self) -> str:
-        return f"<{len(self)} conditions>"
-
-
-@dataclass(frozen=True)
-class Verification:
-    """The result of :func:`verify`: the check of every energy condition, the orders, the
-    AVF verdict and certificate, and the tableau's ``[expect]`` claims.
-
-    ``result`` is the underlying :class:`~rkcheck.energy.check.CheckResult` (the reports'
-    input); the properties below are the stable surface."""
-
-    result: "CheckResult"
-    claims: "list[ClaimResult] | None"
-    failed: bool  # what the CLI's exit code 1 means under ``fail_on``
-
-    @property
-    def tableau(self) -> Tableau:
-        return self.result.tableau
-
-    @property
-    def options(self) -> CheckOptions:
-        """The options the check ran with, after resolution."""
-        return self.result.options
-
-    @property
-    def ok(self) -> bool:
-        """True when the CLI would exit 0 (``fail_on='auto'``: claims if the tableau has
-        any, else every condition holds or a certificate proves them)."""
-        return not self.failed
-
-    @property
-    def verdict(self) -> str:
-        """All checked conditions at once: ``fails`` if any fails, else
-        ``holds_to_digits`` if any holds only to digits, else ``holds``."""
-        from rkcheck.energy.check import overall
-
-        return overall(self.result).state
-
-    @property
-    def energy_order(self) -> int:
-        """Largest n ≤ order with every condition up to n+1 vertices holding (definitions §3)."""
-        return self.result.energy_order
-
-    @property
-    def energy_order_label(self) -> str:
-        """``all`` (a certificate proves every order), ``≥ N`` (nothing fails up to the
-        checked order N) or the exact energy order."""
-        return self.result.energy_order_label
-
-    @property
-    def energy_order_all(self) -> bool:
-        return self.result.energy_order_all
-
-    @property
-    def conditions(self) -> Sequence[Condition]:
-        """Every checked condition, by vertices and then canonical id."""
-        return _Conditions(self.result.results)
-
-    @property
-    def failures(self) -> Sequence[Condition]:
-        """The conditions that certainly fail, in the same order."""
-        return _Conditions(self.result.failures)
-
-    @property
-    def avf(self) -> "AvfVerdict | None":
-        """Whether the tableau equals AVF for the degree (None without a degree bound)."""
-        return self.result.avf
-
-    @property
-    def certificate(self) -> "Certificate | None":
-        """The certificate proving every order for the degree: line-integral (σ = 1 is
-        AVF), or for degree 2 the stability-function certificate (R(z)R(−z) ≡ 1)."""
-        return self.result.certificate
-
-    @property
-    def classical_order(self) -> int:
-        return self.result.classical.order
-
-    @property
-    def quadrature_order(self) -> int:
-        return self.result.quadrature.order
-
-    @property
-    def warnings(self) -> list[str]:
-        return self.result.warnings
+    ``conditions`` and ``failures`` are sequences of
+    :class:`~rkcheck.energy.results.Condition` (built as they are read: there may be
+    millions)."""
 
     def to_dict(self) -> dict[str, Any]:
         """The document of ``rkcheck verify --format json`` (same keys and values)."""
         from rkcheck.reports.jsondoc import check_doc
 
-        return check_doc(self.result, self.claims)
+        return check_doc(self)
 
     def to_json(self) -> str:
         """Exactly what ``rkcheck verify --format json`` prints (without its newline)."""
@@ -210,7 +67,7 @@ class Verification:
 
     def __repr__(self) -> str:
         return (f"<Verification of {self.tableau.name!r}: {self.verdict}, energy order {self.energy_order_label}, "
-                f"{len(self.failures)} of {len(self.result.results)} conditions fail>")
+                f"{len(self.failures)} of {len(self.conditions)} conditions fail>")
 
 
 # ------------------------------------------------------------------ options
@@ -224,7 +81,7 @@ def _option(parse: Callable[[], Any]) -> Any:
 
 
 def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decimals: Any = UNSET,
-                fail_fast: bool = False, require: Any = UNSET) -> dict[str, Any]:
+                fail_fast: bool = False, require: Any = UNSET, arithmetic: Any = UNSET) -> dict[str, Any]:
     """The options given explicitly, validated like the CLI's flags (an
     :class:`~rkcheck.errors.OptionError` naming the option otherwise)."""
     flags: dict[str, Any] = {}
@@ -242,6 +99,8 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
         flags["decimals"] = _option(lambda: parse_choice(decimals, DECIMALS_MODES, "decimals"))
     if require is not UNSET:
         flags["require"] = _option(lambda: parse_require(require, "require"))
+    if arithmetic is not UNSET:
+        flags["arithmetic"] = _option(lambda: parse_choice(arithmetic, ARITHMETICS, "arithmetic"))
     if fail_fast:
         flags["fail_fast"] = True
     return flags
@@ -249,15 +108,16 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
 
 def run_check(tableau: Tableau, flags: Mapping[str, Any], project: Mapping[str, Any] | None = None,
               fail_on: str = "auto", budget: "Budget | None" = None,
-              progress: Callable[[int, int], None] | None = None, arithmetic: str = "auto") -> Verification:
+              progress: Callable[[int, int], None] | None = None) -> Verification:
     """The check behind :func:`verify` and ``rkcheck verify``: options resolved
     (flags, ``[check]``, ``project``, defaults), then every condition and every claim.
     Ctrl-C raises :class:`~rkcheck.errors.CheckInterrupted` with what finished."""
     from rkcheck.energy.claims import judge_tableau
 
-    options = resolve_check_options(flags, tableau.check, project or {})
-    result, claims, failed = judge_tableau(tableau, options, fail_on, budget, progress, arithmetic)
-    return Verification(result, claims, failed)
+    options = resolve_check_options(flags, tableau.info.check, project or {})
+    result = judge_tableau(tableau, options, fail_on, budget, progress, Verification)
+    assert isinstance(result, Verification)
+    return result
 
 
 def verify(
@@ -270,7 +130,7 @@ def verify(
     require: str = UNSET,
     fail_fast: bool = False,
     fail_on: str = "auto",
-    arithmetic: str = "auto",
+    arithmetic: str = UNSET,
     project: bool = False,
     max_conditions: int | None = None,
 ) -> Verification:
@@ -293,9 +153,8 @@ def verify(
     from rkcheck.energy.budget import Budget
     from rkcheck.io.machine import available_memory
 
-    flags = check_flags(degree, order, dps, decimals, fail_fast, require)
+    flags = check_flags(degree, order, dps, decimals, fail_fast, require, arithmetic)
     fail_on = _option(lambda: parse_choice(fail_on, FAIL_ON, "fail_on"))
-    arithmetic = _option(lambda: parse_choice(arithmetic, ARITHMETIC, "arithmetic"))
     if max_conditions is not None:
         max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
     project_check: dict[str, Any] = {}
@@ -307,5 +166,7 @@ def verify(
         if fail_on == "auto" and config.fail_on:
             fail_on = config.fail_on
     tab = as_tableau(tableau)
-    return run_check(tab, flags, project_check, fail_on, Budget(available_memory(), max_conditions, None),
-                     None, arithmetic)
+    return run_check(tab, flags, project_check, fail_on, Budget(available_memory(), max_conditions, None))
+
+
+__all__ = ["Condition", "Verification", "verify"]

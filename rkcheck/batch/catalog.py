@@ -66,7 +66,7 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
             cls = res.classical
             row.classical = str(cls.order) if cls.first_failure else f"≥ {cls.order}"
             row.quadrature = str(res.quadrature.order)
-    if tab.claims:
-        results = check_claims(tab, tab.claims, CheckOptions(order=order, dps=dps), runner)
+    if tab.info.claims:
+        results = check_claims(tab, list(tab.info.claims), CheckOptions(order=order, dps=dps), runner)
         row.claims = "ok" if all(r.met for r in results) else "BROKEN"
     return row

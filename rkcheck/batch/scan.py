@@ -36,13 +36,12 @@ class FileOutcome:
     error: str | None = None
     time: float = 0.0
     lines: dict[str, int] = field(default_factory=dict)
-    result: Any = None
-    claims: list | None = None
+    result: Any = None  # the CheckResult, with its claims judged
 
 
 def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):
     """Check options of one file: flags, else its ``[check]``, else ``[tool.rkcheck]``."""
-    return resolve_check_options(flags, tab.check, project)
+    return resolve_check_options(flags, tab.info.check, project)
 
 
 def _is_tableau_document(data: dict[str, Any]) -> bool:
@@ -83,9 +82,9 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
                 return out
             tab = build_tableau(data, path, max_stages)
-            tab.lines = out.lines
-        out.result, out.claims, failed = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
-        out.status = "failed" if failed else "ok"
+            tab = tab.replace(info=tab.info.replace(lines=out.lines))
+        out.result = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
+        out.status = "failed" if out.result.failed else "ok"
     except UserError as err:
         out.error = str(err.located(source=path) if not err.source else err)
     except RecursionError:

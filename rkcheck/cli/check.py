@@ -70,21 +70,20 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     interrupted = False
     try:
         with progress_steps("checking") as update:  # the API's check: same options, same result
-            verification = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update,
-                                     arithmetic)
-        result, claim_results, failed = verification.result, verification.claims, verification.failed
+            result = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update)
+        failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
-        result, claim_results, failed, interrupted = stop.result, None, True, True
+        result, failed, interrupted = stop.result, True, True
     if fmt == "json":
         from rkcheck.reports.jsondoc import check_doc, dumps
 
-        click.echo(dumps(check_doc(result, claim_results)))
+        click.echo(dumps(check_doc(result)))
     else:
         from rkcheck.reports.text import render_check
 
         out = settings()
-        render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, claims=claim_results,
-                     verbose=out.verbose, fail_on=fail_on)
+        render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, verbose=out.verbose,
+                     fail_on=fail_on)
     if interrupted:
         done = [p.order for p in result.per_order if p.checked]
         click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
@@ -197,4 +196,4 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
         if err.place != "tree":
             raise
         raise UserError(err.message, "ID") from None  # the API's argument is this command's ID
-    render_explanation(cond.explanation, stdout_console(), cond.tableau)
+    render_explanation(cond, stdout_console())

@@ -255,7 +255,7 @@ def flag_values(*names: str) -> dict[str, Any]:
     from click.core import ParameterSource
 
     ctx = click.get_current_context()
-    names = names or ("degree", "order", "dps", "decimals", "fail_fast", "require")
+    names = names or ("degree", "order", "dps", "decimals", "fail_fast", "require", "arithmetic")
     out: dict[str, Any] = {}
     for name in names:
         if name in ctx.params and ctx.get_parameter_source(name) in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT):

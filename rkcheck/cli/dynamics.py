@@ -7,9 +7,9 @@ import sys
 import click
 
 from rkcheck.cli.common import (
-    busy,
     EXIT_FAIL,
     EXIT_OK,
+    busy,
     load_tableau,
     max_stages_option,
     output_options,
@@ -51,7 +51,8 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
       rkcheck simulate tableaux/collocation/gauss-2.toml tableaux/avf/avf-gauss-2.toml \\
           --problem henon-heiles --h 1/10 --steps 2000 --chart drift.png
     """
-    from rkcheck.api.dynamics import empirical_energy_order, hamiltonian, simulate as run_simulation
+    from rkcheck.api.dynamics import empirical_energy_order, hamiltonian
+    from rkcheck.api.dynamics import simulate as run_simulation
     from rkcheck.reports.simulation import render_energy_fit, render_series
 
     ham = hamiltonian(problem_spec)

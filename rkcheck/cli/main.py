@@ -3,7 +3,6 @@ one line on stderr and an exit code (0 ok, 1 fail, 2 user error, 3 bug, 130 inte
 
 from __future__ import annotations
 
-import gc
 import os
 import signal
 import sys
@@ -11,8 +10,6 @@ import warnings
 
 import click
 
-import rkcheck
-from rkcheck import __version__
 from rkcheck.cli.common import (
     EXIT_INTERNAL,
     EXIT_INTERRUPTED,
@@ -22,10 +19,11 @@ from rkcheck.cli.common import (
 )
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
+from rkcheck.version import __version__
 
 #: Each command and the module that defines it.  Importing a command's module is deferred
 #: until the command is run (or listed by ``--help``): ``verify`` on a small file then
-#: loads neither the families nor the simulation code (issue 15, start-up ≤ 0.4 s).
+#: loads neither the families nor the simulation code (start-up).
 COMMANDS = {
     "verify": "rkcheck.cli.check", "show": "rkcheck.cli.check", "conditions": "rkcheck.cli.check",
     "explain": "rkcheck.cli.check", "new": "rkcheck.cli.library", "scan": "rkcheck.cli.scan",
@@ -87,7 +85,7 @@ def _interrupt_once(signum: int, frame) -> None:
 
 
 def install_signal_handlers() -> None:
-    """SIGTERM is handled like SIGINT (issue 16); only in the main thread of the main
+    """SIGTERM is handled like SIGINT; only in the main thread of the main
     interpreter (the API and tests may call :func:`main` from elsewhere)."""
     import threading
 
@@ -112,7 +110,7 @@ def main(argv: list[str] | None = None) -> None:
         with warnings.catch_warnings():
             # numpy's "overflow encountered" is how a float radius becomes inf, which the
             # certified arithmetic reads as "no claim" (and then refuses or raises the
-            # precision): an expected event, not a message for the user (issue 16)
+            # precision): an expected event, not a message for the user
             warnings.filterwarnings("ignore", message="overflow encountered", category=RuntimeWarning)
             warnings.filterwarnings("ignore", message="invalid value encountered", category=RuntimeWarning)
             _run(argv)
@@ -122,12 +120,6 @@ def main(argv: list[str] | None = None) -> None:
         if threading.current_thread() is threading.main_thread():
             for sig, handler in previous.items():
                 signal.signal(sig, handler)
-        if rkcheck._PROGRAM:
-            # the process ends now: the interpreter's last full collection would walk every
-            # object still alive only to find that nothing is garbage (35-45 ms after a
-            # verify, issue 15); frozen objects are skipped, and exit still flushes the
-            # streams and runs atexit handlers
-            gc.freeze()
 
 
 def _run(argv: list[str] | None) -> None:

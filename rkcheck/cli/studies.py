@@ -13,7 +13,13 @@ from rkcheck.cli.common import (
     output_options,
     stdout_console,
 )
-from rkcheck.options import DEFAULT_DPS, KERNEL_DEGREE_RANGE, KERNEL_STAGES_RANGE, REPEAT_RANGE, STUDY_DPS_RANGE
+from rkcheck.options import (
+    DEFAULT_DPS,
+    KERNEL_DEGREE_RANGE,
+    KERNEL_STAGES_RANGE,
+    REPEAT_RANGE,
+    STUDY_DPS_RANGE,
+)
 
 
 @click.command()

@@ -21,6 +21,7 @@ from typing import Any, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.precision import mpmath_bits
+from rkcheck.numbers.reading import DecimalsMode
 
 
 class NewtonError(UserError):
@@ -94,7 +95,7 @@ class RKMethod:
     @staticmethod
     def from_tableau(tableau, ctx, bits: int = 0) -> "RKMethod":
         bits = bits or mpmath_bits(getattr(ctx, "dps", 16))
-        A_i, b_i = tableau.enclosures(bits, "exact")
+        A_i, b_i = tableau.enclosures(bits, DecimalsMode.EXACT)
         A = [[ctx.num(x.mid) for x in row] for row in A_i]
         b = [ctx.num(x.mid) for x in b_i]
         return RKMethod(A, b, tableau.structure == "explicit")

@@ -25,6 +25,7 @@ from fractions import Fraction
 from typing import Any
 
 from rkcheck.dynamics.integrator import MP, Float64, RKMethod, integrate, step
+from rkcheck.numbers.reading import DecimalsMode
 
 H_EXPONENTS = tuple(range(3, 11))  # h = 2^-3 ... 2^-10
 
@@ -148,7 +149,7 @@ def energy_order_agreement(tableau, ham, dps: int | None = None, points: int = 4
     ``decimals = exact`` too: a 16-digit AVF tableau is compared as what it is."""
     from rkcheck.energy.check import CheckOptions, check
 
-    res = check(tableau, CheckOptions(degree=ham.degree, order=order, decimals="exact"))
+    res = check(tableau, CheckOptions(degree=ham.degree, order=order, decimals=DecimalsMode.EXACT))
     sizes = magnitudes(tableau, res)
     use = max(dps or 40, needed_dps(sizes, exponents))
     fit = fit_energy_order(tableau, ham, dps=use, points=points, seed=seed, exponents=exponents)
@@ -163,15 +164,14 @@ def magnitudes(tableau, result):
     prime budget (a minute for the failing conditions of HBVM(6, 2) to order 10)."""
     from rkcheck.energy.check import check
 
-    field = getattr(tableau.exact_values(), "field", None) if result.backend == "exact" else None
+    field = result.values.exact.field if result.values.exact is not None and result.backend == "exact" else None
     if field is None or field.degree <= 2 or not len(result.failures):
         return result
-    return check(tableau, dataclasses.replace(result.options, dps=30), arithmetic="ball")
+    return check(tableau, dataclasses.replace(result.options, dps=30, arithmetic="ball"))
 
 
 def _max_residual(result, k: int):
-    return max((abs(r.enclosure.mid) for r in result.results
-                if r.condition.order == k + 1 and r.verdict.state == "fails"), default=0)
+    return max((abs(r.enclosure.mid) for r in result.failures if r.order == k + 1), default=0)
 
 
 def dominant_order(result, fit: EnergyFit) -> int:
@@ -182,10 +182,8 @@ def dominant_order(result, fit: EnergyFit) -> int:
         return result.energy_order
     h = float(min(fit.fitted))
     best, best_size = result.energy_order, -1.0
-    for r in result.results:
-        if r.verdict.state != "fails":
-            continue
-        n = r.condition.order - 1
+    for r in result.failures:
+        n = r.order - 1
         size = float(abs(r.enclosure.mid)) * h ** (n + 1)
         if size > best_size:
             best, best_size = n, size
@@ -198,7 +196,7 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
     check to read residual sizes from (:func:`magnitudes`; ``result`` by default)."""
     from rkcheck.energy.check import CheckOptions, check
 
-    res = result or check(tableau, CheckOptions(degree=degree, order=order, decimals="exact"))
+    res = result or check(tableau, CheckOptions(degree=degree, order=order, decimals=DecimalsMode.EXACT))
     sizes = sizes or res
     emp = "ΔH at solver precision" if fit.at_solver_precision else (
         "—" if fit.empirical_order is None else f"{fit.empirical_order:.2f}")

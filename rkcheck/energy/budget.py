@@ -20,7 +20,6 @@ passes it in a :class:`Budget`.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -113,8 +112,3 @@ def check_budget(est: Estimate, budget: Budget | None, order: int) -> None:
             f"--max-conditions to run anyway")
     if budget.announce is not None and est.seconds > QUIET_SECONDS:
         budget.announce(f"estimated {est.text()}")
-
-
-def channels_needed(coefficient_bits: int, degree_of_field: int = 1) -> int:
-    """Channels for residues of ``coefficient_bits`` bits (29-bit primes)."""
-    return max(1, math.ceil((coefficient_bits + 1) / 29)) * degree_of_field

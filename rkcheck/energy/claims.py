@@ -21,8 +21,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from rkcheck.energy.budget import Budget
+from rkcheck.energy.check import CheckResult, CheckRunner
+from rkcheck.energy.gate import conditions_ok
 from rkcheck.methods.claims import Claim
-from rkcheck.options import FAIL_ON  # noqa: F401 (re-exported)
+from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.options import CheckOptions
 
 
 @dataclass(frozen=True)
@@ -113,7 +118,7 @@ def judge_property(claim: Claim, result) -> ClaimResult:
     if entry.exact is not None:
         diff = lead - sc.const(entry.exact, lead)
     else:
-        diff = sc.enclosure(lead, 256) - entry.enclosure(256)
+        diff = sc.enclosure(lead, 256) - entry.enclosure(256, DecimalsMode.EXACT)
     return ClaimResult(claim, sc.verdict(diff).holds, found, note)
 
 
@@ -128,17 +133,18 @@ def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimRes
 # ------------------------------------------------------------------ one file
 
 
-def judge_tableau(tableau, options, fail_on: str = "auto", budget=None, progress=None, arithmetic: str = "auto"):
-    """Check a tableau and its claims: (main result, claim results or None, failed?).
+def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto", budget: Budget | None = None,
+                  progress=None, result_type: type[CheckResult] = CheckResult) -> CheckResult:
+    """Check a tableau and its claims: the main run's result (as ``result_type``, a
+    subclass that adds methods) with ``claims`` (None when the tableau has none) and
+    ``failed`` (the file's verdict under ``fail_on``).
 
     The claim runs share the main run when their options coincide (one CheckRunner);
-    ``budget``, ``progress`` and ``arithmetic`` go to every run (:func:`rkcheck.energy.check.check`)."""
-    from rkcheck.energy.check import CheckRunner, conditions_ok
-
-    runner = CheckRunner(budget, progress, arithmetic)
+    ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
+    runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
-    claims = check_claims(tableau, tableau.claims, options, runner) if tableau.claims else None
-    return result, claims, file_fails(conditions_ok(result), claims, fail_on)
+    claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
+    return result_type.of(result, claims=claims, failed=file_fails(conditions_ok(result), claims, fail_on))
 
 
 # ---------------------------------------------------------------- exit policy

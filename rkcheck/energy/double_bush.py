@@ -26,6 +26,7 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.numbers.precision import mpmath_bits
+from rkcheck.numbers.reading import DecimalsMode
 
 
 def pairs(m: int) -> list[tuple[int, int]]:
@@ -240,11 +241,10 @@ def tableau_rule(tableau, dps: int):
     """(b, c = A·1, exact) of a tableau."""
     import mpmath
 
-    if tableau.is_exact("exact"):
-        A, b = tableau.exact_A(), tableau.exact_b()
-        return b, [sum(row, Fraction(0)) for row in A], True
-    bits = mpmath_bits(dps)
-    A, b = tableau.enclosures(bits, "exact")
+    exact = tableau.exact_values()  # at face value
+    if exact is not None:
+        return exact.b, [sum(row, Fraction(0)) for row in exact.A], True
+    A, b = tableau.enclosures(mpmath_bits(dps), DecimalsMode.EXACT)
     with mpmath.workdps(dps + 10):
         def mp(x):
             return mpmath.mpf(x.mid.numerator) / x.mid.denominator

@@ -80,9 +80,9 @@ def error_constant(result) -> ErrorConstant | None:
     first = result.first_failure
     if first is None:
         return None
-    order = first.condition.order
+    order = first.order
     # only the first failing order is read (the results are columnar and lazy)
-    n, res = first.condition.vertices, result.results
+    n, res = first.vertices, result.conditions
     at_order = [res.result(n, k) for k in range(len(res.orders[n]))]
     exact = all(r.enclosure.exact for r in at_order)
     if exact:

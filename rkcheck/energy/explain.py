@@ -22,9 +22,10 @@ from fractions import Fraction
 from typing import Any
 
 from rkcheck.energy.verdicts import Verdict, classify
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
-from rkcheck.numbers.precision import entry_bits
+from rkcheck.trees.free import FreeTree
 from rkcheck.trees.rooted import (
     bracket,
     bracket_of_forest,
@@ -62,44 +63,70 @@ def sigma_notation(seq: tuple[int, ...]) -> str:
 
 
 @dataclass(frozen=True)
-class ExplainedCondition:
-    level_sequence: tuple[int, ...]
-    bracket: str
-    vertices: int
+class RootingTerm:
+    """One term ``(−1)^κ(t,u) / σ(u) · a(B₋(u))`` of a condition: the rooting ``u``
+    (canonical level sequence and bracket), the sign, σ(u), the forest B₋(u) as
+    brackets, its elementary weights in Σ-notation (``Σ b_i a_ij``), and — when a
+    tableau was given — a certified enclosure of the term's value (exact for exact data)."""
 
-    @property
-    def id(self) -> str:
-        return ",".join(map(str, self.level_sequence))
-
-    @property
-    def order(self) -> int:
-        return self.vertices - 1
-
-
-@dataclass(frozen=True)
-class ExplainedTerm:
     level_sequence: tuple[int, ...]
     bracket: str
     sign: int
     sigma: int
-    forest: list[tuple[tuple[int, ...], str, str]]  # (level sequence, bracket, Σ-notation)
-    value: Enclosure | None = None  # sign/σ · a(B₋(u)) when a tableau is given
+    forest: tuple[str, ...]
+    weights: tuple[str, ...]
+    value: Enclosure | None = None
 
 
-@dataclass
-class Explanation:
-    given: tuple[int, ...]
-    condition: ExplainedCondition | None  # None when superfluous (or too small)
+@dataclass(frozen=True)
+class EnergyCondition:
+    """The energy condition of one free tree, taken apart (definitions §3):
+    ``R(t̄) = Σ_u (−1)^κ(t,u) / σ(u) · a(B₋(u))`` over the distinct rootings u, with the
+    sign of the designated rooting.  ``tree`` is None when the tree gives no condition
+    (superfluous, or fewer than 3 vertices).  With a tableau, ``enclosure`` holds R
+    (exact for exact data) and ``verdict`` its state (definitions §5)."""
+
+    given: tuple[int, ...]  # the rooting asked about
+    tree: FreeTree | None
     superfluous: bool
     vertices: int
     max_degree: int
-    terms: list[ExplainedTerm] = field(default_factory=list)
-    residual: Enclosure | None = None
+    terms: tuple[RootingTerm, ...] = ()
+    enclosure: Enclosure | None = None
     verdict: Verdict | None = None
+    tableau: Any = field(default=None, repr=False, compare=False)  # what the terms were evaluated on
 
     @property
-    def id(self) -> str:
-        return self.condition.id if self.condition else ",".join(map(str, self.given))
+    def id(self) -> str | None:
+        """The free tree's id (its canonical level sequence); None when it gives no condition."""
+        return self.tree.id if self.tree else None
+
+    @property
+    def is_condition(self) -> bool:
+        """Whether the tree gives a condition (3 or more vertices, not superfluous)."""
+        return self.tree is not None
+
+    @property
+    def level_sequence(self) -> tuple[int, ...] | None:
+        return None if self.tree is None else self.tree.level_sequence
+
+    @property
+    def bracket(self) -> str | None:
+        return None if self.tree is None else self.tree.bracket
+
+    @property
+    def residual(self) -> Fraction | None:
+        """R exactly, when it is a rational computed exactly."""
+        e = self.enclosure
+        return Fraction(e.mid) if e is not None and e.exact else None
+
+    @property
+    def state(self) -> str | None:
+        return None if self.verdict is None else self.verdict.state
+
+    @property
+    def digits(self) -> int | None:
+        return None if self.verdict is None else self.verdict.digits
 
 
 # ------------------------------------------------------------------ the free tree
@@ -207,14 +234,15 @@ def _enclosure(x: Any) -> Enclosure:
     return Enclosure.of(x)
 
 
-def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "auto") -> Explanation:
-    """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it)."""
+def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> EnergyCondition:
+    """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it on a
+    tableau's values: exactly when they are exact, else on their enclosures)."""
     seq = tuple(seq)
     n = len(seq)
     adj = adjacency(seq)
     max_degree = max((len(a) for a in adj), default=0)
     if n < 3:
-        return Explanation(seq, None, n == 2, n, max_degree)
+        return EnergyCondition(seq, None, n == 2, n, max_degree)
     cs = centres(adj)
     if len(cs) == 2:  # two centres: superfluous when the halves across the edge are equal
         x, y = cs
@@ -223,28 +251,29 @@ def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "
             sub = [[w for w in nb if not (v == keep and w == cut)] for v, nb in enumerate(adj)]
             halves.append(rooted_at(sub, keep))
         if halves[0] == halves[1]:
-            return Explanation(seq, None, True, n, max_degree)
+            return EnergyCondition(seq, None, True, n, max_degree)
     designated = max(cs, key=lambda c: rooted_at(adj, c))
     dist = distances(adj, designated)
     rootings: dict[tuple[int, ...], int] = {}
     for v in sorted(range(n), key=lambda v: (dist[v], rooted_at(adj, v))):
         rootings.setdefault(rooted_at(adj, v), dist[v] % 2)
     id_seq = rooted_at(adj, designated)
-    condition = ExplainedCondition(id_seq, bracket(id_seq), n)
+    condition = FreeTree(id_seq, bracket(id_seq), max_degree, len(rootings))
     weight = None
-    if tableau is not None:
+    if values is not None:
         one: Fraction | Interval
-        if tableau.is_exact(decimals):
-            A, b, one = tableau.exact_A(), tableau.exact_b(), Fraction(1)
+        if values.exact is not None:
+            A, b, one = values.exact.A, values.exact.b, Fraction(1)
         else:
-            A, b = tableau.enclosures(entry_bits(dps), decimals)
+            A, b = values.A, values.b
             one = Interval.point(1)
         weight = _weights(A, b, one)
     terms = []
     total = None
     for u, parity in rootings.items():
         forest_seqs = sorted(children_of_level_sequence(u), reverse=True)
-        forest = [(f, bracket(f), sigma_notation(f)) for f in forest_seqs]
+        forest = tuple(bracket(f) for f in forest_seqs)
+        weights = tuple(sigma_notation(f) for f in forest_seqs)
         sign, sigma = (-1 if parity else 1), sigma_of(u)
         value = None
         if weight is not None:
@@ -254,9 +283,8 @@ def explain(seq: tuple[int, ...], tableau=None, dps: int = 50, decimals: str = "
             term = product * (Fraction(sign, sigma) if isinstance(one, Fraction) else Interval.point(Fraction(sign, sigma)))
             total = term if total is None else total + term
             value = _enclosure(term)
-        terms.append(ExplainedTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, value))
-    out = Explanation(seq, condition, False, n, max_degree, terms)
-    if total is not None:
-        out.residual = _enclosure(total)
-        out.verdict = classify(out.residual)
-    return out
+        terms.append(RootingTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, weights, value))
+    residual = None if total is None else _enclosure(total)
+    verdict = None if residual is None else classify(residual)
+    tableau = None if values is None else values.tableau
+    return EnergyCondition(seq, condition, False, n, max_degree, tuple(terms), residual, verdict, tableau)

@@ -26,6 +26,8 @@ from rkcheck.energy.verdicts import (
     classify,
     combine,
 )
+from rkcheck.evaluation.backends import ball_context
+from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.trees.rooted import bracket_of_forest
 from rkcheck.trees.table import TreeTable
@@ -114,21 +116,18 @@ def _first_failure(table: TreeTable, ids: np.ndarray) -> str:
     return f"a({bracket_of_forest(forest)}) = 1/{gamma}"
 
 
-def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arithmetic: str = "auto") -> OrderResult:
+def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     """Classical order (definitions §2: ``a(t) = 1/γ(t)`` for every tree with ≤ p vertices),
     capped at ``max_order``, stopping at the first order with a certain failure.
 
     Exact data: residues of ``γ(t)·â(t) − d^|t|`` (``â = d^|t| a``) modulo primes — a
     nonzero one proves the failure; zero at enough primes (the size bound of
     :mod:`rkcheck.evaluation.modular`) proves the condition.  Otherwise certified balls."""
-    from rkcheck.evaluation.backends import ball_context, choose_backend, scaled_tableau
-
     table = unbounded_table()
-    s = tableau.stages
+    s = values.stages
     verdicts: list[Verdict] = []
-    if choose_backend(tableau, decimals, arithmetic) == "exact":
-        scaled = scaled_tableau(tableau, decimals)
-        assert scaled is not None  # the exact backend is chosen only for exact entries
+    if values.backend is Backend.EXACT:
+        scaled = values.scaled
         channels: list[tuple[int, int, _Weights]] = []
         for p in range(1, max_order + 1):
             table.grow_to(p)
@@ -157,15 +156,15 @@ def classical_order(tableau: Any, max_order: int, dps: int, decimals: str, arith
                 return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, ids[failing]))
             verdicts.append(Verdict(HOLDS))
         return OrderResult(max_order, max_order, combine(verdicts))
-    weights = _Weights(ball_context(tableau, dps, decimals), s)
+    weights = _Weights(ball_context(values), s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
         ids = np.arange(table.first[p], table.first[p + 1])
-        values = weights.ctx.enclosures(weights.extend(table, p))
+        enclosures = weights.ctx.enclosures(weights.extend(table, p))
         gamma = table.gamma(ids)
         order_verdicts = []
         failed: list[int] = []
-        for t, e, g in zip(ids, values, gamma):
+        for t, e, g in zip(ids, enclosures, gamma):
             v = classify(Enclosure(e.mid - Fraction(1, int(g)), e.rad, False))
             if v.state == FAILS:
                 failed.append(int(t))

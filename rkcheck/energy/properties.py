@@ -15,7 +15,12 @@ from rkcheck.energy import scalars as sc
 from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
 from rkcheck.energy.lineintegral import Certificate, certificate_of_reduction
 from rkcheck.energy.reduction import Reduction, reduce_tableau
-from rkcheck.energy.stability import StabilityFunction, prefer, quadratic_certificate, stability_function
+from rkcheck.energy.stability import (
+    StabilityFunction,
+    prefer,
+    quadratic_certificate,
+    stability_function,
+)
 from rkcheck.energy.symplectic import PropertyVerdict, symmetry, symplecticity
 
 

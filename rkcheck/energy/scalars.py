@@ -23,6 +23,7 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.intervals import Interval
 
@@ -32,25 +33,6 @@ Vector = list[Scalar]
 
 
 # ------------------------------------------------------------------ the tableau's values
-
-
-def exact_values_or_none(tableau, decimals: str = "auto") -> tuple[Matrix, Vector] | None:
-    """``(A, b)`` as exact scalars, or None when the tableau is not exact.
-
-    Uses the tableau's own ``exact_values()`` hook when it has one (exact number fields),
-    else Fractions for a rational tableau.  A tableau with decimals read as rounded
-    (definitions §5) is never exact."""
-    if tableau.is_box(decimals):
-        return None
-    hook = getattr(tableau, "exact_values", None)
-    if hook is not None:
-        values = hook(decimals)
-        if values is not None:
-            return [list(row) for row in values.A], list(values.b)
-        return None
-    if tableau.is_rational:
-        return tableau.exact_A(), tableau.exact_b()
-    return None
 
 
 def values_from_enclosures(A: list[list[Interval]], b: list[Interval], exact: bool) -> tuple[Matrix, Vector]:
@@ -75,13 +57,12 @@ def tidy(x: Scalar) -> Scalar:
     return x.round_out(bits)
 
 
-def tableau_values(tableau, A: list[list[Interval]], b: list[Interval], exact: bool, decimals: str) -> tuple[Matrix, Vector]:
-    """The best scalars for the tableau: exact (rational or algebraic) when possible, else
-    the enclosures ``A``, ``b`` already computed by the caller."""
-    values = exact_values_or_none(tableau, decimals)
-    if values is not None:
-        return values
-    return values_from_enclosures(A, b, exact)
+def tableau_values(values: TableauValues) -> tuple[Matrix, Vector]:
+    """The best scalars for a tableau: exact (rational or algebraic) when the reading
+    makes its entries exact numbers, else their enclosures."""
+    if values.exact is not None:
+        return [list(row) for row in values.exact.A], list(values.exact.b)
+    return values_from_enclosures(values.A, values.b, False)
 
 
 # ------------------------------------------------------------------------ the kinds

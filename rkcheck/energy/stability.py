@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from rkcheck.energy import scalars as sc
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
+from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
 
@@ -478,7 +478,3 @@ def poly_text(p: list) -> str:
         else:
             out += " + " + t
     return out
-
-
-def digits_of(v: Verdict) -> str:
-    return "exactly" if v.state == HOLDS else (f"to {v.digits} digits" if v.state == HOLDS_TO_DIGITS else "fails")

@@ -12,21 +12,47 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import StrEnum
 from fractions import Fraction
 
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
-HOLDS = "holds"
-HOLDS_TO_DIGITS = "holds_to_digits"
-FAILS = "fails"
+
+class State(StrEnum):
+    """The state of a condition.  Its value is the JSON spelling; :attr:`code` is the
+    small integer arrays of millions of verdicts store (int8)."""
+
+    HOLDS = "holds"
+    HOLDS_TO_DIGITS = "holds_to_digits"
+    FAILS = "fails"
+
+    def __repr__(self) -> str:
+        # shown as the string it equals (``'fails'``): results print as they serialise
+        return repr(self.value)
+
+    @property
+    def code(self) -> int:
+        return _CODES[self]
+
+    @staticmethod
+    def of_code(code: int) -> "State":
+        return _STATES[code]
+
+
+_STATES = (State.HOLDS, State.HOLDS_TO_DIGITS, State.FAILS)
+_CODES = {state: k for k, state in enumerate(_STATES)}
+
+HOLDS = State.HOLDS
+HOLDS_TO_DIGITS = State.HOLDS_TO_DIGITS
+FAILS = State.FAILS
 
 
 @dataclass(frozen=True, slots=True)
 class Verdict:
     """holds, holds to ``digits`` digits, or fails (definitions §5.3)."""
 
-    state: str
+    state: State
     digits: int | None = None  # only for holds_to_digits
 
     @property
@@ -103,9 +129,6 @@ def classify_many(encs: list[Enclosure]) -> list[Verdict]:
     return verdicts
 
 
-STATE_CODES = {HOLDS: 0, HOLDS_TO_DIGITS: 1, FAILS: 2}
-
-
 def classify_bounds(excludes_zero, bound):
     """The states of many certified values at once, given for each whether its
     enclosure excludes 0 (exactly) and a float upper bound of its magnitude (|mid| + rad):
@@ -122,7 +145,7 @@ def classify_bounds(excludes_zero, bound):
     # never negative: a bound above 1 says nothing about the size (definitions §5); on
     # point data the check raises the precision instead (energy.check.sharpen_weak_holds)
     digits = np.maximum(np.where(np.isfinite(digits), digits, 0), 0).astype(np.int32)
-    state = np.where(fails, 2, 1).astype(np.int8)
+    state = np.where(fails, FAILS.code, HOLDS_TO_DIGITS.code).astype(np.int8)
     return state, np.where(fails, -1, digits).astype(np.int32)
 
 

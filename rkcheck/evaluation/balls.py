@@ -56,21 +56,6 @@ def _ball_at(x: Interval, bits: int, shift: int) -> tuple[int, float, float]:
     return m, _fraction_float_up(r) * _UP1, _fraction_float_up(abs(Fraction(m, one))) * _UP1
 
 
-def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
-                      vertices: int | None = None):
-    """The ball context for trees with up to ``vertices`` vertices: int64 digit
-    mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster on large
-    listings) when the listing is large and the precision and the size of the weights
-    allow it, else :class:`BallContext` (``vertices=None``: always)."""
-    if vertices is not None and vertices >= LIMB_MIN_VERTICES and bits <= LIMB_MAX_BITS:
-        from rkcheck.evaluation.limbs import LimbBallContext
-
-        ctx = LimbBallContext.create(A, b, bits, vertices)
-        if ctx is not None:
-            return ctx
-    return BallContext(A, b, bits)
-
-
 #: Up to this many working bits the int64 digits are faster than Python integers, from
 #: this many vertices on (below, numpy's cost per call dominates: at 11 to 13 vertices
 #: the digits took 1.2–3× the time of Python integers, at 15 and 17 about 0.7×; measured

@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:

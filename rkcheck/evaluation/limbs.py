@@ -1,6 +1,6 @@
 """Certified balls whose mid-points are multi-digit fixed-point numbers in integer arrays
 (definitions §5): the faster form of :class:`~rkcheck.evaluation.balls.BallContext` for
-working precisions up to a few hundred bits (:func:`~rkcheck.evaluation.balls.certified_context`
+working precisions up to a few hundred bits (:func:`~rkcheck.evaluation.backends.certified_context`
 chooses).
 
 A value is a ball ``m·2^−P ± r`` as in :class:`~rkcheck.evaluation.balls.BallContext`,

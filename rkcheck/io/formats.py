@@ -28,17 +28,17 @@ WRITE_FORMATS = ("toml", "json", "latex", "julia", "python")
 def tableau_document(tab: Tableau) -> dict[str, Any]:
     """The tableau as a tableau-file document (method, constants, tableau, expect)."""
     doc: dict[str, Any] = {"method": {"name": tab.name}}
-    if tab.description:
-        doc["method"]["description"] = tab.description
-    if tab.references:
-        doc["method"]["references"] = list(tab.references)
-    if tab.constants.definitions:
-        doc["constants"] = {k: ex.to_text(v) for k, v in tab.constants.definitions.items()}
+    if tab.info.description:
+        doc["method"]["description"] = tab.info.description
+    if tab.info.references:
+        doc["method"]["references"] = list(tab.info.references)
+    if tab.info.constants.definitions:
+        doc["constants"] = {k: ex.to_text(v) for k, v in tab.info.constants.definitions.items()}
     doc["tableau"] = {"A": [[e.text for e in row] for row in tab.A], "b": [e.text for e in tab.b]}
     if tab.c is not None:
         doc["tableau"]["c"] = [e.text for e in tab.c]
-    if tab.expect:
-        doc["expect"] = tab.expect
+    if tab.info.expect:
+        doc["expect"] = dict(tab.info.expect)
     return doc
 
 
@@ -258,7 +258,7 @@ def _row_sums(A: list[list[ex.Expr]]) -> list[ex.Expr]:
 def to_latex(tab: Tableau) -> str:
     """The Butcher array ``c | A`` over ``| bᵀ`` as a LaTeX ``array`` (exact entries,
     constants written out)."""
-    code = _Latex(tab.constants.definitions)
+    code = _Latex(tab.info.constants.definitions)
     A, b, c = _entries(tab)
     c = c if c is not None else _row_sums(A)
     s = len(b)
@@ -275,7 +275,7 @@ def _code_lines(tab: Tableau, code: _Code, assign: str, vector: Callable[[list[s
                 matrix: Callable[[list[list[str]]], str]) -> list[str]:
     A, b, c = _entries(tab)
     c = c if c is not None else _row_sums(A)
-    lines = [f"{name}{assign}{code.render(value)}" for name, value in tab.constants.definitions.items()]
+    lines = [f"{name}{assign}{code.render(value)}" for name, value in tab.info.constants.definitions.items()]
     lines.append(f"A{assign}" + matrix([[code.render(x) for x in row] for row in A]))
     lines.append(f"b{assign}" + vector([code.render(x) for x in b]))
     lines.append(f"c{assign}" + vector([code.render(x) for x in c]))
@@ -300,7 +300,7 @@ def to_python(tab: Tableau) -> str:
     """Python code defining ``A``, ``b``, ``c`` exactly (``Fraction``; ``sympy.sqrt`` when
     the tableau has square roots)."""
     uses_sqrt = any(isinstance(n, ex.Call) for e in tab.entries() for n in ex.walk(_node(e))) or any(
-        isinstance(n, ex.Call) for d in tab.constants.definitions.values() for n in ex.walk(d))
+        isinstance(n, ex.Call) for d in tab.info.constants.definitions.values() for n in ex.walk(d))
     lines = [f"# {tab.name} (written by rkcheck; exact entries)", "from fractions import Fraction"]
     if uses_sqrt:
         lines.append("import sympy")
@@ -327,14 +327,14 @@ def write(tab: Tableau, fmt: str) -> str:
 def _as_written(tab: Tableau) -> Tableau:
     """A family's tableau as a written one (its own name, description, references and
     claims kept); any other tableau unchanged."""
-    if tab.family is None:
+    if tab.info.family is None:
         return tab
-    import dataclasses
 
     from rkcheck.io.loader import loads
     from rkcheck.io.writers import render_toml
-    from rkcheck.methods.families import parse_spec
+    from rkcheck.methods.family_spec import parse_spec
 
-    written = loads(render_toml(parse_spec(tab.family)), source=tab.source, fmt="toml")
-    return dataclasses.replace(written, name=tab.name, description=tab.description, references=tab.references,
-                               expect=tab.expect, claims=tab.claims, check=tab.check)
+    written = loads(render_toml(parse_spec(dict(tab.info.family))), source=tab.info.source, fmt="toml")
+    info = written.info.replace(description=tab.info.description, references=tab.info.references,
+                                expect=tab.info.expect, claims=tab.info.claims, check=tab.info.check)
+    return written.replace(name=tab.name, info=info)

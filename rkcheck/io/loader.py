@@ -28,10 +28,15 @@ from typing import Any
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
 from rkcheck.methods.claims import parse_claims
-from rkcheck.methods.tableau import Tableau
+from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
-from rkcheck.options import DEFAULT_MAX_STAGES, INPUT_FORMATS, parse_strings, validate_check_table
+from rkcheck.options import (
+    DEFAULT_MAX_STAGES,
+    INPUT_FORMATS,
+    parse_strings,
+    validate_check_table,
+)
 
 MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
@@ -272,26 +277,23 @@ def _build(
     if not isinstance(description, str):
         raise UserError("expected a string", "method.description")
     references = tuple(parse_strings(method["references"], "method.references")) if "references" in method else ()
-    # shown on terminals: no control characters or lone surrogates from the file (issue 16)
+    # shown on terminals: no control characters or lone surrogates from the file
     name, description = printable(name), printable(description)
     references = tuple(printable(r) for r in references)
     check = validate_check_table(_table(data, "check"))
     expect = _table(data, "expect")
     claims = parse_claims(expect)
-    base: dict[str, Any] = dict(
-        name=name, description=description, references=references, source=source,
-        check=check, expect=expect, warnings=warnings, claims=claims,
-    )
+    info = MethodInfo(description=description, references=references, source=source, check=check,
+                      expect=expect, claims=tuple(claims))
 
     if "family" in data and "tableau" in data:
         raise UserError("give either [tableau] or [family], not both")
     if "family" in data:
-        family = _table(data, "family")
-        from rkcheck.methods.families import (
-            build_family,  # imported when needed: start-up time
-        )
+        from rkcheck.methods.families import build_family  # when needed: start-up time
 
-        return build_family(family, Tableau(A=(), b=(), family=family, **base))
+        # a name of its own, else the family's title (not the file's stem)
+        own = name if name != Path(source).stem else None
+        return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
@@ -300,6 +302,18 @@ def _build(
         if key not in ("A", "b", "c"):
             warnings.append(f"unknown key tableau.{printable(key)} ignored (known: A, b, c)")
     constants = _constants(_table(data, "constants"))
+    A, b, c = _entries(tab, constants, max_stages)
+    bare = [e for e in (*(x for row in A for x in row), *b, *(c or ())) if e.bare_number and _is_float_text(e.text)]
+    if bare:
+        warnings.append(
+            f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
+            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"
+        )
+    return Tableau(A=A, b=b, c=c, name=name, info=info.replace(constants=constants, warnings=tuple(warnings)))
+
+
+def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
+    """A, b and c of a ``[tableau]`` table, validated (square A, one b and c per stage)."""
     if "A" not in tab:
         raise UserError("missing A", "tableau")
     if "b" not in tab:
@@ -323,14 +337,7 @@ def _build(
     )
     b = _vector(tab["b"], "b", s, constants)
     c = _vector(tab["c"], "c", s, constants) if "c" in tab else None
-    tableau = Tableau(A=A, b=b, c=c, constants=constants, **base)
-    bare = [e for e in tableau.entries() if e.bare_number and isinstance(e.text, str) and _is_float_text(e.text)]
-    if bare:
-        tableau.warnings.append(
-            f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
-            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"
-        )
-    return tableau
+    return A, b, c
 
 
 def _is_float_text(text: str) -> bool:
@@ -360,8 +367,7 @@ def loads(
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
-    tableau.lines = locate_lines(text, fmt)
-    return tableau
+    return tableau.replace(info=tableau.info.replace(lines=locate_lines(text, fmt)))
 
 
 def load(

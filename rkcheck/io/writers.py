@@ -10,10 +10,14 @@ certified enclosures), which rkcheck reads as rounded to their last digit.
 
 from __future__ import annotations
 
-
 from rkcheck.errors import UserError
-from rkcheck.methods.families import FamilySpec, coefficients
-from rkcheck.methods.closed_forms import MAX_EXACT_NODES, expression_texts, simplified_texts
+from rkcheck.methods.closed_forms import (
+    MAX_EXACT_NODES,
+    expression_texts,
+    simplified_texts,
+)
+from rkcheck.methods.families import coefficients
+from rkcheck.methods.family_spec import FamilySpec
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.precision import bits_for_digits
 

@@ -40,7 +40,6 @@ from fractions import Fraction
 from typing import Any, Literal
 
 from rkcheck.errors import TableauError, UserError
-from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.entries import Entry
 from rkcheck.options import DEFAULT_MAX_STAGES
 
@@ -136,17 +135,17 @@ def _as_list(value: Any, place: str) -> list[Any]:
     raise TableauError(f"expected a list or an array, got {type(value).__name__}", place)
 
 
-def from_arrays(
+def entries_from_arrays(
     A: Any,
     b: Any,
     c: Any = None,
     *,
-    name: str = "unnamed tableau",
     floats: FloatMode = "exact",
     max_stages: int = DEFAULT_MAX_STAGES,
-) -> Tableau:
-    """A tableau from arrays: ``A`` (s×s), ``b`` and optionally ``c`` (length s); public
-    as ``rkcheck.from_arrays`` and ``Tableau.from_arrays``.
+) -> tuple[tuple[tuple[Entry, ...], ...], tuple[Entry, ...], tuple[Entry, ...] | None, list[str]]:
+    """The entries of a tableau given as arrays: ``A`` (s×s), ``b`` and optionally ``c``
+    (length s), with the warnings the values deserve (``Tableau.from_arrays``, public as
+    ``rkcheck.from_arrays``, builds the tableau).
 
     Values may be ints, Fractions, strings in rkcheck's grammar, floats (``floats="exact"``:
     the exact binary value, the default; ``"shortest"``: ``repr(x)`` read as a rounded
@@ -182,10 +181,11 @@ def from_arrays(
             raise TableauError(f"has {len(cells)} entries, expected {s} (one per stage)", label)
         return tuple(entry(x, f"{label}[{i}]") for i, x in enumerate(cells, start=1))
 
-    tab = Tableau(A=tuple(matrix), b=vector(b, "b"), c=None if c is None else vector(c, "c"), name=name,
-                  source=name)
+    b_entries = vector(b, "b")
+    c_entries = None if c is None else vector(c, "c")
+    warnings = []
     if inexact:
-        tab.warnings.append(
+        warnings.append(
             f"{len(inexact)} float entries (first {inexact[0]}) were taken at their exact binary value, which "
             "is not the decimal they print as; pass strings, or floats='shortest', to mean the decimals")
-    return tab
+    return tuple(matrix), b_entries, c_entries, warnings

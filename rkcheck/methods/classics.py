@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.methods.tableau import Tableau
+from rkcheck.methods.tableau import MethodInfo, Tableau
 
 
 @dataclass(frozen=True)
@@ -188,5 +188,6 @@ def classic_tableau(name: str) -> Tableau:
     b = tuple(Entry.parse(x, constants) for x in spec.b)
     c = tuple(Entry.parse(x, constants) for x in spec.c)
     expect = spec.expect()
-    return Tableau(A=A, b=b, c=c, name=spec.name, description=spec.description, references=spec.references,
-                   source=f"@{spec.key}", constants=constants, expect=expect, claims=parse_claims(expect))
+    info = MethodInfo(description=spec.description, references=tuple(spec.references), source=f"@{spec.key}",
+                      constants=constants, expect=expect, claims=tuple(parse_claims(expect)))
+    return Tableau(A=A, b=b, c=c, name=spec.name, info=info)

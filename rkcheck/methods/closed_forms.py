@@ -11,15 +11,15 @@ tableaux and ``rkcheck new`` files exact wherever the nodes are algebraic of mod
 
 from __future__ import annotations
 
-from functools import lru_cache
 from fractions import Fraction
+from functools import lru_cache
 from itertools import combinations
 from typing import TYPE_CHECKING, Any
 
 from rkcheck.methods.quadrature import poly_integral, shifted_legendre
 
 if TYPE_CHECKING:
-    from rkcheck.methods.families import FamilySpec
+    from rkcheck.methods.family_spec import FamilySpec
 
 
 def _par(text: str) -> str:

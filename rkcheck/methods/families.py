@@ -31,139 +31,14 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.errors import UserError
+from rkcheck.methods.family_spec import FamilySpec, parse_spec
 from rkcheck.methods.quadrature import (
-    Rule,
     lagrange_integral,
     line_integral_matrix,
-    rule,
 )
-from rkcheck.methods.tableau import Tableau
-from rkcheck.numbers.entries import Entry
+from rkcheck.methods.tableau import ExactValues, MethodInfo, Tableau
 from rkcheck.numbers.intervals import Interval
-from rkcheck.options import MAX_FAMILY_STAGES
-
-FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
-TITLES = {
-    "gauss": "Gauss–Legendre collocation",
-    "lobatto-iiia": "Lobatto IIIA",
-    "lobatto-iiib": "Lobatto IIIB",
-    "radau-iia": "Radau IIA",
-    "radau-ia": "Radau IA",
-}
-PARAMS = {
-    "avf": ("s", "rule"),
-    "gauss": ("s",),
-    "lobatto-iiia": ("s",),
-    "lobatto-iiib": ("s",),
-    "radau-iia": ("s",),
-    "radau-ia": ("s",),
-    "hbvm": ("k", "s"),
-    "kernel": ("zeta", "beta"),
-}
-
-
-@dataclass(frozen=True)
-class FamilySpec:
-    name: str
-    s: int
-    k: int | None = None
-    rule: str = "gauss"
-    zeta: Fraction | None = None
-    beta: Fraction | None = None
-
-    def title(self) -> str:
-        if self.name == "avf":
-            return f"AVF over the {self.s}-point {self.rule} rule"
-        if self.name == "hbvm":
-            return f"HBVM({self.k}, {self.s})"
-        if self.name == "kernel":
-            return f"Seed kernel family, ζ = {self.zeta}, β = {self.beta}"
-        return f"{TITLES[self.name]}, {self.s} stage{'s' if self.s != 1 else ''}"
-
-    def stages(self) -> int:
-        return self.s
-
-    def base_rule(self) -> Rule:
-        if self.name == "avf":
-            return rule(self.rule, self.s)
-        if self.name in ("gauss", "hbvm"):
-            return rule("gauss", self.k if self.name == "hbvm" else self.s)
-        if self.name in ("lobatto-iiia", "lobatto-iiib"):
-            return rule("lobatto", self.s)
-        if self.name == "radau-iia":
-            return rule("radau-ii", self.s)
-        if self.name == "radau-ia":
-            return rule("radau-i", self.s)
-        assert self.name == "kernel"
-        return rule(f"zeta:{self.zeta}", 2)
-
-    def params(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"name": self.name}
-        if self.name == "hbvm":
-            out.update(k=self.k, s=self.s)
-        elif self.name == "kernel":
-            out.update(zeta=str(self.zeta), beta=str(self.beta))
-        else:
-            out["s"] = self.s
-            if self.name == "avf":
-                out["rule"] = self.rule
-        return out
-
-
-def _exact(text: Any, place: str) -> Fraction:
-    try:
-        e = Entry.parse(str(text))
-    except UserError as err:
-        raise err.located(place) from None
-    if e.exact is None:
-        raise UserError(f"expected a rational number, got {text!r}", place)
-    return e.exact
-
-
-def _positive(value: Any, place: str, minimum: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise UserError(f"expected an integer >= {minimum}, got {value!r}", place)
-    if value > MAX_FAMILY_STAGES:
-        raise UserError(f"at most {MAX_FAMILY_STAGES}, got {value}", place)
-    return value
-
-
-def parse_spec(table: dict[str, Any]) -> FamilySpec:
-    """Validate a ``[family]`` table (``place`` in errors: ``family.k``)."""
-    name = table.get("name")
-    if name not in FAMILIES:
-        raise UserError(f"unknown family {name!r} (known: {', '.join(FAMILIES)})", "family.name")
-    known = {"name", "stages", *PARAMS[name]}
-    for key in table:
-        if key not in known:
-            raise UserError(f"unknown parameter for {name} (known: {', '.join(sorted(known - {'name'}))})", f"family.{key}")
-    if name == "kernel":
-        zeta = _exact(table.get("zeta", "0"), "family.zeta")
-        beta = _exact(table.get("beta", "0"), "family.beta")
-        return FamilySpec(name, 2, zeta=zeta, beta=beta)
-    s_raw = table.get("s", table.get("stages"))
-    if s_raw is None:
-        raise UserError("missing s (the number of stages)", "family")
-    minimum = 2 if name.startswith("lobatto") else 1
-    s = _positive(s_raw, "family.s", minimum)
-    if name == "hbvm":
-        if "k" not in table:
-            raise UserError("missing k (the number of Gauss nodes)", "family")
-        k = _positive(table["k"], "family.k", s)
-        return FamilySpec(name, s, k=k)
-    if name == "avf":
-        rule_name = table.get("rule", "gauss")
-        if not isinstance(rule_name, str):
-            raise UserError("expected a rule name", "family.rule")
-        if rule_name == "lobatto" and s < 2:
-            raise UserError("lobatto needs s >= 2", "family.s")
-        rule(rule_name, s)  # validates the name
-        return FamilySpec(name, s, rule=rule_name)
-    return FamilySpec(name, s)
-
-
-# ----------------------------------------------------------------- intervals
+from rkcheck.numbers.reading import DecimalsMode
 
 
 def coefficients(spec: FamilySpec, bits: int) -> tuple[list[list[Interval]], list[Interval]]:
@@ -234,16 +109,20 @@ class ComputedEntry:
     def is_rational(self) -> bool:
         return self.exact is not None
 
-    def is_box(self, decimals: str) -> bool:
+    def is_box(self, decimals: DecimalsMode) -> bool:
         return False  # computed coefficients are numbers (enclosed), never a box of inputs
 
-    def enclosure(self, bits: int, decimals: str = "auto") -> Interval:
+    def enclosure(self, bits: int, decimals: DecimalsMode = DecimalsMode.AUTO) -> Interval:
         if self.exact is not None:
             return Interval.point(self.exact)
         return self._value(bits)
 
     def is_zero(self) -> bool:
         return self.exact == 0
+
+    def family_values(self) -> tuple[ExactValues | None, str | None]:
+        """The family's whole tableau exactly, when its nodes have closed forms."""
+        return self._shared.exact_values()
 
 
 @dataclass
@@ -261,7 +140,6 @@ class _Shared:
         """``(ExactValues or None, reason)`` for the family's tableau (computed once)."""
         if self.exact is None:
             from rkcheck.methods.closed_forms import family_exact_values
-            from rkcheck.methods.tableau import ExactValues
 
             found, reason = family_exact_values(self.spec)
             if found is None:
@@ -279,8 +157,9 @@ class _Shared:
         return {"spec": self.spec, "cache": {}, "exact": self.exact}
 
 
-def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
-    """The family as a :class:`Tableau` whose entries are computed at the check's precision."""
+def family_tableau(spec: FamilySpec, name: str | None = None, info: MethodInfo | None = None) -> Tableau:
+    """The family as a :class:`Tableau` whose entries are computed at the check's
+    precision; ``name`` defaults to the family's title."""
     shared = _Shared(spec)
     A0, b0 = shared.get(64)
     rational = spec.base_rule().is_rational
@@ -292,26 +171,11 @@ def family_tableau(spec: FamilySpec, base: Tableau | None = None) -> Tableau:
 
     A = tuple(tuple(entry(("A", i, j), A0[i][j], f"A[{i + 1}][{j + 1}]") for j in range(n)) for i in range(n))
     b = tuple(entry(("b", j), b0[j], f"b[{j + 1}]") for j in range(n))
-    kw: dict[str, Any] = {}
-    if base is not None:
-        kw = dict(
-            description=base.description, references=base.references, source=base.source,
-            check=base.check, expect=base.expect, warnings=base.warnings, claims=base.claims,
-        )
-        name = base.name if base.name and base.source and base.name != _stem(base.source) else spec.title()
-    else:
-        name = spec.title()
-    # family_exact: the same coefficients exactly, in their number field, when the nodes
-    # have a closed form (Tableau.exact_values; issue 12): then the check is exact, not to digits
-    return Tableau(A=A, b=b, c=None, name=name, family=spec.params(), family_exact=shared.exact_values, **kw)
+    info = (info or MethodInfo()).replace(family=spec.params())
+    return Tableau(A=A, b=b, c=None, name=name or spec.title(), info=info)
 
 
-def _stem(source: str) -> str:
-    from pathlib import Path
-
-    return Path(source).stem
-
-
-def build_family(table: dict[str, Any], base: Tableau) -> Tableau:
-    """The loader's hook for ``[family]`` tables."""
-    return family_tableau(parse_spec(table), base)
+def build_family(table: dict[str, Any], name: str | None, info: MethodInfo) -> Tableau:
+    """The loader's hook for ``[family]`` tables (``name``: the file's ``[method]``
+    name, if it gave one)."""
+    return family_tableau(parse_spec(table), name, info)

@@ -307,8 +307,9 @@ def _shift(p: list[Fraction], h: Fraction) -> list[Fraction]:
 
 def _approx(text: str) -> float:
     from rkcheck.numbers.entries import Entry
+    from rkcheck.numbers.reading import DecimalsMode
 
-    return float(Entry.parse(text).enclosure(64).mid)
+    return float(Entry.parse(text).enclosure(64, DecimalsMode.EXACT).mid)
 
 
 # ------------------------------------------------------------------ rules

@@ -1,45 +1,83 @@
 """The Butcher tableau ``(A, b, c)`` of definitions §1, as entries of the number model.
 
-A :class:`Tableau` is pure data: no file I/O (that is :mod:`rkcheck.io.loader`) and no
-B-series (that is :mod:`rkcheck.evaluation.backends`).  Every B-series quantity uses the row sums
-``A·1``; a given ``c`` is only compared with them (:func:`consistency_warnings`).
+A :class:`Tableau` is immutable data: the coefficients and a name.  What a file says
+about the method besides them (description, references, claims, ``[check]`` options,
+line numbers, warnings) is a :class:`MethodInfo`; how the entries are read for one
+check (exact, a box of decimals, enclosures) is decided by
+:class:`~rkcheck.evaluation.values.TableauValues`.  No file I/O here (that is
+:mod:`rkcheck.io.loader`) and no B-series (that is :mod:`rkcheck.evaluation`).  Every
+B-series quantity uses the row sums ``A·1``; a given ``c`` is only compared with them.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable, Sequence
+from functools import cached_property
+from typing import Any, Mapping, Protocol, Sequence
 
+from rkcheck.methods.arrays import FloatMode, entries_from_arrays
+from rkcheck.numbers.algebraic import NotAlgebraic, NumberField, field_of
 from rkcheck.numbers.entries import Constants, Entry, TableauEntry
-from rkcheck.numbers.intervals import Interval, interval_sum
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.options import DEFAULT_MAX_STAGES
 
 
-@dataclass
+@dataclass(frozen=True)
+class MethodInfo:
+    """What a file says about a method besides its coefficients.
+
+    ``check``: the validated ``[check]`` options; ``expect``: the ``[expect]`` table as
+    written and ``claims`` its parsed claims (:class:`~rkcheck.methods.claims.Claim`);
+    ``lines``: where keys were written (``"tableau"``, ``"expect.avf"`` -> line);
+    ``family``: the ``[family]`` parameters of a generated method; ``constants``: the
+    ``[constants]`` table the entries may name."""
+
+    description: str = ""
+    references: tuple[str, ...] = ()
+    source: str = "<memory>"
+    check: Mapping[str, Any] = field(default_factory=dict)
+    expect: Mapping[str, Any] = field(default_factory=dict)
+    claims: tuple[Any, ...] = ()
+    warnings: tuple[str, ...] = ()
+    lines: Mapping[str, int] = field(default_factory=dict)
+    family: Mapping[str, Any] | None = None
+    constants: Constants = field(default_factory=Constants)
+
+    def replace(self, **changes: Any) -> "MethodInfo":
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class ExactValues:
+    """A tableau's entries exactly, in one number field (``field`` None: rationals)."""
+
+    field: NumberField | None
+    A: list[list[Any]]
+    b: list[Any]
+    c: list[Any] | None
+
+
+class FamilyCoefficient(Protocol):
+    """An entry computed by a method family (:class:`~rkcheck.methods.families.ComputedEntry`):
+    the family knows its coefficients exactly when its nodes have closed forms."""
+
+    def family_values(self) -> tuple[ExactValues | None, str | None]: ...
+
+
+@dataclass(frozen=True)
 class Tableau:
     """An s-stage Runge–Kutta method; ``c`` is None when the file left it out.  Its entries
-    are :class:`~rkcheck.numbers.entries.Entry` objects, or for a family the coefficients
-    the family computes (then ``family_exact`` gives them exactly when it can)."""
+    are :class:`~rkcheck.numbers.entries.Entry` objects, or the coefficients a family
+    computes (:class:`FamilyCoefficient`)."""
 
     A: tuple[tuple[TableauEntry, ...], ...]
     b: tuple[TableauEntry, ...]
     c: tuple[TableauEntry, ...] | None = None
     name: str = "unnamed tableau"
-    description: str = ""
-    references: tuple[str, ...] = ()
-    source: str = "<memory>"
-    check: dict[str, Any] = field(default_factory=dict)
-    expect: dict[str, Any] = field(default_factory=dict)
-    family: dict[str, Any] | None = None
-    warnings: list[str] = field(default_factory=list)
-    lines: dict[str, int] = field(default_factory=dict)  # "tableau", "expect.avf", ... -> line
-    constants: Constants = field(default_factory=Constants)
-    claims: list = field(default_factory=list)  # parsed [expect] (rkcheck.energy.claims.Claim)
-    exact_reason: str | None = field(default=None, repr=False, compare=False)
-    _exact_values: dict = field(default_factory=dict, repr=False, compare=False)
-    # a family's coefficients exactly: () -> (ExactValues or None, why not)
-    family_exact: Callable[[], tuple[ExactValues | None, str | None]] | None = field(
-        default=None, repr=False, compare=False)
+    info: MethodInfo = field(default_factory=MethodInfo, compare=False, repr=False)
 
     # ------------------------------------------------------------- construction
 
@@ -49,7 +87,7 @@ class Tableau:
         b: Sequence[Fraction | int | str],
         c: Sequence[Fraction | int | str] | None = None,
         name: str = "unnamed tableau",
-        **kwargs: Any,
+        info: MethodInfo | None = None,
     ) -> "Tableau":
         """Build a tableau from rationals or entry strings (for generators and tests)."""
 
@@ -61,16 +99,20 @@ class Tableau:
             b=tuple(entry(x) for x in b),
             c=None if c is None else tuple(entry(x) for x in c),
             name=name,
-            **kwargs,
+            info=info or MethodInfo(),
         )
 
     @staticmethod
-    def from_arrays(A: Any, b: Any, c: Any = None, **kwargs: Any) -> "Tableau":
+    def from_arrays(A: Any, b: Any, c: Any = None, *, name: str = "unnamed tableau", floats: FloatMode = "exact",
+                    max_stages: int = DEFAULT_MAX_STAGES) -> "Tableau":
         """A tableau from arrays of ints, Fractions, strings, floats, numpy or sympy values
-        (what each means: :mod:`rkcheck.methods.arrays`); ``rkcheck.from_arrays``."""
-        from rkcheck.methods.arrays import from_arrays
+        (what each means: :mod:`rkcheck.methods.arrays`); also ``rkcheck.from_arrays``."""
+        A_, b_, c_, warnings = entries_from_arrays(A, b, c, floats=floats, max_stages=max_stages)
+        return Tableau(A_, b_, c_, name, MethodInfo(source=name, warnings=tuple(warnings)))
 
-        return from_arrays(A, b, c, **kwargs)
+    def replace(self, **changes: Any) -> "Tableau":
+        """A copy with some fields changed (``name``, ``info``, entries)."""
+        return dataclasses.replace(self, **changes)
 
     # ----------------------------------------------------------------- structure
 
@@ -98,29 +140,11 @@ class Tableau:
         digits += [e.rounded_digits for e in self.b if e.rounded_digits is not None]
         return min(digits) if digits else None
 
-    def is_exact(self, decimals: str) -> bool:
-        """True when the check runs in exact arithmetic (definitions §5): no entry is a box
-        under ``decimals``, and the entries are rationals or elements of a number field
-        (:meth:`exact_values`)."""
-        if self.is_box(decimals):
-            return False
-        return self.is_rational or self.exact_values(decimals) is not None
-
-    def is_box(self, decimals: str) -> bool:
+    def is_box(self, decimals: DecimalsMode) -> bool:
         """Some entry of A or b stands for an interval of numbers under the decimals mode
         (definitions §5.2): the tableau is a box of tableaux, judged jointly."""
+        decimals = DecimalsMode(decimals)
         return any(e.is_box(decimals) for row in self.A for e in row) or any(e.is_box(decimals) for e in self.b)
-
-    def exact_values(self, decimals: str = "rounded"):
-        """The entries exactly, in one number field (:mod:`rkcheck.numbers.algebraic`):
-        an object with ``.field`` (None for Q) and ``.A``, ``.b``, ``.c`` (``c`` None when
-        the file left it out) as Fractions or field elements; None when the entries are
-        not exact numbers (a box of inputs under ``decimals``, computed coefficients,
-        or a field beyond the degree limit: then ``exact_reason`` says why)."""
-        key = not self.is_box(decimals)
-        if key not in self._exact_values:
-            self._exact_values[key] = _exact_values(self) if key else None
-        return self._exact_values[key]
 
     @property
     def structure(self) -> str:
@@ -133,96 +157,58 @@ class Tableau:
             return "explicit"
         return "diagonally implicit"
 
-    def number_kind(self, decimals: str = "auto") -> str:
-        if self.family is not None and not self.is_rational:
-            return "computed by its family at the working precision"
-        if self.uses_sqrt:
-            return "algebraic (square roots)"
-        digits = self.rounded_digits
-        if decimals == "float64" and self.is_box(decimals):
-            return "decimals read as binary64 doubles (each within half an ulp)"
-        if digits is not None and decimals in ("rounded", "auto"):
-            return f"decimals rounded to their last digit (>= {digits} significant digits)"
-        return "exact rational"
-
     # ------------------------------------------------------------------- values
 
-    def exact_A(self) -> list[list[Any]]:
-        """A exactly: Fractions, or field elements for algebraic entries (is_exact)."""
+    @cached_property
+    def _exactness(self) -> ExactValues | str:
+        """The entries at face value in one number field, or why they have none."""
         if self.is_rational:
-            return [[e.exact for e in row] for row in self.A]
-        values = self.exact_values("exact")
-        assert values is not None
+            c = None if self.c is None or any(e.exact is None for e in self.c) else [e.exact for e in self.c]
+            return ExactValues(None, [[e.exact for e in row] for row in self.A], [e.exact for e in self.b], c)
+        entries = self.entries()
+        computed = [e for e in entries if not isinstance(e, Entry)]
+        if computed:
+            family: FamilyCoefficient = computed[0]  # type: ignore[assignment]
+            values, reason = family.family_values()
+            return values if values is not None else reason or "the coefficients are computed numerically"
+        try:
+            found = field_of([e.node for e in entries], self.info.constants.definitions)  # type: ignore[attr-defined]
+        except NotAlgebraic as err:
+            return str(err)
+        s = self.stages
+        v = found.values
+        A = [v[i * s:(i + 1) * s] for i in range(s)]
+        return ExactValues(found.field, A, v[s * s:s * s + s], v[s * s + s:] if self.c is not None else None)
+
+    def exact_values(self) -> ExactValues | None:
+        """The entries at face value, exactly, in one number field
+        (:mod:`rkcheck.numbers.algebraic`; computed once); None when they are not exact
+        numbers (computed coefficients without closed form, or a field beyond the degree
+        limit: :attr:`exact_reason` says why).  Whether a check may use them — decimals
+        may stand for a box of inputs — is decided by its reading."""
+        found = self._exactness
+        return found if isinstance(found, ExactValues) else None
+
+    @property
+    def exact_reason(self) -> str | None:
+        """Why :meth:`exact_values` is None (None when it is not)."""
+        found = self._exactness
+        return found if isinstance(found, str) else None
+
+    def exact_A(self) -> list[list[Any]]:
+        """A exactly at face value: Fractions, or field elements for algebraic entries."""
+        values = self.exact_values()
+        assert values is not None, self.exact_reason
         return values.A
 
     def exact_b(self) -> list[Any]:
-        if self.is_rational:
-            return [e.exact for e in self.b]
-        values = self.exact_values("exact")
-        assert values is not None
+        values = self.exact_values()
+        assert values is not None, self.exact_reason
         return values.b
 
-    def enclosures(self, bits: int, decimals: str) -> tuple[list[list[Interval]], list[Interval]]:
+    def enclosures(self, bits: int, decimals: DecimalsMode) -> tuple[list[list[Interval]], list[Interval]]:
         """Rigorous enclosures of A and b at ``bits`` bits (definitions §5)."""
+        decimals = DecimalsMode(decimals)
         A = [[e.enclosure(bits, decimals) for e in row] for row in self.A]
         b = [e.enclosure(bits, decimals) for e in self.b]
         return A, b
-
-
-@dataclass
-class ExactValues:
-    """A tableau's entries in one number field (``field`` None: rationals)."""
-
-    field: Any
-    A: list[list[Any]]
-    b: list[Any]
-    c: list[Any] | None
-
-
-def _exact_values(tab: Tableau) -> ExactValues | None:
-    if tab.is_rational:
-        c = None if tab.c is None or any(e.exact is None for e in tab.c) else [e.exact for e in tab.c]
-        return ExactValues(None, tab.exact_A(), tab.exact_b(), c)
-    entries = tab.entries()
-    nodes = [e.node for e in entries if isinstance(e, Entry)]
-    if len(nodes) < len(entries):  # computed by a family
-        exact = tab.family_exact
-        values, reason = exact() if exact is not None else (None, None)
-        if values is None:
-            tab.exact_reason = reason or "the coefficients are computed numerically by the family"
-        return values
-    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
-
-    try:
-        found = field_of(nodes, tab.constants.definitions)
-    except NotAlgebraic as err:
-        tab.exact_reason = str(err)
-        return None
-    s = tab.stages
-    v = found.values
-    A = [v[i * s:(i + 1) * s] for i in range(s)]
-    b = v[s * s:s * s + s]
-    c = v[s * s + s:] if tab.c is not None else None
-    return ExactValues(found.field, A, b, c)
-
-
-def consistency_warnings(tab: Tableau, bits: int, decimals: str) -> list[str]:
-    """definitions §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
-
-    A difference is reported only when it is certain (its enclosure excludes 0);
-    differences within the rounding of decimal input are not warnings.
-    """
-    out: list[str] = []
-    A, b = tab.enclosures(bits, decimals)
-    if tab.c is not None:
-        bad = []
-        for i, (row, ci) in enumerate(zip(A, tab.c), start=1):
-            diff = ci.enclosure(bits, decimals) - interval_sum(row)
-            if not diff.contains_zero():
-                bad.append(f"c[{i}] - (A·1)[{i}] = {float(diff.mid):.3g}")
-        if bad:
-            out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
-    sb = interval_sum(b)
-    if not (sb - Interval.point(1)).contains_zero():
-        out.append(f"Σb = {float(sb.mid):.17g} ≠ 1: the method is inconsistent (not even order 1)")
-    return out

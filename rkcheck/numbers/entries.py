@@ -24,6 +24,7 @@ from typing import Mapping, Protocol
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.reading import DecimalsMode
 
 
 class Constants:
@@ -37,7 +38,7 @@ class Constants:
         self.definitions: dict[str, ex.Expr] = dict(definitions or {})
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
-        self._enclosures: dict[tuple[int, bool | str], dict[str, Interval]] = {}
+        self._enclosures: dict[tuple[int, DecimalsMode], dict[str, Interval]] = {}
         self._rounded: dict[str, bool] = {}
         self._decimal: dict[str, bool] = {}
         for name in self._order:
@@ -99,13 +100,13 @@ class Constants:
             self._exact = values
         return self._exact
 
-    def enclosures(self, bits: int, rounded: bool | str) -> dict[str, Interval]:
-        key = (bits, rounded)
+    def enclosures(self, bits: int, decimals: DecimalsMode) -> dict[str, Interval]:
+        key = (bits, decimals)
         if key not in self._enclosures:
             values: dict[str, Interval] = {}
             for name in self._order:
                 try:
-                    values[name] = ex.enclose(self.definitions[name], bits, rounded, values)
+                    values[name] = ex.enclose(self.definitions[name], bits, decimals, values)
                 except UserError as err:
                     raise err.located(f"constants.{name}") from None
             self._enclosures[key] = values
@@ -137,8 +138,8 @@ class TableauEntry(Protocol):
     def is_rational(self) -> bool: ...
     @property
     def is_rounded(self) -> bool: ...
-    def is_box(self, decimals: str) -> bool: ...
-    def enclosure(self, bits: int, decimals: str = "auto") -> Interval: ...
+    def is_box(self, decimals: DecimalsMode) -> bool: ...
+    def enclosure(self, bits: int, decimals: DecimalsMode = ...) -> Interval: ...
     def is_zero(self) -> bool: ...
 
 
@@ -193,17 +194,21 @@ class Entry:
     def is_rounded(self) -> bool:
         return self.rounded_digits is not None
 
-    def is_box(self, decimals: str) -> bool:
+    def is_box(self, decimals: DecimalsMode) -> bool:
         """Whether the entry stands for an interval of numbers, not one number, under the
         decimals mode (definitions §5.2; :meth:`rkcheck.numbers.grammar.Num.interval`)."""
-        if decimals == "float64":
+        decimals = DecimalsMode(decimals)
+        if decimals is DecimalsMode.FLOAT64:
             return self.has_decimal
-        if decimals in ("rounded", "auto"):
+        if decimals.rounds:
             return self.is_rounded
         return False
 
-    def enclosure(self, bits: int, decimals: str = "auto") -> Interval:
-        """A rigorous enclosure at ``bits`` bits under the decimals mode of definitions §5."""
+    def enclosure(self, bits: int, decimals: DecimalsMode = DecimalsMode.EXACT) -> Interval:
+        """A rigorous enclosure at ``bits`` bits under the decimals mode of definitions §5;
+        by default the entry at face value, like :meth:`Tableau.exact_values` (a check
+        reads entries through its own :class:`~rkcheck.numbers.reading.Reading`)."""
+        decimals = DecimalsMode(decimals)
         if self.exact is not None and not self.is_box(decimals):
             return Interval.point(self.exact)
         return ex.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals))

@@ -74,3 +74,34 @@ def radius_string(r: Fraction | float) -> str:
 
 def short(x: Fraction, sig: int = 6) -> str:
     return decimal_string(x, sig)
+
+
+def exact_string(q: Fraction | int, max_digits: int = 40) -> str:
+    """A rational written exactly: as a decimal when it has a short finite expansion
+    (``0.99``, ``12.25``), else as ``p/q`` (``1/3``); a rational too long for either is
+    its 20 leading digits, marked ``≈``."""
+    q = Fraction(q)
+    if q.denominator == 1 and len(str(abs(q.numerator))) <= max_digits:
+        return str(q.numerator)
+    places = _decimal_places(q.denominator, max_digits)
+    if places is not None:
+        sig = len(str(abs(q.numerator * 10**places // q.denominator)).rstrip("0"))
+        if sig <= max_digits:
+            return decimal_string(q, max(sig, 1))
+    if q.numerator.bit_length() + q.denominator.bit_length() <= 3.33 * max_digits:
+        return f"{q.numerator}/{q.denominator}"
+    return "≈" + decimal_string(q, 20)
+
+
+def _decimal_places(denominator: int, limit: int) -> int | None:
+    """The digits after the point of p/denominator when it terminates within a few
+    times ``limit`` places (the denominator is 2^a·5^b), else None."""
+    twos = (denominator & -denominator).bit_length() - 1
+    rest = denominator >> twos
+    fives = 0
+    while rest % 5 == 0 and fives <= 4 * limit:
+        rest //= 5
+        fives += 1
+    if rest != 1 or max(twos, fives) > 4 * limit:
+        return None
+    return max(twos, fives)

@@ -39,6 +39,7 @@ from typing import Any, Callable, Mapping
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.intervals import Interval, exact_sqrt
+from rkcheck.numbers.reading import DecimalsMode
 
 MAX_ENTRY_LENGTH = 20_000
 MAX_DEPTH = 100
@@ -94,52 +95,59 @@ class Num:
         explicit methods, diagonal blocks)."""
         return self.digits is not None and self.value != 0
 
-    def interval(self, decimals: str) -> tuple[Fraction, Fraction] | None:
+    def interval(self, decimals: DecimalsMode) -> tuple[Fraction, Fraction] | None:
         """The numbers this literal stands for under a decimals mode (definitions §5.2),
-        as ``(lo, hi)``; None when it is exact in that mode.
+        as ``(lo, hi)``; None when it is exact in that mode (:class:`DecimalsMode`).
 
-        * ``exact``: every literal at face value;
-        * ``rounded``: a decimal with at least :data:`ROUNDED_MIN_DIGITS` significant
-          digits is within half a unit of its last digit;
-        * ``float64``: every nonzero decimal is the double nearest to it, and stands for
-          that double's rounding interval (every real that rounds to it);
-        * ``auto``: as ``rounded``, widened to the double's rounding interval when the
-          literal is the shortest representation of a double (what Python, numpy and
-          Julia print): ``0.16666666666666666`` then covers 1/6.
+        In ``auto`` the double's rounding interval is added only when the literal *as
+        written* is the double's shortest representation (same value, same number of
+        significant digits): ``0.16666666666666666`` then covers 1/6, while
+        ``0.500000000000000000000000000000`` says it has 30 digits and is read so.
         """
-        if decimals == "exact":
+        decimals = DecimalsMode(decimals)
+        if decimals is DecimalsMode.EXACT:
             return None
-        if decimals == "float64":
+        if decimals is DecimalsMode.FLOAT64:
             return double_interval(self.value) if self.is_decimal else None
         if not self.is_rounded_decimal:
             return None
         h = self.half_unit
         lo, hi = self.value - h, self.value + h
-        if decimals == "auto":
-            d = double_interval(self.value, shortest_only=True)
+        if decimals is DecimalsMode.AUTO:
+            d = double_interval(self.value, written_digits=self.digits)
             if d is not None:
                 lo, hi = min(lo, d[0]), max(hi, d[1])
         return lo, hi
 
 
-def double_interval(value: Fraction, shortest_only: bool = False) -> tuple[Fraction, Fraction] | None:
+def double_interval(value: Fraction, written_digits: int | None = None) -> tuple[Fraction, Fraction] | None:
     """The rounding interval of the binary64 double nearest to ``value``: the closed
     interval of reals that round to it (half an ulp each side; the spacing below a power
     of two is half the spacing above).  None when ``value`` is outside the range of
-    doubles, or, with ``shortest_only``, when ``value`` is not the shortest decimal
-    representation of that double (``repr``)."""
-    try:
-        f = float(value)  # correctly rounded (Fraction.__float__ divides exactly)
-    except OverflowError:
-        return None
-    if not math.isfinite(f) or f == 0:
-        return None
-    if shortest_only and Fraction(repr(f)) != value:
+    doubles, or, given ``written_digits``, when a literal of ``value`` with that many
+    significant digits is not the double's shortest decimal representation (``repr``)."""
+    if value == 0 or abs(value) > _DOUBLE_MAX:
+        return None  # zero, or beyond binary64's range: float() would overflow
+    f = float(value)  # correctly rounded (Fraction.__float__ divides exactly)
+    if f == 0:
+        return None  # below the smallest subnormal
+    if written_digits is not None and (Fraction(repr(f)) != value or _significant_digits(repr(f)) != written_digits):
         return None
     x = Fraction(f)
     lo = (x + Fraction(math.nextafter(f, -math.inf))) / 2
     hi = (x + Fraction(math.nextafter(f, math.inf))) / 2
     return lo, hi
+
+
+#: The largest finite double: beyond it a decimal is not read as a double.
+_DOUBLE_MAX = Fraction(1.7976931348623157e308)
+
+
+def _significant_digits(text: str) -> int:
+    """Significant digits of Python's ``repr`` of a finite double (``1e-05`` -> 1,
+    ``123.0`` -> 3, ``0.16666666666666666`` -> 17)."""
+    mantissa = text.lstrip("-").split("e")[0].replace(".", "")
+    return len(mantissa.strip("0")) or 1
 
 
 @dataclass(frozen=True, slots=True)
@@ -689,17 +697,14 @@ def _arithmetic(op: str, left: Any, right: Any) -> Any:
 def enclose(
     node: Expr,
     bits: int,
-    rounded: bool | str,
+    decimals: DecimalsMode,
     constants: Mapping[str, Interval],
 ) -> Interval:
-    """A rigorous enclosure of ``node`` (definitions §5).
-
-    ``rounded``: the decimals mode (``auto``, ``rounded``, ``float64``, ``exact``; see
-    :meth:`Num.interval`); ``True``/``False`` mean ``rounded``/``exact``.  Square roots
-    of non-squares are rounded outwards to ``bits`` bits.  ``constants`` maps names to
-    their enclosures.
+    """A rigorous enclosure of ``node`` (definitions §5) under the decimals mode (see
+    :meth:`Num.interval`).  Square roots of non-squares are rounded outwards to ``bits``
+    bits.  ``constants`` maps names to their enclosures.
     """
-    mode = rounded if isinstance(rounded, str) else ("rounded" if rounded else "exact")
+    mode = DecimalsMode(decimals)
 
     def combine(n: Expr, vals: list[Interval]) -> Interval:
         if isinstance(n, Num):

@@ -25,7 +25,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rkcheck import __version__
-from rkcheck.trees.rooted import bracket, canonical_level_sequence, children_of_level_sequence
+from rkcheck.trees.rooted import (
+    bracket,
+    canonical_level_sequence,
+    children_of_level_sequence,
+)
 
 LANGUAGES = ("python", "sympy", "julia", "matlab", "latex")
 _LETTERS = "ijklmnpqruvwxyzefgh"  # summation indices (no a, b, c, s, t, o: they mean something)
@@ -79,8 +83,8 @@ def condition_code(listing, classical: bool = False, stages: int | None = None,
         index[seq] = -1
 
     energy_terms = []
-    for rec in listing.sorted_records():
-        forests = listing.term_forests(rec.vertices, rec.order_index)
+    for n, k, rec in listing.sorted_conditions():
+        forests = listing.term_forests(n, k)
         L = math.lcm(*(sigma for _, sigma, _ in forests))
         terms = []
         for sign, sigma, seqs in forests:

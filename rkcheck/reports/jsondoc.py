@@ -6,13 +6,17 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from rkcheck import __version__
-from rkcheck.energy.check import CheckResult, ConditionResult, conditions_ok, inconsistent, overall, requirement_shortfall
-from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
+from rkcheck.energy.check import CheckResult, inconsistent
+from rkcheck.energy.gate import conditions_ok, requirement_shortfall
+from rkcheck.energy.results import Condition
+from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.grammar import to_text
+from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
+from rkcheck.version import __version__
 
 SCHEMA = 1
 
@@ -30,29 +34,31 @@ def entry_doc(e) -> dict[str, Any]:
     }
 
 
-def tableau_doc(tab: Tableau, decimals: str = "auto") -> dict[str, Any]:
+def tableau_doc(values: TableauValues) -> dict[str, Any]:
     """The parsed tableau: every entry as written and, when rational, as an exact p/q."""
+    tab = values.tableau
     return {
         "stages": tab.stages,
         "structure": tab.structure,
-        "numbers": tab.number_kind(decimals),
+        "numbers": values.describe(),
         "rational": tab.is_rational,
-        "constants": {k: to_text(v) for k, v in tab.constants.definitions.items()},
+        "constants": {k: to_text(v) for k, v in tab.info.constants.definitions.items()},
         "A": [[entry_doc(e) for e in row] for row in tab.A],
         "b": [entry_doc(e) for e in tab.b],
         "c": None if tab.c is None else [entry_doc(e) for e in tab.c],
-        "family": tab.family,
+        "family": None if tab.info.family is None else dict(tab.info.family),
     }
 
 
 def method_doc(tab: Tableau) -> dict[str, Any]:
-    return {"name": tab.name, "description": tab.description, "references": list(tab.references)}
+    return {"name": tab.name, "description": tab.info.description, "references": list(tab.info.references)}
 
 
-def show_doc(tab: Tableau, file: str, decimals: str, warnings: list[str]) -> dict[str, Any]:
+def show_doc(tab: Tableau, file: str, decimals: DecimalsMode, warnings: list[str]) -> dict[str, Any]:
     """``rkcheck show --format json``."""
-    return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(tab, decimals),
-            "stability": stability_doc(tableau_stability(tab, decimals)), "warnings": warnings}
+    values = TableauValues(tab, Reading(decimals))
+    return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(values),
+            "stability": stability_doc(tableau_stability(values)), "warnings": warnings}
 
 
 def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:
@@ -76,11 +82,11 @@ def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]
     return doc
 
 
-def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
+def residual_doc(r: Condition, dps: int) -> dict[str, Any]:
     enc = r.enclosure
-    if r.value is not None and hasattr(r.value, "rational"):  # exact, in a number field
-        q = r.value.rational()
-        text = r.value.text() if q is None else str(q)
+    if r.residual is not None and hasattr(r.residual, "rational"):  # exact, in a number field
+        q = r.residual.rational()
+        text = r.residual.text() if q is None else str(q)
         return {"residual": decimal_string(enc.mid, dps), "residual_exact": text,
                 "radius": "0" if q is not None else radius_string(enc.rad), "digits": None}
     if enc.exact:
@@ -99,8 +105,8 @@ def residual_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
     }
 
 
-def condition_doc(r: ConditionResult, dps: int) -> dict[str, Any]:
-    c = r.condition
+def condition_doc(r: Condition, dps: int) -> dict[str, Any]:
+    c = r.tree
     doc = {
         "id": c.id,
         "level_sequence": list(c.level_sequence),
@@ -119,7 +125,7 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
     first = res.first_failure
     avf = res.avf
     return {
-        "verdict": overall(res).state,
+        "verdict": res.verdict,
         "energy_order": res.energy_order,
         "energy_order_all": res.energy_order_all,
         "energy_order_label": res.energy_order_label,
@@ -158,14 +164,14 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "conditions_held": sum(p.held for p in res.per_order),
         "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
-        "proven": overall(res).state == "holds" and (res.certificate is None or not res.energy_order_all
-                                                     or res.certificate.verdict.state == "holds"),
+        "proven": res.verdict == HOLDS and (res.certificate is None or not res.energy_order_all
+                                            or res.certificate.verdict.state == HOLDS),
         "inconsistent": inconsistent(res),
         "require": _require_doc(res),
         "passed": conditions_ok(res),
         "first_failure": None
         if first is None
-        else {"id": first.condition.id, "bracket": first.condition.bracket, "order": first.condition.order},
+        else {"id": first.id, "bracket": first.bracket, "order": first.order},
         "per_order": [
             {
                 "order": p.order,
@@ -211,21 +217,22 @@ def claims_doc(claim_results) -> list[dict[str, Any]] | None:
     ]
 
 
-def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
+def check_doc(res: CheckResult) -> dict[str, Any]:
     """The per-file object of ``verify --format json`` (also used by ``scan``)."""
     o = res.options
+    claim_results = res.claims
     summary = summary_doc(res)
     summary.update(properties_doc(res))  # reduction, symplectic, symmetric, stability, error_constant
     summary["claims_ok"] = None if claim_results is None else all(r.met for r in claim_results)
     return {
         "schema": SCHEMA,
         "rkcheck": __version__,
-        "file": res.tableau.source,
+        "file": res.tableau.info.source,
         "method": method_doc(res.tableau),
         "tableau": {
             "stages": res.tableau.stages,
             "structure": res.tableau.structure,
-            "numbers": res.tableau.number_kind(o.decimals),
+            "numbers": res.values.describe(),
         },
         "options": {
             "degree": o.degree,
@@ -238,7 +245,7 @@ def check_doc(res: CheckResult, claim_results=None) -> dict[str, Any]:
         },
         "summary": summary,
         "claims": claims_doc(claim_results),
-        "conditions": [condition_doc(r, o.dps) for r in res.results],
+        "conditions": [condition_doc(r, o.dps) for r in res.conditions],
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},
     }

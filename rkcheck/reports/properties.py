@@ -25,9 +25,12 @@ from rich.text import Text
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.error_constants import ErrorConstant, error_constant
-from rkcheck.energy.stability import StabilityFunction, monomial_text
+from rkcheck.energy.stability import (
+    StabilityFunction,
+    stability_function,
+)
 from rkcheck.energy.verdicts import FAILS, HOLDS
-from rkcheck.numbers.formatting import decimal_string
+from rkcheck.evaluation.values import TableauValues
 
 _SUP = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 STYLE = {HOLDS: "green", "holds_to_digits": "yellow", FAILS: "red"}
@@ -140,27 +143,7 @@ def stability_line(stab: StabilityFunction) -> str:
     return f"{stab.text()};  {stab.defect_text()}"
 
 
-def tableau_stability(tab, decimals: str = "auto", dps: int = 50) -> StabilityFunction:
-    """R(z) of a tableau without running a check (for ``show``): exact when the tableau
-    is, else from enclosures at ``dps`` digits."""
-    from rkcheck.energy.stability import stability_function
-    from rkcheck.numbers.precision import entry_bits
-
-    values = sc.exact_values_or_none(tab, decimals)
-    if values is None:
-        A, b = tab.enclosures(entry_bits(dps), decimals)
-        values = sc.values_from_enclosures(A, b, False)
-    return stability_function(*values)
-
-
-def leading_term_text(stab: StabilityFunction) -> str:
-    if stab.leading_power is None:
-        return "0"
-    return monomial_text(stab.leading_coefficient, stab.leading_power)
-
-
-def constant_cell(ec: ErrorConstant | None) -> str:
-    """A short catalogue cell: ``C`` to 3 digits, or ``—``."""
-    if ec is None:
-        return "—"
-    return decimal_string(ec.value, 3) if ec.value else "0"
+def tableau_stability(values: TableauValues) -> StabilityFunction:
+    """R(z) of a tableau without running a check (for ``show``): exact when its values
+    are, else from their enclosures."""
+    return stability_function(*sc.tableau_values(values))

@@ -29,7 +29,7 @@ def outcome_docs(outcomes) -> list[dict[str, Any]]:
     ``result`` the ``verify --format json`` object of each checked file."""
     return [
         {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
-         "result": None if o.result is None else check_doc(o.result, o.claims)}
+         "result": None if o.result is None else check_doc(o.result)}
         for o in outcomes
     ]
 

@@ -10,12 +10,17 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
-from rkcheck.energy.check import CheckResult, ConditionResult, inconsistent, overall, requirement_shortfall
+from rkcheck.energy.check import CheckResult, inconsistent, overall
+from rkcheck.energy.explain import EnergyCondition
+from rkcheck.energy.gate import requirement_shortfall
+from rkcheck.energy.results import Condition
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
@@ -59,15 +64,17 @@ def _kv_table() -> Table:
     return t
 
 
-def header(tab: Tableau, decimals: str) -> Group:
+def header(values: TableauValues) -> Group:
+    tab = values.tableau
     title = Text(tab.name, style="bold")
-    if tab.source and tab.source not in ("<memory>", "<string>"):
-        title.append(f"  ({tab.source})", style="dim")
-    facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {tab.number_kind(decimals)}"
+    source = tab.info.source
+    if source and source not in ("<memory>", "<string>"):
+        title.append(f"  ({source})", style="dim")
+    facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {values.describe()}"
     return Group(title, Text(facts))
 
 
-def conditions_table(results: Sequence[ConditionResult], title: str) -> Table:
+def conditions_table(results: Sequence[Condition], title: str) -> Table:
     t = Table(title=Text(title), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("id", no_wrap=True)
     t.add_column("bracket", no_wrap=True)
@@ -76,10 +83,9 @@ def conditions_table(results: Sequence[ConditionResult], title: str) -> Table:
     t.add_column("residual")
     t.add_column("state", no_wrap=True)
     for r in results:
-        c = r.condition
         t.add_row(*plain(
-            c.id, c.bracket, c.vertices, c.max_degree,
-            enclosure_text(r.enclosure, r.verdict, value=r.value), state_text(r.verdict),
+            r.id, r.bracket, r.vertices, r.max_degree,
+            enclosure_text(r.enclosure, r.verdict, value=r.residual), state_text(r.verdict),
         ))
     return t
 
@@ -94,7 +100,7 @@ def per_order_table(res: CheckResult) -> Table:
     t.add_column("failed", justify="right")
     # exact arithmetic proves or refutes every condition: a digits column would only say
     # "exact" on every row, so it is shown for balls alone
-    show_digits = res.backend != "exact"
+    show_digits = res.backend is not Backend.EXACT
     if show_digits:
         t.add_column("min digits", justify="right")
     for p in res.per_order:
@@ -105,8 +111,8 @@ def per_order_table(res: CheckResult) -> Table:
 
 
 def _backend_text(res: CheckResult) -> str:
-    if res.backend == "exact":
-        field = None if res.tableau.is_rational else getattr(res.tableau.exact_values("exact"), "field", None)
+    if res.backend is Backend.EXACT:
+        field = res.values.exact.field if res.values.exact is not None else None
         if field is None:
             return "exact rational arithmetic"
         where = f"Q({field.name})" if field.sqrt_of else f"a number field of degree {field.degree}"
@@ -128,7 +134,7 @@ def claims_table(claim_results) -> Table:
 
 
 def render_check(
-    res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False, claims=None,
+    res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False,
     verbose: bool = False, fail_on: str = "auto",
 ) -> None:
     """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
@@ -139,7 +145,7 @@ def render_check(
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
     if not quiet:
-        console.print(header(res.tableau, o.decimals))
+        console.print(header(res.values))
         console.print(f"{deg}, order ≤ {o.order}: {total} conditions, {_backend_text(res)}")
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
@@ -177,15 +183,15 @@ def render_check(
                 style="dim",
             )
     if show_all:
-        console.print(conditions_table(res.results, f"All conditions ({len(res.results)} checked)"))
+        console.print(conditions_table(res.conditions, f"All conditions ({len(res.conditions)} checked)"))
     elif res.failures and not quiet:  # --quiet: the verdict line says how many fail
         shown = res.failures[:MAX_FAILURES_SHOWN]
-        title = f"Failing conditions ({len(res.failures)} of {len(res.results)} checked"
+        title = f"Failing conditions ({len(res.failures)} of {len(res.conditions)} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
-    if claims:
-        console.print(claims_table(claims))
-    console.print(verdict_line(res, claims, fail_on))
+    if res.claims:
+        console.print(claims_table(res.claims))
+    console.print(verdict_line(res, res.claims, fail_on))
 
 
 def _order_text(r, what: str) -> str:
@@ -227,8 +233,8 @@ def _energy_text(res: CheckResult) -> Text:
     if first is None:
         return Text(f"≥ {res.energy_order} (every condition up to order {o.order} holds; not proven beyond)", style="green")
     return Text(
-        f"{res.energy_order} (first failing condition at order {first.condition.order}: "
-        f"{first.condition.id} {first.condition.bracket})",
+        f"{res.energy_order} (first failing condition at order {first.order}: "
+        f"{first.id} {first.bracket})",
         style="red",
     )
 
@@ -256,7 +262,7 @@ def final_line(res: CheckResult) -> Text:
     "to D digits" first and never "certificate"; ``--require`` turns a shortfall into
     FAIL; a certain ``Σb ≠ 1`` fails the method."""
     v = overall(res)
-    n = len(res.results)
+    n = len(res.conditions)
     if len(res.failures):
         return Text(f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
                     style="bold red")
@@ -285,17 +291,19 @@ def final_line(res: CheckResult) -> Text:
                 style="bold yellow")
 
 
-def render_tableau(tab: Tableau, console: Console, decimals: str = "auto", warnings: list[str] | None = None) -> None:
+def render_tableau(tab: Tableau, console: Console, decimals: DecimalsMode = DecimalsMode.AUTO,
+                   warnings: list[str] | None = None) -> None:
     """``show``: the Butcher table ``c | A`` over ``| bᵀ`` with the entries as written."""
-    console.print(header(tab, decimals))
-    if tab.description:
-        console.print(Text(tab.description, style="dim"))
-    for ref in tab.references:
+    values = TableauValues(tab, Reading(decimals))
+    console.print(header(values))
+    if tab.info.description:
+        console.print(Text(tab.info.description, style="dim"))
+    for ref in tab.info.references:
         console.print(Text(f"reference: {ref}", style="dim"))
-    if tab.constants.definitions:
+    if tab.info.constants.definitions:
         from rkcheck.numbers.grammar import to_text
 
-        consts = ", ".join(f"{k} = {to_text(v)}" for k, v in tab.constants.definitions.items())
+        consts = ", ".join(f"{k} = {to_text(v)}" for k, v in tab.info.constants.definitions.items())
         console.print(f"constants: {consts}")
     t = Table(box=box.SIMPLE, show_header=False, pad_edge=False)
     t.add_column(style="cyan")
@@ -309,7 +317,7 @@ def render_tableau(tab: Tableau, console: Console, decimals: str = "auto", warni
     console.print(t)
     if c_entries is None:
         console.print(Text("c not given: the row sums A·1 are shown (dim) and used", style="dim"))
-    console.print(Text(stability_line(tableau_stability(tab, decimals))))  # R(z), R(z)R(−z) − 1
+    console.print(Text(stability_line(tableau_stability(values))))  # R(z), R(z)R(−z) − 1
     for w in warnings or []:
         console.print(Text(f"warning: {w}", style="yellow"))
 
@@ -319,7 +327,7 @@ def _row_sum_text(tab: Tableau, i: int) -> str:
     exact = [e.exact for e in row if e.exact is not None]
     if len(exact) == len(row):
         return str(sum(exact, Fraction(0)))
-    enc = sum((e.enclosure(80, "exact") for e in row[1:]), row[0].enclosure(80, "exact"))
+    enc = sum((e.enclosure(80, DecimalsMode.EXACT) for e in row[1:]), row[0].enclosure(80, DecimalsMode.EXACT))
     return "≈ " + decimal_string(enc.mid, 12)
 
 
@@ -347,14 +355,15 @@ def render_condition_list(listing, console: Console, count_only: bool) -> None:
     console.print(lst)
 
 
-def render_explanation(ex, console: Console, tableau=None) -> None:
+def render_explanation(ex: EnergyCondition, console: Console) -> None:
     """``explain``: the free tree, its rootings with signs and σ, and the weights."""
     given = ",".join(map(str, ex.given))
-    if ex.condition is None:
+    tableau = ex.tableau
+    if ex.tree is None:
         why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
         console.print(f"{given}: {ex.vertices} vertices — superfluous free tree, no energy condition ({why})")
         return
-    c = ex.condition
+    c = ex.tree
     console.print(Text(f"Energy condition {c.id}  {c.bracket}", style="bold"))
     if c.id != given:
         console.print(f"(given as {given}: canonical id = level sequence of the rooting at the centre)")
@@ -371,13 +380,13 @@ def render_explanation(ex, console: Console, tableau=None) -> None:
     if tableau is not None:
         t.add_column("term value")
     for term in ex.terms:
-        forest = " · ".join(f"({f[2]})" for f in term.forest) or "1"
+        forest = " · ".join(f"({w})" for w in term.weights) or "1"
         row = [f"{term.bracket}  {','.join(map(str, term.level_sequence))}", "+" if term.sign > 0 else "−", str(term.sigma), forest]
         if tableau is not None and term.value is not None:
             row.append(enclosure_text(term.value, Verdict(FAILS) if not term.value.exact else Verdict(HOLDS)))
         t.add_row(*plain(*row))
     console.print(t)
-    if tableau is not None and ex.residual is not None and ex.verdict is not None:
-        line = Text(f"R = {enclosure_text(ex.residual, ex.verdict, 20)}   ")
+    if tableau is not None and ex.enclosure is not None and ex.verdict is not None:
+        line = Text(f"R = {enclosure_text(ex.enclosure, ex.verdict, 20)}   ")
         line.append_text(state_text(ex.verdict))
         console.print(line)

@@ -27,27 +27,27 @@ from rkcheck.energy.verdicts import (
     classify_bounds,
 )
 from rkcheck.errors import UserError
-from rkcheck.methods.tableau import Tableau
+from rkcheck.evaluation.algorithm import condition_sums
+from rkcheck.evaluation.backends import ball_context, float_context
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.values import TableauValues
+from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.entries import Entry
+from rkcheck.numbers.reading import DEFAULT_READING, Reading
 from rkcheck.trees.listing import condition_listing
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 
 
-def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "rounded"):
+def evaluate_backend(listing, values: TableauValues, name: str):
     """Every condition of ``listing`` on one backend — ``float64``, ``exact`` or
     ``dps:<D>`` — as ``{(vertices, k): (enclosure, verdict)}`` in listing order (the
     enclosure is the class representative's: sizes and verdicts do not depend on it)."""
-    from rkcheck.evaluation.algorithm import condition_sums
-    from rkcheck.evaluation.backends import ball_context, float_context, scaled_tableau
-    from rkcheck.evaluation.modular import exact_condition_sums
-
     if name == "exact":
-        scaled = scaled_tableau(tableau, "exact")
-        assert scaled is not None  # backend_names offers "exact" only for exact tableaux
+        # backend_names offers "exact" only for exact values
         out = {}
-        for n, o in exact_condition_sums(scaled, listing).items():
+        for n, o in exact_condition_sums(values.scaled, listing).items():
             zero = o.is_zero()
             for k in range(len(zero)):
                 v = o.value(k)
@@ -58,20 +58,20 @@ def evaluate_backend(listing, tableau: Tableau, name: str, decimals: str = "roun
                     enc = Enclosure.of(v)
                 out[(n, k)] = (enc, Verdict(HOLDS) if zero[k] else Verdict(FAILS))
         return out
-    ctx = float_context(tableau, decimals) if name == "float64" else ball_context(tableau, int(name[4:]), decimals)
-    sums = condition_sums(listing, ctx, tableau.stages)
+    ctx = float_context(values) if name == "float64" else ball_context(values.at(int(name[4:])))
+    sums = condition_sums(listing, ctx, values.stages)
     out = {}
-    for n, values in sums.items():
-        states, digits = classify_bounds(values.excludes_zero(), values.magnitude_bound())
-        for k in range(len(values)):
-            v = Verdict(FAILS) if states[k] == 2 else Verdict(HOLDS_TO_DIGITS, int(digits[k]))
-            out[(n, k)] = (values.enclosure(k), v)
+    for n, order_sums in sums.items():
+        states, digits = classify_bounds(order_sums.excludes_zero(), order_sums.magnitude_bound())
+        for k in range(len(order_sums)):
+            v = Verdict(FAILS) if states[k] == FAILS.code else Verdict(HOLDS_TO_DIGITS, int(digits[k]))
+            out[(n, k)] = (order_sums.enclosure(k), v)
     return out
 
 
-def backend_names(tableau: Tableau, dps_list, decimals: str = "rounded") -> list[str]:
+def backend_names(values: TableauValues, dps_list) -> list[str]:
     names = ["float64"] + [f"dps:{d}" for d in dps_list]
-    if tableau.is_exact(decimals):
+    if values.kind.is_exact:
         names.append("exact")
     return names
 
@@ -96,18 +96,19 @@ class BenchRow:
 
 
 def bench_backends(tableau: Tableau, degree: int | None, order: int, dps_list=DEFAULT_DPS_LIST,
-                   decimals: str = "rounded", repeat: int = 1) -> tuple[list[BenchRow], float]:
+                   reading: Reading = DEFAULT_READING, repeat: int = 1) -> tuple[list[BenchRow], float]:
     """Rows per backend, and the time to build the (shared) condition table."""
     t0 = time.perf_counter()
     listing = condition_listing(order, degree)
     t_tables = time.perf_counter() - t0
+    values = TableauValues.of(tableau, reading)
     rows: list[BenchRow] = []
-    for name in backend_names(tableau, dps_list, decimals):
+    for name in backend_names(values, dps_list):
         best = math.inf
         results = None
         for _ in range(max(1, repeat)):
             t1 = time.perf_counter()
-            results = evaluate_backend(listing, tableau, name, decimals)
+            results = evaluate_backend(listing, values, name)
             best = min(best, time.perf_counter() - t1)
         assert results is not None
         digits = [v.digits for _, v in results.values() if v.state == HOLDS_TO_DIGITS]
@@ -226,7 +227,7 @@ def perturbed(tableau: Tableau, D, eps: Fraction) -> Tableau:
     """A + εD with b unchanged; entries stay exact expressions over the same constants."""
     A = tuple(
         tuple(
-            e if D[i][j] == 0 else Entry.parse(f"({e.text}) + ({eps * D[i][j]})", tableau.constants)
+            e if D[i][j] == 0 else Entry.parse(f"({e.text}) + ({eps * D[i][j]})", tableau.info.constants)
             if not getattr(e, "computed", False) else e
             for j, e in enumerate(row)
         )
@@ -234,7 +235,8 @@ def perturbed(tableau: Tableau, D, eps: Fraction) -> Tableau:
     )
     if any(getattr(e, "computed", False) for row in tableau.A for e in row):
         raise UserError("perturb needs explicit entries; write the family out with `rkcheck new` first")
-    return Tableau(A=A, b=tableau.b, c=None, name=f"{tableau.name} + {eps}·D", constants=tableau.constants)
+    return Tableau(A=A, b=tableau.b, c=None, name=f"{tableau.name} + {eps}·D",
+                   info=MethodInfo(constants=tableau.info.constants))
 
 
 @dataclass
@@ -294,16 +296,20 @@ def base_failure_warning(results, degree: int | None, order: int) -> str | None:
 
 
 def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degree: int | None, order: int,
-                  dps_list=(15, 50), decimals: str = "rounded") -> PerturbResult:
+                  dps_list=(15, 50), reading: Reading = DEFAULT_READING) -> PerturbResult:
     """The sweep of the module docstring.  The reference backend (exact when the tableau
     is, else balls at :func:`reference_dps`) gives max|R| and the first failing order."""
     listing = condition_listing(order, degree)
-    names = backend_names(tableau, dps_list, decimals)
+
+    def run(tab: Tableau, name: str):
+        return evaluate_backend(listing, TableauValues.of(tab, reading), name)
+
+    names = backend_names(TableauValues.of(tableau, reading), dps_list)
     if "exact" not in names:
         names.append(f"dps:{reference_dps(eps_list, dps_list)}")  # the reference: well beyond the others
     reference = names[-1]
     warnings = []
-    base_reference = evaluate_backend(listing, tableau, reference, decimals)
+    base_reference = run(tableau, reference)
     warning = base_failure_warning(base_reference, degree, order)
     if warning:
         warnings.append(warning)
@@ -313,7 +319,7 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
         detected = {}
         ref_results = None
         for name in names:
-            res = evaluate_backend(listing, tab, name, decimals)
+            res = run(tab, name)
             detected[name] = any(v.state == FAILS for _, v in res.values())
             if name == reference:
                 ref_results = res
@@ -326,12 +332,12 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
     pts = [(_log10(r.eps), _log10(r.max_residual)) for r in rows if r.max_residual]
     slope = fit_slope([p[0] for p in pts], [p[1] for p in pts])
     thresholds = {n: min((r.eps for r in rows if r.detected[n]), default=None) for n in names}
-    base = evaluate_backend(listing, perturbed(tableau, D, Fraction(0)), names[0], decimals)
+    base = run(perturbed(tableau, D, Fraction(0)), names[0])
     floors = {}
     for name in names:
         if name == "exact":
             continue
         res = base if name == names[0] else (
-            base_reference if name == reference else evaluate_backend(listing, tableau, name, decimals))
+            base_reference if name == reference else run(tableau, name))
         floors[name] = max(float(abs(e.mid) + e.rad) for e, _ in res.values()) if res else 0.0
     return PerturbResult(rows, slope, thresholds, floors, desc, names, warnings)

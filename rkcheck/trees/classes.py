@@ -30,17 +30,16 @@ import math
 import numpy as np
 
 from rkcheck.trees.table import _CHUNK, TreeTable
+from rkcheck.trees.terms import OrderTerms
 
 
-def classify(table: TreeTable, n: int, last: bool = False):
-    """The conditions with ``n >= 3`` vertices as an :class:`~rkcheck.trees.listing.OrderTerms`.
+def classify(table: TreeTable, n: int, last: bool = False) -> OrderTerms:
+    """The conditions with ``n >= 3`` vertices as an :class:`~rkcheck.trees.terms.OrderTerms`.
 
     ``n`` may be one above the table's stored orders: its trees are then generated in
     chunks (:meth:`TreeTable.pairs`), classified, and kept only as terms.  ``last``: no
     order follows, so the table is reduced to its factors (:meth:`TreeTable.release`) as
     soon as the classes are known, before the terms are sorted (the memory peak)."""
-    from rkcheck.trees.listing import OrderTerms
-
     stored = n <= table.max_order
     size = table.count(n) if stored else table.prepare_order(n)
     lo = table.first[n]

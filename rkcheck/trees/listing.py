@@ -18,92 +18,14 @@ the tableau and is shared by every check of the same ``(N, m)``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
-
-import numpy as np
+from typing import Iterator
 
 from rkcheck.trees.classes import classify
+from rkcheck.trees.free import FreeTree
 from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
 from rkcheck.trees.table import TreeTable
-
-
-@dataclass
-class OrderTerms:
-    """The conditions with ``vertices`` vertices.  Its terms are the rooted trees with
-    that many vertices, in id order: term ``i`` is the tree ``first_id + i`` (orders kept
-    in the table) or the product ``left[i] ∘ right[i]`` (the top order); it belongs to
-    condition ``condition[i]`` (``len(self)`` for the terms of superfluous trees, which
-    are left out) with the coefficient ``coefficients[coefficient_index[i]]``."""
-
-    vertices: int
-    first_id: int | None
-    left: np.ndarray | None  # int32 factors u, v of each term u ∘ v (top order only)
-    right: np.ndarray | None
-    condition: np.ndarray  # int32 condition of each term
-    coefficient_index: np.ndarray  # int16 into ``coefficients``
-    coefficients: list[int]  # the distinct ±(n−1)!/σ(u) of this order (exact, signed)
-    counts: np.ndarray  # int32 terms per condition
-    rep_left: np.ndarray  # int32 factors of each condition's representative rooting
-    rep_right: np.ndarray
-    tall: np.ndarray  # int32: for two centres, the other centre's branch (−1 for one centre)
-    rest: np.ndarray  # int32: for two centres, the representative minus that branch
-    max_degree: np.ndarray  # int16
-    superfluous: int = 0  # free trees of this order left out (equal halves across an edge)
-
-    def __len__(self) -> int:
-        return len(self.rep_left)
-
-    @property
-    def order(self) -> int:
-        return self.vertices - 1
-
-    @property
-    def terms(self) -> int:
-        return int(self.counts.sum())
-
-    @property
-    def max_terms(self) -> int:
-        return int(self.counts.max(initial=1))
-
-    def factors(self, i: int, listing: "ConditionListing") -> tuple[int, int]:
-        """(u, v) of term ``i``."""
-        if self.first_id is not None:
-            t = self.first_id + i
-            return int(listing.left[t]), int(listing.right[t])
-        assert self.left is not None and self.right is not None  # the top order keeps its factors
-        return int(self.left[i]), int(self.right[i])
-
-    def sign(self, i: int) -> int:
-        return 1 if self.coefficients[int(self.coefficient_index[i])] > 0 else -1
-
-    def terms_of(self, k: int) -> np.ndarray:
-        """The term indices of condition ``k`` (a scan: for explanations, not bulk work)."""
-        return np.flatnonzero(self.condition == k)
-
-
-@dataclass
-class ConditionRecord:
-    """One condition for people: canonical id (the designated rooting's level sequence,
-    definitions §3), bracket, vertices, max degree and number of terms.  ``flip`` is the
-    sign that turns the residual computed from the representative into the residual of
-    the designated rooting."""
-
-    level_sequence: tuple[int, ...]
-    bracket: str
-    vertices: int
-    max_degree: int
-    rootings: int
-    flip: int
-    order_index: int  # position within its order
-
-    @property
-    def id(self) -> str:
-        return ",".join(map(str, self.level_sequence))
-
-    @property
-    def order(self) -> int:
-        return self.vertices - 1
+from rkcheck.trees.terms import OrderTerms
 
 
 class ConditionListing:
@@ -165,28 +87,46 @@ class ConditionListing:
     def _forest(self, children: list[int]) -> list[tuple[int, ...]]:
         return [self.tree_level_sequence(c) for c in children]
 
-    def record(self, n: int, k: int) -> ConditionRecord:
-        """Condition ``k`` of the order with ``n`` vertices, for people."""
+    def _designated(self, n: int, k: int) -> tuple[tuple[int, ...], list[tuple[int, ...]], int]:
+        """The designated rooting of condition ``k`` (level sequence, the forest B₋ of
+        its root) and the sign that turns the residual of the representative rooting
+        into the residual of the designated one."""
         o = self.orders[n]
         forest = self._forest(self._children(int(o.rep_left[k])) + [int(o.rep_right[k])])
         seq = level_sequence_of_forest(forest)
-        flip = 1
         if o.tall[k] >= 0:  # two centres: the designated one has the larger level sequence
             other = self._forest(self._children(int(o.tall[k])) + [int(o.rest[k])])
             other_seq = level_sequence_of_forest(other)
             if other_seq > seq:
-                seq, forest, flip = other_seq, other, -1
-        return ConditionRecord(seq, bracket_of_forest(forest), n, int(o.max_degree[k]),
-                               int(o.counts[k]), flip, k)
+                return other_seq, other, -1
+        return seq, forest, 1
 
-    def records(self, n: int) -> list[ConditionRecord]:
+    def record(self, n: int, k: int) -> FreeTree:
+        """Condition ``k`` of the order with ``n`` vertices, for people."""
+        seq, forest, _ = self._designated(n, k)
+        o = self.orders[n]
+        return FreeTree(seq, bracket_of_forest(forest), int(o.max_degree[k]), int(o.counts[k]))
+
+    def flip(self, n: int, k: int) -> int:
+        """``±1``: the residual of condition ``k`` for its designated rooting is this sign
+        times the residual of the representative the evaluation computes."""
+        return self._designated(n, k)[2]
+
+    def records(self, n: int) -> list[FreeTree]:
         """The conditions with ``n`` vertices in listing order."""
         return [self.record(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
 
-    def sorted_records(self):
-        """Every condition for people, by vertices and then canonical id (a generator)."""
+    def sorted_conditions(self) -> Iterator[tuple[int, int, FreeTree]]:
+        """``(vertices, k, free tree)`` of every condition, by vertices and then canonical
+        id (``k``: its position in the listing's order)."""
         for n in sorted(self.orders):
-            yield from sorted(self.records(n), key=lambda r: r.level_sequence)
+            records = self.records(n)
+            for k in sorted(range(len(records)), key=lambda k: records[k].level_sequence):
+                yield n, k, records[k]
+
+    def sorted_records(self) -> Iterator[FreeTree]:
+        """Every condition for people, by vertices and then canonical id."""
+        return (tree for _, _, tree in self.sorted_conditions())
 
     def term_forests(self, n: int, k: int) -> list[tuple[int, int, list[tuple[int, ...]]]]:
         """(sign relative to the designated rooting, σ(u), B₋(u) as level sequences) for
@@ -194,7 +134,7 @@ class ConditionListing:
         import math
 
         o = self.orders[n]
-        flip = self.record(n, k).flip
+        flip = self.flip(n, k)
         out = []
         for i in o.terms_of(k):
             u, v = o.factors(int(i), self)

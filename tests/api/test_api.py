@@ -51,7 +51,7 @@ def test_the_file_check_table_is_used_like_the_cli():
     # implicit-midpoint.toml has [check] and claims: the API must judge it as verify does
     tab = rkcheck.load(TABLEAUX / "collocation" / "implicit-midpoint.toml")
     result = rkcheck.verify(tab)
-    assert result.options.degree == tab.check.get("degree", None)
+    assert result.options.degree == tab.info.check.get("degree", None)
     assert result.ok and result.claims and all(c.met for c in result.claims)
 
 
@@ -63,7 +63,7 @@ def test_result_surface_by_hand_for_explicit_midpoint():
     assert result.quadrature_order == 2
     first = result.failures[0]
     assert first.vertices == 4 and first.state == "fails" and isinstance(first.residual, Fraction)
-    assert first.enclosure == (first.residual, 0)
+    assert first.enclosure == (first.residual, 0, True)  # (mid, radius, exact)
     # every condition with 4 vertices, by the reference
     for cond in ref.energy_conditions(4):
         r = ref.energy_residual(cond, [[0, 0], [Fraction(1, 2), 0]], [0, 1])
@@ -89,11 +89,11 @@ def test_values_of_every_kind_are_exact():
         np.array([0.5, 0.5]), [Decimal("0.5") - Decimal("0.5") + sp.Rational(1, 2) - sp.sqrt(3) / 6, "1/2 + sqrt(3)/6"],
     )
     assert tab.A[0][0].exact == Fraction(1, 4) and tab.b[0].exact == Fraction(1, 2)
-    assert tab.uses_sqrt and not tab.warnings  # 0.5 is exactly a double: nothing to warn about
+    assert tab.uses_sqrt and not tab.info.warnings  # 0.5 is exactly a double: nothing to warn about
     want = rkcheck.load(TABLEAUX / "collocation" / "gauss-2.toml")
     bits = 200
     for mine, theirs in zip([e for r in tab.A for e in r], [e for r in want.A for e in r]):
-        a, b = mine.enclosure(bits), theirs.enclosure(bits)
+        a, b = mine.enclosure(bits, "auto"), theirs.enclosure(bits, "auto")
         assert abs(a.mid - b.mid) <= a.rad + b.rad
 
 
@@ -101,7 +101,7 @@ def test_a_float_is_its_exact_binary_value():
     tab = rkcheck.from_arrays([[0.1]], [1.0])
     assert tab.A[0][0].exact == Fraction(3602879701896397, 2**55) == Fraction(0.1)
     assert tab.b[0].exact == 1
-    assert len(tab.warnings) == 1 and "A[1][1]" in tab.warnings[0]
+    assert len(tab.info.warnings) == 1 and "A[1][1]" in tab.info.warnings[0]
 
 
 def test_floats_shortest_reads_repr_as_a_rounded_decimal():

@@ -6,9 +6,8 @@ from __future__ import annotations
 import doctest
 import os
 
-from support.paths import REPO
-
 import pytest
+from support.paths import REPO
 
 PAGE = REPO / "docs" / "api.md"
 

@@ -35,7 +35,7 @@ def test_wheel_ships_the_library(tmp_path):
     target = tmp_path / "site"
     zipfile.ZipFile(wheel).extractall(target)
     code = ("import rkcheck, rkcheck.io.library as L; t = rkcheck.load('@gauss3'); "
-            "print(rkcheck.__file__); print(L.library_root()); print(t.source, t.stages)")
+            "print(rkcheck.__file__); print(L.library_root()); print(t.info.source, t.stages)")
     env = dict(os.environ, PYTHONPATH=str(target))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, env=env)
     assert out.returncode == 0, out.stderr

@@ -108,7 +108,7 @@ def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch)
     real = rkcheck.energy.claims.judge_tableau
 
     def buggy(tab, *args, **kwargs):
-        if tab.source.endswith("t01.toml"):
+        if tab.info.source.endswith("t01.toml"):
             raise RuntimeError("simulated bug")
         return real(tab, *args, **kwargs)
 

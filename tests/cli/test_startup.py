@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pytest
 
+import rkcheck
+
 ROOT = Path(__file__).resolve().parents[2]
 RK4 = str(ROOT / "tableaux" / "explicit" / "rk4.toml")
 
@@ -94,10 +96,10 @@ def test_the_api_verify_loads_no_cli_and_nothing_heavy(tmp_path):
 
 @pytest.mark.parametrize("how", ["-c", "__main__.py"])
 def test_a_library_import_leaves_the_process_settings_alone(tmp_path, how):
-    # only the program tunes the collector and OpenBLAS (rkcheck/__init__.py): a library
+    # only the program tunes the collector and OpenBLAS (rkcheck/program.py): a library
     # user's process keeps its own settings, also when it is another package's
     # __main__.py (the program's own is rkcheck/__main__.py)
-    code = "import gc, os, rkcheck; print(gc.get_threshold()[0], 'OPENBLAS_THREAD_TIMEOUT' in os.environ, rkcheck._PROGRAM)"
+    code = "import gc, os, rkcheck; rkcheck.verify; print(gc.get_threshold()[0], 'OPENBLAS_THREAD_TIMEOUT' in os.environ)"
     env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_THREAD_TIMEOUT"}
     default = subprocess.run([sys.executable, "-c", "import gc; print(gc.get_threshold()[0])"], capture_output=True,
                              text=True, env=env).stdout.strip()
@@ -108,14 +110,20 @@ def test_a_library_import_leaves_the_process_settings_alone(tmp_path, how):
         (tmp_path / "tool" / "__main__.py").write_text(code)
         args = [str(tmp_path / "tool" / "__main__.py")]
     run = subprocess.run([sys.executable, *args], capture_output=True, text=True, cwd=tmp_path, env=env)
-    assert run.stdout.split() == [default, "False", "False"], run.stderr
+    assert run.stdout.split() == [default, "False"], run.stderr
 
 
-def test_the_program_knows_it_is_the_program(tmp_path):
-    # the console script's argv[0] and `python -m rkcheck` (the settings above apply there)
-    code = "import sys; sys.argv = ['/usr/bin/rkcheck']; import rkcheck, gc; print(rkcheck._PROGRAM, gc.get_threshold()[0])"
-    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.split() == ["True", "100000"]
-    module = subprocess.run([sys.executable, "-c", "import sys; sys.argv = ['-m']; sys.orig_argv[:] = "
-                             "[sys.executable, '-m', 'rkcheck']; import rkcheck; print(rkcheck._PROGRAM)"],
-                            capture_output=True, text=True)
-    assert module.stdout.split() == ["True"], module.stderr
+def test_the_program_tunes_its_own_process():
+    # the console script and `python -m rkcheck` both enter through rkcheck.program.main,
+    # which tunes the process before the command runs (observed at exit, after the command)
+    from importlib.metadata import entry_points
+
+    (script,) = [e for e in entry_points(group="console_scripts") if e.name == "rkcheck"]
+    assert script.value == "rkcheck.program:main"
+    assert "from rkcheck.program import main" in (Path(rkcheck.__file__).parent / "__main__.py").read_text()
+    code = ("import atexit, gc, os, sys; sys.argv = ['rkcheck', '--version']; "
+            "atexit.register(lambda: print(gc.get_threshold()[0], os.environ.get('OPENBLAS_THREAD_TIMEOUT'))); "
+            "from rkcheck.program import main; main()")
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_THREAD_TIMEOUT"}
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert run.stdout.split()[-2:] == ["100000", "4"], run.stderr

@@ -35,7 +35,7 @@ def test_avf_gauss2_holds_every_condition_and_is_recognised(degree):
     res = check(avf(*GAUSS2), CheckOptions(degree=degree, order=8))
     assert res.backend == "exact"
     assert res.failures == []
-    assert {r.verdict.state for r in res.results} == {HOLDS}
+    assert {r.verdict.state for r in res.conditions} == {HOLDS}
     assert res.avf is not None and res.avf.equals_avf
     assert res.energy_order_all and res.energy_order == 8
 
@@ -56,15 +56,15 @@ def test_avf_gauss3_holds_for_degree_up_to_6_to_order_7():
 def test_avf_over_a_rational_rule_holds_exactly():
     res = check(avf(*RADAU2), CheckOptions(degree=3, order=8))
     assert res.backend == "exact"
-    assert {r.verdict.state for r in res.results} == {HOLDS}
+    assert {r.verdict.state for r in res.conditions} == {HOLDS}
     assert res.avf.verdict.state == HOLDS and res.energy_order_all
 
 
 def test_implicit_midpoint_degree_2_holds_to_order_12():
     res = check(load(str(TABLEAUX / "collocation" / "implicit-midpoint.toml")), CheckOptions(degree=2, order=12))
     # m = 2 leaves the odd paths: one condition per even order 2, 4, ..., 12 (SPEC §3)
-    assert [r.condition.vertices for r in res.results] == [3, 5, 7, 9, 11, 13]
-    assert all(r.verdict.state == HOLDS for r in res.results)
+    assert [r.vertices for r in res.conditions] == [3, 5, 7, 9, 11, 13]
+    assert all(r.verdict.state == HOLDS for r in res.conditions)
     assert res.avf.equals_avf
 
 
@@ -72,7 +72,7 @@ def test_implicit_midpoint_star_condition_value():
     # star [τ³] ~ [[τ²]]: R = -(Σ b c² - 1/3)/2! (tests/reference.py derivation);
     # midpoint c = 1/2, b = 1: R = -(1/4 - 1/3)/2 = 1/24
     res = check(load(str(TABLEAUX / "collocation" / "implicit-midpoint.toml")), CheckOptions(degree=None, order=3))
-    star = next(r for r in res.results if r.condition.id == "1,2,2,2")
+    star = next(r for r in res.conditions if r.id == "1,2,2,2")
     assert star.enclosure.mid == Fraction(1, 24) and star.verdict.state == FAILS
     assert res.energy_order == 2
 
@@ -83,15 +83,15 @@ def test_rk4_energy_order_is_4():
     res = check(load(str(TABLEAUX / "explicit" / "rk4.toml")), CheckOptions(degree=None, order=8))
     assert res.energy_order == 4
     assert res.classical.order == 4 and res.quadrature.order == 4
-    assert res.first_failure.condition.vertices == 6
+    assert res.first_failure.vertices == 6
 
 
 def test_decimal_semantics_of_16_digit_avf():
     tab = load(str(TABLEAUX / "avf" / "avf-gauss-2-decimal16.toml"))
     rounded = check(tab, CheckOptions(degree=4, order=8, decimals="rounded"))
     assert rounded.failures == []
-    digits = [r.verdict.digits for r in rounded.results]
-    assert all(r.verdict.state == HOLDS_TO_DIGITS for r in rounded.results)
+    digits = [r.verdict.digits for r in rounded.conditions]
+    assert all(r.verdict.state == HOLDS_TO_DIGITS for r in rounded.conditions)
     assert 14 <= min(digits) <= 16  # "holds to ~15 digits": limited by the 16-digit input
     exact = check(tab, CheckOptions(degree=4, order=8, decimals="exact"))
     assert exact.backend == "exact" and exact.failures
@@ -107,7 +107,7 @@ def test_fifty_digit_input_limits_the_digits_not_the_precision():
 def test_fail_fast_stops_after_the_first_failing_order():
     tab = load(str(TABLEAUX / "explicit" / "rk4.toml"))
     res = check(tab, CheckOptions(order=8, fail_fast=True))
-    assert max(r.condition.order for r in res.results) == 5
+    assert max(r.order for r in res.conditions) == 5
     assert res.energy_order == 4
 
 

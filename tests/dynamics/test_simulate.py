@@ -99,7 +99,7 @@ def test_simulate_and_workprec_commands(capsys, tmp_path):
 def _energy_claims():
     out = []
     for path in find_tableau_files([str(TABLEAUX)]):
-        for claim in load(path).claims:
+        for claim in load(path).info.claims:
             if claim.kind == "energy_order":
                 out.append((path, claim.degree, claim.value))
     return out

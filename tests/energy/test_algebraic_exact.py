@@ -18,7 +18,6 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-
 from support import reference as ref
 
 from rkcheck.energy.check import check
@@ -47,7 +46,7 @@ def test_avf_over_algebraic_rules_holds_exactly(rule, s):
     order = 10
     res = check(tab, CheckOptions(degree=q, order=order))
     assert res.backend == "exact", "an algebraic tableau must be checked exactly"
-    states = {r.verdict.state for r in res.results}
+    states = {r.verdict.state for r in res.conditions}
     assert states == {HOLDS}, (rule, s, states)
     assert res.avf is not None and res.avf.equals_avf and res.avf.verdict.state == HOLDS
 
@@ -82,7 +81,7 @@ def test_gauss2_residuals_at_six_vertices_are_exact():
     tab = load_text((TABLEAUX / "collocation" / "gauss-2.toml").read_text(), "gauss-2.toml")
     res = check(tab, CheckOptions(degree=None, order=5))
     assert res.backend == "exact"
-    got = {r.condition.id: r for r in res.results}
+    got = {r.id: r for r in res.conditions}
     r3 = sympy.sqrt(3)
     A = [[sympy.Rational(1, 4), sympy.Rational(1, 4) - r3 / 6], [sympy.Rational(1, 4) + r3 / 6, sympy.Rational(1, 4)]]
     b = [sympy.Rational(1, 2), sympy.Rational(1, 2)]

@@ -22,7 +22,6 @@ from fractions import Fraction
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
 from support import reference as ref
 from support.clirun import run_subprocess
 
@@ -181,15 +180,15 @@ def test_box_verdicts_hold_at_every_point_of_the_box(seed, digits):
     for _ in range(4):
         points.append([lo + (hi - lo) * Fraction(rng.randint(0, 1000), 1000) for lo, hi in boxes])
     states = set()
-    for r in res.results:
+    for r in res.conditions:
         states.add(r.verdict.state)
-        key = ref.canonicalize(r.condition.level_sequence)
+        key = ref.canonicalize(r.level_sequence)
         cond = next(c for keys, c in REFERENCE if key in keys)
         values = []
         for p in points:
             Ap = [p[0:2], p[2:4]]
             values.append(ref.energy_residual(cond, Ap, p[4:6]))
         if r.verdict.state == FAILS:
-            assert all(v > 0 for v in values) or all(v < 0 for v in values), r.condition.id
+            assert all(v > 0 for v in values) or all(v < 0 for v in values), r.id
         elif r.verdict.state == HOLDS_TO_DIGITS:
-            assert all(abs(v) <= Fraction(1, 10**r.verdict.digits) for v in values), r.condition.id
+            assert all(abs(v) <= Fraction(1, 10**r.verdict.digits) for v in values), r.id

@@ -58,7 +58,7 @@ def test_enclosed_constants_bound_the_exact_one():
     A = [["0", "0"], ["2/3 + sqrt(2) - sqrt(2)", "0"]]
     b = ["1/4", "3/4"]
     exact = error_constant(check(Tableau.from_values([["0", "0"], ["2/3", "0"]], b), CheckOptions(order=6)))
-    balls = error_constant(check(Tableau.from_values(A, b), CheckOptions(order=6), arithmetic="ball"))
+    balls = error_constant(check(Tableau.from_values(A, b), CheckOptions(order=6, arithmetic="ball")))
     lo, hi = balls.bounds
     assert not balls.exact and lo <= exact.value <= hi and hi - lo < 1e-40
 

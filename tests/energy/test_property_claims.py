@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 from support.claimfiles import MIDPOINT, RK4, write  # noqa: F401
 from support.clirun import run_cli
+from support.numbers import exact_under
 from support.paths import TABLEAUX
 
 
@@ -81,7 +82,7 @@ from rkcheck.io.loader import load  # noqa: E402
 
 # rational tableaux: sympy takes their entries as they are (the algebraic ones are checked
 # exactly against their own claims by tests/methods' shipped-claims test)
-SHIPPED = [f for f in find_tableau_files([str(TABLEAUX)]) if load(f).is_rational and load(f).is_exact("rounded")]
+SHIPPED = [f for f in find_tableau_files([str(TABLEAUX)]) if load(f).is_rational and exact_under(load(f), "rounded")]
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=[str(Path(f).relative_to(TABLEAUX)) for f in SHIPPED])
@@ -90,7 +91,7 @@ def test_shipped_property_claims_agree_with_sympy(path):
     A = sympy.Matrix([[sympy.Rational(x.numerator, x.denominator) for x in row] for row in tab.exact_A()])
     b = sympy.Matrix([sympy.Rational(x.numerator, x.denominator) for x in tab.exact_b()])
     s, z = len(b), sympy.Symbol("z")
-    for claim in tab.claims:
+    for claim in tab.info.claims:
         if claim.kind == "symplectic":
             M = sympy.diag(*b) * A + A.T * sympy.diag(*b) - b * b.T
             # M = 0 as written proves symplecticity; a claim 'false' needs M ≠ 0 as written

@@ -134,11 +134,11 @@ def test_theorem1_needs_exact_holds_to_conclude_beyond_order_n():
     from rkcheck.methods.families import family_tableau, parse_spec
 
     tab = family_tableau(parse_spec({"name": "kernel", "zeta": "1/2", "beta": "1e-30"}))
-    res = check(tab, CheckOptions(degree=3, order=7, dps=50), arithmetic="ball")
+    res = check(tab, CheckOptions(degree=3, order=7, dps=50, arithmetic="ball"))
     assert res.first_failure is None and res.avf is not None and not res.avf.equals_avf
     assert "beyond order 7" not in res.theorem1 and "hold only to" in res.theorem1
-    truth = check(tab, CheckOptions(degree=3, order=4, dps=100), arithmetic="ball")
-    assert truth.first_failure is not None and truth.first_failure.condition.order == 4
+    truth = check(tab, CheckOptions(degree=3, order=4, dps=100, arithmetic="ball"))
+    assert truth.first_failure is not None and truth.first_failure.order == 4
 
 
 def test_the_kernel_family_is_exact_in_its_field_and_fails_by_beta_squared_over_36():
@@ -151,8 +151,8 @@ def test_the_kernel_family_is_exact_in_its_field_and_fails_by_beta_squared_over_
     res = check(tab, CheckOptions(degree=3, order=7))
     assert res.backend == "exact"
     first = res.first_failure
-    assert first is not None and first.condition.order == 4
-    assert abs(first.value) == F(1, 36) * F(1, 10**30) ** 2
+    assert first is not None and first.order == 4
+    assert abs(first.residual) == F(1, 36) * F(1, 10**30) ** 2
     assert "beyond order" not in res.theorem1
 
 
@@ -160,14 +160,15 @@ def test_theorem1_concludes_beyond_order_n_from_exact_holds():
     # the kernel family at the Radau II rule (ζ = 1, rational nodes 1/3, 1) with β = 1/10:
     # s = 2 = s_min for m = 3, not AVF; its first failing conditions have order 4, so up
     # to order 3 every condition holds exactly and a failure beyond 3 is certain.
-    from rkcheck.io.loader import load
     from support.paths import TABLEAUX
+
+    from rkcheck.io.loader import load
 
     tab = load(str(TABLEAUX / "counterexamples" / "kernel-radau-beta-0.1.toml"))
     res = check(tab, CheckOptions(degree=3, order=3))
     assert res.backend == "exact" and res.first_failure is None
     assert "must fail beyond order 3" in res.theorem1
-    assert check(tab, CheckOptions(degree=3, order=4)).first_failure.condition.order == 4
+    assert check(tab, CheckOptions(degree=3, order=4)).first_failure.order == 4
 
 
 def test_theorem1_remark_without_exact_holds_names_the_digits():

@@ -26,7 +26,7 @@ from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
+from rkcheck.energy.verdicts import FAILS, HOLDS
 from rkcheck.methods.tableau import Tableau
 
 beta = sp.Symbol("beta")
@@ -115,7 +115,7 @@ def encloses(enc, value) -> bool:
 
 
 def result_by_id(res, seq):
-    rs = [r for r in res.results if r.condition.level_sequence == tuple(seq)]
+    rs = [r for r in res.conditions if r.level_sequence == tuple(seq)]
     assert len(rs) == 1, seq
     return rs[0]
 
@@ -189,14 +189,14 @@ def sympy_residuals(zeta: str, b_value: str, degree: int, max_vertices: int = 9)
 def test_beta_tenth_fails_exactly_where_sympy_says(zeta):
     res = family_check(zeta, "1/10")
     assert res.failures, "β ≠ 0: the minimal-stage method is not AVF, some condition fails"
-    assert all(r.condition.max_degree <= 3 for r in res.failures)
+    assert all(r.max_degree <= 3 for r in res.failures)
     assert not res.avf.equals_avf
     # expected: the exact residual of every condition (reference conditions, sympy weights)
     exact = sympy_residuals(zeta, "1/10", 3)
-    assert {r.condition.level_sequence for r in res.results} == set(exact)
-    assert {r.condition.level_sequence for r in res.failures} == {i for i, v in exact.items() if v != 0}
-    for r in res.results:
-        assert encloses(r.enclosure, exact[r.condition.level_sequence]), r.condition.id
+    assert {r.level_sequence for r in res.conditions} == set(exact)
+    assert {r.level_sequence for r in res.failures} == {i for i, v in exact.items() if v != 0}
+    for r in res.conditions:
+        assert encloses(r.enclosure, exact[r.level_sequence]), r.id
     first_bad = min(len(i) for i, v in exact.items() if v != 0)
     assert res.energy_order == first_bad - 2
 
@@ -205,7 +205,7 @@ def test_beta_tenth_fails_exactly_where_sympy_says(zeta):
 def test_beta_zero_is_avf(zeta):
     res = family_check(zeta, "0")
     assert res.failures == []
-    assert all(r.verdict.state == HOLDS for r in res.results)
+    assert all(r.verdict.state == HOLDS for r in res.conditions)
     assert res.avf is not None and res.avf.equals_avf
     assert res.energy_order_all and res.energy_order == 8
     assert res.quadrature.order == (4 if zeta == "0" else 3)  # bᵀc³ = 1/4 + ζ/36
@@ -314,17 +314,17 @@ def test_gauss2_collocation_degree4_energy_order():
     first_bad = min(len(i) for i in nonzero)  # number of vertices of the first failure
     res = check(Tableau.from_values(GAUSS2_A, GAUSS2_B), CheckOptions(degree=4, order=8))
     assert res.backend == "exact"
-    for r in res.results:  # the exact residuals in Q(√3) are sympy's
-        v = r.value if isinstance(r.value, F) else sp.sympify(r.value.text().replace("^", "**"))
-        assert sp.simplify(sp.sympify(v) - exact[r.condition.level_sequence]) == 0
+    for r in res.conditions:  # the exact residuals in Q(√3) are sympy's
+        v = r.residual if isinstance(r.residual, F) else sp.sympify(r.residual.text().replace("^", "**"))
+        assert sp.simplify(sp.sympify(v) - exact[r.level_sequence]) == 0
     assert res.energy_order == first_bad - 2
     assert res.classical.order == 4  # 2-stage Gauss: order 2s (Butcher), hand value
-    failing_at_first = {r.condition.level_sequence for r in res.failures
-                        if r.condition.vertices == first_bad}
+    failing_at_first = {r.level_sequence for r in res.failures
+                        if r.vertices == first_bad}
     assert failing_at_first == {i for i in nonzero if len(i) == first_bad}
     # and every condition up to 9 vertices agrees with sympy
-    assert {r.condition.level_sequence for r in res.results} == set(exact)
-    assert {r.condition.level_sequence for r in res.failures} == nonzero
-    for r in res.results:
-        assert encloses(r.enclosure, exact[r.condition.level_sequence]), r.condition.id
+    assert {r.level_sequence for r in res.conditions} == set(exact)
+    assert {r.level_sequence for r in res.failures} == nonzero
+    for r in res.conditions:
+        assert encloses(r.enclosure, exact[r.level_sequence]), r.id
     assert not res.avf.equals_avf

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from support import reference as ref
+from support.numbers import exact_under
 from support.paths import TABLEAUX
 
 import rkcheck.evaluation.algorithm as algorithm
@@ -25,10 +26,12 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, classify
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext, FloatContext
 from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.studies.accuracy import evaluate_backend
 from rkcheck.trees.listing import ConditionListing
 
@@ -57,7 +60,7 @@ def exact_by_id(listing, A, b):
         zero = o.is_zero()
         for k in range(len(listing.orders[n])):
             rec = listing.record(n, k)
-            value = o.value(k) * rec.flip
+            value = o.value(k) * listing.flip(n, k)
             assert (value == 0) == bool(zero[k])
             out[rec.level_sequence] = value
     return out
@@ -109,7 +112,7 @@ def random_algebraic_tableau(seed: int):
 def field_sums(listing, tab):
     from rkcheck.evaluation.modular import scaled_field
 
-    sums = exact_condition_sums(scaled_field(tab.exact_values("exact")), listing)
+    sums = exact_condition_sums(scaled_field(tab.exact_values()), listing)
     return {n: [o.value(k) for k in range(len(listing.orders[n]))] for n, o in sums.items()}
 
 
@@ -117,7 +120,7 @@ def field_sums(listing, tab):
 def test_chunked_evaluation_is_bit_identical_in_number_fields(seed, monkeypatch):
     # issue 15: the same for algebraic tableaux to order 10, exact field elements
     tab = random_algebraic_tableau(seed)
-    assert tab.exact_values("exact").field is not None
+    assert tab.exact_values().field is not None
     whole = field_sums(ConditionListing(10, None), tab)
     monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
     monkeypatch.setattr(classes, "_CHUNK", 7)
@@ -167,11 +170,12 @@ FILES = [f for f in find_tableau_files([str(TABLEAUX)])]
 @pytest.mark.parametrize("path", FILES, ids=[str(Path(f).relative_to(TABLEAUX)) for f in FILES])
 def test_shipped_tableaux_balls_agree_with_exact_and_screen_is_safe(path):
     tab = load(path)
-    listing = ConditionListing(8, tab.check.get("degree"))
-    balls = evaluate_backend(listing, tab, "dps:50")
-    if tab.is_exact("rounded"):
-        exact = evaluate_backend(listing, tab, "exact")
-        screen = evaluate_backend(listing, tab, "float64")
+    listing = ConditionListing(8, tab.info.check.get("degree"))
+    values = TableauValues(tab, Reading(DecimalsMode.ROUNDED))
+    balls = evaluate_backend(listing, values, "dps:50")
+    if exact_under(tab, "rounded"):
+        exact = evaluate_backend(listing, values, "exact")
+        screen = evaluate_backend(listing, values, "float64")
         for key, (e, v) in exact.items():
             assert abs(Fraction(balls[key][0].mid) - e.mid) <= balls[key][0].rad
             if v.state == HOLDS:

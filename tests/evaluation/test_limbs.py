@@ -25,7 +25,8 @@ import rkcheck.evaluation.algorithm as algorithm
 import rkcheck.trees.classes as classes
 import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
-from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext, certified_context
+from rkcheck.evaluation.backends import certified_context
+from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
 from rkcheck.numbers.intervals import Interval
@@ -201,7 +202,9 @@ def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
     # the benchmark's dense tableau to 15 vertices (13 102 conditions): the path of
     # `verify --arithmetic ball`, against the exact engine's values
     from rkcheck.evaluation.backends import evaluate
+    from rkcheck.evaluation.values import TableauValues
     from rkcheck.methods.tableau import Tableau
+    from rkcheck.numbers.reading import Reading
     from rkcheck.trees.listing import condition_listing
 
     A = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],
@@ -209,8 +212,8 @@ def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
     tableau = Tableau.from_values(A, ["1/5", "3/10", "1/4", "1/4"])
     listing = condition_listing(14, None)
     assert max(listing.orders) >= LIMB_MIN_VERTICES
-    balls = evaluate(listing, tableau, 50, "rounded", arithmetic="ball")
-    exact = evaluate(listing, tableau, 50, "rounded", arithmetic="exact")
+    balls = evaluate(listing, TableauValues(tableau, Reading("rounded", 50, "ball")))
+    exact = evaluate(listing, TableauValues(tableau, Reading("rounded", 50, "exact")))
     for n, sums in balls.orders.items():
         for k in range(len(sums)):
             e, t = sums.enclosure(k), exact.orders[n].value(k)

@@ -11,9 +11,9 @@ from support.clirun import run_cli, run_subprocess
 from support.paths import REPO as ROOT  # noqa: E402
 
 from rkcheck.errors import UserError
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.loader import load, loads
-from rkcheck.methods.tableau import consistency_warnings
-from rkcheck.numbers.precision import bits_for_dps
+from rkcheck.numbers.reading import Reading
 
 TABLEAUX = ROOT / "tableaux"
 
@@ -55,11 +55,11 @@ def write(tmp_path: Path, name: str, text: str) -> str:
 def test_toml_and_json_load_to_identical_values(tmp_path):
     t = load(write(tmp_path, "g.toml", GAUSS2_TOML))
     j = load(write(tmp_path, "g.json", json.dumps(GAUSS2_JSON)))
-    assert (t.name, t.description, t.references, t.check) == (j.name, j.description, j.references, j.check)
+    assert (t.name, t.info.description, t.info.references, t.info.check) == (j.name, j.info.description, j.info.references, j.info.check)
     for et, ej in zip(t.entries(), j.entries()):
         assert et.text == ej.text and et.exact == ej.exact
         assert et.enclosure(300) == ej.enclosure(300)
-    assert t.check == {"degree": 4, "order": 6}
+    assert t.info.check == {"degree": 4, "order": 6}
 
 
 def test_bare_toml_float_keeps_its_digits_and_warns(tmp_path):
@@ -68,7 +68,7 @@ def test_bare_toml_float_keeps_its_digits_and_warns(tmp_path):
     e = tab.A[0][0]
     assert e.exact == Fraction(21132486540518711774542560974902127, 10**35)  # not a binary64 double
     assert e.rounded_digits == 35
-    assert any("bare floats" in w for w in tab.warnings)
+    assert any("bare floats" in w for w in tab.info.warnings)
 
 
 def test_bare_json_float_keeps_its_digits(tmp_path):
@@ -85,18 +85,22 @@ def test_fifty_digit_decimal_keeps_fifty_digits():
     assert e.rounded_digits == 50
 
 
+def consistency_warnings(tab, decimals):
+    return TableauValues(tab, Reading(decimals)).consistency_warnings()
+
+
 def test_warnings_for_c_and_sum_b_are_not_errors(tmp_path):
     text = '[tableau]\nA = [["1/3", 0], [0, "1/3"]]\nb = ["1/2", "1/3"]\nc = ["1/3", "1/2"]\n'
     tab = load(write(tmp_path, "w.toml", text))
-    ws = consistency_warnings(tab, bits_for_dps(50), "rounded")
+    ws = consistency_warnings(tab, "rounded")
     assert any("c differs" in w and "c[2]" in w and "c[1]" not in w for w in ws)
     assert any("Σb" in w and "inconsistent" in w for w in ws)
 
 
 def test_c_within_decimal_rounding_is_not_a_warning():
     tab = load(str(TABLEAUX / "avf" / "avf-gauss-2-decimal16.toml"))
-    assert consistency_warnings(tab, bits_for_dps(50), "rounded") == []
-    assert any("c differs" in w for w in consistency_warnings(tab, bits_for_dps(50), "exact"))
+    assert consistency_warnings(tab, "rounded") == []
+    assert any("c differs" in w for w in consistency_warnings(tab, "exact"))
 
 
 # --------------------------------------------------------------- error classes

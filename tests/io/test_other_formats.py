@@ -42,12 +42,12 @@ def test_short_form_json_and_toml_equal_the_long_form():
     for text, name in ((short_json, "rk4.json"), (short_toml, "rk4.toml")):
         tab = loads(text, name)
         assert exact(tab) == long
-        assert not tab.warnings, tab.warnings  # no "unknown table [A]" noise
+        assert not tab.info.warnings, tab.info.warnings  # no "unknown table [A]" noise
 
 
 def test_short_form_keeps_the_other_tables():
     tab = loads('{"method": {"name": "m"}, "A": [["1/2"]], "b": [1], "expect": {"classical_order": 2}}', "x.json")
-    assert tab.name == "m" and [c.kind for c in tab.claims] == ["classical_order"]
+    assert tab.name == "m" and [c.kind for c in tab.info.claims] == ["classical_order"]
 
 
 def test_short_form_errors_keep_their_places():
@@ -158,7 +158,7 @@ def test_at_name_loads_the_shipped_file_under_any_spelling():
     want = exact(load(str(TABLEAUX / "collocation" / "gauss-3.toml")))
     for name in ("@gauss-3", "@gauss3", "@Gauss_3", "@collocation/gauss-3"):
         tab = load(name)
-        assert tab.source == "@collocation/gauss-3"
+        assert tab.info.source == "@collocation/gauss-3"
         assert [[e.text for e in row] for row in tab.A] == [[e.text for e in row] for row in
                                                              load(str(TABLEAUX / "collocation/gauss-3.toml")).A]
         assert exact(tab) == want
@@ -166,7 +166,7 @@ def test_at_name_loads_the_shipped_file_under_any_spelling():
 
 def test_at_name_falls_back_to_the_classics():
     tab = load("@sdirk2")
-    assert tab.source == "@sdirk2" and tab.stages == 2 and tab.claims
+    assert tab.info.source == "@sdirk2" and tab.stages == 2 and tab.info.claims
 
 
 def test_unknown_name_suggests_and_is_a_user_error():

@@ -12,8 +12,8 @@ import pytest
 import sympy as sp
 from support import reference as ref
 
-from rkcheck.energy.claims import check_claims
 from rkcheck.energy.check import check
+from rkcheck.energy.claims import check_claims
 from rkcheck.methods.classics import CLASSICS, NAMES, classic, classic_tableau
 from rkcheck.options import CheckOptions
 
@@ -75,7 +75,7 @@ def test_claims_by_a_second_route(key):
 def test_rkcheck_meets_the_claims(key):
     tab = classic_tableau(key)
     base = CheckOptions(order=6)
-    results = check_claims(tab, tab.claims, base, check)
+    results = check_claims(tab, tab.info.claims, base, check)
     assert results and all(r.met for r in results), [(r.claim.kind, r.found, r.note) for r in results]
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 from support import reference as ref
+from support.numbers import exact_under
 from support.paths import TABLEAUX  # noqa: E402
 
 from rkcheck.energy.check import CheckOptions, CheckRunner, check
@@ -28,15 +29,15 @@ def test_the_library_has_at_least_40_documented_files_in_every_kind():
     assert kinds >= {"avf", "collocation", "hbvm", "explicit", "pseudo-energy-preserving", "counterexamples"}
     for f in FILES:
         tab = load(f)
-        assert tab.name and tab.description and tab.references, f
-        assert tab.claims, f"{f} has no [expect] claims"
+        assert tab.name and tab.info.description and tab.info.references, f
+        assert tab.info.claims, f"{f} has no [expect] claims"
 
 
 @pytest.mark.parametrize("path", FILES, ids=IDS)
 def test_every_shipped_tableau_meets_its_claims(path):
     tab = load(path)
     runner = CheckRunner()
-    results = check_claims(tab, tab.claims, CheckOptions(order=8), runner)
+    results = check_claims(tab, tab.info.claims, CheckOptions(order=8), runner)
     broken = [(r.claim.place, r.claimed, r.found, r.note) for r in results if not r.met]
     assert broken == []
 
@@ -56,10 +57,10 @@ def test_every_shipped_algebraic_tableau_is_checked_exactly(path):
     # HBVM(6, σ) included: the six Gauss-6 nodes generate the splitting field of P6, of
     # degree |Gal| = 48 (tests/numbers/test_algebraic.py), the largest field shipped
     tab = load(path)
-    assert tab.is_exact("auto"), getattr(tab, "exact_reason", None)
+    assert exact_under(tab, "auto"), getattr(tab, "exact_reason", None)
     res = check(tab, CheckOptions(order=8))
     assert res.backend == "exact"
-    assert {r.verdict.state for r in res.results} <= {"holds", "fails"}
+    assert {r.verdict.state for r in res.conditions} <= {"holds", "fails"}
     assert res.quadrature.verdict.state == "holds" and res.quadrature.verdict.digits is None
 
 
@@ -75,7 +76,7 @@ def _reference_energy_order(A, b, degree, max_vertices):
     return None  # every condition up to max_vertices holds
 
 
-RATIONAL = [f for f in FILES if load(f).is_rational and load(f).is_exact("rounded") and load(f).family is None]
+RATIONAL = [f for f in FILES if load(f).is_rational and exact_under(load(f), "rounded") and load(f).info.family is None]
 
 
 @pytest.mark.parametrize("path", RATIONAL, ids=[str(Path(f).relative_to(TABLEAUX)) for f in RATIONAL])
@@ -83,7 +84,7 @@ def test_rational_claims_agree_with_the_reference_implementation(path):
     tab = load(path)
     A, b = tab.exact_A(), tab.exact_b()
     max_vertices = 7
-    for claim in tab.claims:
+    for claim in tab.info.claims:
         if claim.kind == "energy_order":
             found = _reference_energy_order(A, b, claim.degree, max_vertices)
             if claim.value == "all":
@@ -105,20 +106,20 @@ def test_rational_claims_agree_with_the_reference_implementation(path):
 
 def _states(tab, degree, order=8):
     res = check(tab, CheckOptions(degree=degree, order=order))
-    return {r.condition.id: r.verdict.holds for r in res.results}, res.energy_order_all
+    return {r.id: r.verdict.holds for r in res.conditions}, res.energy_order_all
 
 
 @pytest.mark.parametrize("degree", [6, 7])
 def test_hbvm_6_2_family_and_60_digit_forms_give_the_same_verdicts(degree):
     family = load(str(TABLEAUX / "hbvm" / "hbvm-6-2.toml"))
     explicit = load(str(TABLEAUX / "hbvm" / "hbvm-6-2-decimal60.toml"))
-    assert family.family is not None and explicit.family is None
+    assert family.info.family is not None and explicit.info.family is None
     assert _states(family, degree) == _states(explicit, degree)
 
 
 def test_gauss_3_exact_expressions_and_family_give_the_same_verdicts():
     exact_file = load(str(TABLEAUX / "collocation" / "gauss-3.toml"))
-    assert exact_file.uses_sqrt and exact_file.family is None
+    assert exact_file.uses_sqrt and exact_file.info.family is None
     family = family_tableau(FamilySpec("gauss", 3))
     for degree in (2, 3, 4):
         assert _states(exact_file, degree) == _states(family, degree)
@@ -164,12 +165,12 @@ def test_hbvm_holds_to_2k_over_s_and_fails_beyond(k, s, arithmetic):
     # the same verdicts in 50-digit balls
     tab = family_tableau(FamilySpec("hbvm", s, k=k))
     m = (2 * k) // s
-    res = check(tab, CheckOptions(degree=m, order=8), arithmetic=arithmetic)
+    res = check(tab, CheckOptions(degree=m, order=8, arithmetic=arithmetic))
     assert res.backend == arithmetic
     assert res.failures == [] and res.certificate.certified
-    res = check(tab, CheckOptions(degree=m + 1, order=2 * k + 1, fail_fast=True), arithmetic=arithmetic)
+    res = check(tab, CheckOptions(degree=m + 1, order=2 * k + 1, fail_fast=True, arithmetic=arithmetic))
     assert res.energy_order == 2 * k
-    assert res.first_failure.condition.id == FIRST_FAILURE[(k, s)]
+    assert res.first_failure.id == FIRST_FAILURE[(k, s)]
 
 
 # ------------------------------------------------------------------ new | verify -

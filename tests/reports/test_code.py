@@ -34,7 +34,7 @@ def random_tableau(rng, s, explicit=False):
 def engine_residuals(A, b, order, degree):
     res = check(Tableau.from_values(A, b), CheckOptions(degree=degree, order=order))
     assert res.backend == "exact"
-    return [r.enclosure.mid for r in res.results]
+    return [r.enclosure.mid for r in res.conditions]
 
 
 def load_module(text: str) -> dict:

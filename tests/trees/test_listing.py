@@ -233,5 +233,5 @@ def test_explain_finds_the_condition_of_any_rooting():
             want = {(u, sign, sig) for u, sign, sig, _ in d["terms"]}
             for u, _ in ref.rootings(G, ref.designated_centre(G)[0]):
                 ex = explain(u)
-                assert ex.condition.level_sequence == cid
+                assert ex.level_sequence == cid
                 assert {(t.level_sequence, t.sign, t.sigma) for t in ex.terms} == want

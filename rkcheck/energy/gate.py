@@ -1,0 +1,70 @@
+"""The gate of a check (definitions §5.3): whether its holds meet ``--require``, and
+whether its conditions pass at all."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rkcheck.energy.check import CheckResult, inconsistent
+from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
+
+
+@dataclass(frozen=True)
+class Shortfall:
+    """Why the holds of a check do not meet ``--require`` (definitions §5.3)."""
+
+    require: str
+    count: int  # conditions that hold only to too few digits (0: the certificate alone)
+    examples: list[str]  # their ids, first ones in presentation order
+    certificate: bool  # the certificate of every order holds only numerically
+
+    def text(self) -> str:
+        what = "a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits"
+        parts = []
+        if self.count:
+            ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
+            parts.append(f"{self.count} condition{'s' if self.count != 1 else ''} hold only to digits ({ids})")
+        if self.certificate:
+            parts.append("the certificate of every order holds only to digits")
+        return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"
+
+
+def requirement_shortfall(result: CheckResult) -> Shortfall | None:
+    """What keeps the holds of ``result`` from meeting its ``options.require``: conditions
+    that hold only to digits (``proof``) or to fewer than D (``digits:D``), or a
+    certificate that is only numerical.  None when the requirement is met."""
+    require = result.options.require
+    if require == "any":
+        return None
+    need = result.options.required_digits
+
+    def short(digits: np.ndarray) -> np.ndarray:
+        return np.ones(len(digits), dtype=bool) if need is None else digits < need
+
+    orders = result.conditions.orders.values()
+    count = sum(int(np.count_nonzero((o.state == HOLDS_TO_DIGITS.code) & short(o.digits))) for o in orders)
+    examples = []
+    if count:
+        for r in result.conditions.with_state(HOLDS_TO_DIGITS):
+            if need is None or (r.verdict.digits or 0) < need:
+                examples.append(r.id)
+                if len(examples) == 3:
+                    break
+    cert = result.certificate
+    cert_short = bool(result.energy_order_all and cert is not None and cert.verdict.state == HOLDS_TO_DIGITS
+                      and (need is None or (cert.verdict.digits or 0) < need))
+    if not count and not cert_short:
+        return None
+    return Shortfall(require, count, examples, cert_short)
+
+
+def conditions_ok(result: CheckResult) -> bool:
+    """Every checked condition holds, or a certificate proves them all; the method is
+    consistent (``Σb = 1`` not certainly false); and the holds meet ``--require``."""
+    if inconsistent(result):
+        return False
+    if not (result.all_hold or result.energy_order_all):
+        return False
+    return requirement_shortfall(result) is None

@@ -1,0 +1,123 @@
+"""Conditions evaluated and judged, order by order (definitions §5).
+
+:func:`evaluate_orders` evaluates the conditions in the backend of the tableau's values
+and turns each order's residuals into verdicts; :func:`refine_undecided` judges again
+what the balls left open: a box of decimal inputs by the mean value form over the whole
+box, point data at a higher precision.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rkcheck.energy.results import OrderVerdicts, order_verdicts
+from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
+from rkcheck.evaluation.algorithm import EvaluationInterrupted
+from rkcheck.evaluation.backends import Evaluation, evaluate
+from rkcheck.evaluation.box import RefinedSums, box_refinement_fits, refine_box
+from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
+from rkcheck.numbers.reading import Arithmetic
+from rkcheck.options import DPS_RANGE
+from rkcheck.trees.listing import ConditionListing
+
+
+def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast: bool = False,
+                    progress=None) -> dict[int, OrderVerdicts]:
+    """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
+    the first one that has a certainly failing condition."""
+    wanted = sorted(listing.orders)
+    if not (fail_fast and wanted):
+        whole = evaluate(listing, values, None, progress)
+        return {n: order_verdicts(n, v) for n, v in whole.orders.items()}
+    # orders are cheap at the bottom and costly at the top: look one order at a time
+    # until a failure, doubling the batch, so that a low failure never pays for the top
+    orders: dict[int, OrderVerdicts] = {}
+    i, step = 0, 1
+    while i < len(wanted):
+        batch = wanted[i:i + step]
+        try:
+            ev: Evaluation = evaluate(listing, values, batch)
+        except EvaluationInterrupted as stop:
+            stop.finished = {**{n: o.values for n, o in orders.items()}, **stop.finished}
+            raise
+        for n in batch:
+            orders[n] = order_verdicts(n, ev.orders[n])
+        if progress is not None:
+            progress(wanted.index(batch[-1]) + 1, len(wanted))
+        if any(orders[n].any(FAILS) for n in batch):
+            return _up_to_first_failure(orders)
+        i += step
+        step *= 2
+    return orders
+
+
+def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVerdicts]:
+    """The orders up to the first one with a failing condition: what fail-fast promises."""
+    failing = [n for n in sorted(orders) if orders[n].any(FAILS)]
+    return {n: o for n, o in orders.items() if n <= failing[0]} if failing else orders
+
+
+def refine_undecided(listing: ConditionListing, values: TableauValues, fail_fast: bool,
+                     orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """What the balls left undecided, judged again: over the joint box of decimal inputs
+    (:func:`judge_box`), or on point data at a higher precision
+    (:func:`sharpen_weak_holds`).  Returns the orders and a note for the report."""
+    if values.backend is not Backend.BALL:
+        return orders, None
+    if values.kind is NumberKind.BOX:
+        if not values.tableau.is_rational:
+            return orders, None
+        orders, note = judge_box(listing, values, orders)
+        return (_up_to_first_failure(orders) if fail_fast else orders), note
+    return sharpen_weak_holds(listing, values, orders)
+
+
+def judge_box(listing: ConditionListing, values: TableauValues,
+              orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """Decimal entries are one box of inputs (definitions §5.2): the conditions the balls
+    left undecided are judged again by the mean value form around the face values
+    (:mod:`rkcheck.evaluation.box`), which proves a failure on the whole box where the
+    balls' dependency problem hid it.  Returns the orders and a warning when the
+    refinement did not fit."""
+    undecided = [n for n, o in orders.items() if o.any(HOLDS_TO_DIGITS)]
+    if not undecided:
+        return orders, None
+    if not box_refinement_fits(listing, values.A, values.b):
+        return orders, ("the box of decimal inputs is too large to bound its variation at this order: "
+                        "a condition reported as holding to D digits may still fail on the whole box")
+    tab = values.tableau
+    refined = refine_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), undecided)
+    out = dict(orders)
+    for n, ref in refined.items():
+        out[n] = order_verdicts(n, RefinedSums(orders[n].values, ref))
+    return out, None
+
+
+def sharpen_weak_holds(listing: ConditionListing, values: TableauValues,
+                       orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
+    """On point data (no decimal box) a ball that contains 0 but is wider than 1 says
+    nothing: "holds to D digits" with D ≤ 0 is not a holds (definitions §5).  Such orders
+    are evaluated again at doubled precision, up to 8× the working precision, until every
+    condition fails or holds to at least one digit.  Returns the orders and a note of the
+    precision used (or of what stayed undecided)."""
+
+    def weak(out: dict[int, OrderVerdicts]) -> list[int]:
+        return [n for n, o in out.items() if np.any((o.state == HOLDS_TO_DIGITS.code) & (o.digits <= 0))]
+
+    todo = weak(orders)
+    if not todo:
+        return orders, None
+    out = dict(orders)
+    base = values.reading.dps
+    dps, cap = base, min(8 * base, DPS_RANGE[1])
+    while todo and dps < cap:
+        dps = min(2 * dps, cap)
+        sharper = TableauValues.of(values.tableau, values.reading.at(dps).using(Arithmetic.BALL))
+        ev = evaluate(listing, sharper, todo)
+        for n in todo:
+            out[n] = order_verdicts(n, ev.orders[n])
+        todo = weak(out)
+    if todo:
+        return out, (f"some conditions of order {', '.join(str(n - 1) for n in todo)} are still undecided at "
+                     f"{dps} digits (their enclosures contain 0 but are wider than 1): raise --dps")
+    return out, f"the balls needed {dps} digits to decide every condition (--dps {base} was not enough)"

@@ -1,0 +1,176 @@
+"""A tableau's numbers for one check: what kind they are, exactly or as enclosures.
+
+:class:`TableauValues` is computed once per check from a tableau and a
+:class:`~rkcheck.numbers.reading.Reading` (definitions §5), and everything that needs
+the tableau's numbers reads them here: the number kind (exact rationals, a number field,
+a box of decimal inputs, coefficients computed numerically), the exact values or the
+reason there are none, the certified enclosures at the reading's precision, the
+arithmetic the conditions are evaluated in, and — built on first use, because in a
+number field of high degree it takes seconds — the scaled data of the modular route.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+from fractions import Fraction
+from functools import cached_property
+from typing import Any
+
+from rkcheck.errors import UserError
+from rkcheck.evaluation.modular import ScaledTableau, scaled_field, scaled_rational
+from rkcheck.methods.tableau import ExactValues, Tableau
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.formatting import decimal_exponent, decimal_string, exact_string
+from rkcheck.numbers.intervals import Interval, interval_sum
+from rkcheck.numbers.reading import Arithmetic, DecimalsMode, Reading
+
+
+class NumberKind(StrEnum):
+    """What the entries of a tableau are under a reading."""
+
+    RATIONAL = "rational"  # exact rationals
+    ALGEBRAIC = "algebraic"  # exact, in a number field
+    BOX = "box"  # decimals that stand for intervals: a box of tableaux
+    NUMERIC = "numeric"  # no exact values (computed coefficients, a field too large)
+
+    @property
+    def is_exact(self) -> bool:
+        return self in (NumberKind.RATIONAL, NumberKind.ALGEBRAIC)
+
+
+class Backend(StrEnum):
+    """The arithmetic the conditions are evaluated in."""
+
+    EXACT = "exact"  # residues modulo primes: holds / fails
+    BALL = "ball"  # certified balls: holds to D digits / fails
+
+
+@dataclass(frozen=True)
+class TableauValues:
+    """The numbers of one tableau under one reading; each fact is computed on first use
+    and kept (the exact values of a tableau in a field of high degree take seconds)."""
+
+    tableau: Tableau
+    reading: Reading
+
+    @staticmethod
+    def of(tableau: Tableau, reading: Reading) -> "TableauValues":
+        return TableauValues(tableau, reading)
+
+    @cached_property
+    def kind(self) -> NumberKind:
+        if self.tableau.is_box(self.reading.decimals):
+            return NumberKind.BOX
+        exact = self.tableau.exact_values()
+        if exact is None:
+            return NumberKind.NUMERIC
+        return NumberKind.RATIONAL if exact.field is None else NumberKind.ALGEBRAIC
+
+    @property
+    def exact(self) -> ExactValues | None:
+        """The exact values, when the reading makes the entries exact numbers."""
+        return self.tableau.exact_values() if self.kind.is_exact else None
+
+    @property
+    def reason(self) -> str | None:
+        """Why there are no exact values (kind NUMERIC)."""
+        return self.tableau.exact_reason if self.kind is NumberKind.NUMERIC else None
+
+    @cached_property
+    def _enclosures(self) -> tuple[list[list[Interval]], list[Interval]]:
+        return self.tableau.enclosures(self.reading.entry_bits, self.reading.decimals)
+
+    @property
+    def A(self) -> list[list[Interval]]:
+        """Enclosures of A at the reading's entry bits."""
+        return self._enclosures[0]
+
+    @property
+    def b(self) -> list[Interval]:
+        return self._enclosures[1]
+
+    def at(self, dps: int) -> "TableauValues":
+        """The same tableau read at another working precision (the exact values are the
+        tableau's own, computed once)."""
+        return TableauValues(self.tableau, self.reading.at(dps))
+
+    @property
+    def backend(self) -> Backend:
+        """Exact when the entries allow it and balls were not asked for, else balls;
+        ``--arithmetic exact`` on data that is not exact is a user error."""
+        if self.reading.arithmetic is Arithmetic.EXACT and not self.kind.is_exact:
+            raise UserError("--arithmetic exact: the entries are not exact numbers (rounded decimals or "
+                            "coefficients without a closed form); use auto or ball")
+        if self.kind.is_exact and self.reading.arithmetic is not Arithmetic.BALL:
+            return Backend.EXACT
+        return Backend.BALL
+
+    @property
+    def stages(self) -> int:
+        return self.tableau.stages
+
+    @cached_property
+    def scaled(self) -> ScaledTableau:
+        """The exact data of the modular route (an exact reading only)."""
+        assert self.exact is not None, "the modular route needs exact values"
+        if self.exact.field is None:
+            return scaled_rational(self.exact.A, self.exact.b)
+        return scaled_field(self.exact)
+
+    # ------------------------------------------------------------------ reports
+
+    def describe(self) -> str:
+        """The number kind for people: ``exact rational``, ``algebraic (square roots)``, …"""
+        tab, decimals = self.tableau, self.reading.decimals
+        if tab.info.family is not None and not tab.is_rational:
+            return "computed by its family at the working precision"
+        if tab.uses_sqrt:
+            return "algebraic (roots)" if _uses_root(tab) else "algebraic (square roots)"
+        digits = tab.rounded_digits
+        if decimals is DecimalsMode.FLOAT64 and self.kind is NumberKind.BOX:
+            return "decimals read as binary64 doubles (each within half an ulp)"
+        if digits is not None and decimals.rounds:
+            return f"decimals rounded to their last digit (>= {digits} significant digits)"
+        return "exact rational"
+
+    def consistency_warnings(self) -> list[str]:
+        """definitions §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
+
+        A difference is reported only when it is certain (its enclosure excludes 0);
+        differences within the rounding of decimal input are not warnings.  The values
+        shown are exact, from the entries as written, when they have exact values."""
+        out: list[str] = []
+        tab, face = self.tableau, self.tableau.exact_values()
+        if tab.c is not None:
+            bad = []
+            for i, (row, ci) in enumerate(zip(self.A, tab.c), start=1):
+                diff = ci.enclosure(self.reading.entry_bits, self.reading.decimals) - interval_sum(row)
+                if not diff.contains_zero():
+                    exact = None if face is None or face.c is None else face.c[i - 1] - sum(face.A[i - 1])
+                    bad.append(f"c[{i}] - (A·1)[{i}] = {_value_text(diff, exact)}")
+            if bad:
+                out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
+        sb = interval_sum(self.b)
+        if not (sb - Interval.point(1)).contains_zero():
+            exact = None if face is None else sum(face.b)
+            out.append(f"Σb = {_value_text(sb, exact)} ≠ 1: the method is inconsistent (not even order 1)")
+        return out
+
+
+def _uses_root(tab: Tableau) -> bool:
+    """Some entry (or a constant it names) takes a root of a polynomial, not only ``sqrt``."""
+    nodes = [getattr(e, "node", None) for e in tab.entries()] + list(tab.info.constants.definitions.values())
+    return any(isinstance(n, ex.Call) and n.func == "root" for node in nodes if node is not None for n in ex.walk(node))
+
+
+def _value_text(x: Interval, exact: Any = None) -> str:
+    """A value as the entries say it exactly (``0.99``, ``1/3``, a field element's
+    text), else its enclosure's certified leading digits — never through a binary float."""
+    if exact is not None:
+        return exact_string(exact) if isinstance(exact, (Fraction, int)) else exact.text()
+    if x.is_point:
+        return exact_string(x.lo)
+    rad = (x.hi - x.lo) / 2
+    sig = decimal_exponent(x.mid) - decimal_exponent(rad) if x.mid and rad else 1
+    return "≈" + decimal_string(x.mid, min(max(sig, 1), 20))
