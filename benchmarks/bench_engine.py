@@ -107,7 +107,7 @@ def measure(what: str, order: int, degree: int | None, repeat: int = 1) -> dict:
 
 
 #: What the start-up lines time, each from process start to exit: the two commands of
-#: issue 15's target (≤ 0.4 s) and, for scale, bare Python and ``import numpy``.
+#: The target (≤ 0.4 s) and, for scale, bare Python and ``import numpy``.
 STARTUP_COMMANDS = {
     "rkcheck verify tableaux/explicit/rk4.toml": ["-m", "rkcheck", "verify", "tableaux/explicit/rk4.toml"],
     "rkcheck --help": ["-m", "rkcheck", "--help"],

@@ -1,4 +1,4 @@
-"""Exact checks in number fields against exact rational checks of the same size (issue 12).
+"""Exact checks in number fields against exact rational checks of the same size.
 
     python benchmarks/bench_fields.py            # Gauss-3 at orders 12, 14; Gauss-5 at 10
     python benchmarks/bench_fields.py --quick    # Gauss-3 at order 12 only
@@ -7,7 +7,7 @@ Each line times the evaluation of every energy condition (all degrees) by the ex
 modular engine, given the condition listing (built once per order, shared, and timed
 separately): a dense rational s-stage tableau against the s-stage Gauss tableau whose
 entries lie in Q(√15) (s = 3, degree 2) or in the degree-8 field of Gauss-5's nodes.
-Targets (issue 12): Gauss-3 ≤ 3× the rational time, Gauss-5 ≤ 10×.  Best of
+Targets: Gauss-3 ≤ 3× the rational time, Gauss-5 ≤ 10×.  Best of
 ``--repeat`` runs; the field is found once per tableau (its time is shown too).
 """
 

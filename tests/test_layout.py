@@ -85,7 +85,7 @@ def test_imports_follow_the_flow():
     assert not bad, "imports against the flow:\n" + "\n".join(bad)
 
 
-#: What rkcheck/cli may import of rkcheck (issue 13: "the CLI uses this API, nothing
+#: What rkcheck/cli may import of rkcheck ("the CLI uses this API, nothing
 #: else"): the package root (its version, its public names), the API, the renderers,
 #: itself, the errors, the shared option vocabulary, and making file text printable.
 CLI_MAY_IMPORT = ("rkcheck.api", "rkcheck.reports", "rkcheck.cli")
@@ -124,7 +124,7 @@ def test_cli_uses_only_the_api():
             # `from rkcheck import energy` would take a subpackage
             targets = [f"rkcheck.{n}" for n in names if n not in public] if module == "rkcheck" else [module]
             bad += [f"{path.relative_to(REPO)}:{line}: imports {t}" for t in targets if not cli_import_allowed(t)]
-    assert not bad, "the CLI must go through rkcheck.api (issue 13):\n" + "\n".join(bad)
+    assert not bad, "the CLI must go through rkcheck.api:\n" + "\n".join(bad)
 
 
 def test_the_cli_rule_catches_core_imports(tmp_path):

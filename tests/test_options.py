@@ -1,4 +1,4 @@
-"""One validation layer for options (issue 16): the file's [check], [tool.rkcheck], the
+"""One validation layer for options: the file's [check], [tool.rkcheck], the
 API and the command line accept the same ranges and refuse with the same one-line shape."""
 
 from __future__ import annotations

@@ -275,7 +275,7 @@ def catalog(
     degs = [_option(lambda: parse_degree(d, "degrees")) for d in degrees]
     if not degs:
         raise UserError("expected at least one degree", "degrees")
-    guard(order, None if None in degs else max(d for d in degs if d is not None))  # the resource guard (issue 16)
+    guard(order, None if None in degs else max(d for d in degs if d is not None))  # the resource guard
     files = find_tableau_files(roots, exclude=["README*", "*/README*"])
     root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
     rows = []

@@ -1,5 +1,5 @@
 """What the project and the machine allow a run: ``[tool.rkcheck]`` of the nearest
-``pyproject.toml``, the memory available, and the resource guard (issue 16).
+``pyproject.toml``, the memory available, and the resource guard.
 
 These are the helpers the public functions (and the CLI, for ``verify``) use so that
 every command reads the project's settings and refuses oversized work the same way.

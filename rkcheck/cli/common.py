@@ -267,7 +267,7 @@ def flag_values(*names: str) -> dict[str, Any]:
 
 
 def load_tableau(path: str, max_stages: int = DEFAULT_MAX_STAGES, input_format: str | None = None):
-    """FILE or @name through the public API's :func:`rkcheck.load` (issue 13: the CLI
+    """FILE or @name through the public API's :func:`rkcheck.load` (the CLI
     reads tableaux the way a library user does)."""
     from rkcheck.api.tableaux import load
 

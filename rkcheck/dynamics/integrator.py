@@ -30,7 +30,7 @@ class NewtonError(UserError):
 
 class DivergedError(UserError):
     """The numerical solution left the representable numbers (NaN or ±inf): an explicit
-    method blew up.  Never a column of ``nan`` and a zero energy error (issue 16)."""
+    method blew up.  Never a column of ``nan`` and a zero energy error."""
 
 
 def _finite(ctx, y: Sequence[Any]) -> bool:

@@ -13,7 +13,7 @@ the part of the kernel with zero row sums is one-dimensional ("onedim").
 Rational and algebraic rules are handled exactly: Gaussian elimination over Q or over the
 number field of the nodes (:mod:`rkcheck.numbers.algebraic`; square roots, nested roots,
 ``root(P, k)``), so the rank is exact — a numerical cut-off can sit above the true
-smallest singular values (REVIEW: s = 6, m = 12 at 15 digits gave 31 instead of 35).
+smallest singular values (s = 6, m = 12 at 15 digits gives 31 instead of 35).
 Only rules whose field is beyond the degree limit fall back to a numerical rank:
 singular values of M at the working precision (mpmath), the cut placed at the largest
 gap, and the singular values around the cut reported so the gap can be seen.

@@ -43,7 +43,7 @@ def sigma_notation(seq: tuple[int, ...]) -> str:
     Leaves hanging from a vertex with index x give ``c_x`` (``c = A·1``); every other
     child gets a new index y and the factor ``a_xy`` followed by its own factors.
     """
-    # 16 letters, then i17, i18, ...: a tree may have up to 31 vertices (issue 16)
+    # 16 letters, then i17, i18, ...: a tree may have up to 31 vertices
     counter = itertools.chain(_INDICES, (f"i{n}" for n in itertools.count(len(_INDICES) + 1)))
 
     def factors(sub: tuple[int, ...], x: str) -> list[str]:

@@ -25,7 +25,7 @@ at every prime (``p ∤ d``): ``p^D`` divides the norm of ``N_e``.  Over a set o
 So residues that are all zero with ``log₂ Π p > (1/D) Σ_j log₂ B_j`` prove ``N = 0``: the
 condition **holds**.  For Q (D = 1, e = d) this is the familiar ``|N| < Π p``.  The
 geometric mean over embeddings, the smaller denominator and the absence of ``‖V⁻¹‖``
-make this far cheaper than bounding the coefficients (issue 12: Gauss-5 to order 10 needs
+make this far cheaper than bounding the coefficients (Gauss-5 to order 10 needs
 9 primes instead of 21).
 
 The bound.  In each complex embedding ``σ_j`` (for rationals: the value itself),

@@ -17,7 +17,7 @@ def _excluded(path: Path, patterns: list[str]) -> bool:
 
 def _unreadable_folders(root: Path) -> list[Path]:
     """Folders under ``root`` (itself included) that cannot be listed: ``rglob`` skips
-    them silently, so a scan of an unreadable folder would report 0 files (issue 16)."""
+    them silently, so a scan of an unreadable folder would report 0 files."""
     import os
 
     bad: list[Path] = []
@@ -42,7 +42,7 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
             found.extend(unreadable)  # each becomes an error row of the scan, not 0 files
             for f in sorted(p.rglob("*")):
                 # a dangling link or a link loop is kept: it becomes an error row, not a
-                # silently missing file (issue 16)
+                # silently missing file
                 if (f.is_file() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)

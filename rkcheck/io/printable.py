@@ -3,7 +3,7 @@
 A key or a method name may hold control characters (a newline, an ANSI escape that clears
 the screen or fakes an "OK" line) or, in JSON, a lone surrogate (``"\\ud800"``) that no
 terminal encoding accepts.  Everything rkcheck prints that came from a file goes through
-:func:`printable` first (issue 16, REVIEW "Terminal escapes").
+:func:`printable` first.
 """
 
 from __future__ import annotations

@@ -53,7 +53,7 @@ def _int(value: Any, place: str, minimum: int = 0, maximum: int | None = None) -
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise UserError(f"expected an integer >= {minimum}, got {value!r}"[:120], place)
     if maximum is not None and value > maximum:
-        # judging the claim checks one order beyond it: keep that within MAX_ORDER (issue 16)
+        # judging the claim checks one order beyond it: keep that within MAX_ORDER
         raise UserError(f"expected an integer from {minimum} to {maximum}, got {value}"[:120], place)
     return value
 

@@ -5,8 +5,7 @@ for a root of a named polynomial; :meth:`QuadratureRule.node_closed_forms`), eve
 weight and coefficient as an exact expression over them (Lagrange integrals written out
 with elementary symmetric sums; definitions §1).  :func:`family_exact_values` places them
 in one number field (:mod:`rkcheck.numbers.algebraic`), which is what makes ``[family]``
-tableaux and ``rkcheck new`` files exact wherever the nodes are algebraic of modest degree
-(issue 12).
+tableaux and ``rkcheck new`` files exact wherever the nodes are algebraic of modest degree.
 """
 
 from __future__ import annotations

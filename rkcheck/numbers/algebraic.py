@@ -10,7 +10,7 @@ modulo ``g`` (FLINT ``fmpq_poly``); the inverse comes from the extended gcd with
 (all coefficients zero); the sign and the value come from a certified enclosure of ``θ``
 (:func:`rkcheck.numbers.polynomials.real_root_intervals`), refined until it decides.
 
-Why this means (issue 12): generic exact real algebraic arithmetic (FLINT ``qqbar``)
+Why this means: generic exact real algebraic arithmetic (FLINT ``qqbar``)
 costs milliseconds per operation, a product in a fixed field microseconds; a tableau is
 entered once and then evaluated many million times (modulo primes, by
 :mod:`rkcheck.evaluation.modular`), so one primitive element per tableau suffices.

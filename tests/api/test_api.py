@@ -31,7 +31,7 @@ def without_timings(doc: dict) -> dict:
 
 
 @pytest.mark.parametrize("rel, args", [
-    ("collocation/implicit-midpoint.toml", []),  # REVIEW: the API disagreed (73 failures vs OK)
+    ("collocation/implicit-midpoint.toml", []),  # the API agrees with the CLI: no failure
     ("avf/avf-gauss-2.toml", []),
     ("explicit/rk4.toml", ["--degree", "3", "--order", "6"]),
     ("counterexamples/kernel-zeta-third-beta-0.1.toml", ["--order", "5"]),

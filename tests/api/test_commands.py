@@ -1,4 +1,4 @@
-"""One public function per command (issue 13): each is checked against values derived by
+"""One public function per command: each is checked against values derived by
 hand or by the brute-force reference (tests/support/reference.py), never against output
 copied from rkcheck; where the CLI prints JSON, the API's result must agree with it; bad
 options raise OptionError with the CLI's one-line message."""

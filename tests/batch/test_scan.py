@@ -128,7 +128,7 @@ def test_workers_send_back_exact_algebraic_results(capsys, tmp_path):
 
 
 def test_names_of_the_shipped_library_scan_like_their_files(capsys):
-    # issue 13: @name works wherever a file does; same verdicts as the file itself
+    # @name works wherever a file does; same verdicts as the file itself
     from support.paths import TABLEAUX
 
     by_name = json.loads(run_cli(capsys, "scan", "@rk4", "@heun", "--format", "json", "--degree", "3").out)

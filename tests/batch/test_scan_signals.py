@@ -1,4 +1,4 @@
-"""Signals during a scan (issue 16): Ctrl-C, a second Ctrl-C, SIGTERM and a worker killed
+"""Signals during a scan: Ctrl-C, a second Ctrl-C, SIGTERM and a worker killed
 with SIGKILL all leave a valid report, and the scan never hangs.
 
 Deterministic: instead of sleeping and hoping the scan is running, each test waits for

@@ -1,5 +1,5 @@
 """Hostile files and environments end in one line naming file and place, exit 2, no
-traceback (issue 16 and REVIEW "Hostile and unusual input")."""
+traceback."""
 
 from __future__ import annotations
 
@@ -119,7 +119,7 @@ def test_io_errors_of_the_output_are_one_line_exit_2(tmp_path, capsys):
 
 def test_residuals_longer_than_4300_digits_are_printed(tmp_path):
     # a 600-digit entry whose conditions leave long exact residuals: no ValueError from
-    # Python's integer-string limit (REVIEW)
+    # Python's integer-string limit
     x = "0." + "1234567" * 90
     doc = {"tableau": {"A": [[x, "0"], ["1/3", x]], "b": ["1/2", "1/2"]}}
     path = write(tmp_path, "long.json", json.dumps(doc))

@@ -1,4 +1,4 @@
-"""Start-up stays light (issue 15, item 5: ``--help`` and ``verify`` on a small file in
+"""Start-up stays light (``--help`` and ``verify`` on a small file in
 ≤ 0.4 s): the modules each path loads, not its time (timing belongs in
 benchmarks/bench_engine.py, ``--startup-runs``).
 

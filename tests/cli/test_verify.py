@@ -31,7 +31,7 @@ RADAU2 = (["1/3", "1"], ["3/4", "1/4"])
 
 @pytest.mark.parametrize("degree", [3, 4])
 def test_avf_gauss2_holds_every_condition_and_is_recognised(degree):
-    # sqrt(3) entries are decided exactly in Q(√3) (issue 12): every verdict is `holds`
+    # sqrt(3) entries are decided exactly in Q(√3): every verdict is `holds`
     res = check(avf(*GAUSS2), CheckOptions(degree=degree, order=8))
     assert res.backend == "exact"
     assert res.failures == []
@@ -167,7 +167,7 @@ def test_conditions_count_matches_spec(capsys):
 
 
 def test_an_exact_algebraic_verify_never_mentions_digits(capsys):
-    # issue 12, done when: AVF over Gauss-2 ends with an exact certificate and no
+    # AVF over Gauss-2 ends with an exact certificate and no
     # "digits" anywhere (the per-order table has no digits column for exact arithmetic)
     run = run_cli(capsys, "verify", str(TABLEAUX / "avf" / "avf-gauss-2.toml"))
     assert run.code == 0

@@ -1,5 +1,5 @@
 """NaN/Inf in a simulation is an error naming the step, never a column of nan and a zero
-energy error (issue 16); hostile step sizes and problem sizes are refused in one line."""
+energy error; hostile step sizes and problem sizes are refused in one line."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Algebraic tableaux are decided exactly (issue 12, definitions §5): no digits.
+"""Algebraic tableaux are decided exactly (definitions §5): no digits.
 
 Independent derivations:
 

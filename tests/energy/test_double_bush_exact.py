@@ -1,4 +1,4 @@
-"""Exact ranks of the double-bush map at algebraic rules (REVIEW: numerical ranks were
+"""Exact ranks of the double-bush map at algebraic rules (numerical ranks can be
 wrong at low precision), against the seed's theorems:
 
 * Gauss, m = 2s: rank M = s² − 1, kernel spanned by (1 − c)bᵀ (seed Lemma "DBmono");
@@ -41,7 +41,7 @@ def test_m_2s_minus_1_ranks_exactly(rule_name, s, rank):
 
 
 def test_perturb_along_the_exact_kernel_direction_is_quadratic_to_1e_30(capsys):
-    # issue 12: the kernel direction of an algebraic AVF tableau was rounded through str()
+    # the kernel direction of an algebraic AVF tableau must not be rounded through str()
     # at 15 digits and the fitted slope fell to 1.55; exact now, so max|R| = C·ε² for
     # every ε (seed: the failure along the kernel is quadratic), the slope is 2
     import json

@@ -20,13 +20,13 @@ from rkcheck.energy.check import CheckOptions, check
 from rkcheck.energy.reduction import reduce_tableau
 from rkcheck.methods.tableau import Tableau
 
-# REVIEW.md (issue 12): AVF over Radau IIA-2 in disguise. Stages 1 and 3 have identical
+# AVF over Radau IIA-2 in disguise. Stages 1 and 3 have identical
 # rows; stage 2's row is 3× theirs once columns 1 and 3 are merged; stages 4 and 5 have
 # identical rows and weights 3/8, −3/8 that cancel.
-REVIEW_A = [["17/32", "1/12", "-9/32", "0", "0"], ["51/32", "1/4", "-27/32", "0", "0"],
+DISGUISED_A = [["17/32", "1/12", "-9/32", "0", "0"], ["51/32", "1/4", "-27/32", "0", "0"],
             ["17/32", "1/12", "-9/32", "0", "0"], ["-1", "4/3", "3/5", "-2/27", "5/27"],
             ["-1", "4/3", "3/5", "-2/27", "5/27"]]
-REVIEW_b = ["4/3", "1/4", "-7/12", "3/8", "-3/8"]
+DISGUISED_b = ["4/3", "1/4", "-7/12", "3/8", "-3/8"]
 
 
 def fr(rows):
@@ -34,7 +34,7 @@ def fr(rows):
 
 
 def test_the_review_example_is_avf_over_radau_iia_2():
-    A, b = fr(REVIEW_A), [F(x) for x in REVIEW_b]
+    A, b = fr(DISGUISED_A), [F(x) for x in DISGUISED_b]
     red = reduce_tableau(A, b)
     # by hand: merge 1+3 → row (17/32 − 9/32, 1/12) = (1/4, 1/12), weight 4/3 − 7/12 = 3/4;
     # stage 2 → (51/32 − 27/32, 1/4) = (3/4, 1/4), weight 1/4; 4+5 has weight 0, unused.
@@ -47,7 +47,7 @@ def test_the_review_example_is_avf_over_radau_iia_2():
         v = avf_of_reduction(red, m)
         assert v.equals_avf and v.verdict.state == "holds", v.reason
     assert not avf_of_reduction(red, 4).equals_avf  # Σ b c³ = 1/4 fails for Radau-2
-    res = check(Tableau.from_values(REVIEW_A, REVIEW_b), CheckOptions(degree=2, order=6))
+    res = check(Tableau.from_values(DISGUISED_A, DISGUISED_b), CheckOptions(degree=2, order=6))
     assert res.avf.equals_avf and res.energy_order_all and res.certificate.kind == "avf"
 
 
@@ -128,7 +128,7 @@ def test_an_irreducible_tableau_is_left_alone():
 
 
 def test_theorem1_needs_exact_holds_to_conclude_beyond_order_n():
-    """REVIEW.md: the seed kernel family ζ = 1/2, β = 1e-30 (degree 3) holds to ~58 digits
+    """The seed kernel family ζ = 1/2, β = 1e-30 (degree 3) holds to ~58 digits
     up to order 7 at 50 digits, but truly fails at order 4 by ≈ β²/36 ≈ 2.8e-62.  The
     report must not conclude "a condition must fail beyond order 7"."""
     from rkcheck.methods.families import family_tableau, parse_spec
@@ -144,7 +144,7 @@ def test_theorem1_needs_exact_holds_to_conclude_beyond_order_n():
 def test_the_kernel_family_is_exact_in_its_field_and_fails_by_beta_squared_over_36():
     # the same family checked by default: its nodes (Gauss, sqrt(3)) have a closed form,
     # so the check is exact and finds the order-4 failure at once, of size β²/36
-    # (REVIEW.md's estimate, now exact: the residual is rational).
+    # (exact: the residual is rational).
     from rkcheck.methods.families import family_tableau, parse_spec
 
     tab = family_tableau(parse_spec({"name": "kernel", "zeta": "1/2", "beta": "1e-30"}))

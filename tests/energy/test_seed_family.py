@@ -165,7 +165,7 @@ def test_family_closed_form_nodes():
 @pytest.mark.parametrize("b_value", ["1/10", "1/1000000000000"])
 def test_double_bush_holds_in_the_family(zeta, b_value):
     # (a) shows DB_{1,2} = 0 exactly for all β; the square roots are decided exactly in
-    # their number field (issue 12), so the verdict is an exact `holds`
+    # their number field, so the verdict is an exact `holds`
     assert DB12_ID == (1, 2, 3, 3, 2)  # hand: [τ[τ²]], rooted at the 1-leaf bush
     res = family_check(zeta, b_value)
     assert res.backend == "exact"

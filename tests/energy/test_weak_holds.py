@@ -1,4 +1,4 @@
-"""A ball wider than 1 that contains 0 is not a holds (REVIEW, issue 12): on point data
+"""A ball wider than 1 that contains 0 is not a holds: on point data
 the check raises the precision until every condition is decided.
 
 By hand: with two identical stages (``A = [[x, 0], [x, 0]]``) and ``b = (1, −1)``, every

@@ -118,7 +118,7 @@ def field_sums(listing, tab):
 
 @pytest.mark.parametrize("seed", range(3))
 def test_chunked_evaluation_is_bit_identical_in_number_fields(seed, monkeypatch):
-    # issue 15: the same for algebraic tableaux to order 10, exact field elements
+    # the same for algebraic tableaux to order 10, exact field elements
     tab = random_algebraic_tableau(seed)
     assert tab.exact_values().field is not None
     whole = field_sums(ConditionListing(10, None), tab)

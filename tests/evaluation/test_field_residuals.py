@@ -243,7 +243,7 @@ def test_values_complete_on_demand(monkeypatch):
 
 
 def test_the_norm_decision_needs_fewer_primes_for_gauss_5():
-    # issue 12's Gauss-5 case: the integrality denominator is a proper divisor of the power
+    # The Gauss-5 case: the integrality denominator is a proper divisor of the power
     # basis's, and with the geometric mean over embeddings the decision at order 10 needs
     # fewer than half the primes the coefficients would
     from support.paths import TABLEAUX

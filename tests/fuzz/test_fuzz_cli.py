@@ -1,4 +1,4 @@
-"""Fuzzing the front door (issue 16): random entries, whole files (bytes, text, TOML and
+"""Fuzzing the front door: random entries, whole files (bytes, text, TOML and
 JSON documents) and option sets never give a traceback, an internal error or an exit code
 other than 0, 1 or 2; stderr is at most 3 lines; each run stays under 5 s and the whole
 test under 500 MB.

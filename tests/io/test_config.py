@@ -1,4 +1,4 @@
-"""[tool.rkcheck] in pyproject.toml: validated like every other source (issue 16)."""
+"""[tool.rkcheck] in pyproject.toml: validated like every other source."""
 
 from __future__ import annotations
 

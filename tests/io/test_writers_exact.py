@@ -1,4 +1,4 @@
-"""`rkcheck new` writes exact entries in their number field (issue 12), checked against
+"""`rkcheck new` writes exact entries in their number field, checked against
 published tableaux (Hairer–Wanner, Solving ODEs II, Tables 5.5, 5.6, 7.4, IV.5.2)."""
 
 from fractions import Fraction

@@ -42,7 +42,7 @@ def test_every_shipped_tableau_meets_its_claims(path):
     assert broken == []
 
 
-# Issue 12's "done when": every shipped tableau with square roots or roots of a named
+# The "done when": every shipped tableau with square roots or roots of a named
 # polynomial (directly or as a [family]) is decided exactly, so its claims are met by
 # proof, not to digits; only decimal tableaux are numerical.
 ALGEBRAIC = [f for f in FILES if not load(f).is_rational and not load(f).is_box("auto")]

@@ -1,4 +1,4 @@
-"""Hostile and unusual entries (issue 16): every one is either a correct value or one
+"""Hostile and unusual entries: every one is either a correct value or one
 UserError line naming the column, in bounded time; nothing recurses with the input length."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Colour and plain output (issue 16): NO_COLOR (non-empty only, no-color.org), FORCE_COLOR,
+"""Colour and plain output: NO_COLOR (non-empty only, no-color.org), FORCE_COLOR,
 --no-color, and piped output without colour codes or trailing spaces, for every command."""
 
 from __future__ import annotations

@@ -89,7 +89,7 @@ def test_s2_m3_kernel_direction_is_the_seeds_N(zeta):
 # log R = p log ε + log K, and the least-squares slope is off by at most
 #     |Σ (x_k − x̄) δ_k| / Σ (x_k − x̄)²  ≤  δ · Σ|x_k − x̄| / Σ (x_k − x̄)²,
 # the tolerance below (0.0041 for the 15 decades 10^-2 … 10^-30).  The rounding of the
-# kernel direction to 15 digits (issue 12) gave slopes 1.44–1.55 on these tableaux.
+# kernel direction to 15 digits gave slopes 1.44–1.55 on these tableaux.
 
 RHO = Fraction(1, 10)
 SWEEP = "1e-2..1e-30:2"

@@ -211,7 +211,7 @@ def _table9_cached() -> TreeTable:
 
 
 def test_parse_refuses_empty_places_between_commas():
-    # "1,,2" is a typo, not the tree 1,2 (issue 16); spaces alone still separate
+    # "1,,2" is a typo, not the tree 1,2; spaces alone still separate
     for text in ("1,,2", "1,2,2,", ",1,2"):
         with pytest.raises(ValueError):
             parse_level_sequence(text)
