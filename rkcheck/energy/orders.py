@@ -27,6 +27,7 @@ from rkcheck.energy.verdicts import (
     combine,
 )
 from rkcheck.evaluation.backends import ball_context
+from rkcheck.evaluation.protocols import EnclosingContext, NumberContext
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.trees.rooted import bracket_of_forest
@@ -71,7 +72,7 @@ def unbounded_table() -> TreeTable:
 class _Weights:
     """Φ, ψ and a of every tree of a growing table, in one number context."""
 
-    def __init__(self, ctx: Any, s: int):
+    def __init__(self, ctx: NumberContext, s: int):
         self.ctx, self.s, self.done = ctx, s, 1
         self.phi, self.psi, self.a = ctx.vectors(1, s), ctx.vectors(1, s), ctx.scalars(1)
         one = ctx.ones(1, s)
@@ -102,7 +103,7 @@ def _rows(x: Any) -> int:
     return len(x[0]) if isinstance(x, tuple) else len(x)
 
 
-def _append(ctx: Any, x: Any, y: Any) -> Any:
+def _append(ctx: NumberContext, x: Any, y: Any) -> Any:
     if isinstance(x, tuple):
         return tuple(np.concatenate([xa, ya]) for xa, ya in zip(x, y))
     return np.concatenate([x, y])
@@ -156,16 +157,17 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
                 return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, ids[failing]))
             verdicts.append(Verdict(HOLDS))
         return OrderResult(max_order, max_order, combine(verdicts))
-    weights = _Weights(ball_context(values), s)
+    balls: EnclosingContext = ball_context(values)
+    weights = _Weights(balls, s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
         ids = np.arange(table.first[p], table.first[p + 1])
-        enclosures = weights.ctx.enclosures(weights.extend(table, p))
+        enclosures = balls.enclosures(weights.extend(table, p))
         gamma = table.gamma(ids)
         order_verdicts = []
         failed: list[int] = []
-        for t, e, g in zip(ids, enclosures, gamma):
-            v = classify(Enclosure(e.mid - Fraction(1, int(g)), e.rad, False))
+        for t, enc, g in zip(ids, enclosures, gamma):
+            v = classify(Enclosure(enc.mid - Fraction(1, int(g)), enc.rad, False))
             if v.state == FAILS:
                 failed.append(int(t))
             order_verdicts.append(v)

@@ -27,7 +27,10 @@ from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.intervals import Interval
 
-Scalar = Any  # Fraction | FieldElement | Interval
+#: A tableau value: an exact ``Fraction``, an exact number-field element or a certified
+#: ``Interval``.  Typed ``Any``: the kinds mix in arithmetic (``Fraction * Interval``),
+#: which the union would reject because Fraction's stubs accept only numbers.
+Scalar = Any
 Matrix = list[list[Scalar]]
 Vector = list[Scalar]
 

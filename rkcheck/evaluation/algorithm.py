@@ -9,8 +9,9 @@ Over a :class:`~rkcheck.trees.table.TreeTable`, order by order (definitions §2)
 
 Only what later orders need is computed: ``ψ`` up to order ``N − 1``, ``Φ`` and ``a`` up
 to ``N``, ``w`` up to ``N + 1`` (the trees with ``N + 1`` vertices are terms only).  A
-*context* supplies the arithmetic on whole arrays, like mpmath's ``mp``/``iv``/``fp``
-contexts behind one set of calls; its values are opaque to this module.  The kernel:
+*context* (:class:`~rkcheck.evaluation.protocols.NumberContext`) supplies the arithmetic
+on whole arrays, like mpmath's ``mp``/``iv``/``fp`` contexts behind one set of calls; its
+values are opaque to this module.  The kernel:
 
 ``vectors(n, s)`` / ``scalars(n)``   storage for n values
 ``ones(k, s)``, ``one(k)``            the weights of τ
@@ -32,6 +33,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
+from rkcheck.evaluation.protocols import NumberContext
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.trees.table import TreeTable
 
@@ -46,7 +48,7 @@ class EvaluationInterrupted(KeyboardInterrupt):
 
 def condition_sums(
     listing: ConditionListing,
-    ctx: Any,
+    ctx: NumberContext,
     s: int,
     orders: Iterable[int] | None = None,
     on_order: Callable[[int, Any], None] | None = None,
@@ -69,7 +71,8 @@ def condition_sums(
     return out
 
 
-def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, Any], on_order) -> None:
+def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wanted: list[int],
+                      out: dict[int, Any], on_order: Callable[[int, Any], None] | None) -> None:
     top = wanted[-1]
     first = listing.first
     n_a = first[top]  # trees with <= top − 1 vertices
@@ -109,6 +112,7 @@ def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, An
                         ids = np.arange(terms.first_id + t0, terms.first_id + t1)
                         U, V = left[ids], right[ids]
                     else:
+                        assert terms.left is not None and terms.right is not None  # top order: factors kept
                         U, V = terms.left[t0:t1], terms.right[t0:t1]
                     w_terms = ctx.mul(ctx.take(w, U), ctx.take(a, V))
                 ctx.add_terms(acc, w_terms, terms, n, t0, t1)
@@ -120,7 +124,7 @@ def _weights_and_sums(listing, ctx, s: int, wanted: list[int], out: dict[int, An
 _TERM_CHUNK = 1 << 20
 
 
-def tree_weights(table: TreeTable, ctx: Any, s: int, top: int) -> Any:
+def tree_weights(table: TreeTable, ctx: NumberContext, s: int, top: int) -> Any:
     """``a(t)`` for every tree with at most ``top`` vertices (for the classical order
     conditions ``a(t) = 1/γ(t)``)."""
     first = table.first

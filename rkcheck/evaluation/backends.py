@@ -16,7 +16,7 @@ job (:mod:`rkcheck.energy`).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Callable, Sequence
+from typing import Callable, Iterable, Mapping, Sequence
 
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import (
@@ -27,8 +27,10 @@ from rkcheck.evaluation.balls import (
 )
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import ScaledTableau, exact_condition_sums
+from rkcheck.evaluation.protocols import BoundedSums, EnclosingContext, ExactSums
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.listing import ConditionListing
 
 
 @dataclass
@@ -38,12 +40,12 @@ class Evaluation:
     records give the designated sign)."""
 
     backend: Backend
-    orders: dict[int, Any] = field(default_factory=dict)
+    orders: Mapping[int, ExactSums | BoundedSums] = field(default_factory=dict)
     scaled: ScaledTableau | None = None
 
 
 def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
-                      vertices: int | None = None):
+                      vertices: int | None = None) -> EnclosingContext:
     """The ball context for trees with up to ``vertices`` vertices: int64 digit
     mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster on large
     listings) when the listing is large and the precision and the size of the weights
@@ -55,7 +57,7 @@ def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bi
     return BallContext(A, b, bits)
 
 
-def ball_context(values: TableauValues, vertices: int | None = None) -> Any:
+def ball_context(values: TableauValues, vertices: int | None = None) -> EnclosingContext:
     """The certified ball context (:func:`certified_context`:
     Python-integer or int64-digit mid-points) for trees with up to ``vertices`` vertices,
     at the reading's precision."""
@@ -67,7 +69,7 @@ def float_context(values: TableauValues) -> FloatContext:
     return FloatContext(A, b)
 
 
-def evaluate(listing, values: TableauValues, orders=None,
+def evaluate(listing: ConditionListing, values: TableauValues, orders: Iterable[int] | None = None,
              progress: Callable[[int, int], None] | None = None) -> Evaluation:
     """Every condition of ``listing`` (or of the given numbers of vertices), in the
     values' backend; ``progress(done, total)`` as the work advances (passes over primes,

@@ -629,6 +629,9 @@ class ExactOrderSums:
     value_bits: int = 0  # the coefficients' bound: primes beyond the decision's, on demand
     dual: bool = False  # values from g'(θ)·N_e (ScaledTableau.dual_value_bits), not from N
 
+    def __len__(self) -> int:
+        return len(self.residues)
+
     def is_zero(self) -> np.ndarray:
         return ~np.any(self.residues != 0, axis=(1, 2))
 

@@ -112,7 +112,7 @@ class ComputedEntry:
     def is_box(self, decimals: DecimalsMode) -> bool:
         return False  # computed coefficients are numbers (enclosed), never a box of inputs
 
-    def enclosure(self, bits: int, decimals: DecimalsMode = DecimalsMode.AUTO) -> Interval:
+    def enclosure(self, bits: int, decimals: DecimalsMode = DecimalsMode.EXACT) -> Interval:
         if self.exact is not None:
             return Interval.point(self.exact)
         return self._value(bits)
