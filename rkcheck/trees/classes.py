@@ -43,93 +43,20 @@ def classify(table: TreeTable, n: int, last: bool = False) -> OrderTerms:
     stored = n <= table.max_order
     size = table.count(n) if stored else table.prepare_order(n)
     lo = table.first[n]
-    nxt = np.arange(lo, lo + size, dtype=np.int32)  # one step towards the centre (global ids)
-    parity = np.zeros(size, dtype=np.int8)
-    sigma_index = np.empty(size, dtype=np.int16)  # distinct σ per order: a few thousand
-    sigma_of: dict[int, int] = {}
-    rep_parts: list[dict[str, np.ndarray]] = []  # the representatives, found chunk by chunk
-    n_superfluous = 0
-
-    def chunks():
-        if stored:
-            for a in range(0, size, _CHUNK):
-                b = min(size, a + _CHUNK)
-                sl = slice(lo + a, lo + b)
-                at = {k: getattr(table, k)[sl] for k in ("h1", "h2", "tall", "rest", "sigma", "nchild", "inner_max")}
-                yield a, table.left[sl], table.right[sl], at
-        else:
-            a = 0
-            for U, V in table.pairs(n):
-                yield a, U, V, table.attributes(n, U, V)
-                a += len(U)
-
-    for a, U, V, at in chunks():
-        gap = at["h1"] - at["h2"]
-        off = np.flatnonzero(gap >= 1)
-        tall, rest = at["tall"][off], at["rest"][off]
-        other = table.insert(tall, rest)
-        far = gap[off] >= 2
-        move = far | (other > lo + a + off)  # two centres: the pair goes to the larger id
-        nxt[a + off[move]] = other[move]
-        parity[a + off[move]] = 1
-        # a representative is a centre rooting that does not move; two equal halves make
-        # the free tree superfluous (no condition)
-        stays = np.ones(len(gap), dtype=bool)
-        stays[off[move]] = False
-        superfluous = np.zeros(len(gap), dtype=bool)
-        superfluous[off[~far]] = rest[~far] == tall[~far]
-        n_superfluous += int(np.count_nonzero(stays & superfluous))
-        r = np.flatnonzero(stays & ~superfluous)
-        two = gap[r] == 1
-        rep_parts.append({
-            "local": (a + r).astype(np.int32), "left": U[r], "right": V[r],
-            "tall": np.where(two, at["tall"][r], -1), "rest": np.where(two, at["rest"][r], -1),
-            "max_degree": np.maximum(at["nchild"][r], at["inner_max"][r]),
-        })
-        values, inverse = np.unique(at["sigma"], return_inverse=True)
-        ids = np.array([sigma_of.setdefault(int(v), len(sigma_of)) for v in values], dtype=np.int32)
-        if len(sigma_of) >= 2**14:  # pragma: no cover - far beyond 21 vertices
-            raise OverflowError("too many distinct symmetry factors for an int16 index")
-        sigma_index[a:a + len(gap)] = ids[inverse]
+    walk = _CentreWalk(lo, size)
+    for a, U, V, at in _chunks(table, n, stored, lo, size):
+        walk.step(table, a, U, V, at)
     if last:
         table.release()  # from here on only the factors are needed: the memory peak follows
-    U_all = V_all = None
-    if not stored:  # the factors of the terms, generated again (cheaper than carrying them)
-        U_all = np.empty(size, dtype=np.int32)
-        V_all = np.empty(size, dtype=np.int32)
-        a = 0
-        for U, V in table.pairs(n):
-            U_all[a:a + len(U)], V_all[a:a + len(U)] = U, V
-            a += len(U)
-        table._lefts_sorted.clear()
-        table._block_cache.pop(n, None)
-    rep = {k: np.concatenate([part[k] for part in rep_parts]) for k in rep_parts[0]} if rep_parts else None
-    del rep_parts
-    reps = rep["local"] if rep else np.zeros(0, dtype=np.int32)
-    nxt -= lo
-    while True:  # pointer jumping: every tree to its representative, with the parity
-        jumped = nxt[nxt]
-        if np.array_equal(jumped, nxt):
-            break
-        parity ^= parity[nxt]
-        nxt = jumped
-    del jumped
-    class_of = np.full(size, len(reps), dtype=np.int32)  # superfluous trees: one extra bin
-    class_of[reps] = np.arange(len(reps), dtype=np.int32)
-    cls = class_of[nxt]
-    del class_of, nxt
-    counts = np.bincount(cls, minlength=len(reps) + 1)[:len(reps)]
+    U_all, V_all = (None, None) if stored else _term_factors(table, n, size)
+    rep = walk.representatives()
+    cls, parity = walk.classes(rep["local"])
+    counts = np.bincount(cls, minlength=len(rep["local"]) + 1)[:len(rep["local"])]
     # the sign folds into the coefficient: index 2i is +(n−1)!/σ_i, 2i + 1 is its negative
-    coefficient_index = sigma_index
+    coefficient_index = walk.sigma_index
     coefficient_index *= 2
     coefficient_index += parity
     del parity
-    empty = np.zeros(0, dtype=np.int32)
-    factorial = math.factorial(n - 1)
-    coefficients = [0] * (2 * len(sigma_of))
-    for value, i in sigma_of.items():
-        coefficients[2 * i] = factorial // value
-        coefficients[2 * i + 1] = -(factorial // value)
     return OrderTerms(
         vertices=n,
         first_id=lo if stored else None,
@@ -137,12 +64,123 @@ def classify(table: TreeTable, n: int, last: bool = False) -> OrderTerms:
         right=V_all,
         condition=cls,
         coefficient_index=coefficient_index,
-        coefficients=coefficients,
+        coefficients=_signed_coefficients(walk.sigma_of, n),
         counts=counts.astype(np.int32),
-        superfluous=n_superfluous,
-        rep_left=(rep["left"] if rep else empty).astype(np.int32),
-        rep_right=(rep["right"] if rep else empty).astype(np.int32),
-        tall=(rep["tall"] if rep else empty).astype(np.int32),
-        rest=(rep["rest"] if rep else empty).astype(np.int32),
-        max_degree=(rep["max_degree"] if rep else empty).astype(np.int16),
+        superfluous=walk.superfluous,
+        rep_left=rep["left"].astype(np.int32),
+        rep_right=rep["right"].astype(np.int32),
+        tall=rep["tall"].astype(np.int32),
+        rest=rep["rest"].astype(np.int32),
+        max_degree=rep["max_degree"].astype(np.int16),
     )
+
+
+def _chunks(table: TreeTable, n: int, stored: bool, lo: int, size: int):
+    """``(offset, U, V, attributes)`` of the trees with n vertices, a chunk at a time:
+    slices of the table when stored, else generated pairs."""
+    if stored:
+        for a in range(0, size, _CHUNK):
+            b = min(size, a + _CHUNK)
+            sl = slice(lo + a, lo + b)
+            at = {k: getattr(table, k)[sl] for k in ("h1", "h2", "tall", "rest", "sigma", "nchild", "inner_max")}
+            yield a, table.left[sl], table.right[sl], at
+    else:
+        a = 0
+        for U, V in table.pairs(n):
+            yield a, U, V, table.attributes(n, U, V)
+            a += len(U)
+
+
+_REP_KEYS = ("local", "left", "right", "tall", "rest", "max_degree")
+
+
+class _CentreWalk:
+    """One step of every rooting towards the centre of its free tree, with the parity of
+    the step; the rootings that do not move are the classes' representatives."""
+
+    def __init__(self, lo: int, size: int):
+        self.lo = lo
+        self.nxt = np.arange(lo, lo + size, dtype=np.int32)  # one step towards the centre (global ids)
+        self.parity = np.zeros(size, dtype=np.int8)
+        self.sigma_index = np.empty(size, dtype=np.int16)  # distinct σ per order: a few thousand
+        self.sigma_of: dict[int, int] = {}
+        self.parts: list[dict[str, np.ndarray]] = []  # the representatives, found chunk by chunk
+        self.superfluous = 0
+
+    def step(self, table: TreeTable, a: int, U: np.ndarray, V: np.ndarray, at: dict[str, np.ndarray]) -> None:
+        gap = at["h1"] - at["h2"]
+        off = np.flatnonzero(gap >= 1)
+        tall, rest = at["tall"][off], at["rest"][off]
+        other = table.insert(tall, rest)
+        far = gap[off] >= 2
+        move = far | (other > self.lo + a + off)  # two centres: the pair goes to the larger id
+        self.nxt[a + off[move]] = other[move]
+        self.parity[a + off[move]] = 1
+        # a representative is a centre rooting that does not move; two equal halves make
+        # the free tree superfluous (no condition)
+        stays = np.ones(len(gap), dtype=bool)
+        stays[off[move]] = False
+        superfluous = np.zeros(len(gap), dtype=bool)
+        superfluous[off[~far]] = rest[~far] == tall[~far]
+        self.superfluous += int(np.count_nonzero(stays & superfluous))
+        r = np.flatnonzero(stays & ~superfluous)
+        two = gap[r] == 1
+        self.parts.append({
+            "local": (a + r).astype(np.int32), "left": U[r], "right": V[r],
+            "tall": np.where(two, at["tall"][r], -1), "rest": np.where(two, at["rest"][r], -1),
+            "max_degree": np.maximum(at["nchild"][r], at["inner_max"][r]),
+        })
+        values, inverse = np.unique(at["sigma"], return_inverse=True)
+        ids = np.array([self.sigma_of.setdefault(int(v), len(self.sigma_of)) for v in values], dtype=np.int32)
+        if len(self.sigma_of) >= 2**14:  # pragma: no cover - far beyond 21 vertices
+            raise OverflowError("too many distinct symmetry factors for an int16 index")
+        self.sigma_index[a:a + len(gap)] = ids[inverse]
+
+    def representatives(self) -> dict[str, np.ndarray]:
+        """The representatives' local ids, factors and shape data, in id order."""
+        if not self.parts:
+            return {k: np.zeros(0, dtype=np.int32) for k in _REP_KEYS}
+        rep = {k: np.concatenate([part[k] for part in self.parts]) for k in _REP_KEYS}
+        self.parts = []
+        return rep
+
+    def classes(self, reps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Every rooting's class (superfluous trees: one extra bin, ``len(reps)``) and the
+        parity of its path to the representative, by pointer jumping."""
+        nxt, parity = self.nxt, self.parity
+        del self.nxt, self.parity  # the walk's arrays are the largest of the order: free early
+        nxt -= self.lo
+        while True:
+            jumped = nxt[nxt]
+            if np.array_equal(jumped, nxt):
+                break
+            parity ^= parity[nxt]
+            nxt = jumped
+        del jumped
+        class_of = np.full(len(nxt), len(reps), dtype=np.int32)
+        class_of[reps] = np.arange(len(reps), dtype=np.int32)
+        return class_of[nxt], parity
+
+
+def _term_factors(table: TreeTable, n: int, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """The factors of the terms of an order beyond the table, generated again (cheaper
+    than carrying them through the classification)."""
+    U_all = np.empty(size, dtype=np.int32)
+    V_all = np.empty(size, dtype=np.int32)
+    a = 0
+    for U, V in table.pairs(n):
+        U_all[a:a + len(U)], V_all[a:a + len(U)] = U, V
+        a += len(U)
+    table._lefts_sorted.clear()
+    table._block_cache.pop(n, None)
+    return U_all, V_all
+
+
+def _signed_coefficients(sigma_of: dict[int, int], n: int) -> list[int]:
+    """``±(n−1)!/σ`` for every distinct σ: index 2i positive, 2i + 1 negative."""
+    factorial = math.factorial(n - 1)
+    coefficients = [0] * (2 * len(sigma_of))
+    for value, i in sigma_of.items():
+        coefficients[2 * i] = factorial // value
+        coefficients[2 * i + 1] = -(factorial // value)
+    return coefficients
