@@ -175,72 +175,88 @@ def run_scan(
         except KeyboardInterrupt:
             return results, True
         return results, False
-
-    import multiprocessing as mp
-    from multiprocessing.connection import wait
-
-    done: dict[int, FileOutcome] = {}
-    workers: list[_Worker] = []
-    queue = list(enumerate(files))[::-1]  # pop() from the end = input order
+    pool = _Pool(files, (flags, project, fail_on, max_stages, budget), on_result)
     interrupted = False
-    ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
-
-    def start_worker() -> _Worker:
-        parent_end, child_end = ctx.Pipe()
-        proc = ctx.Process(target=_worker_main, args=(child_end, flags, project, fail_on, max_stages, budget),
-                           daemon=True)
-        proc.start()
-        child_end.close()
-        worker = _Worker(proc, parent_end)
-        workers.append(worker)
-        return worker
-
-    def finish(index: int, outcome: FileOutcome) -> None:
-        done[index] = outcome
-        on_result(outcome)
-
     try:
         warm_tables(flags, project)
         for _ in range(jobs):
-            start_worker()
-        while len(done) < len(files):
-            for w in workers:
-                if w.task is None and queue:
-                    w.task = queue.pop()
-                    try:
-                        w.conn.send(w.task)
-                    except (EOFError, OSError):
-                        pass  # died already: found below through its sentinel
-            busy = [w for w in workers if w.task is not None]
-            ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
-            for w in busy:
-                if w.conn not in ready and w.process.sentinel not in ready:
-                    continue
-                try:
-                    if w.conn.poll():
-                        index, outcome = w.conn.recv()
-                        w.task = None
-                        finish(index, outcome)
-                        continue
-                except (EOFError, OSError):
-                    pass
-                if w.process.is_alive():
-                    continue
-                # the worker died while holding w.task: that file is an error row, and a
-                # new worker takes the dead one's place
-                assert w.task is not None  # busy, and no outcome came back
-                index, path = w.task
-                w.process.join()
-                finish(index, FileOutcome(path, error=_death_message(path, w.process.exitcode)))
-                w.conn.close()
-                workers.remove(w)
-                if queue:
-                    start_worker()
+            pool.start_worker()
+        while len(pool.done) < len(files):
+            pool.dispatch()
+            pool.collect()
     except KeyboardInterrupt:
         interrupted = True
     finally:
-        _stop(workers)
-    return [done[i] for i in sorted(done)], interrupted
+        _stop(pool.workers)
+    return [pool.done[i] for i in sorted(pool.done)], interrupted
+
+
+class _Pool:
+    """Worker processes fed one file at a time; a worker that dies holding a file makes
+    that file an error row and is replaced."""
+
+    def __init__(self, files: list[str], worker_args: tuple, on_result: Callable[[FileOutcome], None]):
+        import multiprocessing as mp
+
+        self.ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
+        self.queue = list(enumerate(files))[::-1]  # pop() from the end = input order
+        self.worker_args = worker_args
+        self.on_result = on_result
+        self.done: dict[int, FileOutcome] = {}
+        self.workers: list[_Worker] = []
+
+    def start_worker(self) -> None:
+        parent_end, child_end = self.ctx.Pipe()
+        proc = self.ctx.Process(target=_worker_main, args=(child_end, *self.worker_args), daemon=True)
+        proc.start()
+        child_end.close()
+        self.workers.append(_Worker(proc, parent_end))
+
+    def finish(self, index: int, outcome: FileOutcome) -> None:
+        self.done[index] = outcome
+        self.on_result(outcome)
+
+    def dispatch(self) -> None:
+        """Give every idle worker the next file."""
+        for w in self.workers:
+            if w.task is None and self.queue:
+                w.task = self.queue.pop()
+                try:
+                    w.conn.send(w.task)
+                except (EOFError, OSError):
+                    pass  # died already: found by collect() through its sentinel
+
+    def collect(self) -> None:
+        """Wait until a busy worker answers or dies, and take what it gives."""
+        from multiprocessing.connection import wait
+
+        busy = [w for w in self.workers if w.task is not None]
+        ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
+        for w in busy:
+            if w.conn not in ready and w.process.sentinel not in ready:
+                continue
+            try:
+                if w.conn.poll():
+                    index, outcome = w.conn.recv()
+                    w.task = None
+                    self.finish(index, outcome)
+                    continue
+            except (EOFError, OSError):
+                pass
+            if not w.process.is_alive():
+                self.replace_dead(w)
+
+    def replace_dead(self, w: _Worker) -> None:
+        """The worker died while holding ``w.task``: that file is an error row, and a new
+        worker takes the dead one's place."""
+        assert w.task is not None  # busy, and no outcome came back
+        index, path = w.task
+        w.process.join()
+        self.finish(index, FileOutcome(path, error=_death_message(path, w.process.exitcode)))
+        w.conn.close()
+        self.workers.remove(w)
+        if self.queue:
+            self.start_worker()
 
 
 def _stop(workers: list[_Worker]) -> None:
