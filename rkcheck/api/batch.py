@@ -166,7 +166,6 @@ def scan(
     ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers and returns
     the files that finished, with ``interrupted`` set."""
     from rkcheck.batch.scan import default_jobs, run_scan
-    from rkcheck.energy.budget import check_budget, estimate
     from rkcheck.io.discovery import find_tableau_files
 
     config = _config(project)
@@ -178,30 +177,13 @@ def scan(
     jobs = jobs or config.jobs or default_jobs()
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
     max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
-    if max_conditions is not None:
-        max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
-    # the resource guard: the scan's default options must fit before the tables
-    # are built; each file's own [check] is judged against the same budget (an error row)
-    files_budget = budget(max_conditions)
-    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
-    default_degree = flags.get("degree", config.check.get("degree"))
-    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
+    files_budget = _scan_budget(flags, config, max_conditions)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []
     interrupted = False
     try:
         files = find_tableau_files(roots, list(exclude) + config.exclude)
-        if progress is not None:
-            progress(0, len(files))
-        done = [0]
-
-        def on_result(outcome: "FileOutcome") -> None:
-            done[0] += 1
-            if progress is not None:
-                progress(done[0], len(files))
-            if on_file is not None:
-                on_file(ScanRow.of(outcome), done[0], len(files))
-
+        on_result = _reporter(len(files), progress, on_file)
         outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
                                          files_budget)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
@@ -213,6 +195,38 @@ def scan(
         outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
+
+
+def _scan_budget(flags: dict[str, Any], config: ProjectConfig, max_conditions: int | None) -> Any:
+    """The resource guard: the scan's default options must fit before the tables are
+    built; each file's own ``[check]`` is judged against the same budget (an error row)."""
+    from rkcheck.energy.budget import check_budget, estimate
+
+    if max_conditions is not None:
+        max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
+    files_budget = budget(max_conditions)
+    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
+    default_degree = flags.get("degree", config.check.get("degree"))
+    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
+    return files_budget
+
+
+def _reporter(total: int, progress: Callable[[int, int], None] | None,
+              on_file: Callable[[ScanRow, int, int], None] | None) -> Callable[["FileOutcome"], None]:
+    """What to call after each file: ``progress(done, total)`` (also once now, at 0) and
+    ``on_file(row, done, total)``."""
+    if progress is not None:
+        progress(0, total)
+    done = [0]
+
+    def on_result(outcome: "FileOutcome") -> None:
+        done[0] += 1
+        if progress is not None:
+            progress(done[0], total)
+        if on_file is not None:
+            on_file(ScanRow.of(outcome), done[0], total)
+
+    return on_result
 
 
 # ------------------------------------------------------------------ catalog

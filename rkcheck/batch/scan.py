@@ -208,9 +208,10 @@ class _Pool:
     def start_worker(self) -> None:
         parent_end, child_end = self.ctx.Pipe()
         proc = self.ctx.Process(target=_worker_main, args=(child_end, *self.worker_args), daemon=True)
+        # known before it exists: a Ctrl-C during the fork must not leave an unknown worker
+        self.workers.append(_Worker(proc, parent_end))
         proc.start()
         child_end.close()
-        self.workers.append(_Worker(proc, parent_end))
 
     def finish(self, index: int, outcome: FileOutcome) -> None:
         self.done[index] = outcome
@@ -270,6 +271,9 @@ def _stop(workers: list[_Worker]) -> None:
         except (EOFError, OSError, ValueError):
             pass
     for w in workers:
+        if w.process.pid is None:  # interrupted before it started
+            w.conn.close()
+            continue
         w.process.join(timeout=5)
         if w.process.is_alive():
             w.process.kill()
