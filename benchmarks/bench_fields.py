@@ -21,7 +21,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from rkcheck.evaluation.modular import exact_condition_sums, scaled_field, scaled_rational  # noqa: E402
+from rkcheck.evaluation.modular import exact_condition_sums  # noqa: E402
+from rkcheck.evaluation.scaled import scaled_field, scaled_rational  # noqa: E402
 from rkcheck.io.loader import load  # noqa: E402
 from rkcheck.methods.tableau import Tableau  # noqa: E402
 from rkcheck.trees.listing import ConditionListing  # noqa: E402

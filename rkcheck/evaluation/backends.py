@@ -26,8 +26,9 @@ from rkcheck.evaluation.balls import (
     FloatContext,
 )
 from rkcheck.evaluation.limbs import LimbBallContext
-from rkcheck.evaluation.modular import ScaledTableau, exact_condition_sums
+from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.protocols import BoundedSums, EnclosingContext, ExactSums
+from rkcheck.evaluation.scaled import ScaledTableau
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.listing import ConditionListing

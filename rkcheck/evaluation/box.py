@@ -167,7 +167,8 @@ def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict
     """The mean value form (module docstring) of the conditions of ``orders``, for the box
     ``(A, b)`` of intervals and its point ``(centre_A, centre_b)`` (exact rationals)."""
     from rkcheck.evaluation.algorithm import condition_sums
-    from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+    from rkcheck.evaluation.modular import exact_condition_sums
+    from rkcheck.evaluation.scaled import scaled_rational
 
     wanted = sorted(orders)
     if not wanted:

@@ -18,7 +18,7 @@ from functools import cached_property
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.evaluation.modular import ScaledTableau, scaled_field, scaled_rational
+from rkcheck.evaluation.scaled import ScaledTableau, scaled_field, scaled_rational
 from rkcheck.methods.tableau import ExactValues, Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.formatting import decimal_exponent, decimal_string, exact_string

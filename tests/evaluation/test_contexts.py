@@ -25,7 +25,8 @@ import rkcheck.trees.table as table_module
 from rkcheck.energy.verdicts import FAILS, HOLDS, classify
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext, FloatContext
-from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.scaled import scaled_rational
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
@@ -110,7 +111,7 @@ def random_algebraic_tableau(seed: int):
 
 
 def field_sums(listing, tab):
-    from rkcheck.evaluation.modular import scaled_field
+    from rkcheck.evaluation.scaled import scaled_field
 
     sums = exact_condition_sums(scaled_field(tab.exact_values()), listing)
     return {n: [o.value(k) for k in range(len(listing.orders[n]))] for n, o in sums.items()}

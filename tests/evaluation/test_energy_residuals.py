@@ -47,7 +47,8 @@ from support.shapes import asymbush, double_bush, triple_bush
 
 from rkcheck.evaluation.algorithm import condition_sums, tree_weights
 from rkcheck.evaluation.balls import BallContext
-from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.scaled import scaled_rational
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.trees.table import TreeTable

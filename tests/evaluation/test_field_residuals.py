@@ -20,7 +20,8 @@ import sympy as sp
 from support import reference as ref
 from support.numbers import exact_under
 
-from rkcheck.evaluation.modular import exact_condition_sums, scaled_field
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.scaled import scaled_field
 from rkcheck.methods.tableau import Tableau
 from rkcheck.trees.listing import ConditionListing
 
@@ -205,7 +206,7 @@ def test_scaled_field_makes_theta_an_algebraic_integer():
 def test_integrality_denominator_is_the_least_that_makes_every_entry_integral(spec):
     # definition, checked with sympy's minimal polynomials (not FLINT's charpoly): e·x is
     # an algebraic integer for every entry, and no proper divisor e/q does that
-    from rkcheck.evaluation.modular import integrality_denominator
+    from rkcheck.evaluation.scaled import integrality_denominator
 
     values = tableau(spec).exact_values()
     e = integrality_denominator([x for row in values.A for x in row] + list(values.b), values.field)
@@ -227,7 +228,7 @@ def test_values_complete_on_demand(monkeypatch):
     # decision's: the missing primes are evaluated once, on demand.  The decision is made
     # to stop 2 primes short here so that the path runs on a small field whose values
     # sympy checks independently.
-    from rkcheck.evaluation.modular import ScaledTableau
+    from rkcheck.evaluation.scaled import ScaledTableau
 
     spec = {"A": [["1/4 + sqrt(3)/100", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4 - 2/7"]],
             "b": ["1/2 + sqrt(3)/11", "1/2"]}
@@ -264,15 +265,16 @@ def test_all_roots_in_one_pass_equal_root_by_root(path, monkeypatch):
     import numpy as np
     from support.paths import TABLEAUX
 
-    import rkcheck.evaluation.modular as modular
     from rkcheck.io.loader import load
 
     scaled = scaled_field(load(str(TABLEAUX / path)).exact_values())
     assert scaled.degree > 1
     listing = ConditionListing(9, None)
-    monkeypatch.setattr(modular, "MAX_BATCHED_TREES", 0)
+    import rkcheck.evaluation.scaled as scaled_module
+
+    monkeypatch.setattr(scaled_module, "MAX_BATCHED_TREES", 0)
     one_by_one = exact_condition_sums(scaled, listing)
-    monkeypatch.setattr(modular, "MAX_BATCHED_TREES", 10**9)
+    monkeypatch.setattr(scaled_module, "MAX_BATCHED_TREES", 10**9)
     batched = exact_condition_sums(scaled, listing)
     for n in one_by_one:
         assert np.array_equal(one_by_one[n].residues, batched[n].residues), n
@@ -283,7 +285,7 @@ def test_values_through_the_dual_basis_bound_equal_sympy(monkeypatch):
     # bound is below the power basis's (in fields of high degree: HBVM(6, σ)).  Here the
     # power basis's bound is made huge so that the dual route runs on a small field,
     # whose values sympy computes independently
-    from rkcheck.evaluation.modular import ScaledTableau
+    from rkcheck.evaluation.scaled import ScaledTableau
 
     spec = {"A": [["1/4 + sqrt(5)/100", "1/4 - (1 + sqrt(5))/6"], ["1/4 + sqrt(5)/6", "1/4 - 2/7"]],
             "b": ["1/2 + (1 + sqrt(5))/22", "1/2"]}

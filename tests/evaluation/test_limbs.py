@@ -28,7 +28,8 @@ from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
 from rkcheck.evaluation.limbs import LimbBallContext
-from rkcheck.evaluation.modular import exact_condition_sums, scaled_rational
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.scaled import scaled_rational
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.trees.listing import ConditionListing

@@ -1,0 +1,367 @@
+"""A tableau scaled to integers for the exact evaluation: the common denominator, the
+number field's minimal polynomial and integrality denominator, and the size bounds that
+say how many primes decide a condition (:mod:`rkcheck.evaluation.modular`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import lru_cache
+from typing import Any, Sequence, cast
+
+import numpy as np
+
+#: all roots of a prime run in one pass while at most this many trees are stored (orders
+#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
+#: root by root; on larger listings the strided root axis costs more than it saves
+#: (measured on Gauss-3/4/5, orders 8–13)
+from rkcheck.evaluation.channels import (
+    ModularChannel,
+    RootsChannel,
+    primes,
+)
+
+#: all roots of a prime run in one pass while at most this many trees are stored (orders
+#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
+#: root by root; on larger listings the strided root axis costs more than it saves
+#: (measured on Gauss-3/4/5, orders 8–13)
+MAX_BATCHED_TREES = 1500
+
+
+@dataclass
+class ScaledTableau:
+    """``Â = d·A`` and ``b̂ = d·b`` over ``Z[θ]``: entries are integer coefficient lists
+    (power basis of θ, length D); ``minpoly`` is the monic integer minimal polynomial of
+    θ (ascending, length D + 1; ``[0, 1]`` for Q); ``log2_bound(n, terms)`` bounds the
+    bits of the coefficients of ``N`` (module docstring)."""
+
+    A: list[list[list[int]]]
+    b: list[list[int]]
+    d: int
+    minpoly: list[int]
+    log2_M: float  # upper bound of log2 M
+    log2_Vinv: float = 0.0  # upper bound of log2 ‖V⁻¹‖_∞ (0 for Q)
+    number_field: Any = None  # the number field of the entries (None: Q)
+    theta_scale: int = 1  # λ: the power basis is that of λθ, θ the field's generator
+    #: log2 max(α_j, β_j) of the d-scaled data in each complex embedding j (None: Q,
+    #: where the one embedding's value is log2_M)
+    log2_M_embeddings: list[float] | None = None
+    integral_d: int | None = None  # e: the integrality denominator (None: e = d)
+    log2_gprime: float | None = None  # upper bound of log2 max_j |g'(σ_j θ)| (None: Q)
+
+    def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
+        """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
+        lam = self.theta_scale
+        return self.number_field([Fraction(int(c) * lam**k, scale) for k, c in enumerate(coeffs)])
+
+    @property
+    def degree(self) -> int:
+        return len(self.minpoly) - 1
+
+    @property
+    def s(self) -> int:
+        return len(self.b)
+
+    def coefficient_bits(self, n: int, terms: int) -> int:
+        """Bits that bound ``|coefficient of N|`` for a condition with ``n`` vertices and
+        ``terms`` terms (rounded up, plus one for the sign)."""
+        bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
+        return math.ceil(bits) + 2
+
+    def _log2_M_integral(self) -> list[float] | None:
+        """``log₂ M_j`` per complex embedding for the data scaled by the integrality
+        denominator ``e`` instead of ``d`` (None for Q or without the embeddings' data)."""
+        if self.log2_M_embeddings is None or self.integral_d is None:
+            return None
+        shift = math.log2(self.d) - math.log2(self.integral_d)  # scaling by e instead of d
+        return [max(m - shift, 0.0) for m in self.log2_M_embeddings]
+
+    def dual_value_bits(self, n: int, terms: int) -> int | None:
+        """Bits that bound the coefficients of ``X = g'(θ)·N_e`` (None without the
+        embeddings' data).  ``N_e = N/(d/e)^(n−1)`` is an algebraic integer and
+        ``O_K ⊆ Z[θ]/g'(θ)`` (g the minimal polynomial of the algebraic integer θ: the
+        dual basis of the power basis under the trace), so ``X ∈ Z[θ]``; its conjugates
+        are at most ``max_j |g'(σ_j θ)| · B_j`` with ``e`` in place of ``d``.  In a field of
+        high degree this is far below :meth:`coefficient_bits`, which grows with log₂ d
+        per vertex (1236 bits for HBVM(6, σ), against log₂ e = 19)."""
+        per_embedding = self._log2_M_integral()
+        if per_embedding is None or self.log2_gprime is None:
+            return None
+        top = max(per_embedding)
+        bits = ((n - 1) * top + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+                + self.log2_Vinv + self.log2_gprime)
+        return math.ceil(bits) + 2
+
+    def decision_bits(self, n: int, terms: int) -> int:
+        """Bits ``b`` such that all-zero residues over primes with ``Π p > 2^b`` prove a
+        condition with ``n`` vertices and ``terms`` terms zero: ``(1/D) Σ_j log₂ B_j``
+        with the integrality denominator (the norm argument of the module docstring)."""
+        per_embedding = self._log2_M_integral()
+        if per_embedding is None:
+            return self.coefficient_bits(n, terms)
+        mean = sum(per_embedding) / len(per_embedding)
+        bits = (n - 1) * mean + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+        return math.ceil(bits + 1e-6) + 1
+
+    def primes_for(self, bits: int) -> list[tuple[int, list[int]]]:
+        """Enough channel primes for coefficients of ``bits`` bits: each (p, roots of
+        the minimal polynomial mod p), in a fixed order, with ``Π p > 2^bits``."""
+        # the split primes found so far are kept: in a field of degree D only about one
+        # prime in D (or in the Galois group's order) splits, and every order asks again
+        if not hasattr(self, "_split"):
+            self._split: list[tuple[int, list[int]]] = []
+            self._scanned = 0
+        chosen: list[tuple[int, list[int]]] = []
+        total = 0.0
+        i = 0
+        while total <= bits:
+            if i == len(self._split):
+                for p in primes(64, self._scanned):
+                    roots = self._roots_mod(p)
+                    if roots is not None:
+                        self._split.append((p, roots))
+                self._scanned += 64
+                continue
+            p, roots = self._split[i]
+            chosen.append((p, roots))
+            total += math.log2(p)
+            i += 1
+        return chosen
+
+    def _roots_mod(self, p: int) -> list[int] | None:
+        """The D distinct roots of the minimal polynomial modulo p, or None when p
+        divides d or the polynomial does not split into distinct linear factors."""
+        if self.d % p == 0:
+            return None
+        if self.degree == 1:
+            return [(-self.minpoly[0]) % p]
+        from flint import nmod_poly
+
+        f = nmod_poly([c % p for c in self.minpoly], p)
+        roots = [int(r) for r, mult in f.roots() if mult == 1]
+        return roots if len(roots) == self.degree else None
+
+    def _images(self, p: int, root: int) -> tuple[np.ndarray, np.ndarray]:
+        """The entries' images under θ ↦ root (mod p): int64 arrays shaped like A and b."""
+        cache = self.__dict__.setdefault("_image_cache", {})
+        if p not in cache:
+            cache.clear()  # primes are visited one after another: keep one
+            roots = self._roots_of(p)
+            # all entries at all roots of p as one product (coefficients × powers of the
+            # roots) over Python integers: Horner's scheme per entry and root cost 3 s of
+            # a 48-degree field's check
+            D = self.degree
+            coeffs = np.array([[c % p for c in x] for x in [x for row in self.A for x in row] + self.b], dtype=object)
+            powers = np.empty((D, len(roots)), dtype=object)
+            for j, r in enumerate(roots):
+                acc = 1
+                for k in range(D):
+                    powers[k, j] = acc
+                    acc = acc * r % p
+            values = (coeffs[:, :D].dot(powers) % p).astype(np.int64)
+            s = self.s
+            cache[p] = ({r: j for j, r in enumerate(roots)}, values[: s * s].reshape(s, s, -1), values[s * s:])
+        index, A, b = cache[p]
+        j = index[root]
+        return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
+
+    def _roots_of(self, p: int) -> list[int]:
+        for q, roots in getattr(self, "_split", ()):
+            if q == p:
+                return roots
+        roots = self._roots_mod(p)
+        assert roots is not None, "a channel prime must split the minimal polynomial"
+        return roots
+
+    def channel(self, p: int, root: int) -> ModularChannel:
+        return ModularChannel(p, *self._images(p, root))
+
+    def roots_channel(self, p: int, roots: Sequence[int]) -> RootsChannel:
+        images = [self._images(p, r) for r in roots]
+        return RootsChannel(p, np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
+
+    def residues_at(self, listing: Any, p: int, roots: Sequence[int], orders: list[int]) -> dict[int, np.ndarray]:
+        """``{n: (conditions, roots) residues}`` of the given orders at one prime: all roots
+        in one pass on small listings, else root by root (:data:`MAX_BATCHED_TREES`)."""
+        from rkcheck.evaluation.algorithm import condition_sums
+
+        if len(roots) > 1 and listing.first[max(orders)] <= MAX_BATCHED_TREES:
+            return condition_sums(listing, self.roots_channel(p, roots), self.s, orders)
+        per_root = [condition_sums(listing, self.channel(p, r), self.s, orders) for r in roots]
+        return {n: np.stack([sums[n] for sums in per_root], axis=1) for n in orders}
+
+
+def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:
+    """The scaled data of a rational tableau (D = 1)."""
+    d = 1
+    for x in [x for row in A for x in row] + list(b):
+        d = math.lcm(d, Fraction(x).denominator)
+    Ai = [[[int(Fraction(x) * d)] for x in row] for row in A]
+    bi = [[int(Fraction(x) * d)] for x in b]
+    alpha = max(sum(abs(x[0]) for x in row) for row in Ai)
+    beta = sum(abs(x[0]) for x in bi)
+    M = max(alpha, beta, 1)
+    return ScaledTableau(Ai, bi, d, [0, 1], float(M.bit_length()))
+
+
+def scaled_field(exact_values: Any) -> ScaledTableau:
+    """The scaled data of a tableau with entries in a number field ``Q(θ)``
+    (``exact_values``: :meth:`rkcheck.methods.tableau.Tableau.exact_values`).
+
+    ``θ̃ = λθ`` is an algebraic integer (λ the least positive integer that clears the
+    denominators of ``λ^D g(x/λ)``); entries are rewritten in the basis of θ̃ and scaled by
+    the common denominator ``d``.  ``M`` and ``‖V⁻¹‖_∞`` (module docstring) are bounded
+    over every complex embedding with certified Arb/Acb enclosures of the conjugates."""
+    field = exact_values.field
+    if field is None:
+        return scaled_rational(exact_values.A, exact_values.b)
+    g = [Fraction(c) for c in field.minpoly]  # monic
+    D = len(g) - 1
+    from rkcheck.numbers.algebraic import integral_scale
+
+    lam = integral_scale(g)
+    minpoly = [int(c * lam ** (D - k)) for k, c in enumerate(g)]
+    assert minpoly[-1] == 1 and all(Fraction(c) * lam ** (D - k) == minpoly[k] for k, c in enumerate(g))
+
+    def tilde(x: Any) -> list[Fraction]:
+        coeffs = x.coeffs if hasattr(x, "coeffs") else [Fraction(x)] + [Fraction(0)] * (D - 1)
+        return [Fraction(c) / lam**k for k, c in enumerate(coeffs)]
+
+    At = [[tilde(x) for x in row] for row in exact_values.A]
+    bt = [tilde(x) for x in exact_values.b]
+    d = 1
+    for v in [v for row in At for v in row] + bt:
+        for c in v:
+            d = math.lcm(d, c.denominator)
+    Ai = [[[int(c * d) for c in v] for v in row] for row in At]
+    bi = [[int(c * d) for c in v] for v in bt]
+
+    log2_M, per_embedding = _embedding_bounds(minpoly, Ai, bi)
+    vinv = _vandermonde_inverse_norm(minpoly)
+    log2_gprime = _log2_derivative_bound(minpoly)
+    e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
+    assert d % e == 0  # d·x ∈ Z[θ̃] ⊂ O_K, so the least e divides d
+    return ScaledTableau(Ai, bi, d, minpoly, log2_M + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
+                         per_embedding, e, log2_gprime)
+
+
+@lru_cache(maxsize=8)
+def _complex_roots(minpoly: tuple[int, ...], prec: int) -> list[Any]:
+    """The complex roots of ``minpoly`` as Acb balls at ``prec`` bits, computed once per
+    precision for the three bounds below (use them under the same working precision)."""
+    from flint import ctx, fmpz_poly
+
+    with ctx.workprec(prec):
+        # python-flint's stubs type complex_roots() as acb; it is a list of (acb, multiplicity)
+        return [root for root, _ in cast(list, fmpz_poly(list(minpoly)).complex_roots())]
+
+
+def _log2_upper(x: Any) -> float:
+    """An upper bound of ``log₂ |x|`` for an arb (−1000 for 0): in the log domain, since
+    the scaled entries of a field of high degree exceed a float (2^1236 for HBVM(6, 3))."""
+    from flint import arb
+
+    u = x.abs_upper()
+    if u == 0:
+        return -1000.0
+    return float((u.log() / arb(2).log()).upper()) + 1e-9
+
+
+def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, list[float]]:
+    """``log₂ M`` (``M = max_j M_j``) and ``log₂ max(α_j, β_j)`` per complex embedding
+    (module docstring), certified.  The working precision starts at 128 bits and doubles
+    while a bound exceeds its ball's lower end by more than one bit: in fields of high
+    degree (48 for the six Gauss-6 nodes) the entries' coefficients are large and cancel,
+    and 128 bits leave balls too wide to bound anything."""
+    from flint import acb, arb, ctx
+
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            roots = _complex_roots(tuple(minpoly), prec)
+
+            def conj(v: list[int], r) -> Any:
+                acc = acb(0)
+                for c in reversed(v):
+                    acc = acc * r + c
+                return acc
+
+            log2_M = 0.0
+            per_embedding = []
+            tight = True
+            for r in roots:
+                sums = [sum((abs(conj(v, r)) for v in row), arb(0)) for row in Ai]
+                sums.append(sum((abs(conj(v, r)) for v in bi), arb(0)))
+                for x in sums:
+                    if not x.is_finite() or (x.abs_upper() > 0 and not x.abs_upper() <= 2 * x.abs_lower()):
+                        tight = False
+                top = max(_log2_upper(x) for x in sums)
+                log2_M = max(log2_M, top)
+                per_embedding.append(top)
+            if tight or prec >= 1 << 14:
+                return log2_M, per_embedding
+            prec *= 2
+
+
+def _log2_derivative_bound(minpoly: list[int]) -> float:
+    """An upper bound of ``log₂ max_j |g'(σ_j θ)|`` over the roots of ``g = minpoly``."""
+    from flint import acb, ctx, fmpz_poly
+
+    dg = fmpz_poly(minpoly).derivative()
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            values = [abs(dg(acb(r))) for r in _complex_roots(tuple(minpoly), prec)]
+            if all(v.is_finite() for v in values) or prec >= 1 << 14:
+                return max(_log2_upper(v) for v in values)
+        prec *= 2
+
+
+def _vandermonde_inverse_norm(minpoly: list[int]) -> float:
+    """``‖V⁻¹‖_∞`` for the Vandermonde matrix ``V`` of the roots of ``minpoly``, certified:
+    Arb inverts ``V`` only when its balls prove it invertible, so the working precision is
+    doubled until they do (128 bits suffice up to degree ~30; the degree-48 field of the
+    six Gauss-6 nodes needs more, its conjugates lie close together)."""
+    from flint import acb_mat, arb, ctx
+
+    def upper(x: Any) -> float:  # an arb as a float upper bound
+        return float(x.abs_upper()) * (1 + 2.0**-40)
+
+    D = len(minpoly) - 1
+    prec = 128
+    while True:
+        with ctx.workprec(prec):
+            roots = _complex_roots(tuple(minpoly), prec)
+            V = acb_mat([[r**k for k in range(D)] for r in roots])
+            try:
+                W = V.inv()
+            except ZeroDivisionError:
+                if prec >= 1 << 14:
+                    raise
+                prec *= 2
+                continue
+            return max(upper(sum((abs(W[i, j]) for j in range(D)), arb(0))) for i in range(D))
+
+
+def integrality_denominator(values: Sequence[Any], field: Any) -> int:
+    """The least positive integer ``e`` with ``e·x`` an algebraic integer for every ``x``:
+    the lcm over the entries of the least ``λ`` that makes ``λ^m P(X/λ)`` integral, with
+    ``P`` the minimal polynomial of ``x`` (of degree m; by Gauss's lemma ``x`` is integral
+    exactly when P has integer coefficients)."""
+    from rkcheck.numbers.algebraic import integral_scale
+
+    e = 1
+    seen = set()
+    for x in values:
+        x = field(x)
+        q = x.rational()
+        if q is not None:
+            e = math.lcm(e, q.denominator)
+            continue
+        key = tuple(x.coeffs)
+        if key not in seen:
+            seen.add(key)
+            e = math.lcm(e, integral_scale(x.minimal_polynomial()))
+    return e
