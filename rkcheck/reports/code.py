@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rkcheck import __version__
+from rkcheck.version import __version__
 from rkcheck.trees.rooted import (
     bracket,
     canonical_level_sequence,

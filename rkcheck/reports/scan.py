@@ -13,7 +13,7 @@ import json
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
-from rkcheck import __version__
+from rkcheck.version import __version__
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 
 CSV_COLUMNS = [
@@ -253,16 +253,22 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
                      constants: bool = False) -> None:
     """The scan table; ``constants``: with a column C (the energy error constant), as
     ``scan --sort energy`` shows it."""
+    outcomes = outcome_docs(outcomes)
+    root, shown = _common_root([o["path"] for o in outcomes])
+    t = _scan_table(f"files under {root}/" if root else None, constants)
+    for o in outcomes:
+        t.add_row(*_scan_row(o, shown, constants))
+    _keep_verdict_widths(t)
+    console.print(t)
+    _print_notes(outcomes, shown, verbose, console)
+    console.print(_totals_line(outcomes, total_time, interrupted))
+
+
+def _common_root(paths: list[str]) -> tuple[str, Any]:
+    """The folder all paths share (none for a single file) and how a path is shown
+    relative to it."""
     import os
 
-    from rich import box
-    from rich.table import Table
-    from rich.text import Text
-
-    from rkcheck.reports.text import plain
-
-    outcomes = outcome_docs(outcomes)
-    paths = [o["path"] for o in outcomes]
     root = os.path.commonpath(paths) if len(paths) > 1 else ""
     if root and not os.path.isdir(root):
         root = os.path.dirname(root)
@@ -270,7 +276,13 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     def shown(path: str) -> str:
         return os.path.relpath(path, root) if root else path
 
-    title = f"files under {root}/" if root else None
+    return root, shown
+
+
+def _scan_table(title: str | None, constants: bool) -> Any:
+    from rich import box
+    from rich.table import Table
+
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False, title=title, title_justify="left")
     t.add_column("file", overflow="fold")  # a long path folds; the columns after it never shrink
     t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=26)
@@ -279,35 +291,51 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     t.add_column("AVF", justify="center", no_wrap=True)
     t.add_column("claims", justify="center", no_wrap=True)
     t.add_column("time", justify="right", no_wrap=True)
-    for o in outcomes:
-        r = o.get("result") or {}
-        s = r.get("summary", {})
-        if o["status"] in ("error", "skipped"):
-            style = "bold red" if o["status"] == "error" else "dim"
-            label = "ERROR (see below)" if o["status"] == "error" else "skipped: not a tableau"
-            blanks = [""] * (7 if constants else 6)
-            t.add_row(*plain(shown(o["path"]), Text(label, style=style), *blanks, f"{o['time']:.2f}"))
-            continue
-        avf = {True: "yes", False: "no", None: "—"}[s.get("equals_avf")]
-        claims = s.get("claims_ok")
-        claims_t = Text("—") if claims is None else (Text("ok", style="green") if claims else Text("BROKEN", style="bold red"))
-        energy = Text(energy_text(o), style="red" if s.get("first_failure") and o["status"] == "failed" else "")
-        deg = s.get("degree")
-        classical = s.get("classical_order", "")
-        if s and s.get("classical_first_failure") is None:
-            classical = f"≥ {classical}"
-        ec = s.get("error_constant")
-        extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
-        t.add_row(*plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
-                         "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}"))
-    # rich shrinks every column of a table wider than the console, truncating short ones
-    # ("ener…"): the verdict columns keep their full width, the file path folds instead
+    return t
+
+
+def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
+    """One file's cells: an error or skipped row, or its verdicts."""
+    from rich.text import Text
+
+    from rkcheck.reports.text import plain
+
+    r = o.get("result") or {}
+    s = r.get("summary", {})
+    if o["status"] in ("error", "skipped"):
+        style = "bold red" if o["status"] == "error" else "dim"
+        label = "ERROR (see below)" if o["status"] == "error" else "skipped: not a tableau"
+        blanks = [""] * (7 if constants else 6)
+        return plain(shown(o["path"]), Text(label, style=style), *blanks, f"{o['time']:.2f}")
+    avf = {True: "yes", False: "no", None: "—"}[s.get("equals_avf")]
+    claims = s.get("claims_ok")
+    claims_t = Text("—") if claims is None else (Text("ok", style="green") if claims else Text("BROKEN", style="bold red"))
+    energy = Text(energy_text(o), style="red" if s.get("first_failure") and o["status"] == "failed" else "")
+    deg = s.get("degree")
+    classical = s.get("classical_order", "")
+    if s and s.get("classical_first_failure") is None:
+        classical = f"≥ {classical}"
+    ec = s.get("error_constant")
+    extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
+    return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
+                 "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
+
+
+def _keep_verdict_widths(t: Any) -> None:
+    """rich shrinks every column of a table wider than the console, truncating short ones
+    ("ener…"): the verdict columns keep their full width, the file path folds instead."""
     from rich.cells import cell_len
+    from rich.text import Text
 
     for column in t.columns[2:]:
         texts = [str(column.header)] + [c.plain if isinstance(c, Text) else str(c) for c in column.cells]
         column.min_width = max(cell_len(x) for x in texts)
-    console.print(t)
+
+
+def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console) -> None:
+    """Below the table: each error and failure, and with ``verbose`` the warnings."""
+    from rich.text import Text
+
     for o in outcomes:
         if o["status"] == "error":
             console.print(Text(f"error: {o['error']}", style="red"))
@@ -316,6 +344,11 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         if verbose:
             for w in (o.get("result") or {}).get("warnings", []):
                 console.print(Text(f"warning: {shown(o['path'])}: {w}", style="yellow"))
+
+
+def _totals_line(outcomes: list[dict[str, Any]], total_time: float, interrupted: bool) -> Any:
+    from rich.text import Text
+
     tot = totals(outcomes)
     line = Text(
         f"{tot['files']} file{'s' if tot['files'] != 1 else ''}: {tot['ok']} ok, {tot['failed']} failed, "
@@ -325,4 +358,4 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     )
     if interrupted:
         line.append("  (interrupted: partial results)", style="bold yellow")
-    console.print(line)
+    return line
