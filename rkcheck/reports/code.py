@@ -150,8 +150,16 @@ def _residual_text(r: Residual, weight, op: str, div) -> str:
 
 
 def _python_like(code: ConditionCode, sym: bool) -> str:
+    lines = _python_header(code, sym) + _python_weights(code)
+    lines += _python_residual_functions(code, "sympy.Rational" if sym else "Fraction")
+    if code.stages is not None:
+        lines += _python_stages(code, code.stages, sym)
+    return "\n".join(lines) + "\n"
+
+
+def _python_header(code: ConditionCode, sym: bool) -> list[str]:
+    """The module docstring and imports of the emitted Python or sympy code."""
     title = "sympy" if sym else "Python"
-    num = "sympy.Rational" if sym else "Fraction"
     lines = [
         f'"""{code.description()}, as {title} functions of A and b.',
         "",
@@ -166,8 +174,13 @@ def _python_like(code: ConditionCode, sym: bool) -> str:
             "    least_squares(residuals, x0)                       # sum of squares to 0",
             "    minimize(f, x0, constraints={'type': 'eq', 'fun': residuals})",
         ]
-    lines += ['"""', "", "from fractions import Fraction" if not sym else "import sympy", ""]
-    lines += [
+    return lines + ['"""', "", "from fractions import Fraction" if not sym else "import sympy", ""]
+
+
+def _python_weights(code: ConditionCode) -> list[str]:
+    """``elementary_weights(A, b)``: Φ tree by tree, ``AΦ`` only for the trees that are
+    some tree's child."""
+    lines = [
         "",
         "def elementary_weights(A, b):",
         '    """a(t) = bᵀΦ(t), Φ(τ) = 1, Φ([t1 … tk]) = AΦ(t1) ⊙ … ⊙ AΦ(tk), for the trees listed."""',
@@ -180,13 +193,10 @@ def _python_like(code: ConditionCode, sym: bool) -> str:
         "        return [sum(A[i][j] * v[j] for j in range(s)) for i in range(s)]",
         "",
     ]
-    images = set()
+    children_of = [_children_positions(code, seq) for seq in code.trees]
+    images = {c for children in children_of for c in children}
     for k, seq in enumerate(code.trees):
-        children = _children_positions(code, seq)
-        for ch in children:
-            images.add(ch)
-    for k, seq in enumerate(code.trees):
-        children = _children_positions(code, seq)
+        children = children_of[k]
         comment = f"  # {bracket(seq)}"
         if not children:
             lines.append(f"    phi{k} = [1] * s{comment}")
@@ -200,10 +210,16 @@ def _python_like(code: ConditionCode, sym: bool) -> str:
         if k in images:
             lines.append(f"    Aphi{k} = image(phi{k})")
     lines.append("    return [" + ", ".join(f"sum(x * y for x, y in zip(b, phi{k}))" for k in range(len(code.trees))) + "]")
+    return lines
+
+
+def _python_residual_functions(code: ConditionCode, num: str) -> list[str]:
+    """``energy_conditions(A, b)`` and (when asked for) ``order_conditions(A, b)``."""
 
     def div(L: int) -> str:
         return f" / {num}({L})"
 
+    lines: list[str] = []
     for name, residuals, what in (("energy_conditions", code.energy, "energy conditions"),
                                   ("order_conditions", code.classical, "classical order conditions")):
         if name == "order_conditions" and not code.classical:
@@ -214,9 +230,7 @@ def _python_like(code: ConditionCode, sym: bool) -> str:
         for r in residuals:
             lines.append(f"        {_residual_text(r, lambda k: f'w[{k}]', '*', div)},  # {r.label}")
         lines.append("    ]")
-    if code.stages is not None:
-        lines += _python_stages(code, code.stages, sym)
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 def _free_entries(code: ConditionCode) -> list[tuple[int, int]]:
