@@ -132,27 +132,8 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "order_checked": o.order,
         "degree": o.degree,
         "equals_avf": None if avf is None else avf.equals_avf,
-        "avf": None
-        if avf is None
-        else {
-            "state": avf.verdict.state,
-            "digits": avf.verdict.digits,
-            "reason": avf.reason,
-            "stages": avf.stages,
-            "reduced_stages": avf.reduced_stages,
-            "kept_stages": list(avf.kept),
-            "s_min": avf.s_min,
-            "notes": avf.notes,
-        },
-        "certificate": None
-        if res.certificate is None
-        else {
-            "kind": res.certificate.kind,  # avf / line_integral / stability / null
-            "sigma": res.certificate.sigma,
-            "state": res.certificate.verdict.state,
-            "digits": res.certificate.verdict.digits,
-            "reason": res.certificate.reason,
-        },
+        "avf": _avf_doc(avf),
+        "certificate": _certificate_doc(res.certificate),
         "theorem1": res.theorem1,
         "classical_order": res.classical.order,
         "classical_order_checked": res.classical.checked,
@@ -172,18 +153,46 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "first_failure": None
         if first is None
         else {"id": first.id, "bracket": first.bracket, "order": first.order},
-        "per_order": [
-            {
-                "order": p.order,
-                "vertices": p.order + 1,
-                "conditions": p.conditions,
-                "checked": p.checked,
-                "held": p.held,
-                "failed": p.failed,
-                "min_digits": p.min_digits,
-            }
-            for p in res.per_order
-        ],
+        "per_order": [_order_doc(p) for p in res.per_order],
+    }
+
+
+def _avf_doc(avf: Any) -> dict[str, Any] | None:
+    if avf is None:
+        return None
+    return {
+        "state": avf.verdict.state,
+        "digits": avf.verdict.digits,
+        "reason": avf.reason,
+        "stages": avf.stages,
+        "reduced_stages": avf.reduced_stages,
+        "kept_stages": list(avf.kept),
+        "s_min": avf.s_min,
+        "notes": avf.notes,
+    }
+
+
+def _certificate_doc(certificate: Any) -> dict[str, Any] | None:
+    if certificate is None:
+        return None
+    return {
+        "kind": certificate.kind,  # avf / line_integral / stability / null
+        "sigma": certificate.sigma,
+        "state": certificate.verdict.state,
+        "digits": certificate.verdict.digits,
+        "reason": certificate.reason,
+    }
+
+
+def _order_doc(p: Any) -> dict[str, Any]:
+    return {
+        "order": p.order,
+        "vertices": p.order + 1,
+        "conditions": p.conditions,
+        "checked": p.checked,
+        "held": p.held,
+        "failed": p.failed,
+        "min_digits": p.min_digits,
     }
 
 
