@@ -98,61 +98,75 @@ def symmetry(red: Reduction) -> PropertyVerdict:
     n = len(b)
     if n == 0:
         return PropertyVerdict("symmetric", Verdict(FAILS), "every weight is zero: the method does not move")
-    like = sc.sample(A, b)
     adjoint = [[b[j] - A[i][j] for j in range(n)] for i in range(n)]
-    decisions: list[Verdict] = []
+    match = _StageMatch(A, adjoint, b)
+    image = match.search()
+    if image is None:
+        return PropertyVerdict(
+            "symmetric", Verdict(FAILS),
+            f"no stage permutation maps the adjoint method (1bᵀ − A, b){_after(red)} onto it"
+            + ("" if all(match.candidates) else ": the nodes Σb − c_i and weights do not match"),
+        )
+    verdict = combine(list(red.decisions) + match.decisions)
+    perm = tuple(red.kept[image[i]] + 1 for i in range(n))
+    return PropertyVerdict(
+        "symmetric", verdict,
+        f"the adjoint (1bᵀ − A, b) equals the method {_permutation_text(red, perm)}, {_how(verdict)}{_after(red)}",
+        permutation=perm,
+    )
 
-    def equal(x, y) -> bool:
+
+class _StageMatch:
+    """A stage permutation k = image[i] with ``adjoint[i][j] = A[image i][image j]``,
+    by backtracking over the stages whose weight, node and diagonal agree; equalities
+    that hold only to digits are kept in ``decisions``."""
+
+    def __init__(self, A: sc.Matrix, adjoint: sc.Matrix, b: sc.Vector):
+        self.A, self.adjoint, self.n = A, adjoint, len(b)
+        self.decisions: list[Verdict] = []
+        like = sc.sample(A, b)
+        c, c_adj = sc.row_sums(A, like), sc.row_sums(adjoint, like)
+        self.candidates = [
+            [k for k in range(self.n)
+             if self.equal(b[i], b[k]) and self.equal(c_adj[i], c[k]) and self.equal(adjoint[i][i], A[k][k])]
+            for i in range(self.n)
+        ]
+        self.order = sorted(range(self.n), key=lambda i: len(self.candidates[i]))
+        self.image: dict[int, int] = {}
+        self.used: set[int] = set()
+
+    def equal(self, x: sc.Scalar, y: sc.Scalar) -> bool:
         v = sc.verdict(x - y)
         if v.state == FAILS:
             return False
         if v.state != HOLDS:
-            decisions.append(v)
+            self.decisions.append(v)
         return True
 
-    c = sc.row_sums(A, like)
-    c_adj = sc.row_sums(adjoint, like)
-    candidates = [
-        [k for k in range(n) if equal(b[i], b[k]) and equal(c_adj[i], c[k]) and equal(adjoint[i][i], A[k][k])]
-        for i in range(n)
-    ]
-    order = sorted(range(n), key=lambda i: len(candidates[i]))
-    image: dict[int, int] = {}
-    used: set[int] = set()
+    def search(self) -> dict[int, int] | None:
+        return self.image if self._extend(0) else None
 
-    def extend(pos: int) -> bool:
-        if pos == n:
+    def _extend(self, pos: int) -> bool:
+        if pos == self.n:
             return True
-        i = order[pos]
-        for k in candidates[i]:
-            if k in used:
+        i, A, adj, image = self.order[pos], self.A, self.adjoint, self.image
+        for k in self.candidates[i]:
+            if k in self.used:
                 continue
-            if all(equal(adjoint[i][j], A[k][image[j]]) and equal(adjoint[j][i], A[image[j]][k]) for j in image):
+            if all(self.equal(adj[i][j], A[k][image[j]]) and self.equal(adj[j][i], A[image[j]][k]) for j in image):
                 image[i] = k
-                used.add(k)
-                if extend(pos + 1):
+                self.used.add(k)
+                if self._extend(pos + 1):
                     return True
                 del image[i]
-                used.discard(k)
+                self.used.discard(k)
         return False
 
-    if not extend(0):
-        return PropertyVerdict(
-            "symmetric", Verdict(FAILS),
-            f"no stage permutation maps the adjoint method (1bᵀ − A, b){_after(red)} onto it"
-            + ("" if any(candidates) and all(candidates) else ": the nodes Σb − c_i and weights do not match"),
-        )
-    verdict = combine(list(red.decisions) + decisions)
-    perm = tuple(red.kept[image[i]] + 1 for i in range(n))
+
+def _permutation_text(red: Reduction, perm: tuple[int, ...]) -> str:
     stages = tuple(k + 1 for k in red.kept)
     if perm == tuple(reversed(stages)):
-        how = "with the stages in reversed order"
-    elif perm == stages:
-        how = "with the stages in the same order"
-    else:
-        how = "under the stage permutation " + ", ".join(f"{a}→{p}" for a, p in zip(stages, perm))
-    return PropertyVerdict(
-        "symmetric", verdict,
-        f"the adjoint (1bᵀ − A, b) equals the method {how}, {_how(verdict)}{_after(red)}",
-        permutation=perm,
-    )
+        return "with the stages in reversed order"
+    if perm == stages:
+        return "with the stages in the same order"
+    return "under the stage permutation " + ", ".join(f"{a}→{p}" for a, p in zip(stages, perm))
