@@ -5,13 +5,14 @@ bench``), for Python callers.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
 from rkcheck.api.settings import guard
 from rkcheck.api.tableaux import TableauLike
 from rkcheck.api.verification import UNSET, _option, check_flags
+from rkcheck.energy.double_bush import Kernel
 from rkcheck.errors import OptionError
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
@@ -27,7 +28,6 @@ from rkcheck.options import (
 )
 
 if TYPE_CHECKING:
-    from rkcheck.energy.double_bush import KernelResult
     from rkcheck.studies.accuracy import BenchRow, PerturbResult, PerturbRow
 
 
@@ -47,60 +47,6 @@ def _degree_and_order(tab: Tableau, degree: Any, order: Any) -> tuple[int | None
 
 
 # ------------------------------------------------------------------ kernel
-
-
-@dataclass(frozen=True)
-class Kernel:
-    """What :func:`kernel` gives: the rank of the double-bush map ``M`` on s×s matrices,
-    a basis of ``ker M`` and of its part with zero row sums (each matrix scaled so that
-    its largest entry is 1), exact (Fractions or number-field elements) or numerical
-    (mpmath, with the singular values around the cut)."""
-
-    result: "KernelResult"
-    tableau: Tableau | None
-    rule: str | None
-
-    @property
-    def s(self) -> int:
-        return self.result.s
-
-    @property
-    def degree(self) -> int:
-        return self.result.degree
-
-    @property
-    def exact(self) -> bool:
-        """Whether the rank is exact (rational or number-field elimination)."""
-        return self.result.exact
-
-    @property
-    def rank(self) -> int:
-        return self.result.rank
-
-    @property
-    def dimension(self) -> int:
-        """dim ker M = s² − rank M."""
-        return self.s * self.s - self.rank
-
-    @property
-    def conditions(self) -> int:
-        """Rows of M: the double-bush conditions 1 ≤ p < q ≤ m−1."""
-        return self.result.conditions
-
-    @property
-    def basis(self) -> list[list[list[Any]]]:
-        """A basis of ker M, as s×s matrices."""
-        return self.result.kernel
-
-    @property
-    def zero_row_sum(self) -> list[list[list[Any]]]:
-        """A basis of ker M ∩ {N·1 = 0}: the directions A → A + βN that keep every
-        condition linear in A (seed Lemma "onedim")."""
-        return self.result.zero_row_sum
-
-    def __repr__(self) -> str:
-        return (f"<Kernel: s = {self.s}, degree {self.degree}, rank {self.rank}, dim ker {self.dimension}, "
-                f"{len(self.zero_row_sum)} with zero row sums{'' if self.exact else ' (numerical)'}>")
 
 
 def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", tableau: TableauLike | None = None,
@@ -131,7 +77,7 @@ def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", table
             raise OptionError("give --stages/-s (or --tableau FILE)")
         tab, rule_name = None, rule
         b, c, exact = rule_values(rule, stages, dps)
-    return Kernel(kernel_of(b, c, degree, exact, dps), tab, rule_name)
+    return replace(kernel_of(b, c, degree, exact, dps), tableau=tab, rule=rule_name)
 
 
 # ------------------------------------------------------------------ perturb

@@ -136,4 +136,4 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
         title = f"double-bush map of {tab.name} (b and c = A·1), degree {degree}"
     else:
         title = f"double-bush map at the {stages}-point {rule} rule, degree {degree}"
-    render_kernel(result.result, stdout_console(), title)
+    render_kernel(result, stdout_console(), title)

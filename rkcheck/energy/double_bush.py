@@ -130,17 +130,36 @@ def nullspace_numeric(rows: list[list[Any]], n: int, dps: int) -> NumericRank:
 # ------------------------------------------------------------------ results
 
 
-@dataclass
-class KernelResult:
+@dataclass(frozen=True)
+class Kernel:
+    """The rank of the double-bush map ``M`` on s×s matrices at a quadrature rule, a basis
+    of ``ker M`` and of its part with zero row sums (each matrix scaled so that its
+    largest entry is 1), exact (Fractions or number-field elements) or numerical (mpmath,
+    with the singular values around the cut); ``tableau`` or ``rule`` says where the rule
+    came from."""
+
     s: int
     degree: int
-    exact: bool
+    exact: bool  # whether the rank is exact (rational or number-field elimination)
     rank: int
-    conditions: int
-    kernel: list[list[list[Any]]]  # basis matrices
-    zero_row_sum: list[list[list[Any]]]  # basis of ker M ∩ {N·1 = 0}
+    conditions: int  # rows of M: the double-bush conditions 1 ≤ p < q ≤ m−1
+    basis: list[list[list[Any]]]  # a basis of ker M, as s×s matrices
+    # a basis of ker M ∩ {N·1 = 0}: the directions A → A + βN that keep every condition
+    # linear in A (seed Lemma "onedim")
+    zero_row_sum: list[list[list[Any]]]
     singular_values: list[tuple[int, Any]] | None = None  # around the cut (numeric)
     zero_row_sum_singular_values: list[tuple[int, Any]] | None = None
+    tableau: Any = None
+    rule: str | None = None
+
+    @property
+    def dimension(self) -> int:
+        """dim ker M = s² − rank M."""
+        return self.s * self.s - self.rank
+
+    def __repr__(self) -> str:
+        return (f"<Kernel: s = {self.s}, degree {self.degree}, rank {self.rank}, dim ker {self.dimension}, "
+                f"{len(self.zero_row_sum)} with zero row sums{'' if self.exact else ' (numerical)'}>")
 
 
 def _matrix(v: list[Any], s: int) -> list[list[Any]]:
@@ -153,7 +172,7 @@ def _normalise(v: list[Any]) -> list[Any]:
     return [x / big for x in v] if big != 0 else v
 
 
-def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps: int = 50) -> KernelResult:
+def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps: int = 50) -> Kernel:
     """Rank and kernel of the double-bush map at the rule (b, c), and the zero-row-sum part."""
     s = len(b)
     n = s * s
@@ -168,8 +187,8 @@ def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps:
     if exact:
         rank, basis = nullspace_exact(rows, n)
         _, zr = nullspace_exact(stacked, n)
-        return KernelResult(s, degree, True, rank, len(rows),
-                            [_matrix(_normalise(v), s) for v in basis], [_matrix(_normalise(v), s) for v in zr])
+        return Kernel(s, degree, True, rank, len(rows),
+                      [_matrix(_normalise(v), s) for v in basis], [_matrix(_normalise(v), s) for v in zr])
     import mpmath
 
     num = nullspace_numeric(rows, n, dps)
@@ -177,8 +196,8 @@ def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps:
     with mpmath.workdps(dps + 10):  # normalise at the working precision, not at 15 digits
         kernel = [_matrix(_normalise(v), s) for v in num.basis]
         zero_row_sum = [_matrix(_normalise(v), s) for v in num_zr.basis]
-    return KernelResult(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(),
-                        num_zr.around_cut())
+    return Kernel(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(),
+                  num_zr.around_cut())
 
 
 def rule_values(rule_name: str, s: int, dps: int):

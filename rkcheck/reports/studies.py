@@ -113,7 +113,7 @@ def render_kernel(res, console: Console, title: str) -> None:
     if res.singular_values:
         around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.singular_values)
         console.print(f"singular values around the cut: {around}")
-    for k, N in enumerate(res.kernel, start=1):
+    for k, N in enumerate(res.basis, start=1):
         console.print(Text(f"ker M basis N_{k}:", style="bold"))
         _matrix(N, console)
     console.print(f"ker M ∩ {{N·1 = 0}}: dimension {len(res.zero_row_sum)}")

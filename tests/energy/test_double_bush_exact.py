@@ -18,7 +18,7 @@ def test_gauss_m_2s_rank_and_kernel_exactly(s):
     assert exact  # sqrt(3), sqrt(15), nested roots for s = 4: all exact now
     k = kernel_of(b, c, 2 * s, True)
     assert k.rank == s * s - 1
-    (N,) = k.kernel
+    (N,) = k.basis
     # N ∝ (1 − c)bᵀ: every 2×2 minor of N against (1 − c)bᵀ vanishes exactly
     K = [[(1 - ci) * bj for bj in b] for ci in c]
     flat_n = [x for row in N for x in row]

@@ -41,12 +41,12 @@ def test_gauss_even_case_rank_and_kernel(s):
     # seed §3: m = 2s, Gauss rule: rank M = s² − 1, ker M spanned by (1 − c)bᵀ
     b, c, exact = rule_values("gauss", s, 50)
     k = kernel_of(b, c, 2 * s, exact, 50)
-    assert k.rank == s * s - 1 and len(k.kernel) == 1
+    assert k.rank == s * s - 1 and len(k.basis) == 1
     import mpmath
 
     with mpmath.workdps(80):
         expected = [[(1 - ci) * bj for bj in b] for ci in c]
-    assert proportional(k.kernel[0], expected, 1e-40)
+    assert proportional(k.basis[0], expected, 1e-40)
     if not exact:  # the gap: a clear cut between O(1e-6..1e-1) and O(1e-50)
         (_, last_nonzero), (_, first_zero) = k.singular_values[-2], k.singular_values[-1]
         assert last_nonzero > 1e-8 and first_zero < 1e-45
