@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 from rkcheck.api.tableaux import TableauLike, as_tableau
 from rkcheck.api.verification import _option
+from rkcheck.dynamics.simulate import WorkPrecision
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
@@ -27,8 +28,7 @@ from rkcheck.options import (
 
 if TYPE_CHECKING:
     from rkcheck.dynamics.hamiltonians import Hamiltonian
-    from rkcheck.dynamics.simulate import Agreement, EnergyFit, WorkRow
-    from rkcheck.dynamics.simulate import WorkPrecision as WorkPrecisionRuns
+    from rkcheck.dynamics.simulate import Agreement, EnergyFit
 
 #: The step counts ``work_precision`` runs by default (step sizes T/N).
 WORKPREC_STEPS: tuple[int, ...] = (20, 40, 80, 160, 320, 640)
@@ -178,32 +178,6 @@ def empirical_energy_order(tableau: TableauLike, problem: "str | Hamiltonian", *
 # ------------------------------------------------------------------ work–precision
 
 
-@dataclass(frozen=True)
-class WorkPrecision:
-    """What :func:`work_precision` gives: one row per tableau and step count with
-    ``name``, ``steps``, ``h``, ``seconds``, ``error`` (max norm at T against the
-    reference solution) and ``energy_error`` (max |ΔH| over the run)."""
-
-    problem: "Hamiltonian"
-    result: "WorkPrecisionRuns"
-
-    @property
-    def rows(self) -> "list[WorkRow]":
-        return self.result.rows
-
-    @property
-    def T(self) -> Fraction:
-        return self.result.T
-
-    @property
-    def reference(self) -> str:
-        """How the reference solution was computed."""
-        return self.result.reference
-
-    def __repr__(self) -> str:
-        return f"<WorkPrecision on {self.problem.name}, T = {self.T}: {len(self.rows)} runs>"
-
-
 def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian", *, T: str | int | Fraction = 10,
                    steps: str | Sequence[int] = WORKPREC_STEPS, max_stages: int = DEFAULT_MAX_STAGES) -> WorkPrecision:
     """Work against precision, as ``rkcheck workprec`` measures it: each tableau runs in
@@ -220,7 +194,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     if isinstance(tableaux, (str, os.PathLike, Tableau)):
         raise OptionError("expected a list of tableaux", "tableaux")
     tabs = [as_tableau(t, max_stages) for t in tableaux]
-    return WorkPrecision(ham, run(tabs, ham, T_value, counts))
+    return run(tabs, ham, T_value, counts)
 
 
 __all__ = ["EnergyOrderFit", "Simulation", "WorkPrecision", "empirical_energy_order", "hamiltonian", "simulate", "work_precision"]

@@ -26,9 +26,10 @@ from rkcheck.options import (
     parse_integer,
     resolve_check_options,
 )
+from rkcheck.studies.accuracy import Perturbation
 
 if TYPE_CHECKING:
-    from rkcheck.studies.accuracy import BenchRow, PerturbResult, PerturbRow
+    from rkcheck.studies.accuracy import BenchRow
 
 
 #: The working precisions ``bench`` compares by default, and those ``perturb`` reports.
@@ -83,53 +84,6 @@ def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", table
 # ------------------------------------------------------------------ perturb
 
 
-@dataclass(frozen=True)
-class Perturbation:
-    """What :func:`perturb` gives: for each ε, max |R| over the failing conditions of
-    ``A + εD``, the first failing order and which backends certify a failure; the fitted
-    slope of log max|R| against log ε; each backend's detection threshold ε*."""
-
-    tableau: Tableau
-    degree: int | None
-    order: int
-    result: "PerturbResult"
-
-    @property
-    def rows(self) -> "list[PerturbRow]":
-        return self.result.rows
-
-    @property
-    def slope(self) -> float | None:
-        """1 for a generic direction, 2 along the kernel (the seed's quadratic failure)."""
-        return self.result.slope
-
-    @property
-    def thresholds(self) -> dict[str, Fraction | None]:
-        """Smallest ε at which each backend (``float64``, ``dps:D``, ``exact``) certifies a failure."""
-        return self.result.thresholds
-
-    @property
-    def floors(self) -> dict[str, float]:
-        return self.result.floors
-
-    @property
-    def direction(self) -> str:
-        """The direction D, described."""
-        return self.result.direction
-
-    @property
-    def backends(self) -> list[str]:
-        return self.result.backends
-
-    @property
-    def warnings(self) -> list[str]:
-        return self.result.warnings
-
-    def __repr__(self) -> str:
-        slope = "—" if self.slope is None else f"{self.slope:.3f}"
-        return f"<Perturbation of {self.tableau.name!r}: {len(self.rows)} ε values, slope {slope}>"
-
-
 def _eps_list(eps: str | Sequence[Any]) -> list[Fraction]:
     from rkcheck.studies.accuracy import parse_eps
 
@@ -164,7 +118,7 @@ def perturb(tableau: TableauLike, direction: str, *, degree: int | str | None = 
     dps_values = _option(lambda: parse_dps_list(dps))
     seed = _option(lambda: parse_integer(seed, "seed"))
     D, desc = _option(lambda: make_direction(tab, direction, deg, seed, direction_dps(eps_values, dps_values)))
-    return Perturbation(tab, deg, N, perturb_sweep(tab, D, desc, eps_values, deg, N, dps_values))
+    return perturb_sweep(tab, D, desc, eps_values, deg, N, dps_values)
 
 
 # ------------------------------------------------------------------ bench

@@ -108,9 +108,9 @@ def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None
 
     with busy("work–precision runs"):
         wp = work_precision(files, problem_spec, T=T_text, steps=steps_text, max_stages=max_stages)
-    render_workprec(wp.result, wp.problem, stdout_console())
+    render_workprec(wp, wp.problem, stdout_console())
     if chart:
         from rkcheck.reports.charts import workprec_chart
 
-        workprec_chart(wp.result, f"work–precision on {wp.problem.name}, T = {wp.T}", chart)
+        workprec_chart(wp, f"work–precision on {wp.problem.name}, T = {wp.T}", chart)
         click.echo(f"chart written to {chart}")

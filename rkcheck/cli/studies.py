@@ -87,7 +87,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
     tab = load_tableau(file)
     with busy("perturbing"):
         result = run_perturb(tab, direction, **flag_values("degree", "order"), eps=eps_text, dps=dps_text, seed=seed)
-    res, deg, N = result.result, result.degree, result.order
+    res, deg, N = result, result.degree, result.order
     title = f"{tab.name} + ε·D: degree {'none' if deg is None else deg}, order {N}"
     if chart:
         from rkcheck.reports.charts import perturb_chart

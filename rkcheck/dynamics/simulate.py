@@ -271,9 +271,19 @@ class WorkRow:
 
 @dataclass
 class WorkPrecision:
+    """Work against precision: one row per tableau and step count with ``name``,
+    ``steps``, ``h``, ``seconds``, ``error`` (max norm at T against the reference
+    solution) and ``energy_error`` (max |ΔH| over the run); ``reference`` says how the
+    reference solution was computed."""
+
     rows: list[WorkRow] = field(default_factory=list)
     T: Fraction = Fraction(1)
     reference: str = ""
+    problem: Any = None
+
+    def __repr__(self) -> str:
+        name = getattr(self.problem, "name", "a problem")
+        return f"<WorkPrecision on {name}, T = {self.T}: {len(self.rows)} runs>"
 
 
 def reference_solution(ham, y0, T: Fraction, dps: int = 20, steps: int = 160):
@@ -297,7 +307,7 @@ def work_precision(tableaux: list, ham, T: Fraction, step_counts: list[int], y0=
                    ref_steps: int = 160) -> WorkPrecision:
     y0 = y0 or start_point(ham)
     ref = reference_solution(ham, y0, T, steps=ref_steps)
-    out = WorkPrecision(T=T, reference=f"6-stage Gauss (order 12) at 20 digits with {ref_steps} steps")
+    out = WorkPrecision(T=T, reference=f"6-stage Gauss (order 12) at 20 digits with {ref_steps} steps", problem=ham)
     ctx = Float64()
     for tab in tableaux:
         method = RKMethod.from_tableau(tab, ctx)

@@ -24,12 +24,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rkcheck.version import __version__
 from rkcheck.trees.rooted import (
     bracket,
     canonical_level_sequence,
     children_of_level_sequence,
 )
+from rkcheck.version import __version__
 
 LANGUAGES = ("python", "sympy", "julia", "matlab", "latex")
 _LETTERS = "ijklmnpqruvwxyzefgh"  # summation indices (no a, b, c, s, t, o: they mean something)

@@ -13,8 +13,8 @@ import json
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
-from rkcheck.version import __version__
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
+from rkcheck.version import __version__
 
 CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",

@@ -18,6 +18,7 @@ import random
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Any
 
 from rkcheck.energy.verdicts import (
     FAILS,
@@ -249,14 +250,27 @@ class PerturbRow:
 
 
 @dataclass
-class PerturbResult:
+class Perturbation:
+    """What a perturbation sweep gives: for each ε, max |R| over the failing conditions
+    of ``A + εD``, the first failing order and which backends certify a failure; the
+    fitted slope of log max|R| against log ε (1 for a generic direction, 2 along the
+    kernel: the seed's quadratic failure); each backend's detection threshold ε*."""
+
     rows: list[PerturbRow]
     slope: float | None
     thresholds: dict[str, Fraction | None]  # smallest ε at which each backend certifies a failure
     floors: dict[str, float]  # each backend's detection floor: its radius level at ε = 0
-    direction: str
+    direction: str  # the direction D, described
     backends: list[str]
     warnings: list[str] = field(default_factory=list)
+    tableau: Any = None
+    degree: int | None = None
+    order: int = 0
+
+    def __repr__(self) -> str:
+        slope = "—" if self.slope is None else f"{self.slope:.3f}"
+        name = getattr(self.tableau, "name", "a tableau")
+        return f"<Perturbation of {name!r}: {len(self.rows)} ε values, slope {slope}>"
 
 
 def fit_slope(xs: list[float], ys: list[float]) -> float | None:
@@ -296,7 +310,7 @@ def base_failure_warning(results, degree: int | None, order: int) -> str | None:
 
 
 def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degree: int | None, order: int,
-                  dps_list=(15, 50), reading: Reading = DEFAULT_READING) -> PerturbResult:
+                  dps_list=(15, 50), reading: Reading = DEFAULT_READING) -> Perturbation:
     """The sweep of the module docstring.  The reference backend (exact when the tableau
     is, else balls at :func:`reference_dps`) gives max|R| and the first failing order."""
     listing = condition_listing(order, degree)
@@ -340,4 +354,4 @@ def perturb_sweep(tableau: Tableau, D, desc: str, eps_list: list[Fraction], degr
         res = base if name == names[0] else (
             base_reference if name == reference else run(tableau, name))
         floors[name] = max(float(abs(e.mid) + e.rad) for e, _ in res.values()) if res else 0.0
-    return PerturbResult(rows, slope, thresholds, floors, desc, names, warnings)
+    return Perturbation(rows, slope, thresholds, floors, desc, names, warnings, tableau, degree, order)
