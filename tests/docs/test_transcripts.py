@@ -138,6 +138,14 @@ def test_the_docs_have_transcripts():
     assert {t.page.name for t in ALL} >= {"README.md", "verify.md", "scan.md"}
 
 
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(REPO)))
+def test_no_transcript_hides_from_the_test(page):
+    # a block with a prompt anywhere but on its first line would not be found above
+    for lineno, body in fenced_blocks(page.read_text(encoding="utf-8")):
+        if any(line.startswith("$ ") for line in body):
+            assert body[0].startswith("$ "), f"{page.name}:{lineno}: a transcript starts with its first command"
+
+
 @pytest.mark.parametrize("transcript", ALL, ids=lambda t: t.name)
 def test_transcript_is_the_real_output(transcript):
     for command in transcript.commands:
