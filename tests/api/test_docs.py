@@ -14,9 +14,8 @@ PAGES = [p for p in [REPO / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
          if ">>>" in p.read_text(encoding="utf-8")]
 
 
-def test_the_api_pages_have_examples():
-    names = {p.name for p in PAGES}
-    assert {"README.md", "api.md"} <= names
+def test_the_api_page_has_examples():
+    assert "api.md" in {p.name for p in PAGES}
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(REPO)))
