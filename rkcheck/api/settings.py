@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 def project_config() -> ProjectConfig:
     """``[tool.rkcheck]`` of the nearest ``pyproject.toml`` above the working directory
     (empty when there is none); a bad table raises :class:`~rkcheck.errors.UserError`
-    naming the file and the key (README "Configuration")."""
+    naming the file and the key (docs/commands/scan.md, "Configuration")."""
     from rkcheck.io.config import load_config
 
     return load_config()

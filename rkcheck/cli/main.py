@@ -147,7 +147,7 @@ def _run(argv: list[str] | None) -> None:
         click.echo("rkcheck: interrupted", err=True)
         sys.exit(EXIT_INTERRUPTED)
     except MemoryError:
-        _error("out of memory; lower --order, --degree or --dps (README \"Errors and limits\")", EXIT_USAGE)
+        _error("out of memory; lower --order, --degree or --dps (docs/errors.md)", EXIT_USAGE)
     except OSError as err:  # -o into a missing folder, a full disk, ...: the environment, not a bug
         where = f"{err.filename}: " if getattr(err, "filename", None) else ""
         _error(f"{where}{err.strerror or err}", EXIT_USAGE)
@@ -155,7 +155,7 @@ def _run(argv: list[str] | None) -> None:
         if "integer string conversion" not in str(err):
             _internal(err)
         _error(f"a number has more than {MAX_PRINTED_DIGITS:,} digits, too many to print "
-               "(README \"Errors and limits\")", EXIT_USAGE)
+               "(docs/errors.md)", EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
         _internal(err)
 

@@ -194,7 +194,7 @@ def fpu() -> Hamiltonian:
     return Hamiltonian("fpu", d, Polynomial(2 * d, {e: c for e, c in terms.items() if c}))
 
 
-#: The most monomials a random Hamiltonian may have (README "Errors and limits").
+#: The most monomials a random Hamiltonian may have (docs/errors.md).
 MAX_RANDOM_MONOMIALS = 20_000
 
 

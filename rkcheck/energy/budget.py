@@ -1,7 +1,7 @@
 """What a check will cost, before it starts, and refusing what does not fit.
 
 The counts come from :mod:`rkcheck.trees.counting` (exact, instant); the costs per tree
-were measured on the 2-core development machine (README "Performance": the benchmark
+were measured on the 2-core development machine (docs/performance.md: the benchmark
 prints the same figures) and are deliberately on the high side:
 
 * listing: about 0.6 µs per rooted tree (terms with up to N+1 vertices and the factor
@@ -69,7 +69,7 @@ class Budget:
 
 
 def count(n: int) -> str:
-    """``3 489 323``: thin groups of three, as the README prints counts."""
+    """``3 489 323``: thin groups of three, as the docs print counts."""
     return f"{n:,}".replace(",", " ")
 
 

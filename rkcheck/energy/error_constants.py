@@ -15,7 +15,7 @@ different free trees are linearly independent, so with energy order q the leadin
 
 Its size for a "typical" H is a norm of the residual vector of the first failing order.
 rkcheck reports the **Euclidean norm** ``C_m = (Σ R(t̄)²)^(1/2)`` over the conditions of
-order q+1 with maximum degree ≤ m (README "Decisions": it is the root-mean-square of the
+order q+1 with maximum degree ≤ m (docs/decisions.md: it is the root-mean-square of the
 leading coefficient when the elementary Hamiltonians are uncorrelated with equal spread,
 it does not depend on the sign convention of the designated rooting, and ``C_m²`` is an
 exact rational for a rational tableau).  For m = 2 there is one condition per order and

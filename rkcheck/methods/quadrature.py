@@ -408,7 +408,7 @@ def lagrange_integral(c: list[Interval], i: int, lo: Interval, hi: Interval, bit
     return (total / denom).round_out(bits + 32)
 
 
-#: largest |ζ| of a ``zeta:<value>`` rule (README "Errors and limits")
+#: largest |ζ| of a ``zeta:<value>`` rule (docs/errors.md)
 MAX_ZETA = 10**6
 
 

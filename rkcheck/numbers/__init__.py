@@ -1,4 +1,4 @@
-"""The number model (README "Numbers and verdicts"; docs/definitions.md §5).
+"""The number model (docs/verdicts.md; docs/definitions.md §5).
 
 Takes: the text of a tableau entry.  Gives: what the entry *is* — an exact rational,
 an enclosure with rational end points, or (with the proof-grade work) an element of a

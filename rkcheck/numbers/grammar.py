@@ -49,7 +49,7 @@ MAX_BITS = 200_000
 
 #: A decimal literal with at least this many significant digits is, by default, read as
 #: "rounded to its last digit" (definitions §5).  Shorter decimals such as 0.5, 0.25 or 0.125
-#: are read exactly: see README "Decimals" for why (a literal reading of the definition would make
+#: are read exactly: see docs/decisions.md for why (a literal reading of the definition would make
 #: ``0.5`` mean [0.45, 0.55]).
 ROUNDED_MIN_DIGITS = 6
 
@@ -59,7 +59,7 @@ _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _DIGITS = frozenset("0123456789")
 _NAME_START = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
 _SPACES = frozenset(" \t\r\n")
-#: Typographic operators read as their ASCII equivalents (README "The tableau file").
+#: Typographic operators read as their ASCII equivalents (docs/file-format.md).
 UNICODE_OPERATORS = {"\u2212": "-", "\u00d7": "*", "\u00b7": "*"}
 #: Functions and their number of arguments.  ``root(p, k)`` is the k-th smallest real root
 #: of the polynomial p in the variable :data:`ROOT_VARIABLE` (rational coefficients).
@@ -417,7 +417,7 @@ _INT_CHUNK = 4000
 
 
 def _int_of_digits(digits: str) -> int:
-    """``int(digits)`` for ASCII digit strings of any length (the README promises decimals
+    """``int(digits)`` for ASCII digit strings of any length (docs/file-format.md promises decimals
     of any length; Python refuses more than 4 300 digits in one conversion)."""
     if len(digits) <= _INT_CHUNK:
         return int(digits)

@@ -4,7 +4,7 @@ Colour (https://no-color.org, https://force-color.org): off with ``--no-color`` 
 non-empty ``NO_COLOR``; otherwise on with a non-empty ``FORCE_COLOR``; otherwise on only
 when the stream is a terminal.  An empty ``NO_COLOR=`` changes nothing, as no-color.org
 says.  Output that is not a terminal gets a fixed width, so that piped reports and the
-README examples are stable, and no trailing spaces (rich pads table rows to the width).
+docs' transcripts are stable, and no trailing spaces (rich pads table rows to the width).
 
 Settings are plain values passed to whoever prints (never module-global state), so that
 one run's ``--quiet`` cannot leak into the next run in the same process.

@@ -1,4 +1,4 @@
-"""Stable JSON documents (schema 1).  The keys documented in README "JSON schema" are a
+"""Stable JSON documents (schema 1).  The keys documented in docs/json-schema.md are a
 public interface: keys may be added, never renamed or removed without a schema bump."""
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The tableau's own properties in reports: the stage reduction, symplecticity, symmetry,
 the stability function R(z) and the energy error constant (text rows and JSON keys).
 
-JSON (added to ``summary``; keys are a public interface, see README "JSON schema"):
+JSON (added to ``summary``; keys are a public interface, see docs/json-schema.md):
 
 * ``reduction``: ``stages``, ``reduced_stages``, ``classes`` (1-based original stages of
   each reduced stage), ``dropped`` (dead stages), ``exact``;
