@@ -1,4 +1,4 @@
-"""The package layout is the one-way flow the README draws: each stage imports only the
+"""The package layout is the one-way flow docs/development.md draws: each stage imports only the
 stages before it.  Read from the source (every import statement, also inside
 functions), never by importing the package."""
 

@@ -82,7 +82,7 @@ def test_long_decimal_keeps_every_digit():
      ("2.000000", 7), ("0.0000", None), ("1234567", None)],
 )
 def test_which_decimals_are_rounded(text, digits):
-    # SPEC §5 with the README's decision: decimals with >= 6 significant digits are
+    # definitions §5 with the decision in docs/decisions.md: decimals with >= 6 significant digits are
     # rounded; shorter ones and integers are exact.
     assert Entry.parse(text).rounded_digits == digits
 
