@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 from rkcheck.energy.check import CheckOptions
 from rkcheck.energy.error_constants import error_constant
+from rkcheck.energy.verdicts import State
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
 
@@ -33,9 +34,9 @@ class CatalogRow:
 
 
 def _property_cell(pv) -> str:
-    if pv.verdict.state == "fails":
+    if pv.verdict.state is State.FAILS:
         return "no"
-    return "yes" if pv.verdict.state == "holds" else "yes†"
+    return "yes" if pv.verdict.state is State.HOLDS else "yes†"
 
 
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:

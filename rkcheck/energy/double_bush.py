@@ -269,12 +269,3 @@ def tableau_rule(tableau, dps: int):
             return mpmath.mpf(x.mid.numerator) / x.mid.denominator
 
         return [mp(x) for x in b], [sum((mp(x) for x in row), mpmath.mpf(0)) for row in A], False
-
-
-def seed_N(zeta: Any, b: Sequence[Any], c: Sequence[Any]) -> list[list[Any]]:
-    """The seed's s = 2, m = 3 direction N = ((ζ−1)1 − 2ζc) bᵀ(I − 2C)."""
-    if isinstance(zeta, Fraction) and not isinstance(b[0], Fraction) and not hasattr(b[0], "field"):
-        import mpmath
-
-        zeta = mpmath.mpf(zeta.numerator) / zeta.denominator
-    return [[((zeta - 1) - 2 * zeta * c[i]) * b[j] * (1 - 2 * c[j]) for j in range(len(b))] for i in range(len(b))]

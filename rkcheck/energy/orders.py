@@ -69,8 +69,9 @@ def unbounded_table() -> TreeTable:
     return TreeTable(1)
 
 
-class _Weights:
-    """Φ, ψ and a of every tree of a growing table, in one number context."""
+class TreeWeights:
+    """Φ, ψ and a of every tree of a growing table, in one number context (for the
+    classical order conditions ``a(t) = 1/γ(t)``)."""
 
     def __init__(self, ctx: NumberContext, s: int):
         self.ctx, self.s, self.done = ctx, s, 1
@@ -129,7 +130,7 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     verdicts: list[Verdict] = []
     if values.backend is Backend.EXACT:
         scaled = values.scaled
-        channels: list[tuple[int, int, _Weights]] = []
+        channels: list[tuple[int, int, TreeWeights]] = []
         for p in range(1, max_order + 1):
             table.grow_to(p)
             ids = np.arange(table.first[p], table.first[p + 1])
@@ -146,7 +147,7 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
             while len(channels) < sum(len(r) for _, r in primes):
                 q, roots = primes[len({c[0] for c in channels})]
                 for r in roots:
-                    channels.append((q, r, _Weights(scaled.channel(q, r), s)))
+                    channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
             failing = np.zeros(len(ids), dtype=bool)
             for q, r, weights in channels:
                 a = weights.extend(table, p)
@@ -158,7 +159,7 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
             verdicts.append(Verdict(HOLDS))
         return OrderResult(max_order, max_order, combine(verdicts))
     balls: EnclosingContext = ball_context(values)
-    weights = _Weights(balls, s)
+    weights = TreeWeights(balls, s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
         ids = np.arange(table.first[p], table.first[p + 1])

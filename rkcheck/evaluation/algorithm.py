@@ -35,7 +35,6 @@ import numpy as np
 
 from rkcheck.evaluation.protocols import NumberContext
 from rkcheck.trees.listing import ConditionListing
-from rkcheck.trees.table import TreeTable
 
 
 class EvaluationInterrupted(KeyboardInterrupt):
@@ -122,26 +121,3 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
 
 
 _TERM_CHUNK = 1 << 20
-
-
-def tree_weights(table: TreeTable, ctx: NumberContext, s: int, top: int) -> Any:
-    """``a(t)`` for every tree with at most ``top`` vertices (for the classical order
-    conditions ``a(t) = 1/γ(t)``)."""
-    first = table.first
-    n_all = first[top + 1]
-    phi = ctx.vectors(n_all, s)
-    psi = ctx.vectors(n_all, s)
-    a = ctx.scalars(n_all)
-    phi0 = ctx.ones(1, s)
-    ctx.put(phi, 0, phi0)
-    ctx.put(psi, 0, ctx.matvec(phi0))
-    ctx.put(a, 0, ctx.dot(phi0))
-    left, right = table.left, table.right
-    for n in range(2, top + 1):
-        lo, hi = first[n], first[n + 1]
-        if hi > lo:
-            phi_n = ctx.mul(ctx.take(phi, left[lo:hi]), ctx.take(psi, right[lo:hi]))
-            ctx.put(phi, lo, phi_n)
-            ctx.put(psi, lo, ctx.matvec(phi_n))
-            ctx.put(a, lo, ctx.dot(phi_n))
-    return a

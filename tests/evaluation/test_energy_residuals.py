@@ -45,7 +45,8 @@ import pytest
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
-from rkcheck.evaluation.algorithm import condition_sums, tree_weights
+from rkcheck.energy.orders import TreeWeights
+from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
@@ -472,9 +473,11 @@ def test_avf_identity_for_c_bT(p, seed):
     A = [[ci * bj for bj in b] for ci in c]
     table = TreeTable(7)
     ctx = BallContext([[Interval.point(x) for x in row] for row in A], [Interval.point(x) for x in b], bits=300)
-    weights = ctx.enclosures(tree_weights(table, ctx, p, 7))
+    tree_weights = TreeWeights(ctx, p)
     n_equal = n_diff = 0
     for n in range(1, 8):
+        order_weights = ctx.enclosures(tree_weights.extend(table, n))
+        weights = dict(zip(table.ids_of_order(n), order_weights))
         for t in table.ids_of_order(n):
             seq = table.level_sequence(t)
             a = math.prod(w[k] for k in child_counts(seq))  # the closed form, exact
