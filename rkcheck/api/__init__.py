@@ -26,6 +26,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time __getattr__ loads each 
     from rkcheck.api.batch import *  # noqa: F403
     from rkcheck.api.dynamics import *  # noqa: F403
     from rkcheck.api.errors import *  # noqa: F403
+    from rkcheck.api.families import *  # noqa: F403
     from rkcheck.api.interop import *  # noqa: F403
     from rkcheck.api.methods import *  # noqa: F403
     from rkcheck.api.studies import *  # noqa: F403
@@ -35,7 +36,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time __getattr__ loads each 
     from rkcheck.api.verification import *  # noqa: F403
 
 #: The submodules whose ``__all__`` make the public API, cheapest to import first.
-MODULES = ("errors", "types", "tableaux", "verification", "trees", "methods", "interop", "batch", "studies",
+MODULES = ("errors", "types", "tableaux", "verification", "trees", "methods", "families", "interop", "batch", "studies",
            "dynamics")
 
 

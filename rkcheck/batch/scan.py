@@ -62,6 +62,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
         parse_document,
         read_text,
     )
+    from rkcheck.methods.tableau import Tableau
 
     t0 = time.perf_counter()
     out = FileOutcome(path)
@@ -81,8 +82,11 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             if not _is_tableau_document(data):
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
                 return out
-            tab = build_tableau(data, path, max_stages)
-            tab = tab.replace(info=tab.info.replace(lines=out.lines))
+            built = build_tableau(data, path, max_stages)
+            if not isinstance(built, Tableau):
+                out.status, out.error = "skipped", "a family with free [parameters] (check it with rkcheck solve)"
+                return out
+            tab = built.replace(info=built.info.replace(lines=out.lines))
         out.result = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
         out.status = "failed" if out.result.failed else "ok"
     except UserError as err:

@@ -23,7 +23,7 @@ import re
 import sys
 import tomllib
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
@@ -31,6 +31,10 @@ from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
+
+if TYPE_CHECKING:
+    from rkcheck.methods.parametric import Family
+
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     INPUT_FORMATS,
@@ -39,7 +43,7 @@ from rkcheck.options import (
 )
 
 MAX_FILE_BYTES = 16 * 1024 * 1024
-KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
+KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")
@@ -247,7 +251,7 @@ def build_tableau(
     data: dict[str, Any],
     source: str,
     max_stages: int = DEFAULT_MAX_STAGES,
-) -> Tableau:
+) -> "Tableau | Family":
     """Validate a parsed document and build the tableau (errors carry the source)."""
     try:
         return _build(data, source, max_stages)
@@ -259,7 +263,7 @@ def _build(
     data: dict[str, Any],
     source: str,
     max_stages: int,
-) -> Tableau:
+) -> "Tableau | Family":
     warnings: list[str] = []
     for key in data:
         if key not in KNOWN_TABLES:
@@ -301,6 +305,8 @@ def _build(
     for key in tab:
         if key not in ("A", "b", "c"):
             warnings.append(f"unknown key tableau.{printable(key)} ignored (known: A, b, c)")
+    if "parameters" in data:
+        return _build_family(data, tab, name, info.replace(warnings=tuple(warnings)), max_stages)
     constants = _constants(_table(data, "constants"))
     A, b, c = _entries(tab, constants, max_stages)
     bare = [e for e in (*(x for row in A for x in row), *b, *(c or ())) if e.bare_number and _is_float_text(e.text)]
@@ -310,6 +316,51 @@ def _build(
             "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"
         )
     return Tableau(A=A, b=b, c=c, name=name, info=info.replace(constants=constants, warnings=tuple(warnings)))
+
+
+def _build_family(data: dict[str, Any], tab: dict[str, Any], name: str, info: MethodInfo,
+                  max_stages: int) -> "Family":
+    """A tableau with free parameters (:mod:`rkcheck.methods.parametric`)."""
+    from rkcheck.methods.parametric import build_family, parse_parameters
+
+    raw_constants = _table(data, "constants")
+    parameters = parse_parameters(_table(data, "parameters"), raw_constants)
+    constants: dict[str, ex.Expr] = {}
+    for cname, value in raw_constants.items():
+        place = f"constants.{cname}"
+        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", cname) or cname in ex.FUNCTIONS:
+            raise UserError("a constant's name must be an identifier (letters, digits, _) other than a function name (sqrt, root)", place)
+        text, _ = _entry_text(value, place)
+        try:
+            constants[cname] = ex.parse(text)
+        except UserError as err:
+            raise err.located(place) from None
+    if "c" in tab:
+        info = info.replace(warnings=info.warnings + ("tableau.c ignored: a family's nodes are its row sums",))
+    A, b = _entry_texts(tab, max_stages)
+    return build_family(name, parameters, A, b, constants, info)
+
+
+def _entry_texts(tab: dict[str, Any], max_stages: int) -> tuple[list[list[str]], list[str]]:
+    """A and b of a ``[tableau]`` table as texts, shape validated."""
+    if "A" not in tab:
+        raise UserError("missing A", "tableau")
+    if "b" not in tab:
+        raise UserError("missing b", "tableau")
+    rows = tab["A"]
+    if not isinstance(rows, list) or not rows:
+        raise UserError("expected a non-empty list of rows", "A")
+    s = len(rows)
+    if s > max_stages:
+        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages)", "A")
+    A = []
+    for i, row in enumerate(rows, start=1):
+        if not isinstance(row, list) or len(row) != s:
+            raise UserError(f"expected a row of {s} entries (A must be square)", f"A[{i}]")
+        A.append([_entry_text(x, f"A[{i}][{j}]")[0] for j, x in enumerate(row, start=1)])
+    if not isinstance(tab["b"], list) or len(tab["b"]) != s:
+        raise UserError(f"expected a list of {s} entries (one per stage)", "b")
+    return A, [_entry_text(x, f"b[{i}]")[0] for i, x in enumerate(tab["b"], start=1)]
 
 
 def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
@@ -367,7 +418,52 @@ def loads(
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
+    if not isinstance(tableau, Tableau):
+        raise UserError("this file has free [parameters]: it is a family, not one tableau; check it with "
+                        "`rkcheck verify`, `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",
+                        source=source)
     return tableau.replace(info=tableau.info.replace(lines=locate_lines(text, fmt)))
+
+
+def load_family(path: str, max_stages: int = DEFAULT_MAX_STAGES) -> "Family":
+    """A family file (with ``[parameters]``): a :class:`~rkcheck.methods.parametric.Family`."""
+    from rkcheck.methods.parametric import Family
+
+    if path.startswith("@"):
+        from rkcheck.io import library
+
+        entry = library.find(path[1:])
+        if entry is None:
+            raise UserError(f"no family called {path} in the library", source=path)
+        text, source = entry.read_text(), f"@{entry.key}"
+    else:
+        text, source = read_text(path), path
+    try:
+        data = parse_document(text, detect_format(source, text))
+    except UserError as err:
+        raise err.located(source=source) from None
+    if "parameters" not in data:
+        raise UserError("not a family: the file has no [parameters] table", source=source)
+    family = build_tableau(data, source, max_stages)
+    assert isinstance(family, Family)
+    return family
+
+
+def is_family_file(path: str) -> bool:
+    """Whether a file (or ``@name``) declares free parameters; False when unreadable (the
+    caller's own load reports why)."""
+    try:
+        if path.startswith("@"):
+            from rkcheck.io import library
+
+            entry = library.find(path[1:])
+            text, source = (entry.read_text(), entry.key) if entry is not None else ("", path)
+        else:
+            text, source = read_text(path), path
+        data = parse_document(text, detect_format(source, text)) if text else {}
+    except (UserError, OSError):
+        return False
+    return isinstance(data, dict) and "parameters" in data
 
 
 def load(

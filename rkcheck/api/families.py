@@ -1,0 +1,91 @@
+"""Families of methods with free parameters: their conditions as exact polynomials, and
+the exact solution set of those conditions — ``rkcheck verify``/``conditions`` on a file
+with ``[parameters]``, and ``rkcheck solve``."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Sequence
+
+from rkcheck.api.verification import _option
+from rkcheck.errors import OptionError
+from rkcheck.options import DEFAULT_MAX_STAGES, MAX_ORDER, parse_degree, parse_int_in, parse_positive
+
+from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
+from rkcheck.methods.parametric import Family
+from rkcheck.numbers.solving import AlgebraicValue, Solution, SolutionSet
+
+#: The largest order ``solve`` and the polynomial conditions go to (their size grows
+#: quickly with it: order 9 has 1 842 rooted trees, each a polynomial of degree 9).
+MAX_FAMILY_ORDER = 12
+#: The time limit of ``solve`` (seconds), and the range the option accepts.
+MAX_SECONDS_RANGE = (1, 86_400)
+
+
+def load_family(path: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_STAGES) -> Family:
+    """A family file (a tableau file with a ``[parameters]`` table), or ``"@name"``."""
+    from rkcheck.io.loader import load_family as load
+
+    return load(os.fspath(path), max_stages)
+
+
+def _family(family: Family | str | os.PathLike[str]) -> Family:
+    from rkcheck.methods.parametric import Family
+
+    if isinstance(family, Family):
+        return family
+    if isinstance(family, (str, os.PathLike)):
+        return load_family(family)
+    raise OptionError(f"expected a family (rkcheck.load_family) or a path, got {type(family).__name__}", "family")
+
+
+def _orders(degree: Any, order: Any, classical_order: Any) -> tuple[int | None, int, int | None]:
+    deg = _option(lambda: parse_degree(degree, "degree"))
+    N = _option(lambda: parse_int_in(order, (1, min(MAX_ORDER, MAX_FAMILY_ORDER)), "order"))
+    q = None
+    if classical_order is not None:
+        q = _option(lambda: parse_int_in(classical_order, (1, MAX_FAMILY_ORDER), "classical_order"))
+    return deg, N, q
+
+
+def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = None,
+                      order: int = 6, classical_order: int | None = None) -> FamilyConditions:
+    """Every energy condition up to ``order`` for Hamiltonians of degree ≤ ``degree`` (and
+    the classical conditions up to ``classical_order``) as exact polynomials in the
+    family's parameters, with the generic orders and the conditions that carve out
+    exceptional parameter values."""
+    from rkcheck.energy.family_conditions import family_conditions as compute
+
+    fam = _family(family)
+    deg, N, q = _orders(degree, order, classical_order)
+    return compute(fam, deg, N, q)
+
+
+def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, order: int,
+          classical_order: int | None = None, where: Sequence[str] = (),
+          max_seconds: float = 60) -> SolutionSet:
+    """The exact solution set of every energy condition up to ``order`` (degree ≤
+    ``degree``), the classical order conditions up to ``classical_order`` and the extra
+    equations ``where`` (``"a11 = a22"``): a reduced Gröbner basis, the dimension, and
+    for finitely many solutions each one exactly (:mod:`rkcheck.numbers.solving`)."""
+    from rkcheck.energy.family_conditions import family_conditions as compute
+    from rkcheck.numbers.parametric import THETA
+    from rkcheck.numbers.solving import solve_system
+
+    fam = _family(family)
+    deg, N, q = _orders(degree, order, classical_order)
+    seconds = _option(lambda: parse_positive(max_seconds, "max_seconds"))
+    if not MAX_SECONDS_RANGE[0] <= seconds <= MAX_SECONDS_RANGE[1]:
+        raise OptionError(f"expected {MAX_SECONDS_RANGE[0]} to {MAX_SECONDS_RANGE[1]} seconds, got {max_seconds}",
+                          "max_seconds")
+    if isinstance(where, str):
+        where = [where]
+    extra = [fam.equation(w) for w in where]
+    conditions = compute(fam, deg, N, q)
+    polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
+    theta = THETA if fam.ring.field is not None else None
+    return solve_system(polys, theta, fam.ring.field, seconds)
+
+
+__all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",
+           "family_conditions", "load_family", "solve"]

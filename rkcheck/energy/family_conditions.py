@@ -1,0 +1,155 @@
+"""A family's order conditions as exact polynomials in its parameters.
+
+Every energy condition of definitions §3 (one per free tree, residual of the designated
+rooting) and every classical order condition ``a(t) − 1/γ(t)`` (definitions §2) of a
+method whose entries are polynomials (:mod:`rkcheck.numbers.parametric`) is itself a
+polynomial.  Computed by the same algorithm as numeric checks, over the polynomial
+context (:mod:`rkcheck.evaluation.polynomial`).
+
+A condition *vanishes identically* when its polynomial is zero: it holds for every value
+of the parameters.  The *generic* order is the largest order whose conditions all vanish
+identically; the first conditions that do not are the ones that carve out exceptional
+parameter values (where the order is higher).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Sequence
+
+import numpy as np
+
+from rkcheck.energy.orders import TreeWeights
+from rkcheck.evaluation.algorithm import condition_sums
+from rkcheck.evaluation.polynomial import PolynomialContext
+from rkcheck.numbers.parametric import ParameterRing
+from rkcheck.trees.listing import condition_listing
+from rkcheck.trees.rooted import bracket_of_forest
+from rkcheck.trees.table import TreeTable
+
+
+@dataclass(frozen=True)
+class PolynomialCondition:
+    """One condition of a family: what it is (``kind`` ``energy`` or ``classical``), the
+    tree (canonical level sequence and bracket), its order, and its residual as a
+    polynomial over the family's ring."""
+
+    kind: str
+    level_sequence: tuple[int, ...]
+    bracket: str
+    order: int
+    polynomial: Any
+
+    @property
+    def id(self) -> str:
+        return ",".join(map(str, self.level_sequence))
+
+    @property
+    def vanishes(self) -> bool:
+        """Zero for every value of the parameters."""
+        return self.polynomial.is_zero()
+
+    @property
+    def degree(self) -> int:
+        """Total degree in the parameters (θ, the field generator, not counted)."""
+        return parameter_degree(self.polynomial, self.polynomial.context().names())
+
+    @property
+    def label(self) -> str:
+        return f"{self.kind} {self.id} {self.bracket}"
+
+
+def parameter_degree(p: Any, names: Sequence[str]) -> int:
+    """Total degree of ``p`` in the parameters (-1 for zero)."""
+    from rkcheck.numbers.parametric import THETA
+
+    skip = [i for i, n in enumerate(names) if n == THETA]
+    degrees = [sum(e for i, e in enumerate(m) if i not in skip) for m in p.monoms()]
+    return max(degrees, default=-1)
+
+
+def energy_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any], order: int,
+                      degree: int | None) -> list[PolynomialCondition]:
+    """The energy conditions with 3 … order+1 vertices (free trees of maximum degree
+    ≤ ``degree``), by vertices and canonical id."""
+    listing = condition_listing(order, degree)
+    sums = condition_sums(listing, PolynomialContext(ring, A, b), len(b))
+    out = []
+    for n, k, tree in listing.sorted_conditions():
+        value = sums[n].value(k)
+        if listing.flip(n, k) < 0:
+            value = -value
+        out.append(PolynomialCondition("energy", tree.level_sequence, tree.bracket, n - 1, value))
+    return out
+
+
+def classical_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any],
+                         order: int) -> list[PolynomialCondition]:
+    """``a(t) − 1/γ(t)`` for every rooted tree with 1 … order vertices."""
+    table = TreeTable(1)
+    ctx = PolynomialContext(ring, A, b)
+    weights = TreeWeights(ctx, len(b))
+    out = []
+    for p in range(1, order + 1):
+        table.grow_to(p)
+        ids = np.arange(table.first[p], table.first[p + 1])
+        a = weights.extend(table, p)
+        for t, value, g in zip(ids, a, table.gamma(ids)):
+            residual = ring.reduce(value - ring.constant(Fraction(1, int(g))))
+            forest = [table.level_sequence(c) for c in table.children(int(t))]
+            out.append(PolynomialCondition("classical", table.level_sequence(int(t)), bracket_of_forest(forest),
+                                           p, residual))
+    return sorted(out, key=lambda c: (c.order, c.level_sequence))
+
+
+def generic_order(conditions: Sequence[PolynomialCondition], checked: int) -> tuple[int, list[PolynomialCondition]]:
+    """The largest order whose conditions all vanish identically (``checked`` when all
+    do), and the conditions of the next order that do not (the exceptional values)."""
+    for c in conditions:
+        if not c.vanishes:
+            first = [d for d in conditions if d.order == c.order and not d.vanishes]
+            return c.order - 1, first
+    return checked, []
+
+
+@dataclass(frozen=True)
+class FamilyConditions:
+    """A family's conditions as polynomials (definitions §2–3): the energy conditions up
+    to ``order`` for polynomial Hamiltonians of degree ≤ ``degree`` and, when asked for,
+    the classical conditions up to ``classical_order``; the generic orders and the first
+    conditions that do not vanish identically."""
+
+    family: Any
+    degree: int | None
+    order: int
+    energy: list[PolynomialCondition]
+    classical_order_checked: int | None = None
+    classical: list[PolynomialCondition] | None = None
+
+    @property
+    def energy_order(self) -> int:
+        """The energy order for generic parameter values."""
+        return generic_order(self.energy, self.order)[0]
+
+    @property
+    def exceptional(self) -> list[PolynomialCondition]:
+        """The first energy conditions that do not vanish identically: their zeros are the
+        parameter values where the energy order is higher."""
+        return generic_order(self.energy, self.order)[1]
+
+    @property
+    def classical_order(self) -> int | None:
+        if self.classical is None or self.classical_order_checked is None:
+            return None
+        return generic_order(self.classical, self.classical_order_checked)[0]
+
+
+def family_conditions(family: Any, degree: int | None, order: int,
+                      classical_order: int | None = None) -> FamilyConditions:
+    """The conditions of a :class:`~rkcheck.methods.parametric.Family`."""
+    energy = energy_conditions(family.ring, family.A, family.b, order, degree)
+    classical = None
+    if classical_order is not None:
+        classical = classical_conditions(family.ring, family.A, family.b, classical_order)
+    return FamilyConditions(family, degree, order, energy, classical_order, classical)

@@ -1,0 +1,106 @@
+"""The number context of families: elementary weights and condition sums as exact
+polynomials in the parameters (:mod:`rkcheck.numbers.parametric`).
+
+The same algorithm as every other context (:mod:`rkcheck.evaluation.algorithm`) runs
+over numpy arrays of FLINT multivariate polynomials (object arrays: numpy's elementwise
+products and matrix products call the polynomials' own arithmetic).  Products are
+reduced modulo the field's minimal polynomial as they are formed, so degrees in θ stay
+below the field degree.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from math import factorial
+from typing import Any, Sequence
+
+import numpy as np
+
+from rkcheck.numbers.parametric import ParameterRing
+
+
+def object_array(values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
+    """An object array holding the polynomials themselves (numpy would otherwise try to
+    iterate them)."""
+    out = np.empty(shape, dtype=object)
+    flat = out.reshape(-1)
+    for i, v in enumerate(values):
+        flat[i] = v
+    return out
+
+
+class PolynomialContext:
+    """Exact arithmetic on arrays of polynomials over a :class:`ParameterRing`."""
+
+    exact = True
+
+    def __init__(self, ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any]):
+        self.ring = ring
+        self.s = len(b)
+        self.zero, self.unit = ring.constant(0), ring.constant(1)
+        self.A_t = object_array([A[i][j] for j in range(self.s) for i in range(self.s)], (self.s, self.s))
+        self.b = object_array(list(b), (self.s,))
+
+    def _filled(self, shape: tuple[int, ...], value: Any) -> np.ndarray:
+        return object_array([value] * int(np.prod(shape)), shape)
+
+    def _reduced(self, x: np.ndarray) -> np.ndarray:
+        if self.ring.minpoly is None:
+            return x
+        return object_array([self.ring.reduce(v) for v in x.reshape(-1)], x.shape)
+
+    def vectors(self, n: int, s: int) -> np.ndarray:
+        return self._filled((n, s), self.zero)
+
+    def scalars(self, n: int) -> np.ndarray:
+        return self._filled((n,), self.zero)
+
+    def ones(self, k: int, s: int) -> np.ndarray:
+        return self._filled((k, s), self.unit)
+
+    def one(self, k: int) -> np.ndarray:
+        return self._filled((k,), self.unit)
+
+    def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return x[idx]
+
+    def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
+        store[lo:lo + len(x)] = x
+
+    def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return self._reduced(x * y)
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        return self._reduced(x @ self.A_t)
+
+    def dot(self, x: np.ndarray) -> np.ndarray:
+        return self._reduced(x @ self.b)
+
+    def sums(self, k: int, n: int) -> np.ndarray:
+        return self.scalars(k)
+
+    def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, i0: int, i1: int) -> None:
+        coefficients = [self.ring.constant(c) for c in terms.coefficients]
+        for cond, ci, w in zip(terms.condition[i0:i1], terms.coefficient_index[i0:i1], w_terms):
+            acc[cond] = acc[cond] + coefficients[ci] * w
+
+    def finish_sums(self, acc: np.ndarray, k: int, n: int) -> "PolynomialSums":
+        scale = self.ring.constant(Fraction(1, factorial(n - 1)))
+        return PolynomialSums([self.ring.reduce(acc[i] * scale) for i in range(k)])
+
+
+class PolynomialSums:
+    """The residuals of one order's conditions (class representative's rooting) as
+    polynomials: exact, so ``is_zero`` says which vanish identically."""
+
+    def __init__(self, values: list[Any]):
+        self.values = values
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def is_zero(self) -> np.ndarray:
+        return np.array([v.is_zero() for v in self.values], dtype=bool)
+
+    def value(self, k: int) -> Any:
+        return self.values[k]

@@ -1,0 +1,140 @@
+"""A family of methods: a tableau whose entries are polynomials in free parameters.
+
+Written as a tableau file with a ``[parameters]`` table (``beta = "free"``); the entries
+and ``[constants]`` may use the parameters like constants.  What the entries may be, and
+how they are represented exactly: :mod:`rkcheck.numbers.parametric`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Mapping, Sequence
+
+from rkcheck.errors import UserError
+from rkcheck.methods.tableau import MethodInfo, Tableau
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.parametric import ParameterRing, ParametricEntries
+
+#: What a parameter may be declared as (free real parameters only, for now).
+PARAMETER_KINDS = ("free",)
+
+
+@dataclass(frozen=True)
+class Family:
+    """``name``, the parameters, the entries as written (``A``, ``b`` texts) and as
+    polynomials over one :class:`ParameterRing`, and what the file says besides
+    (``info``)."""
+
+    name: str
+    parameters: tuple[str, ...]
+    A_text: tuple[tuple[str, ...], ...]
+    b_text: tuple[str, ...]
+    entries: ParametricEntries
+    info: MethodInfo
+
+    @property
+    def stages(self) -> int:
+        return len(self.b_text)
+
+    @property
+    def ring(self) -> ParameterRing:
+        return self.entries.ring
+
+    @property
+    def A(self) -> list[list[Any]]:
+        s = self.stages
+        v = self.entries.values
+        return [v[i * s:(i + 1) * s] for i in range(s)]
+
+    @property
+    def b(self) -> list[Any]:
+        s = self.stages
+        return self.entries.values[s * s:s * s + s]
+
+    def equation(self, text: str) -> Any:
+        """``"lhs = rhs"`` (or an expression meaning ``= 0``) over the family's ring."""
+        lhs, _, rhs = text.partition("=")
+        expr = f"({lhs}) - ({rhs})" if rhs.strip() else lhs
+        try:
+            node = ex.parse(expr)
+        except UserError as err:
+            raise UserError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
+        unknown = {n.name for n in ex.names(node)} - set(self.parameters) - set(self.entries.constants)
+        if unknown:
+            raise UserError(f"unknown name {sorted(unknown)[0]!r} in {text!r} (the parameters are "
+                            f"{', '.join(self.parameters)})", "--where")
+        return self.entries.polynomial_of(node, "--where")
+
+    def at(self, values: Mapping[str, Fraction | int], name: str | None = None) -> Tableau:
+        """The method at rational parameter values (the other parameters must be given too)."""
+        missing = [p for p in self.parameters if p not in values]
+        if missing:
+            raise UserError(f"no value for the parameter {missing[0]}")
+        texts = [x for row in self.A_text for x in row] + list(self.b_text)
+        constants = {k: ex.to_text(v) for k, v in self.entries.constants.items()}
+        subst = {p: f"({Fraction(values[p])})" for p in self.parameters}
+        out = []
+        for t in texts:
+            for p, v in subst.items():
+                t = re.sub(rf"\b{re.escape(p)}\b", v, t)
+            out.append(t)
+        for k, v in list(constants.items()):
+            for p, val in subst.items():
+                v = re.sub(rf"\b{re.escape(p)}\b", val, v)
+            constants[k] = v
+        s = self.stages
+        tab = _tableau_from_texts([out[i * s:(i + 1) * s] for i in range(s)], out[s * s:], constants,
+                                  name or self.name)
+        return tab
+
+
+def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants: Mapping[str, str],
+                        name: str) -> Tableau:
+    from rkcheck.numbers.entries import Constants, Entry
+
+    consts = Constants({k: ex.parse(v) for k, v in constants.items()})
+    A_ = tuple(tuple(Entry.parse(x, consts) for x in row) for row in A)
+    b_ = tuple(Entry.parse(x, consts) for x in b)
+    return Tableau(A=A_, b=b_, c=None, name=name, info=MethodInfo(constants=consts))
+
+
+def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> tuple[str, ...]:
+    """The ``[parameters]`` table: each name an identifier, declared ``"free"``."""
+    names = []
+    for name, kind in table.items():
+        place = f"parameters.{name}"
+        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name) or name in ex.FUNCTIONS or name.startswith("__"):
+            raise UserError("a parameter's name must be an identifier (letters, digits, _; not starting with __) "
+                            "other than a function name (sqrt, root)", place)
+        if name in constants:
+            raise UserError("a parameter and a constant have the same name", place)
+        if kind not in PARAMETER_KINDS:
+            raise UserError(f"expected {' or '.join(repr(k) for k in PARAMETER_KINDS)}, got {kind!r}", place)
+        names.append(name)
+    if not names:
+        raise UserError("the [parameters] table names no parameter", "parameters")
+    return tuple(names)
+
+
+def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[str]], b: Sequence[str],
+                 constants: Mapping[str, ex.Expr], info: MethodInfo) -> Family:
+    """A family from its entry texts (validated shape), parameters and constants."""
+    s = len(b)
+    texts = [x for row in A for x in row] + list(b)
+    places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]
+    nodes = []
+    known = set(parameters) | set(constants)
+    for text, place in zip(texts, places):
+        try:
+            node = ex.parse(text)
+        except UserError as err:
+            raise err.located(place) from None
+        unknown = [n for n in ex.names(node) if n.name not in known]
+        if unknown:
+            raise UserError(f"unknown name {unknown[0].name!r} at column {unknown[0].column} (parameters: "
+                            f"{', '.join(parameters)})", place)
+        nodes.append(node)
+    entries = ParametricEntries(nodes, places, parameters, constants)
+    return Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info)

@@ -1,0 +1,249 @@
+"""Entries with free parameters, as exact polynomials.
+
+A family's entries (``[parameters]`` in a file) are polynomials in the parameters whose
+coefficients lie in Q or in the number field K = Q(θ) of the entries' parameter-free
+parts (square roots, ``root(P, k)``: :mod:`rkcheck.numbers.algebraic`).  They are
+represented over Q in the variables ``(θ, p₁, …, p_k)`` — θ only when K ≠ Q — and kept
+reduced modulo the minimal polynomial g(θ): with the lexicographic order and θ first,
+g's leading monomial is θ^D, so the remainder of a division by g is the unique
+representative of degree < D in θ, and a polynomial vanishes identically over K exactly
+when its reduced form is zero.
+
+Parameters may appear wherever a polynomial can: sums, products, integer powers and
+division by a parameter-free number.  Under ``sqrt``/``root``, in an exponent or in a
+denominator they would make the entries non-polynomial; each is a one-line error naming
+the place.  Decimal literals are read at face value (exactly): a family is a statement
+about exact coefficients.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Mapping, Sequence
+
+from rkcheck.errors import UserError
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.algebraic import NotAlgebraic, NumberField, field_of
+
+#: The name of the field generator among the variables (parameter names may not start
+#: with two underscores, so it never clashes with one); shown as θ.
+THETA = "__theta"
+
+#: At most this many parameters in one family (the solver's cost grows quickly with it).
+MAX_PARAMETERS = 32
+
+
+class ParameterRing:
+    """Polynomials in the parameters over Q or over K = Q(θ) (module docstring)."""
+
+    def __init__(self, parameters: Sequence[str], field: NumberField | None = None):
+        from flint import fmpq_mpoly_ctx
+
+        self.parameters = tuple(parameters)
+        self.field = field
+        names = ((THETA,) if field is not None else ()) + self.parameters
+        self.ctx = fmpq_mpoly_ctx.get(names, "lex")
+        gens = self.ctx.gens()
+        self.theta: Any = gens[0] if field is not None else None
+        self._params = dict(zip(self.parameters, gens[1:] if field is not None else gens))
+        self.minpoly: Any = None
+        if field is not None:
+            theta = gens[0]
+            g = [Fraction(c) for c in field.minpoly]  # ascending, monic
+            self.minpoly = sum((self.constant(c) * theta ** k for k, c in enumerate(g)), self.constant(0))
+
+    @property
+    def variables(self) -> tuple[str, ...]:
+        """Every variable, θ first when there is one."""
+        return tuple(self.ctx.names())
+
+    def constant(self, value: Fraction | int) -> Any:
+        from flint import fmpq
+
+        value = Fraction(value)
+        return self.ctx.constant(fmpq(value.numerator, value.denominator))
+
+    def parameter(self, name: str) -> Any:
+        return self._params[name]
+
+    def element(self, value: Any) -> Any:
+        """A Fraction or a field element of K as a polynomial in θ."""
+        if isinstance(value, (Fraction, int)):
+            return self.constant(value)
+        if self.field is None or value.field is not self.field:
+            raise ValueError("a number outside the family's field")
+        out = self.constant(0)
+        for k, c in enumerate(value.coeffs):
+            if c:
+                out = out + self.constant(c) * self.theta ** k
+        return out
+
+    def reduce(self, p: Any) -> Any:
+        """The representative of degree < D in θ (unchanged over Q)."""
+        return p if self.minpoly is None else p % self.minpoly
+
+    def is_zero(self, p: Any) -> bool:
+        return self.reduce(p).is_zero()
+
+
+def uses(node: ex.Expr, names: set[str]) -> bool:
+    return any(n.name in names for n in ex.names(node))
+
+
+def parameter_closure(constants: Mapping[str, ex.Expr], parameters: Sequence[str]) -> set[str]:
+    """The parameters and every constant that uses one, directly or through others."""
+    found = set(parameters)
+    changed = True
+    while changed:
+        changed = False
+        for name, node in constants.items():
+            if name not in found and uses(node, found):
+                found.add(name)
+                changed = True
+    return found
+
+
+class ParametricEntries:
+    """The entries of a family as polynomials over one :class:`ParameterRing`.
+
+    ``nodes``: the parsed entries; ``constants``: the ``[constants]`` definitions (a
+    constant may use parameters); ``places``: each entry's place for error messages."""
+
+    def __init__(self, nodes: Sequence[ex.Expr], places: Sequence[str], parameters: Sequence[str],
+                 constants: Mapping[str, ex.Expr]):
+        if len(parameters) > MAX_PARAMETERS:
+            raise UserError(f"{len(parameters)} parameters exceed the limit MAX_PARAMETERS = {MAX_PARAMETERS}",
+                            "parameters")
+        self.constants = dict(constants)
+        self.dependent = parameter_closure(self.constants, parameters)
+        fixed_constants = {k: v for k, v in self.constants.items() if k not in self.dependent}
+        self._expanded: dict[str, Any] = {}
+        leaves = self._fixed_leaves(nodes, places)
+        try:
+            found = field_of([node for node, _ in leaves], fixed_constants)
+        except NotAlgebraic as err:
+            raise UserError(f"the parameter-free numbers of the family are not exact algebraic numbers: {err}",
+                            "parameters") from None
+        self.ring = ParameterRing(parameters, found.field)
+        self._fixed = {id(node): self.ring.element(v) for (node, _), v in zip(leaves, found.values)}
+        self.values = [self.ring.reduce(self._polynomial(node, place)) for node, place in zip(nodes, places)]
+
+    def polynomial_of(self, node: ex.Expr, place: str) -> Any:
+        """Another expression over the same ring (an extra equation): its parameter-free
+        parts must be rational, or be constants of the family."""
+        for leaf, _ in self._fixed_leaves([node], [place]):
+            if id(leaf) in self._fixed:
+                continue
+            if isinstance(leaf, ex.Name) and leaf.name in self.constants:
+                self._fixed[id(leaf)] = self._name(leaf.name, place)
+                continue
+            value = ex.evaluate_exact(leaf, {})
+            if value is None:
+                raise UserError("only rational numbers and the family's constants may appear here", place)
+            self._fixed[id(leaf)] = self.ring.constant(value)
+        return self.ring.reduce(self._polynomial(node, place))
+
+    # ------------------------------------------------------------------ parameter-free parts
+
+    def _fixed_leaves(self, nodes: Sequence[ex.Expr], places: Sequence[str]) -> list[tuple[ex.Expr, str]]:
+        """The maximal parameter-free sub-expressions of every entry and of the
+        parameter-dependent constants (one field holds them all)."""
+        out: list[tuple[ex.Expr, str]] = []
+        todo = list(zip(nodes, places)) + [(self.constants[n], f"constants.{n}") for n in sorted(self.dependent)
+                                           if n in self.constants]
+        for node, place in todo:
+            stack = [node]
+            while stack:
+                n = stack.pop()
+                if not uses(n, self.dependent):
+                    out.append((n, place))
+                    continue
+                self._check_polynomial(n, place)
+                stack.extend(_operands(n))
+        return out
+
+    def _check_polynomial(self, n: ex.Expr, place: str) -> None:
+        """A node that uses a parameter must keep the entry polynomial in it."""
+        if isinstance(n, ex.Call):
+            raise UserError(f"a parameter under {n.func}(...) (column {n.column}): entries must be polynomials "
+                            "in the parameters", place)
+        if isinstance(n, ex.Power) and uses(n.exponent, self.dependent):
+            raise UserError(f"a parameter in an exponent (column {n.column}): entries must be polynomials "
+                            "in the parameters", place)
+        if isinstance(n, ex.Binary) and n.op == "/" and uses(n.right, self.dependent):
+            raise UserError(f"a parameter in a denominator (column {n.column}): entries must be polynomials "
+                            "in the parameters", place)
+
+    # ------------------------------------------------------------------ polynomials
+
+    def _polynomial(self, node: ex.Expr, place: str) -> Any:
+        ring = self.ring
+
+        def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
+            return () if id(n) in self._fixed else _operands(n)
+
+        def combine(n: ex.Expr, vals: list[Any]) -> Any:
+            if id(n) in self._fixed:
+                return self._fixed[id(n)]
+            if isinstance(n, ex.Name):
+                return self._name(n.name, place)
+            if isinstance(n, ex.Unary):
+                return -vals[0]
+            if isinstance(n, ex.Binary):
+                left, right = vals
+                if n.op == "+":
+                    return left + right
+                if n.op == "-":
+                    return left - right
+                if n.op == "*":
+                    return ring.reduce(left * right)
+                return ring.reduce(left * self._inverse(right, n, place))
+            if isinstance(n, ex.Power):
+                return self._power(vals[0], n, place)
+            raise UserError(f"cannot read this part of the entry as a polynomial (column {getattr(n, 'column', 1)})",
+                            place)
+
+        return ex.fold(node, combine, operands)
+
+    def _name(self, name: str, place: str) -> Any:
+        if name in self.ring.parameters:
+            return self.ring.parameter(name)
+        if name not in self._expanded:
+            self._expanded[name] = self.ring.reduce(self._polynomial(self.constants[name], f"constants.{name}"))
+        return self._expanded[name]
+
+    def _inverse(self, value: Any, n: ex.Binary, place: str) -> Any:
+        """1/value for a parameter-free value (a number of K)."""
+        if value.is_zero() or (self.ring.minpoly is not None and self.ring.is_zero(value)):
+            raise UserError(f"division by zero (column {n.column})", place)
+        if self.ring.field is None:
+            (c,) = value.coeffs()
+            return self.ring.constant(1 / Fraction(int(c.p), int(c.q)))
+        return self.ring.element(self._field_element(value).inverse())
+
+    def _field_element(self, value: Any) -> Any:
+        field = self.ring.field
+        assert field is not None
+        coeffs = [Fraction(0)] * field.degree
+        for (k, *_), c in value.to_dict().items():
+            coeffs[k] = Fraction(int(c.p), int(c.q))
+        return field(coeffs)
+
+    def _power(self, base: Any, n: ex.Power, place: str) -> Any:
+        exponent = ex.evaluate_exact(n.exponent, {})
+        if exponent is None or exponent.denominator != 1 or not 0 <= exponent <= 64:
+            raise UserError(f"a power of a parameter needs a whole exponent from 0 to 64 (column {n.column})", place)
+        out = self.ring.constant(1)
+        for _ in range(int(exponent)):
+            out = self.ring.reduce(out * base)
+        return out
+
+
+def _operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
+    if isinstance(n, ex.Unary):
+        return (n.operand,)
+    if isinstance(n, ex.Binary):
+        return (n.left, n.right)
+    if isinstance(n, ex.Power):
+        return (n.base,)  # the exponent is a whole number, read on its own
+    return ()

@@ -1,0 +1,524 @@
+"""The exact solution set of a polynomial system (a family's order conditions).
+
+The steps, each exact:
+
+1. **Linear elimination.**  While an equation has total degree 1, solve it for one of its
+   variables (the first in the ring's order, never the field generator θ) and substitute
+   everywhere; a nonzero constant means no solution.  Order conditions are often linear
+   in A (the double-bush conditions of the seed, row sums), so this removes most
+   variables at the cost of substitutions.
+2. **Gröbner basis** of the rest: FLINT's Buchberger (``fmpz_mpoly_vec.buchberger_naive``
+   and ``autoreduction``, python-flint), graded reverse lexicographic, run in a child
+   process so that a time limit can stop it (FLINT does not return to Python while it
+   works).  Together with the eliminated variables it is a Gröbner basis of the whole
+   system for the block order "eliminated variables first".
+3. **Dimension** of the solution set over C from the leading monomials: the largest set
+   of variables none of which's monomials leads a basis element (the dimension of the
+   monomial ideal, which equals that of the ideal).
+4. **Finitely many solutions** (dimension 0): the radical (square-free parts of each
+   variable's eliminant added: Seidenberg's lemma), then a separating linear form
+   ``z = Σ rᵢxᵢ`` and a lexicographic basis with z last, which for a radical ideal in
+   general position has the *shape* ``xᵢ − hᵢ(z)``, ``f(z)`` (the shape lemma); the
+   irreducible factors of f over Q give the solutions in Galois orbits, each exactly: a
+   rational, a closed form over a quadratic field, or a minimal polynomial with an
+   isolating interval.  Real solutions are those with z real.
+
+When the parameters' field is K = Q(θ), θ is a variable with its minimal polynomial as one
+more equation; of the solutions, those whose θ is the family's θ (not a conjugate) are
+kept: certified by interval enclosures that separate θ from its conjugates.
+"""
+
+from __future__ import annotations
+
+import itertools
+import random
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Sequence
+
+from rkcheck.errors import UserError
+
+#: Default time limit (seconds) for the Gröbner bases of one ``solve``.
+MAX_SOLVE_SECONDS = 60
+
+
+class SolveLimitError(UserError):
+    """The system is beyond what ``solve`` does within its limits (time, shape)."""
+
+
+@dataclass(frozen=True)
+class AlgebraicValue:
+    """One coordinate of a solution, exactly: ``text`` is a rational, a closed form
+    ``p + q*sqrt(d)`` or a polynomial in z at a root of
+    z's minimal polynomial (numbered as FLINT isolates them: real roots first); ``ball``
+    encloses it (None for rationals)."""
+
+    text: str
+    real: bool
+    approx: complex
+    minpoly: tuple[Fraction, ...] = ()
+    ball: Any = None  # a certified complex enclosure (flint acb)
+
+
+@dataclass(frozen=True)
+class Solution:
+    values: dict[str, AlgebraicValue]
+    real: bool
+
+
+@dataclass
+class SolutionSet:
+    """What :func:`solve_system` found: the variables (the parameters), how many
+    equations there were, the reduced Gröbner basis (as polynomial texts over the
+    parameters; θ shown as such), the dimension (-1: no solution), and for dimension 0
+    every solution; ``eliminated`` maps each variable removed by linear elimination to
+    its expression in the others."""
+
+    variables: tuple[str, ...]
+    equations: int
+    groebner: list[Any]
+    dimension: int
+    eliminated: dict[str, Any] = field(default_factory=dict)
+    solutions: list[Solution] | None = None
+    seconds: float = 0.0
+
+
+# ------------------------------------------------------------------ linear elimination
+
+
+def eliminate_linear(polys: list[Any], theta: str | None) -> tuple[list[Any], dict[str, Any], bool]:
+    """Equations that remain, the substitutions made (variable → expression, fully
+    substituted), and whether a nonzero constant showed the system inconsistent."""
+    ctx = polys[0].context() if polys else None
+    names = list(ctx.names()) if ctx is not None else []
+    gens = ctx.gens() if ctx is not None else ()
+    eqs = [p for p in polys if not p.is_zero()]
+    subs: dict[str, Any] = {}
+    while True:
+        if any(p.is_constant() for p in eqs):
+            return eqs, subs, True
+        pick = _linear_pick(eqs, names, theta)
+        if pick is None:
+            return eqs, subs, False
+        p, i = pick
+        coeff = p.to_dict()[_unit_monom(len(names), i)]  # the coefficient of x_i (a number)
+        value = -(p - coeff * gens[i]) / coeff
+        images = list(gens)
+        images[i] = value
+        eqs = [q.compose(*images) for q in eqs if q is not p]
+        eqs = [q for q in eqs if not q.is_zero()]
+        subs = {k: v.compose(*images) for k, v in subs.items()}
+        subs[names[i]] = value
+
+
+def _unit_monom(n: int, i: int) -> tuple[int, ...]:
+    return tuple(1 if k == i else 0 for k in range(n))
+
+
+#: Linear equations with at most this many terms are solved and substituted; longer ones
+#: would multiply the other equations' terms (a substitution into a degree-6 condition
+#: expands it) and stay in the system, where Buchberger uses them as pivots at once.
+MAX_SUBSTITUTION_TERMS = 3
+
+
+def _linear_pick(eqs: list[Any], names: list[str], theta: str | None) -> tuple[Any, int] | None:
+    best = None
+    for p in eqs:
+        if p.total_degree() != 1 or len(p.monoms()) > MAX_SUBSTITUTION_TERMS:
+            continue
+        for i, name in enumerate(names):
+            if name != theta and any(m[i] for m in p.monoms()):
+                candidate = (len(p.monoms()), p, i)  # the shortest equation first
+                if best is None or candidate[0] < best[0]:
+                    best = candidate
+                break
+    return None if best is None else (best[1], best[2])
+
+
+# ------------------------------------------------------------------ Gröbner bases
+
+
+def _as_dicts(polys: Sequence[Any]) -> list[dict[tuple[int, ...], int]]:
+    """Integer polynomials as plain dicts (denominators cleared: same ideal)."""
+    import math
+
+    out = []
+    for p in polys:
+        items = [(tuple(int(e) for e in m), int(c.p), int(c.q)) for m, c in p.to_dict().items()]
+        lcm = math.lcm(*(q for _, _, q in items)) if items else 1
+        out.append({m: num * (lcm // den) for m, num, den in items})
+    return out
+
+
+def _groebner_child(conn: Any, names: tuple[str, ...], order: str, dicts: list[dict]) -> None:
+    from flint import fmpz_mpoly_ctx, fmpz_mpoly_vec
+
+    ctx = fmpz_mpoly_ctx.get(names, order)
+    vec = fmpz_mpoly_vec([ctx.from_dict(d) for d in dicts], ctx)
+    G: Any = vec.buchberger_naive().autoreduction()
+    conn.send([{tuple(int(e) for e in m): int(c) for m, c in G[i].to_dict().items()} for i in range(len(G))])
+    conn.close()
+
+
+def groebner(dicts: list[dict[tuple[int, ...], int]], names: tuple[str, ...], order: str,
+             deadline: float) -> list[dict[tuple[int, ...], int]]:
+    """The reduced Gröbner basis (integer, primitive) of the polynomials, in a child
+    process stopped at ``deadline`` (time.monotonic) with a ResourceError."""
+    import multiprocessing as mp
+    import time
+
+    if not dicts:
+        return []
+    ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
+    parent, child = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_groebner_child, args=(child, names, order, dicts), daemon=True)
+    proc.start()
+    child.close()
+    try:
+        if not parent.poll(max(0.0, deadline - time.monotonic())):
+            raise SolveLimitError("the Gröbner basis did not finish within the time limit (--max-seconds); "
+                                "fix more parameters, lower --order or --degree, or raise the limit")
+        return parent.recv()
+    except EOFError:
+        raise SolveLimitError(f"the Gröbner basis computation ended without a result (exit code "
+                            f"{proc.exitcode}); lower --order or --degree") from None
+    finally:
+        if proc.is_alive():
+            proc.kill()
+        proc.join()
+        parent.close()
+
+
+def dimension(leading: list[tuple[int, ...]], n: int) -> int:
+    """The dimension of the solution set from the leading monomials of a Gröbner basis
+    (-1 when 1 is in the ideal): the largest set S of variables such that no leading
+    monomial uses only variables of S."""
+    if any(not any(m) for m in leading):
+        return -1
+    supports = [frozenset(i for i, e in enumerate(m) if e) for m in leading]
+    for size in range(n, -1, -1):
+        for S in itertools.combinations(range(n), size):
+            chosen = set(S)
+            if not any(sup <= chosen for sup in supports):
+                return size
+    return 0
+
+
+def leading_monomial(d: dict[tuple[int, ...], int], order: str) -> tuple[int, ...]:
+    """The leading monomial of a polynomial (as a dict) in ``degrevlex`` or ``lex``."""
+    if order == "lex":
+        return max(d)
+    return max(d, key=lambda m: (sum(m), tuple(-e for e in reversed(m))))
+
+
+# ------------------------------------------------------------------ finitely many solutions
+
+
+def _univariate(d: dict[tuple[int, ...], int], i: int) -> list[Fraction]:
+    """A polynomial in variable i only, as ascending coefficients."""
+    deg = max(m[i] for m in d)
+    coeffs = [Fraction(0)] * (deg + 1)
+    for m, c in d.items():
+        coeffs[m[i]] += c
+    return coeffs
+
+
+def _squarefree(coeffs: list[Fraction]) -> list[Fraction]:
+    from flint import fmpq_poly
+
+    p = fmpq_poly([_fmpq(c) for c in coeffs])
+    g = p.gcd(p.derivative())
+    q = p / g if g.degree() > 0 else p
+    return [Fraction(int(c.p), int(c.q)) for c in q.coeffs()]
+
+
+def _fmpq(c: Fraction) -> Any:
+    from flint import fmpq
+
+    return fmpq(c.numerator, c.denominator)
+
+
+def _monom(n: int, i: int, e: int) -> tuple[int, ...]:
+    return tuple(e if k == i else 0 for k in range(n))
+
+
+def radical_additions(basis: list[dict], names: tuple[str, ...], deadline: float) -> list[dict]:
+    """The square-free part of each variable's eliminant (Seidenberg's lemma: with these
+    added, a zero-dimensional ideal becomes its radical)."""
+    n = len(names)
+    extra = []
+    for i in range(n):
+        order = names[:i] + names[i + 1:] + (names[i],)  # x_i last: its eliminant ends the basis
+        perm = [names.index(x) for x in order]
+        moved = [{tuple(m[j] for j in perm): c for m, c in d.items()} for d in basis]
+        lex = groebner(moved, order, "lex", deadline)
+        last = [d for d in lex if all(not any(m[:-1]) for m in d)]
+        if not last:
+            continue
+        sf = _squarefree(_univariate(last[0], n - 1))
+        extra.append(_integer_dict({_monom(n, i, k): c for k, c in enumerate(sf) if c}))
+    return extra
+
+
+def _integer_dict(d: dict[tuple[int, ...], Fraction]) -> dict[tuple[int, ...], int]:
+    import math
+
+    lcm = math.lcm(*(c.denominator for c in d.values())) if d else 1
+    return {m: int(c * lcm) for m, c in d.items()}
+
+
+def shape_basis(basis: list[dict], names: tuple[str, ...], deadline: float, tries: int = 8):
+    """A separating form z = Σ rᵢxᵢ and the shape basis ``f(z)``, ``xᵢ = hᵢ(z)`` of a
+    radical zero-dimensional ideal, as ``(r, f, [h_i])`` (ascending Fractions)."""
+    n = len(names)
+    rng = random.Random(20260)
+    for attempt in range(tries):
+        r = [1] * n if attempt == 0 else [rng.randint(-9, 9) or 1 for _ in range(n)]
+        # z − Σ rᵢxᵢ with z last in a lex order
+        zn = names + ("__z",)
+        lifted = [{m + (0,): c for m, c in d.items()} for d in basis]
+        form = {_monom(n + 1, n, 1): 1} | {_monom(n + 1, i, 1): -r[i] for i in range(n)}
+        lex = groebner(lifted + [form], zn, "lex", deadline)
+        found = _read_shape(lex, n)
+        if found is not None:
+            return r, found[0], found[1]
+    raise SolveLimitError("no separating linear form found for the solutions (not in shape position)")
+
+
+def _read_shape(lex: list[dict], n: int):
+    f = None
+    h: list[list[Fraction] | None] = [None] * n
+    for d in lex:
+        if all(not any(m[:n]) for m in d):
+            f = _univariate(d, n)
+            continue
+        lead = max(d)
+        i = next(k for k in range(n) if lead[k])
+        if lead != _monom(n + 1, i, 1) or any(m[:n] != (0,) * n and m != lead for m in d):
+            return None  # not x_i − h_i(z)
+        c = d[lead]
+        coeffs = [Fraction(0)] * (max((m[n] for m in d if m != lead), default=0) + 1)
+        for m, v in d.items():
+            if m != lead:
+                coeffs[m[n]] -= Fraction(v, c)
+        h[i] = coeffs
+    if f is None or any(x is None for x in h):
+        return None
+    return f, h
+
+
+def solve_zero_dimensional(basis: list[dict], names: tuple[str, ...], deadline: float) -> tuple[list, list]:
+    """``(f, [h_i])`` in shape position.  A shape basis with a square-free f generates a
+    radical ideal, so the radical is computed only when the first try is not one."""
+    try:
+        _, f, h = shape_basis(basis, names, deadline, tries=1)
+        if len(_squarefree(f)) == len(f):
+            return f, h
+    except SolveLimitError:
+        pass
+    radical = groebner(basis + radical_additions(basis, names, deadline), names, "degrevlex", deadline)
+    _, f, h = shape_basis(radical, names, deadline)
+    return f, h
+
+
+
+# ------------------------------------------------------------------ the whole solve
+
+
+def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: float = MAX_SOLVE_SECONDS) -> SolutionSet:
+    """The solution set of ``polys = 0`` (fmpq_mpoly over one context; ``theta``: the name
+    of the field generator among its variables, with ``field`` its number field)."""
+    t0 = time.monotonic()
+    deadline = t0 + max_seconds
+    ctx = polys[0].context()
+    names = tuple(ctx.names())
+    params = tuple(n for n in names if n != theta)
+    equations = len([p for p in polys if not p.is_zero()])
+    if theta is not None:
+        polys = list(polys) + [_minpoly_in(ctx, theta, field)]
+    eqs, subs, inconsistent = eliminate_linear(polys, theta)
+    if inconsistent:
+        return SolutionSet(params, equations, [ctx.constant(1)], -1, subs, [], time.monotonic() - t0)
+    rest = tuple(n for n in names if n not in subs)
+    keep = [names.index(n) for n in rest]
+    dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in _as_dicts(eqs)]
+    basis = groebner(dicts, rest, "degrevlex", deadline)
+    dim = dimension([leading_monomial(d, "degrevlex") for d in basis], len(rest)) if basis else len(rest)
+    gb = [_from_dict(ctx, names, keep, d) for d in basis]
+    gb = [ctx.gens()[names.index(v)] - e for v, e in subs.items()] + gb
+    out = SolutionSet(params, equations, gb, dim, subs)
+    if dim == 0:
+        f, h = solve_zero_dimensional(basis, rest, deadline)
+        out.solutions = _solutions(f, h, rest, subs, ctx, theta, field)
+    elif dim == -1:
+        out.solutions = []
+    out.seconds = time.monotonic() - t0
+    return out
+
+
+def _minpoly_in(ctx: Any, theta: str, field: Any) -> Any:
+    t = ctx.gens()[list(ctx.names()).index(theta)]
+    out = ctx.constant(0)
+    for k, c in enumerate(field.minpoly):
+        if c:
+            out = out + ctx.constant(_fmpq(Fraction(c))) * t ** k
+    return out
+
+
+def _from_dict(ctx: Any, names: tuple[str, ...], keep: list[int], d: dict[tuple[int, ...], int]) -> Any:
+    full = {}
+    for m, c in d.items():
+        e = [0] * len(names)
+        for j, i in enumerate(keep):
+            e[i] = m[j]
+        full[tuple(e)] = c
+    p = ctx.from_dict(full)
+    lead = p.leading_coefficient() if hasattr(p, "leading_coefficient") else None
+    return p / lead if lead else p
+
+
+# ------------------------------------------------------------------ solutions, exactly
+
+
+def _solutions(f: list[Fraction], h: list[list[Fraction]], rest: tuple[str, ...], subs: dict[str, Any], ctx: Any,
+               theta: str | None, field: Any) -> list[Solution]:
+    """Every solution: per irreducible factor φ of f, each coordinate as a polynomial in
+    z modulo φ, read as a rational, a quadratic closed form or a root of φ."""
+    from flint import fmpq_poly
+
+    names = tuple(ctx.names())
+    fz = fmpq_poly([_fmpq(c) for c in f])
+    hz = {v: fmpq_poly([_fmpq(c) for c in h[i]]) for i, v in enumerate(rest)}
+    out: list[Solution] = []
+    for phi, _ in fz.factor()[1]:
+        coords = {v: hz[v] % phi for v in rest}
+        for v, e in subs.items():
+            coords[v] = _compose(e, names, coords, phi)
+        roots: Any = phi.complex_roots()  # (acb, multiplicity) pairs
+        for k, (root, _) in enumerate(roots):
+            values = {v: _coordinate(coords[v], phi, root, k) for v in names}
+            if theta is not None and not _is_the_field_generator(values[theta], field):
+                continue
+            real = all(val.real for val in values.values())
+            out.append(Solution({v: values[v] for v in names if v != theta}, real))
+    return out
+
+
+def _compose(e: Any, names: tuple[str, ...], coords: dict[str, Any], phi: Any) -> Any:
+    from flint import fmpq_poly
+
+    total = fmpq_poly([0])
+    for m, c in e.to_dict().items():
+        term = fmpq_poly([c])
+        for i, k in enumerate(m):
+            for _ in range(k):
+                term = (term * coords[names[i]]) % phi
+        total = total + term
+    return total % phi
+
+
+def _coordinate(p: Any, phi: Any, root: Any, k: int) -> AlgebraicValue:
+    """The value of ``p(z)`` at the root ``root`` (the k-th complex root of φ)."""
+    value = _horner([Fraction(int(c.p), int(c.q)) for c in p.coeffs()], root)
+    real = root.imag == 0
+    approx = complex(float(value.real.mid()), float(value.imag.mid()))
+    coeffs = [Fraction(int(c.p), int(c.q)) for c in p.coeffs()] or [Fraction(0)]
+    if p.degree() <= 0:
+        q = coeffs[0]
+        return AlgebraicValue(_frac_text(q), True, complex(float(q)), (-q, Fraction(1)), value)
+    if phi.degree() == 2:
+        return _quadratic(coeffs, phi, root, real, approx)
+    poly = " + ".join(f"{_frac_text(c)}*z^{j}" for j, c in enumerate(coeffs) if c)
+    phi_text = _poly_text([Fraction(int(c.p), int(c.q)) for c in phi.coeffs()], "z")
+    kind = "" if real else "complex "
+    return AlgebraicValue(f"{poly} at z = {kind}root {k + 1} of {phi_text}", real, approx, (), value)
+
+
+def _quadratic(coeffs: list[Fraction], phi: Any, root: Any, real: bool, approx: complex) -> AlgebraicValue:
+    """``c0 + c1·z`` with ``z = (−b ± √D)/2a`` as ``P ± Q·√d`` (d square-free)."""
+    a, b, c = (Fraction(int(x.p), int(x.q)) for x in reversed(phi.coeffs()))
+    D = b * b - 4 * a * c
+    d, square = _squarefree_part(D)  # √D = square·√d
+    from flint import arb
+
+    centre = arb(_fmpq(-b / (2 * a)))
+    sign = 1 if (real and root.real > centre) or (not real and root.imag > 0) else -1
+    c0, c1 = coeffs[0], coeffs[1] if len(coeffs) > 1 else Fraction(0)
+    P = c0 + c1 * (-b / (2 * a))
+    Q = sign * c1 * square / (2 * a)
+    text = _closed_form(P, Q, d)
+    minpoly = (P * P - Q * Q * d, -2 * P, Fraction(1))
+    return AlgebraicValue(text, real, approx, minpoly, root_value(coeffs, root))
+
+
+def _squarefree_part(D: Fraction) -> tuple[int, Fraction]:
+    """``D = square²·d`` with d a square-free integer (√D = square·√d)."""
+    num = D.numerator * D.denominator
+    sign = -1 if num < 0 else 1
+    num = abs(num)
+    square, d = 1, 1
+    k = 2
+    while k * k <= num:
+        while num % (k * k) == 0:
+            num //= k * k
+            square *= k
+        k += 1
+    d = sign * num
+    return d, Fraction(square, D.denominator)
+
+
+def _closed_form(P: Fraction, Q: Fraction, d: int) -> str:
+    if Q == 0 or d == 1:
+        return _frac_text(P + (Q if d == 1 else 0))
+    root = f"sqrt({d})" if d > 0 else f"sqrt({-d})*i"
+    q = "" if abs(Q) == 1 else f"{_frac_text(abs(Q))}*"
+    if P == 0:
+        return f"{'-' if Q < 0 else ''}{q}{root}"
+    return f"{_frac_text(P)} {'-' if Q < 0 else '+'} {q}{root}"
+
+
+def _frac_text(q: Fraction) -> str:
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def _poly_text(coeffs: list[Fraction], x: str) -> str:
+    terms = []
+    for j in range(len(coeffs) - 1, -1, -1):
+        c = coeffs[j]
+        if c:
+            mono = "" if j == 0 else (x if j == 1 else f"{x}^{j}")
+            terms.append(f"{_frac_text(c)}{'*' if mono else ''}{mono}" if c != 1 or not mono else mono)
+    return " + ".join(terms).replace("+ -", "- ") or "0"
+
+
+def root_value(coeffs: list[Fraction], root: Any) -> Any:
+    return _horner(coeffs, root)
+
+
+def _horner(coeffs: list[Fraction], x: Any) -> Any:
+    """A rational polynomial at a complex ball (flint acb), certified."""
+    from flint import acb, arb
+
+    out = acb(0)
+    for c in reversed(coeffs):
+        out = out * x + acb(arb(_fmpq(c)))
+    return out
+
+
+def _is_the_field_generator(value: AlgebraicValue, field: Any) -> bool:
+    """Whether a solution's θ coordinate is the family's θ, not one of its conjugates.
+    The coordinate is a root of θ's minimal polynomial, so it equals exactly one
+    conjugate; certified by enclosures: it overlaps θ's and none of the others'."""
+    from flint import acb, arb
+
+    theta = field.theta_enclosure(128)
+    mid, rad = (theta.lo + theta.hi) / 2, (theta.hi - theta.lo) / 2
+    target = acb(arb(_fmpq(mid), _fmpq(rad)))
+    ball = value.ball if value.ball is not None else acb(value.approx.real)
+    others = [r for r in field.conjugates(128) if not r.overlaps(target)]
+    if not ball.overlaps(target):
+        return False
+    if any(ball.overlaps(r) for r in others):
+        raise SolveLimitError("cannot tell the field generator from its conjugates at this precision")
+    return True
