@@ -8,12 +8,17 @@ import os
 from typing import Any, Sequence
 
 from rkcheck.api.verification import _option
-from rkcheck.errors import OptionError
-from rkcheck.options import DEFAULT_MAX_STAGES, MAX_ORDER, parse_degree, parse_int_in, parse_positive
-
 from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
+from rkcheck.errors import OptionError
 from rkcheck.methods.parametric import Family
 from rkcheck.numbers.solving import AlgebraicValue, Solution, SolutionSet
+from rkcheck.options import (
+    DEFAULT_MAX_STAGES,
+    MAX_ORDER,
+    parse_degree,
+    parse_int_in,
+    parse_positive,
+)
 
 #: The largest order ``solve`` and the polynomial conditions go to (their size grows
 #: quickly with it: order 9 has 1 842 rooted trees, each a polynomial of degree 9).
@@ -27,6 +32,13 @@ def load_family(path: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_S
     from rkcheck.io.loader import load_family as load
 
     return load(os.fspath(path), max_stages)
+
+
+def is_family_file(path: str | os.PathLike[str]) -> bool:
+    """Whether the file (or ``"@name"``) declares free ``[parameters]``."""
+    from rkcheck.io.loader import is_family_file as check
+
+    return check(os.fspath(path))
 
 
 def _family(family: Family | str | os.PathLike[str]) -> Family:
@@ -88,4 +100,4 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
 
 
 __all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",
-           "family_conditions", "load_family", "solve"]
+           "family_conditions", "is_family_file", "load_family", "solve"]

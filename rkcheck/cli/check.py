@@ -62,9 +62,15 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     without claims by its conditions (an AVF certificate counts as holding):
       0  all good   1  a claim is broken / a condition fails   2  bad file or option
     """
+    from rkcheck.api.families import is_family_file
     from rkcheck.api.verification import run_check
 
     config = project_config()
+    if is_family_file(file):  # free [parameters]: the conditions as polynomials
+        from rkcheck.cli.families import family_report
+
+        family_report(file, flag_values("degree", "order"), None, fmt, show_all)
+        sys.exit(EXIT_OK)
     tab = load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
@@ -123,6 +129,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
 
 
 @click.command()
+@click.argument("file", metavar="[FAMILY]", required=False)
 @order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
 @click.option("--count", is_flag=True, help="Only count the conditions per order (from generating functions: "
@@ -138,9 +145,11 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
               help="--emit: write to this file instead of stdout.")
 @max_conditions_option
 @output_options
-def conditions(order, degree, count, fmt, emit, classical, stages, explicit, output, max_conditions) -> None:
+def conditions(file, order, degree, count, fmt, emit, classical, stages, explicit, output, max_conditions) -> None:
     """List the energy conditions (non-superfluous free trees) up to an order, or write
-    them as code (--emit) for optimisers and computer algebra.
+    them as code (--emit) for optimisers and computer algebra.  With a FAMILY file (a
+    tableau with free [parameters]): each condition as an exact polynomial in the
+    parameters (--classical: also the classical order conditions).
 
     \b
     Examples:
@@ -150,6 +159,13 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
     """
     from rkcheck.api.trees import conditions as list_conditions
 
+    if file is not None:
+        if emit is not None or count or stages or explicit or output:
+            raise UserError("with a FAMILY file: --order, --degree, --classical and --format only")
+        from rkcheck.cli.families import family_report
+
+        family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True)
+        return
     if emit is None and (classical or stages or explicit or output):
         raise UserError("--classical, --stages, --explicit and --output go with --emit")
     if explicit and stages is None:

@@ -125,7 +125,9 @@ class ParametricEntries:
             raise UserError(f"the parameter-free numbers of the family are not exact algebraic numbers: {err}",
                             "parameters") from None
         self.ring = ParameterRing(parameters, found.field)
-        self._fixed = {id(node): self.ring.element(v) for (node, _), v in zip(leaves, found.values)}
+        # keyed by node identity: the nodes are kept alive with their values, so that an id
+        # is never reused by another node while the map holds it
+        self._fixed = {id(node): (node, self.ring.element(v)) for (node, _), v in zip(leaves, found.values)}
         self.values = [self.ring.reduce(self._polynomial(node, place)) for node, place in zip(nodes, places)]
 
     def polynomial_of(self, node: ex.Expr, place: str) -> Any:
@@ -135,12 +137,12 @@ class ParametricEntries:
             if id(leaf) in self._fixed:
                 continue
             if isinstance(leaf, ex.Name) and leaf.name in self.constants:
-                self._fixed[id(leaf)] = self._name(leaf.name, place)
+                self._fixed[id(leaf)] = (leaf, self._name(leaf.name, place))
                 continue
             value = ex.evaluate_exact(leaf, {})
             if value is None:
                 raise UserError("only rational numbers and the family's constants may appear here", place)
-            self._fixed[id(leaf)] = self.ring.constant(value)
+            self._fixed[id(leaf)] = (leaf, self.ring.constant(value))
         return self.ring.reduce(self._polynomial(node, place))
 
     # ------------------------------------------------------------------ parameter-free parts
@@ -184,7 +186,7 @@ class ParametricEntries:
 
         def combine(n: ex.Expr, vals: list[Any]) -> Any:
             if id(n) in self._fixed:
-                return self._fixed[id(n)]
+                return self._fixed[id(n)][1]
             if isinstance(n, ex.Name):
                 return self._name(n.name, place)
             if isinstance(n, ex.Unary):

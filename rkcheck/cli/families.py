@@ -1,0 +1,103 @@
+"""``rkcheck solve``, and the reports of ``verify``/``conditions`` on a family file."""
+
+from __future__ import annotations
+
+import click
+
+from rkcheck.cli.common import (
+    DEGREE,
+    check_output_target,
+    output_options,
+    settings,
+    stdout_console,
+    write_text,
+)
+
+#: The energy order of a family's report when neither the command line nor the file's
+#: [check] gives one.
+DEFAULT_FAMILY_ORDER = 6
+
+
+def family_report(file: str, flags: dict, classical_order: int | None, fmt: str, show_all: bool) -> None:
+    """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
+    with ``[parameters]``): ``flags`` holds the degree and order given on the command
+    line; the file's ``[check]`` supplies the others."""
+    from rkcheck.api.families import family_conditions, load_family
+
+    family = load_family(file)
+    check = family.info.check
+    degree = flags.get("degree", check.get("degree"))
+    order = flags.get("order", check.get("order", DEFAULT_FAMILY_ORDER))
+    result = family_conditions(family, degree=degree, order=order, classical_order=classical_order)
+    if fmt == "json":
+        from rkcheck.reports.families import conditions_doc
+        from rkcheck.reports.jsondoc import dumps
+
+        click.echo(dumps(conditions_doc(result)))
+        return
+    from rkcheck.reports.families import render_conditions
+
+    render_conditions(result, stdout_console(), show_all=show_all or settings().verbose)
+
+
+@click.command()
+@click.argument("file", metavar="FILE")
+@click.option("--degree", "-m", type=DEGREE, required=True, help="Polynomial degree m of the Hamiltonians ('none' = no bound).")
+@click.option("--order", "-N", type=click.IntRange(1, 12), required=True, help="Energy order: every condition up to it.")
+@click.option("--classical-order", type=click.IntRange(1, 12), default=None,
+              help="Also the classical order conditions up to this order.")
+@click.option("--where", "where", multiple=True, metavar="EQUATION",
+              help="An extra equation in the parameters, e.g. \"a11 = a22\" or \"b1 + b2 + b3 = 1\" (repeatable).")
+@click.option("--max-seconds", type=click.IntRange(1, 86_400), default=60, show_default=True,
+              help="Time limit of the Gröbner bases; beyond it, a one-line error.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
+              help="Write the report to this file.")
+@output_options
+def solve(file, degree, order, classical_order, where, max_seconds, fmt, output) -> None:
+    """The exact solution set of a family's conditions: every energy condition up to
+    --order for Hamiltonians of degree <= --degree (plus --classical-order and --where
+    equations), as a reduced Gröbner basis, its dimension, and every solution exactly
+    when there are finitely many.
+
+    FILE is a tableau file with a [parameters] table (name = "free"); its entries are
+    polynomials in the parameters.
+
+    \b
+    Examples:
+      rkcheck solve tableaux/families/theorem1-s2-m3.toml --degree 3 --order 6
+      rkcheck solve family.toml -m 5 -N 6 --where "b1 + b2 + b3 = 1" --format json
+
+    \b
+    Exit code: 0 solved (whatever the set), 2 bad file, option or a limit reached.
+    """
+    from rkcheck.api.families import load_family
+    from rkcheck.api.families import solve as run
+
+    check_output_target(output)
+    family = load_family(file)
+    result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
+                 max_seconds=max_seconds)
+    if fmt == "json":
+        from rkcheck.reports.families import solve_doc
+        from rkcheck.reports.jsondoc import dumps
+
+        options = {"degree": degree, "order": order, "classical_order": classical_order, "where": list(where)}
+        text = dumps(solve_doc(family, result, options))
+        if output:
+            write_text(text + "\n", output)
+        else:
+            click.echo(text)
+        return
+    from rkcheck.reports.families import render_solution_set
+
+    if output and output != "-":
+        import io
+
+        from rich.console import Console
+
+        buffer = io.StringIO()
+        render_solution_set(family, result, Console(file=buffer, no_color=True, width=120))
+        write_text(buffer.getvalue(), output)
+        return
+    render_solution_set(family, result, stdout_console())

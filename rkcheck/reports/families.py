@@ -1,0 +1,136 @@
+"""Reports of families: their conditions as polynomials, and the solution sets of
+``rkcheck solve`` (text for people, JSON for machines)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rich.console import Console
+from rich.text import Text
+
+from rkcheck.numbers.parametric import THETA
+from rkcheck.version import __version__
+
+#: The JSON documents' schema version (``rkcheck.solve`` and family conditions).
+FAMILY_SCHEMA = 1
+
+
+def polynomial_text(p: Any, field: Any) -> str:
+    """A polynomial as text, the field generator shown as its closed form (``sqrt(3)``)
+    or as θ."""
+    text = str(p)
+    if THETA in text:
+        name = field.name if field is not None and field.sqrt_of else "θ"
+        text = text.replace(THETA, name)
+    return text
+
+
+def _field_note(field: Any) -> str | None:
+    if field is None or field.sqrt_of:
+        return None
+    return f"θ = {field.name}"
+
+
+# ------------------------------------------------------------------ conditions
+
+
+def conditions_doc(fc: Any) -> dict[str, Any]:
+    fam = fc.family
+    field = fam.ring.field
+
+    def cond(c: Any) -> dict[str, Any]:
+        return {"kind": c.kind, "id": c.id, "bracket": c.bracket, "order": c.order,
+                "polynomial": polynomial_text(c.polynomial, field), "degree": c.degree, "vanishes": c.vanishes}
+
+    return {
+        "rkcheck": __version__,
+        "schema": FAMILY_SCHEMA,
+        "family": {"name": fam.name, "source": fam.info.source, "parameters": list(fam.parameters),
+                   "stages": fam.stages, "field": None if field is None else field.name},
+        "degree": fc.degree,
+        "order_checked": fc.order,
+        "energy_order_generic": fc.energy_order,
+        "exceptional": [c.id for c in fc.exceptional],
+        "classical_order_generic": fc.classical_order,
+        "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
+    }
+
+
+def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None:
+    fam = fc.family
+    field = fam.ring.field
+    deg = "none" if fc.degree is None else fc.degree
+    console.print(Text(f"{fam.name}: a family in {', '.join(fam.parameters)}", style="bold"))
+    note = _field_note(field)
+    if note:
+        console.print(note)
+    total = len(fc.energy)
+    zero = sum(c.vanishes for c in fc.energy)
+    console.print(f"energy conditions, degree m = {deg}, up to order {fc.order}: {total}, "
+                  f"{zero} vanish identically")
+    generic = fc.energy_order
+    label = f"≥ {generic}" if generic == fc.order and not fc.exceptional else str(generic)
+    console.print(f"energy order for generic parameter values: {label}")
+    if fc.classical is not None:
+        console.print(f"classical order for generic parameter values: {fc.classical_order}")
+    if show_all:
+        shown = fc.energy + (fc.classical or [])
+    else:
+        shown = fc.exceptional
+        if shown:
+            console.print("the first conditions that do not vanish identically (their zeros are the exceptional "
+                          "values; --all lists every condition):")
+    for c in shown:
+        mark = "0" if c.vanishes else polynomial_text(c.polynomial, field)
+        degree = "" if c.vanishes else f"  [degree {c.degree}]"
+        console.print(Text(f"  {c.kind} order {c.order}  {c.id}  {c.bracket}:  {mark}{degree}"))
+    if fc.exceptional and not show_all:
+        console.print(f"where they vanish: rkcheck solve {fam.info.source} --degree {deg} --order {fc.order}")
+
+
+# ------------------------------------------------------------------ solutions
+
+
+def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, Any]:
+    field = family.ring.field
+
+    def value(v: Any) -> dict[str, Any] | str:
+        return v.text
+
+    return {
+        "rkcheck": __version__,
+        "schema": FAMILY_SCHEMA,
+        "family": {"name": family.name, "source": family.info.source, "field": None if field is None else field.name},
+        "options": options,
+        "parameters": list(result.variables),
+        "equations": result.equations,
+        "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
+        "groebner": [polynomial_text(g, field) for g in result.groebner],
+        "dimension": result.dimension,
+        "solutions": None if result.solutions is None else [
+            {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
+        "seconds": round(result.seconds, 3),
+    }
+
+
+def render_solution_set(family: Any, result: Any, console: Console) -> None:
+    field = family.ring.field
+    console.print(Text(f"{family.name}: {result.equations} equations in {', '.join(result.variables)}", style="bold"))
+    note = _field_note(field)
+    if note:
+        console.print(note)
+    console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
+    for g in result.groebner:
+        console.print(f"  {polynomial_text(g, field)} = 0")
+    if result.dimension < 0:
+        console.print(Text("no solution: the conditions are inconsistent", style="bold red"))
+        return
+    if result.dimension > 0:
+        console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the set above", style="bold"))
+        return
+    sols = result.solutions or []
+    real = sum(s.real for s in sols)
+    console.print(Text(f"{len(sols)} solution{'s' if len(sols) != 1 else ''} ({real} real)", style="bold green"))
+    for k, s in enumerate(sols, start=1):
+        values = ", ".join(f"{name} = {v.text}" for name, v in s.values.items())
+        console.print(f"  {k}. {values}{'' if s.real else '  (not real)'}")

@@ -1,0 +1,141 @@
+"""Families with free parameters: conditions as polynomials and their exact solution
+sets, checked against the seed's Theorem 1 and against rkcheck's own numeric engine at
+points (an independent route: modular exact evaluation of one tableau)."""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+
+import pytest
+from support.clirun import run_cli
+from support.paths import TABLEAUX
+
+import rkcheck
+from rkcheck.errors import UserError
+
+FAMILIES = TABLEAUX / "families"
+
+
+def tableau_of(solution, A_names, b):
+    """The tableau of a solution, its values written as entries (closed forms parse)."""
+    A = [[solution.values[name].text for name in row] for row in A_names]
+    return rkcheck.from_arrays(A, b)
+
+
+A2 = [["a11", "a12"], ["a21", "a22"]]
+A3 = [["a11", "a12", "a13"], ["a21", "a22", "a23"], ["a31", "a32", "a33"]]
+
+
+def test_theorem1_s2_m3_two_avf_solutions():
+    res = rkcheck.solve(FAMILIES / "theorem1-s2-m3.toml", degree=3, order=6)
+    assert res.dimension == 0 and len(res.solutions) == 2 and all(s.real for s in res.solutions)
+    b = [Fraction(3, 4), Fraction(1, 4)]
+    nodes = set()
+    for s in res.solutions:
+        A = [[Fraction(s.values[n].text) for n in row] for row in A2]
+        c = [sum(row) for row in A]
+        # A = c bᵀ: AVF over the rule (b, c), and the rule integrates up to degree 2
+        assert A == [[ci * bj for bj in b] for ci in c]
+        assert all(sum(bi * ci ** k for bi, ci in zip(b, c)) == Fraction(1, k + 1) for k in range(3))
+        nodes.add(tuple(c))
+        assert rkcheck.verify(tableau_of(s, A2, ["3/4", "1/4"]), degree=3, order=6).verdict == "holds"
+    assert nodes == {(Fraction(1, 3), Fraction(1)), (Fraction(2, 3), Fraction(0))}
+
+
+def test_theorem1_s2_m4_gauss_nodes_in_either_order():
+    res = rkcheck.solve(FAMILIES / "theorem1-s2-m4.toml", degree=4, order=6)
+    assert res.dimension == 0 and len(res.solutions) == 2
+    gauss = rkcheck.load("@gauss-2")
+    want = sorted(float(gauss.A[i][0].enclosure(64).mid + gauss.A[i][1].enclosure(64).mid) for i in range(2))
+    for s in res.solutions:
+        tab = tableau_of(s, A2, ["1/2", "1/2"])
+        c = sorted(float(sum(e.enclosure(64).mid for e in row)) for row in tab.A)
+        assert c == pytest.approx(want, abs=1e-15)
+        assert rkcheck.verify(tab, degree=4, order=6).verdict == "holds"  # exact, in Q(√3)
+
+
+def test_seed_kernel_family_first_condition_is_beta_squared_over_72():
+    fc = rkcheck.family_conditions(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6)
+    assert fc.energy_order == 4
+    (first,) = fc.exceptional
+    beta = fc.family.ring.parameter("beta")
+    assert first.polynomial == beta ** 2 / 72 and first.id == "1,2,3,2,3,2"
+    res = rkcheck.solve(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6)
+    assert [s.values["beta"].text for s in res.solutions] == ["0"]
+
+
+def test_theorem1_s3_m6_two_gauss_avf_solutions():
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m6.toml", degree=6, order=7)
+    assert res.dimension == 0 and len(res.solutions) == 2
+    for s in res.solutions:
+        assert s.values["a22"].text == "2/9" and s.values["a21"].text == "5/36"  # middle node 1/2: row (1/2)·b
+        tab = tableau_of(s, A3, ["5/18", "4/9", "5/18"])
+        assert rkcheck.verify(tab, degree=6, order=7).verdict == "holds"
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_polynomials_agree_with_the_exact_engine_at_rational_points(seed):
+    fam = rkcheck.load_family(FAMILIES / "theorem1-s2-m3.toml")
+    fc = rkcheck.family_conditions(fam, degree=None, order=5)
+    rng = random.Random(seed)
+    point = {p: Fraction(rng.randint(-9, 9), rng.randint(1, 7)) for p in fam.parameters}
+    tab = fam.at(point)
+    want = {c.id: c.residual for c in rkcheck.verify(tab, degree=None, order=5).conditions}
+    names = fam.ring.variables
+    for c in fc.energy:
+        from flint import fmpq
+
+        got = c.polynomial.subs({n: fmpq(point[n].numerator, point[n].denominator) for n in names})
+        assert Fraction(str(got)) == want[c.id], c.id
+
+
+def test_where_adds_an_equation():
+    res = rkcheck.solve(FAMILIES / "theorem1-s2-m3.toml", degree=3, order=6, where=["a22 = 0"])
+    assert [s.values["a11"].text for s in res.solutions] == ["1/2"]
+
+
+def test_cli_solve_json_has_the_documented_keys(capsys):
+    import json
+
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
+                "--format", "json")
+    assert r.code == 0, r.err
+    doc = json.loads(r.out)
+    assert set(doc) >= {"parameters", "equations", "groebner", "dimension", "solutions"}
+    assert doc["parameters"] == ["a11", "a12", "a21", "a22"] and doc["dimension"] == 0
+    assert {tuple(sorted(s["values"].items())) for s in doc["solutions"]} == {
+        (("a11", "1/4"), ("a12", "1/12"), ("a21", "3/4"), ("a22", "1/4")),
+        (("a11", "1/2"), ("a12", "1/6"), ("a21", "0"), ("a22", "0"))}
+
+
+@pytest.mark.parametrize(("entry", "message"), [
+    ("sqrt(beta)", "a parameter under sqrt"),
+    ("2^beta", "a parameter in an exponent"),
+    ("1/beta", "a parameter in a denominator"),
+    ("gamma", "unknown name 'gamma'"),
+])
+def test_non_polynomial_entries_are_one_line_errors(tmp_path, capsys, entry, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(f'[parameters]\nbeta = "free"\n[tableau]\nA = [["{entry}"]]\nb = ["1"]\n', encoding="utf-8")
+    r = run_cli(capsys, "solve", str(path), "--degree", "2", "--order", "3")
+    assert r.code == 2 and r.err.count("\n") == 1 and message in r.err and "A[1][1]" in r.err, r.err
+    with pytest.raises(UserError, match=message):
+        rkcheck.load_family(path)
+
+
+def test_a_family_is_not_loaded_as_one_tableau():
+    with pytest.raises(UserError, match="free \\[parameters\\]"):
+        rkcheck.load(FAMILIES / "theorem1-s2-m3.toml")
+
+
+def test_the_time_limit_is_a_one_line_error(tmp_path, capsys):
+    # A and b free, s = 3, m = 5: beyond a plain Buchberger in 1 s
+    names = [f"a{i}{j}" for i in range(1, 4) for j in range(1, 4)] + ["b1", "b2", "b3"]
+    params = "\n".join(f'{n} = "free"' for n in names)
+    path = tmp_path / "hard.toml"
+    path.write_text(f"[parameters]\n{params}\n[tableau]\nA = [[\"a11\", \"a12\", \"a13\"], [\"a21\", \"a22\", \"a23\"], "
+                    f"[\"a31\", \"a32\", \"a33\"]]\nb = [\"b1\", \"b2\", \"b3\"]\n", encoding="utf-8")
+    r = run_cli(capsys, "solve", str(path), "--degree", "5", "--order", "6", "--where", "b1 + b2 + b3 = 1",
+                "--max-seconds", "1")
+    assert r.code == 2 and "time limit" in r.err and r.err.count("\n") == 1, r.err
