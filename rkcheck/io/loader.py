@@ -451,7 +451,9 @@ def load_family(path: str, max_stages: int = DEFAULT_MAX_STAGES) -> "Family":
 
 def is_family_file(path: str) -> bool:
     """Whether a file (or ``@name``) declares free parameters; False when unreadable (the
-    caller's own load reports why)."""
+    caller's own load reports why) and for standard input (read once, as a tableau)."""
+    if path == "-":
+        return False
     try:
         if path.startswith("@"):
             from rkcheck.io import library

@@ -25,6 +25,18 @@ def polynomial_text(p: Any, field: Any) -> str:
     return text
 
 
+def shown_basis(result: Any) -> list[Any]:
+    """The Gröbner basis without the field generator's own minimal polynomial (it defines
+    the numbers, not the solutions)."""
+    out = []
+    for g in result.groebner:
+        names = g.context().names()
+        used = {names[i] for m in g.monoms() for i, e in enumerate(m) if e}
+        if used != {THETA}:
+            out.append(g)
+    return out
+
+
 def _field_note(field: Any) -> str | None:
     if field is None or field.sqrt_of:
         return None
@@ -105,7 +117,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
-        "groebner": [polynomial_text(g, field) for g in result.groebner],
+        "groebner": [polynomial_text(g, field) for g in shown_basis(result)],
         "dimension": result.dimension,
         "solutions": None if result.solutions is None else [
             {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
@@ -120,7 +132,7 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     if note:
         console.print(note)
     console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
-    for g in result.groebner:
+    for g in shown_basis(result):
         console.print(f"  {polynomial_text(g, field)} = 0")
     if result.dimension < 0:
         console.print(Text("no solution: the conditions are inconsistent", style="bold red"))

@@ -25,7 +25,7 @@ FENCE = re.compile(r"^(\s*)```")
 #: table columns whose cells are wall times (by their header)
 TIMING_HEADERS = {"time", "time s", "conditions/s"}
 #: JSON keys whose number values are wall times
-TIMING_KEYS = {"trees", "evaluation", "orders_and_avf", "total", "time"}
+TIMING_KEYS = {"trees", "evaluation", "orders_and_avf", "total", "time", "seconds"}
 
 
 @dataclass(frozen=True)
