@@ -8,7 +8,6 @@ from fractions import Fraction
 
 import pytest
 from support.clirun import run_cli
-from support.heavy import heavy
 from support.paths import TABLEAUX  # noqa: E402
 
 from rkcheck.energy.double_bush import kernel_of, rule_values, seed_N
@@ -52,8 +51,7 @@ def test_gauss_even_case_rank_and_kernel(s):
         assert last_nonzero > 1e-8 and first_zero < 1e-45
 
 
-# s = 5 repeats s <= 4 at seconds per case: CI's heavy run
-@pytest.mark.parametrize("s", [2, 3, 4, pytest.param(5, marks=heavy)])
+@pytest.mark.parametrize("s", [2, 3, 4, 5])
 @pytest.mark.parametrize("zeta", ["0", "1", "1/2", "-1/3", "-1"])
 def test_odd_case_ranks_and_one_dimensional_zero_row_sum_kernel(s, zeta):
     # seed §4: m = 2s − 1, nodes the zeros of P_s − ζP_{s−1}:
