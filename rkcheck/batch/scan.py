@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 import signal
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
@@ -110,6 +111,8 @@ def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: 
     """One worker: check the files the parent sends, one at a time, until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C ...
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ... and stops us with SIGTERM
+    if hasattr(signal, "pthread_sigmask"):  # held back since the fork (_sigint_held), now ignored
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     while True:
         try:
             task = conn.recv()
@@ -214,8 +217,9 @@ class _Pool:
         proc = self.ctx.Process(target=_worker_main, args=(child_end, *self.worker_args), daemon=True)
         # known before it exists: a Ctrl-C during the fork must not leave an unknown worker
         self.workers.append(_Worker(proc, parent_end))
-        proc.start()
-        child_end.close()
+        with _sigint_held():
+            proc.start()
+            child_end.close()
 
     def finish(self, index: int, outcome: FileOutcome) -> None:
         self.done[index] = outcome
@@ -262,6 +266,23 @@ class _Pool:
         self.workers.remove(w)
         if self.queue:
             self.start_worker()
+
+
+@contextmanager
+def _sigint_held():
+    """Hold Ctrl-C back while a worker starts.  It reaches the whole process group: a
+    worker still inside multiprocessing's start-up, before it ignores SIGINT, would die
+    there with a traceback.  Forked with SIGINT blocked, the worker unblocks it once it
+    ignores it; the parent receives a Ctrl-C that came meanwhile when the new worker is
+    on the list that :func:`_stop` stops."""
+    if not hasattr(signal, "pthread_sigmask"):  # no POSIX signal masks (Windows)
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _stop(workers: list[_Worker]) -> None:

@@ -22,7 +22,6 @@ def mypy(*paths: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, cwd=REPO)
 
 
-@pytest.mark.slow
 def test_api_and_typed_usage_pass_mypy():
     run = mypy("rkcheck/__init__.py", "rkcheck/api", "rkcheck/cli", "rkcheck/errors.py", "rkcheck/io/library.py",
                "rkcheck/io/formats.py", "rkcheck/io/delimited.py", "rkcheck/io/nodepy_text.py", "rkcheck/io/loader.py",
@@ -39,7 +38,6 @@ def checked_modules() -> list[str]:
     return [m for m in modules if not m.startswith(NOT_CHECKED)]
 
 
-@pytest.mark.slow
 def test_package_passes_mypy():
     modules = checked_modules()
     assert len(modules) > 50 and "rkcheck/energy/check.py" in modules  # a real list, not an empty one
@@ -47,7 +45,6 @@ def test_package_passes_mypy():
     assert run.returncode == 0, run.stdout + run.stderr
 
 
-@pytest.mark.slow
 def test_misuse_is_caught():
     run = mypy(str(HERE / "typed_misuse.py"))
     assert run.returncode == 1

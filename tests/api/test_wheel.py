@@ -13,7 +13,6 @@ import pytest
 from support.paths import REPO, TABLEAUX
 
 
-@pytest.mark.slow
 def test_wheel_ships_the_library(tmp_path):
     src = tmp_path / "src"
     src.mkdir()

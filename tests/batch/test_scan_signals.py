@@ -230,3 +230,31 @@ def test_unreadable_folders_are_reported_not_skipped(tmp_path, capsys, monkeypat
     locked.add(str(folder))
     r = run_cli(capsys, "scan", str(folder), "--jobs", "1")
     assert r.code == 2 and r.err == f"rkcheck: error: {folder}: cannot read this folder (permission denied)\n"
+
+
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask") or not hasattr(os, "fork"), reason="POSIX fork only")
+def test_workers_are_born_with_ctrl_c_held_back(tmp_path, monkeypatch):
+    # Ctrl-C reaches the whole process group: a worker that receives it while
+    # multiprocessing is still starting it (before it ignores SIGINT) printed a traceback
+    # ("Process ForkProcess-2: Traceback ... util._close_stdin()").  Each worker must start
+    # with SIGINT blocked, then ignore it and unblock it; the parent's mask comes back.
+    import rkcheck.batch.scan as scan
+
+    seen = tmp_path / "seen"
+    real = scan._worker_main
+
+    def spy(*args):
+        held = signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+        real(*args)
+        after = signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+        ignored = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+        with open(seen, "a", encoding="utf-8") as fh:
+            fh.write(f"{held} {after} {ignored}\n")
+
+    monkeypatch.setattr(scan, "_worker_main", spy)
+    folder = dense_folder(tmp_path, 2)
+    files = sorted(str(p) for p in folder.iterdir())
+    outcomes, interrupted = scan.run_scan(files, {"order": 4}, {}, "fail", jobs=2)
+    assert not interrupted and len(outcomes) == 2 and all(o.error is None for o in outcomes)
+    assert seen.read_text().splitlines() == ["True False True"] * 2
+    assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 from support import reference as ref
@@ -19,7 +20,9 @@ def run(*args: str) -> subprocess.CompletedProcess:
 
 
 def test_order_6_row_has_the_reference_counts_and_sane_measurements():
+    started = time.monotonic()
     proc = run("--orders", "6", "--degrees", "none", "--startup-runs", "0", "--repeat", "1")
+    elapsed = time.monotonic() - started
     assert proc.returncode == 0, proc.stderr
     lines = [line for line in proc.stdout.splitlines() if line.startswith("|")]
     header = [h.strip() for h in lines[0].strip("|").split("|")]
@@ -30,7 +33,9 @@ def test_order_6_row_has_the_reference_counts_and_sane_measurements():
     assert int(cells["conditions"]) == len(conditions) == 20
     assert int(cells["terms"]) == sum(len(c["terms"]) for c in conditions)
     seconds = {k: float(cells[k]) for k in ("listing s", "exact s", "balls50 s", "float64 s", "check s")}
-    assert all(0 <= v < 60 for v in seconds.values())
+    # seconds, not another unit: no phase took longer than the whole run (however loaded
+    # the machine, both clocks slow down together)
+    assert all(0 <= v <= elapsed for v in seconds.values())
     # the ratio is printed from the unrounded times: it lies in the range the 3-decimal times allow
     balls, exact, half = seconds["balls50 s"], seconds["exact s"], 0.0005
     if exact > half:

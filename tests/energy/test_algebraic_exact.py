@@ -35,14 +35,12 @@ def _family(rule: str, s: int):
     return load_text(f'[family]\nname = "avf"\ns = {s}\nrule = "{rule}"\n', f"avf-{rule}-{s}.toml")
 
 
-@pytest.mark.parametrize("rule,s", [
-    pytest.param(r, s, marks=[pytest.mark.slow] if (r.startswith("radau") and s == 5) else [])
-    for r in RULES for s in range(2, 6) if not (r == "lobatto" and s < 3)])
+@pytest.mark.parametrize("rule,s", [(r, s) for r in RULES for s in range(2, 6) if not (r == "lobatto" and s < 3)])
 def test_avf_over_algebraic_rules_holds_exactly(rule, s):
     tab = _family(rule, s)
     q = RULES[rule](s)
     # Radau's 5-point nodes generate a field of degree 24 (their quartic's Galois group is
-    # S4): about 50 s each at order 10, the slowest tests of the suite
+    # S4), the largest field of these rules
     order = 10
     res = check(tab, CheckOptions(degree=q, order=order))
     assert res.backend == "exact", "an algebraic tableau must be checked exactly"

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import time
+import re
 
 import pytest
 from support.clirun import run_cli
+from support.limits import run_limited
 from support.paths import TABLEAUX
 
 from rkcheck.energy.budget import Budget, ResourceError, check_budget, estimate
@@ -13,12 +14,33 @@ from rkcheck.energy.check import CheckOptions, check
 from rkcheck.io.loader import load
 
 
-def test_order_24_is_refused_in_well_under_a_second():
-    tab = load(str(TABLEAUX / "explicit" / "rk4.toml"))
-    t0 = time.perf_counter()
-    with pytest.raises(ResourceError, match="order 24 needs about .* for 167 871 332 conditions"):
-        check(tab, CheckOptions(order=24), budget=Budget(available_bytes=24 * 2**30))
-    assert time.perf_counter() - t0 < 0.5
+# order 24 in a child under 300 MB and 10 CPU seconds: listing its 167 871 332 conditions
+# alone would take about 100 GB, so the child can only answer by refusing before any work
+ORDER_24 = """
+import sys
+from rkcheck.energy.budget import Budget, ResourceError
+from rkcheck.energy.check import CheckOptions, check
+from rkcheck.io.loader import load
+budget = Budget(available_bytes=24 * 2**30) if sys.argv[2] == "budget" else None
+try:
+    check(load(sys.argv[1]), CheckOptions(order=24), budget=budget)
+except ResourceError as err:
+    print(err)
+"""
+
+
+def test_order_24_is_refused_before_any_work():
+    run = run_limited(["-c", ORDER_24, str(TABLEAUX / "explicit" / "rk4.toml"), "budget"], memory_mb=300, cpu_seconds=10)
+    assert run.code == 0, run.err
+    assert re.fullmatch(r"order 24 needs about [0-9.]+ GB for 167 871 332 conditions but 25\.8 GB is available; .*\n",
+                        run.out), run.out
+
+
+def test_without_a_budget_order_24_does_not_fit_the_same_limits():
+    # the control: the limits above do stop a check that starts working
+    run = run_limited(["-c", ORDER_24, str(TABLEAUX / "explicit" / "rk4.toml"), "none"], memory_mb=300, cpu_seconds=10)
+    assert run.code != 0 and run.out == ""
+    assert run.killed or "MemoryError" in run.err or "Unable to allocate" in run.err, run.err
 
 
 def test_max_conditions_refuses_and_overrides_the_memory_check():

@@ -9,6 +9,7 @@ from fractions import Fraction as F
 
 import pytest
 from support import reference as ref
+from support.heavy import heavy
 from support.paths import TABLEAUX
 
 from rkcheck.energy.check import CheckOptions, check
@@ -73,7 +74,7 @@ SHIPPED = ["explicit/ralston.toml", "explicit/ssprk3.toml", "collocation/radau-i
            "avf/avf-radau-i-2.toml", "counterexamples/kernel-zeta-third-beta-0.1.toml"]
 
 
-@pytest.mark.slow
+@heavy
 def test_measured_energy_errors_follow_the_constants():
     """One step from random points of 100 random degree-4 Hamiltonians in 3 degrees of
     freedom (rkcheck.dynamics, float64): the leading coefficient L of ΔH/h⁴ (Richardson

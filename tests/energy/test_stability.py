@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 import sympy
 from support import reference as ref
+from support.heavy import heavy
 from support.numbers import exact_under
 from support.paths import TABLEAUX
 from support.symbolic import gauss
@@ -154,7 +155,7 @@ def m2_cases():
     return files, randoms
 
 
-@pytest.mark.slow
+@heavy
 def test_every_m2_certificate_agrees_with_the_free_tree_conditions_to_order_12():
     """For every shipped tableau and random ones: R(z)R(−z) ≡ 1 iff every m = 2 condition
     up to order 12 holds; otherwise the first failing condition has order leading_power."""

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import random
 from fractions import Fraction
-from pathlib import Path
 
 import pytest
 from support import reference as ref
+from support.heavy import shipped_params
 from support.numbers import exact_under
 from support.paths import TABLEAUX
 
@@ -168,7 +168,7 @@ def test_float_screen_encloses_and_never_fails_where_exact_holds(seed):
 FILES = [f for f in find_tableau_files([str(TABLEAUX)])]
 
 
-@pytest.mark.parametrize("path", FILES, ids=[str(Path(f).relative_to(TABLEAUX)) for f in FILES])
+@pytest.mark.parametrize("path", shipped_params(FILES))
 def test_shipped_tableaux_balls_agree_with_exact_and_screen_is_safe(path):
     tab = load(path)
     listing = ConditionListing(8, tab.info.check.get("degree"))

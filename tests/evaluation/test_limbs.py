@@ -198,7 +198,6 @@ def _mid(iv: Interval, P: int) -> int:
     return _ball_at(iv, P, 0)[0]
 
 
-@pytest.mark.slow
 def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
     # the benchmark's dense tableau to 15 vertices (13 102 conditions): the path of
     # `verify --arithmetic ball`, against the exact engine's values

@@ -9,6 +9,7 @@ from fractions import Fraction
 import pytest
 import sympy as sp
 from support.clirun import run_cli
+from support.heavy import heavy
 from support.numbers import exact_under
 from support.paths import TABLEAUX
 
@@ -129,8 +130,9 @@ def test_code_writers_take_family_tableaux(capsys, fmt):
         assert run.code == 2 and "root(…) has no exact form" in run.err
 
 
-@pytest.mark.parametrize("params", [{"name": "gauss", "s": 3}, {"name": "hbvm", "k": 6, "s": 3},
-                                    {"name": "gauss", "s": 9}], ids=["gauss-3", "hbvm-6-3", "gauss-9"])
+@pytest.mark.parametrize("params", [pytest.param({"name": "gauss", "s": 3}, id="gauss-3"),
+                                    pytest.param({"name": "hbvm", "k": 6, "s": 3}, id="hbvm-6-3", marks=heavy),
+                                    pytest.param({"name": "gauss", "s": 9}, id="gauss-9")])
 @pytest.mark.parametrize("fmt", ["toml", "json"])
 def test_family_tableaux_write_files_that_read_back(params, fmt):
     # show --format toml|json of a [family] wrote the "≈0.0203…" display texts, which

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 from support import reference as ref
+from support.heavy import heavy, shipped_params
 from support.numbers import exact_under
 from support.paths import TABLEAUX  # noqa: E402
 
@@ -20,7 +21,6 @@ from rkcheck.io.loader import load
 from rkcheck.methods.families import FamilySpec, family_tableau
 
 FILES = find_tableau_files([str(TABLEAUX)])
-IDS = [str(Path(f).relative_to(TABLEAUX)) for f in FILES]
 
 
 def test_the_library_has_at_least_40_documented_files_in_every_kind():
@@ -33,7 +33,7 @@ def test_the_library_has_at_least_40_documented_files_in_every_kind():
         assert tab.info.claims, f"{f} has no [expect] claims"
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
+@pytest.mark.parametrize("path", shipped_params(FILES))
 def test_every_shipped_tableau_meets_its_claims(path):
     tab = load(path)
     runner = CheckRunner()
@@ -52,7 +52,8 @@ def test_the_library_has_algebraic_tableaux():
     assert len(ALGEBRAIC) >= 10
 
 
-@pytest.mark.parametrize("path", ALGEBRAIC, ids=[str(Path(f).relative_to(TABLEAUX)) for f in ALGEBRAIC])
+# HBVM(6, 2) stays in the default run: the one exact check there in the largest field shipped
+@pytest.mark.parametrize("path", shipped_params(ALGEBRAIC, lambda p: p.endswith("hbvm-6-3.toml")))
 def test_every_shipped_algebraic_tableau_is_checked_exactly(path):
     # HBVM(6, σ) included: the six Gauss-6 nodes generate the splitting field of P6, of
     # degree |Gal| = 48 (tests/numbers/test_algebraic.py), the largest field shipped
@@ -109,6 +110,7 @@ def _states(tab, degree, order=8):
     return {r.id: r.verdict.holds for r in res.conditions}, res.energy_order_all
 
 
+@heavy
 @pytest.mark.parametrize("degree", [6, 7])
 def test_hbvm_6_2_family_and_60_digit_forms_give_the_same_verdicts(degree):
     family = load(str(TABLEAUX / "hbvm" / "hbvm-6-2.toml"))
@@ -158,7 +160,8 @@ FIRST_FAILURE = {
 }
 
 
-@pytest.mark.parametrize("k, s", list(FIRST_FAILURE), ids=[f"hbvm-{k}-{s}" for k, s in FIRST_FAILURE])
+@pytest.mark.parametrize("k, s", [pytest.param(k, s, id=f"hbvm-{k}-{s}", marks=[heavy] if k == 6 else [])
+                                  for k, s in FIRST_FAILURE])
 @pytest.mark.parametrize("arithmetic", ["exact", "ball"])
 def test_hbvm_holds_to_2k_over_s_and_fails_beyond(k, s, arithmetic):
     # every HBVM(k, s) here is exact in the field of its Gauss nodes (degree 48 for k = 6);
@@ -188,8 +191,10 @@ def test_new_pipes_into_verify_from_stdin():
     assert '"energy_order_all": true' in ver.stdout
 
 
-@pytest.mark.parametrize("args", [["hbvm", "-k", "6", "-s", "2"], ["radau-iia", "-s", "3", "--digits", "30"],
-                                  ["kernel", "--zeta", "1/3", "--beta", "1/10"], ["avf", "-s", "2", "--rule", "radau-ii"]])
+@pytest.mark.parametrize("args", [pytest.param(["hbvm", "-k", "6", "-s", "2"], marks=heavy),
+                                  ["hbvm", "-k", "4", "-s", "2"], ["radau-iia", "-s", "3", "--digits", "30"],
+                                  ["kernel", "--zeta", "1/3", "--beta", "1/10"], ["avf", "-s", "2", "--rule", "radau-ii"]],
+                         ids=["hbvm-6-2", "hbvm-4-2", "radau-iia-3", "kernel", "avf-radau-ii-2"])
 def test_new_files_reproduce_the_family_verdicts(tmp_path, args):
     out = tmp_path / "new.toml"
     subprocess.run([sys.executable, "-m", "rkcheck", "new", *args, "-o", str(out)], check=True)
@@ -228,7 +233,7 @@ def test_new_exact_uses_root_forms_when_square_roots_do_not_suffice(tmp_path):
         assert residual.is_zero() == (k <= 7), k
 
 
-@pytest.mark.slow
+@heavy
 def test_catalog_matches_the_committed_readme():
     # tableaux/README.md is generated, not edited: regenerate and compare
     r = subprocess.run([sys.executable, "-m", "rkcheck", "catalog", "tableaux/", "-o", "-"],

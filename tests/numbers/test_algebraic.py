@@ -131,7 +131,6 @@ def test_mirrored_roots_of_a_symmetric_polynomial_are_not_adjoined_again():
     assert r.values[2] == 1 - r.values[1] and r.values[3] == 1 - r.values[0]
 
 
-@pytest.mark.slow
 def test_the_six_gauss_6_nodes_generate_a_field_of_the_galois_groups_order():
     # three nodes generate the splitting field (degree |Gal| = 48, by sympy); the other
     # three are their mirrors, so the builder stops at 48 instead of asking for 48·6

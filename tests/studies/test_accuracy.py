@@ -44,7 +44,6 @@ def proportional(X, Y, tol) -> bool:
         return lam != 0 and all(abs(x - lam * y) <= tol for x, y in zip(fx, fy))
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("s", [2, 3, 4, 5])
 def test_gauss_even_case_rank_and_kernel(s):
     # seed §3: m = 2s, Gauss rule: rank M = s² − 1, ker M spanned by (1 − c)bᵀ
@@ -61,7 +60,6 @@ def test_gauss_even_case_rank_and_kernel(s):
         assert last_nonzero > 1e-8 and first_zero < 1e-45
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("s", [2, 3, 4, 5])
 @pytest.mark.parametrize("zeta", ["0", "1", "1/2", "-1/3", "-1"])
 def test_odd_case_ranks_and_one_dimensional_zero_row_sum_kernel(s, zeta):

@@ -17,6 +17,7 @@ from functools import lru_cache
 import networkx as nx
 import pytest
 from support import reference as ref
+from support.heavy import heavy
 
 from rkcheck.energy.explain import explain
 from rkcheck.trees.listing import ConditionListing
@@ -116,7 +117,7 @@ def test_counts_and_superfluous_trees_to_16_vertices():
         assert int(o.counts.sum()) == o.terms and int(o.counts.min()) >= 1
 
 
-@pytest.mark.slow
+@heavy
 def test_counts_to_20_vertices():
     # the counts the scale issue plans with: 80 936 conditions to order 16, 522 472 to 18
     # and the published per-order counts up to 20 vertices (counts only beyond 16)
