@@ -10,7 +10,7 @@ from typing import Any, Sequence
 from rkcheck.api.verification import _option
 from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
 from rkcheck.errors import OptionError
-from rkcheck.methods.parametric import Family
+from rkcheck.methods.parametric import Family, family_from_arrays
 from rkcheck.numbers.solving import AlgebraicValue, Solution, SolutionSet
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
@@ -100,4 +100,4 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
 
 
 __all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",
-           "family_conditions", "is_family_file", "load_family", "solve"]
+           "family_conditions", "family_from_arrays", "is_family_file", "load_family", "solve"]

@@ -90,6 +90,41 @@ class Family:
         return tab
 
 
+def entry_text(value: Any, place: str) -> str:
+    """An entry of a family given in Python: a string, an int, a Fraction, or a sympy
+    expression (its text: ``beta**2/2``, ``sqrt(3)``)."""
+    if isinstance(value, bool):
+        raise UserError("expected a number, a string or a sympy expression, got a boolean", place)
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (int, Fraction)):
+        return str(value)
+    if type(value).__module__.startswith("sympy"):
+        return str(value)
+    raise UserError(f"expected a number, a string or a sympy expression, got {type(value).__name__} (floats are "
+                    "not exact: write them as strings)", place)
+
+
+def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters: Sequence[Any],
+                       constants: Mapping[str, Any] | None = None, name: str = "unnamed family") -> Family:
+    """A family from Python values (see :func:`entry_text`); ``parameters``: names or
+    sympy symbols; ``constants``: name → value, like a file's ``[constants]``."""
+    params = tuple(str(p) for p in parameters)
+    parse_parameters({p: "free" for p in params}, constants or {})
+    s = len(b)
+    if len(A) != s or any(len(row) != s for row in A):
+        raise UserError(f"A must be {s}×{s} (one row and one column per entry of b)", "A")
+    A_text = [[entry_text(x, f"A[{i + 1}][{j + 1}]") for j, x in enumerate(row)] for i, row in enumerate(A)]
+    b_text = [entry_text(x, f"b[{i + 1}]") for i, x in enumerate(b)]
+    consts = {}
+    for k, v in (constants or {}).items():
+        try:
+            consts[k] = ex.parse(entry_text(v, f"constants.{k}"))
+        except UserError as err:
+            raise err.located(f"constants.{k}") from None
+    return build_family(name, params, A_text, b_text, consts, MethodInfo(source="<memory>"))
+
+
 def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants: Mapping[str, str],
                         name: str) -> Tableau:
     from rkcheck.numbers.entries import Constants, Entry

@@ -139,3 +139,16 @@ def test_the_time_limit_is_a_one_line_error(tmp_path, capsys):
     r = run_cli(capsys, "solve", str(path), "--degree", "5", "--order", "6", "--where", "b1 + b2 + b3 = 1",
                 "--max-seconds", "1")
     assert r.code == 2 and "time limit" in r.err and r.err.count("\n") == 1, r.err
+
+
+def test_a_family_from_sympy_values_is_the_file_family():
+    sp = pytest.importorskip("sympy")
+    beta = sp.Symbol("beta")
+    c = [sp.Rational(1, 2) - sp.sqrt(3) / 6, sp.Rational(1, 2) + sp.sqrt(3) / 6]
+    b = [sp.Rational(1, 2)] * 2
+    A = [[c[i] * b[j] - beta * (1 - 2 * c[j]) * b[j] for j in range(2)] for i in range(2)]
+    mine = rkcheck.family_conditions(rkcheck.family_from_arrays(A, b, parameters=[beta]), degree=3, order=6)
+    theirs = rkcheck.family_conditions(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6)
+    assert [str(c.polynomial) for c in mine.energy] == [str(c.polynomial) for c in theirs.energy]
+    with pytest.raises(UserError, match="floats are not exact"):
+        rkcheck.family_from_arrays([[0.5]], [1], parameters=["beta"])
