@@ -69,7 +69,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     if is_family_file(file):  # free [parameters]: the conditions as polynomials
         from rkcheck.cli.families import family_report
 
-        family_report(file, flag_values("degree", "order"), None, fmt, show_all)
+        family_report(file, flag_values("degree", "order"), "order", fmt, show_all)
         sys.exit(EXIT_OK)
     tab = load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"

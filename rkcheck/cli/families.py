@@ -18,17 +18,21 @@ from rkcheck.cli.common import (
 DEFAULT_FAMILY_ORDER = 6
 
 
-def family_report(file: str, flags: dict, classical_order: int | None, fmt: str, show_all: bool) -> None:
+def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool) -> None:
     """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
-    line; the file's ``[check]`` supplies the others."""
+    line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
+    the classical conditions up to the energy order."""
     from rkcheck.api.families import family_conditions, load_family
 
     family = load_family(file)
     check = family.info.check
     degree = flags.get("degree", check.get("degree"))
     order = flags.get("order", check.get("order", DEFAULT_FAMILY_ORDER))
-    result = family_conditions(family, degree=degree, order=order, classical_order=classical_order)
+    # "order": the classical conditions up to the same order as the energy conditions
+    classical = order if classical_order == "order" else classical_order
+    assert classical is None or isinstance(classical, int)
+    result = family_conditions(family, degree=degree, order=order, classical_order=classical)
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
         from rkcheck.reports.jsondoc import dumps

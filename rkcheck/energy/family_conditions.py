@@ -103,6 +103,21 @@ def classical_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Seq
     return sorted(out, key=lambda c: (c.order, c.level_sequence))
 
 
+def quadrature_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any]) -> list[PolynomialCondition]:
+    """``Σ bᵢ cᵢ^(k−1) − 1/k`` for k = 1 … 2s (c = A·1): the rule (b, c) integrates
+    polynomials of degree < k exactly."""
+    s = len(b)
+    c = [sum(row[1:], row[0]) for row in A]
+    out = []
+    for k in range(1, 2 * s + 1):
+        total = ring.constant(0)
+        for bi, ci in zip(b, c):
+            total = total + bi * ci ** (k - 1)
+        label = "Σ b_i" if k == 1 else f"Σ b_i c_i^{k - 1}"
+        out.append(PolynomialCondition("quadrature", (k,), label, k, ring.reduce(total - ring.constant(Fraction(1, k)))))
+    return out
+
+
 def generic_order(conditions: Sequence[PolynomialCondition], checked: int) -> tuple[int, list[PolynomialCondition]]:
     """The largest order whose conditions all vanish identically (``checked`` when all
     do), and the conditions of the next order that do not (the exceptional values)."""
@@ -126,6 +141,7 @@ class FamilyConditions:
     energy: list[PolynomialCondition]
     classical_order_checked: int | None = None
     classical: list[PolynomialCondition] | None = None
+    quadrature: list[PolynomialCondition] | None = None
 
     @property
     def energy_order(self) -> int:
@@ -140,9 +156,17 @@ class FamilyConditions:
 
     @property
     def classical_order(self) -> int | None:
+        """The classical order for generic parameter values (None: not computed)."""
         if self.classical is None or self.classical_order_checked is None:
             return None
         return generic_order(self.classical, self.classical_order_checked)[0]
+
+    @property
+    def quadrature_order(self) -> int | None:
+        """The order of the quadrature rule (b, A·1) for generic parameter values."""
+        if self.quadrature is None:
+            return None
+        return generic_order(self.quadrature, len(self.quadrature))[0]
 
 
 def family_conditions(family: Any, degree: int | None, order: int,
@@ -152,4 +176,5 @@ def family_conditions(family: Any, degree: int | None, order: int,
     classical = None
     if classical_order is not None:
         classical = classical_conditions(family.ring, family.A, family.b, classical_order)
-    return FamilyConditions(family, degree, order, energy, classical_order, classical)
+    quadrature = quadrature_conditions(family.ring, family.A, family.b)
+    return FamilyConditions(family, degree, order, energy, classical_order, classical, quadrature)

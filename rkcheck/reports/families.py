@@ -64,6 +64,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "energy_order_generic": fc.energy_order,
         "exceptional": [c.id for c in fc.exceptional],
         "classical_order_generic": fc.classical_order,
+        "quadrature_order_generic": fc.quadrature_order,
         "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
     }
 
@@ -85,6 +86,7 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
     console.print(f"energy order for generic parameter values: {label}")
     if fc.classical is not None:
         console.print(f"classical order for generic parameter values: {fc.classical_order}")
+    console.print(f"quadrature order of (b, A·1) for generic parameter values: {fc.quadrature_order}")
     if show_all:
         shown = fc.energy + (fc.classical or [])
     else:
