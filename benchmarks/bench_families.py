@@ -1,0 +1,46 @@
+"""Time ``rkcheck solve`` on the shipped families (the seed's Theorem 1 by computation).
+
+    python benchmarks/bench_families.py
+
+Each solve runs in a fresh process (start-up excluded: timed inside it); prints the
+family, the equations, the dimension, the number of solutions and the seconds.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CASES = [
+    ("theorem1-s2-m3.toml", 3, 6),
+    ("theorem1-s2-m4.toml", 4, 6),
+    ("seed-kernel-zeta-0.toml", 3, 6),
+    ("theorem1-s3-m6.toml", 6, 7),
+]
+CHILD = """
+import json, sys, time
+sys.path.insert(0, {root!r})
+import rkcheck
+t0 = time.perf_counter()
+res = rkcheck.solve({path!r}, degree={degree}, order={order})
+print(json.dumps({{"seconds": time.perf_counter() - t0, "equations": res.equations, "dimension": res.dimension,
+                  "solutions": len(res.solutions or [])}}))
+"""
+
+
+def main() -> None:
+    print(f"{'family':28} {'m':>2} {'N':>2} {'equations':>9} {'dim':>3} {'solutions':>9} {'seconds':>8}")
+    for name, degree, order in CASES:
+        path = str(ROOT / "tableaux" / "families" / name)
+        code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order)
+        out = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                        check=True).stdout)
+        print(f"{name:28} {degree:>2} {order:>2} {out['equations']:>9} {out['dimension']:>3} "
+              f"{out['solutions']:>9} {out['seconds']:>8.2f}")
+
+
+if __name__ == "__main__":
+    main()
