@@ -10,12 +10,11 @@ from pathlib import Path
 import pytest
 from support.clirun import run_cli
 from support.heavy import heavy
-from support.paths import TABLEAUX  # noqa: E402
+from support.paths import TABLEAUX, tableau_files
 
 from rkcheck.dynamics.hamiltonians import problem
 from rkcheck.dynamics.integrator import Float64, NewtonError, RKMethod, integrate, step
 from rkcheck.dynamics.simulate import energy_order_agreement, fit_energy_order
-from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
 from rkcheck.methods.families import FamilySpec, family_tableau
 
@@ -99,7 +98,7 @@ def test_simulate_and_workprec_commands(capsys, tmp_path):
 
 def _energy_claims():
     out = []
-    for path in find_tableau_files([str(TABLEAUX)]):
+    for path in tableau_files():
         for claim in load(path).info.claims:
             if claim.kind == "energy_order":
                 out.append((path, claim.degree, claim.value))

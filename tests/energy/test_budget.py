@@ -13,7 +13,6 @@ from rkcheck.energy.budget import Budget, ResourceError, check_budget, estimate
 from rkcheck.energy.check import CheckOptions, check
 from rkcheck.io.loader import load
 
-
 # order 24 in a child under 300 MB and 10 CPU seconds: listing its 167 871 332 conditions
 # alone would take about 100 GB, so the child can only answer by refusing before any work
 ORDER_24 = """

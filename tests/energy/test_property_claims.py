@@ -13,7 +13,7 @@ import pytest
 from support.claimfiles import MIDPOINT, RK4, write  # noqa: F401
 from support.clirun import run_cli
 from support.numbers import exact_under
-from support.paths import TABLEAUX
+from support.paths import TABLEAUX, tableau_files
 
 
 def claims(capsys, path):
@@ -77,12 +77,11 @@ def test_malformed_property_claims_are_user_errors(tmp_path, capsys, expect, mes
 
 import sympy  # noqa: E402
 
-from rkcheck.io.discovery import find_tableau_files  # noqa: E402
 from rkcheck.io.loader import load  # noqa: E402
 
 # rational tableaux: sympy takes their entries as they are (the algebraic ones are checked
 # exactly against their own claims by tests/methods' shipped-claims test)
-SHIPPED = [f for f in find_tableau_files([str(TABLEAUX)]) if load(f).is_rational and exact_under(load(f), "rounded")]
+SHIPPED = [f for f in tableau_files() if load(f).is_rational and exact_under(load(f), "rounded")]
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=[str(Path(f).relative_to(TABLEAUX)) for f in SHIPPED])

@@ -17,12 +17,11 @@ import sympy
 from support import reference as ref
 from support.heavy import heavy
 from support.numbers import exact_under
-from support.paths import TABLEAUX
+from support.paths import TABLEAUX, tableau_files
 from support.symbolic import gauss
 
 from rkcheck.energy.check import CheckOptions, check
 from rkcheck.energy.stability import stability_function
-from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
 
 z = sympy.Symbol("z")
@@ -91,7 +90,7 @@ def random_tableau(rng: random.Random, s: int, explicit: bool):
     return A, b
 
 
-RATIONAL_FILES = [f for f in find_tableau_files([str(TABLEAUX)]) if load(f).is_rational and exact_under(load(f), "rounded")]
+RATIONAL_FILES = [f for f in tableau_files() if load(f).is_rational and exact_under(load(f), "rounded")]
 
 
 @pytest.mark.parametrize("path", RATIONAL_FILES, ids=[str(Path(f).relative_to(TABLEAUX)) for f in RATIONAL_FILES])
@@ -160,7 +159,7 @@ def test_every_m2_certificate_agrees_with_the_free_tree_conditions_to_order_12()
     """For every shipped tableau and random ones: R(z)R(−z) ≡ 1 iff every m = 2 condition
     up to order 12 holds; otherwise the first failing condition has order leading_power."""
     files, randoms = m2_cases()
-    tableaux = [load(f) for f in find_tableau_files([str(TABLEAUX)])]
+    tableaux = [load(f) for f in tableau_files()]
     from rkcheck.methods.tableau import Tableau
 
     tableaux += [Tableau.from_values(A, b, name=f"random {k}") for k, (A, b) in enumerate(randoms)]

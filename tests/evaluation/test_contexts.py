@@ -17,7 +17,7 @@ import pytest
 from support import reference as ref
 from support.heavy import shipped_params
 from support.numbers import exact_under
-from support.paths import TABLEAUX
+from support.paths import tableau_files
 
 import rkcheck.evaluation.algorithm as algorithm
 import rkcheck.trees.classes as classes
@@ -28,7 +28,6 @@ from rkcheck.evaluation.balls import BallContext, FloatContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
 from rkcheck.evaluation.values import TableauValues
-from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.precision import bits_for_dps
@@ -165,7 +164,7 @@ def test_float_screen_encloses_and_never_fails_where_exact_holds(seed):
     assert failing == 0 or detected / failing > 0.9  # random data fails by O(1): the screen sees it
 
 
-FILES = [f for f in find_tableau_files([str(TABLEAUX)])]
+FILES = tableau_files()
 
 
 @pytest.mark.parametrize("path", shipped_params(FILES))

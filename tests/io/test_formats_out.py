@@ -17,7 +17,7 @@ from rkcheck.io.formats import to_json, to_julia, to_latex, to_python, to_toml, 
 from rkcheck.io.loader import load, loads
 from rkcheck.numbers.grammar import to_text
 
-FILES = sorted(p for p in TABLEAUX.rglob("*.toml") if "[family]" not in p.read_text())
+FILES = sorted(p for p in TABLEAUX.rglob("*.toml") if "[family]" not in p.read_text() and "[parameters]" not in p.read_text())
 
 
 def texts(tab):

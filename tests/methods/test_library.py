@@ -12,15 +12,14 @@ import pytest
 from support import reference as ref
 from support.heavy import heavy, shipped_params
 from support.numbers import exact_under
-from support.paths import TABLEAUX  # noqa: E402
+from support.paths import TABLEAUX, tableau_files
 
 from rkcheck.energy.check import CheckOptions, CheckRunner, check
 from rkcheck.energy.claims import check_claims
-from rkcheck.io.discovery import find_tableau_files
 from rkcheck.io.loader import load
 from rkcheck.methods.families import FamilySpec, family_tableau
 
-FILES = find_tableau_files([str(TABLEAUX)])
+FILES = tableau_files()
 
 
 def test_the_library_has_at_least_40_documented_files_in_every_kind():

@@ -14,6 +14,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+
 from support.paths import TABLEAUX
 
 heavy = pytest.mark.heavy

@@ -6,3 +6,11 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 TABLEAUX = REPO / "tableaux"
+
+
+def tableau_files() -> list[str]:
+    """The shipped tableau files, without the families (files with free [parameters],
+    which are not one tableau: tests/families covers them)."""
+    from rkcheck.io.discovery import find_tableau_files
+
+    return [f for f in find_tableau_files([str(TABLEAUX)]) if "[parameters]" not in Path(f).read_text(encoding="utf-8")]
