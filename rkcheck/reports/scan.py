@@ -304,7 +304,9 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
     s = r.get("summary", {})
     if o["status"] in ("error", "skipped"):
         style = "bold red" if o["status"] == "error" else "dim"
-        label = "ERROR (see below)" if o["status"] == "error" else "skipped: not a tableau"
+        family = "[parameters]" in (o.get("error") or "")
+        label = "ERROR (see below)" if o["status"] == "error" else (
+            "skipped: a family" if family else "skipped: not a tableau")
         blanks = [""] * (7 if constants else 6)
         return plain(shown(o["path"]), Text(label, style=style), *blanks, f"{o['time']:.2f}")
     avf = {True: "yes", False: "no", None: "—"}[s.get("equals_avf")]
