@@ -27,12 +27,13 @@ from fractions import Fraction
 from functools import lru_cache
 
 from rkcheck.errors import UserError
-from rkcheck.numbers.intervals import Interval, poly_at
+from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.polynomials import (
     RealRoots,
     add,
     derivative,
     divide,
+    evaluate_at_interval,
     integral,
     mul,
     poly_text,
@@ -245,8 +246,8 @@ def line_integral_matrix(c: list[Interval], b: list[Interval], sigma: int) -> li
     line-integral identity (LI) of :mod:`rkcheck.energy.lineintegral`."""
     P = [shifted_legendre(j) for j in range(sigma)]
     G = [integral(p) for p in P]
-    Gc = [[poly_at(G[j], ci) for j in range(sigma)] for ci in c]
-    Pc = [[poly_at(P[j], cl) for j in range(sigma)] for cl in c]
+    Gc = [[evaluate_at_interval(G[j], ci) for j in range(sigma)] for ci in c]
+    Pc = [[evaluate_at_interval(P[j], cl) for j in range(sigma)] for cl in c]
     out = []
     for i in range(len(c)):
         row = []

@@ -35,11 +35,12 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
-from rkcheck.numbers.intervals import Interval, exact_sqrt, poly_at
+from rkcheck.numbers.intervals import Interval, exact_sqrt
 from rkcheck.numbers.polynomials import (
     add,
     divide,
     evaluate,
+    evaluate_at_interval,
     from_flint,
     mul,
     poly_text,
@@ -469,7 +470,7 @@ def _identify(candidates: Iterable, value) -> Any:
     bits = 64
     while True:
         iv = value(bits)
-        live = [f for f in candidates if poly_at(from_flint(f), iv).contains_zero()]
+        live = [f for f in candidates if evaluate_at_interval(from_flint(f), iv).contains_zero()]
         if len(live) == 1:
             return live[0]
         if not live:  # cannot happen for a true root; guard against a wrong enclosure

@@ -89,7 +89,7 @@ def reflect(p: Sequence) -> Poly:
 
 
 def derivative(p: Sequence) -> Poly:
-    return [k * p[k] for k in range(1, len(p))] or [p[0] * 0 if p else _ZERO]
+    return [k * p[k] for k in range(1, len(p))] or [_ZERO]
 
 
 def integral(p: Sequence) -> Poly:
@@ -103,6 +103,11 @@ def evaluate(p: Sequence, x: Any, zero: Any = _ZERO) -> Any:
     for c in reversed(p):
         acc = acc * x + c
     return acc
+
+
+def evaluate_at_interval(coeffs: Sequence[Fraction], x: Interval) -> Interval:
+    """The polynomial with rational ``coeffs`` at the interval ``x`` (Horner's scheme)."""
+    return evaluate([Interval.point(c) for c in coeffs], x, Interval.point(0))
 
 
 def shift(p: Sequence, h: Any, zero: Any = _ZERO, one: Any = Fraction(1)) -> Poly:
@@ -185,17 +190,6 @@ def from_flint(p: Any) -> list[Fraction]:
     return [to_fraction(c) for c in p.coeffs()] or [Fraction(0)]
 
 
-def rational_gcd(p: Sequence[Fraction], q: Sequence[Fraction]) -> list[Fraction]:
-    """The monic gcd over Q (``[0]`` when both are zero)."""
-    return from_flint(to_flint(p).gcd(to_flint(q)))
-
-
-def rational_divide(p: Sequence[Fraction], d: Sequence[Fraction]) -> tuple[list[Fraction], list[Fraction]]:
-    """``(quotient, remainder)`` over Q; ``d`` must not be zero."""
-    quot, rem = divmod(to_flint(p), to_flint(d))
-    return from_flint(quot), from_flint(rem)
-
-
 def rational_lowest_terms(P: Any, Q: Any) -> tuple[list[Fraction], list[Fraction]]:
     """:func:`lowest_terms` over Q, by FLINT (Euclid on Fractions swells beyond degree
     ~15); ``P`` and ``Q`` are coefficient lists or ``fmpq_poly``."""
@@ -207,24 +201,6 @@ def rational_lowest_terms(P: Any, Q: Any) -> tuple[list[Fraction], list[Fraction
     return from_flint(p / q0), from_flint(q / q0)
 
 
-def squarefree_factors(coeffs: Sequence[Fraction]) -> tuple[Fraction, list[tuple[list[Fraction], int]]]:
-    """``p = c·∏ f_k^k``: the constant c and the square-free, pairwise coprime ``f_k``
-    (primitive integer coefficients) with their multiplicities k, increasing."""
-    c, factors = to_flint(trim(coeffs)).factor_squarefree()
-    return to_fraction(c), [(from_flint(f), int(m)) for f, m in factors]
-
-
-def squarefree_part(coeffs: Sequence[Fraction]) -> list[Fraction]:
-    """The product of the distinct irreducible factors of ``p`` (primitive, over Z)."""
-    return from_flint(_squarefree_fmpz(tuple(trim(coeffs))))
-
-
-def factor(coeffs: Sequence[Fraction]) -> tuple[Fraction, list[tuple[list[Fraction], int]]]:
-    """``p = c·∏ f_i^(e_i)`` with the irreducible ``f_i`` over Q (primitive, over Z)."""
-    c, factors = to_flint(trim(coeffs)).factor()
-    return to_fraction(c), [(from_flint(f), int(m)) for f, m in factors]
-
-
 def rational_roots(coeffs: Sequence[Fraction]) -> list[Fraction]:
     """The distinct rational roots, increasing."""
     coeffs = trim([Fraction(c) for c in coeffs])
@@ -233,14 +209,16 @@ def rational_roots(coeffs: Sequence[Fraction]) -> list[Fraction]:
     return sorted({to_fraction(r) for r, _ in to_flint(coeffs).roots()})
 
 
-def _squarefree_fmpz(coeffs: tuple[Fraction, ...]):
-    """The square-free part of a nonconstant rational polynomial as an ``fmpz_poly``."""
-    _, factors = to_flint(coeffs).factor_squarefree()
+def squarefree_part(coeffs: Sequence[Fraction]) -> list[Fraction]:
+    """The product of the distinct irreducible factors of a nonconstant ``p``: the same
+    roots, each simple (primitive integer coefficients, from FLINT's square-free
+    factorisation)."""
+    _, factors = to_flint(trim(coeffs)).factor_squarefree()
     part = None
     for f, _ in factors:
         part = f if part is None else part * f
     assert part is not None  # degree >= 1: at least one factor
-    return part.numer()
+    return from_flint(part.numer())
 
 
 #: isolations kept per polynomial (one per width asked for)
@@ -286,7 +264,7 @@ class RealRoots:
         from flint import arb, ctx
 
         if self._squarefree is None:
-            self._squarefree = _squarefree_fmpz(tuple(self.poly))
+            self._squarefree = to_flint(squarefree_part(self.poly)).numer()
         width = Fraction(1, 2**bits)
         prec = max(64, bits + 32)
         while True:
