@@ -15,9 +15,7 @@ import json
 from typing import Any, Callable
 
 from rkcheck.errors import UserError
-from rkcheck.io.loader import loads
 from rkcheck.io.writers import document_toml, render_toml
-from rkcheck.methods.family_spec import parse_spec
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry, TableauEntry
@@ -299,6 +297,10 @@ def _as_written(tab: Tableau) -> Tableau:
     claims kept); any other tableau unchanged."""
     if tab.info.family is None:
         return tab
+
+    from rkcheck.io.loader import loads
+    from rkcheck.methods.family_spec import parse_spec
+
     written = loads(render_toml(parse_spec(dict(tab.info.family))), source=tab.info.source, fmt="toml")
     info = written.info.replace(description=tab.info.description, references=tab.info.references,
                                 expect=tab.info.expect, claims=tab.info.claims, check=tab.info.check)

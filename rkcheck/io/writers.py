@@ -12,19 +12,13 @@ certified enclosures), which rkcheck reads as rounded to their last digit.
 from __future__ import annotations
 
 import json
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from rkcheck.errors import UserError
-from rkcheck.methods.closed_forms import (
-    MAX_EXACT_NODES,
-    expression_texts,
-    simplified_texts,
-)
-from rkcheck.methods.families import coefficients
-from rkcheck.methods.family_spec import FamilySpec
-from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
-from rkcheck.numbers.precision import bits_for_digits
+
+if TYPE_CHECKING:
+    from rkcheck.methods.family_spec import FamilySpec
 
 REFERENCES = {
     "avf": ["G. R. W. Quispel, D. I. McLaren, J. Phys. A 41 (2008) 045206",
@@ -90,6 +84,13 @@ def render_toml(
     spec: FamilySpec, mode: str = "auto", digits: int = 60, name: str | None = None, command: str = ""
 ) -> str:
     """The TOML text of a family; ``mode``: 'auto' (exact if possible), 'exact' or 'digits'."""
+    # the family machinery is loaded here, not with the module: writing any other tableau
+    # as TOML (show --format toml) needs none of it
+    from rkcheck.methods.closed_forms import MAX_EXACT_NODES, expression_texts, simplified_texts
+    from rkcheck.methods.families import coefficients
+    from rkcheck.numbers.formatting import decimal_string
+    from rkcheck.numbers.precision import bits_for_digits
+
     if digits < 1 or digits > 5000:
         raise UserError(f"--digits must be between 1 and 5000, got {digits}")
     r = spec.base_rule()
