@@ -36,8 +36,8 @@ from fractions import Fraction
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
-from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers import polynomials as poly
+from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
 
 #: enclosures: above this many stages det(I − zA) is not expanded (the certificate,
@@ -212,8 +212,8 @@ def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | Non
         v = M * v
     Q = fmpq_poly(M.charpoly().coeffs()[::-1])  # det(I − zA) = z^s det(z⁻¹I − A)
     P = (Q * poly.to_flint(series[: s + 1])).truncate(s + 1)
-    P, Q = poly.rational_lowest_terms(P, Q)
-    return series, P, Q
+    numerator, denominator = poly.rational_lowest_terms(P, Q)
+    return series, numerator, denominator
 
 
 def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
