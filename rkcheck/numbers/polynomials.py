@@ -169,11 +169,13 @@ def to_fmpq(x: Fraction | int):
 def to_fraction(x: Any) -> Fraction:
     """An exact FLINT number as a Fraction: ``fmpq``, ``fmpz``, or an exact ``arb``/``arf``
     (a ball's mid-point or radius)."""
+    if hasattr(x, "p"):  # fmpq, the common case first
+        return Fraction(int(x.p), int(x.q))
     if hasattr(x, "man_exp"):
         man, exp = x.man_exp()
         man, exp = int(man), int(exp)
         return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
-    return Fraction(int(x.p), int(x.q)) if hasattr(x, "p") else Fraction(int(x))
+    return Fraction(int(x))
 
 
 def to_flint(coeffs: Any):
