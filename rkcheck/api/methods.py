@@ -122,7 +122,7 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
     decimals.  A classical method is written with its ``[expect]`` claims."""
     method = _validate(method, stages, k)
     if method not in FAMILIES:
-        from rkcheck.io.formats import document_toml
+        from rkcheck.io.writers import document_toml
         from rkcheck.methods.classics import CLASSICS
 
         doc = CLASSICS[_CLASSIC_NAMES[method]].document()

@@ -31,7 +31,8 @@ from typing import Protocol
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.reduction import Reduction
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
-from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+from rkcheck.methods.quadrature import shifted_legendre
+from rkcheck.numbers.polynomials import integral
 
 
 class Certificate(Protocol):
@@ -115,7 +116,7 @@ def line_integral_matrices(c: sc.Vector, b: sc.Vector):
     acc = [[sc.const(0, like) for _ in range(n)] for _ in range(n)]
     for j in range(n):
         P = shifted_legendre(j)
-        Gc = [sc.poly_at(poly_integral(P), ci) for ci in c]
+        Gc = [sc.poly_at(integral(P), ci) for ci in c]
         Pb = [sc.poly_at(P, cl) * bl for cl, bl in zip(c, b)]
         weight = sc.const(2 * j + 1, like)
         acc = [[sc.tidy(acc[i][l] + weight * Gc[i] * Pb[l]) for l in range(n)] for i in range(n)]

@@ -36,6 +36,7 @@ from fractions import Fraction
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
+from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
 
@@ -52,61 +53,15 @@ _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
 # ---------------------------------------------------------------- polynomials
-# lists of scalars, ascending powers
+# lists of scalars, ascending powers (rkcheck.numbers.polynomials over the tableau's scalars)
+
+
+def _is_zero(a) -> bool:
+    return sc.verdict(a).state == HOLDS
 
 
 def _trim(p: list) -> list:
-    p = list(p)
-    while len(p) > 1 and sc.verdict(p[-1]).state == HOLDS:
-        p.pop()
-    return p
-
-
-def _mul(p: list, q: list, like) -> list:
-    out = [sc.const(0, like) for _ in range(len(p) + len(q) - 1)]
-    for i, a in enumerate(p):
-        for j, b in enumerate(q):
-            out[i + j] = out[i + j] + a * b
-    return out
-
-
-def _reflect(p: list) -> list:
-    """``p(−z)``."""
-    return [-a if k % 2 else a for k, a in enumerate(p)]
-
-
-def _sub(p: list, q: list, like) -> list:
-    n = max(len(p), len(q))
-    zero = sc.const(0, like)
-    return [(p[k] if k < len(p) else zero) - (q[k] if k < len(q) else zero) for k in range(n)]
-
-
-def _divmod(p: list, d: list, like) -> tuple[list, list]:
-    """Exact polynomial division (``d`` trimmed, leading coefficient nonzero)."""
-    p = list(p)
-    if len(p) < len(d):
-        return [sc.const(0, like)], p
-    quot = [sc.const(0, like) for _ in range(len(p) - len(d) + 1)]
-    lead = d[-1]
-    for k in range(len(p) - len(d), -1, -1):
-        coef = p[k + len(d) - 1] / lead
-        quot[k] = coef
-        for j, dj in enumerate(d):
-            p[k + j] = p[k + j] - coef * dj
-    return quot, _trim(p[: len(d) - 1] or [sc.const(0, like)])
-
-
-def _is_zero_poly(p: list) -> bool:
-    return all(sc.verdict(a).state == HOLDS for a in p)
-
-
-def _gcd(p: list, q: list, like) -> list:
-    """A gcd of two exact polynomials (Euclid)."""
-    a, b = _trim(p), _trim(q)
-    while not _is_zero_poly(b):
-        _, r = _divmod(a, b, like)
-        a, b = b, r
-    return a
+    return poly.trim(p, _is_zero)
 
 
 def _det_I_minus_zA(A: sc.Matrix, like) -> list | None:
@@ -163,13 +118,13 @@ def _charpoly_hessenberg(A: sc.Matrix, like) -> list:
     polys = [[one]]  # p_0 = 1; p_k = charpoly of the leading k×k block
     for k in range(1, n + 1):
         hkk = H[k - 1][k - 1]
-        p = _sub([zero] + polys[k - 1], [hkk * a for a in polys[k - 1]] + [zero], like)
+        p = poly.sub([zero] + polys[k - 1], [hkk * a for a in polys[k - 1]] + [zero], zero)
         prod = one
         for i in range(k - 1, 0, -1):
             prod = prod * H[i][i - 1]
             coef = H[i - 1][k - 1] * prod
             term = [coef * a for a in polys[i - 1]]
-            p = _sub(p, term + [zero] * (len(p) - len(term)), like)
+            p = poly.sub(p, term + [zero] * (len(p) - len(term)), zero)
         polys.append(p)
     return polys[n]
 
@@ -207,9 +162,9 @@ class StabilityFunction:
         """``P(z)P(−z) − Q(z)Q(−z)`` (so ``R(z)R(−z) − 1`` = it over ``Q(z)Q(−z)``)."""
         if self.numerator is None or self.denominator is None:
             return None
-        like = self.series[0]
+        zero = sc.const(0, self.series[0])
         P, Q = self.numerator, self.denominator
-        return _trim(_sub(_mul(P, _reflect(P), like), _mul(Q, _reflect(Q), like), like))
+        return _trim(poly.sub(poly.mul(P, poly.reflect(P), zero), poly.mul(Q, poly.reflect(Q), zero), zero))
 
     def text(self) -> str:
         """``R(z) = …`` for people."""
@@ -231,8 +186,7 @@ class StabilityFunction:
         num = self.defect_numerator
         den = None
         if num is not None and self.denominator is not None:
-            like = self.series[0]
-            den = _trim(_mul(self.denominator, _reflect(self.denominator), like))
+            den = _trim(poly.mul(self.denominator, poly.reflect(self.denominator), sc.const(0, self.series[0])))
         if num is not None and den is not None and len(den) == 1 and self.exact:
             return f"R(z)R(−z) − 1 = {poly_text(num)}"
         return f"R(z)R(−z) − 1 = {lead} + O(z{str(self.leading_power + 2).translate(_SUP)})"
@@ -248,29 +202,18 @@ def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | Non
         return None
     from flint import fmpq, fmpq_mat, fmpq_poly
 
-    def q(x) -> fmpq:
-        x = Fraction(x)
-        return fmpq(x.numerator, x.denominator)
-
-    def frac(x) -> Fraction:
-        return Fraction(int(x.p), int(x.q))
-
     s = len(b)
-    M = fmpq_mat(s, s, [q(x) for row in A for x in row])
-    B = fmpq_mat(1, s, [q(x) for x in b])
+    M = fmpq_mat(s, s, [poly.to_fmpq(x) for row in A for x in row])
+    B = fmpq_mat(1, s, [poly.to_fmpq(x) for x in b])
     v = fmpq_mat(s, 1, [fmpq(1)] * s)
     series = [Fraction(1)]
     for _ in range(2 * s):
-        series.append(frac((B * v)[0, 0]))
+        series.append(poly.to_fraction((B * v)[0, 0]))
         v = M * v
-    Q = fmpq_poly(list(reversed(M.charpoly().coeffs())))  # det(I − zA) = z^s det(z⁻¹I − A)
-    P = fmpq_poly((Q * fmpq_poly([q(r) for r in series[: s + 1]])).coeffs()[: s + 1])
-    g = P.gcd(Q)
-    if g.degree() > 0:
-        P, Q = P // g, Q // g
-    q0 = Q.coeffs()[0]
-    P, Q = P / q0, Q / q0
-    return series, [frac(c) for c in P.coeffs()] or [Fraction(0)], [frac(c) for c in Q.coeffs()]
+    Q = fmpq_poly(M.charpoly().coeffs()[::-1])  # det(I − zA) = z^s det(z⁻¹I − A)
+    P = (Q * poly.to_flint(series[: s + 1])).truncate(s + 1)
+    numerator, denominator = poly.rational_lowest_terms(P, Q)
+    return series, numerator, denominator
 
 
 def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
@@ -292,7 +235,7 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
         return lo.union(hi)
 
     def interval(x) -> Interval:
-        mid, rad = _exact(x.mid()), _exact(x.rad())
+        mid, rad = poly.to_fraction(x.mid()), poly.to_fraction(x.rad())
         return Interval(mid - rad, mid + rad)
 
     saved = flint.ctx.prec
@@ -310,13 +253,6 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
     finally:
         flint.ctx.prec = saved
     return [sc.tidy(x) for x in series], [sc.tidy(x) for x in Q]
-
-
-def _exact(x) -> Fraction:
-    """An exact FLINT number (an arb point, arf or mag) as a Fraction."""
-    man, exp = x.mid().man_exp() if hasattr(x, "mid") else x.man_exp()
-    man, exp = int(man), int(exp)
-    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
 
 
 def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
@@ -345,13 +281,7 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
         Q = charpoly
         P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
         if sc.is_exact(like):
-            g = _gcd(P, Q, like)
-            if len(g) > 1:
-                P, _ = _divmod(P, g, like)
-                Q, _ = _divmod(Q, g, like)
-            q0 = Q[0]
-            P = [a / q0 for a in P]
-            Q = [a / q0 for a in Q]
+            P, Q = poly.lowest_terms(P, Q, sc.const(0, like), _is_zero)
         numerator, denominator = _trim(P), _trim(Q)
     return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
 

@@ -15,6 +15,7 @@ import json
 from typing import Any, Callable
 
 from rkcheck.errors import UserError
+from rkcheck.io.writers import document_toml, render_toml
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry, TableauEntry
@@ -40,39 +41,6 @@ def tableau_document(tab: Tableau) -> dict[str, Any]:
     if tab.info.expect:
         doc["expect"] = dict(tab.info.expect)
     return doc
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)  # a TOML basic string is JSON-compatible
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}" for k, v in value.items()) + "}"
-    raise TypeError(f"cannot write {type(value).__name__} as TOML")
-
-
-def _toml_key(key: str) -> str:
-    return key if key.replace("_", "").replace("-", "").isalnum() and key.isascii() else json.dumps(key)
-
-
-def document_toml(doc: dict[str, Any]) -> str:
-    """A tableau document as TOML text (one table per top-level key, ``A`` row by row)."""
-    out: list[str] = []
-    for table, content in doc.items():
-        out.append(f"[{table}]")
-        for key, value in content.items():
-            if key == "A" and table == "tableau":
-                rows = [_toml_value(r) for r in value]
-                out.append("A = [" + ",\n     ".join(rows) + "]")
-            else:
-                out.append(f"{_toml_key(key)} = {_toml_value(value)}")
-        out.append("")
-    return "\n".join(out)
 
 
 def to_toml(tab: Tableau) -> str:
@@ -331,7 +299,6 @@ def _as_written(tab: Tableau) -> Tableau:
         return tab
 
     from rkcheck.io.loader import loads
-    from rkcheck.io.writers import render_toml
     from rkcheck.methods.family_spec import parse_spec
 
     written = loads(render_toml(parse_spec(dict(tab.info.family))), source=tab.info.source, fmt="toml")

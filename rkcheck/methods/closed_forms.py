@@ -15,7 +15,8 @@ from functools import lru_cache
 from itertools import combinations
 from typing import TYPE_CHECKING, Any
 
-from rkcheck.methods.quadrature import poly_integral, shifted_legendre
+from rkcheck.methods.quadrature import shifted_legendre
+from rkcheck.numbers.polynomials import integral
 
 if TYPE_CHECKING:
     from rkcheck.methods.family_spec import FamilySpec
@@ -146,7 +147,7 @@ def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]],
                 parts = []
                 for j in range(spec.s):
                     P = shifted_legendre(j)
-                    g = _poly_text(poly_integral(P), c[i])
+                    g = _poly_text(integral(P), c[i])
                     p = _poly_text(P, c[l])
                     parts.append(f"{2 * j + 1}*({g})*({p})")
                 row.append(f"{bn[l]}*({' + '.join(parts)})")

@@ -9,8 +9,8 @@ Rules:
 Weights satisfy ``Σ b_i c_i^(k−1) = 1/k`` for k = 1..s, i.e. ``b_i = ∫₀¹ ℓ_i``.
 
 Nodes are **certified**: the node polynomial has exact rational coefficients, rational
-zeros are found exactly (``1/3``, ``0``, ``1/2``), and every other zero is isolated by an
-exact sign change of the polynomial on a dyadic interval, refined by bisection to any
+zeros are found exactly (``1/3``, ``0``, ``1/2``), and every other zero is enclosed by
+FLINT's certified root isolation (:class:`rkcheck.numbers.polynomials.RealRoots`) to any
 number of bits — no floating-point rounding is trusted.  Where the zeros have a closed
 form in square roots (linear, quadratic and biquadratic factors over Q), it is given as
 an entry expression for ``rkcheck new``.
@@ -27,13 +27,27 @@ from fractions import Fraction
 from functools import lru_cache
 
 from rkcheck.errors import UserError
-from rkcheck.numbers.intervals import Interval, poly_at
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.polynomials import (
+    RealRoots,
+    add,
+    derivative,
+    divide,
+    evaluate_at_interval,
+    integral,
+    mul,
+    poly_text,
+    real_roots,
+    scale,
+    shift,
+    squarefree_split,
+    trim,
+)
 
 RULES = ("gauss", "radau-i", "radau-ii", "lobatto")
 
 
-# ------------------------------------------------------------------ polynomials
-# Polynomials are lists of Fractions, ascending powers.
+# ------------------------------------------------------------------ nodes
 
 
 def shifted_legendre(q: int) -> list[Fraction]:
@@ -41,177 +55,45 @@ def shifted_legendre(q: int) -> list[Fraction]:
     return [Fraction((-1) ** (q + k) * math.comb(q, k) * math.comb(q + k, k)) for k in range(q + 1)]
 
 
-def poly_add(p: list[Fraction], q: list[Fraction]) -> list[Fraction]:
-    n = max(len(p), len(q))
-    return [(p[i] if i < len(p) else Fraction(0)) + (q[i] if i < len(q) else Fraction(0)) for i in range(n)]
-
-
-def poly_scale(p: list[Fraction], a: Fraction) -> list[Fraction]:
-    return [a * x for x in p]
-
-
-def poly_mul(p: list[Fraction], q: list[Fraction]) -> list[Fraction]:
-    out = [Fraction(0)] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        for j, b in enumerate(q):
-            out[i + j] += a * b
-    return out
-
-
-def poly_deriv(p: list[Fraction]) -> list[Fraction]:
-    return [k * p[k] for k in range(1, len(p))] or [Fraction(0)]
-
-
-def poly_integral(p: list[Fraction]) -> list[Fraction]:
-    """The antiderivative vanishing at 0."""
-    return [Fraction(0)] + [c / (k + 1) for k, c in enumerate(p)]
-
-
-def poly_eval(p: list[Fraction], x: Fraction) -> Fraction:
-    acc = Fraction(0)
-    for c in reversed(p):
-        acc = acc * x + c
-    return acc
-
-
-def poly_trim(p: list[Fraction]) -> list[Fraction]:
-    while len(p) > 1 and p[-1] == 0:
-        p = p[:-1]
-    return p
-
-
-def poly_divide_root(p: list[Fraction], r: Fraction) -> list[Fraction]:
-    """p(x)/(x − r) for an exact root r (synthetic division)."""
-    n = len(p) - 1
-    out = [Fraction(0)] * n
-    acc = Fraction(0)
-    for k in range(n, 0, -1):
-        acc = acc * r + p[k]
-        out[k - 1] = acc
-    assert acc * r + p[0] == 0, "not a root"
-    return out
-
-
-def _sign_at_dyadic(p: list[Fraction], m: int, k: int) -> int:
-    """sign of p(m / 2^k), exactly, in integers."""
-    den = 1
-    for c in p:
-        den = math.lcm(den, c.denominator)
-    coeffs = [int(c * den) for c in p]
-    n = len(coeffs) - 1
-    acc = 0
-    for i in range(n, -1, -1):  # Σ c_i m^i 2^(k(n−i))
-        acc = acc * m + coeffs[i] * (1 << (k * (n - i)))
-    return (acc > 0) - (acc < 0)
-
-
-# ------------------------------------------------------------------ nodes
-
-
-@dataclass
+@dataclass(frozen=True)
 class Node:
-    """A simple real zero of a rational polynomial: exact, or an isolating dyadic interval."""
+    """The ``index``-th smallest (0-based) of the real zeros ``roots`` of a rational
+    polynomial: exact when rational, else enclosed to any width."""
 
-    poly: list[Fraction]
-    exact: Fraction | None = None
-    lo: tuple[int, int] = (0, 0)  # (m, k): the dyadic m / 2^k
-    hi: tuple[int, int] = (0, 0)
-    _refined: dict[int, Interval] = field(default_factory=dict)
+    roots: RealRoots
+    index: int
+
+    @property
+    def poly(self) -> list[Fraction]:
+        return self.roots.poly
+
+    @property
+    def exact(self) -> Fraction | None:
+        return self.roots.exact[self.index]
 
     def enclosure(self, bits: int) -> Interval:
-        """An interval of width <= 2^-bits containing the zero (bisection on exact signs)."""
-        if self.exact is not None:
-            return Interval.point(self.exact)
-        if bits in self._refined:
-            return self._refined[bits]
-        (ml, kl), (mh, kh) = self.lo, self.hi
-        k = max(kl, kh)
-        ml <<= k - kl
-        mh <<= k - kh
-        s_lo = _sign_at_dyadic(self.poly, ml, k)
-        while Fraction(mh - ml, 1 << k) > Fraction(1, 1 << bits):
-            ml, mh, k = 2 * ml, 2 * mh, k + 1
-            mid = (ml + mh) // 2
-            s_mid = _sign_at_dyadic(self.poly, mid, k)
-            if s_mid == 0:
-                self.exact = Fraction(mid, 1 << k)
-                return Interval.point(self.exact)
-            if s_mid == s_lo:
-                ml = mid
-            else:
-                mh = mid
-        out = Interval(Fraction(ml, 1 << k), Fraction(mh, 1 << k))
-        self._refined[bits] = out
-        return out
-
-
-def _approximate_roots(poly: list[Fraction]) -> list[float]:
-    import mpmath
-
-    with mpmath.workdps(40):
-        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(poly)]
-        roots = mpmath.polyroots(coeffs, maxsteps=200, extraprec=200)
-    out = []
-    for r in roots:
-        if abs(mpmath.im(r)) > 1e-20:
-            raise ValueError("complex zero")
-        out.append(float(mpmath.re(r)))
-    return sorted(out)
+        """An interval of width <= 2^-bits containing the zero (a point when rational),
+        with dyadic end points of ``bits + 2`` bits: Arb's end points carry some 30 bits
+        more, which every product of the weights' Lagrange integrals would pay for."""
+        iv = self.roots.intervals(bits + 1)[self.index]
+        return iv if iv.is_point else iv.round_out(bits + 2)
 
 
 def isolate_zeros(poly: list[Fraction]) -> list[Node]:
-    """All zeros of ``poly`` (assumed real and simple), each exact or isolated, sorted."""
-    poly = poly_trim(poly)
-    nodes: list[Node] = []
-    rest = poly
-    approx = _approximate_roots(poly)
-    irrational: list[float] = []
-    for r in approx:
-        guess = Fraction(r).limit_denominator(10_000)
-        if poly_eval(rest, guess) == 0 and len(rest) > 1:
-            rest = poly_divide_root(rest, guess)
-            nodes.append(Node(poly, exact=guess))
-        else:
-            irrational.append(r)
-    k = 60
-    for r in irrational:
-        m = round(r * (1 << k))
-        for width in (1 << 4, 1 << 12, 1 << 20):
-            lo, hi = m - width, m + width
-            if _sign_at_dyadic(poly, lo, k) * _sign_at_dyadic(poly, hi, k) < 0:
-                nodes.append(Node(poly, lo=(lo, k), hi=(hi, k)))
-                break
-        else:
-            raise ValueError(f"could not isolate the zero near {r}")
-    nodes.sort(key=lambda n: n.exact if n.exact is not None else Fraction(n.lo[0], 1 << n.lo[1]))
-    # disjoint isolating intervals + exact zeros: exactly deg(poly) distinct zeros
-    for a, b in zip(nodes, nodes[1:]):
-        if a.enclosure(60).hi >= b.enclosure(60).lo:
-            raise ValueError("zeros are not separated")
-    if len(nodes) != len(poly) - 1:
+    """All zeros of ``poly`` (which must be real and simple), increasing."""
+    roots = real_roots(poly)
+    if roots.count != len(roots.poly) - 1:
         raise ValueError("not all zeros are real and simple")
-    return nodes
+    return [Node(roots, k) for k in range(roots.count)]
 
 
 # ------------------------------------------------------------------ closed forms
 
 
-def _squarefree(n: int) -> tuple[int, int]:
-    """n = f² r with r as square-free as trial division up to 10^5 can make it."""
-    f, r = 1, n
-    d = 2
-    while d * d <= r and d < 100_000:
-        while r % (d * d) == 0:
-            r //= d * d
-            f *= d
-        d += 1
-    return f, r
-
-
 def _sqrt_text(x: Fraction) -> tuple[Fraction, str]:
     """sqrt(x) for rational x >= 0 as (coefficient, "sqrt(r)") with integer r, or (root, "")."""
     p, q = x.numerator, x.denominator
-    f, r = _squarefree(p * q)
+    f, r = squarefree_split(p * q, 100_000)
     coeff = Fraction(f, q)
     if r == 1:
         return coeff, ""
@@ -257,8 +139,9 @@ def closed_forms(nodes: list[Node]) -> list[str] | None:
     exact = [n.exact for n in nodes if n.exact is not None]
     rest = poly
     for r in exact:
-        rest = poly_divide_root(rest, r)
-    rest = poly_trim(rest)
+        rest, remainder = divide(rest, [-r, Fraction(1)])
+        assert remainder == [0], "not a root"
+    rest = trim(rest)
     deg = len(rest) - 1
     texts: list[tuple[float, str]] = [(float(r), str(r)) for r in exact]
     if deg == 0:
@@ -270,7 +153,7 @@ def closed_forms(nodes: list[Node]) -> list[str] | None:
         texts += [(_approx(t), t) for t in roots]
     elif deg == 4:
         # substitute x = 1/2 + y; biquadratic iff the odd coefficients vanish
-        shifted = _shift(rest, Fraction(1, 2))
+        shifted = shift(rest, Fraction(1, 2))
         if shifted[1] != 0 or shifted[3] != 0:
             return None
         a, b, c = shifted[4], shifted[2], shifted[0]
@@ -291,18 +174,8 @@ def root_forms(nodes: list[Node]) -> list[str]:
     """``root(P, k)`` for every irrational zero (k-th smallest real zero of the node
     polynomial P; the nodes are all of P's zeros, simple and increasing) and the exact
     value of a rational one."""
-    from rkcheck.numbers.polynomials import poly_text
-
     text = poly_text(nodes[0].poly)
     return [str(n.exact) if n.exact is not None else f"root({text}, {k})" for k, n in enumerate(nodes, start=1)]
-
-
-def _shift(p: list[Fraction], h: Fraction) -> list[Fraction]:
-    """Coefficients of p(h + y) in y."""
-    out = [Fraction(0)]
-    for c in reversed(p):
-        out = poly_add(poly_mul(out, [h, Fraction(1)]), [c])
-    return out
 
 
 def _approx(text: str) -> float:
@@ -372,9 +245,9 @@ def line_integral_matrix(c: list[Interval], b: list[Interval], sigma: int) -> li
     the coefficients of HBVM(k, σ) over the rule (b, c), and the right-hand side of the
     line-integral identity (LI) of :mod:`rkcheck.energy.lineintegral`."""
     P = [shifted_legendre(j) for j in range(sigma)]
-    G = [poly_integral(p) for p in P]
-    Gc = [[poly_at(G[j], ci) for j in range(sigma)] for ci in c]
-    Pc = [[poly_at(P[j], cl) for j in range(sigma)] for cl in c]
+    G = [integral(p) for p in P]
+    Gc = [[evaluate_at_interval(G[j], ci) for j in range(sigma)] for ci in c]
+    Pc = [[evaluate_at_interval(P[j], cl) for j in range(sigma)] for cl in c]
     out = []
     for i in range(len(c)):
         row = []
@@ -432,14 +305,14 @@ def rule(name: str, s: int) -> Rule:
     if name == "lobatto":
         if s < 2:
             raise UserError("lobatto needs at least 2 nodes")
-        poly = poly_mul([Fraction(0), Fraction(-1), Fraction(1)], poly_deriv(shifted_legendre(s - 1)))
+        poly = mul([Fraction(0), Fraction(-1), Fraction(1)], derivative(shifted_legendre(s - 1)))
         return Rule(name, s, None, isolate_zeros(poly))
     zeta = {"gauss": Fraction(0), "radau-i": Fraction(-1), "radau-ii": Fraction(1)}.get(name)
     if zeta is None:
         if not name.startswith("zeta:"):
             raise UserError(f"unknown rule {name!r} ({', '.join(RULES)}, zeta:<value>)")
         zeta = _parse_zeta(name[5:])
-    if abs(zeta) > MAX_ZETA:  # the root finder's domain (nodes beyond ~|ζ|); no use past it
+    if abs(zeta) > MAX_ZETA:  # nodes reach out to ~|ζ|; no rule of use lies past it
         raise UserError(f"zeta must lie in [-{MAX_ZETA:,}, {MAX_ZETA:,}], got {float(zeta):.3g}")
-    poly = poly_add(shifted_legendre(s), poly_scale(shifted_legendre(s - 1), -zeta))
+    poly = add(shifted_legendre(s), scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))

@@ -35,8 +35,21 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
-from rkcheck.numbers.intervals import Interval, exact_sqrt, poly_at
-from rkcheck.numbers.polynomials import poly_text, real_root_intervals
+from rkcheck.numbers.intervals import Interval, exact_sqrt
+from rkcheck.numbers.polynomials import (
+    add,
+    divide,
+    evaluate,
+    evaluate_at_interval,
+    from_flint,
+    mul,
+    poly_text,
+    real_root_intervals,
+    squarefree_split,
+    to_flint,
+    to_fmpq,
+    to_fraction,
+)
 
 #: Largest field degree :func:`field_of` builds; beyond it the entries are left to balls
 #: (the exact engine's work grows with the degree: one channel per conjugate).
@@ -47,37 +60,16 @@ class NotAlgebraic(Exception):
     """The entries do not lie in a number field this module can build (the reason)."""
 
 
-def _fmpq(x: Fraction | int):
-    from flint import fmpq
-
-    x = Fraction(x)
-    return fmpq(x.numerator, x.denominator)
-
-
-def _frac(x) -> Fraction:
-    return Fraction(int(x.p), int(x.q))
-
-
-def _poly(coeffs: Sequence[Fraction | int]):
-    from flint import fmpq_poly
-
-    return fmpq_poly([_fmpq(c) for c in coeffs])
-
-
-def _coeffs(p) -> list[Fraction]:
-    return [_frac(c) for c in p.coeffs()]
-
-
 class NumberField:
     """``Q(θ)``: ``θ`` is the ``index``-th smallest real root (1-based) of the monic
     irreducible ``minpoly`` (ascending Fractions).  ``Q`` itself is the degree-1 field
     with ``θ = 0`` (minimal polynomial ``x``)."""
 
     def __init__(self, minpoly: Sequence[Fraction | int], index: int, name: str | None = None):
-        g = _poly(minpoly)
+        g = to_flint(minpoly)
         lead = g.coeffs()[-1]
         self.g = g / lead
-        self.minpoly = _coeffs(self.g)
+        self.minpoly = from_flint(self.g)
         self.degree = self.g.degree()
         self.index = index
         self.sqrt_of: int | None = None  # n when θ = sqrt(n), n > 1 a square-free integer
@@ -110,12 +102,12 @@ class NumberField:
                 raise ValueError("element of another field")
             return x
         if isinstance(x, (list, tuple)):
-            return FieldElement(self, _poly(x) % self.g)
-        return FieldElement(self, _poly([x]))
+            return FieldElement(self, to_flint(x) % self.g)
+        return FieldElement(self, to_flint([x]))
 
     @property
     def gen(self) -> "FieldElement":
-        return FieldElement(self, _poly([0, 1]) % self.g)
+        return FieldElement(self, to_flint([0, 1]) % self.g)
 
     def theta_enclosure(self, bits: int) -> Interval:
         """A certified enclosure of θ of width ``<= 2^-bits``."""
@@ -140,7 +132,7 @@ class NumberField:
 
 def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":
     """Unpickling: the element with these coefficients in the powers of θ."""
-    return FieldElement(field, _poly(coeffs))
+    return FieldElement(field, to_flint(coeffs))
 
 
 class FieldElement:
@@ -162,7 +154,7 @@ class FieldElement:
                 raise ValueError("elements of different fields")
             return y.poly
         if isinstance(y, (int, Fraction)):
-            return _poly([y])
+            return to_flint([y])
         return None
 
     def __add__(self, y: Any) -> "FieldElement":
@@ -192,7 +184,7 @@ class FieldElement:
         if self.is_zero():
             raise ZeroDivisionError("division by zero in a number field")
         if self.poly.degree() <= 0:
-            return FieldElement(self.field, _poly([1 / _frac(self.poly.coeffs()[0])]))
+            return FieldElement(self.field, to_flint([1 / to_fraction(self.poly.coeffs()[0])]))
         if self.field.degree <= 8:
             d, s, _ = self.poly.xgcd(self.field.g)
             return FieldElement(self.field, (s / d) % self.field.g)
@@ -211,7 +203,7 @@ class FieldElement:
         e0 = fmpq_mat(D, 1)
         e0[0, 0] = 1
         sol = M.solve(e0)
-        return FieldElement(self.field, _poly([_frac(sol[i, 0]) for i in range(D)]))
+        return FieldElement(self.field, to_flint([to_fraction(sol[i, 0]) for i in range(D)]))
 
     def __truediv__(self, y: Any) -> "FieldElement":
         if isinstance(y, FieldElement):
@@ -221,7 +213,7 @@ class FieldElement:
             return NotImplemented
         if Fraction(y) == 0:
             raise ZeroDivisionError("division by zero")
-        return FieldElement(self.field, self.poly / _fmpq(y))
+        return FieldElement(self.field, self.poly / to_fmpq(y))
 
     def __rtruediv__(self, y: Any) -> "FieldElement":
         return self.inverse() * y
@@ -258,13 +250,13 @@ class FieldElement:
     @property
     def coeffs(self) -> list[Fraction]:
         """Coefficients in the power basis ``1, θ, …, θ^(D−1)`` (length D)."""
-        out = _coeffs(self.poly)
+        out = from_flint(self.poly)
         return out + [Fraction(0)] * (self.field.degree - len(out))
 
     def rational(self) -> Fraction | None:
         """The value as a Fraction when it is rational, else None."""
         if self.poly.degree() <= 0:
-            return _frac(self.poly.coeffs()[0]) if not self.poly.is_zero() else Fraction(0)
+            return to_fraction(self.poly.coeffs()[0]) if not self.poly.is_zero() else Fraction(0)
         return None
 
     def minimal_polynomial(self) -> list[Fraction]:
@@ -295,15 +287,13 @@ class FieldElement:
                 return candidate
             prec *= 2
         P = _charpoly_mul(self)
-        factor = next(_coeffs(fac) for fac, _ in P.factor()[1] if _is_root(_coeffs(fac), self))
+        factor = next(from_flint(fac) for fac, _ in P.factor()[1] if _is_root(from_flint(fac), self))
         return [c / factor[-1] for c in factor]
 
     def _minpoly_candidate(self, prec: int) -> list[Fraction] | None:
         """The candidate of :meth:`minimal_polynomial` at ``prec`` bits, or None when the
         conjugates or the coefficients are not yet resolved at that precision."""
         from flint import acb_poly, ctx, fmpq
-
-        from rkcheck.numbers.polynomials import _fraction
 
         D = self.field.degree
         with ctx.workprec(prec):
@@ -325,7 +315,7 @@ class FieldElement:
             for c in product.coeffs():
                 if not c.imag.contains(0):
                     return None
-                mid, rad = _fraction(c.real.mid()), _fraction(c.real.rad())
+                mid, rad = to_fraction(c.real.mid()), to_fraction(c.real.rad())
                 if rad == 0:
                     out.append(mid)
                     continue
@@ -348,8 +338,6 @@ class FieldElement:
         each enclosure cost 0.25 s)."""
         from flint import arb, arb_poly, ctx, fmpq, fmpz
 
-        from rkcheck.numbers.polynomials import _fraction
-
         r = self.rational()
         if r is not None:
             return Interval.point(r)
@@ -365,7 +353,7 @@ class FieldElement:
                 theta = arb.union(arb(fmpz(t.lo.numerator)) / fmpz(t.lo.denominator),
                                   arb(fmpz(t.hi.numerator)) / fmpz(t.hi.denominator))
                 value = arb_poly([fmpq(c.numerator, c.denominator) for c in coeffs])(theta)
-                mid, rad = _fraction(value.mid()), _fraction(value.rad())
+                mid, rad = to_fraction(value.mid()), to_fraction(value.rad())
             if 2 * rad <= width:
                 return Interval(mid - rad, mid + rad)
             tb += max(tb // 2, 32)
@@ -475,22 +463,6 @@ def integral_scale(monic: Sequence[Fraction]) -> int:
     return lam
 
 
-def _squarefree_split(n: int) -> tuple[int, int]:
-    """``n = s²·m``, with m free of squares of primes below 10^4 (square-free when n is
-    small): good enough for readable names; correctness never depends on it."""
-    s, m = 1, n
-    for p in range(2, 10_000):
-        if p * p > m:
-            break
-        while m % (p * p) == 0:
-            m //= p * p
-            s *= p
-    r = math.isqrt(m)
-    if r * r == m:
-        s, m = s * r, 1
-    return s, m
-
-
 def _identify(candidates: Iterable, value) -> Any:
     """The one irreducible factor (fmpq_poly) among ``candidates`` that vanishes at the
     real number whose enclosures ``value(bits)`` gives."""
@@ -498,7 +470,7 @@ def _identify(candidates: Iterable, value) -> Any:
     bits = 64
     while True:
         iv = value(bits)
-        live = [f for f in candidates if poly_at(_coeffs(f), iv).contains_zero()]
+        live = [f for f in candidates if evaluate_at_interval(from_flint(f), iv).contains_zero()]
         if len(live) == 1:
             return live[0]
         if not live:  # cannot happen for a true root; guard against a wrong enclosure
@@ -512,7 +484,7 @@ def _identify(candidates: Iterable, value) -> Any:
 def _real_of(f, value) -> _Real:
     """``value`` (enclosures) as a root of the irreducible ``f``: which real root it is."""
     f = f / f.coeffs()[-1]
-    coeffs = _coeffs(f)
+    coeffs = from_flint(f)
     bits = 64
     while True:
         iv = value(bits)
@@ -550,7 +522,7 @@ class _Builder:
             acc = 0 * self._powers(j)[0]
             for c, power in zip(x.coeffs, self._powers(j)):
                 if c:
-                    acc += _fmpq(c) * power
+                    acc += to_fmpq(c) * power
             x = FieldElement(self.chain[j], acc)
         return x
 
@@ -580,7 +552,7 @@ class _Builder:
             value = self.adjoin(scaled) / lam
             self.generators[gamma] = value
             return value
-        f = _poly(list(gamma.f))
+        f = to_flint(list(gamma.f))
         K = self.field
         mirror = self._mirror_image(gamma)
         if mirror is not None:
@@ -630,8 +602,8 @@ class _Builder:
         if n < 2:
             return None
         a = -2 * gamma.f[n - 1] / n  # twice the mean of the roots
-        f = _poly(list(gamma.f))
-        reflected = f(_poly([a, -1]))  # f(a − x)
+        f = to_flint(list(gamma.f))
+        reflected = f(to_flint([a, -1]))  # f(a − x)
         if reflected != f and reflected != -f:
             return None
         r = len(real_root_intervals(list(gamma.f), 8))
@@ -693,7 +665,7 @@ class _Builder:
             if iv.is_point:
                 return self.field(iv.lo)
             root = int(k)
-            factors = [fac for fac, _ in _poly(p).factor()[1]]
+            factors = [fac for fac, _ in to_flint(p).factor()[1]]
             f = _identify(factors, lambda bits: real_root_intervals(p, bits)[root - 1])
             return self.adjoin(_real_of(f, lambda bits: real_root_intervals(p, bits)[root - 1]))
         alpha = self.value(node.arg)
@@ -705,7 +677,7 @@ class _Builder:
             if exact is not None:
                 return self.field(exact)
             # sqrt(a/b) = s·sqrt(m)/b with a·b = s²·m: one generator per square-free m
-            s, m = _squarefree_split(q.numerator * q.denominator)
+            s, m = squarefree_split(q.numerator * q.denominator, 10_000)
             if m not in self._sqrt_cache:
                 self._sqrt_cache[m] = self.adjoin(_Real((Fraction(-m), Fraction(0), Fraction(1)), 2))
             return self.lift(self._sqrt_cache[m]) * Fraction(s, q.denominator)
@@ -715,8 +687,8 @@ class _Builder:
         # characteristic polynomial of multiplication by α) vanishes at every conjugate
         P = _charpoly_mul(alpha)
         spread = [Fraction(0)] * (2 * P.degree() + 1)
-        spread[::2] = _coeffs(P)
-        P2 = _poly(spread)
+        spread[::2] = from_flint(P)
+        P2 = to_flint(spread)
 
         def enc(bits: int) -> Interval:
             a = alpha.enclosure(bits + 8)
@@ -724,7 +696,7 @@ class _Builder:
 
         f = _identify([fac for fac, _ in P2.factor()[1]], enc)
         if f.degree() == 1:
-            return self.field(-_frac(f.coeffs()[0]) / _frac(f.coeffs()[1]))
+            return self.field(-to_fraction(f.coeffs()[0]) / to_fraction(f.coeffs()[1]))
         return self.adjoin(_real_of(f, enc))
 
 
@@ -748,13 +720,13 @@ def _companion(g):
     """The companion matrix (fmpq_mat) of the monic g: multiplication by x on Q[x]/g."""
     from flint import fmpq_mat
 
-    c = _coeffs(g)
+    c = from_flint(g)
     n = len(c) - 1
     M = fmpq_mat(n, n)
     for i in range(1, n):
         M[i, i - 1] = 1
     for i in range(n):
-        M[i, n - 1] = _fmpq(-c[i] / c[n])
+        M[i, n - 1] = to_fmpq(-c[i] / c[n])
     return M
 
 
@@ -791,7 +763,7 @@ def _charpoly_mul(alpha: FieldElement):
     theta = K.gen
     for j in range(D):  # column j: α·θ^j
         for i, c in enumerate(x.coeffs):
-            M[i, j] = _fmpq(c)
+            M[i, j] = to_fmpq(c)
         x = x * theta
     return M.charpoly()
 
@@ -806,18 +778,18 @@ def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
     maximal minors, products only.  Euclid over L divides by elements of L at every step
     and swelled their coefficients to 40 000 bits (10 s of the 12 s build of the Gauss-6
     field of degree 48)."""
-    fc = _coeffs(f)
+    fc = from_flint(f)
     monic = [c / fc[-1] for c in fc]
     n = len(monic) - 1
     line = [L.gen, L(-t)]  # η − t·z
-    r: list[FieldElement] = []
-    for c in reversed(_coeffs(g)):
-        r = _prem_rational(_padd(_pmul(r, line), [L(c)]), monic)
     zero = L(0)
+    r = [zero]
+    for c in reversed(from_flint(g)):  # Horner's scheme modulo f: products by rationals only
+        r = divide(add(mul(r, line, zero), [L(c)], zero), monic, zero)[1]
     rows = []
     for _ in range(n - 1):
         rows.append(r + [zero] * (n - len(r)))
-        r = _prem_rational([zero] + r, monic)
+        r = divide([zero] + r, monic, zero)[1]
     # minors[cols]: the determinant of the first len(cols) rows on those columns
     minors: dict[tuple[int, ...], FieldElement] = {(): L(1)}
     for i, row in enumerate(rows):
@@ -836,52 +808,14 @@ def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
     v1 = -minors.get(full[:1] + full[2:], zero)
     gamma = v1 / v0 if not v0.is_zero() else None
     # the answer is checked, not trusted: γ must be a root of f and η − tγ one of g
-    if gamma is None or not _is_root(monic, gamma) or not _is_root(_coeffs(g), L.gen - gamma * t):
+    if gamma is None or not _is_root(monic, gamma) or not _is_root(from_flint(g), L.gen - gamma * t):
         raise NotAlgebraic("the primitive element does not separate the conjugates (internal error)")
     return L.gen - gamma * t
 
 
-def _prem_rational(a: list[FieldElement], monic: list[Fraction]) -> list[FieldElement]:
-    """``a mod f`` for the monic rational ``f`` (ascending): products by rationals only."""
-    n = len(monic) - 1
-    a = list(a)
-    while len(a) > n:
-        q = a.pop()
-        shift = len(a) - n
-        for i in range(n):
-            if monic[i]:
-                a[shift + i] = a[shift + i] - q * monic[i]
-    return _ptrim(a)
-
-
-def _ptrim(a: list[FieldElement]) -> list[FieldElement]:
-    while a and a[-1].is_zero():
-        a = a[:-1]
-    return a
-
-
-def _padd(a: list[FieldElement], b: list[FieldElement]) -> list[FieldElement]:
-    n = max(len(a), len(b))
-    zero = (a or b)[0] * 0
-    return _ptrim([(a[i] if i < len(a) else zero) + (b[i] if i < len(b) else zero) for i in range(n)])
-
-
-def _pmul(a: list[FieldElement], b: list[FieldElement]) -> list[FieldElement]:
-    if not a or not b:
-        return []
-    out = [a[0] * 0 for _ in range(len(a) + len(b) - 1)]
-    for i, x in enumerate(a):
-        for j, y in enumerate(b):
-            out[i + j] = out[i + j] + x * y
-    return _ptrim(out)
-
-
 def _is_root(P: Sequence[Fraction], x: FieldElement) -> bool:
     """``P(x) = 0`` exactly (Horner's scheme in x's field)."""
-    acc = x.field(0)
-    for c in reversed(P):
-        acc = acc * x + c
-    return acc.is_zero()
+    return evaluate(P, x, x.field(0)).is_zero()
 
 
 # ---------------------------------------------------------------------- public

@@ -38,6 +38,7 @@ from fractions import Fraction
 from typing import Any, Callable, Mapping
 
 from rkcheck.errors import UserError
+from rkcheck.numbers import polynomials
 from rkcheck.numbers.intervals import Interval, exact_sqrt
 from rkcheck.numbers.reading import DecimalsMode
 
@@ -517,24 +518,14 @@ def root_polynomial(call: Call) -> list[Fraction]:
     """The coefficients (ascending) of the polynomial of ``root(p, k)``: ``p`` may use the
     variable ``x``, numbers (taken exactly), ``+ - *``, division by a nonzero number and
     powers with integer exponents >= 0."""
-    from rkcheck.numbers.polynomials import trim
-
-    def padd(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-        n = max(len(a), len(b))
-        return [(a[i] if i < len(a) else Fraction(0)) + (b[i] if i < len(b) else Fraction(0)) for i in range(n)]
-
     def pmul(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-        out = [Fraction(0)] * (len(a) + len(b) - 1)
-        for i, x in enumerate(a):
-            if x:
-                for j, y in enumerate(b):
-                    out[i + j] += x * y
+        out = polynomials.mul(a, b)
         if len(out) - 1 > MAX_ROOT_DEGREE:
             raise UserError(f"root's polynomial has degree above {MAX_ROOT_DEGREE} at column {call.column}")
         return out
 
     def constant(poly: list[Fraction], what: str) -> Fraction:
-        p = trim(poly)
+        p = polynomials.trim(poly)
         if len(p) > 1:
             raise UserError(f"{what} in root's polynomial must not depend on x (column {call.column})")
         return p[0]
@@ -568,9 +559,9 @@ def root_polynomial(call: Call) -> list[Fraction]:
         assert isinstance(node, Binary)
         left, right = vals
         if node.op == "+":
-            return padd(left, right)
+            return polynomials.add(left, right)
         if node.op == "-":
-            return padd(left, [-c for c in right])
+            return polynomials.sub(left, right)
         if node.op == "*":
             out = pmul(left, right)
             _check_value_bits(tuple(out), node.column)
@@ -583,7 +574,7 @@ def root_polynomial(call: Call) -> list[Fraction]:
     def go(node: Expr) -> list[Fraction]:
         return fold(node, combine, operands)
 
-    coeffs = trim(go(call.args[0]))
+    coeffs = polynomials.trim(go(call.args[0]))
     if len(coeffs) < 2:
         raise UserError(f"root's polynomial must have degree >= 1 (column {call.column})")
     return coeffs
@@ -592,12 +583,10 @@ def root_polynomial(call: Call) -> list[Fraction]:
 def root_enclosure(call: Call, k_value: Fraction | None, bits: int) -> Interval:
     """The k-th smallest real root of root(p, k), enclosed to ``2^-bits`` (exact when
     rational).  ``k_value`` is the exact value of k."""
-    from rkcheck.numbers.polynomials import real_root_intervals
-
     if k_value is None or k_value.denominator != 1 or k_value < 1:
         raise UserError(f"root(p, k): k must be a positive integer, got {k_value} (column {call.column})")
     coeffs = root_polynomial(call)
-    roots = real_root_intervals(coeffs, bits)
+    roots = polynomials.real_root_intervals(coeffs, bits)
     k = int(k_value)
     if k > len(roots):
         raise UserError(f"root(p, {k}): the polynomial has only {len(roots)} real root"

@@ -123,15 +123,6 @@ def interval_sum(xs) -> Interval:
     return total
 
 
-def poly_at(coeffs, x: Interval) -> Interval:
-    """The polynomial with rational ``coeffs`` (ascending powers) at the interval ``x``
-    (Horner's scheme)."""
-    acc = Interval.point(0)
-    for coeff in reversed(coeffs):
-        acc = acc * x + Interval.point(coeff)
-    return acc
-
-
 def _isqrt_floor(x: Fraction) -> int:
     """floor(sqrt(x)) for a rational x >= 0."""
     return math.isqrt(math.floor(x))

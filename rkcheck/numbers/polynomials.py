@@ -1,103 +1,339 @@
-"""Polynomials with rational coefficients and their real roots, certified.
+"""Polynomials: every polynomial rkcheck computes with goes through this module.
 
-Coefficient lists are ascending (``[c0, c1, c2]`` is ``c0 + c1·x + c2·x²``) of Fractions.
+A polynomial is a list of coefficients, lowest power first (``[c0, c1, c2]`` is
+``c0 + c1·x + c2·x²``); results keep at least one coefficient (``[0]`` is zero).
+
+* **Arithmetic over any field** — sums, products, division with remainder, Euclid's gcd,
+  Horner's scheme, ``p(x + h)`` — is written once here for Fractions, the number-field
+  elements of :mod:`rkcheck.numbers.algebraic` and (without division) intervals.  FLINT
+  has no polynomials over those fields.  Callers pass the zero of their field and, for
+  coefficients that cannot be compared with 0 (intervals), the test for zero.
+* **Over Q**, FLINT (``fmpq_poly``) does the algebra: gcd, exact division, square-free
+  factorisation, factorisation, rational roots and certified real roots
+  (:class:`RealRoots`).  FLINT is imported on first use, so that checking a small rational
+  tableau never loads it (start-up).
+
 Real roots are isolated by FLINT's certified complex root finder (``fmpz_poly
 .complex_roots``, which proves which roots are real) on the square-free part, at rising
 precision until every real root is enclosed in an interval of width at most ``2^-bits``;
-the end points are exact rationals read off the Arb balls.
+the end points are exact rationals read off the Arb balls, and a rational root is the
+point it is.
 """
 
 from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Sequence
+from functools import lru_cache
+from typing import Any, Callable, Sequence
 
 from rkcheck.numbers.intervals import Interval
 
+Poly = list  # coefficients, lowest power first
+ZeroTest = Callable[[Any], bool]
 
-def _fmpq_poly(coeffs: Sequence[Fraction]):
-    from flint import fmpq, fmpq_poly
-
-    return fmpq_poly([fmpq(c.numerator, c.denominator) for c in map(Fraction, coeffs)])
-
-
-def _fraction(x) -> Fraction:
-    """An exact Arb point (or fmpq/fmpz) as a Fraction."""
-    if hasattr(x, "man_exp"):
-        man, exp = x.man_exp()
-        man, exp = int(man), int(exp)
-        return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
-    return Fraction(int(x.p), int(x.q)) if hasattr(x, "p") else Fraction(int(x))
+_ZERO = Fraction(0)
 
 
-def trim(coeffs: Sequence[Fraction]) -> list[Fraction]:
-    """Drop leading (highest-degree) zero coefficients."""
-    out = [Fraction(c) for c in coeffs]
-    while len(out) > 1 and out[-1] == 0:
+def _equals_zero(c: Any) -> bool:
+    # an exact zero (Fraction, int, number-field element); an interval is never one
+    return not c
+
+
+# ------------------------------------------------------------ over any field
+
+
+def trim(p: Sequence, is_zero: ZeroTest = _equals_zero) -> Poly:
+    """Drop leading (highest-power) zero coefficients, keeping at least one."""
+    out = list(p)
+    while len(out) > 1 and is_zero(out[-1]):
         out.pop()
     return out
 
 
+def is_zero_poly(p: Sequence, is_zero: ZeroTest = _equals_zero) -> bool:
+    return all(is_zero(c) for c in p)
+
+
+def add(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+    n = max(len(p), len(q))
+    return [(p[k] if k < len(p) else zero) + (q[k] if k < len(q) else zero) for k in range(n)]
+
+
+def sub(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+    n = max(len(p), len(q))
+    return [(p[k] if k < len(p) else zero) - (q[k] if k < len(q) else zero) for k in range(n)]
+
+
+def scale(p: Sequence, a: Any) -> Poly:
+    """``a·p``."""
+    return [a * c for c in p]
+
+
+def mul(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+    """``p·q`` (schoolbook: the polynomials here are short, their coefficients not)."""
+    if not p or not q:
+        return [zero]
+    out = [zero] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        if _equals_zero(a):
+            continue
+        for j, b in enumerate(q):
+            out[i + j] = out[i + j] + a * b
+    return out
+
+
+def reflect(p: Sequence) -> Poly:
+    """``p(−x)``."""
+    return [-c if k % 2 else c for k, c in enumerate(p)]
+
+
+def derivative(p: Sequence) -> Poly:
+    return [k * p[k] for k in range(1, len(p))] or [_ZERO]
+
+
+def integral(p: Sequence) -> Poly:
+    """The antiderivative vanishing at 0."""
+    return [_ZERO] + [c / (k + 1) for k, c in enumerate(p)]
+
+
+def evaluate(p: Sequence, x: Any, zero: Any = _ZERO) -> Any:
+    """``p(x)`` by Horner's scheme."""
+    acc = zero
+    for c in reversed(p):
+        acc = acc * x + c
+    return acc
+
+
+def evaluate_at_interval(coeffs: Sequence[Fraction], x: Interval) -> Interval:
+    """The polynomial with rational ``coeffs`` at the interval ``x`` (Horner's scheme)."""
+    return evaluate([Interval.point(c) for c in coeffs], x, Interval.point(0))
+
+
+def shift(p: Sequence, h: Any, zero: Any = _ZERO, one: Any = Fraction(1)) -> Poly:
+    """The coefficients of ``p(x + h)`` in x."""
+    out = [zero]
+    for c in reversed(p):
+        out = add(mul(out, [h, one], zero), [c], zero)
+    return out
+
+
+def divide(p: Sequence, d: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> tuple[Poly, Poly]:
+    """``(quotient, remainder)`` of ``p`` by ``d`` (trimmed, leading coefficient nonzero);
+    the remainder is trimmed.  A monic ``d`` costs no division, and its zero
+    coefficients no products (reduction modulo a sparse minimal polynomial)."""
+    p = list(p)
+    n = len(d) - 1
+    if len(p) <= n:
+        return [zero], trim(p or [zero], is_zero)
+    lead = d[-1]
+    monic = lead == 1
+    quot = [zero] * (len(p) - n)
+    for k in range(len(p) - 1 - n, -1, -1):
+        coef = p[k + n] if monic else p[k + n] / lead
+        quot[k] = coef
+        for j in range(n):
+            if not is_zero(d[j]):
+                p[k + j] = p[k + j] - coef * d[j]
+    return quot, trim(p[:n] or [zero], is_zero)
+
+
+def gcd(p: Sequence, q: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> Poly:
+    """A gcd of two polynomials over an exact field (Euclid; not normalised)."""
+    a, b = trim(p, is_zero), trim(q, is_zero)
+    while not is_zero_poly(b, is_zero):
+        a, b = b, divide(a, b, zero, is_zero)[1]
+    return a
+
+
+def lowest_terms(P: Sequence, Q: Sequence, zero: Any = _ZERO,
+                 is_zero: ZeroTest = _equals_zero) -> tuple[Poly, Poly]:
+    """``P/Q`` cancelled by their gcd and scaled to ``Q(0) = 1`` (``Q(0) ≠ 0``), trimmed."""
+    g = gcd(P, Q, zero, is_zero)
+    if len(g) > 1:
+        P, Q = divide(P, g, zero, is_zero)[0], divide(Q, g, zero, is_zero)[0]
+    q0 = Q[0]
+    return trim([a / q0 for a in P], is_zero), trim([a / q0 for a in Q], is_zero)
+
+
+# ------------------------------------------------------------ over Q, with FLINT
+
+
+def to_fmpq(x: Fraction | int):
+    from flint import fmpq
+
+    x = Fraction(x)
+    return fmpq(x.numerator, x.denominator)
+
+
+def to_fraction(x: Any) -> Fraction:
+    """An exact FLINT number as a Fraction: ``fmpq``, ``fmpz``, or an exact ``arb``/``arf``
+    (a ball's mid-point or radius)."""
+    if hasattr(x, "p"):  # fmpq, the common case first
+        return Fraction(int(x.p), int(x.q))
+    if hasattr(x, "man_exp"):
+        man, exp = x.man_exp()
+        man, exp = int(man), int(exp)
+        return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+    return Fraction(int(x))
+
+
+def to_flint(coeffs: Any):
+    """The ``fmpq_poly`` of rational coefficients (an ``fmpq_poly`` is returned as it is)."""
+    from flint import fmpq_poly
+
+    if isinstance(coeffs, fmpq_poly):
+        return coeffs
+    return fmpq_poly([to_fmpq(c) for c in coeffs])
+
+
+def from_flint(p: Any) -> list[Fraction]:
+    """The coefficients of an ``fmpq_poly`` (or ``fmpz_poly``) as Fractions (``[0]`` for 0)."""
+    return [to_fraction(c) for c in p.coeffs()] or [Fraction(0)]
+
+
+def rational_lowest_terms(P: Any, Q: Any) -> tuple[list[Fraction], list[Fraction]]:
+    """:func:`lowest_terms` over Q, by FLINT (Euclid on Fractions swells beyond degree
+    ~15); ``P`` and ``Q`` are coefficient lists or ``fmpq_poly``."""
+    p, q = to_flint(P), to_flint(Q)
+    g = p.gcd(q)
+    if g.degree() > 0:
+        p, q = p // g, q // g
+    q0 = q.coeffs()[0]
+    return from_flint(p / q0), from_flint(q / q0)
+
+
 def rational_roots(coeffs: Sequence[Fraction]) -> list[Fraction]:
     """The distinct rational roots, increasing."""
-    coeffs = trim(coeffs)
+    coeffs = trim([Fraction(c) for c in coeffs])
     if len(coeffs) < 2:
         return []
-    return sorted({_fraction(r) for r, _ in _fmpq_poly(coeffs).roots()})
+    return sorted({to_fraction(r) for r, _ in to_flint(coeffs).roots()})
+
+
+def squarefree_part(coeffs: Sequence[Fraction]) -> list[Fraction]:
+    """The product of the distinct irreducible factors of a nonconstant ``p``: the same
+    roots, each simple (primitive integer coefficients, from FLINT's square-free
+    factorisation)."""
+    _, factors = to_flint(trim(coeffs)).factor_squarefree()
+    part = None
+    for f, _ in factors:
+        part = f if part is None else part * f
+    assert part is not None  # degree >= 1: at least one factor
+    return from_flint(part.numer())
+
+
+#: isolations kept per polynomial (one per width asked for)
+_KEPT_WIDTHS = 8
+
+
+class RealRoots:
+    """The distinct real roots of a nonzero rational polynomial, certified: how many,
+    which are rational (exactly), and isolating intervals with rational end points of
+    any width, computed once per width."""
+
+    def __init__(self, coeffs: Sequence[Fraction]):
+        self.poly = trim([Fraction(c) for c in coeffs])
+        if is_zero_poly(self.poly):
+            raise ValueError("the zero polynomial has no isolated roots")
+        self._cache: dict[int, list[Interval]] = {}
+        self._rational = rational_roots(self.poly)
+        self._squarefree: Any = None  # fmpz_poly, on first isolation
+
+    def __reduce__(self):
+        # FLINT objects do not pickle; the roots are recomputed from the coefficients
+        return (RealRoots, (self.poly,))
+
+    @property
+    def count(self) -> int:
+        return len(self.intervals(8))
+
+    @property
+    def exact(self) -> list[Fraction | None]:
+        """Each real root (increasing) as a Fraction when it is rational, else None."""
+        return [iv.lo if iv.is_point else None for iv in self.intervals(8)]
+
+    def intervals(self, bits: int) -> list[Interval]:
+        """Enclosures of the distinct real roots, increasing, each of width ``<= 2^-bits``
+        (a point for a rational root)."""
+        if bits not in self._cache:
+            if len(self._cache) >= _KEPT_WIDTHS:  # callers refine by doubling: keep the latest
+                del self._cache[next(iter(self._cache))]
+            self._cache[bits] = self._isolate(bits) if len(self.poly) > 1 else []
+        return self._cache[bits]
+
+    def _isolate(self, bits: int) -> list[Interval]:
+        from flint import arb, ctx
+
+        if self._squarefree is None:
+            self._squarefree = to_flint(squarefree_part(self.poly)).numer()
+        width = Fraction(1, 2**bits)
+        prec = max(64, bits + 32)
+        while True:
+            with ctx.workprec(prec):
+                roots = self._squarefree.complex_roots()
+            intervals = []
+            for r, _ in roots:
+                # FLINT proves a root real by returning it with an exactly zero imaginary part
+                real = r if isinstance(r, arb) else (r.real if r.imag.is_zero() else None)
+                if real is not None:
+                    mid, rad = to_fraction(real.mid()), to_fraction(real.rad())
+                    intervals.append(Interval(mid - rad, mid + rad))
+            if all(iv.hi - iv.lo <= width for iv in intervals):
+                break
+            prec *= 2
+        intervals.sort(key=lambda iv: iv.lo)
+        out = []
+        for iv in intervals:
+            # Arb's balls are disjoint: a rational root inside one is its root
+            inside = [r for r in self._rational if iv.lo <= r <= iv.hi]
+            out.append(Interval.point(inside[0]) if len(inside) == 1 else iv)
+        return out
+
+
+@lru_cache(maxsize=256)
+def _real_roots(coeffs: tuple[Fraction, ...]) -> RealRoots:
+    return RealRoots(coeffs)
+
+
+def real_roots(coeffs: Sequence[Fraction]) -> RealRoots:
+    """The :class:`RealRoots` of ``coeffs``, shared by every caller asking for the same
+    polynomial (a field's minimal polynomial is asked for its roots again and again)."""
+    return _real_roots(tuple(trim([Fraction(c) for c in coeffs])))
 
 
 def real_root_intervals(coeffs: Sequence[Fraction], bits: int) -> list[Interval]:
     """Certified enclosures of the distinct real roots, increasing, each of width
     ``<= 2^-bits`` (a point for a rational root).  ``coeffs`` must not be the zero
     polynomial."""
-    from flint import arb, ctx
-
-    coeffs = trim(coeffs)
-    if all(c == 0 for c in coeffs):
-        raise ValueError("the zero polynomial has no isolated roots")
-    if len(coeffs) < 2:
-        return []
-    p = _fmpq_poly(coeffs)
-    _, factors = p.factor_squarefree()
-    squarefree = None
-    for f, _ in factors:
-        squarefree = f if squarefree is None else squarefree * f
-    assert squarefree is not None  # degree >= 1 (trimmed, len >= 2): at least one factor
-    numer = squarefree.numer()
-    exact = {r: None for r in rational_roots(coeffs)}
-    width = Fraction(1, 2**bits)
-    prec = max(64, bits + 32)
-    while True:
-        with ctx.workprec(prec):
-            roots = numer.complex_roots()
-        intervals = []
-        for r, _ in roots:
-            # FLINT proves a root real by returning it with an exactly zero imaginary part
-            real = r if isinstance(r, arb) else (r.real if r.imag.is_zero() else None)
-            if real is not None:
-                mid, rad = _fraction(real.mid()), _fraction(real.rad())
-                intervals.append(Interval(mid - rad, mid + rad))
-        if all(iv.hi - iv.lo <= width for iv in intervals):
-            break
-        prec *= 2
-    intervals.sort(key=lambda iv: iv.lo)
-    out = []
-    for iv in intervals:
-        inside = [r for r in exact if iv.lo <= r <= iv.hi]
-        out.append(Interval.point(inside[0]) if len(inside) == 1 else iv)
-    return out
+    return real_roots(coeffs).intervals(bits)
 
 
-def root_count_message(coeffs: Sequence[Fraction]) -> str:
-    n = len(real_root_intervals(coeffs, 8))
-    return f"{n} real root{'s' if n != 1 else ''}"
+# ------------------------------------------------------------ integers, text
+
+
+def squarefree_split(n: int, limit: int) -> tuple[int, int]:
+    """``n = s²·m`` for ``n >= 1``, with m free of the squares of all integers below
+    ``limit`` (so square-free when ``n < limit²``) and ``m = 1`` when n is a square: trial
+    division, enough for readable square roots; nothing correct depends on m being
+    square-free."""
+    s, m = 1, n
+    d = 2
+    while d < limit and d * d <= m:
+        while m % (d * d) == 0:
+            m //= d * d
+            s *= d
+        d += 1
+    r = math.isqrt(m)
+    if r * r == m:
+        s, m = s * r, 1
+    return s, m
 
 
 def poly_text(coeffs: Sequence[Fraction], variable: str = "x") -> str:
     """The polynomial as entry text (``x^2 - 15``), scaled to primitive integer
     coefficients with a positive leading one (same roots), highest power first."""
-    coeffs = trim(coeffs)
+    coeffs = trim([Fraction(c) for c in coeffs])
     den = 1
     for c in coeffs:
         den = den * c.denominator // math.gcd(den, c.denominator)

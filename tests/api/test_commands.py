@@ -70,6 +70,18 @@ def test_new_toml_reads_back_as_the_same_method():
     assert decimals.A[0][1].text.startswith("-0.038675134594812882") and decimals.A[0][1].rounded_digits == 20
 
 
+@pytest.mark.parametrize("method, stages", [("gauss", 2), ("rk4", None)])
+def test_new_toml_writes_any_name_as_a_valid_toml_string(method, stages):
+    # a newline, a tab, DEL, a quote and a backslash: TOML wants all but the tab escaped
+    # (the standard library's parser is the independent judge)
+    import tomllib
+
+    name = 'a\nb\tc\x7fd"e\\f'
+    text = rkcheck.new_toml(method, stages=stages, name=name)
+    assert tomllib.loads(text)["method"]["name"] == name
+    assert rkcheck.loads(text).name.startswith("a")  # reads back (names are shown printable)
+
+
 def test_new_toml_is_what_the_cli_writes(capsys):
     for args, kwargs in ((["rk4"], {}), (["avf", "-s", "2", "--rule", "radau-ii"], {"stages": 2, "rule": "radau-ii"}),
                          (["kernel", "--zeta", "1/3", "--beta", "1e-12"], {"zeta": "1/3", "beta": "1e-12"})):

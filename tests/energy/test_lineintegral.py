@@ -9,7 +9,8 @@ from fractions import Fraction
 import pytest
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.methods.quadrature import poly_eval, poly_integral, shifted_legendre
+from rkcheck.methods.quadrature import shifted_legendre
+from rkcheck.numbers.polynomials import evaluate, integral
 from rkcheck.methods.tableau import Tableau
 
 
@@ -28,7 +29,7 @@ def li_tableau(c: list[Fraction], sigma: int) -> Tableau:
     b = [M[i][n] for i in range(n)]
     A = [
         [
-            b[l] * sum((2 * j + 1) * poly_eval(poly_integral(shifted_legendre(j)), c[i]) * poly_eval(shifted_legendre(j), c[l])
+            b[l] * sum((2 * j + 1) * evaluate(integral(shifted_legendre(j)), c[i]) * evaluate(shifted_legendre(j), c[l])
                        for j in range(sigma))
             for l in range(n)
         ]
