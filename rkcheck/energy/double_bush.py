@@ -229,7 +229,8 @@ def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
     from ``Σ b_i c_i^(k−1) = 1/k``, k = 1..s, solved in the field), or None when the field
     is beyond :data:`ALGEBRAIC_RULE_MAX_DEGREE`."""
     from rkcheck.numbers import grammar as ex
-    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+    from rkcheck.numbers.algebraic import NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
 
     forms = r.node_closed_forms()
     if forms is None:

@@ -86,7 +86,11 @@ def render_toml(
     """The TOML text of a family; ``mode``: 'auto' (exact if possible), 'exact' or 'digits'."""
     # the family machinery is loaded here, not with the module: writing any other tableau
     # as TOML (show --format toml) needs none of it
-    from rkcheck.methods.closed_forms import MAX_EXACT_NODES, expression_texts, simplified_texts
+    from rkcheck.methods.closed_forms import (
+        MAX_EXACT_NODES,
+        expression_texts,
+        simplified_texts,
+    )
     from rkcheck.methods.families import coefficients
     from rkcheck.numbers.formatting import decimal_string
     from rkcheck.numbers.precision import bits_for_digits

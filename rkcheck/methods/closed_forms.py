@@ -168,7 +168,8 @@ def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c
     rational or one square root suffices; otherwise (nested roots, ``root(p, k)``) the
     node constants and Lagrange forms, which are exact too."""
     from rkcheck.numbers import grammar as ex
-    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+    from rkcheck.numbers.algebraic import NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
 
     s = len(b)
     flat = [x for row in A for x in row] + list(b) + list(c)
@@ -196,7 +197,8 @@ def family_exact_values(spec: FamilySpec) -> Any:
     the field of the six Gauss-6 nodes, of degree 48, takes seconds to build, and a
     catalogue or a scan meets the same family in several files and checks."""
     from rkcheck.numbers import grammar as ex
-    from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+    from rkcheck.numbers.algebraic import NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
 
     texts = expression_texts(spec)
     if texts is None:

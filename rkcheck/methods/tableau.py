@@ -18,8 +18,9 @@ from functools import cached_property
 from typing import Any, Mapping, Protocol, Sequence
 
 from rkcheck.methods.arrays import FloatMode, entries_from_arrays
-from rkcheck.numbers.algebraic import NotAlgebraic, NumberField, field_of
+from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
 from rkcheck.numbers.entries import Constants, Entry, TableauEntry
+from rkcheck.numbers.field_builder import field_of
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.options import DEFAULT_MAX_STAGES

@@ -23,7 +23,8 @@ from typing import Any, Mapping, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
-from rkcheck.numbers.algebraic import NotAlgebraic, NumberField, field_of
+from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
+from rkcheck.numbers.field_builder import field_of
 
 #: The name of the field generator among the variables (parameter names may not start
 #: with two underscores, so it never clashes with one); shown as θ.

@@ -10,8 +10,8 @@ import pytest
 
 from rkcheck.energy.check import CheckOptions, check
 from rkcheck.methods.quadrature import shifted_legendre
-from rkcheck.numbers.polynomials import evaluate, integral
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.polynomials import evaluate, integral
 
 
 def li_tableau(c: list[Fraction], sigma: int) -> Tableau:

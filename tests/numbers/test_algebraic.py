@@ -7,7 +7,8 @@ import sympy as sp
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
-from rkcheck.numbers.algebraic import NotAlgebraic, field_of
+from rkcheck.numbers.algebraic import NotAlgebraic
+from rkcheck.numbers.field_builder import field_of
 
 
 def _values(*texts, constants=None):

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers import polynomials as pl
-from rkcheck.numbers.algebraic import field_of
+from rkcheck.numbers.field_builder import field_of
 from rkcheck.numbers.intervals import Interval
 
 x = sp.Symbol("x")
