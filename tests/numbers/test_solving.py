@@ -1,0 +1,82 @@
+"""The exact solver (rkcheck.numbers.solving) on systems whose solutions are known by
+construction, cross-checked with sympy where a second opinion helps."""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+
+import pytest
+from flint import fmpq, fmpq_mpoly_ctx
+
+from rkcheck.numbers.groebner import dimension
+from rkcheck.numbers.solving import solve_system
+
+
+def ring(*names):
+    ctx = fmpq_mpoly_ctx.get(names, "lex")
+    return ctx, ctx.gens()
+
+
+def q(x):
+    x = Fraction(x)
+    return fmpq(x.numerator, x.denominator)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_rational_points_are_found_exactly(seed):
+    # the ideal of a few rational points: products of linear forms vanish exactly there
+    rng = random.Random(seed)
+    ctx, (x, y) = ring("x", "y")
+    pts = {(Fraction(rng.randint(-5, 5), rng.randint(1, 4)), Fraction(rng.randint(-5, 5), rng.randint(1, 4)))
+           for _ in range(3)}
+    xs = sorted({p[0] for p in pts})
+    f = ctx.constant(1)
+    g = ctx.constant(0)
+    for px, py in pts:
+        f = f * (x - q(px))
+    # y = interpolant of the points' y over their x (Lagrange), when the x are distinct
+    if len(xs) == len(pts):  # the points' ideal is <Π(x − xᵢ), y − interpolant(x)>
+        for px, py in pts:
+            term = ctx.constant(q(py))
+            for ox, _ in pts:
+                if ox != px:
+                    term = term * (x - q(ox)) / q(px - ox)
+            g = g + term
+        res = solve_system([f, y - g], None, None)
+        got = {(Fraction(s.values["x"].text), Fraction(s.values["y"].text)) for s in res.solutions}
+        assert res.dimension == 0 and got == pts
+
+
+def test_quadratic_solutions_are_closed_forms_that_satisfy_the_system():
+    sp = pytest.importorskip("sympy")
+    ctx, (x, y) = ring("x", "y")
+    eqs = [x * x - 2 * x - 1, y - x * x]  # x = 1 ± √2, y = x²
+    res = solve_system(eqs, None, None)
+    assert res.dimension == 0 and len(res.solutions) == 2 and all(s.real for s in res.solutions)
+    X, Y = sp.symbols("x y")
+    for s in res.solutions:
+        vx = sp.sympify(s.values["x"].text.replace("^", "**"))
+        vy = sp.sympify(s.values["y"].text.replace("^", "**"))
+        assert sp.simplify(vx**2 - 2 * vx - 1) == 0 and sp.simplify(vy - vx**2) == 0
+    assert {s.values["x"].text for s in res.solutions} == {"1 + sqrt(2)", "1 - sqrt(2)"}
+
+
+def test_complex_solutions_are_marked_not_real():
+    ctx, (x,) = ring("x")
+    res = solve_system([x * x + 1], None, None)
+    assert len(res.solutions) == 2 and not any(s.real for s in res.solutions)
+
+
+def test_inconsistent_and_positive_dimensional_sets():
+    ctx, (x, y, z) = ring("x", "y", "z")
+    assert solve_system([x - 1, x - 2], None, None).dimension == -1
+    assert solve_system([x * y - 1, z], None, None).dimension == 1  # a hyperbola in the plane z = 0
+    assert solve_system([x - y * z], None, None).dimension == 2  # a surface
+
+
+def test_dimension_from_leading_monomials_by_hand():
+    # <x²> in 2 variables: {y} avoids every leading monomial → dimension 1; <1> → -1
+    assert dimension([(2, 0)], 2) == 1
+    assert dimension([(0, 0)], 2) == -1
+    assert dimension([(1, 0, 0), (0, 1, 0), (0, 0, 3)], 3) == 0
