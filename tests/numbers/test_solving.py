@@ -31,21 +31,22 @@ def test_rational_points_are_found_exactly(seed):
     pts = {(Fraction(rng.randint(-5, 5), rng.randint(1, 4)), Fraction(rng.randint(-5, 5), rng.randint(1, 4)))
            for _ in range(3)}
     xs = sorted({p[0] for p in pts})
+    assert len(xs) == len(pts) == 3  # these seeds give three points with distinct x
     f = ctx.constant(1)
     g = ctx.constant(0)
     for px, py in pts:
         f = f * (x - q(px))
     # y = interpolant of the points' y over their x (Lagrange), when the x are distinct
-    if len(xs) == len(pts):  # the points' ideal is <Π(x − xᵢ), y − interpolant(x)>
-        for px, py in pts:
-            term = ctx.constant(q(py))
-            for ox, _ in pts:
-                if ox != px:
-                    term = term * (x - q(ox)) / q(px - ox)
-            g = g + term
-        res = solve_system([f, y - g], None, None)
-        got = {(Fraction(s.values["x"].text), Fraction(s.values["y"].text)) for s in res.solutions}
-        assert res.dimension == 0 and got == pts
+    # the points' ideal is <Π(x − xᵢ), y − interpolant(x)>
+    for px, py in pts:
+        term = ctx.constant(q(py))
+        for ox, _ in pts:
+            if ox != px:
+                term = term * (x - q(ox)) / q(px - ox)
+        g = g + term
+    res = solve_system([f, y - g], None, None)
+    got = {(Fraction(s.values["x"].text), Fraction(s.values["y"].text)) for s in res.solutions}
+    assert res.dimension == 0 and got == pts
 
 
 def test_quadratic_solutions_are_closed_forms_that_satisfy_the_system():
