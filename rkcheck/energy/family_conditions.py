@@ -65,7 +65,7 @@ def parameter_degree(p: Any, names: Sequence[str]) -> int:
     from rkcheck.numbers.parametric import THETA
 
     skip = [i for i, n in enumerate(names) if n == THETA]
-    degrees = [sum(e for i, e in enumerate(m) if i not in skip) for m in p.monoms()]
+    degrees = [sum(int(e) for i, e in enumerate(m) if i not in skip) for m in p.monoms()]
     return max(degrees, default=-1)
 
 
@@ -142,6 +142,10 @@ class FamilyConditions:
     classical_order_checked: int | None = None
     classical: list[PolynomialCondition] | None = None
     quadrature: list[PolynomialCondition] | None = None
+
+    def __repr__(self) -> str:
+        return (f"<FamilyConditions of {self.family.name!r}: {len(self.energy)} energy conditions to order "
+                f"{self.order}, generic energy order {self.energy_order}>")
 
     @property
     def energy_order(self) -> int:

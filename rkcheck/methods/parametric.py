@@ -34,6 +34,9 @@ class Family:
     entries: ParametricEntries
     info: MethodInfo
 
+    def __repr__(self) -> str:
+        return f"<Family {self.name!r}: {self.stages} stages, parameters {', '.join(self.parameters)}>"
+
     @property
     def stages(self) -> int:
         return len(self.b_text)

@@ -84,6 +84,10 @@ class SolutionSet:
     solutions: list[Solution] | None = None
     seconds: float = 0.0
 
+    def __repr__(self) -> str:
+        found = "" if self.solutions is None else f", {len(self.solutions)} solutions"
+        return f"<SolutionSet in {', '.join(self.variables)}: dimension {self.dimension}{found}>"
+
 
 # ------------------------------------------------------------------ linear elimination
 

@@ -152,3 +152,16 @@ def test_a_family_from_sympy_values_is_the_file_family():
     assert [str(c.polynomial) for c in mine.energy] == [str(c.polynomial) for c in theirs.energy]
     with pytest.raises(UserError, match="floats are not exact"):
         rkcheck.family_from_arrays([[0.5]], [1], parameters=["beta"])
+
+
+def test_verify_json_on_a_family_gives_each_condition_as_a_polynomial(capsys):
+    import json
+
+    r = run_cli(capsys, "verify", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--format", "json")
+    assert r.code == 0, r.err
+    doc = json.loads(r.out)
+    assert doc["energy_order_generic"] == 4 and doc["exceptional"] == ["1,2,3,2,3,2"]
+    (first,) = [c for c in doc["conditions"] if c["id"] == "1,2,3,2,3,2"]
+    assert (first["polynomial"], first["degree"], first["vanishes"]) == ("1/72*beta^2", 2, False)
+    # the conditions below order 5 hold for every β (the seed's kernel direction)
+    assert all(c["vanishes"] for c in doc["conditions"] if c["kind"] == "energy" and c["order"] <= 4)
