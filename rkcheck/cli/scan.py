@@ -38,16 +38,18 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 @click.option("--sort", "sort", type=click.Choice(SCAN_SORTS), default="path", show_default=True,
               help="Row order: by path, or by energy order (best first) and then by the energy error constant C "
               "(a column C in the text report).")
+@click.option("--allow-empty", is_flag=True, default=None,
+              help="Pass (exit 0) when the paths hold no tableau file [default: exit 2; also [tool.rkcheck] allow_empty].")
 @fail_on_option
 @output_options
 def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, exclude, fmt,
-         output, fail_on, sort) -> None:
+         output, fail_on, sort, allow_empty) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,
     never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
     [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
-    format, fail_on, jobs); flags override it.
+    format, fail_on, jobs, allow_empty); flags override it.
 
     \b
     Exit code: 1 when a file fails under --fail-on (default: claims) or cannot be
@@ -64,8 +66,8 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     fmt = fmt or config.format or "text"
     with progress_steps("checking") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,
-                          max_stages=max_stages, max_conditions=max_conditions, project=config, progress=update,
-                          on_file=_announcer())
+                          max_stages=max_stages, max_conditions=max_conditions, project=config,
+                          allow_empty=allow_empty, progress=update, on_file=_announcer())
     outcomes, elapsed, interrupted = result.outcomes, result.elapsed, result.interrupted
     if fmt == "text" and output and output != "-":
         write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy"), output)

@@ -206,3 +206,33 @@ def test_pyproject_configuration_and_flags_override(tmp_path, capsys, folder, mo
 
 
 # Ctrl-C, SIGTERM and worker death: tests/batch/test_scan_signals.py
+
+
+def test_a_scan_that_finds_nothing_is_an_error_unless_allowed(capsys, tmp_path, folder, monkeypatch):
+    import rkcheck
+
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    (empty / "notes.txt").write_text("no tableau here", encoding="utf-8")
+    refused = run_cli(capsys, "scan", str(empty))
+    assert refused.code == 2 and refused.out == "" and len(refused.err.strip().splitlines()) == 1
+    assert str(empty) in refused.err and "--allow-empty" in refused.err
+    # a glob that leaves nothing: the same refusal, saying how many files it took away
+    # (the fixture folder has 5 *.toml/*.json files)
+    r = run_cli(capsys, "scan", str(folder), "--exclude", "*.toml", "--exclude", "*.json")
+    assert r.code == 2 and "(5 excluded" in r.err
+    allowed = run_cli(capsys, "scan", str(empty), "--allow-empty")
+    assert allowed.code == 0 and "0 files" in allowed.out
+    # the API: an RkcheckError with the CLI's message, or an empty result when allowed
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.scan([empty])
+    assert refused.err.strip() == f"rkcheck: error: {err.value}"
+    assert rkcheck.scan([empty], allow_empty=True).rows == []
+    # [tool.rkcheck] allow_empty, validated like every other key
+    (empty / "pyproject.toml").write_text("[tool.rkcheck]\npaths = ['sub']\nallow_empty = true\n", encoding="utf-8")
+    (empty / "sub").mkdir()
+    monkeypatch.chdir(empty)
+    assert run_cli(capsys, "scan").code == 0
+    (empty / "pyproject.toml").write_text("[tool.rkcheck]\npaths = ['sub']\nallow_empty = 'yes'\n", encoding="utf-8")
+    r = run_cli(capsys, "scan")
+    assert r.code == 2 and "tool.rkcheck.allow_empty: expected true or false" in r.err
