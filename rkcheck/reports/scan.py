@@ -10,6 +10,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
@@ -197,6 +198,38 @@ def _gh_escape(text: str, prop: bool = False) -> str:
     return text
 
 
+def repository_root(path: str) -> Path | None:
+    """The repository a file belongs to: the nearest folder above it holding ``.git`` (a
+    folder, or a file in a worktree or submodule), else the nearest one holding a
+    ``pyproject.toml``; None when there is neither."""
+    here = Path(path).absolute().parent
+    folders = [here, *here.parents]
+    for marker in (".git", "pyproject.toml"):
+        for d in folders:
+            if (d / marker).exists():
+                return d
+    return None
+
+
+def annotation_path(path: str) -> str:
+    """A file as GitHub wants it in an annotation: relative to the repository root (which
+    is the workflow's working copy), with ``/``, whatever folder rkcheck ran in and
+    whether the path came from the command line or ``[tool.rkcheck]``.  A file outside
+    any repository, and an ``@name``, are left as they are."""
+    import os
+
+    if path.startswith("@") or path == "-":
+        return path
+    root = repository_root(path)
+    if root is None:
+        return path
+    full = Path(os.path.abspath(path))
+    try:
+        return full.relative_to(os.path.abspath(root)).as_posix()
+    except ValueError:
+        return path
+
+
 def _annotation(level: str, path: str, line: int | None, title: str, message: str) -> str:
     props = f"file={_gh_escape(path, True)}"
     if line:
@@ -207,15 +240,18 @@ def _annotation(level: str, path: str, line: int | None, title: str, message: st
 
 def scan_github(outcomes: list[dict[str, Any]]) -> str:
     """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
-    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file."""
+    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file; files
+    are named relative to their repository's root (:func:`annotation_path`)."""
+    import re
+
     out = []
     for o in outcomes:
-        path, lines = o["path"], o.get("lines") or {}
+        path, lines = annotation_path(o["path"]), o.get("lines") or {}
         if o["status"] == "error":
             line = None
             err = o["error"] or ""
-            import re
-
+            if err.startswith(o["path"] + ": "):  # the message names the file as the annotation does
+                err = path + err[len(o["path"]):]
             m = re.search(r"line (\d+)", err)
             if m:
                 line = int(m.group(1))

@@ -236,3 +236,42 @@ def test_a_scan_that_finds_nothing_is_an_error_unless_allowed(capsys, tmp_path, 
     (empty / "pyproject.toml").write_text("[tool.rkcheck]\npaths = ['sub']\nallow_empty = 'yes'\n", encoding="utf-8")
     r = run_cli(capsys, "scan")
     assert r.code == 2 and "tool.rkcheck.allow_empty: expected true or false" in r.err
+
+
+@pytest.mark.parametrize("marker", [".git", "pyproject.toml"])
+def test_github_annotations_name_files_from_the_repository_root(capsys, tmp_path, monkeypatch, marker):
+    # a repository whose pyproject.toml sits in a subproject: GitHub wants paths from the
+    # repository root (the .git folder), else from the pyproject.toml's folder
+    repo = tmp_path / "repo"
+    project = repo / "project"
+    (project / "tabs" / "sub").mkdir(parents=True)
+    if marker == ".git":
+        (repo / ".git").mkdir()
+    (project / "pyproject.toml").write_text('[tool.rkcheck]\npaths = ["tabs"]\nformat = "github"\njobs = 1\n',
+                                            encoding="utf-8")
+    (project / "tabs" / "sub" / "wrong.toml").write_text(RK4_WRONG, encoding="utf-8")
+    (project / "tabs" / "broken.toml").write_text(BROKEN, encoding="utf-8")
+    root = repo if marker == ".git" else project
+    want = {name: (project / "tabs" / name).relative_to(root).as_posix() for name in ("sub/wrong.toml", "broken.toml")}
+    for cwd in (project, project / "tabs" / "sub"):  # [tool.rkcheck] paths are absolute once read
+        monkeypatch.chdir(cwd)
+        lines = run_cli(capsys, "scan").out.strip().splitlines()
+        files = [re.match(r"::error file=([^,]+),", line).group(1) for line in lines]
+        assert files == [want["broken.toml"], want["sub/wrong.toml"]], lines
+        # the error message names the file the same way
+        assert lines[0].endswith(f"::{want['broken.toml']}: A[1][2]: unexpected ')' at column 7")
+    monkeypatch.chdir(tmp_path)  # paths given on the command line, from outside the repository
+    lines = run_cli(capsys, "scan", str(project / "tabs"), "--format", "github").out.strip().splitlines()
+    assert [re.match(r"::error file=([^,]+),", line).group(1) for line in lines] == [
+        want["broken.toml"], want["sub/wrong.toml"]]
+
+
+def test_github_annotations_outside_a_repository_keep_the_path_given(capsys, tmp_path, monkeypatch):
+    from rkcheck.reports.scan import repository_root
+
+    (tmp_path / "w.toml").write_text(RK4_WRONG, encoding="utf-8")
+    if repository_root(str(tmp_path / "w.toml")) is not None:
+        pytest.skip("the temporary folder lies inside a repository")
+    monkeypatch.chdir(tmp_path)
+    out = run_cli(capsys, "scan", "w.toml", "--format", "github").out
+    assert out.startswith("::error file=w.toml,")
