@@ -94,7 +94,7 @@ class ScanResult:
 
         if format == "text":
             return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,
-                                         constants=self.sort == "energy")
+                                         constants=self.sort == "energy", fail_on=self.fail_on)
         return scan_report.scan_document(format, self.outcomes, self.interrupted, self.options, self.elapsed)
 
     def __repr__(self) -> str:

@@ -70,10 +70,11 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
                           allow_empty=allow_empty, progress=update, on_file=_announcer())
     outcomes, elapsed, interrupted = result.outcomes, result.elapsed, result.interrupted
     if fmt == "text" and output and output != "-":
-        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy"), output)
+        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy",
+                                         fail_on=result.fail_on), output)
     elif fmt == "text":
         scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose,
-                                     constants=sort == "energy")
+                                     constants=sort == "energy", fail_on=result.fail_on)
     else:
         write_text(scan_report.scan_document(fmt, outcomes, interrupted, result.options, elapsed), output)
     if interrupted:

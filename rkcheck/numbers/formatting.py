@@ -105,3 +105,12 @@ def _decimal_places(denominator: int, limit: int) -> int | None:
     if rest != 1 or max(twos, fives) > 4 * limit:
         return None
     return max(twos, fives)
+
+
+def ball_strings(mid: Fraction, rad: Fraction, sig: int) -> tuple[str, str]:
+    """A ball ``mid ± rad`` as text that still encloses it: the mid-point rounded to
+    ``sig`` significant digits, and the radius grown by what that rounding moved the
+    mid-point, rounded up (a ball printed with fewer digits than its radius allows would
+    otherwise leave out the value it stands for)."""
+    text = decimal_string(mid, sig)
+    return text, radius_string(rad + abs(Fraction(text) - Fraction(mid)))

@@ -43,18 +43,18 @@ def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any]
     if fmt == "csv":
         return scan_csv(docs)
     if fmt == "junit":
-        return scan_junit(docs, elapsed)
+        return scan_junit(docs, elapsed, options.get("fail_on", "claims"))
     if fmt == "github":
-        return scan_github(docs)
+        return scan_github(docs, options.get("fail_on", "claims"))
     raise ValueError(f"unknown scan format {fmt!r}")
 
 
-def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False) -> str:
+def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False, fail_on: str = "claims") -> str:
     """The text report as plain text (for ``--output``)."""
     from rich.console import Console
 
     console = Console(record=True, file=io.StringIO(), no_color=True, width=140)
-    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants)
+    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants, fail_on=fail_on)
     return console.export_text()
 
 
@@ -66,7 +66,7 @@ def broken_claims(o: dict[str, Any]) -> list[dict[str, Any]]:
     return [c for c in ((o.get("result") or {}).get("claims") or []) if not c["met"]]
 
 
-def failing_conditions(o: dict[str, Any], limit: int = 5) -> list[dict[str, Any]]:
+def failing_conditions(o: dict[str, Any], limit: int | None = 5) -> list[dict[str, Any]]:
     conds = (o.get("result") or {}).get("conditions") or []
     return [c for c in conds if c["state"] == "fails"][:limit]
 
@@ -142,21 +142,82 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
 # --------------------------------------------------------------------- JUnit
 
 
-def failure_message(o: dict[str, Any]) -> str:
-    """Broken claims if any (the conditions are then as claimed), else the first failing
-    conditions."""
-    parts = [f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
-    fails = failing_conditions(o)
-    if fails and not parts:
-        s = _summary(o)
-        parts.append(
-            f"{s.get('conditions_failed', len(fails))} failing conditions (energy order {s.get('energy_order')}), first: "
-            + ", ".join(f"{c['id']} {c['bracket']} (R = {float(c['residual']):.6g})" for c in fails[:3])
-        )
-    return "; ".join(parts) or "check failed"
+def residual_text(c: dict[str, Any]) -> str:
+    """A condition's residual as the JSON document gives it: the exact value when it is
+    known (``-1/2880``, ``sqrt(3)/144``), else the certified ball ``mid ± radius``."""
+    if c.get("residual_exact") is not None:
+        return c["residual_exact"]
+    return f"{c['residual']} ± {c['radius']}"
 
 
-def scan_junit(outcomes: list[dict[str, Any]], total_time: float) -> str:
+def judged_by_claims(o: dict[str, Any], fail_on: str) -> bool:
+    """Whether a file's failure is about its claims (``--fail-on`` claims, or auto with
+    claims) rather than its conditions."""
+    return bool(broken_claims(o)) and fail_on != "conditions"
+
+
+def _condition_line(c: dict[str, Any]) -> str:
+    return f"condition {c['id']} {c['bracket']} (order {c['order']}) fails: R = {residual_text(c)}"
+
+
+def claim_evidence(o: dict[str, Any], claim: dict[str, Any]) -> list[str]:
+    """What contradicts a broken claim, from what the file's check found: the first
+    failing classical or quadrature condition, or the failing energy conditions the
+    claim covers (orders up to the claimed one, when the claim's degree is the one the
+    conditions were checked for); never the conditions beyond what the claim says."""
+    s = _summary(o)
+    kind = claim["claim"]
+    if kind == "classical_order" and s.get("classical_first_failure"):
+        return [f"first failing classical condition: {s['classical_first_failure']}"]
+    if kind == "quadrature_order" and s.get("quadrature_first_failure"):
+        return [f"first failing quadrature condition: {s['quadrature_first_failure']}"]
+    if kind != "energy_order" or claim["degree"] != s.get("degree"):
+        return []
+    limit = int(claim["claimed"]) if claim["claimed"].isdigit() else None  # "all": every order
+    conds = (o.get("result") or {}).get("conditions") or []
+    return [_condition_line(c) for c in conds if c["state"] == "fails" and (limit is None or c["order"] <= limit)]
+
+
+def _claim_line(c: dict[str, Any]) -> str:
+    return f"{c['place']}: claimed {c['claimed']}, found {c['found']}" + (f" ({c['note']})" if c.get("note") else "")
+
+
+def failure_message(o: dict[str, Any], fail_on: str = "claims") -> str:
+    """One line: the broken claims when the file is judged by them, else why the
+    conditions fail (the first failing ones, with exact residuals when known)."""
+    if judged_by_claims(o, fail_on):
+        return "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o))
+    s = _summary(o)
+    fails = failing_conditions(o, 3)
+    if fails:
+        n = s.get("conditions_failed", len(fails))
+        return (f"{n} failing condition{'s' if n != 1 else ''} (energy order {s.get('energy_order')}), first: "
+                + ", ".join(f"{c['id']} {c['bracket']} (R = {residual_text(c)})" for c in fails))
+    if s.get("inconsistent"):
+        return "Σb ≠ 1 (certain): the method is inconsistent"
+    return (s.get("require") or {}).get("reason") or "check failed"
+
+
+def failure_detail(o: dict[str, Any], fail_on: str = "claims", limit: int = 20) -> list[str]:
+    """The lines of a JUnit ``<failure>``: each broken claim with what contradicts it, or
+    (a file judged by its conditions) the failing conditions, at most ``limit`` of them."""
+    if judged_by_claims(o, fail_on):
+        lines = []
+        for c in broken_claims(o):
+            lines.append(f"claim {_claim_line(c)}")
+            evidence = claim_evidence(o, c)
+            lines += [f"  {e}" for e in evidence[:limit]]
+            if len(evidence) > limit:
+                lines.append(f"  … and {len(evidence) - limit} more")
+        return lines
+    fails = failing_conditions(o, None)
+    lines = [_condition_line(c) for c in fails[:limit]]
+    if len(fails) > limit:
+        lines.append(f"… and {len(fails) - limit} more")
+    return lines or [failure_message(o, fail_on)]
+
+
+def scan_junit(outcomes: list[dict[str, Any]], total_time: float, fail_on: str = "claims") -> str:
     """JUnit XML (the common Jenkins/Ant schema): one testcase per file."""
     t = totals(outcomes)
     cases = []
@@ -171,12 +232,8 @@ def scan_junit(outcomes: list[dict[str, Any]], total_time: float) -> str:
             msg = o["error"] or "error"
             cases.append(head + f">\n      <error message={quoteattr(msg)} type=\"UserError\">{escape(msg)}</error>\n    </testcase>")
         else:
-            msg = failure_message(o)
-            detail = "\n".join(
-                [f"claim {c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
-                + [f"condition {c['id']} {c['bracket']}: {c['state']}, R = {c['residual']} ± {c['radius']}"
-                   for c in failing_conditions(o, 20)]
-            )
+            msg = failure_message(o, fail_on)
+            detail = "\n".join(failure_detail(o, fail_on))
             cases.append(head + f">\n      <failure message={quoteattr(msg)} type=\"EnergyCheck\">{escape(detail)}</failure>\n    </testcase>")
     suite = (
         f'  <testsuite name="rkcheck" tests="{t["files"]}" failures="{t["failed"]}" errors="{t["error"]}" '
@@ -238,7 +295,7 @@ def _annotation(level: str, path: str, line: int | None, title: str, message: st
     return f"::{level} {props}::{_gh_escape(message)}"
 
 
-def scan_github(outcomes: list[dict[str, Any]]) -> str:
+def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
     """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
     ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file; files
     are named relative to their repository's root (:func:`annotation_path`)."""
@@ -264,9 +321,10 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
                 out.append(_annotation("error", path, line, f"rkcheck: claim {c['claim']}",
                                        f"{c['place']}: claimed {c['claimed']}, found {c['found']}"
                                        + (f" ({c['note']})" if c.get("note") else "")))
-            if not broken:
+            if not judged_by_claims(o, fail_on):
                 line = lines.get("tableau") or lines.get("family")
-                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail", failure_message(o)))
+                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail",
+                                       failure_message(o, fail_on)))
         for w in (o.get("result") or {}).get("warnings", []):
             out.append(_annotation("warning", path, lines.get("tableau"), "rkcheck", w))
     return "\n".join(out) + ("\n" if out else "")
@@ -286,7 +344,7 @@ def compact_constant(value: float) -> str:
 
 
 def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
-                     constants: bool = False) -> None:
+                     constants: bool = False, fail_on: str = "claims") -> None:
     """The scan table; ``constants``: with a column C (the energy error constant), as
     ``scan --sort energy`` shows it."""
     outcomes = outcome_docs(outcomes)
@@ -296,7 +354,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         t.add_row(*_scan_row(o, shown, constants))
     _keep_verdict_widths(t)
     console.print(t)
-    _print_notes(outcomes, shown, verbose, console)
+    _print_notes(outcomes, shown, verbose, console, fail_on)
     console.print(_totals_line(outcomes, total_time, interrupted))
 
 
@@ -368,7 +426,7 @@ def _keep_verdict_widths(t: Any) -> None:
         column.min_width = max(cell_len(x) for x in texts)
 
 
-def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console) -> None:
+def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console, fail_on: str = "claims") -> None:
     """Below the table: each error and failure, and with ``verbose`` the warnings."""
     from rich.text import Text
 
@@ -376,7 +434,7 @@ def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console) 
         if o["status"] == "error":
             console.print(Text(f"error: {o['error']}", style="red"))
         elif o["status"] == "failed":
-            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o)}", style="red"))
+            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o, fail_on)}", style="red"))
         if verbose:
             for w in (o.get("result") or {}).get("warnings", []):
                 console.print(Text(f"warning: {shown(o['path'])}: {w}", style="yellow"))

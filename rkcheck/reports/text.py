@@ -18,7 +18,7 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.formatting import ball_strings, decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
@@ -48,7 +48,7 @@ def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) 
             return frac
         return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
     if verdict.state == FAILS:
-        return f"{decimal_string(enc.mid, sig)} ± {radius_string(enc.rad)}"
+        return "{} ± {}".format(*ball_strings(enc.mid, enc.rad, sig))
     return f"|R| ≤ {radius_string(enc.magnitude() + enc.rad)}"
 
 

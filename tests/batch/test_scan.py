@@ -275,3 +275,87 @@ def test_github_annotations_outside_a_repository_keep_the_path_given(capsys, tmp
     monkeypatch.chdir(tmp_path)
     out = run_cli(capsys, "scan", "w.toml", "--format", "github").out
     assert out.startswith("::error file=w.toml,")
+
+
+RK4_A = [["0", "0", "0", "0"], ["1/2", "0", "0", "0"], ["0", "1/2", "0", "0"], ["0", "0", "1", "0"]]
+RK4_B = ["1/6", "1/3", "1/3", "1/6"]
+# RK4 claims energy order 5 (it is 4) and classical order 5 (it is 4)
+RK4_OVERCLAIMS = """[method]
+name = "RK4, two wrong claims"
+[tableau]
+A = [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]]
+b = ["1/6", "1/3", "1/3", "1/6"]
+[expect]
+energy_order = {degree = "none", value = 5}
+classical_order = 5
+"""
+CONDITION_LINE = re.compile(r"condition ([\d,]+) \S+ \(order (\d+)\) fails: R = (\S+)$")
+
+
+def _reference_failures(vertices):
+    """(id, exact residual) of RK4's failing energy conditions with this many vertices,
+    from the brute-force reference."""
+    from fractions import Fraction
+
+    from support import reference as ref
+
+    A = [[Fraction(x) for x in row] for row in RK4_A]
+    b = [Fraction(x) for x in RK4_B]
+    out = {}
+    for cond in ref.energy_conditions(vertices):
+        r = ref.energy_residual(cond, A, b)
+        if r != 0:
+            out[",".join(map(str, cond["id"]))] = r
+    return out
+
+
+def _junit_failure(capsys, path, *extra):
+    r = run_cli(capsys, "scan", str(path), "--format", "junit", "--jobs", "1", *extra)
+    case = ET.fromstring(r.out).find("testsuite").find("testcase")
+    return case.find("failure")
+
+
+def test_junit_lists_what_the_broken_claims_cover_with_exact_residuals(capsys, tmp_path):
+    from fractions import Fraction
+
+    from support import reference as ref
+
+    path = tmp_path / "rk4.toml"
+    path.write_text(RK4_OVERCLAIMS, encoding="utf-8")
+    failure = _junit_failure(capsys, path)  # checked to order 8: conditions fail at orders 5 to 8
+    lines = failure.text.splitlines()
+    energy = lines.index("claim expect.energy_order: claimed 5, found 4")
+    classical = lines.index("claim expect.classical_order: claimed 5, found 4")
+    listed = {}
+    for line in lines[energy + 1:classical]:
+        m = CONDITION_LINE.search(line)
+        assert m, line
+        assert m.group(2) == "5"  # what the claim "energy order 5" covers, nothing beyond
+        listed[m.group(1)] = Fraction(m.group(3))  # an exact value, not a decimal ± 0
+    assert listed == _reference_failures(6)  # order 5 = 6 vertices
+    # the classical claim: the first failing condition a(t) = 1/γ(t), a tree with 5 vertices
+    (evidence,) = lines[classical + 1:]
+    assert evidence.startswith("  first failing classical condition: a(")
+    A = [[Fraction(x) for x in row] for row in RK4_A]
+    b = [Fraction(x) for x in RK4_B]
+    failing_gammas = {ref.gamma(t) for t in ref.rooted_trees(5) if ref.elementary_weight(t, A, b) != Fraction(1, ref.gamma(t))}
+    assert int(evidence.rsplit("= 1/", 1)[1]) in failing_gammas
+
+
+def test_junit_judged_by_conditions_lists_them_exactly_or_as_balls(capsys, tmp_path):
+    from fractions import Fraction
+
+    path = tmp_path / "rk4.json"
+    path.write_text(RK4_NO_CLAIMS, encoding="utf-8")
+    failure = _junit_failure(capsys, path, "--order", "5", "--fail-on", "conditions")
+    listed = {m.group(1): Fraction(m.group(3)) for m in map(CONDITION_LINE.search, failure.text.splitlines())}
+    assert listed == _reference_failures(6)
+    assert "±" not in failure.text and "±" not in failure.get("message")
+    # certified balls: an inexact residual is a ball with a nonzero radius around the exact value
+    balls = _junit_failure(capsys, path, "--order", "5", "--fail-on", "conditions", "--arithmetic", "ball", "--dps", "30")
+    exact = _reference_failures(6)
+    for line in balls.text.splitlines():
+        m = re.search(r"condition ([\d,]+) .* fails: R = (\S+) ± (\S+)$", line)
+        assert m, line
+        mid, rad = Fraction(m.group(2)), Fraction(m.group(3))
+        assert 0 < rad < Fraction(1, 10**25) and abs(mid - exact[m.group(1)]) <= rad
