@@ -63,7 +63,8 @@ def output_options(f: Callable) -> Callable:
 
     @click.option("--no-color", is_flag=True, default=None, help="No colour (also: NO_COLOR=1, or output not a terminal).")
     @click.option("--verbose", "-v", is_flag=True, default=None, help="More detail (timings, notes).")
-    @click.option("--quiet", "-q", is_flag=True, default=None, help="Only the essential lines.")
+    @click.option("--quiet", "-q", is_flag=True, default=None, help="Problems only: failing conditions that decide the verdict, broken claims, "
+              "files that fail or cannot be read; then the verdict line.")
     @functools.wraps(f)
     def wrapper(*args: Any, no_color: bool | None, verbose: bool | None, quiet: bool | None, **kwargs: Any) -> Any:
         ctx = click.get_current_context()

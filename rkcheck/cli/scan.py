@@ -74,7 +74,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
                                          fail_on=result.fail_on), output)
     elif fmt == "text":
         scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose,
-                                     constants=sort == "energy", fail_on=result.fail_on)
+                                     constants=sort == "energy", fail_on=result.fail_on, quiet=settings().quiet)
     else:
         write_text(scan_report.scan_document(fmt, outcomes, interrupted, result.options, elapsed), output)
     if interrupted:

@@ -344,16 +344,19 @@ def compact_constant(value: float) -> str:
 
 
 def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
-                     constants: bool = False, fail_on: str = "claims") -> None:
+                     constants: bool = False, fail_on: str = "claims", quiet: bool = False) -> None:
     """The scan table; ``constants``: with a column C (the energy error constant), as
-    ``scan --sort energy`` shows it."""
+    ``scan --sort energy`` shows it; ``quiet``: problems only (the rows of files that
+    fail or cannot be checked, no table when there are none), then the totals."""
     outcomes = outcome_docs(outcomes)
     root, shown = _common_root([o["path"] for o in outcomes])
-    t = _scan_table(f"files under {root}/" if root else None, constants)
-    for o in outcomes:
-        t.add_row(*_scan_row(o, shown, constants))
-    _keep_verdict_widths(t)
-    console.print(t)
+    rows = [o for o in outcomes if not quiet or o["status"] in ("failed", "error")]
+    if rows or not quiet:
+        t = _scan_table(f"files under {root}/" if root else None, constants)
+        for o in rows:
+            t.add_row(*_scan_row(o, shown, constants))
+        _keep_verdict_widths(t)
+        console.print(t)
     _print_notes(outcomes, shown, verbose, console, fail_on)
     console.print(_totals_line(outcomes, total_time, interrupted))
 

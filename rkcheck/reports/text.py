@@ -120,8 +120,8 @@ def _backend_text(res: CheckResult) -> str:
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 
-def claims_table(claim_results) -> Table:
-    t = Table(title=Text("Claims ([expect])"), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+def claims_table(claim_results, title: str = "Claims ([expect])") -> Table:
+    t = Table(title=Text(title), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("claim", no_wrap=True)
     t.add_column("claimed")
     t.add_column("found")
@@ -184,14 +184,23 @@ def render_check(
             )
     if show_all:
         console.print(conditions_table(res.conditions, f"All conditions ({len(res.conditions)} checked)"))
-    elif res.failures and not quiet:  # --quiet: the verdict line says how many fail
+    elif res.failures and (not quiet or judged_by_conditions(res, fail_on)):
+        # --quiet prints problems only: failing conditions are one when they decide the verdict
         shown = res.failures[:MAX_FAILURES_SHOWN]
         title = f"Failing conditions ({len(res.failures)} of {len(res.conditions)} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
-    if res.claims:
+    if res.claims and not quiet:
         console.print(claims_table(res.claims))
+    elif res.claims and any(not r.met for r in res.claims):  # --quiet: the broken claims only
+        console.print(claims_table([r for r in res.claims if not r.met], "Broken claims ([expect])"))
     console.print(verdict_line(res, res.claims, fail_on))
+
+
+def judged_by_conditions(res: CheckResult, fail_on: str) -> bool:
+    """Whether failing conditions decide the file's verdict under ``--fail-on``: always
+    with ``conditions``, with ``auto`` when the file makes no claims."""
+    return fail_on == "conditions" or (fail_on == "auto" and not res.claims)
 
 
 def _order_text(r, what: str) -> str:
