@@ -69,7 +69,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
     try:
-        with progress_steps("checking") as update:  # the API's check: same options, same result
+        with progress_steps("checking", "orders") as update:  # the API's check: same options, same result
             result = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update)
         failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130

@@ -80,7 +80,7 @@ def catalog(paths, degrees, order, output) -> None:
     from rkcheck.reports.markdown import catalog_markdown
 
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
-    with progress_steps("catalog") as update:
+    with progress_steps("catalog", "files") as update:
         result = make_catalog(paths, degrees=degs, order=order, progress=update)
     # the command line the header records: no path stays no path
     command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])

@@ -64,7 +64,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     roots = scan_roots(paths, config)
     check_output_target(output)
     fmt = fmt or config.format or "text"
-    with progress_steps("checking") as update:  # the API's scan: same options, same rows
+    with progress_steps("checking", "files") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,
                           max_stages=max_stages, max_conditions=max_conditions, project=config,
                           allow_empty=allow_empty, progress=update, on_file=_announcer())
