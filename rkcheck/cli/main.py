@@ -154,7 +154,9 @@ def _run(argv: list[str] | None) -> None:
     except ValueError as err:
         if "integer string conversion" not in str(err):
             _internal(err)
-        _error(f"a number has more than {MAX_PRINTED_DIGITS:,} digits, too many to print "
+        from rkcheck.reports.console import count_text
+
+        _error(f"a number has more than {count_text(MAX_PRINTED_DIGITS)} digits, too many to print "
                "(docs/errors.md)", EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
         _internal(err)

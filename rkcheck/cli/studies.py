@@ -42,7 +42,9 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
     tab = load_tableau(file)
     result = run_bench(tab, **flag_values("degree", "order"), dps=dps_text, repeat=repeat)
     rows, t_tables, deg, N = result.rows, result.tables_seconds, result.degree, result.order
-    title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {rows[0].conditions} conditions"
+    from rkcheck.reports.console import count_text
+
+    title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {count_text(rows[0].conditions)} conditions"
     if chart:
         from rkcheck.reports.charts import bench_chart
 

@@ -27,6 +27,7 @@ from fractions import Fraction
 from functools import lru_cache
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.formatting import count_text
 from rkcheck.numbers.intervals import Interval, poly_at
 
 RULES = ("gauss", "radau-i", "radau-ii", "lobatto")
@@ -440,6 +441,6 @@ def rule(name: str, s: int) -> Rule:
             raise UserError(f"unknown rule {name!r} ({', '.join(RULES)}, zeta:<value>)")
         zeta = _parse_zeta(name[5:])
     if abs(zeta) > MAX_ZETA:  # the root finder's domain (nodes beyond ~|ζ|); no use past it
-        raise UserError(f"zeta must lie in [-{MAX_ZETA:,}, {MAX_ZETA:,}], got {float(zeta):.3g}")
+        raise UserError(f"zeta must lie in [-{count_text(MAX_ZETA)}, {count_text(MAX_ZETA)}], got {float(zeta):.3g}")
     poly = poly_add(shifted_legendre(s), poly_scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))

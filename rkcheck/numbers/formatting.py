@@ -114,3 +114,10 @@ def ball_strings(mid: Fraction, rad: Fraction, sig: int) -> tuple[str, str]:
     otherwise leave out the value it stands for)."""
     text = decimal_string(mid, sig)
     return text, radius_string(rad + abs(Fraction(text) - Fraction(mid)))
+
+
+def count_text(n: int) -> str:
+    """A count as every text report prints it: plain up to 9999, in groups of three
+    separated by commas from 10,000 on (``9999``, ``80,936``, ``3,489,323``); machine
+    formats (JSON, CSV) keep plain integers."""
+    return f"{n:,}" if abs(n) >= 10_000 else str(n)

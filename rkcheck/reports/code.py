@@ -56,9 +56,11 @@ class ConditionCode:
 
     def description(self) -> str:
         deg = "all Hamiltonians" if self.degree is None else f"degree ≤ {self.degree}"
-        out = f"{len(self.energy)} energy conditions up to order {self.order} ({deg})"
+        from rkcheck.numbers.formatting import count_text
+
+        out = f"{count_text(len(self.energy))} energy conditions up to order {self.order} ({deg})"
         if self.classical:
-            out += f" and {len(self.classical)} classical order conditions up to order {self.order}"
+            out += f" and {count_text(len(self.classical))} classical order conditions up to order {self.order}"
         return out
 
 

@@ -18,7 +18,7 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.formatting import ball_strings, decimal_string, radius_string
+from rkcheck.numbers.formatting import ball_strings, count_text, decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
@@ -104,9 +104,10 @@ def per_order_table(res: CheckResult) -> Table:
     if show_digits:
         t.add_column("min digits", justify="right")
     for p in res.per_order:
-        failed = Text(str(p.failed), style="bold red" if p.failed else "")
+        failed = Text(count_text(p.failed), style="bold red" if p.failed else "")
         digits = "exact" if p.checked and p.min_digits is None and p.held else (str(p.min_digits) if p.min_digits is not None else "")
-        t.add_row(*plain(p.order, p.order + 1, p.conditions, p.checked, p.held, failed, *([digits] if show_digits else [])))
+        t.add_row(*plain(p.order, p.order + 1, *map(count_text, (p.conditions, p.checked, p.held)), failed,
+                         *([digits] if show_digits else [])))
     return t
 
 
@@ -146,7 +147,7 @@ def render_check(
             console.print(Text(f"warning: {w}", style="yellow"))
     if not quiet:
         console.print(header(res.values))
-        console.print(f"{deg}, order ≤ {o.order}: {total} conditions, {_backend_text(res)}")
+        console.print(f"{deg}, order ≤ {o.order}: {count_text(total)} conditions, {_backend_text(res)}")
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
@@ -183,11 +184,11 @@ def render_check(
                 style="dim",
             )
     if show_all:
-        console.print(conditions_table(res.conditions, f"All conditions ({len(res.conditions)} checked)"))
+        console.print(conditions_table(res.conditions, f"All conditions ({count_text(len(res.conditions))} checked)"))
     elif res.failures and (not quiet or judged_by_conditions(res, fail_on)):
         # --quiet prints problems only: failing conditions are one when they decide the verdict
         shown = res.failures[:MAX_FAILURES_SHOWN]
-        title = f"Failing conditions ({len(res.failures)} of {len(res.conditions)} checked"
+        title = f"Failing conditions ({count_text(len(res.failures))} of {count_text(len(res.conditions))} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
     if res.claims and not quiet:
@@ -271,9 +272,9 @@ def final_line(res: CheckResult) -> Text:
     "to D digits" first and never "certificate"; ``--require`` turns a shortfall into
     FAIL; a certain ``Σb ≠ 1`` fails the method."""
     v = overall(res)
-    n = len(res.conditions)
+    n = count_text(len(res.conditions))
     if len(res.failures):
-        return Text(f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
+        return Text(f"FAIL: {count_text(len(res.failures))} of {n} conditions fail; energy order {res.energy_order}",
                     style="bold red")
     if inconsistent(res):
         return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {n} energy conditions say",
@@ -343,13 +344,13 @@ def _row_sum_text(tab: Tableau, i: int) -> str:
 def render_condition_list(listing, console: Console, count_only: bool) -> None:
     """``conditions``: counts per order, and the list of condition trees."""
     deg = "no degree bound" if listing.degree is None else f"max degree ≤ {listing.degree}"
-    console.print(f"Energy conditions up to order {listing.order} ({deg}): {len(listing)}")
+    console.print(f"Energy conditions up to order {listing.order} ({deg}): {count_text(len(listing))}")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("order", justify="right")
     t.add_column("vertices", justify="right")
     t.add_column("conditions", justify="right")
     for k, v in listing.counts_by_order().items():
-        t.add_row(*plain(k, k + 1, v))
+        t.add_row(*plain(k, k + 1, count_text(v)))
     console.print(t)
     if count_only:
         return
