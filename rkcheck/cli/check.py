@@ -48,12 +48,13 @@ def load_input(file: str, max_stages: int, input_format: str | None):
 @check_options
 @input_format_option
 @click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
+@click.option("--draw", is_flag=True, help="Draw the free tree of each failing condition listed (text output).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
 def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
-           fmt, fail_fast, fail_on) -> None:
+           draw, fmt, fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table.
 
@@ -83,7 +84,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 
         out = settings()
         render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, verbose=out.verbose,
-                     fail_on=fail_on)
+                     fail_on=fail_on, draw=draw)
     if interrupted:
         done = [p.order for p in result.per_order if p.checked]
         click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
@@ -177,12 +178,15 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
 @click.command()
 @click.argument("tree_id", metavar="ID")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
+@click.option("--draw", "picture", metavar="FILE", default=None,
+              help="Also draw the free tree to FILE (.svg, .png or .pdf; needs rkcheck[plot]).")
 @dps_option(DEFAULT_DPS)
 @decimals_option("auto")
 @max_stages_option
 @output_options
-def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
-    """Show one energy condition: the free tree of ID, its rootings, signs, σ and weights.
+def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
+    """Show one energy condition: the free tree of ID (drawn, its centre and the root
+    of ID marked), its rootings, signs, σ and weights.
 
     ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
     the id column of verify and conditions).
@@ -196,4 +200,12 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
         if err.place != "tree":
             raise
         raise UserError(err.message, "ID") from None  # the API's argument is this command's ID
+    if picture:
+        from rkcheck.reports.charts import tree_picture
+        from rkcheck.reports.text import tree_drawing
+
+        given = ",".join(map(str, cond.given))
+        title = (f"{given}: superfluous, no energy condition" if cond.tree is None
+                 else f"{cond.id}  {cond.bracket}" + (f"  (given as {given})" if cond.id != given else ""))
+        tree_picture(tree_drawing(cond.given), title, picture)
     render_explanation(cond, stdout_console())

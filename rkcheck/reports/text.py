@@ -136,9 +136,10 @@ def claims_table(claim_results, title: str = "Claims ([expect])") -> Table:
 
 def render_check(
     res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False,
-    verbose: bool = False, fail_on: str = "auto",
+    verbose: bool = False, fail_on: str = "auto", draw: bool = False,
 ) -> None:
-    """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
+    """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures
+    (``draw``: with the free tree of each failing condition shown, drawn)."""
     o = res.options
     deg = "all Hamiltonians" if o.degree is None else f"degree ≤ {o.degree}"
     total = sum(p.conditions for p in res.per_order)
@@ -191,11 +192,23 @@ def render_check(
         title = f"Failing conditions ({count_text(len(res.failures))} of {count_text(len(res.conditions))} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
+        if draw:
+            draw_conditions(shown, console)
     if res.claims and not quiet:
         console.print(claims_table(res.claims))
     elif res.claims and any(not r.met for r in res.claims):  # --quiet: the broken claims only
         console.print(claims_table([r for r in res.claims if not r.met], "Broken claims ([expect])"))
     console.print(verdict_line(res, res.claims, fail_on))
+
+
+def draw_conditions(conditions: Sequence[Condition], console: Console) -> None:
+    """The free trees of some conditions, drawn from their centres, side by side."""
+    from rich.columns import Columns
+
+    console.print(Text("Their free trees, drawn from the centre:"))
+    console.print(Columns([Group(Text(r.id, style="bold"), tree_text(r.tree.level_sequence, mark_root=False))
+                           for r in conditions], padding=(1, 4)))
+    console.print()
 
 
 def judged_by_conditions(res: CheckResult, fail_on: str) -> bool:
@@ -365,13 +378,39 @@ def render_condition_list(listing, console: Console, count_only: bool) -> None:
     console.print(lst)
 
 
+def tree_drawing(seq: Sequence[int]):
+    """The :class:`~rkcheck.trees.drawing.TreeDrawing` of a level sequence (for pictures)."""
+    from rkcheck.trees.drawing import draw
+
+    return draw(tuple(seq))
+
+
+def tree_text(seq: Sequence[int], mark_root: bool = True) -> Text:
+    """The free tree of a level sequence drawn in Unicode (:mod:`rkcheck.trees.drawing`):
+    one ``●`` per vertex, centres and the root of the rooting given labelled."""
+    from rkcheck.trees.drawing import draw
+
+    out = Text()
+    for k, line in enumerate(draw(tuple(seq)).lines(mark_root)):
+        dot = line.index("●")
+        out.append(line[:dot], style="dim")
+        out.append(line[dot:dot + 1], style="bold magenta" if "centre" in line[dot:] else "bold")
+        out.append(line[dot + 1:], style="cyan")
+        if k < len(seq) - 1:
+            out.append("\n")
+    return out
+
+
 def render_explanation(ex: EnergyCondition, console: Console) -> None:
-    """``explain``: the free tree, its rootings with signs and σ, and the weights."""
+    """``explain``: the free tree (drawn), its rootings with signs and σ, and the weights."""
     given = ",".join(map(str, ex.given))
     tableau = ex.tableau
+    drawn = f"The free tree of {given}, drawn from its centre (root: the root of {given}):"
     if ex.tree is None:
         why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
         console.print(f"{given}: {ex.vertices} vertices — superfluous free tree, no energy condition ({why})")
+        console.print(drawn)
+        console.print(tree_text(ex.given))
         return
     c = ex.tree
     console.print(Text(f"Energy condition {c.id}  {c.bracket}", style="bold"))
@@ -381,6 +420,8 @@ def render_explanation(ex: EnergyCondition, console: Console) -> None:
         f"{ex.vertices} vertices (order {c.order}), max degree {ex.max_degree}: "
         f"a condition for every degree m ≥ {ex.max_degree}"
     )
+    console.print(drawn)
+    console.print(tree_text(ex.given))
     console.print("R = Σ_u (−1)^κ / σ(u) · a(B₋(u)) over the distinct rootings u:")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("rooting u", no_wrap=True)
