@@ -269,7 +269,9 @@ class Catalog:
         return catalog_markdown(self.rows, self.labels, self.order, command)
 
     def __repr__(self) -> str:
-        return f"<Catalog: {len(self.rows)} files, {', '.join(self.labels)}, order {self.order}>"
+        from rkcheck.numbers.formatting import counted
+
+        return f"<Catalog: {counted(len(self.rows), 'file')}, {', '.join(self.labels)}, order {self.order}>"
 
 
 def catalog(

@@ -16,6 +16,7 @@ from rkcheck.cli.common import (
     check_options,
     decimals_option,
     dps_option,
+    exit_codes,
     fail_on_option,
     flag_values,
     load_tableau,
@@ -43,7 +44,10 @@ def load_input(file: str, max_stages: int, input_format: str | None):
     return load_tableau(file, max_stages, input_format)
 
 
-@click.command()
+@click.command(epilog=exit_codes(
+    "a claim is broken or a condition fails, as --fail-on says: by default a file\nwith claims is judged "
+    "by its claims, one without by its conditions (an AVF\ncertificate counts as holding)",
+    "interrupted (Ctrl-C, SIGTERM); the report holds the orders that finished"))
 @click.argument("file", metavar="FILE")
 @check_options
 @input_format_option
@@ -56,13 +60,7 @@ def load_input(file: str, max_stages: int, input_format: str | None):
 def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
            draw, fmt, fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
-    claims of its [expect] table.
-
-    \b
-    Exit code (--fail-on auto): a file with claims is judged by its claims, a file
-    without claims by its conditions (an AVF certificate counts as holding):
-      0  all good   1  a claim is broken / a condition fails   2  bad file or option
-    """
+    claims of its [expect] table."""
     from rkcheck.api.verification import run_check
 
     config = project_config()
@@ -93,7 +91,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "toml", "tableau-json", "latex", "julia", "python"]),
               default="text", show_default=True,
@@ -123,7 +121,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
     render_tableau(tab, stdout_console(), decimals, warnings)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
 @click.option("--count", is_flag=True, help="Only count the conditions per order (from generating functions: "
@@ -175,7 +173,7 @@ def conditions(order, degree, count, fmt, emit, classical, stages, explicit, out
     render_condition_list(listing, stdout_console(), count)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("tree_id", metavar="ID")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
 @click.option("--draw", "picture", metavar="FILE", default=None,

@@ -32,6 +32,20 @@ from rkcheck.reports.console import OutputSettings, make_console
 EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
+def exit_codes(fail: str | None = None, interrupted: str = "interrupted (Ctrl-C, SIGTERM)",
+               usage: str = "a bad file, entry, option or limit (one line on stderr)") -> str:
+    """The end of a command's --help: every exit code the command can give, with its
+    meaning (``fail``: what exit 1 means, for the commands that judge; None: never 1;
+    a newline in a meaning continues it on an indented line)."""
+    rows = [(EXIT_OK, "success" if fail is None else "all good")]
+    if fail is not None:
+        rows.append((EXIT_FAIL, fail))
+    rows += [(EXIT_USAGE, usage),
+             (EXIT_INTERNAL, "internal error: a bug in rkcheck (please report it)"),
+             (EXIT_INTERRUPTED, interrupted)]
+    return "\b\nExit codes:\n" + "\n".join(f"  {code:<4} " + meaning.replace("\n", "\n       ") for code, meaning in rows)
+
+
 class DegreeType(click.ParamType):
     """A polynomial degree m >= 1, or ``none`` for all Hamiltonians (parsed to None)."""
 

@@ -15,6 +15,7 @@ from rkcheck.cli.common import (
     EXIT_INTERRUPTED,
     EXIT_OK,
     EXIT_USAGE,
+    exit_codes,
     output_options,
 )
 from rkcheck.errors import UserError
@@ -50,7 +51,8 @@ class LazyGroup(click.Group):
         return command
 
 
-@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+             epilog=exit_codes("verify, scan, simulate --energy-order: the check fails (each command's --help says how)"))
 @click.version_option(__version__, prog_name="rkcheck")
 @output_options
 def cli() -> None:

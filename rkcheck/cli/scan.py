@@ -13,6 +13,7 @@ from rkcheck.cli.common import (
     EXIT_OK,
     check_options,
     check_output_target,
+    exit_codes,
     fail_on_option,
     flag_values,
     output_options,
@@ -26,7 +27,11 @@ from rkcheck.io.printable import printable
 from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 
 
-@click.command()
+@click.command(epilog=exit_codes(
+    "a file fails under --fail-on (default: a broken claim) or cannot be checked",
+    "interrupted (Ctrl-C, SIGTERM); the report holds the files that finished",
+    "a bad option, [tool.rkcheck] or path, or no tableau file at all under the\npaths (unless --allow-empty); "
+    "one line on stderr"))
 @click.argument("paths", nargs=-1, metavar="[PATH...]")
 @check_options
 @click.option("--jobs", "-j", type=click.IntRange(*JOBS_RANGE), default=None, help="Worker processes [default: all cores].")
@@ -50,11 +55,6 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
     [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
     format, fail_on, jobs, allow_empty); flags override it.
-
-    \b
-    Exit code: 1 when a file fails under --fail-on (default: claims) or cannot be
-    checked, 0 otherwise, 2 for a bad option, 130 when interrupted (the rows that
-    finished are still written).
     """
     from rkcheck.api.batch import scan as run_scan
     from rkcheck.api.batch import scan_roots

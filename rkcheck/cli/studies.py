@@ -7,6 +7,7 @@ import click
 from rkcheck.cli.common import (
     busy,
     degree_option,
+    exit_codes,
     flag_values,
     load_tableau,
     order_option,
@@ -22,7 +23,7 @@ from rkcheck.options import (
 )
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @degree_option(help="Degree m ('none' = all) [default: file's [check]].")
 @order_option(help="Order N [default: file's [check], else 8].")
@@ -62,7 +63,7 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
         click.echo(f"chart written to {chart}")
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @click.option("--direction", required=True, metavar="random|kernel|entry:i,j",
               help="Perturb A along a fixed-seed random matrix, the zero-row-sum kernel direction of the "
@@ -108,7 +109,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
         click.echo(f"chart written to {chart}")
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.option("--stages", "-s", type=click.IntRange(*KERNEL_STAGES_RANGE), default=None, help="Number of stages s.")
 @click.option("--degree", "-m", type=click.IntRange(*KERNEL_DEGREE_RANGE), required=True, help="Polynomial degree m (>= 3).")
 @click.option("--rule", default="gauss", show_default=True, help="gauss | radau-i | radau-ii | lobatto | zeta:<value>.")

@@ -121,3 +121,9 @@ def count_text(n: int) -> str:
     separated by commas from 10,000 on (``9999``, ``80,936``, ``3,489,323``); machine
     formats (JSON, CSV) keep plain integers."""
     return f"{n:,}" if abs(n) >= 10_000 else str(n)
+
+
+def counted(n: int, noun: str, plural: str | None = None) -> str:
+    """A count and its noun in agreement: ``1 error``, ``2 errors``, ``0 files``,
+    ``80,936 conditions`` (the count as :func:`count_text` writes it)."""
+    return f"{count_text(n)} {noun if n == 1 else (plural or noun + 's')}"

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 from rkcheck.version import __version__
 
@@ -107,7 +108,15 @@ def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[s
 # ----------------------------------------------------------------------- CSV
 
 
+def _csv_bool(value: bool | None) -> str:
+    """A yes/no column: ``true``/``false`` as in TOML and JSON, empty when not applicable."""
+    return "" if value is None else ("true" if value else "false")
+
+
 def scan_csv(outcomes: list[dict[str, Any]]) -> str:
+    """One row per file, one vocabulary per column (docs/commands/scan.md): booleans
+    ``true``/``false``, verdicts ``holds``/``holds_to_digits``/``fails``, empty when the
+    column does not apply (a file that was not checked, no AVF verdict without a degree)."""
     buf = io.StringIO()
     w = csv.DictWriter(buf, fieldnames=CSV_COLUMNS, lineterminator="\n")
     w.writeheader()
@@ -124,12 +133,12 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
             "degree": "none" if r and opts.get("degree") is None else opts.get("degree", ""),
             "order": opts.get("order", ""),
             "classical_order": s.get("classical_order", ""), "quadrature_order": s.get("quadrature_order", ""),
-            "energy_order": s.get("energy_order", ""), "energy_order_all": s.get("energy_order_all", ""),
-            "equals_avf": "" if s.get("equals_avf") is None else s["equals_avf"],
+            "energy_order": s.get("energy_order", ""), "energy_order_all": _csv_bool(s.get("energy_order_all")),
+            "equals_avf": _csv_bool(s.get("equals_avf")),
             "conditions_checked": s.get("conditions_checked", ""), "conditions_failed": s.get("conditions_failed", ""),
             "first_failure": first["id"] if first else "",
             "claims": "" if claims is None else len(claims),
-            "claims_ok": "" if s.get("claims_ok") is None else s["claims_ok"],
+            "claims_ok": _csv_bool(s.get("claims_ok")),
             "broken_claims": "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)),
             "time": o["time"], "error": o["error"] or "",
             "symplectic": (s.get("symplectic") or {}).get("state", ""),
@@ -448,8 +457,8 @@ def _totals_line(outcomes: list[dict[str, Any]], total_time: float, interrupted:
 
     tot = totals(outcomes)
     line = Text(
-        f"{tot['files']} file{'s' if tot['files'] != 1 else ''}: {tot['ok']} ok, {tot['failed']} failed, "
-        f"{tot['error']} errors, "
+        f"{counted(tot['files'], 'file')}: {tot['ok']} ok, {tot['failed']} failed, "
+        f"{counted(tot['error'], 'error')}, "
         f"{tot['skipped']} skipped; {total_time:.1f} s",
         style="bold red" if tot["failed"] or tot["error"] else "bold green",
     )

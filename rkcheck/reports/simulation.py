@@ -7,7 +7,7 @@ from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
-from rkcheck.numbers.formatting import count_text
+from rkcheck.numbers.formatting import count_text, counted
 from rkcheck.reports.text import plain
 
 
@@ -36,7 +36,7 @@ def render_energy_fit(tab, ham, fit, agreement, console: Console) -> None:
 
 
 def render_series(tab, ham, h, steps, dps, times, dH, console: Console) -> None:
-    console.print(Text(f"{tab.name} on {ham.name}: h = {h}, {count_text(steps)} steps, "
+    console.print(Text(f"{tab.name} on {ham.name}: h = {h}, {counted(steps, 'step')}, "
                        f"{'float64' if not dps else f'{dps} digits'}", style="bold"))
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("t", justify="right")

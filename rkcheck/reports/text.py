@@ -18,7 +18,7 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.formatting import ball_strings, count_text, decimal_string, radius_string
+from rkcheck.numbers.formatting import ball_strings, count_text, counted, decimal_string, radius_string
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
@@ -148,7 +148,7 @@ def render_check(
             console.print(Text(f"warning: {w}", style="yellow"))
     if not quiet:
         console.print(header(res.values))
-        console.print(f"{deg}, order ≤ {o.order}: {count_text(total)} conditions, {_backend_text(res)}")
+        console.print(f"{deg}, order ≤ {o.order}: {counted(total, 'condition')}, {_backend_text(res)}")
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
@@ -270,7 +270,8 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
         return conditions
     broken = [r for r in claims if not r.met]
     claims_text = (Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)}", style="bold red") if broken
-                   else Text(f"OK: all {len(claims)} claims met", style="bold green"))
+                   else Text("OK: the claim is met" if len(claims) == 1 else f"OK: all {len(claims)} claims met",
+                             style="bold green"))
     if fail_on == "conditions":
         head, other = conditions, claims_text.plain
     else:
@@ -285,13 +286,17 @@ def final_line(res: CheckResult) -> Text:
     "to D digits" first and never "certificate"; ``--require`` turns a shortfall into
     FAIL; a certain ``Σb ≠ 1`` fails the method."""
     v = overall(res)
-    n = count_text(len(res.conditions))
+    count = len(res.conditions)
+    n = counted(count, "condition")
+    every = f"the {n}" if count == 1 else f"all {n}"  # "the 1 condition holds", "all 4 conditions hold"
+    holds = "holds" if count == 1 else "hold"
     if len(res.failures):
-        return Text(f"FAIL: {count_text(len(res.failures))} of {n} conditions fail; energy order {res.energy_order}",
-                    style="bold red")
+        failing = len(res.failures)
+        return Text(f"FAIL: {count_text(failing)} of {n} {'fails' if failing == 1 else 'fail'}; "
+                    f"energy order {res.energy_order}", style="bold red")
     if inconsistent(res):
-        return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {n} energy conditions say",
-                    style="bold red")
+        return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {counted(count, 'energy condition')} "
+                    f"say{'s' if count == 1 else ''}", style="bold red")
     shortfall = requirement_shortfall(res)
     if shortfall is not None:
         return Text(f"FAIL: {shortfall.text()}", style="bold red")
@@ -300,17 +305,17 @@ def final_line(res: CheckResult) -> Text:
         if digits is not None:
             return Text(
                 f"OK to {digits} digits (not a proof): energy preserved to all orders for degree ≤ "
-                f"{res.options.degree} ({_certificate_name(res)}); {n} conditions checked",
+                f"{res.options.degree} ({_certificate_name(res)}); {n} checked",
                 style="bold yellow",
             )
         return Text(
             f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({_certificate_name(res)}); "
-            f"{n} conditions checked",
+            f"{n} checked",
             style="bold green",
         )
     if v.state == HOLDS:
-        return Text(f"OK: all {n} conditions hold exactly", style="bold green")
-    return Text(f"OK to {v.digits} digits (not a proof): all {n} conditions hold to at least {v.digits} digits",
+        return Text(f"OK: {every} {holds} exactly", style="bold green")
+    return Text(f"OK to {v.digits} digits (not a proof): {every} {holds} to at least {v.digits} digits",
                 style="bold yellow")
 
 
@@ -408,7 +413,8 @@ def render_explanation(ex: EnergyCondition, console: Console) -> None:
     drawn = f"The free tree of {given}, drawn from its centre (root: the root of {given}):"
     if ex.tree is None:
         why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
-        console.print(f"{given}: {ex.vertices} vertices — superfluous free tree, no energy condition ({why})")
+        console.print(f"{given}: {counted(ex.vertices, 'vertex', 'vertices')} — superfluous free tree, no energy "
+                      f"condition ({why})")
         console.print(drawn)
         console.print(tree_text(ex.given))
         return

@@ -161,7 +161,7 @@ def test_csv_round_trips(capsys, folder):
     assert [Path(row["file"]).name for row in rows] == [
         "a-good.toml", "b-wrong-claim.toml", "d-broken.toml", "e-other.toml", "c-no-claims.json"]
     rk4 = rows[1]
-    assert rk4["classical_order"] == "4" and rk4["claims_ok"] == "False" and rk4["stages"] == "4"
+    assert rk4["classical_order"] == "4" and rk4["claims_ok"] == "false" and rk4["stages"] == "4"
     assert "claimed 5, found 4" in rk4["broken_claims"]
     # write it back with the csv module and read it again: identical
     buf = io.StringIO()
