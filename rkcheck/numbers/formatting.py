@@ -107,13 +107,16 @@ def _decimal_places(denominator: int, limit: int) -> int | None:
     return max(twos, fives)
 
 
-def ball_strings(mid: Fraction, rad: Fraction, sig: int) -> tuple[str, str]:
+def ball_strings(mid: Fraction | float, rad: Fraction | float, sig: int) -> tuple[str, str]:
     """A ball ``mid ± rad`` as text that still encloses it: the mid-point rounded to
     ``sig`` significant digits, and the radius grown by what that rounding moved the
     mid-point, rounded up (a ball printed with fewer digits than its radius allows would
-    otherwise leave out the value it stands for)."""
+    otherwise leave out the value it stands for).  Floats are taken at their exact
+    binary value; a ball that is not finite is ``nan ± inf``."""
+    if any(isinstance(x, float) and not math.isfinite(x) for x in (mid, rad)):  # a Fraction is finite
+        return "nan", "inf"
     text = decimal_string(mid, sig)
-    return text, radius_string(rad + abs(Fraction(text) - Fraction(mid)))
+    return text, radius_string(Fraction(rad) + abs(Fraction(text) - Fraction(mid)))
 
 
 def count_text(n: int) -> str:
