@@ -183,7 +183,9 @@ def _shown(value: Any) -> str:
     """A value for a message: short, one line (repr of a huge integer is refused by Python
     past 4 300 digits, and would not be one line anyway)."""
     if _is_int(value) and value.bit_length() > 128:
-        return f"an integer of about {int(value.bit_length() * 0.30103) + 1:,} digits"
+        from rkcheck.numbers.formatting import count_text
+
+        return f"an integer of about {count_text(int(value.bit_length() * 0.30103) + 1)} digits"
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
 

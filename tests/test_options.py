@@ -18,7 +18,7 @@ MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
         ("order", 0, f"expected an integer from 1 to {MAX_ORDER}, got 0"),
         ("order", MAX_ORDER + 1, f"expected an integer from 1 to {MAX_ORDER}, got {MAX_ORDER + 1}"),
         ("order", 10**40, f"expected an integer from 1 to {MAX_ORDER}, got an integer of about 41 digits"),
-        ("order", 10**4000, f"expected an integer from 1 to {MAX_ORDER}, got an integer of about 4,001 digits"),
+        ("order", 10**4000, f"expected an integer from 1 to {MAX_ORDER}, got an integer of about 4001 digits"),
         ("order", "x" * 100, f"expected an integer from 1 to {MAX_ORDER}, got '{'x' * 36}..."),
         ("order", True, f"expected an integer from 1 to {MAX_ORDER}, got True"),
         ("dps", 1, f"expected an integer from {DPS_RANGE[0]} to {DPS_RANGE[1]}, got 1"),

@@ -94,7 +94,7 @@ class ScanResult:
 
         if format == "text":
             return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,
-                                         constants=self.sort == "energy")
+                                         constants=self.sort == "energy", fail_on=self.fail_on)
         return scan_report.scan_document(format, self.outcomes, self.interrupted, self.options, self.elapsed)
 
     def __repr__(self) -> str:
@@ -139,6 +139,7 @@ def scan(
     max_stages: int = DEFAULT_MAX_STAGES,
     max_conditions: int | None = None,
     project: bool | ProjectConfig = False,
+    allow_empty: bool | None = None,
     progress: Callable[[int, int], None] | None = None,
     on_file: Callable[[ScanRow, int, int], None] | None = None,
 ) -> ScanResult:
@@ -183,6 +184,8 @@ def scan(
     interrupted = False
     try:
         files = find_tableau_files(roots, list(exclude) + config.exclude)
+        if not files and not (config.allow_empty if allow_empty is None else allow_empty):
+            raise UserError(_nothing_found(roots, list(exclude) + config.exclude), "scan")
         on_result = _reporter(len(files), progress, on_file)
         outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
                                          files_budget)
@@ -195,6 +198,19 @@ def scan(
         outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
+
+
+def _nothing_found(roots: list[str], exclude: list[str]) -> str:
+    """Why a scan has no file to check, in one line: the roots, and how many files the
+    exclusions took away."""
+    from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.io.printable import printable
+
+    shown = ", ".join(printable(r) for r in roots[:3]) + (f" and {len(roots) - 3} more" if len(roots) > 3 else "")
+    excluded = len(find_tableau_files(roots, [])) if exclude else 0
+    why = f" ({excluded} excluded by --exclude / exclude)" if excluded else ""
+    return (f"no *.toml or *.json file under {shown}{why}: nothing to check "
+            "(--allow-empty, or allow_empty = true in [tool.rkcheck], lets an empty scan pass)")
 
 
 def _scan_budget(flags: dict[str, Any], config: ProjectConfig, max_conditions: int | None) -> Any:
@@ -253,7 +269,9 @@ class Catalog:
         return catalog_markdown(self.rows, self.labels, self.order, command)
 
     def __repr__(self) -> str:
-        return f"<Catalog: {len(self.rows)} files, {', '.join(self.labels)}, order {self.order}>"
+        from rkcheck.numbers.formatting import counted
+
+        return f"<Catalog: {counted(len(self.rows), 'file')}, {', '.join(self.labels)}, order {self.order}>"
 
 
 def catalog(

@@ -89,7 +89,9 @@ class Simulation:
         return max(self.energy_errors)
 
     def __repr__(self) -> str:
-        return (f"<Simulation of {self.tableau.name!r} on {self.problem.name}: h = {self.h}, {self.steps} steps, "
+        from rkcheck.numbers.formatting import count_text
+
+        return (f"<Simulation of {self.tableau.name!r} on {self.problem.name}: h = {self.h}, {count_text(self.steps)} steps, "
                 f"max |ΔH| = {self.max_energy_error:.3e}>")
 
 

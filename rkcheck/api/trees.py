@@ -139,7 +139,9 @@ class ConditionList:
 
     def __repr__(self) -> str:
         deg = "no degree bound" if self.degree is None else f"degree ≤ {self.degree}"
-        return f"<ConditionList: {self.total} conditions up to order {self.order}, {deg}>"
+        from rkcheck.numbers.formatting import count_text
+
+        return f"<ConditionList: {count_text(self.total)} conditions up to order {self.order}, {deg}>"
 
 
 def conditions(order: int, degree: int | str | None = None, *, count: bool = False,

@@ -66,8 +66,10 @@ class Verification(CheckResult):
         return dumps(self.to_dict())
 
     def __repr__(self) -> str:
+        from rkcheck.numbers.formatting import count_text
+
         return (f"<Verification of {self.tableau.name!r}: {self.verdict}, energy order {self.energy_order_label}, "
-                f"{len(self.failures)} of {len(self.conditions)} conditions fail>")
+                f"{count_text(len(self.failures))} of {count_text(len(self.conditions))} conditions fail>")
 
 
 # ------------------------------------------------------------------ options

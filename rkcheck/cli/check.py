@@ -16,6 +16,7 @@ from rkcheck.cli.common import (
     check_options,
     decimals_option,
     dps_option,
+    exit_codes,
     fail_on_option,
     flag_values,
     load_tableau,
@@ -43,25 +44,23 @@ def load_input(file: str, max_stages: int, input_format: str | None):
     return load_tableau(file, max_stages, input_format)
 
 
-@click.command()
+@click.command(epilog=exit_codes(
+    "a claim is broken or a condition fails, as --fail-on says: by default a file\nwith claims is judged "
+    "by its claims, one without by its conditions (an AVF\ncertificate counts as holding)",
+    "interrupted (Ctrl-C, SIGTERM); the report holds the orders that finished"))
 @click.argument("file", metavar="FILE")
 @check_options
 @input_format_option
 @click.option("--all", "show_all", is_flag=True, help="List every condition, not only the failing ones.")
+@click.option("--draw", is_flag=True, help="Draw the free tree of each failing condition listed (text output).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
 @fail_on_option
 @output_options
 def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
-           fmt, fail_fast, fail_on) -> None:
+           draw, fmt, fail_fast, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
-    claims of its [expect] table.
-
-    \b
-    Exit code (--fail-on auto): a file with claims is judged by its claims, a file
-    without claims by its conditions (an AVF certificate counts as holding):
-      0  all good   1  a claim is broken / a condition fails   2  bad file or option
-    """
+    claims of its [expect] table."""
     from rkcheck.api.families import is_family_file
     from rkcheck.api.verification import run_check
 
@@ -75,7 +74,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
     try:
-        with progress_steps("checking") as update:  # the API's check: same options, same result
+        with progress_steps("checking", "orders") as update:  # the API's check: same options, same result
             result = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update)
         failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
@@ -89,7 +88,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 
         out = settings()
         render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, verbose=out.verbose,
-                     fail_on=fail_on)
+                     fail_on=fail_on, draw=draw)
     if interrupted:
         done = [p.order for p in result.per_order if p.checked]
         click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
@@ -98,7 +97,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "toml", "tableau-json", "latex", "julia", "python"]),
               default="text", show_default=True,
@@ -128,7 +127,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
     render_tableau(tab, stdout_console(), decimals, warnings)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="[FAMILY]", required=False)
 @order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
@@ -190,15 +189,18 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     render_condition_list(listing, stdout_console(), count)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("tree_id", metavar="ID")
 @click.option("--tableau", "tableau_file", metavar="FILE", default=None, help="Evaluate every term on this tableau.")
+@click.option("--draw", "picture", metavar="FILE", default=None,
+              help="Also draw the free tree to FILE (.svg, .png or .pdf; needs rkcheck[plot]).")
 @dps_option(DEFAULT_DPS)
 @decimals_option("auto")
 @max_stages_option
 @output_options
-def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
-    """Show one energy condition: the free tree of ID, its rootings, signs, σ and weights.
+def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
+    """Show one energy condition: the free tree of ID (drawn, its centre and the root
+    of ID marked), its rootings, signs, σ and weights.
 
     ID is a level sequence of any rooting of the tree, e.g. 1,2,3,3,2 (as printed in
     the id column of verify and conditions).
@@ -212,4 +214,12 @@ def explain(tree_id, tableau_file, dps, decimals, max_stages) -> None:
         if err.place != "tree":
             raise
         raise UserError(err.message, "ID") from None  # the API's argument is this command's ID
+    if picture:
+        from rkcheck.reports.charts import tree_picture
+        from rkcheck.reports.text import tree_drawing
+
+        given = ",".join(map(str, cond.given))
+        title = (f"{given}: superfluous, no energy condition" if cond.tree is None
+                 else f"{cond.id}  {cond.bracket}" + (f"  (given as {given})" if cond.id != given else ""))
+        tree_picture(tree_drawing(cond.given), title, picture)
     render_explanation(cond, stdout_console())

@@ -32,6 +32,20 @@ from rkcheck.reports.console import OutputSettings, make_console
 EXIT_OK, EXIT_FAIL, EXIT_USAGE, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
+def exit_codes(fail: str | None = None, interrupted: str = "interrupted (Ctrl-C, SIGTERM)",
+               usage: str = "a bad file, entry, option or limit (one line on stderr)") -> str:
+    """The end of a command's --help: every exit code the command can give, with its
+    meaning (``fail``: what exit 1 means, for the commands that judge; None: never 1;
+    a newline in a meaning continues it on an indented line)."""
+    rows = [(EXIT_OK, "success" if fail is None else "all good")]
+    if fail is not None:
+        rows.append((EXIT_FAIL, fail))
+    rows += [(EXIT_USAGE, usage),
+             (EXIT_INTERNAL, "internal error: a bug in rkcheck (please report it)"),
+             (EXIT_INTERRUPTED, interrupted)]
+    return "\b\nExit codes:\n" + "\n".join(f"  {code:<4} " + meaning.replace("\n", "\n       ") for code, meaning in rows)
+
+
 class DegreeType(click.ParamType):
     """A polynomial degree m >= 1, or ``none`` for all Hamiltonians (parsed to None)."""
 
@@ -63,7 +77,8 @@ def output_options(f: Callable) -> Callable:
 
     @click.option("--no-color", is_flag=True, default=None, help="No colour (also: NO_COLOR=1, or output not a terminal).")
     @click.option("--verbose", "-v", is_flag=True, default=None, help="More detail (timings, notes).")
-    @click.option("--quiet", "-q", is_flag=True, default=None, help="Only the essential lines.")
+    @click.option("--quiet", "-q", is_flag=True, default=None, help="Problems only: failing conditions that decide the verdict, broken claims, "
+              "files that fail or cannot be read; then the verdict line.")
     @functools.wraps(f)
     def wrapper(*args: Any, no_color: bool | None, verbose: bool | None, quiet: bool | None, **kwargs: Any) -> Any:
         ctx = click.get_current_context()
@@ -91,15 +106,46 @@ def _stderr_is_terminal() -> bool:
         return False
 
 
+class _Bars:
+    """Progress bars on a rich ``Progress``: ``update(done, total)`` moves the current
+    bar; ``begin(label, unit)`` starts a new one (a new check run: the bars of the runs
+    before stay, complete, until the work ends)."""
+
+    def __init__(self, progress: Any, label: str, unit: str) -> None:
+        self.progress, self.label, self.unit = progress, label, unit
+        self.task: Any = None
+
+    def begin(self, label: str, unit: str) -> None:
+        self.task = self.progress.add_task(label, total=None, unit=unit)
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.task is None:
+            self.begin(self.label, self.unit)
+        self.progress.update(self.task, completed=done, total=total)
+
+
+class _NoBars:
+    """What a hidden progress bar is: every call does nothing."""
+
+    def begin(self, label: str, unit: str) -> None:
+        pass
+
+    def __call__(self, done: int, total: int) -> None:
+        pass
+
+
 @contextmanager
-def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
-    """A rich progress bar on stderr driven by ``update(done, total)`` (hidden when stderr
-    is not a terminal or --quiet); it disappears when the work is done."""
+def progress_steps(label: str, unit: str) -> Iterator[Callable[[int, int], None]]:
+    """Rich progress bars on stderr driven by ``update(done, total)`` and labelled with
+    what one step is (``unit``: files, orders, primes); ``update.begin(label, unit)``
+    starts the bar of a new run (a check and each claim run with other options).
+    Hidden when stderr is not a terminal or --quiet; they disappear when the work is
+    done."""
     console = make_console(settings(), stderr=True)
     # the stream itself, not console.is_terminal: FORCE_COLOR makes rich treat a pipe as a
     # terminal, and a progress bar in a log file is noise
     if settings().quiet or not _stderr_is_terminal():
-        yield lambda done, total: None
+        yield _NoBars()
         return
     from rich.progress import (
         BarColumn,
@@ -109,10 +155,9 @@ def progress_steps(label: str) -> Iterator[Callable[[int, int], None]]:
         TimeRemainingColumn,
     )
 
-    with Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=console, transient=True) as bar:
-        task = bar.add_task(label, total=None)
-        yield lambda done, total: bar.update(task, completed=done, total=total)
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.fields[unit]}"),
+                  TimeRemainingColumn(), console=console, transient=True) as bar:
+        yield _Bars(bar, label, unit)
 
 
 @contextmanager

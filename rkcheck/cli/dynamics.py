@@ -10,6 +10,7 @@ from rkcheck.cli.common import (
     EXIT_FAIL,
     EXIT_OK,
     busy,
+    exit_codes,
     load_tableau,
     max_stages_option,
     output_options,
@@ -18,7 +19,7 @@ from rkcheck.cli.common import (
 from rkcheck.options import POINTS_RANGE, STEPS_RANGE, STUDY_DPS_RANGE
 
 
-@click.command()
+@click.command(epilog=exit_codes("--energy-order: the empirical energy order disagrees with the algebraic one"))
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
 @click.option("--problem", "-p", "problem_spec", required=True,
               help="harmonic | henon-heiles | quartic | fpu | random:degree=m[,dim=d][,seed=S].")
@@ -88,7 +89,7 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
         click.echo(f"chart written to {chart}")
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("files", nargs=-1, required=True, metavar="FILE...")
 @click.option("--problem", "-p", "problem_spec", required=True, help="As for simulate.")
 @click.option("--T", "T_text", default="10", show_default=True, help="Final time.")

@@ -10,6 +10,7 @@ from rkcheck.api.methods import CLASSICAL_METHODS, FAMILIES
 from rkcheck.cli.common import (
     DEGREE,
     busy,
+    exit_codes,
     order_option,
     output_options,
     progress_steps,
@@ -18,7 +19,7 @@ from rkcheck.cli.common import (
 from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("family", metavar="FAMILY|METHOD", type=click.Choice(FAMILIES + CLASSICAL_METHODS))
 @click.option("--stages", "-s", "s", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None, help="Number of stages s.")
 @click.option("-k", "k", type=click.IntRange(1, MAX_FAMILY_STAGES), default=None,
@@ -59,7 +60,7 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
     write_text(text, output)
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("paths", nargs=-1, required=False, metavar="[PATH...]")
 @click.option("--degrees", default="2,3,4,6,none", show_default=True,
               help="Comma-separated degrees m for the energy-order columns ('none' = all Hamiltonians).")
@@ -80,7 +81,7 @@ def catalog(paths, degrees, order, output) -> None:
     from rkcheck.reports.markdown import catalog_markdown
 
     degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
-    with progress_steps("catalog") as update:
+    with progress_steps("catalog", "files") as update:
         result = make_catalog(paths, degrees=degs, order=order, progress=update)
     # the command line the header records: no path stays no path
     command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])

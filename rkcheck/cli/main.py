@@ -15,6 +15,7 @@ from rkcheck.cli.common import (
     EXIT_INTERRUPTED,
     EXIT_OK,
     EXIT_USAGE,
+    exit_codes,
     output_options,
 )
 from rkcheck.errors import UserError
@@ -51,7 +52,8 @@ class LazyGroup(click.Group):
         return command
 
 
-@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+             epilog=exit_codes("verify, scan, simulate --energy-order: the check fails (each command's --help says how)"))
 @click.version_option(__version__, prog_name="rkcheck")
 @output_options
 def cli() -> None:
@@ -155,7 +157,9 @@ def _run(argv: list[str] | None) -> None:
     except ValueError as err:
         if "integer string conversion" not in str(err):
             _internal(err)
-        _error(f"a number has more than {MAX_PRINTED_DIGITS:,} digits, too many to print "
+        from rkcheck.reports.console import count_text
+
+        _error(f"a number has more than {count_text(MAX_PRINTED_DIGITS)} digits, too many to print "
                "(docs/errors.md)", EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
         _internal(err)

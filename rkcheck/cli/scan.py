@@ -13,6 +13,7 @@ from rkcheck.cli.common import (
     EXIT_OK,
     check_options,
     check_output_target,
+    exit_codes,
     fail_on_option,
     flag_values,
     output_options,
@@ -26,7 +27,11 @@ from rkcheck.io.printable import printable
 from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 
 
-@click.command()
+@click.command(epilog=exit_codes(
+    "a file fails under --fail-on (default: a broken claim) or cannot be checked",
+    "interrupted (Ctrl-C, SIGTERM); the report holds the files that finished",
+    "a bad option, [tool.rkcheck] or path, or no tableau file at all under the\npaths (unless --allow-empty); "
+    "one line on stderr"))
 @click.argument("paths", nargs=-1, metavar="[PATH...]")
 @check_options
 @click.option("--jobs", "-j", type=click.IntRange(*JOBS_RANGE), default=None, help="Worker processes [default: all cores].")
@@ -38,21 +43,18 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 @click.option("--sort", "sort", type=click.Choice(SCAN_SORTS), default="path", show_default=True,
               help="Row order: by path, or by energy order (best first) and then by the energy error constant C "
               "(a column C in the text report).")
+@click.option("--allow-empty", is_flag=True, default=None,
+              help="Pass (exit 0) when the paths hold no tableau file [default: exit 2; also [tool.rkcheck] allow_empty].")
 @fail_on_option
 @output_options
 def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, exclude, fmt,
-         output, fail_on, sort) -> None:
+         output, fail_on, sort, allow_empty) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,
     never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
     [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
-    format, fail_on, jobs); flags override it.
-
-    \b
-    Exit code: 1 when a file fails under --fail-on (default: claims) or cannot be
-    checked, 0 otherwise, 2 for a bad option, 130 when interrupted (the rows that
-    finished are still written).
+    format, fail_on, jobs, allow_empty); flags override it.
     """
     from rkcheck.api.batch import scan as run_scan
     from rkcheck.api.batch import scan_roots
@@ -62,16 +64,17 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     roots = scan_roots(paths, config)
     check_output_target(output)
     fmt = fmt or config.format or "text"
-    with progress_steps("checking") as update:  # the API's scan: same options, same rows
+    with progress_steps("checking", "files") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,
-                          max_stages=max_stages, max_conditions=max_conditions, project=config, progress=update,
-                          on_file=_announcer())
+                          max_stages=max_stages, max_conditions=max_conditions, project=config,
+                          allow_empty=allow_empty, progress=update, on_file=_announcer())
     outcomes, elapsed, interrupted = result.outcomes, result.elapsed, result.interrupted
     if fmt == "text" and output and output != "-":
-        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy"), output)
+        write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy",
+                                         fail_on=result.fail_on), output)
     elif fmt == "text":
         scan_report.render_scan_text(outcomes, stdout_console(), elapsed, interrupted, verbose=settings().verbose,
-                                     constants=sort == "energy")
+                                     constants=sort == "energy", fail_on=result.fail_on, quiet=settings().quiet)
     else:
         write_text(scan_report.scan_document(fmt, outcomes, interrupted, result.options, elapsed), output)
     if interrupted:

@@ -7,6 +7,7 @@ import click
 from rkcheck.cli.common import (
     busy,
     degree_option,
+    exit_codes,
     flag_values,
     load_tableau,
     order_option,
@@ -22,7 +23,7 @@ from rkcheck.options import (
 )
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @degree_option(help="Degree m ('none' = all) [default: file's [check]].")
 @order_option(help="Order N [default: file's [check], else 8].")
@@ -42,7 +43,9 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
     tab = load_tableau(file)
     result = run_bench(tab, **flag_values("degree", "order"), dps=dps_text, repeat=repeat)
     rows, t_tables, deg, N = result.rows, result.tables_seconds, result.degree, result.order
-    title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {rows[0].conditions} conditions"
+    from rkcheck.reports.console import count_text
+
+    title = f"{tab.name}: degree {'none' if deg is None else deg}, order {N}, {count_text(rows[0].conditions)} conditions"
     if chart:
         from rkcheck.reports.charts import bench_chart
 
@@ -60,7 +63,7 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
         click.echo(f"chart written to {chart}")
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.argument("file", metavar="FILE")
 @click.option("--direction", required=True, metavar="random|kernel|entry:i,j",
               help="Perturb A along a fixed-seed random matrix, the zero-row-sum kernel direction of the "
@@ -106,7 +109,7 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
         click.echo(f"chart written to {chart}")
 
 
-@click.command()
+@click.command(epilog=exit_codes())
 @click.option("--stages", "-s", type=click.IntRange(*KERNEL_STAGES_RANGE), default=None, help="Number of stages s.")
 @click.option("--degree", "-m", type=click.IntRange(*KERNEL_DEGREE_RANGE), required=True, help="Polynomial degree m (>= 3).")
 @click.option("--rule", default="gauss", show_default=True, help="gauss | radau-i | radau-ii | lobatto | zeta:<value>.")

@@ -34,6 +34,7 @@ from itertools import combinations_with_replacement
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.formatting import count_text
 
 Monomials = dict[tuple[int, ...], Fraction]  # exponents (len 2d) -> coefficient
 
@@ -242,7 +243,7 @@ def problem(spec: str) -> Hamiltonian:
         # terms: degree 12 with dim 6 would be 2.7 million monomials and gigabytes
         monomials = math.comb(2 * dim + degree, degree) - 1
         if monomials > MAX_RANDOM_MONOMIALS:
-            raise UserError(f"random:degree={degree},dim={dim} has {monomials:,} monomials; the limit is "
-                            f"{MAX_RANDOM_MONOMIALS:,} (lower the degree or dim)", "--problem")
+            raise UserError(f"random:degree={degree},dim={dim} has {count_text(monomials)} monomials; the limit is "
+                            f"{count_text(MAX_RANDOM_MONOMIALS)} (lower the degree or dim)", "--problem")
         return random_hamiltonian(degree, dim, seed)
     raise UserError(f"unknown problem {spec!r} ({', '.join(PROBLEMS)}, random:degree=m,dim=d,seed=S)", "--problem")

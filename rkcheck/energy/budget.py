@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.formatting import count_text as count
 from rkcheck.trees.counting import listing_size
 
 LISTING_SECONDS_PER_TREE = 0.6e-6
@@ -51,7 +52,7 @@ class Estimate:
     bytes: int
 
     def text(self) -> str:
-        """``3 489 323 conditions (55 469 204 terms): about 1.6 min and 1.9 GB``."""
+        """``3,489,323 conditions (55,469,204 terms): about 1.6 min and 1.9 GB``."""
         secs = self.seconds
         when = f"{secs:.0f} s" if secs < 90 else (f"{secs / 60:.1f} min" if secs < 5400 else f"{secs / 3600:.1f} h")
         return f"{count(self.conditions)} conditions ({count(self.terms)} terms): about {when} and {human_bytes(self.bytes)}"
@@ -66,11 +67,6 @@ class Budget:
     available_bytes: int | None = None
     max_conditions: int | None = None
     announce: Callable[[str], None] | None = None
-
-
-def count(n: int) -> str:
-    """``3 489 323``: thin groups of three, as the docs print counts."""
-    return f"{n:,}".replace(",", " ")
 
 
 def human_bytes(n: float) -> str:

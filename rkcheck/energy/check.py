@@ -264,10 +264,20 @@ def overall(result: CheckResult) -> Verdict:
     return Verdict(HOLDS_TO_DIGITS, digits) if digits is not None else Verdict(State.HOLDS)
 
 
+def progress_unit(values: TableauValues, options: CheckOptions) -> str:
+    """What one step of a check's ``progress(done, total)`` is: a pass over one prime
+    (exact arithmetic, all orders at once), or one order (balls, and fail-fast)."""
+    return "primes" if values.backend is Backend.EXACT and not options.fail_fast else "orders"
+
+
 class CheckRunner:
     """``check`` with a memo per options, so that a verify run and the claim runs it
     implies share their work (same tableau, same options => same result), and one
-    reading of the tableau per number reading."""
+    reading of the tableau per number reading.
+
+    A ``progress`` that has a ``begin(label, unit)`` method hears of each check run before
+    its steps (a claim on another degree is a run of its own): a progress bar then shows
+    one bar per run, named, with its unit, instead of one bar that starts over."""
 
     def __init__(self, budget: Budget | None = None, progress=None) -> None:
         self._memo: dict[tuple[int, CheckOptions], CheckResult] = {}
@@ -280,5 +290,9 @@ class CheckRunner:
             read = (id(tableau), options.reading)
             if read not in self._values:
                 self._values[read] = TableauValues.of(tableau, options.reading)
+            begin = getattr(self.progress, "begin", None)
+            if callable(begin):
+                degree = "all H" if options.degree is None else f"degree ≤ {options.degree}"
+                begin(f"{degree}, order ≤ {options.order}", progress_unit(self._values[read], options))
             self._memo[key] = check(tableau, options, self.budget, self.progress, self._values[read])
         return self._memo[key]

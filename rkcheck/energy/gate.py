@@ -9,6 +9,7 @@ import numpy as np
 
 from rkcheck.energy.check import CheckResult, inconsistent
 from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
+from rkcheck.numbers.formatting import count_text
 
 
 @dataclass(frozen=True)
@@ -25,7 +26,8 @@ class Shortfall:
         parts = []
         if self.count:
             ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
-            parts.append(f"{self.count} condition{'s' if self.count != 1 else ''} hold only to digits ({ids})")
+            parts.append(f"{count_text(self.count)} condition{'s' if self.count != 1 else ''} hold"
+                         f"{'s' if self.count == 1 else ''} only to digits ({ids})")
         if self.certificate:
             parts.append("the certificate of every order holds only to digits")
         return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"

@@ -1,7 +1,8 @@
 """Project configuration: ``[tool.rkcheck]`` in the nearest ``pyproject.toml``.
 
 Found by walking up from the current directory.  Keys: ``paths`` and ``exclude`` (for
-``scan``), ``degree``, ``order``, ``dps``, ``decimals``, ``format``, ``fail_on``, ``jobs``.
+``scan``), ``degree``, ``order``, ``dps``, ``decimals``, ``format``, ``fail_on``, ``jobs``,
+``allow_empty``.
 Precedence, most specific first: command-line flags, then the file's own ``[check]``
 table, then ``[tool.rkcheck]``, then rkcheck's defaults.  Relative ``paths`` are
 relative to the directory of that ``pyproject.toml``.
@@ -27,7 +28,7 @@ from rkcheck.options import (
 )
 
 #: Keys of [tool.rkcheck] beyond the check options of :data:`rkcheck.options.CHECK_KEYS`.
-EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs")
+EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs", "allow_empty")
 
 
 @dataclass
@@ -42,6 +43,7 @@ class Config:
     format: str | None = None
     fail_on: str | None = None
     jobs: int | None = None
+    allow_empty: bool = False  # a scan that finds no file passes instead of exit 2
 
 
 def find_pyproject(start: Path | None = None) -> Path | None:
@@ -88,4 +90,8 @@ def load_config(start: Path | None = None) -> Config:
             cfg.format = parse_choice(value, SCAN_FORMATS, place, src)
         elif key_n == "fail_on":
             cfg.fail_on = parse_choice(value, FAIL_ON, place, src)
+        elif key_n == "allow_empty":
+            if not isinstance(value, bool):
+                raise UserError(f"expected true or false, got {value!r}"[:80], place, src)
+            cfg.allow_empty = value
     return cfg

@@ -206,9 +206,81 @@ def _node(e: TableauEntry) -> ex.Expr:
     return e.node
 
 
-def _entries(tab: Tableau) -> tuple[list[list[ex.Expr]], list[ex.Expr], list[ex.Expr] | None]:
-    return ([[_node(e) for e in row] for row in tab.A], [_node(e) for e in tab.b],
-            None if tab.c is None else [_node(e) for e in tab.c])
+#: At most this many square roots (in an entry and the constants it names) are combined
+#: by :func:`simplified`: the number field of a few square roots of rationals is built
+#: in milliseconds.
+MAX_SIMPLIFIED_ROOTS = 8
+
+
+def _simplifiable(node: ex.Expr, constants: dict[str, ex.Expr]) -> bool:
+    """Whether an entry's exact value may replace it: no decimal literal (a decimal may
+    stand for more than its face value), only square roots of root-free arguments, not
+    too many of them, in the entry and in every constant it names."""
+    seen: set[str] = set()
+    todo, calls = [node], 0
+    while todo:
+        n = todo.pop()
+        for sub in ex.walk(n):
+            if isinstance(sub, ex.Num) and sub.digits is not None:
+                return False
+            if isinstance(sub, ex.Call):
+                calls += 1
+                if sub.func != "sqrt" or any(isinstance(x, ex.Call) for x in ex.walk(sub.args[0])):
+                    return False
+            if isinstance(sub, ex.Name) and sub.name not in seen:
+                seen.add(sub.name)
+                todo.append(constants[sub.name])
+    return calls <= MAX_SIMPLIFIED_ROOTS
+
+
+def _canonical(values) -> list[ex.Expr] | None:
+    """Exact values as expressions when each has a short canonical form: rationals, or
+    ``p + q·sqrt(n)`` in one quadratic field; else None."""
+    if values.field is None:
+        return [ex.Num(v, str(v), None, 0) for v in values.values]
+    if not values.field.name.startswith("sqrt("):
+        return None
+    return [ex.parse(v.text()) for v in values.values]
+
+
+def simplified(nodes: list[ex.Expr], constants: dict[str, ex.Expr] | None = None) -> list[ex.Expr]:
+    """Entries for the code writers, each as its exact value in its shortest canonical
+    form: ``1 - 1/3`` is ``2/3``, ``1 + (-1) + 1`` is ``1``, ``sqrt(12)/4 + 1 - 1/2`` is
+    ``1/2 + sqrt(3)/2``, a Lagrange integral over nodes in Q(√15) is ``5/36 - sqrt(15)/30``
+    (like terms combined, constants folded, exactly).  An entry stays as written when
+    :func:`_simplifiable` says no, or when its value needs more than one square root."""
+    from rkcheck.numbers.algebraic import NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
+
+    constants = constants or {}
+    out = list(nodes)
+    todo = [k for k, n in enumerate(nodes) if not isinstance(n, ex.Num) and _simplifiable(n, constants)]
+    try:  # all at once: one field for the whole tableau (the usual case)
+        joint = _canonical(field_of([nodes[k] for k in todo], constants))
+    except (NotAlgebraic, UserError):
+        joint = None
+    if joint is not None:
+        for k, node in zip(todo, joint):
+            out[k] = node
+        return out
+    for k in todo:  # several fields: entry by entry
+        try:
+            one = _canonical(field_of([nodes[k]], constants))
+        except (NotAlgebraic, UserError):
+            one = None
+        if one is not None:
+            out[k] = one[0]
+    return out
+
+
+def _entries(tab: Tableau) -> tuple[list[list[ex.Expr]], list[ex.Expr], list[ex.Expr]]:
+    """A, b and c as the code writers write them (:func:`simplified`); c = A·1 when the
+    tableau gives none."""
+    s = len(tab.b)
+    A = [[_node(e) for e in row] for row in tab.A]
+    c = _row_sums(A) if tab.c is None else [_node(e) for e in tab.c]
+    flat = simplified([x for row in A for x in row] + [_node(e) for e in tab.b] + c, tab.info.constants.definitions)
+    return [flat[i * s:(i + 1) * s] for i in range(s)], flat[s * s:s * s + s], flat[s * s + s:]
 
 
 def _row_sums(A: list[list[ex.Expr]]) -> list[ex.Expr]:
@@ -223,12 +295,25 @@ def _row_sums(A: list[list[ex.Expr]]) -> list[ex.Expr]:
     return out
 
 
+def _used_constants(tab: Tableau, nodes: list[ex.Expr]) -> dict[str, ex.Expr]:
+    """The constants the written entries still name (directly or through each other), in
+    the table's order: a constant folded into every entry is not written."""
+    definitions = tab.info.constants.definitions
+    used: set[str] = set()
+    todo = [n.name for node in nodes for n in ex.names(node)]
+    while todo:
+        name = todo.pop()
+        if name not in used:
+            used.add(name)
+            todo += [n.name for n in ex.names(definitions[name])]
+    return {k: v for k, v in definitions.items() if k in used}
+
+
 def to_latex(tab: Tableau) -> str:
     """The Butcher array ``c | A`` over ``| bᵀ`` as a LaTeX ``array`` (exact entries,
     constants written out)."""
     code = _Latex(tab.info.constants.definitions)
     A, b, c = _entries(tab)
-    c = c if c is not None else _row_sums(A)
     s = len(b)
     lines = [rf"% {tab.name}", r"\[", rf"\begin{{array}}{{c|{'c' * s}}}"]
     for ci, row in zip(c, A):
@@ -242,8 +327,8 @@ def to_latex(tab: Tableau) -> str:
 def _code_lines(tab: Tableau, code: _Code, assign: str, vector: Callable[[list[str]], str],
                 matrix: Callable[[list[list[str]]], str]) -> list[str]:
     A, b, c = _entries(tab)
-    c = c if c is not None else _row_sums(A)
-    lines = [f"{name}{assign}{code.render(value)}" for name, value in tab.info.constants.definitions.items()]
+    constants = _used_constants(tab, [x for row in A for x in row] + b + c)
+    lines = [f"{name}{assign}{code.render(value)}" for name, value in constants.items()]
     lines.append(f"A{assign}" + matrix([[code.render(x) for x in row] for row in A]))
     lines.append(f"b{assign}" + vector([code.render(x) for x in b]))
     lines.append(f"c{assign}" + vector([code.render(x) for x in c]))
@@ -267,15 +352,12 @@ def to_julia(tab: Tableau) -> str:
 def to_python(tab: Tableau) -> str:
     """Python code defining ``A``, ``b``, ``c`` exactly (``Fraction``; ``sympy.sqrt`` when
     the tableau has square roots)."""
-    uses_sqrt = any(isinstance(n, ex.Call) for e in tab.entries() for n in ex.walk(_node(e))) or any(
-        isinstance(n, ex.Call) for d in tab.info.constants.definitions.values() for n in ex.walk(d))
+    body = _code_lines(tab, _Python(), " = ", lambda v: "[" + ", ".join(v) + "]",
+                       lambda m: "[\n    " + ",\n    ".join("[" + ", ".join(r) + "]" for r in m) + ",\n]")
     lines = [f"# {tab.name} (written by rkcheck; exact entries)", "from fractions import Fraction"]
-    if uses_sqrt:
+    if any("sympy." in line for line in body):
         lines.append("import sympy")
-    lines.append("")
-    lines += _code_lines(tab, _Python(), " = ", lambda v: "[" + ", ".join(v) + "]",
-                         lambda m: "[\n    " + ",\n    ".join("[" + ", ".join(r) + "]" for r in m) + ",\n]")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + [""] + body) + "\n"
 
 
 WRITERS: dict[str, Callable[[Tableau], str]] = {

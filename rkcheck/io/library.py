@@ -92,9 +92,23 @@ def find(name: str) -> LibraryEntry | None:
     return short[0] if short else None
 
 
+#: At most this many names start with what was asked for in a suggestion (``@gauss``:
+#: every ``gauss-s``); misspellings add up to three close names.
+MAX_PREFIX_SUGGESTIONS = 6
+
+
+def _natural(name: str) -> list:
+    """Sort key: ``gauss-2`` before ``gauss-10``."""
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]
+
+
 def suggestions(name: str, extra: list[str] | None = None) -> list[str]:
-    """Up to three known names close to ``name`` (for the error message)."""
+    """Known names for the error message: those that start with ``name`` (``@gauss``
+    gives ``gauss-2`` … ``gauss-5``, in natural order), then up to three close to it (a
+    misspelling)."""
     names = sorted({e.name for e in entries()} | set(extra or []))
     by_norm = {normalise(n): n for n in names}
-    close = difflib.get_close_matches(normalise(name), list(by_norm), n=3, cutoff=0.6)
-    return [by_norm[c] for c in close]
+    wanted = normalise(name)
+    prefix = sorted((n for k, n in by_norm.items() if wanted and k.startswith(wanted) and k != wanted), key=_natural)
+    close = [by_norm[c] for c in difflib.get_close_matches(wanted, list(by_norm), n=3, cutoff=0.6)]
+    return prefix[:MAX_PREFIX_SUGGESTIONS] + [n for n in close if n not in prefix][:max(0, 3 - len(prefix))]

@@ -31,6 +31,7 @@ from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.numbers.formatting import count_text
 
 if TYPE_CHECKING:
     from rkcheck.methods.parametric import Family
@@ -85,7 +86,7 @@ def read_text(path: str) -> str:
             raise UserError("is a directory, not a tableau file", source=path)
         size = p.stat().st_size
         if size > MAX_FILE_BYTES:
-            raise UserError(f"file too large ({size:,} bytes; limit {MAX_FILE_BYTES:,})", source=path)
+            raise UserError(f"file too large ({count_text(size)} bytes; limit {count_text(MAX_FILE_BYTES)})", source=path)
         return p.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise UserError("no such file", source=path) from None

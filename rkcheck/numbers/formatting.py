@@ -105,3 +105,28 @@ def _decimal_places(denominator: int, limit: int) -> int | None:
     if rest != 1 or max(twos, fives) > 4 * limit:
         return None
     return max(twos, fives)
+
+
+def ball_strings(mid: Fraction | float, rad: Fraction | float, sig: int) -> tuple[str, str]:
+    """A ball ``mid ± rad`` as text that still encloses it: the mid-point rounded to
+    ``sig`` significant digits, and the radius grown by what that rounding moved the
+    mid-point, rounded up (a ball printed with fewer digits than its radius allows would
+    otherwise leave out the value it stands for).  Floats are taken at their exact
+    binary value; a ball that is not finite is ``nan ± inf``."""
+    if any(isinstance(x, float) and not math.isfinite(x) for x in (mid, rad)):  # a Fraction is finite
+        return "nan", "inf"
+    text = decimal_string(mid, sig)
+    return text, radius_string(Fraction(rad) + abs(Fraction(text) - Fraction(mid)))
+
+
+def count_text(n: int) -> str:
+    """A count as every text report prints it: plain up to 9999, in groups of three
+    separated by commas from 10,000 on (``9999``, ``80,936``, ``3,489,323``); machine
+    formats (JSON, CSV) keep plain integers."""
+    return f"{n:,}" if abs(n) >= 10_000 else str(n)
+
+
+def counted(n: int, noun: str, plural: str | None = None) -> str:
+    """A count and its noun in agreement: ``1 error``, ``2 errors``, ``0 files``,
+    ``80,936 conditions`` (the count as :func:`count_text` writes it)."""
+    return f"{count_text(n)} {noun if n == 1 else (plural or noun + 's')}"

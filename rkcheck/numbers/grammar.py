@@ -39,6 +39,7 @@ from typing import Any, Callable, Mapping
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import polynomials
+from rkcheck.numbers.formatting import count_text
 from rkcheck.numbers.intervals import Interval, exact_sqrt
 from rkcheck.numbers.reading import DecimalsMode
 
@@ -429,7 +430,7 @@ def _int_of_digits(digits: str) -> int:
 def parse(text: str) -> Expr:
     """Parse one entry.  Raises :class:`UserError` with the column of the problem."""
     if len(text) > MAX_ENTRY_LENGTH:
-        raise UserError(f"entry too long ({len(text):,} characters; the limit is {MAX_ENTRY_LENGTH:,})")
+        raise UserError(f"entry too long ({count_text(len(text))} characters; the limit is {count_text(MAX_ENTRY_LENGTH)})")
     return _Parser(text).parse()
 
 
@@ -498,7 +499,7 @@ def _check_value_bits(values: tuple[Fraction, ...], column: int) -> None:
     """Refuse an intermediate value larger than :data:`MAX_BITS` (the size budget)."""
     bits = max(_bits(v) for v in values)
     if bits > MAX_BITS:
-        raise UserError(f"value at column {column} is too large (about {bits:,} bits; the limit is {MAX_BITS:,})")
+        raise UserError(f"value at column {column} is too large (about {count_text(bits)} bits; the limit is {count_text(MAX_BITS)})")
 
 
 def _check_operand_bits(values: tuple[Fraction, ...], column: int) -> None:
@@ -506,7 +507,7 @@ def _check_operand_bits(values: tuple[Fraction, ...], column: int) -> None:
     twice the budget (the result could not fit, and computing it would cost time)."""
     bits = sum(_bits(v) for v in values)
     if bits > 2 * MAX_BITS:
-        raise UserError(f"value at column {column} is too large (about {bits:,} bits; the limit is {MAX_BITS:,})")
+        raise UserError(f"value at column {column} is too large (about {count_text(bits)} bits; the limit is {count_text(MAX_BITS)})")
 
 
 # ------------------------------------------------------------------- root(p, k)
@@ -618,7 +619,7 @@ def _check_exponent(value: Fraction, column: int) -> int:
 def _check_size(base: Fraction, n: int, column: int) -> None:
     bits = (base.numerator.bit_length() + base.denominator.bit_length()) * abs(n)
     if bits > MAX_BITS:
-        raise UserError(f"power at column {column} is too large (about {bits:,} bits)")
+        raise UserError(f"power at column {column} is too large (about {count_text(bits)} bits)")
 
 
 def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Fraction | None:

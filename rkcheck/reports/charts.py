@@ -7,14 +7,15 @@ from rkcheck.errors import UserError
 INSTALL_HINT = "charts need matplotlib: pip install 'rkcheck[plot]' (or pip install matplotlib)"
 
 
-def pyplot():
+def pyplot(option: str = "--chart"):
     try:
         import matplotlib
 
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        raise UserError(INSTALL_HINT, "--chart") from None
+        raise UserError(INSTALL_HINT.replace("charts", "pictures") if option == "--draw" else INSTALL_HINT,
+                        option) from None
     return plt
 
 
@@ -112,4 +113,43 @@ def workprec_chart(wp, title: str, out: str) -> None:
         ax.legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     _save(fig, out)
+    plt.close(fig)
+
+
+def tree_picture(drawing, title: str, out: str) -> None:
+    """The free tree of a :class:`~rkcheck.trees.drawing.TreeDrawing` as a picture: the
+    designated centre on top, each vertex above its children, centres filled red, the
+    root of the rooting given ringed.  Every vertex and edge carries an id (``vertex-3``,
+    ``edge-1-3``; SVG keeps them) so that a reader, or a test, can tell what was drawn."""
+    if not out.lower().endswith((".png", ".svg", ".pdf")):
+        raise UserError("the picture file must end in .png, .svg or .pdf", "--draw")
+    plt = pyplot("--draw")
+    n = drawing.vertices
+    width = max(drawing.x, default=0) + 1
+    height = max(drawing.depth, default=0) + 1
+    fig, ax = plt.subplots(figsize=(max(2.5, 0.7 * width + 1.5), max(2.0, 0.8 * height + 1.2)))
+    for p, v in drawing.edges:
+        (line,) = ax.plot([drawing.x[p], drawing.x[v]], [-drawing.depth[p], -drawing.depth[v]], color="0.35",
+                          linewidth=1.5, zorder=1)
+        line.set_gid(f"edge-{p}-{v}")
+    for v in range(n):
+        centre = v in drawing.centres
+        dot = ax.scatter([drawing.x[v]], [-drawing.depth[v]], s=140 if centre else 90, zorder=2,
+                         color="tab:red" if centre else "0.15", edgecolors="black")
+        dot.set_gid(f"vertex-{v}" + ("-centre" if centre else ""))
+    ring = ax.scatter([drawing.x[drawing.root]], [-drawing.depth[drawing.root]], s=420, zorder=3,
+                      facecolors="none", edgecolors="tab:blue", linewidths=2)
+    ring.set_gid(f"root-{drawing.root}")
+    from matplotlib.lines import Line2D
+
+    ax.legend(handles=[
+        Line2D([], [], marker="o", linestyle="", color="tab:red", markeredgecolor="black", label="centre"),
+        Line2D([], [], marker="o", linestyle="", markerfacecolor="none", markeredgecolor="tab:blue",
+               markersize=12, markeredgewidth=2, label="root of the rooting given"),
+    ], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2, frameon=False, fontsize=8)
+    ax.set_title(title, fontsize=10)
+    ax.set_xlim(-0.7, width - 0.3)
+    ax.set_ylim(-height + 0.4, 0.6)
+    ax.axis("off")
+    fig.savefig(out, dpi=130, bbox_inches="tight")
     plt.close(fig)

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.trees.rooted import (
     bracket,
     canonical_level_sequence,
@@ -56,9 +57,9 @@ class ConditionCode:
 
     def description(self) -> str:
         deg = "all Hamiltonians" if self.degree is None else f"degree ≤ {self.degree}"
-        out = f"{len(self.energy)} energy conditions up to order {self.order} ({deg})"
+        out = f"{counted(len(self.energy), 'energy condition')} up to order {self.order} ({deg})"
         if self.classical:
-            out += f" and {len(self.classical)} classical order conditions up to order {self.order}"
+            out += f" and {counted(len(self.classical), 'classical order condition')} up to order {self.order}"
         return out
 
 
@@ -225,7 +226,7 @@ def _python_residual_functions(code: ConditionCode, num: str) -> list[str]:
         if name == "order_conditions" and not code.classical:
             continue
         lines += ["", "", f"def {name}(A, b):",
-                  f'    """The {len(residuals)} residuals of the {what}, in rkcheck\'s order."""',
+                  f'    """The {counted(len(residuals), "residual")} of the {what}, in rkcheck\'s order."""',
                   "    w = elementary_weights(A, b)", "    return ["]
         for r in residuals:
             lines.append(f"        {_residual_text(r, lambda k: f'w[{k}]', '*', div)},  # {r.label}")

@@ -17,6 +17,8 @@ import sys
 from dataclasses import dataclass
 from typing import IO, TYPE_CHECKING, cast
 
+from rkcheck.numbers.formatting import count_text  # noqa: F401  (the CLI prints counts through the reports)
+
 if TYPE_CHECKING:  # imported by make_console: `rkcheck --help` needs no rich (start-up)
     from rich.console import Console
 

@@ -12,7 +12,7 @@ from rkcheck.energy.results import Condition
 from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.methods.tableau import Tableau
-from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.grammar import to_text
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
@@ -86,9 +86,10 @@ def residual_doc(r: Condition, dps: int) -> dict[str, Any]:
     enc = r.enclosure
     if r.residual is not None and hasattr(r.residual, "rational"):  # exact, in a number field
         q = r.residual.rational()
-        text = r.residual.text() if q is None else str(q)
-        return {"residual": decimal_string(enc.mid, dps), "residual_exact": text,
-                "radius": "0" if q is not None else radius_string(enc.rad), "digits": None}
+        if q is not None:
+            return {"residual": decimal_string(q, dps), "residual_exact": str(q), "radius": "0", "digits": None}
+        mid, radius = ball_strings(enc.mid, enc.rad, dps)
+        return {"residual": mid, "residual_exact": r.residual.text(), "radius": radius, "digits": None}
     if enc.exact:
         residual = decimal_string(enc.mid, dps)
         return {"residual": residual, "residual_exact": str(enc.mid), "radius": "0", "digits": None}
@@ -97,10 +98,11 @@ def residual_doc(r: Condition, dps: int) -> dict[str, Any]:
         # digits of the mid-point that the radius leaves meaningful, plus one
         ratio = enc.magnitude() / enc.rad
         sig = max(1, min(dps, len(str(int(ratio))) + 1))
+    mid, radius = ball_strings(enc.mid, enc.rad, sig)
     return {
-        "residual": decimal_string(enc.mid, sig),
+        "residual": mid,
         "residual_exact": None,
-        "radius": radius_string(enc.rad),
+        "radius": radius,
         "digits": r.verdict.digits if r.verdict.state == HOLDS_TO_DIGITS else None,
     }
 

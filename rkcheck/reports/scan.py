@@ -10,9 +10,11 @@ from __future__ import annotations
 import csv
 import io
 import json
+from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 from rkcheck.version import __version__
 
@@ -42,18 +44,18 @@ def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any]
     if fmt == "csv":
         return scan_csv(docs)
     if fmt == "junit":
-        return scan_junit(docs, elapsed)
+        return scan_junit(docs, elapsed, options.get("fail_on", "claims"))
     if fmt == "github":
-        return scan_github(docs)
+        return scan_github(docs, options.get("fail_on", "claims"))
     raise ValueError(f"unknown scan format {fmt!r}")
 
 
-def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False) -> str:
+def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False, fail_on: str = "claims") -> str:
     """The text report as plain text (for ``--output``)."""
     from rich.console import Console
 
     console = Console(record=True, file=io.StringIO(), no_color=True, width=140)
-    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants)
+    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants, fail_on=fail_on)
     return console.export_text()
 
 
@@ -65,7 +67,7 @@ def broken_claims(o: dict[str, Any]) -> list[dict[str, Any]]:
     return [c for c in ((o.get("result") or {}).get("claims") or []) if not c["met"]]
 
 
-def failing_conditions(o: dict[str, Any], limit: int = 5) -> list[dict[str, Any]]:
+def failing_conditions(o: dict[str, Any], limit: int | None = 5) -> list[dict[str, Any]]:
     conds = (o.get("result") or {}).get("conditions") or []
     return [c for c in conds if c["state"] == "fails"][:limit]
 
@@ -106,7 +108,15 @@ def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[s
 # ----------------------------------------------------------------------- CSV
 
 
+def _csv_bool(value: bool | None) -> str:
+    """A yes/no column: ``true``/``false`` as in TOML and JSON, empty when not applicable."""
+    return "" if value is None else ("true" if value else "false")
+
+
 def scan_csv(outcomes: list[dict[str, Any]]) -> str:
+    """One row per file, one vocabulary per column (docs/commands/scan.md): booleans
+    ``true``/``false``, verdicts ``holds``/``holds_to_digits``/``fails``, empty when the
+    column does not apply (a file that was not checked, no AVF verdict without a degree)."""
     buf = io.StringIO()
     w = csv.DictWriter(buf, fieldnames=CSV_COLUMNS, lineterminator="\n")
     w.writeheader()
@@ -123,12 +133,12 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
             "degree": "none" if r and opts.get("degree") is None else opts.get("degree", ""),
             "order": opts.get("order", ""),
             "classical_order": s.get("classical_order", ""), "quadrature_order": s.get("quadrature_order", ""),
-            "energy_order": s.get("energy_order", ""), "energy_order_all": s.get("energy_order_all", ""),
-            "equals_avf": "" if s.get("equals_avf") is None else s["equals_avf"],
+            "energy_order": s.get("energy_order", ""), "energy_order_all": _csv_bool(s.get("energy_order_all")),
+            "equals_avf": _csv_bool(s.get("equals_avf")),
             "conditions_checked": s.get("conditions_checked", ""), "conditions_failed": s.get("conditions_failed", ""),
             "first_failure": first["id"] if first else "",
             "claims": "" if claims is None else len(claims),
-            "claims_ok": "" if s.get("claims_ok") is None else s["claims_ok"],
+            "claims_ok": _csv_bool(s.get("claims_ok")),
             "broken_claims": "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)),
             "time": o["time"], "error": o["error"] or "",
             "symplectic": (s.get("symplectic") or {}).get("state", ""),
@@ -141,21 +151,82 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
 # --------------------------------------------------------------------- JUnit
 
 
-def failure_message(o: dict[str, Any]) -> str:
-    """Broken claims if any (the conditions are then as claimed), else the first failing
-    conditions."""
-    parts = [f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
-    fails = failing_conditions(o)
-    if fails and not parts:
-        s = _summary(o)
-        parts.append(
-            f"{s.get('conditions_failed', len(fails))} failing conditions (energy order {s.get('energy_order')}), first: "
-            + ", ".join(f"{c['id']} {c['bracket']} (R = {float(c['residual']):.6g})" for c in fails[:3])
-        )
-    return "; ".join(parts) or "check failed"
+def residual_text(c: dict[str, Any]) -> str:
+    """A condition's residual as the JSON document gives it: the exact value when it is
+    known (``-1/2880``, ``sqrt(3)/144``), else the certified ball ``mid ± radius``."""
+    if c.get("residual_exact") is not None:
+        return c["residual_exact"]
+    return f"{c['residual']} ± {c['radius']}"
 
 
-def scan_junit(outcomes: list[dict[str, Any]], total_time: float) -> str:
+def judged_by_claims(o: dict[str, Any], fail_on: str) -> bool:
+    """Whether a file's failure is about its claims (``--fail-on`` claims, or auto with
+    claims) rather than its conditions."""
+    return bool(broken_claims(o)) and fail_on != "conditions"
+
+
+def _condition_line(c: dict[str, Any]) -> str:
+    return f"condition {c['id']} {c['bracket']} (order {c['order']}) fails: R = {residual_text(c)}"
+
+
+def claim_evidence(o: dict[str, Any], claim: dict[str, Any]) -> list[str]:
+    """What contradicts a broken claim, from what the file's check found: the first
+    failing classical or quadrature condition, or the failing energy conditions the
+    claim covers (orders up to the claimed one, when the claim's degree is the one the
+    conditions were checked for); never the conditions beyond what the claim says."""
+    s = _summary(o)
+    kind = claim["claim"]
+    if kind == "classical_order" and s.get("classical_first_failure"):
+        return [f"first failing classical condition: {s['classical_first_failure']}"]
+    if kind == "quadrature_order" and s.get("quadrature_first_failure"):
+        return [f"first failing quadrature condition: {s['quadrature_first_failure']}"]
+    if kind != "energy_order" or claim["degree"] != s.get("degree"):
+        return []
+    limit = int(claim["claimed"]) if claim["claimed"].isdigit() else None  # "all": every order
+    conds = (o.get("result") or {}).get("conditions") or []
+    return [_condition_line(c) for c in conds if c["state"] == "fails" and (limit is None or c["order"] <= limit)]
+
+
+def _claim_line(c: dict[str, Any]) -> str:
+    return f"{c['place']}: claimed {c['claimed']}, found {c['found']}" + (f" ({c['note']})" if c.get("note") else "")
+
+
+def failure_message(o: dict[str, Any], fail_on: str = "claims") -> str:
+    """One line: the broken claims when the file is judged by them, else why the
+    conditions fail (the first failing ones, with exact residuals when known)."""
+    if judged_by_claims(o, fail_on):
+        return "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o))
+    s = _summary(o)
+    fails = failing_conditions(o, 3)
+    if fails:
+        n = s.get("conditions_failed", len(fails))
+        return (f"{n} failing condition{'s' if n != 1 else ''} (energy order {s.get('energy_order')}), first: "
+                + ", ".join(f"{c['id']} {c['bracket']} (R = {residual_text(c)})" for c in fails))
+    if s.get("inconsistent"):
+        return "Σb ≠ 1 (certain): the method is inconsistent"
+    return (s.get("require") or {}).get("reason") or "check failed"
+
+
+def failure_detail(o: dict[str, Any], fail_on: str = "claims", limit: int = 20) -> list[str]:
+    """The lines of a JUnit ``<failure>``: each broken claim with what contradicts it, or
+    (a file judged by its conditions) the failing conditions, at most ``limit`` of them."""
+    if judged_by_claims(o, fail_on):
+        lines = []
+        for c in broken_claims(o):
+            lines.append(f"claim {_claim_line(c)}")
+            evidence = claim_evidence(o, c)
+            lines += [f"  {e}" for e in evidence[:limit]]
+            if len(evidence) > limit:
+                lines.append(f"  … and {len(evidence) - limit} more")
+        return lines
+    fails = failing_conditions(o, None)
+    lines = [_condition_line(c) for c in fails[:limit]]
+    if len(fails) > limit:
+        lines.append(f"… and {len(fails) - limit} more")
+    return lines or [failure_message(o, fail_on)]
+
+
+def scan_junit(outcomes: list[dict[str, Any]], total_time: float, fail_on: str = "claims") -> str:
     """JUnit XML (the common Jenkins/Ant schema): one testcase per file."""
     t = totals(outcomes)
     cases = []
@@ -170,12 +241,8 @@ def scan_junit(outcomes: list[dict[str, Any]], total_time: float) -> str:
             msg = o["error"] or "error"
             cases.append(head + f">\n      <error message={quoteattr(msg)} type=\"UserError\">{escape(msg)}</error>\n    </testcase>")
         else:
-            msg = failure_message(o)
-            detail = "\n".join(
-                [f"claim {c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o)]
-                + [f"condition {c['id']} {c['bracket']}: {c['state']}, R = {c['residual']} ± {c['radius']}"
-                   for c in failing_conditions(o, 20)]
-            )
+            msg = failure_message(o, fail_on)
+            detail = "\n".join(failure_detail(o, fail_on))
             cases.append(head + f">\n      <failure message={quoteattr(msg)} type=\"EnergyCheck\">{escape(detail)}</failure>\n    </testcase>")
     suite = (
         f'  <testsuite name="rkcheck" tests="{t["files"]}" failures="{t["failed"]}" errors="{t["error"]}" '
@@ -197,6 +264,38 @@ def _gh_escape(text: str, prop: bool = False) -> str:
     return text
 
 
+def repository_root(path: str) -> Path | None:
+    """The repository a file belongs to: the nearest folder above it holding ``.git`` (a
+    folder, or a file in a worktree or submodule), else the nearest one holding a
+    ``pyproject.toml``; None when there is neither."""
+    here = Path(path).absolute().parent
+    folders = [here, *here.parents]
+    for marker in (".git", "pyproject.toml"):
+        for d in folders:
+            if (d / marker).exists():
+                return d
+    return None
+
+
+def annotation_path(path: str) -> str:
+    """A file as GitHub wants it in an annotation: relative to the repository root (which
+    is the workflow's working copy), with ``/``, whatever folder rkcheck ran in and
+    whether the path came from the command line or ``[tool.rkcheck]``.  A file outside
+    any repository, and an ``@name``, are left as they are."""
+    import os
+
+    if path.startswith("@") or path == "-":
+        return path
+    root = repository_root(path)
+    if root is None:
+        return path
+    full = Path(os.path.abspath(path))
+    try:
+        return full.relative_to(os.path.abspath(root)).as_posix()
+    except ValueError:
+        return path
+
+
 def _annotation(level: str, path: str, line: int | None, title: str, message: str) -> str:
     props = f"file={_gh_escape(path, True)}"
     if line:
@@ -205,17 +304,20 @@ def _annotation(level: str, path: str, line: int | None, title: str, message: st
     return f"::{level} {props}::{_gh_escape(message)}"
 
 
-def scan_github(outcomes: list[dict[str, Any]]) -> str:
+def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
     """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
-    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file."""
+    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file; files
+    are named relative to their repository's root (:func:`annotation_path`)."""
+    import re
+
     out = []
     for o in outcomes:
-        path, lines = o["path"], o.get("lines") or {}
+        path, lines = annotation_path(o["path"]), o.get("lines") or {}
         if o["status"] == "error":
             line = None
             err = o["error"] or ""
-            import re
-
+            if err.startswith(o["path"] + ": "):  # the message names the file as the annotation does
+                err = path + err[len(o["path"]):]
             m = re.search(r"line (\d+)", err)
             if m:
                 line = int(m.group(1))
@@ -228,9 +330,10 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
                 out.append(_annotation("error", path, line, f"rkcheck: claim {c['claim']}",
                                        f"{c['place']}: claimed {c['claimed']}, found {c['found']}"
                                        + (f" ({c['note']})" if c.get("note") else "")))
-            if not broken:
+            if not judged_by_claims(o, fail_on):
                 line = lines.get("tableau") or lines.get("family")
-                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail", failure_message(o)))
+                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail",
+                                       failure_message(o, fail_on)))
         for w in (o.get("result") or {}).get("warnings", []):
             out.append(_annotation("warning", path, lines.get("tableau"), "rkcheck", w))
     return "\n".join(out) + ("\n" if out else "")
@@ -250,17 +353,20 @@ def compact_constant(value: float) -> str:
 
 
 def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
-                     constants: bool = False) -> None:
+                     constants: bool = False, fail_on: str = "claims", quiet: bool = False) -> None:
     """The scan table; ``constants``: with a column C (the energy error constant), as
-    ``scan --sort energy`` shows it."""
+    ``scan --sort energy`` shows it; ``quiet``: problems only (the rows of files that
+    fail or cannot be checked, no table when there are none), then the totals."""
     outcomes = outcome_docs(outcomes)
     root, shown = _common_root([o["path"] for o in outcomes])
-    t = _scan_table(f"files under {root}/" if root else None, constants)
-    for o in outcomes:
-        t.add_row(*_scan_row(o, shown, constants))
-    _keep_verdict_widths(t)
-    console.print(t)
-    _print_notes(outcomes, shown, verbose, console)
+    rows = [o for o in outcomes if not quiet or o["status"] in ("failed", "error")]
+    if rows or not quiet:
+        t = _scan_table(f"files under {root}/" if root else None, constants)
+        for o in rows:
+            t.add_row(*_scan_row(o, shown, constants))
+        _keep_verdict_widths(t)
+        console.print(t)
+    _print_notes(outcomes, shown, verbose, console, fail_on)
     console.print(_totals_line(outcomes, total_time, interrupted))
 
 
@@ -334,7 +440,7 @@ def _keep_verdict_widths(t: Any) -> None:
         column.min_width = max(cell_len(x) for x in texts)
 
 
-def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console) -> None:
+def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console, fail_on: str = "claims") -> None:
     """Below the table: each error and failure, and with ``verbose`` the warnings."""
     from rich.text import Text
 
@@ -342,7 +448,7 @@ def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console) 
         if o["status"] == "error":
             console.print(Text(f"error: {o['error']}", style="red"))
         elif o["status"] == "failed":
-            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o)}", style="red"))
+            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o, fail_on)}", style="red"))
         if verbose:
             for w in (o.get("result") or {}).get("warnings", []):
                 console.print(Text(f"warning: {shown(o['path'])}: {w}", style="yellow"))
@@ -353,8 +459,8 @@ def _totals_line(outcomes: list[dict[str, Any]], total_time: float, interrupted:
 
     tot = totals(outcomes)
     line = Text(
-        f"{tot['files']} file{'s' if tot['files'] != 1 else ''}: {tot['ok']} ok, {tot['failed']} failed, "
-        f"{tot['error']} errors, "
+        f"{counted(tot['files'], 'file')}: {tot['ok']} ok, {tot['failed']} failed, "
+        f"{counted(tot['error'], 'error')}, "
         f"{tot['skipped']} skipped; {total_time:.1f} s",
         style="bold red" if tot["failed"] or tot["error"] else "bold green",
     )

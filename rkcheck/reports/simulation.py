@@ -7,6 +7,7 @@ from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
+from rkcheck.numbers.formatting import count_text, counted
 from rkcheck.reports.text import plain
 
 
@@ -35,7 +36,7 @@ def render_energy_fit(tab, ham, fit, agreement, console: Console) -> None:
 
 
 def render_series(tab, ham, h, steps, dps, times, dH, console: Console) -> None:
-    console.print(Text(f"{tab.name} on {ham.name}: h = {h}, {steps} steps, "
+    console.print(Text(f"{tab.name} on {ham.name}: h = {h}, {counted(steps, 'step')}, "
                        f"{'float64' if not dps else f'{dps} digits'}", style="bold"))
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("t", justify="right")
@@ -57,5 +58,5 @@ def render_workprec(wp, ham, console: Console) -> None:
     for col, just in columns:
         t.add_column(col, justify=just)
     for r in wp.rows:
-        t.add_row(*plain(r.name, r.steps, f"{float(r.h):.4g}", f"{r.seconds:.4f}", _e(r.error), _e(r.energy_error)))
+        t.add_row(*plain(r.name, count_text(r.steps), f"{float(r.h):.4g}", f"{r.seconds:.4f}", _e(r.error), _e(r.energy_error)))
     console.print(t)

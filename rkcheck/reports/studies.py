@@ -9,7 +9,7 @@ from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
-from rkcheck.numbers.formatting import decimal_string
+from rkcheck.numbers.formatting import count_text, decimal_string
 from rkcheck.reports.text import plain
 
 
@@ -31,7 +31,7 @@ def render_bench(rows, t_tables: float, console: Console, title: str) -> None:
     for r in rows:
         digits = "exact" if r.min_digits is None and r.backend == "exact" else ("—" if r.min_digits is None else str(r.min_digits))
         agrees = Text("yes", style="green") if r.agrees else Text("no", style="bold red")
-        t.add_row(*plain(label(r.backend), f"{r.seconds:.4f}", f"{r.per_second:,.0f}", digits, r.failures, agrees))
+        t.add_row(*plain(label(r.backend), f"{r.seconds:.4f}", count_text(round(r.per_second)), digits, r.failures, agrees))
     console.print(t)
     console.print("agrees = the same set of certified failures as the most precise backend (last row)")
 

@@ -18,7 +18,13 @@ from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.formatting import decimal_string, radius_string
+from rkcheck.numbers.formatting import (
+    ball_strings,
+    count_text,
+    counted,
+    decimal_string,
+    radius_string,
+)
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
@@ -48,7 +54,7 @@ def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) 
             return frac
         return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
     if verdict.state == FAILS:
-        return f"{decimal_string(enc.mid, sig)} ± {radius_string(enc.rad)}"
+        return "{} ± {}".format(*ball_strings(enc.mid, enc.rad, sig))
     return f"|R| ≤ {radius_string(enc.magnitude() + enc.rad)}"
 
 
@@ -104,9 +110,10 @@ def per_order_table(res: CheckResult) -> Table:
     if show_digits:
         t.add_column("min digits", justify="right")
     for p in res.per_order:
-        failed = Text(str(p.failed), style="bold red" if p.failed else "")
+        failed = Text(count_text(p.failed), style="bold red" if p.failed else "")
         digits = "exact" if p.checked and p.min_digits is None and p.held else (str(p.min_digits) if p.min_digits is not None else "")
-        t.add_row(*plain(p.order, p.order + 1, p.conditions, p.checked, p.held, failed, *([digits] if show_digits else [])))
+        t.add_row(*plain(p.order, p.order + 1, *map(count_text, (p.conditions, p.checked, p.held)), failed,
+                         *([digits] if show_digits else [])))
     return t
 
 
@@ -120,8 +127,8 @@ def _backend_text(res: CheckResult) -> str:
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 
-def claims_table(claim_results) -> Table:
-    t = Table(title=Text("Claims ([expect])"), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+def claims_table(claim_results, title: str = "Claims ([expect])") -> Table:
+    t = Table(title=Text(title), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("claim", no_wrap=True)
     t.add_column("claimed")
     t.add_column("found")
@@ -135,9 +142,10 @@ def claims_table(claim_results) -> Table:
 
 def render_check(
     res: CheckResult, console: Console, show_all: bool = False, quiet: bool = False,
-    verbose: bool = False, fail_on: str = "auto",
+    verbose: bool = False, fail_on: str = "auto", draw: bool = False,
 ) -> None:
-    """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures."""
+    """The ``verify`` report: header, facts, AVF, energy order, per-order counts, failures
+    (``draw``: with the free tree of each failing condition shown, drawn)."""
     o = res.options
     deg = "all Hamiltonians" if o.degree is None else f"degree ≤ {o.degree}"
     total = sum(p.conditions for p in res.per_order)
@@ -146,7 +154,7 @@ def render_check(
             console.print(Text(f"warning: {w}", style="yellow"))
     if not quiet:
         console.print(header(res.values))
-        console.print(f"{deg}, order ≤ {o.order}: {total} conditions, {_backend_text(res)}")
+        console.print(f"{deg}, order ≤ {o.order}: {counted(total, 'condition')}, {_backend_text(res)}")
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
@@ -183,15 +191,36 @@ def render_check(
                 style="dim",
             )
     if show_all:
-        console.print(conditions_table(res.conditions, f"All conditions ({len(res.conditions)} checked)"))
-    elif res.failures and not quiet:  # --quiet: the verdict line says how many fail
+        console.print(conditions_table(res.conditions, f"All conditions ({count_text(len(res.conditions))} checked)"))
+    elif res.failures and (not quiet or judged_by_conditions(res, fail_on)):
+        # --quiet prints problems only: failing conditions are one when they decide the verdict
         shown = res.failures[:MAX_FAILURES_SHOWN]
-        title = f"Failing conditions ({len(res.failures)} of {len(res.conditions)} checked"
+        title = f"Failing conditions ({count_text(len(res.failures))} of {count_text(len(res.conditions))} checked"
         title += f"; the first {len(shown)}, --all lists every one)" if len(shown) < len(res.failures) else ")"
         console.print(conditions_table(shown, title))
-    if res.claims:
+        if draw:
+            draw_conditions(shown, console)
+    if res.claims and not quiet:
         console.print(claims_table(res.claims))
+    elif res.claims and any(not r.met for r in res.claims):  # --quiet: the broken claims only
+        console.print(claims_table([r for r in res.claims if not r.met], "Broken claims ([expect])"))
     console.print(verdict_line(res, res.claims, fail_on))
+
+
+def draw_conditions(conditions: Sequence[Condition], console: Console) -> None:
+    """The free trees of some conditions, drawn from their centres, side by side."""
+    from rich.columns import Columns
+
+    console.print(Text("Their free trees, drawn from the centre:"))
+    console.print(Columns([Group(Text(r.id, style="bold"), tree_text(r.tree.level_sequence, mark_root=False))
+                           for r in conditions], padding=(1, 4)))
+    console.print()
+
+
+def judged_by_conditions(res: CheckResult, fail_on: str) -> bool:
+    """Whether failing conditions decide the file's verdict under ``--fail-on``: always
+    with ``conditions``, with ``auto`` when the file makes no claims."""
+    return fail_on == "conditions" or (fail_on == "auto" and not res.claims)
 
 
 def _order_text(r, what: str) -> str:
@@ -247,7 +276,8 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
         return conditions
     broken = [r for r in claims if not r.met]
     claims_text = (Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)}", style="bold red") if broken
-                   else Text(f"OK: all {len(claims)} claims met", style="bold green"))
+                   else Text("OK: the claim is met" if len(claims) == 1 else f"OK: all {len(claims)} claims met",
+                             style="bold green"))
     if fail_on == "conditions":
         head, other = conditions, claims_text.plain
     else:
@@ -262,13 +292,17 @@ def final_line(res: CheckResult) -> Text:
     "to D digits" first and never "certificate"; ``--require`` turns a shortfall into
     FAIL; a certain ``Σb ≠ 1`` fails the method."""
     v = overall(res)
-    n = len(res.conditions)
+    count = len(res.conditions)
+    n = counted(count, "condition")
+    every = f"the {n}" if count == 1 else f"all {n}"  # "the 1 condition holds", "all 4 conditions hold"
+    holds = "holds" if count == 1 else "hold"
     if len(res.failures):
-        return Text(f"FAIL: {len(res.failures)} of {n} conditions fail; energy order {res.energy_order}",
-                    style="bold red")
+        failing = len(res.failures)
+        return Text(f"FAIL: {count_text(failing)} of {n} {'fails' if failing == 1 else 'fail'}; "
+                    f"energy order {res.energy_order}", style="bold red")
     if inconsistent(res):
-        return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {n} energy conditions say",
-                    style="bold red")
+        return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {counted(count, 'energy condition')} "
+                    f"say{'s' if count == 1 else ''}", style="bold red")
     shortfall = requirement_shortfall(res)
     if shortfall is not None:
         return Text(f"FAIL: {shortfall.text()}", style="bold red")
@@ -277,17 +311,17 @@ def final_line(res: CheckResult) -> Text:
         if digits is not None:
             return Text(
                 f"OK to {digits} digits (not a proof): energy preserved to all orders for degree ≤ "
-                f"{res.options.degree} ({_certificate_name(res)}); {n} conditions checked",
+                f"{res.options.degree} ({_certificate_name(res)}); {n} checked",
                 style="bold yellow",
             )
         return Text(
             f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({_certificate_name(res)}); "
-            f"{n} conditions checked",
+            f"{n} checked",
             style="bold green",
         )
     if v.state == HOLDS:
-        return Text(f"OK: all {n} conditions hold exactly", style="bold green")
-    return Text(f"OK to {v.digits} digits (not a proof): all {n} conditions hold to at least {v.digits} digits",
+        return Text(f"OK: {every} {holds} exactly", style="bold green")
+    return Text(f"OK to {v.digits} digits (not a proof): {every} {holds} to at least {v.digits} digits",
                 style="bold yellow")
 
 
@@ -334,13 +368,13 @@ def _row_sum_text(tab: Tableau, i: int) -> str:
 def render_condition_list(listing, console: Console, count_only: bool) -> None:
     """``conditions``: counts per order, and the list of condition trees."""
     deg = "no degree bound" if listing.degree is None else f"max degree ≤ {listing.degree}"
-    console.print(f"Energy conditions up to order {listing.order} ({deg}): {len(listing)}")
+    console.print(f"Energy conditions up to order {listing.order} ({deg}): {count_text(len(listing))}")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("order", justify="right")
     t.add_column("vertices", justify="right")
     t.add_column("conditions", justify="right")
     for k, v in listing.counts_by_order().items():
-        t.add_row(*plain(k, k + 1, v))
+        t.add_row(*plain(k, k + 1, count_text(v)))
     console.print(t)
     if count_only:
         return
@@ -355,13 +389,40 @@ def render_condition_list(listing, console: Console, count_only: bool) -> None:
     console.print(lst)
 
 
+def tree_drawing(seq: Sequence[int]):
+    """The :class:`~rkcheck.trees.drawing.TreeDrawing` of a level sequence (for pictures)."""
+    from rkcheck.trees.drawing import draw
+
+    return draw(tuple(seq))
+
+
+def tree_text(seq: Sequence[int], mark_root: bool = True) -> Text:
+    """The free tree of a level sequence drawn in Unicode (:mod:`rkcheck.trees.drawing`):
+    one ``●`` per vertex, centres and the root of the rooting given labelled."""
+    from rkcheck.trees.drawing import draw
+
+    out = Text()
+    for k, line in enumerate(draw(tuple(seq)).lines(mark_root)):
+        dot = line.index("●")
+        out.append(line[:dot], style="dim")
+        out.append(line[dot:dot + 1], style="bold magenta" if "centre" in line[dot:] else "bold")
+        out.append(line[dot + 1:], style="cyan")
+        if k < len(seq) - 1:
+            out.append("\n")
+    return out
+
+
 def render_explanation(ex: EnergyCondition, console: Console) -> None:
-    """``explain``: the free tree, its rootings with signs and σ, and the weights."""
+    """``explain``: the free tree (drawn), its rootings with signs and σ, and the weights."""
     given = ",".join(map(str, ex.given))
     tableau = ex.tableau
+    drawn = f"The free tree of {given}, drawn from its centre (root: the root of {given}):"
     if ex.tree is None:
         why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
-        console.print(f"{given}: {ex.vertices} vertices — superfluous free tree, no energy condition ({why})")
+        console.print(f"{given}: {counted(ex.vertices, 'vertex', 'vertices')} — superfluous free tree, no energy "
+                      f"condition ({why})")
+        console.print(drawn)
+        console.print(tree_text(ex.given))
         return
     c = ex.tree
     console.print(Text(f"Energy condition {c.id}  {c.bracket}", style="bold"))
@@ -371,6 +432,8 @@ def render_explanation(ex: EnergyCondition, console: Console) -> None:
         f"{ex.vertices} vertices (order {c.order}), max degree {ex.max_degree}: "
         f"a condition for every degree m ≥ {ex.max_degree}"
     )
+    console.print(drawn)
+    console.print(tree_text(ex.given))
     console.print("R = Σ_u (−1)^κ / σ(u) · a(B₋(u)) over the distinct rootings u:")
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
     t.add_column("rooting u", no_wrap=True)

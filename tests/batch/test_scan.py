@@ -161,7 +161,7 @@ def test_csv_round_trips(capsys, folder):
     assert [Path(row["file"]).name for row in rows] == [
         "a-good.toml", "b-wrong-claim.toml", "d-broken.toml", "e-other.toml", "c-no-claims.json"]
     rk4 = rows[1]
-    assert rk4["classical_order"] == "4" and rk4["claims_ok"] == "False" and rk4["stages"] == "4"
+    assert rk4["classical_order"] == "4" and rk4["claims_ok"] == "false" and rk4["stages"] == "4"
     assert "claimed 5, found 4" in rk4["broken_claims"]
     # write it back with the csv module and read it again: identical
     buf = io.StringIO()
@@ -206,3 +206,156 @@ def test_pyproject_configuration_and_flags_override(tmp_path, capsys, folder, mo
 
 
 # Ctrl-C, SIGTERM and worker death: tests/batch/test_scan_signals.py
+
+
+def test_a_scan_that_finds_nothing_is_an_error_unless_allowed(capsys, tmp_path, folder, monkeypatch):
+    import rkcheck
+
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    (empty / "notes.txt").write_text("no tableau here", encoding="utf-8")
+    refused = run_cli(capsys, "scan", str(empty))
+    assert refused.code == 2 and refused.out == "" and len(refused.err.strip().splitlines()) == 1
+    assert str(empty) in refused.err and "--allow-empty" in refused.err
+    # a glob that leaves nothing: the same refusal, saying how many files it took away
+    # (the fixture folder has 5 *.toml/*.json files)
+    r = run_cli(capsys, "scan", str(folder), "--exclude", "*.toml", "--exclude", "*.json")
+    assert r.code == 2 and "(5 excluded" in r.err
+    allowed = run_cli(capsys, "scan", str(empty), "--allow-empty")
+    assert allowed.code == 0 and "0 files" in allowed.out
+    # the API: an RkcheckError with the CLI's message, or an empty result when allowed
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.scan([empty])
+    assert refused.err.strip() == f"rkcheck: error: {err.value}"
+    assert rkcheck.scan([empty], allow_empty=True).rows == []
+    # [tool.rkcheck] allow_empty, validated like every other key
+    (empty / "pyproject.toml").write_text("[tool.rkcheck]\npaths = ['sub']\nallow_empty = true\n", encoding="utf-8")
+    (empty / "sub").mkdir()
+    monkeypatch.chdir(empty)
+    assert run_cli(capsys, "scan").code == 0
+    (empty / "pyproject.toml").write_text("[tool.rkcheck]\npaths = ['sub']\nallow_empty = 'yes'\n", encoding="utf-8")
+    r = run_cli(capsys, "scan")
+    assert r.code == 2 and "tool.rkcheck.allow_empty: expected true or false" in r.err
+
+
+@pytest.mark.parametrize("marker", [".git", "pyproject.toml"])
+def test_github_annotations_name_files_from_the_repository_root(capsys, tmp_path, monkeypatch, marker):
+    # a repository whose pyproject.toml sits in a subproject: GitHub wants paths from the
+    # repository root (the .git folder), else from the pyproject.toml's folder
+    repo = tmp_path / "repo"
+    project = repo / "project"
+    (project / "tabs" / "sub").mkdir(parents=True)
+    if marker == ".git":
+        (repo / ".git").mkdir()
+    (project / "pyproject.toml").write_text('[tool.rkcheck]\npaths = ["tabs"]\nformat = "github"\njobs = 1\n',
+                                            encoding="utf-8")
+    (project / "tabs" / "sub" / "wrong.toml").write_text(RK4_WRONG, encoding="utf-8")
+    (project / "tabs" / "broken.toml").write_text(BROKEN, encoding="utf-8")
+    root = repo if marker == ".git" else project
+    want = {name: (project / "tabs" / name).relative_to(root).as_posix() for name in ("sub/wrong.toml", "broken.toml")}
+    for cwd in (project, project / "tabs" / "sub"):  # [tool.rkcheck] paths are absolute once read
+        monkeypatch.chdir(cwd)
+        lines = run_cli(capsys, "scan").out.strip().splitlines()
+        files = [re.match(r"::error file=([^,]+),", line).group(1) for line in lines]
+        assert files == [want["broken.toml"], want["sub/wrong.toml"]], lines
+        # the error message names the file the same way
+        assert lines[0].endswith(f"::{want['broken.toml']}: A[1][2]: unexpected ')' at column 7")
+    monkeypatch.chdir(tmp_path)  # paths given on the command line, from outside the repository
+    lines = run_cli(capsys, "scan", str(project / "tabs"), "--format", "github").out.strip().splitlines()
+    assert [re.match(r"::error file=([^,]+),", line).group(1) for line in lines] == [
+        want["broken.toml"], want["sub/wrong.toml"]]
+
+
+def test_github_annotations_outside_a_repository_keep_the_path_given(capsys, tmp_path, monkeypatch):
+    from rkcheck.reports.scan import repository_root
+
+    (tmp_path / "w.toml").write_text(RK4_WRONG, encoding="utf-8")
+    if repository_root(str(tmp_path / "w.toml")) is not None:
+        pytest.skip("the temporary folder lies inside a repository")
+    monkeypatch.chdir(tmp_path)
+    out = run_cli(capsys, "scan", "w.toml", "--format", "github").out
+    assert out.startswith("::error file=w.toml,")
+
+
+RK4_A = [["0", "0", "0", "0"], ["1/2", "0", "0", "0"], ["0", "1/2", "0", "0"], ["0", "0", "1", "0"]]
+RK4_B = ["1/6", "1/3", "1/3", "1/6"]
+# RK4 claims energy order 5 (it is 4) and classical order 5 (it is 4)
+RK4_OVERCLAIMS = """[method]
+name = "RK4, two wrong claims"
+[tableau]
+A = [[0, 0, 0, 0], ["1/2", 0, 0, 0], [0, "1/2", 0, 0], [0, 0, 1, 0]]
+b = ["1/6", "1/3", "1/3", "1/6"]
+[expect]
+energy_order = {degree = "none", value = 5}
+classical_order = 5
+"""
+CONDITION_LINE = re.compile(r"condition ([\d,]+) \S+ \(order (\d+)\) fails: R = (\S+)$")
+
+
+def _reference_failures(vertices):
+    """(id, exact residual) of RK4's failing energy conditions with this many vertices,
+    from the brute-force reference."""
+    from fractions import Fraction
+
+    from support import reference as ref
+
+    A = [[Fraction(x) for x in row] for row in RK4_A]
+    b = [Fraction(x) for x in RK4_B]
+    out = {}
+    for cond in ref.energy_conditions(vertices):
+        r = ref.energy_residual(cond, A, b)
+        if r != 0:
+            out[",".join(map(str, cond["id"]))] = r
+    return out
+
+
+def _junit_failure(capsys, path, *extra):
+    r = run_cli(capsys, "scan", str(path), "--format", "junit", "--jobs", "1", *extra)
+    case = ET.fromstring(r.out).find("testsuite").find("testcase")
+    return case.find("failure")
+
+
+def test_junit_lists_what_the_broken_claims_cover_with_exact_residuals(capsys, tmp_path):
+    from fractions import Fraction
+
+    from support import reference as ref
+
+    path = tmp_path / "rk4.toml"
+    path.write_text(RK4_OVERCLAIMS, encoding="utf-8")
+    failure = _junit_failure(capsys, path)  # checked to order 8: conditions fail at orders 5 to 8
+    lines = failure.text.splitlines()
+    energy = lines.index("claim expect.energy_order: claimed 5, found 4")
+    classical = lines.index("claim expect.classical_order: claimed 5, found 4")
+    listed = {}
+    for line in lines[energy + 1:classical]:
+        m = CONDITION_LINE.search(line)
+        assert m, line
+        assert m.group(2) == "5"  # what the claim "energy order 5" covers, nothing beyond
+        listed[m.group(1)] = Fraction(m.group(3))  # an exact value, not a decimal ± 0
+    assert listed == _reference_failures(6)  # order 5 = 6 vertices
+    # the classical claim: the first failing condition a(t) = 1/γ(t), a tree with 5 vertices
+    (evidence,) = lines[classical + 1:]
+    assert evidence.startswith("  first failing classical condition: a(")
+    A = [[Fraction(x) for x in row] for row in RK4_A]
+    b = [Fraction(x) for x in RK4_B]
+    failing_gammas = {ref.gamma(t) for t in ref.rooted_trees(5) if ref.elementary_weight(t, A, b) != Fraction(1, ref.gamma(t))}
+    assert int(evidence.rsplit("= 1/", 1)[1]) in failing_gammas
+
+
+def test_junit_judged_by_conditions_lists_them_exactly_or_as_balls(capsys, tmp_path):
+    from fractions import Fraction
+
+    path = tmp_path / "rk4.json"
+    path.write_text(RK4_NO_CLAIMS, encoding="utf-8")
+    failure = _junit_failure(capsys, path, "--order", "5", "--fail-on", "conditions")
+    listed = {m.group(1): Fraction(m.group(3)) for m in map(CONDITION_LINE.search, failure.text.splitlines())}
+    assert listed == _reference_failures(6)
+    assert "±" not in failure.text and "±" not in failure.get("message")
+    # certified balls: an inexact residual is a ball with a nonzero radius around the exact value
+    balls = _junit_failure(capsys, path, "--order", "5", "--fail-on", "conditions", "--arithmetic", "ball", "--dps", "30")
+    exact = _reference_failures(6)
+    for line in balls.text.splitlines():
+        m = re.search(r"condition ([\d,]+) .* fails: R = (\S+) ± (\S+)$", line)
+        assert m, line
+        mid, rad = Fraction(m.group(2)), Fraction(m.group(3))
+        assert 0 < rad < Fraction(1, 10**25) and abs(mid - exact[m.group(1)]) <= rad

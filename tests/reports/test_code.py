@@ -182,3 +182,27 @@ def test_cli_emit_and_its_option_errors(capsys, tmp_path):
         extra = [] if "--emit" in args or message == "go with --emit" else ["--emit", "python"]
         r = run_cli(capsys, "conditions", "--order", "4", *extra, *args)
         assert r.code == 2 and message in r.err and len(r.err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("language, weight", [("python", r"w\[(\d+)\]"), ("julia", r"w\[(\d+)\]"),
+                                               ("matlab", r"w\((\d+)\)")])
+def test_emitted_residuals_have_their_like_terms_combined(language, weight):
+    # each residual is written with as many terms as sympy's expansion of it has: no two
+    # terms with the same weights, no constant written twice
+    import re
+
+    import sympy as sp
+
+    from rkcheck.api.trees import conditions as listing_of
+
+    text = emit(listing_of(6, None).listing, language, classical=True)
+    lines = [line for line in text.splitlines() if re.match(r"\s+\(?[-\w\[\]()* +]+\)? / (Fraction\()?\d+", line)
+             or re.match(r"\s+\d\*w[\[(]", line)]
+    assert len(lines) > 20
+    for line in lines:
+        body = re.split(r"\s*(?:,|; \.\.\.)\s*(?:#|%)", line)[0].strip()
+        whole = re.match(r"\((.*)\) / (?:Fraction\()?\d+\)?$", body)
+        body = whole.group(1) if whole else body
+        expr = sp.sympify(re.sub(weight, r"w\1", body), locals={f"w{k}": sp.Symbol(f"w{k}") for k in range(60)})
+        written = len(re.split(r"(?<=\S) [+-] ", body))
+        assert written == len(sp.Add.make_args(sp.expand(expr))), line
