@@ -7,6 +7,7 @@ import click
 from rkcheck.cli.common import (
     DEGREE,
     check_output_target,
+    exit_codes,
     output_options,
     settings,
     stdout_console,
@@ -44,7 +45,7 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     render_conditions(result, stdout_console(), show_all=show_all or settings().verbose)
 
 
-@click.command()
+@click.command(epilog=exit_codes(usage="a bad file, option, equation, or a limit reached (one line on stderr)"))
 @click.argument("file", metavar="FILE")
 @click.option("--degree", "-m", type=DEGREE, required=True, help="Polynomial degree m of the Hamiltonians ('none' = no bound).")
 @click.option("--order", "-N", type=click.IntRange(1, 12), required=True, help="Energy order: every condition up to it.")
@@ -71,9 +72,6 @@ def solve(file, degree, order, classical_order, where, max_seconds, fmt, output)
     Examples:
       rkcheck solve tableaux/families/theorem1-s2-m3.toml --degree 3 --order 6
       rkcheck solve family.toml -m 5 -N 6 --where "b1 + b2 + b3 = 1" --format json
-
-    \b
-    Exit code: 0 solved (whatever the set), 2 bad file, option or a limit reached.
     """
     from rkcheck.api.families import load_family
     from rkcheck.api.families import solve as run
