@@ -11,7 +11,9 @@ JSON (added to ``summary``; keys are a public interface, see docs/json-schema.md
 * ``stability``: ``R`` (text), ``numerator``/``denominator`` (coefficient texts, ascending
   powers, or null), ``identity`` (``state``, ``digits`` of R(z)R(−z) ≡ 1), ``defect``
   (text of R(z)R(−z) − 1), ``leading_power``, ``leading_coefficient``,
-  ``quadratic_energy_order`` (null = every order);
+  ``quadratic_energy_order`` (proven: null = every order, exactly),
+  ``quadratic_energy_order_to_digits`` and ``quadratic_energy_order_digits`` (the order
+  reached counting coefficients that vanish only to digits, and those digits);
 * ``error_constant``: null, or ``norm`` ("euclidean"), ``degree``, ``energy_order``,
   ``order``, ``conditions``, ``failing``, ``value`` (decimal), ``squared`` (exact p/q or
   null), ``lower``, ``upper``.
@@ -54,8 +56,23 @@ def stability_doc(stab: StabilityFunction) -> dict[str, Any]:
         "defect": stab.defect_text(),
         "leading_power": stab.leading_power,
         "leading_coefficient": None if stab.leading_coefficient is None else _coefficient_text(stab.leading_coefficient),
-        "quadratic_energy_order": stab.quadratic_energy_order,
+        **_quadratic_orders(stab),
     }
+
+
+def _quadratic_orders(stab: StabilityFunction) -> dict[str, Any]:
+    """The m = 2 energy order from ``R(z)R(−z) − 1 = Σ e_2k z^2k``: proven (every e_2k
+    before it exactly 0), and reached when the e_2k that vanish only to digits count."""
+    reach = stab.quadratic_energy_order
+    top = stab.leading_power if stab.leading_power is not None else len(stab.defect)
+    proven, digits = reach, []
+    for k in range(2, top, 2):
+        v = sc.verdict(stab.defect[k])
+        if v.state != HOLDS:
+            proven = k - 1 if proven is None else min(proven, k - 1)
+            digits.append(v.digits)
+    return {"quadratic_energy_order": proven, "quadratic_energy_order_to_digits": reach,
+            "quadratic_energy_order_digits": min(digits) if digits else None}
 
 
 def error_constant_doc(ec: ErrorConstant | None) -> dict[str, Any] | None:

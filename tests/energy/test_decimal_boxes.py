@@ -93,13 +93,16 @@ def test_rk4_from_json_dumps_keeps_order_four(tmp_path):
     path.write_text(json.dumps({"tableau": {"A": A, "b": b}}))  # 0.16666666666666666, ...
     doc = _json(run_subprocess("verify", str(path), "--order", "5", "--format", "json"))
     s = doc["summary"]
-    assert s["classical_order"] == 4
-    assert s["energy_order"] == 4
+    # order 4 is reached to digits only: the orders count proven holds (definitions §5),
+    # and a(τ) = Σb = 1 already holds only to digits for these doubles' rounding intervals
+    assert (s["classical_order"], s["classical_order_to_digits"]) == (0, 4)
+    assert (s["energy_order"], s["energy_order_to_digits"]) == (1, 4)
+    assert 14 <= s["classical_order_digits"] <= 17 and 14 <= s["energy_order_digits"] <= 17
     held = [c for c in doc["conditions"] if c["order"] <= 4]
     assert held and all(c["state"] == "holds to digits" or c["digits"] for c in held)
     assert 14 <= s["per_order"][0]["min_digits"] <= 17
     rounded = _json(run_subprocess("verify", str(path), "--order", "5", "--decimals", "rounded", "--format", "json"))
-    assert rounded["summary"]["classical_order"] == 3  # half a unit of the 17th digit excludes 1/6
+    assert rounded["summary"]["classical_order_to_digits"] == 3  # half a unit of the 17th digit excludes 1/6
 
 
 def test_six_digit_gauss2_is_not_called_a_certificate(tmp_path):
