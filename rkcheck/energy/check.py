@@ -53,6 +53,8 @@ class CheckResult:
     conditions: ConditionResults
     per_order: list[OrderCounts]
     energy_order: int  # proven: every condition up to it holds exactly (definitions §3, §5)
+    # the largest n such that every condition up to n+1 vertices holds, exactly or to digits
+    energy_order_to_digits: int
     energy_order_all: bool  # proven for every order by an exact certificate (AVF, line integral, R(z))
     quadrature: OrderResult
     classical: OrderResult
@@ -68,14 +70,7 @@ class CheckResult:
     interrupted: bool = False  # Ctrl-C: only the orders in ``conditions`` were finished
     claims: list[Any] | None = None  # ClaimResult per [expect] claim, when judged
     failed: bool = False  # what the CLI's exit code 1 means under its ``--fail-on``
-    # the largest n such that every condition up to n+1 vertices holds, exactly or to
-    # digits (None: ``energy_order``, every hold exact)
-    energy_order_to_digits: int | None = None
     _failures: Failures | None = field(default=None, repr=False)
-
-    def __post_init__(self) -> None:
-        if self.energy_order_to_digits is None:
-            self.energy_order_to_digits = self.energy_order
 
     @property
     def failures(self) -> Failures:
@@ -103,7 +98,7 @@ class CheckResult:
         to :attr:`energy_order_to_digits`) hold; None when every hold is exact."""
         top = self.energy_order_to_digits
         digits = [p.min_digits for p in self.per_order
-                  if self.energy_order < p.order <= top and p.min_digits is not None]  # type: ignore[operator]
+                  if self.energy_order < p.order <= top and p.min_digits is not None]
         return min(digits) if digits else None
 
     @property

@@ -70,7 +70,8 @@ def _quadratic_orders(stab: StabilityFunction) -> dict[str, Any]:
         v = sc.verdict(stab.defect[k])
         if v.state != HOLDS:
             proven = k - 1 if proven is None else min(proven, k - 1)
-            digits.append(v.digits)
+            if v.digits is not None:
+                digits.append(v.digits)
     return {"quadratic_energy_order": proven, "quadratic_energy_order_to_digits": reach,
             "quadratic_energy_order_digits": min(digits) if digits else None}
 

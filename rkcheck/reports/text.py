@@ -219,7 +219,8 @@ def energy_order_phrase(res: CheckResult) -> str:
     digits = res.energy_order_digits
     if digits is None:
         return str(res.energy_order)
-    reach = f"{res.options.order}, the order checked" if not len(res.failures) else res.energy_order_to_digits
+    reach: int | str = f"{res.options.order}, the order checked" if not len(res.failures) else (
+        res.energy_order_to_digits)
     return beyond_digits(res.energy_order, digits, reach)
 
 
