@@ -137,10 +137,13 @@ def _append(ctx: NumberContext, x: Any, y: Any) -> Any:
 
 
 def _first_failure(table: TreeTable, ids: np.ndarray) -> str:
-    """The classical condition of the failing tree with the smallest level sequence."""
+    """The classical condition of the failing tree with the smallest level sequence
+    (the one-vertex tree τ as what it says: ``Σ b_i = 1``)."""
     best = min((int(t) for t in ids), key=table.level_sequence)
     gamma = int(table.gamma(np.array([best]))[0])
     forest = [table.level_sequence(c) for c in table.children(best)]
+    if not forest:
+        return "Σ b_i = 1"
     return f"a({bracket_of_forest(forest)}) = 1/{gamma}"
 
 

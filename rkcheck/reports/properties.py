@@ -4,7 +4,8 @@ the stability function R(z) and the energy error constant (text rows and JSON ke
 JSON (added to ``summary``; keys are a public interface, see docs/json-schema.md):
 
 * ``reduction``: ``stages``, ``reduced_stages``, ``classes`` (1-based original stages of
-  each reduced stage), ``dropped`` (dead stages), ``exact``;
+  each reduced stage), ``dropped`` (stages dropped), ``cancelled`` (the merged stages
+  among them: stages merged into one that nothing uses and whose weights cancel), ``exact``;
 * ``symplectic`` / ``symmetric``: ``state``, ``digits``, ``reason``; symplectic adds
   ``defect`` (largest |entry| of BA + AᵀB − bbᵀ, exact text or decimal) and
   ``defect_entry``; symmetric adds ``permutation``;
@@ -111,6 +112,7 @@ def properties_doc(res) -> dict[str, Any]:
             "reduced_stages": red.reduced_stages,
             "classes": [[i + 1 for i in c] for c in red.classes],
             "dropped": sorted(i + 1 for i in red.dropped),
+            "cancelled": [[i + 1 for i in c] for c in red.cancelled],
             "exact": not red.decisions,
         },
         "symplectic": {
