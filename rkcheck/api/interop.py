@@ -5,9 +5,9 @@ method's ``A`` and ``b`` as numpy arrays of sympy numbers (exact: ``1/6``,
 ``1/4 - sqrt(3)/6``) or of floats.  :func:`from_nodepy` reads them with the rules of
 :func:`~rkcheck.api.tableaux.from_arrays` (sympy numbers exactly, floats as the decimals
 they print as — what ``rkcheck verify`` reads in a JSON file of the same floats —, or
-with ``floats="exact"`` at their exact binary values); :func:`to_nodepy` builds a nodepy method whose entries are exact sympy
-numbers, constructed from rkcheck's parsed entries node by node (no string is ever
-evaluated).
+with ``floats="exact"`` at their exact binary values); :func:`to_nodepy` builds a
+nodepy method whose entries are exact sympy numbers, constructed from rkcheck's parsed
+entries node by node (no string is ever evaluated).
 """
 
 from __future__ import annotations

@@ -215,7 +215,8 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
             return Agreement(degree, alg, emp, True,
                              f"agree: empirical {emp} is order {expected}, the failing order whose residuals dominate "
                              f"for h ≥ {h_min}; the energy order is {alg}, but its conditions fail by only "
-                             f"{float(_max_residual(sizes, res.energy_order_to_digits)):.2g} and dominate at smaller steps",
+                             f"{float(_max_residual(sizes, res.energy_order_to_digits)):.2g} and dominate at "
+                             "smaller steps",
                              cert, fit.dps)
     if agree:
         msg = f"agree: algebraic energy order {alg}, empirical {emp}"

@@ -28,31 +28,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Sequence
 
+from rkcheck.energy.double_bush_rank import map_rows, row_sum_rows
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.precision import mpmath_bits
 from rkcheck.numbers.reading import DecimalsMode
-
-
-def pairs(m: int) -> list[tuple[int, int]]:
-    return [(p, q) for q in range(2, m) for p in range(1, q)]
-
-
-def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
-    """The rows of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
-    s = len(b)
-    rows = []
-    for p, q in pairs(m):
-        row = []
-        for i in range(s):
-            for j in range(s):
-                row.append(p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
-        rows.append(row)
-    return rows
-
-
-def row_sum_rows(s: int) -> list[list[int]]:
-    """The constraints N·1 = 0 on vec(N)."""
-    return [[1 if k // s == i else 0 for k in range(s * s)] for i in range(s)]
 
 
 # ------------------------------------------------------------------- exact

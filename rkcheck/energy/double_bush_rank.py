@@ -1,4 +1,4 @@
-"""Ranks of the double-bush map that a numerical cut-off cannot get wrong.
+"""The rows of the double-bush map, and ranks of it that a numerical cut-off cannot get wrong.
 
 Two routes, used by :mod:`rkcheck.energy.double_bush` where exact elimination in the
 rule's own number field is out of reach:
@@ -26,6 +26,29 @@ from typing import Any, Sequence
 from rkcheck.numbers.intervals import Interval
 
 
+def pairs(m: int) -> list[tuple[int, int]]:
+    """The double-bush conditions' (p, q), 1 ≤ p < q ≤ m−1."""
+    return [(p, q) for q in range(2, m) for p in range(1, q)]
+
+
+def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
+    """The rows of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
+    s = len(b)
+    rows = []
+    for p, q in pairs(m):
+        row = []
+        for i in range(s):
+            for j in range(s):
+                row.append(p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
+        rows.append(row)
+    return rows
+
+
+def row_sum_rows(s: int) -> list[list[int]]:
+    """The constraints N·1 = 0 on vec(N)."""
+    return [[1 if k // s == i else 0 for k in range(s * s)] for i in range(s)]
+
+
 def powers_mod(poly: Sequence[Fraction], top: int) -> list[list[Fraction]]:
     """``x^a mod ω`` for a = 0..top, as the s coefficients (lowest first) of the
     remainder; ``poly`` holds ω's coefficients lowest first (any nonzero leading one)."""
@@ -47,8 +70,6 @@ def reduced_rows(poly: Sequence[Fraction], m: int) -> list[list[Fraction]]:
     """The rows of the double-bush map acting on vec(H) (row-major, index l*s + k): row
     (p, q) has the coefficient ``p R[p−1][l] R[q][k] − q R[q−1][l] R[p][k]`` of
     ``H[l][k]``, R the powers of x modulo the node polynomial."""
-    from rkcheck.energy.double_bush import pairs
-
     R = powers_mod(poly, m)
     s = len(poly) - 1
     rows = []
@@ -144,8 +165,6 @@ def certified_map_rank_lower(b: Sequence[Interval], c: Sequence[Interval], m: in
     """A certified lower bound of rank M (stacked with the row sums when asked) for every
     rule inside the enclosures ``b``, ``c``, in ball arithmetic at ``bits`` bits."""
     from flint import arb, ctx
-
-    from rkcheck.energy.double_bush import map_rows, row_sum_rows
 
     with ctx.workprec(bits):
         rows = map_rows([ball(x) for x in b], [ball(x) for x in c], m)
