@@ -162,3 +162,32 @@ def test_numerical_rank_is_certain_when_the_lower_bound_is_full(tmp_path):
     assert kernel_of(b, c, 5, True).rank == 4
     k = rkcheck.kernel(5, tableau=str(path), dps=15)
     assert k.rank_certain and k.rank == 4 and k.basis == []
+
+
+@pytest.mark.parametrize("rule_name, s, rank", [("radau-i", 6, 29), ("radau-ii", 6, 33), ("zeta:1/3", 7, 46),
+                                                ("radau-i", 12, 131)])
+def test_m_2s_minus_1_ranks_beyond_the_field_limit(rule_name, s, rank):
+    # the seed's theorem: s² − 3 for ζ ≠ −1, s² − s − 1 for ζ = −1 (Radau I), and the
+    # zero-row-sum part one-dimensional for ζ ≠ −1
+    import rkcheck
+
+    k = rkcheck.kernel(2 * s - 1, s, rule=rule_name, dps=15)
+    assert k.rank == rank and k.rank_certain and not k.exact
+    if rule_name != "radau-i":
+        assert len(k.zero_row_sum) == 1 and k.zero_row_sum_bounds == (1, 1)
+        # the numerical direction: M(N) = 0 and N·1 = 0 to the working precision, at the
+        # rule's nodes and weights enclosed independently (200 bits)
+        import mpmath
+
+        from rkcheck.energy.double_bush import map_rows
+        from rkcheck.methods.quadrature import rule
+
+        cb, bb = rule(rule_name, s).enclosures(200)
+        with mpmath.workdps(40):
+            c = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in cb]
+            b = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in bb]
+            flat = [mpmath.mpf(x) for row in k.zero_row_sum[0] for x in row]
+            residual = max(abs(sum(r * x for r, x in zip(row, flat))) for row in map_rows(b, c, 2 * s - 1))
+            scale = max(abs(r) for row in map_rows(b, c, 2 * s - 1) for r in row)
+        assert residual < 1e-12 * scale
+        assert all(abs(sum(row)) < 1e-12 for row in k.zero_row_sum[0])
