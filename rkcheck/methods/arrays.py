@@ -14,7 +14,7 @@ from arrays:
                             ``repr(x)`` (``"0.1"``, ``"0.16666666666666666"``), read as
                             that literal in a file is: the ``auto`` decimals rule widens
                             a shortest repr to the double's rounding interval, so RK4 in
-                            floats has classical order 4 to 15 digits, exactly as
+                            floats reaches classical order 4 to 15 digits, exactly as
                             ``rkcheck verify`` says of the ``json.dumps`` of the same
                             floats.  ``floats="exact"`` takes the **exact binary value**
                             instead (``0.1`` is ``3602879701896397/36028797018963968``):
@@ -27,7 +27,8 @@ from arrays:
                             ``f"{x:.15g}"``
 ``decimal.Decimal``         its decimal text, as a string would be
 sympy numbers               ``Rational``/``Integer`` exactly; other constant expressions
-                            (``sqrt(3)/6``) through their text; ``Float`` by its text
+                            (``sqrt(3)/6``) through their text; a ``Float`` of 53 bits
+                            as the double it is, a longer one by its text
                             (``floats="exact"``: its exact binary value)
 ==========================  ==============================================================
 
