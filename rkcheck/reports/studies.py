@@ -109,6 +109,9 @@ def render_kernel(res, console: Console, title: str) -> None:
     s = res.s
     console.print(f"M: R^({s}×{s}) → R^{res.conditions} (double-bush conditions 1 ≤ p < q ≤ {res.degree - 1})")
     console.print(_rank_line(res))
+    if res.tableau is not None and res.tableau.rounded_digits is not None and res.exact:
+        console.print(f"decimals taken at face value ({res.tableau.rounded_digits}+ significant digits): the rank of "
+                      "this exact rule, not of every rule within the rounding of its decimals")
     if res.singular_values:
         around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.singular_values)
         console.print(f"singular values around the cut: {around}")

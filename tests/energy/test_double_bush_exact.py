@@ -191,3 +191,13 @@ def test_m_2s_minus_1_ranks_beyond_the_field_limit(rule_name, s, rank):
             scale = max(abs(r) for row in map_rows(b, c, 2 * s - 1) for r in row)
         assert residual < 1e-12 * scale
         assert all(abs(sum(row)) < 1e-12 for row in k.zero_row_sum[0])
+
+
+def test_a_decimal_tableau_says_its_rank_is_at_face_value(capsys):
+    from support.clirun import run_cli
+    from support.paths import TABLEAUX
+
+    out = run_cli(capsys, "kernel", "-m", "4", "--tableau", str(TABLEAUX / "avf" / "avf-gauss-2-decimal16.toml")).out
+    assert "decimals taken at face value (16+ significant digits)" in " ".join(out.split())
+    exact = run_cli(capsys, "kernel", "-m", "4", "--tableau", str(TABLEAUX / "avf" / "avf-gauss-2.toml")).out
+    assert "face value" not in exact
