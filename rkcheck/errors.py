@@ -63,6 +63,27 @@ class UnknownMethodError(UserError):
     """An ``@name`` that names no tableau of the installed library."""
 
 
+class RkcheckWarning(UserWarning):
+    """What rkcheck warns Python callers about (``warnings.warn``): input it read in a
+    way that deserves a word, such as floats (read as the decimal they print as, or at
+    their exact binary value).  Filter it like any ``UserWarning``."""
+
+
+def warn(message: str) -> None:
+    """``warnings.warn`` a :class:`RkcheckWarning`, attributed to the first caller outside
+    the rkcheck package (the user's line, however deep the call came from)."""
+    import os
+    import sys
+    import warnings
+
+    root = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame: Any = sys._getframe(0)
+    level = 1
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(root):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(RkcheckWarning(message), stacklevel=level)
+
+
 class CheckInterrupted(KeyboardInterrupt):
     """Ctrl-C during a check: ``result`` holds the orders that were finished (a
     KeyboardInterrupt for library callers, a partial report for the CLI).  ``result`` is

@@ -2,11 +2,13 @@
 
 ``RkcheckError`` ⊃ ``UserError`` (alias ``InputError``) ⊃ ``TableauError``,
 ``OptionError``, ``UnknownMethodError``; ``str(err)`` is the CLI's one-line message.
+``RkcheckWarning`` (a ``UserWarning``) is what the API warns with, e.g. when it reads floats.
 """
 
 from rkcheck.errors import (
     OptionError,
     RkcheckError,
+    RkcheckWarning,
     TableauError,
     UnknownMethodError,
     UserError,
@@ -14,4 +16,5 @@ from rkcheck.errors import (
 
 InputError = UserError
 
-__all__ = ["InputError", "OptionError", "RkcheckError", "TableauError", "UnknownMethodError", "UserError"]
+__all__ = ["InputError", "OptionError", "RkcheckError", "RkcheckWarning", "TableauError", "UnknownMethodError",
+           "UserError"]

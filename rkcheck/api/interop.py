@@ -3,10 +3,11 @@
 nodepy (optional: ``pip install "rkcheck[nodepy]"``, never a core dependency) keeps a
 method's ``A`` and ``b`` as numpy arrays of sympy numbers (exact: ``1/6``,
 ``1/4 - sqrt(3)/6``) or of floats.  :func:`from_nodepy` reads them with the rules of
-:func:`~rkcheck.api.tableaux.from_arrays` (sympy numbers exactly, floats at their exact
-binary value); :func:`to_nodepy` builds a nodepy method whose entries are exact sympy
-numbers, constructed from rkcheck's parsed entries node by node (no string is ever
-evaluated).
+:func:`~rkcheck.api.tableaux.from_arrays` (sympy numbers exactly, floats as the decimals
+they print as — what ``rkcheck verify`` reads in a JSON file of the same floats —, or
+with ``floats="exact"`` at their exact binary values); :func:`to_nodepy` builds a
+nodepy method whose entries are exact sympy numbers, constructed from rkcheck's parsed
+entries node by node (no string is ever evaluated).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers import grammar as ex
 
 
-def from_nodepy(method: Any, *, floats: FloatMode = "exact") -> Tableau:
+def from_nodepy(method: Any, *, floats: FloatMode = "shortest") -> Tableau:
     """A tableau from a nodepy ``RungeKuttaMethod`` (or anything with ``A``, ``b`` and
     optionally ``c`` and ``name``); for an embedded pair, its main method ``b``."""
     for attribute in ("A", "b"):

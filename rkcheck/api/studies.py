@@ -63,22 +63,19 @@ def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", table
     s²−3 (ζ ≠ −1) or s²−s−1 (ζ = −1, Radau I).  Exact for rational and algebraic rules,
     else numerical at ``dps`` digits."""
     from rkcheck.api.tableaux import as_tableau
-    from rkcheck.energy.double_bush import kernel_of, rule_values, tableau_rule
+    from rkcheck.energy.double_bush import kernel_of, rule_kernel, tableau_rule
 
     degree = _option(lambda: parse_int_in(degree, KERNEL_DEGREE_RANGE, "degree"))
     if stages is not None:
         stages = _option(lambda: parse_int_in(stages, KERNEL_STAGES_RANGE, "stages"))
     dps = _option(lambda: parse_int_in(dps, STUDY_DPS_RANGE, "dps"))
     if tableau is not None:
-        tab: Tableau | None = as_tableau(tableau)
+        tab = as_tableau(tableau)
         b, c, exact = tableau_rule(tab, dps)
-        rule_name = None
-    else:
-        if stages is None:
-            raise OptionError("give --stages/-s (or --tableau FILE)")
-        tab, rule_name = None, rule
-        b, c, exact = rule_values(rule, stages, dps)
-    return replace(kernel_of(b, c, degree, exact, dps), tableau=tab, rule=rule_name)
+        return replace(kernel_of(b, c, degree, exact, dps), tableau=tab)
+    if stages is None:
+        raise OptionError("give --stages/-s (or --tableau FILE)")
+    return replace(rule_kernel(rule, stages, degree, dps), rule=rule)
 
 
 # ------------------------------------------------------------------ perturb

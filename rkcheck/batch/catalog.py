@@ -64,10 +64,15 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
         if res.avf is not None and res.avf.equals_avf:
             row.avf_degrees.append(deg)  # type: ignore[arg-type]
         if deg is None or not row.classical:
-            cls = res.classical
-            row.classical = str(cls.order) if cls.first_failure else f"≥ {cls.order}"
-            row.quadrature = str(res.quadrature.order)
+            cls, quad = res.classical, res.quadrature
+            row.classical = _order_cell(cls.to_digits if cls.first_failure else f"≥ {cls.to_digits}", cls)
+            row.quadrature = _order_cell(quad.to_digits, quad)
     if tab.info.claims:
         results = check_claims(tab, list(tab.info.claims), CheckOptions(order=order, dps=dps), runner)
         row.claims = "ok" if all(r.met for r in results) else "BROKEN"
     return row
+
+
+def _order_cell(reach, r) -> str:
+    """``4``, or ``0; 4 to 15 digits`` when the order is reached only to digits."""
+    return str(reach) if r.digits is None else f"{r.order}; {reach} to {r.digits} digits"

@@ -20,12 +20,12 @@ def energy_key(outcome) -> tuple:
         return (1, "", 0.0, 0.0, outcome.path)
     degree = res.options.degree
     deg_key = "~" if degree is None else f"{degree:06d}"  # all Hamiltonians after every m
-    if res.energy_order_all:
+    if res.certified_all:
         order_key = -math.inf
     elif res.first_failure is None:
         order_key = -(res.options.order + 0.5)  # ≥ N ranks above an exact N
     else:
-        order_key = -float(res.energy_order)
+        order_key = -float(res.energy_order_to_digits)
     ec = error_constant(res)
     return (0, deg_key, order_key, ec.value if ec is not None else 0.0, outcome.path)
 

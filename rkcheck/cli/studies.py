@@ -119,8 +119,10 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 def kernel(stages, degree, rule, tableau_file, dps) -> None:
     """Rank and kernel of the double-bush map M (seed Lemma 2) on s×s matrices.
 
-    Exact for rational rules; otherwise numerical, with the singular values around the
-    cut printed so that the gap is visible. Also the part of ker M with zero row sums
+    The rank is exact for every named rule (a basis too while the nodes' field is
+    small); for a tableau with inexact entries it is bracketed by a certified lower
+    bound and marked "not determined at this precision" unless the bounds meet, with
+    the singular values around the numerical cut printed. Also the part of ker M with zero row sums
     (seed Lemma "onedim"): the directions A → A + βN that keep every linear condition.
 
     \b

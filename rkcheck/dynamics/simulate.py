@@ -136,7 +136,7 @@ def needed_dps(result, exponents=H_EXPONENTS, floor: int = 40) -> int:
         return floor
     r = abs(first.enclosure.mid)
     size = -math.log10(float(r)) if r else 0.0
-    n = result.energy_order
+    n = result.energy_order_to_digits  # where the residuals start to be nonzero, proven or not
     return max(floor, math.ceil(size + (n + 1) * max(exponents) * math.log10(2) + 20))
 
 
@@ -179,9 +179,9 @@ def dominant_order(result, fit: EnergyFit) -> int:
     smallest fitted step: what the slope should show.  It is the energy order unless the
     first failing conditions fail by very little (a decimal tableau read at face value)."""
     if not fit.fitted:
-        return result.energy_order
+        return result.energy_order_to_digits
     h = float(min(fit.fitted))
-    best, best_size = result.energy_order, -1.0
+    best, best_size = result.energy_order_to_digits, -1.0
     for r in result.failures:
         n = r.order - 1
         size = float(abs(r.enclosure.mid)) * h ** (n + 1)
@@ -202,7 +202,7 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
         "—" if fit.empirical_order is None else f"{fit.empirical_order:.2f}")
     cert = None
     alg = res.energy_order_label
-    if res.energy_order_all:
+    if res.certified_all:
         agree = fit.at_solver_precision
         cert = res.certificate.reason if res.certificate else None
     elif res.first_failure is None:
@@ -210,12 +210,13 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
     else:
         expected = dominant_order(sizes, fit)
         agree = fit.empirical_order is not None and abs(fit.empirical_order - expected) <= 0.5
-        if agree and expected != res.energy_order:
+        if agree and expected != res.energy_order_to_digits:
             h_min = min(fit.fitted)
             return Agreement(degree, alg, emp, True,
                              f"agree: empirical {emp} is order {expected}, the failing order whose residuals dominate "
                              f"for h ≥ {h_min}; the energy order is {alg}, but its conditions fail by only "
-                             f"{float(_max_residual(sizes, res.energy_order)):.2g} and dominate at smaller steps",
+                             f"{float(_max_residual(sizes, res.energy_order_to_digits)):.2g} and dominate at "
+                             "smaller steps",
                              cert, fit.dps)
     if agree:
         msg = f"agree: algebraic energy order {alg}, empirical {emp}"

@@ -26,11 +26,11 @@ from rkcheck.energy.results import (
     Failures,
     OrderCounts,
     OrderVerdicts,
-    energy_order_of,
+    energy_orders_of,
     order_verdicts,
     per_order_counts,
 )
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS, State, Verdict
+from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, State, Verdict
 from rkcheck.errors import CheckInterrupted
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import channels_for
@@ -52,8 +52,10 @@ class CheckResult:
     backend: Backend
     conditions: ConditionResults
     per_order: list[OrderCounts]
-    energy_order: int
-    energy_order_all: bool  # certified for every order (AVF or line-integral certificate)
+    energy_order: int  # proven: every condition up to it holds exactly (definitions §3, §5)
+    # the largest n such that every condition up to n+1 vertices holds, exactly or to digits
+    energy_order_to_digits: int
+    energy_order_all: bool  # proven for every order by an exact certificate (AVF, line integral, R(z))
     quadrature: OrderResult
     classical: OrderResult
     avf: AvfVerdict | None
@@ -91,14 +93,43 @@ class CheckResult:
         return min(digits) if digits else None
 
     @property
+    def energy_order_digits(self) -> int | None:
+        """The digits to which the conditions beyond the proven :attr:`energy_order` (up
+        to :attr:`energy_order_to_digits`) hold; None when every hold is exact."""
+        top = self.energy_order_to_digits
+        digits = [p.min_digits for p in self.per_order
+                  if self.energy_order < p.order <= top and p.min_digits is not None]
+        return min(digits) if digits else None
+
+    @property
+    def energy_order_all_digits(self) -> int | None:
+        """D when a certificate of every order holds only to D digits (then
+        :attr:`energy_order_all` is False: a numerical certificate proves nothing)."""
+        cert = self.certificate
+        if cert is None or not cert.certified or cert.verdict.state != HOLDS_TO_DIGITS:
+            return None
+        return cert.verdict.digits
+
+    @property
+    def certified_all(self) -> bool:
+        """A certificate of every order holds: exactly, or to digits."""
+        return self.energy_order_all or self.energy_order_all_digits is not None
+
+    @property
     def energy_order_label(self) -> str:
         """``all`` (proven for every order by a certificate), ``≥ N`` (every condition up
-        to the checked order N holds, not proven beyond) or the exact energy order ``n``."""
+        to the checked order N holds, not proven beyond) or the exact energy order ``n``;
+        holds to digits qualify it: ``all to 15 digits``, ``1; ≥ 4 to 15 digits``,
+        ``1; 4 to 15 digits`` (proven to order 1, to 15 digits up to 4)."""
         if self.energy_order_all:
             return "all"
-        if not len(self.failures):
-            return f"≥ {self.options.order}"
-        return str(self.energy_order)
+        if self.energy_order_all_digits is not None:
+            return f"all to {self.energy_order_all_digits} digits"
+        reach = f"≥ {self.options.order}" if not len(self.failures) else str(self.energy_order_to_digits)
+        digits = self.energy_order_digits
+        if digits is None:
+            return reach
+        return f"{self.energy_order}; {reach} to {digits} digits"
 
     @property
     def verdict(self) -> State:
@@ -175,9 +206,11 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
             "are read as rounded to their last digit (definitions §5); --decimals exact takes them at face value"
         )
     timings["total"] = time.perf_counter() - t0
+    proven, to_digits = energy_orders_of(per_order, options.order)
     result = CheckResult(
         tableau=tableau, options=options, backend=values.backend, conditions=conditions, per_order=per_order,
-        energy_order=energy_order_of(per_order, options.order), energy_order_all=bool(cert and cert.certified),
+        energy_order=proven, energy_order_to_digits=to_digits,
+        energy_order_all=bool(cert and cert.certified and cert.verdict.state == HOLDS),
         quadrature=quad, classical=classical, avf=avf, certificate=cert,
         theorem1=_theorem1(avf, conditions, per_order, options.order), warnings=warnings, values=values,
         properties=props, timings=timings, interrupted=interrupted,

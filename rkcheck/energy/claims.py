@@ -10,6 +10,9 @@ Meanings (definitions §3–§4):
   "verified to order N, not proven beyond".
 * ``avf = true|false`` — the AVF verdict for that degree.
 * ``classical_order = p`` / ``quadrature_order = q`` — exactly p / q.
+
+An order claim met only because conditions hold to D digits is met "to D digits", like a
+property claim: the found column says so and the note gives the proven order.
 * ``symplectic`` / ``symmetric = true|false`` — the verdicts of
   :mod:`rkcheck.energy.symplectic` on the irreducible form (``holds to D digits`` counts
   as true, with the digits in the note).
@@ -69,30 +72,59 @@ def judge(claim: Claim, result) -> ClaimResult:
         return judge_property(claim, result)
     if claim.kind == "quadrature_order" or claim.kind == "classical_order":
         r = result.quadrature if claim.kind == "quadrature_order" else result.classical
-        found = r.order
-        exact_found = r.first_failure is not None
-        if claim.kind == "classical_order" and not exact_found:
-            return ClaimResult(claim, False, f"≥ {found}", f"checked to order {r.checked} only")
-        return ClaimResult(claim, found == claim.value, str(found))
+        found = r.to_digits
+        if claim.kind == "classical_order" and r.first_failure is None:
+            return ClaimResult(claim, False, f"≥ {_reach(found, r.digits)}", f"checked to order {r.checked} only")
+        return _to_digits(claim, found == claim.value, str(found), r.order, r.digits)
     if claim.kind == "avf":
         found_bool = bool(result.avf and result.avf.equals_avf)
         note = result.avf.reason if result.avf else None
         return ClaimResult(claim, found_bool == claim.value, str(found_bool).lower(), note)
-    # energy order
+    return _judge_energy_order(claim, result)
+
+
+def _judge_energy_order(claim: Claim, result) -> ClaimResult:
     n_checked = result.options.order
     found = result.energy_order_label
-    # len(), not first_failure: the verdict needs no exact value (check.first_record)
-    proven = result.energy_order_all or len(result.failures) > 0
+    cert = result.certificate
     if claim.value == "all":
         if result.energy_order_all:
-            cert = result.certificate
             return ClaimResult(claim, True, "all", cert.claim_note if cert is not None else "certificate: every order")
+        digits = result.energy_order_all_digits
+        if digits is not None:
+            name = cert.name.replace("certificate", "criterion") if cert is not None else None
+            return _to_digits(claim, True, "all", None, digits, name)
         if not len(result.failures):
-            return ClaimResult(claim, True, found, f"verified to order {n_checked}, not proven beyond")
+            note = f"verified to order {n_checked}, not proven beyond"
+            if result.energy_order_digits is None:
+                return ClaimResult(claim, True, found, note)
+            return _to_digits(claim, True, f"≥ {n_checked}", result.energy_order, result.energy_order_digits, note)
         return ClaimResult(claim, False, found)
-    if not proven:
+    # len(), not first_failure: the verdict needs no exact value (check.first_record)
+    if result.certified_all:
+        return ClaimResult(claim, False, found)
+    if not len(result.failures):
         return ClaimResult(claim, False, found, f"no condition fails up to order {n_checked}")
-    return ClaimResult(claim, found == str(claim.value), found)
+    reach = result.energy_order_to_digits
+    return _to_digits(claim, reach == claim.value, str(reach), result.energy_order, result.energy_order_digits)
+
+
+def _reach(found: int | str, digits: int | None) -> str:
+    return str(found) if digits is None else f"{found} to {digits} digits"
+
+
+def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: int | None,
+               note: str | None = None) -> ClaimResult:
+    """An order claim whose holds beyond the proven order ``proven`` are only to
+    ``digits`` digits (None: all exact): found "to D digits", the proven order in the note."""
+    if digits is None:
+        return ClaimResult(claim, met, found, note)
+    parts = [note] if note else []
+    if proven is not None:
+        parts.append(f"proven to order {proven} only; beyond it to {digits} digits, not a proof")
+    else:
+        parts.append(f"to {digits} digits, not a proof")
+    return ClaimResult(claim, met, _reach(found, digits), "; ".join(parts))
 
 
 def judge_property(claim: Claim, result) -> ClaimResult:

@@ -10,13 +10,16 @@ proves ``rank M = s²−1`` with kernel ``(1−c)bᵀ`` for Gauss and m = 2s, an
 with nodes the zeros of ``P_s − ζP_{s−1}``: ``s²−3`` (ζ ≠ −1) and ``s²−s−1`` (ζ = −1);
 the part of the kernel with zero row sums is one-dimensional ("onedim").
 
-Rational and algebraic rules are handled exactly: Gaussian elimination over Q or over the
-number field of the nodes (:mod:`rkcheck.numbers.algebraic`; square roots, nested roots,
-``root(P, k)``), so the rank is exact — a numerical cut-off can sit above the true
-smallest singular values (s = 6, m = 12 at 15 digits gives 31 instead of 35).
-Only rules whose field is beyond the degree limit fall back to a numerical rank:
-singular values of M at the working precision (mpmath), the cut placed at the largest
-gap, and the singular values around the cut reported so the gap can be seen.
+The rank is never a guess.  Rational and algebraic rules are handled exactly: Gaussian
+elimination over Q or over the number field of the nodes
+(:mod:`rkcheck.numbers.algebraic`), rank and basis exact.  A named rule whose field is
+beyond the degree limit (Gauss with 6 or more nodes) still has an exact rank, by
+rational elimination on its node polynomial (:mod:`rkcheck.energy.double_bush_rank`),
+and a numerical basis.  Only a tableau whose entries are not exact numbers falls back to
+singular values at the working precision: the rank is then bracketed — a certified lower
+bound from ball arithmetic, the matrix size above — and said to be undetermined unless
+the two meet (a numerical cut-off can sit above true singular values: s = 6, m = 12 at 15
+digits once printed rank 31 for 35).
 """
 
 from __future__ import annotations
@@ -25,31 +28,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Sequence
 
+from rkcheck.energy.double_bush_rank import map_rows, row_sum_rows
+from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.precision import mpmath_bits
 from rkcheck.numbers.reading import DecimalsMode
-
-
-def pairs(m: int) -> list[tuple[int, int]]:
-    return [(p, q) for q in range(2, m) for p in range(1, q)]
-
-
-def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
-    """The rows of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
-    s = len(b)
-    rows = []
-    for p, q in pairs(m):
-        row = []
-        for i in range(s):
-            for j in range(s):
-                row.append(p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
-        rows.append(row)
-    return rows
-
-
-def row_sum_rows(s: int) -> list[list[int]]:
-    """The constraints N·1 = 0 on vec(N)."""
-    return [[1 if k // s == i else 0 for k in range(s * s)] for i in range(s)]
-
 
 # ------------------------------------------------------------------- exact
 
@@ -102,9 +84,10 @@ class NumericRank:
         return [(i + 1, self.singular_values[i]) for i in range(lo, hi)]
 
 
-def nullspace_numeric(rows: list[list[Any]], n: int, dps: int) -> NumericRank:
-    """Numerical rank and null space by SVD at ``dps`` digits (cut at the largest gap
-    below 10^-(dps/2) relative to the largest singular value)."""
+def nullspace_numeric(rows: list[list[Any]], n: int, dps: int, at_least: int = 0) -> NumericRank:
+    """Numerical rank and null space by SVD at ``dps`` digits: singular values above
+    10^-(dps/2) relative to the largest count, and at least ``at_least`` (a certified
+    lower bound) do."""
     import mpmath
 
     with mpmath.workdps(dps):
@@ -120,7 +103,7 @@ def nullspace_numeric(rows: list[list[Any]], n: int, dps: int) -> NumericRank:
         svals += [mpmath.mpf(0)] * (n - len(svals))
         top = svals[0] if svals and svals[0] > 0 else mpmath.mpf(1)
         tol = top * mpmath.mpf(10) ** (-(dps // 2))
-        rank = sum(1 for x in svals if x > tol)
+        rank = max(at_least, sum(1 for x in svals if x > tol))
         order = sorted(range(min(size, n)), key=lambda i: -S[i])
         small = order[rank:] + list(range(min(size, n), n))
         basis = [[V[i, j] for j in range(n)] for i in small]
@@ -134,14 +117,18 @@ def nullspace_numeric(rows: list[list[Any]], n: int, dps: int) -> NumericRank:
 class Kernel:
     """The rank of the double-bush map ``M`` on s×s matrices at a quadrature rule, a basis
     of ``ker M`` and of its part with zero row sums (each matrix scaled so that its
-    largest entry is 1), exact (Fractions or number-field elements) or numerical (mpmath,
-    with the singular values around the cut); ``tableau`` or ``rule`` says where the rule
-    came from."""
+    largest entry is 1); ``tableau`` or ``rule`` says where the rule came from.
+
+    ``exact`` says whether the basis is exact (Fractions or number-field elements) or
+    numerical (mpmath).  ``rank_bounds`` brackets rank M with certainty: ``(rank, rank)``
+    when the rank is exact (:attr:`rank_certain`), else a certified lower bound and the
+    size of the matrix, with ``rank`` the numerical cut between them and the singular
+    values around it; ``zero_row_sum_bounds`` brackets ``dim(ker M ∩ {N·1 = 0})`` alike."""
 
     s: int
     degree: int
-    exact: bool  # whether the rank is exact (rational or number-field elimination)
-    rank: int
+    exact: bool  # whether the basis is exact arithmetic (then so is the rank)
+    rank: int  # exact when rank_certain; else the numerical cut inside rank_bounds
     conditions: int  # rows of M: the double-bush conditions 1 ≤ p < q ≤ m−1
     basis: list[list[list[Any]]]  # a basis of ker M, as s×s matrices
     # a basis of ker M ∩ {N·1 = 0}: the directions A → A + βN that keep every condition
@@ -151,6 +138,21 @@ class Kernel:
     zero_row_sum_singular_values: list[tuple[int, Any]] | None = None
     tableau: Any = None
     rule: str | None = None
+    rank_bounds: tuple[int, int] | None = None  # None: (rank, rank)
+    zero_row_sum_bounds: tuple[int, int] | None = None  # None: the dimension is certain
+
+    def __post_init__(self) -> None:
+        if self.rank_bounds is None:
+            object.__setattr__(self, "rank_bounds", (self.rank, self.rank))
+        if self.zero_row_sum_bounds is None:
+            k = len(self.zero_row_sum)
+            object.__setattr__(self, "zero_row_sum_bounds", (k, k))
+
+    @property
+    def rank_certain(self) -> bool:
+        """Whether :attr:`rank` is proven (exact elimination, or certified bounds that meet)."""
+        lo, hi = self.rank_bounds  # type: ignore[misc]
+        return lo == hi
 
     @property
     def dimension(self) -> int:
@@ -158,8 +160,10 @@ class Kernel:
         return self.s * self.s - self.rank
 
     def __repr__(self) -> str:
-        return (f"<Kernel: s = {self.s}, degree {self.degree}, rank {self.rank}, dim ker {self.dimension}, "
-                f"{len(self.zero_row_sum)} with zero row sums{'' if self.exact else ' (numerical)'}>")
+        lo, hi = self.rank_bounds  # type: ignore[misc]
+        rank = f"rank {self.rank}" if self.rank_certain else f"rank {self.rank}? (certainly {lo}..{hi})"
+        return (f"<Kernel: s = {self.s}, degree {self.degree}, {rank}, dim ker {self.dimension}, "
+                f"{len(self.zero_row_sum)} with zero row sums{'' if self.exact else ' (numerical basis)'}>")
 
 
 def _matrix(v: list[Any], s: int) -> list[list[Any]]:
@@ -173,37 +177,83 @@ def _normalise(v: list[Any]) -> list[Any]:
 
 
 def kernel_of(b: Sequence[Any], c: Sequence[Any], degree: int, exact: bool, dps: int = 50) -> Kernel:
-    """Rank and kernel of the double-bush map at the rule (b, c), and the zero-row-sum part."""
+    """Rank and kernel of the double-bush map at the rule (b, c), and the zero-row-sum part:
+    ``exact`` — b, c Fractions or field elements; else enclosures (Intervals) of them."""
     s = len(b)
     n = s * s
-    if exact:
-        rows = map_rows(b, c, degree)
-    else:
-        import mpmath
+    if not exact:
+        return _kernel_numeric(b, c, degree, dps)
+    rows = map_rows(b, c, degree)
+    rank, basis = nullspace_exact(rows, n)
+    _, zr = nullspace_exact(rows + row_sum_rows(s), n)
+    return Kernel(s, degree, True, rank, len(rows),
+                  [_matrix(_normalise(v), s) for v in basis], [_matrix(_normalise(v), s) for v in zr])
 
-        with mpmath.workdps(dps + 10):  # the rows themselves at the working precision
-            rows = map_rows(b, c, degree)
-    stacked = rows + row_sum_rows(s)
-    if exact:
-        rank, basis = nullspace_exact(rows, n)
-        _, zr = nullspace_exact(stacked, n)
-        return Kernel(s, degree, True, rank, len(rows),
-                      [_matrix(_normalise(v), s) for v in basis], [_matrix(_normalise(v), s) for v in zr])
+
+def _kernel_numeric(b: Sequence[Interval], c: Sequence[Interval], degree: int, dps: int) -> Kernel:
+    """Singular values at ``dps`` digits, the rank bracketed by a certified lower bound
+    (ball elimination over the enclosures) and the size of the matrix."""
     import mpmath
 
-    num = nullspace_numeric(rows, n, dps)
-    num_zr = nullspace_numeric(stacked, n, dps)
+    from rkcheck.energy.double_bush_rank import certified_map_rank_lower
+
+    s = len(b)
+    n = s * s
+    bits = mpmath_bits(dps)
+    low = certified_map_rank_lower(b, c, degree, bits)
+    low_zr = certified_map_rank_lower(b, c, degree, bits, with_row_sums=True)
+    with mpmath.workdps(dps + 10):  # the rows themselves at the working precision
+        bm, cm = [_mpf(x.mid) for x in b], [_mpf(x.mid) for x in c]
+        rows = map_rows(bm, cm, degree)
+    num = nullspace_numeric(rows, n, dps, low)
+    num_zr = nullspace_numeric(rows + row_sum_rows(s), n, dps, low_zr)
     with mpmath.workdps(dps + 10):  # normalise at the working precision, not at 15 digits
         kernel = [_matrix(_normalise(v), s) for v in num.basis]
         zero_row_sum = [_matrix(_normalise(v), s) for v in num_zr.basis]
+    high = min(len(rows), n)
+    # dim(ker M ∩ {N·1 = 0}) = n − rank of M stacked with the s row sums
+    zr_bounds = (n - min(len(rows) + s, n), n - low_zr)
     return Kernel(s, degree, False, num.rank, len(rows), kernel, zero_row_sum, num.around_cut(),
-                  num_zr.around_cut())
+                  num_zr.around_cut(), rank_bounds=(low, high), zero_row_sum_bounds=zr_bounds)
+
+
+def _mpf(x: Fraction) -> Any:
+    import mpmath
+
+    return mpmath.mpf(x.numerator) / x.denominator
+
+
+def node_polynomial_kernel(poly: Sequence[Fraction], b: Sequence[Any], c: Sequence[Any], degree: int,
+                           dps: int) -> Kernel:
+    """The exact rank of M (and of M with the row sums) by rational elimination on the
+    node polynomial ``poly`` (:mod:`rkcheck.energy.double_bush_rank`: the nodes distinct,
+    the weights nonzero), with the kernel bases mapped to s×s matrices at ``dps`` digits
+    (b, c mpf)."""
+    import mpmath
+
+    from rkcheck.energy.double_bush_rank import (
+        first_column_rows,
+        matrices_from_h,
+        rational_nullspace,
+        reduced_rows,
+    )
+
+    s = len(c)
+    rows = reduced_rows(poly, degree)
+    rank, basis = rational_nullspace(rows, s * s)
+    _, zr = rational_nullspace(rows + first_column_rows(s), s * s)
+    work = dps + 10 + 2 * s  # V⁻¹ of the nodes loses digits (its condition number)
+    kernel = matrices_from_h(basis, b, c, work)
+    zero_row_sum = matrices_from_h(zr, b, c, work)
+    with mpmath.workdps(dps + 10):
+        kernel = [_matrix(_normalise(v), s) for v in kernel]
+        zero_row_sum = [_matrix(_normalise(v), s) for v in zero_row_sum]
+    return Kernel(s, degree, False, rank, len(rows), kernel, zero_row_sum)
 
 
 def rule_values(rule_name: str, s: int, dps: int):
-    """(b, c, exact) of a named rule: Fractions when rational, else mpf at ``dps``."""
-    import mpmath
-
+    """(b, c, exact) of a named rule: Fractions or field elements when exact, else
+    enclosures (Intervals) at the bits of ``dps`` digits."""
     from rkcheck.methods.quadrature import rule
 
     r = rule(rule_name, s)
@@ -213,12 +263,23 @@ def rule_values(rule_name: str, s: int, dps: int):
     exact = algebraic_rule(r)
     if exact is not None:
         return exact[0], exact[1], True
-    bits = mpmath_bits(dps)
-    c_i, b_i = r.enclosures(bits)
-    with mpmath.workdps(dps + 10):
-        c = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in c_i]
-        b = [mpmath.mpf(x.mid.numerator) / x.mid.denominator for x in b_i]
-    return b, c, False
+    c_i, b_i = r.enclosures(mpmath_bits(dps))
+    return b_i, c_i, False
+
+
+def rule_kernel(rule_name: str, s: int, degree: int, dps: int) -> Kernel:
+    """The kernel at a named rule: exact when its field is within the degree limit, else
+    an exact rank from its (rational) node polynomial with a basis at ``dps`` digits."""
+    import mpmath
+
+    from rkcheck.methods.quadrature import rule
+
+    b, c, exact = rule_values(rule_name, s, dps)
+    if exact or any(x.contains_zero() for x in b):  # a zero weight: the map N ↦ H is singular
+        return kernel_of(b, c, degree, exact, dps)
+    with mpmath.workdps(dps + 10 + 2 * s):
+        bm, cm = [_mpf(x.mid) for x in b], [_mpf(x.mid) for x in c]
+    return node_polynomial_kernel(rule(rule_name, s).nodes[0].poly, bm, cm, degree, dps)
 
 
 ALGEBRAIC_RULE_MAX_DEGREE = 12
@@ -258,15 +319,12 @@ def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
 
 
 def tableau_rule(tableau, dps: int):
-    """(b, c = A·1, exact) of a tableau."""
-    import mpmath
+    """(b, c = A·1, exact) of a tableau: exact values at face value, else enclosures
+    (Intervals) at the bits of ``dps`` digits."""
+    from rkcheck.numbers.intervals import interval_sum
 
     exact = tableau.exact_values()  # at face value
     if exact is not None:
         return exact.b, [sum(row, Fraction(0)) for row in exact.A], True
     A, b = tableau.enclosures(mpmath_bits(dps), DecimalsMode.EXACT)
-    with mpmath.workdps(dps + 10):
-        def mp(x):
-            return mpmath.mpf(x.mid.numerator) / x.mid.denominator
-
-        return [mp(x) for x in b], [sum((mp(x) for x in row), mpmath.mpf(0)) for row in A], False
+    return b, [interval_sum(row) for row in A], False

@@ -54,9 +54,8 @@ def requirement_shortfall(result: CheckResult) -> Shortfall | None:
                 examples.append(r.id)
                 if len(examples) == 3:
                     break
-    cert = result.certificate
-    cert_short = bool(result.energy_order_all and cert is not None and cert.verdict.state == HOLDS_TO_DIGITS
-                      and (need is None or (cert.verdict.digits or 0) < need))
+    cert_digits = result.energy_order_all_digits
+    cert_short = cert_digits is not None and (need is None or cert_digits < need)
     if not count and not cert_short:
         return None
     return Shortfall(require, count, examples, cert_short)
@@ -67,6 +66,6 @@ def conditions_ok(result: CheckResult) -> bool:
     consistent (``Σb = 1`` not certainly false); and the holds meet ``--require``."""
     if inconsistent(result):
         return False
-    if not (result.all_hold or result.energy_order_all):
+    if not (result.all_hold or result.certified_all):
         return False
     return requirement_shortfall(result) is None

@@ -6,6 +6,10 @@
   at most ``p`` vertices.  It is checked order by order on a growing, unbounded tree
   table and stops at the first failing order, so it costs what the method's order
   costs, whatever the energy-check order.
+
+An order counts proven conditions only (definitions §5): a condition that holds to D
+digits is not proven, so an order whose conditions hold only to digits is reported as
+"holds to D digits beyond order N" (:attr:`OrderResult.to_digits`), never as held.
 """
 
 from __future__ import annotations
@@ -36,12 +40,34 @@ from rkcheck.trees.table import TreeTable
 
 @dataclass(frozen=True)
 class OrderResult:
-    """A classical or quadrature order, how far it was checked, and its first failing condition."""
+    """A classical or quadrature order, how far it was checked, and its first failing
+    condition.  ``order`` is proven: every condition up to it holds exactly; the
+    conditions from there up to ``to_digits`` hold only to digits (the weakest:
+    :attr:`digits`)."""
 
-    order: int  # the largest order whose conditions all hold (capped at ``checked``)
+    order: int  # the largest order whose conditions all hold exactly (capped at ``checked``)
     checked: int  # the highest order examined
-    verdict: Verdict  # of the conditions up to ``order``: holds or holds_to_digits
+    verdict: Verdict  # of the conditions up to ``to_digits``: holds or holds_to_digits
     first_failure: str | None = None  # e.g. "Σ b_i c_i^3 = 1/4" or a tree
+    # the largest order whose conditions all hold, exactly or to digits (None: ``order``)
+    to_digits: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.to_digits is None:
+            object.__setattr__(self, "to_digits", self.order)
+
+    @property
+    def digits(self) -> int | None:
+        """The digits to which the conditions beyond :attr:`order` (up to
+        :attr:`to_digits`) hold; None when there are none."""
+        return self.verdict.digits if self.to_digits != self.order else None
+
+
+def _order_result(per_order: list[Verdict], checked: int, first_failure: str | None = None) -> OrderResult:
+    """From the combined verdict of each order 1, 2, … that holds (exactly or to digits):
+    the proven order is the run of exact ones."""
+    proven = next((k for k, v in enumerate(per_order) if v.state != HOLDS), len(per_order))
+    return OrderResult(proven, checked, combine(per_order), first_failure, len(per_order))
 
 
 def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
@@ -57,9 +83,9 @@ def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
         if v.state == FAILS:
             power = "" if k == 1 else ("_i" if k == 2 else f"_i^{k - 1}")
             label = "Σ b_i = 1" if k == 1 else f"Σ b_i c{power} = 1/{k}"
-            return OrderResult(k - 1, k, combine(verdicts), label)
+            return _order_result(verdicts, k, label)
         verdicts.append(v)
-    return OrderResult(top, top, combine(verdicts))
+    return _order_result(verdicts, top)
 
 
 @lru_cache(maxsize=1)
@@ -111,10 +137,13 @@ def _append(ctx: NumberContext, x: Any, y: Any) -> Any:
 
 
 def _first_failure(table: TreeTable, ids: np.ndarray) -> str:
-    """The classical condition of the failing tree with the smallest level sequence."""
+    """The classical condition of the failing tree with the smallest level sequence
+    (the one-vertex tree τ as what it says: ``Σ b_i = 1``)."""
     best = min((int(t) for t in ids), key=table.level_sequence)
     gamma = int(table.gamma(np.array([best]))[0])
     forest = [table.level_sequence(c) for c in table.children(best)]
+    if not forest:
+        return "Σ b_i = 1"
     return f"a({bracket_of_forest(forest)}) = 1/{gamma}"
 
 
@@ -155,9 +184,9 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
                 g = np.array([int(x) % q for x in gamma], dtype=np.int64)
                 failing |= (a * g % q) != target
             if failing.any():
-                return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, ids[failing]))
+                return _order_result(verdicts, p, _first_failure(table, ids[failing]))
             verdicts.append(Verdict(HOLDS))
-        return OrderResult(max_order, max_order, combine(verdicts))
+        return _order_result(verdicts, max_order)
     balls: EnclosingContext = ball_context(values)
     weights = TreeWeights(balls, s)
     for p in range(1, max_order + 1):
@@ -173,6 +202,6 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
                 failed.append(int(t))
             order_verdicts.append(v)
         if failed:
-            return OrderResult(p - 1, p, combine(verdicts), _first_failure(table, np.array(failed)))
-        verdicts.extend(order_verdicts)
-    return OrderResult(max_order, max_order, combine(verdicts))
+            return _order_result(verdicts, p, _first_failure(table, np.array(failed)))
+        verdicts.append(combine(order_verdicts))
+    return _order_result(verdicts, max_order)

@@ -42,7 +42,10 @@ class Reduction:
     classes: list[tuple[int, ...]]  # 0-based original stages merged into each reduced stage
     stages: int  # of the original tableau
     decisions: list[Verdict] = field(default_factory=list)  # zero/equal tests that held only to digits
-    dropped: list[int] = field(default_factory=list)  # 0-based original stages found dead
+    dropped: list[int] = field(default_factory=list)  # 0-based original stages dropped
+    # the merged stages among them: classes of ≥ 2 original stages merged into one stage
+    # that nothing used and whose weights cancel — none of them need be dead by itself
+    cancelled: list[tuple[int, ...]] = field(default_factory=list)
 
     @property
     def kept(self) -> list[int]:
@@ -65,8 +68,13 @@ class Reduction:
         merged = [c for c in self.classes if len(c) > 1]
         if merged:
             parts.append("merged stages " + "; ".join("+".join(str(i + 1) for i in c) for c in merged))
-        if self.dropped:
-            parts.append("dropped dead stages " + ", ".join(str(i + 1) for i in sorted(self.dropped)))
+        for c in self.cancelled:
+            parts.append(f"merged stages {'+'.join(str(i + 1) for i in c)} into one with weight 0 that nothing "
+                         "uses, then dropped it")
+        gone = {i for c in self.cancelled for i in c}
+        dead = sorted(i for i in self.dropped if i not in gone)
+        if dead:
+            parts.append(f"dropped dead stage{'s' if len(dead) > 1 else ''} " + ", ".join(str(i + 1) for i in dead))
         return f"reduced from {self.stages} to {self.reduced_stages} stages ({'; '.join(parts)})"
 
 
@@ -87,6 +95,7 @@ def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:
     b = list(b)
     classes: list[tuple[int, ...]] = [(i,) for i in range(s)]
     dropped: list[int] = []
+    cancelled: list[tuple[int, ...]] = []
     while True:
         changed = False
         # DJ: the stages that influence the result
@@ -104,6 +113,8 @@ def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:
             for j in range(n):
                 if j not in needed:
                     dropped.extend(classes[j])
+                    if len(classes[j]) > 1:
+                        cancelled.append(classes[j])
             A = [[A[i][j] for j in keep] for i in keep]
             b = [b[j] for j in keep]
             classes = [classes[j] for j in keep]
@@ -118,7 +129,7 @@ def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:
             changed = True
         if not changed:
             break
-    return Reduction(A, b, classes, s, decisions, dropped)
+    return Reduction(A, b, classes, s, decisions, dropped, cancelled)
 
 
 def _coarsest_partition(A: sc.Matrix, is_zero) -> list[list[int]]:

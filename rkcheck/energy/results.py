@@ -277,7 +277,11 @@ def per_order_counts(listing: ConditionListing, orders: dict[int, OrderVerdicts]
     return out
 
 
-def energy_order_of(per_order: list[OrderCounts], order: int) -> int:
-    """Largest n <= order such that every condition with <= n+1 vertices holds (definitions §3)."""
+def energy_orders_of(per_order: list[OrderCounts], order: int) -> tuple[int, int]:
+    """(proven, to digits): the largest n <= order such that every condition with <= n+1
+    vertices holds exactly (definitions §3, §5: the energy order), and the largest such
+    that every one holds, exactly or to digits."""
     failing = [p.order for p in per_order if p.failed]
-    return min(failing) - 1 if failing else order
+    to_digits = min(failing) - 1 if failing else order
+    unproven = [p.order for p in per_order if p.failed or p.min_digits is not None]
+    return (min(unproven) - 1 if unproven else order), to_digits

@@ -10,21 +10,26 @@ from arrays:
                             by the decimals rule of the check (definitions §5; default
                             ``auto``: within half a unit of the last digit, or half an
                             ulp for the shortest ``repr`` of a double)
-``float`` (also numpy)      by default its **exact binary value**: ``0.1`` is
-                            ``3602879701896397/36028797018963968``, not 1/10.  That is
-                            the number a float computation used; but a tableau whose
-                            entries were rounded to doubles is then checked as the
-                            slightly different method it is (AVF-Gauss from floats fails
-                            by about 1e-17).  ``floats="shortest"`` takes ``repr(x)``
-                            instead (``"0.1"``, ``"0.21132486540518713"``), which the
-                            ``auto`` decimals rule reads as the double's rounding
-                            interval — still narrower than the errors of a float
-                            computation; to check a tableau up to the digits you trust,
-                            pass strings: ``f"{x:.15g}"``
+``float`` (also numpy)      by default (``floats="shortest"``) the decimal it prints as,
+                            ``repr(x)`` (``"0.1"``, ``"0.16666666666666666"``), read as
+                            that literal in a file is: the ``auto`` decimals rule widens
+                            a shortest repr to the double's rounding interval, so RK4 in
+                            floats reaches classical order 4 to 15 digits, exactly as
+                            ``rkcheck verify`` says of the ``json.dumps`` of the same
+                            floats.  ``floats="exact"`` takes the **exact binary value**
+                            instead (``0.1`` is ``3602879701896397/36028797018963968``):
+                            the number a float computation used, so a tableau rounded to
+                            doubles is checked as the slightly different method it is
+                            (AVF-Gauss from floats fails by about 1e-17).  Reading a
+                            float whose two readings differ warns
+                            (:class:`~rkcheck.errors.RkcheckWarning`).  To check a
+                            tableau up to the digits you trust, pass strings:
+                            ``f"{x:.15g}"``
 ``decimal.Decimal``         its decimal text, as a string would be
 sympy numbers               ``Rational``/``Integer`` exactly; other constant expressions
-                            (``sqrt(3)/6``) through their text; ``Float`` at its exact
-                            binary value
+                            (``sqrt(3)/6``) through their text; a ``Float`` of 53 bits
+                            as the double it is, a longer one by its text
+                            (``floats="exact"``: its exact binary value)
 ==========================  ==============================================================
 
 ``A`` may be a list of rows, a numpy 2-D array or a sympy ``Matrix``; ``b`` and ``c``
@@ -39,7 +44,7 @@ from decimal import Decimal
 from fractions import Fraction
 from typing import Any, Literal
 
-from rkcheck.errors import TableauError, UserError
+from rkcheck.errors import TableauError, UserError, warn
 from rkcheck.numbers.entries import Entry
 from rkcheck.options import DEFAULT_MAX_STAGES
 
@@ -53,16 +58,17 @@ def _is_sympy(x: Any) -> bool:
 def _float_entry(x: float, floats: FloatMode, place: str) -> tuple[Entry, bool]:
     if not math.isfinite(x):
         raise TableauError(f"{x} is not a finite number", place)
-    if floats == "shortest":
-        return Entry.parse(repr(float(x))), False
-    value = Fraction(x)
-    # only worth a warning when the binary value is not the decimal the user sees
-    return Entry.of(value), Fraction(repr(float(x))) != value
+    text = repr(float(x))
+    # only worth a warning when the two readings differ: the binary value is not the
+    # decimal the user sees (0.1), or the decimal stands for an interval (0.16666666666666666)
+    entry = Entry.parse(text) if floats == "shortest" else Entry.of(Fraction(x))
+    return entry, Fraction(text) != Fraction(x) or Entry.parse(text).is_rounded
 
 
-def entry_of(x: Any, place: str, floats: FloatMode = "exact") -> tuple[Entry, bool]:
+def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry, bool]:
     """One value as an :class:`Entry` (see the module docstring for what each type
-    means) and whether it was a float whose binary value differs from its decimal."""
+    means) and whether it was a float whose readings (shortest repr, exact binary
+    value) differ."""
     try:
         if isinstance(x, bool):
             raise TableauError("expected a number, got a boolean", place)
@@ -80,10 +86,11 @@ def entry_of(x: Any, place: str, floats: FloatMode = "exact") -> tuple[Entry, bo
             if getattr(x, "is_Rational", False):
                 return Entry.of(Fraction(int(x.p), int(x.q))), False
             if getattr(x, "is_Float", False):
-                if floats == "shortest":
-                    return Entry.parse(str(x)), False
-                value = _sympy_float_exact(x)
-                return Entry.of(value), Fraction(str(x)) != value
+                if getattr(x, "_prec", None) == 53:  # a double: read as the float it is
+                    return _float_entry(float(x), floats, place)
+                value, shown = _sympy_float_exact(x), Entry.parse(str(x))
+                differs = Fraction(str(x)) != value or shown.is_rounded
+                return (shown if floats == "shortest" else Entry.of(value)), differs
             if getattr(x, "is_number", False):
                 try:
                     return Entry.parse(str(x)), False
@@ -140,18 +147,20 @@ def entries_from_arrays(
     b: Any,
     c: Any = None,
     *,
-    floats: FloatMode = "exact",
+    floats: FloatMode = "shortest",
     max_stages: int = DEFAULT_MAX_STAGES,
 ) -> tuple[tuple[tuple[Entry, ...], ...], tuple[Entry, ...], tuple[Entry, ...] | None, list[str]]:
     """The entries of a tableau given as arrays: ``A`` (s×s), ``b`` and optionally ``c``
     (length s), with the warnings the values deserve (``Tableau.from_arrays``, public as
     ``rkcheck.from_arrays``, builds the tableau).
 
-    Values may be ints, Fractions, strings in rkcheck's grammar, floats (``floats="exact"``:
-    the exact binary value, the default; ``"shortest"``: ``repr(x)`` read as a rounded
-    decimal), Decimals, numpy scalars and arrays, sympy numbers and matrices; see the
-    module docstring.  Problems raise :class:`~rkcheck.errors.TableauError` naming the
-    place (``A[2][3]``, 1-based like ``a_ij``)."""
+    Values may be ints, Fractions, strings in rkcheck's grammar, floats
+    (``floats="shortest"``, the default: ``repr(x)``, read like that literal in a file;
+    ``"exact"``: the exact binary value), Decimals, numpy scalars and arrays, sympy
+    numbers and matrices; see the module docstring.  Floats whose readings differ are
+    warned about (:class:`~rkcheck.errors.RkcheckWarning`, and in the warnings).
+    Problems raise :class:`~rkcheck.errors.TableauError` naming the place
+    (``A[2][3]``, 1-based like ``a_ij``)."""
     if floats not in ("exact", "shortest"):
         raise TableauError(f"floats must be 'exact' or 'shortest', got {floats!r}", "floats")
     rows = _as_list(A, "A")
@@ -160,12 +169,12 @@ def entries_from_arrays(
         raise TableauError("the tableau is empty (A has no rows)", "A")
     if s > max_stages:
         raise TableauError(f"{s} stages exceeds the limit of {max_stages}", "A")
-    inexact: list[str] = []
+    inexact: list[tuple[str, Entry]] = []
 
     def entry(x: Any, place: str) -> Entry:
         e, differs = entry_of(x, place, floats)
         if differs:
-            inexact.append(place)
+            inexact.append((place, e))
         return e
 
     matrix = []
@@ -183,9 +192,17 @@ def entries_from_arrays(
 
     b_entries = vector(b, "b")
     c_entries = None if c is None else vector(c, "c")
-    warnings = []
-    if inexact:
-        warnings.append(
-            f"{len(inexact)} float entries (first {inexact[0]}) were taken at their exact binary value, which "
-            "is not the decimal they print as; pass strings, or floats='shortest', to mean the decimals")
+    warnings = [_float_warning(inexact, floats)] if inexact else []
+    for w in warnings:
+        warn(w)
     return tuple(matrix), b_entries, c_entries, warnings
+
+
+def _float_warning(inexact: list[tuple[str, Entry]], floats: FloatMode) -> str:
+    place, first = inexact[0]
+    if floats == "exact":
+        return (f"{len(inexact)} float entries (first {place}) were taken at their exact binary value, which is not "
+                "the decimal they print as; pass strings, or floats='shortest' (the default), to mean the decimals")
+    return (f"{len(inexact)} float entries (first {place} = {first.text}) were read as the decimal they print as, "
+            "which stands for the double's rounding interval (decimals 'auto') or for that decimal exactly "
+            "(0.1 is not the double 0.1); floats='exact' takes their exact binary values")

@@ -104,7 +104,7 @@ class Tableau:
         )
 
     @staticmethod
-    def from_arrays(A: Any, b: Any, c: Any = None, *, name: str = "unnamed tableau", floats: FloatMode = "exact",
+    def from_arrays(A: Any, b: Any, c: Any = None, *, name: str = "unnamed tableau", floats: FloatMode = "shortest",
                     max_stages: int = DEFAULT_MAX_STAGES) -> "Tableau":
         """A tableau from arrays of ints, Fractions, strings, floats, numpy or sympy values
         (what each means: :mod:`rkcheck.methods.arrays`); also ``rkcheck.from_arrays``."""

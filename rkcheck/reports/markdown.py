@@ -13,7 +13,9 @@ def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: i
         "",
         f"Energy order per polynomial degree m (\"all H\" = no degree bound), checked to order {order}: "
         "`all` = proven for every order (AVF, line-integral or stability-function certificate), `≥ N` = every "
-        "condition up to order N holds (not proven beyond), a number = the exact energy order. "
+        "condition up to order N holds (not proven beyond), a number = the exact energy order; "
+        "`all to D digits` and `n; K to D digits` (orders too) = the certificate, or the conditions beyond the "
+        "proven order n up to K, hold only to D digits: not a proof. "
         "Symplectic and symmetric are decided on the irreducible form of the method "
         "(`yes†` = holds to the working precision, the entries being enclosed, not exact). "
         "Every file's `[expect]` claims are checked by the test-suite.",

@@ -4,14 +4,17 @@ the stability function R(z) and the energy error constant (text rows and JSON ke
 JSON (added to ``summary``; keys are a public interface, see docs/json-schema.md):
 
 * ``reduction``: ``stages``, ``reduced_stages``, ``classes`` (1-based original stages of
-  each reduced stage), ``dropped`` (dead stages), ``exact``;
+  each reduced stage), ``dropped`` (stages dropped), ``cancelled`` (the merged stages
+  among them: stages merged into one that nothing uses and whose weights cancel), ``exact``;
 * ``symplectic`` / ``symmetric``: ``state``, ``digits``, ``reason``; symplectic adds
   ``defect`` (largest |entry| of BA + AᵀB − bbᵀ, exact text or decimal) and
   ``defect_entry``; symmetric adds ``permutation``;
 * ``stability``: ``R`` (text), ``numerator``/``denominator`` (coefficient texts, ascending
   powers, or null), ``identity`` (``state``, ``digits`` of R(z)R(−z) ≡ 1), ``defect``
   (text of R(z)R(−z) − 1), ``leading_power``, ``leading_coefficient``,
-  ``quadratic_energy_order`` (null = every order);
+  ``quadratic_energy_order`` (proven: null = every order, exactly),
+  ``quadratic_energy_order_to_digits`` and ``quadratic_energy_order_digits`` (the order
+  reached counting coefficients that vanish only to digits, and those digits);
 * ``error_constant``: null, or ``norm`` ("euclidean"), ``degree``, ``energy_order``,
   ``order``, ``conditions``, ``failing``, ``value`` (decimal), ``squared`` (exact p/q or
   null), ``lower``, ``upper``.
@@ -54,8 +57,24 @@ def stability_doc(stab: StabilityFunction) -> dict[str, Any]:
         "defect": stab.defect_text(),
         "leading_power": stab.leading_power,
         "leading_coefficient": None if stab.leading_coefficient is None else _coefficient_text(stab.leading_coefficient),
-        "quadratic_energy_order": stab.quadratic_energy_order,
+        **_quadratic_orders(stab),
     }
+
+
+def _quadratic_orders(stab: StabilityFunction) -> dict[str, Any]:
+    """The m = 2 energy order from ``R(z)R(−z) − 1 = Σ e_2k z^2k``: proven (every e_2k
+    before it exactly 0), and reached when the e_2k that vanish only to digits count."""
+    reach = stab.quadratic_energy_order
+    top = stab.leading_power if stab.leading_power is not None else len(stab.defect)
+    proven, digits = reach, []
+    for k in range(2, top, 2):
+        v = sc.verdict(stab.defect[k])
+        if v.state != HOLDS:
+            proven = k - 1 if proven is None else min(proven, k - 1)
+            if v.digits is not None:
+                digits.append(v.digits)
+    return {"quadratic_energy_order": proven, "quadratic_energy_order_to_digits": reach,
+            "quadratic_energy_order_digits": min(digits) if digits else None}
 
 
 def error_constant_doc(ec: ErrorConstant | None) -> dict[str, Any] | None:
@@ -93,6 +112,7 @@ def properties_doc(res) -> dict[str, Any]:
             "reduced_stages": red.reduced_stages,
             "classes": [[i + 1 for i in c] for c in red.classes],
             "dropped": sorted(i + 1 for i in red.dropped),
+            "cancelled": [[i + 1 for i in c] for c in red.cancelled],
             "exact": not red.decisions,
         },
         "symplectic": {

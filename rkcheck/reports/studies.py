@@ -107,21 +107,40 @@ def _fmt(x) -> str:
 def render_kernel(res, console: Console, title: str) -> None:
     console.print(Text(title, style="bold"))
     s = res.s
-    kind = "exact: rational or number-field arithmetic" if res.exact else "numerical (singular values at the working precision)"
     console.print(f"M: R^({s}×{s}) → R^{res.conditions} (double-bush conditions 1 ≤ p < q ≤ {res.degree - 1})")
-    console.print(f"rank M = {res.rank}   dim ker M = {s * s - res.rank}   \\[{kind}]")
+    console.print(_rank_line(res))
+    if res.tableau is not None and res.tableau.rounded_digits is not None and res.exact:
+        console.print(f"decimals taken at face value ({res.tableau.rounded_digits}+ significant digits): the rank of "
+                      "this exact rule, not of every rule within the rounding of its decimals")
     if res.singular_values:
         around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.singular_values)
         console.print(f"singular values around the cut: {around}")
     for k, N in enumerate(res.basis, start=1):
         console.print(Text(f"ker M basis N_{k}:", style="bold"))
         _matrix(N, console)
-    console.print(f"ker M ∩ {{N·1 = 0}}: dimension {len(res.zero_row_sum)}")
+    lo, hi = res.zero_row_sum_bounds
+    dim = f"{len(res.zero_row_sum)}" if lo == hi else (
+        f"{len(res.zero_row_sum)}? (not determined at this precision: certainly {lo} to {hi})")
+    console.print(f"ker M ∩ {{N·1 = 0}}: dimension {dim}")
     if res.zero_row_sum_singular_values:
         around = ", ".join(f"σ_{i} = {_fmt(v)}" for i, v in res.zero_row_sum_singular_values)
         console.print(f"(stacked with the row sums) singular values around the cut: {around}")
     for N in res.zero_row_sum:
         _matrix(N, console)
+
+
+def _rank_line(res) -> str:
+    """``rank M = r  dim ker M = d  [how]``: exact, or the certain bracket and the numerical cut."""
+    s2 = res.s * res.s
+    if res.exact:
+        return f"rank M = {res.rank}   dim ker M = {s2 - res.rank}   \\[exact: rational or number-field arithmetic]"
+    if res.rank_certain:
+        how = ("exact rank: rational elimination on the node polynomial; basis numerical"
+               if res.singular_values is None else "certified: ball arithmetic; basis numerical")
+        return f"rank M = {res.rank}   dim ker M = {s2 - res.rank}   \\[{how}]"
+    lo, hi = res.rank_bounds
+    return (f"rank M = {res.rank}?   dim ker M = {s2 - res.rank}?   \\[not determined at this precision: "
+            f"certainly {lo} ≤ rank M ≤ {hi}; numerical cut at {res.rank}]")
 
 
 def _matrix(N, console: Console) -> None:

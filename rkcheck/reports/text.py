@@ -224,13 +224,33 @@ def judged_by_conditions(res: CheckResult, fail_on: str) -> bool:
 
 
 def _order_text(r, what: str) -> str:
+    """``4  (Σ b_i c_i^4 = 1/5 fails)``; an order reached only to digits says so:
+    ``0, holds to 15 digits beyond order 0 up to order 4  (…)`` (definitions §5)."""
+    open_ended = what == "classical" and not r.first_failure
+    text = (f"≥ {r.to_digits}" if open_ended else f"{r.to_digits}") if r.digits is None else (
+        beyond_digits(r.order, r.digits, r.to_digits))
     if r.first_failure:
-        text = f"{r.order}  ({r.first_failure} fails)"
-    else:
-        text = f"≥ {r.order}  (checked up to {r.checked})" if what == "classical" else f"{r.order}"
-    if r.verdict.state == HOLDS_TO_DIGITS:
-        text += f", holding to {r.verdict.digits} digits"
+        text += f"  ({r.first_failure} fails)"
+    elif what == "classical":
+        text += f"  (checked up to {r.checked})"
     return text
+
+
+def beyond_digits(proven: int, digits: int, reach: int | str) -> str:
+    """``1, holds to 15 digits beyond order 1 up to order 4``: a proven order and how far
+    the conditions beyond it hold to digits."""
+    return f"{proven}, holds to {digits} digits beyond order {proven} up to order {reach}"
+
+
+def energy_order_phrase(res: CheckResult) -> str:
+    """The energy order as the headline says it: ``4``, or qualified when conditions
+    beyond the proven order hold only to digits."""
+    digits = res.energy_order_digits
+    if digits is None:
+        return str(res.energy_order)
+    reach: int | str = f"{res.options.order}, the order checked" if not len(res.failures) else (
+        res.energy_order_to_digits)
+    return beyond_digits(res.energy_order, digits, reach)
 
 
 def _certificate_name(res: CheckResult) -> str:
@@ -246,13 +266,12 @@ def _certificate_name(res: CheckResult) -> str:
 
 
 def _numeric_certificate(res: CheckResult) -> int | None:
-    cert = res.certificate
-    return cert.verdict.digits if cert is not None and cert.verdict.state == HOLDS_TO_DIGITS else None
+    return res.energy_order_all_digits
 
 
 def _energy_text(res: CheckResult) -> Text:
     o = res.options
-    if res.energy_order_all:
+    if res.certified_all:
         digits = _numeric_certificate(res)
         if digits is not None:
             return Text(f"to {digits} digits: all orders for degree ≤ {o.degree} ({_certificate_name(res)}, "
@@ -260,9 +279,11 @@ def _energy_text(res: CheckResult) -> Text:
         return Text(f"all orders for degree ≤ {o.degree} ({_certificate_name(res)}); {o.order} verified", style="green")
     first = res.first_failure
     if first is None:
+        if res.energy_order_digits is not None:
+            return Text(f"{energy_order_phrase(res)} (not a proof)", style="yellow")
         return Text(f"≥ {res.energy_order} (every condition up to order {o.order} holds; not proven beyond)", style="green")
     return Text(
-        f"{res.energy_order} (first failing condition at order {first.order}: "
+        f"{energy_order_phrase(res)} (first failing condition at order {first.order}: "
         f"{first.id} {first.bracket})",
         style="red",
     )
@@ -299,14 +320,14 @@ def final_line(res: CheckResult) -> Text:
     if len(res.failures):
         failing = len(res.failures)
         return Text(f"FAIL: {count_text(failing)} of {n} {'fails' if failing == 1 else 'fail'}; "
-                    f"energy order {res.energy_order}", style="bold red")
+                    f"energy order {energy_order_phrase(res)}", style="bold red")
     if inconsistent(res):
         return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {counted(count, 'energy condition')} "
                     f"say{'s' if count == 1 else ''}", style="bold red")
     shortfall = requirement_shortfall(res)
     if shortfall is not None:
         return Text(f"FAIL: {shortfall.text()}", style="bold red")
-    if res.energy_order_all:
+    if res.certified_all:
         digits = _numeric_certificate(res)
         if digits is not None:
             return Text(

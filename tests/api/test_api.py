@@ -97,19 +97,64 @@ def test_values_of_every_kind_are_exact():
         assert abs(a.mid - b.mid) <= a.rad + b.rad
 
 
-def test_a_float_is_its_exact_binary_value():
-    tab = rkcheck.from_arrays([[0.1]], [1.0])
+def test_floats_exact_opts_in_to_the_exact_binary_value():
+    with pytest.warns(rkcheck.RkcheckWarning, match="exact binary value"):
+        tab = rkcheck.from_arrays([[0.1]], [1.0], floats="exact")
     assert tab.A[0][0].exact == Fraction(3602879701896397, 2**55) == Fraction(0.1)
     assert tab.b[0].exact == 1
     assert len(tab.info.warnings) == 1 and "A[1][1]" in tab.info.warnings[0]
 
 
-def test_floats_shortest_reads_repr_as_a_rounded_decimal():
-    tab = rkcheck.from_arrays([[0.1]], [1.0], floats="shortest")
+def test_a_float_is_by_default_the_decimal_it_prints_as():
+    with pytest.warns(rkcheck.RkcheckWarning, match="A\\[1\\]\\[1\\]"):
+        tab = rkcheck.from_arrays([[0.1]], [1.0])
     assert tab.A[0][0].exact == Fraction(1, 10) and not tab.A[0][0].is_rounded  # "0.1": < 6 digits, exact
     x = 0.21132486540518713
-    tab = rkcheck.from_arrays([[x]], [1], floats="shortest")
+    with pytest.warns(rkcheck.RkcheckWarning):
+        tab = rkcheck.from_arrays([[x]], [1])
     assert tab.A[0][0].text == repr(x) and tab.A[0][0].is_rounded
+    assert issubclass(rkcheck.RkcheckWarning, UserWarning)
+
+
+def test_floats_whose_readings_agree_do_not_warn():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tab = rkcheck.from_arrays(np.array([[0.5, 0.0], [0.25, 0.75]]), np.array([0.5, 0.5]))
+    assert tab.A[1][0].exact == Fraction(1, 4) and not tab.info.warnings
+
+
+def test_the_warning_points_at_the_callers_line():
+    with pytest.warns(rkcheck.RkcheckWarning) as record:
+        line = inspect.currentframe().f_lineno + 1
+        rkcheck.from_arrays([[1 / 3]], [1])
+    assert record[0].filename == __file__ and record[0].lineno == line
+
+
+RK4_FLOATS = ([[0, 0, 0, 0], [0.5, 0, 0, 0], [0, 0.5, 0, 0], [0, 0, 1.0, 0]], [1 / 6, 1 / 3, 1 / 3, 1 / 6])
+
+
+def test_rk4_floats_read_alike_by_the_api_and_the_cli(tmp_path, capsys):
+    # RK4 has classical order 4 (Kutta 1901); in doubles its weights are the shortest
+    # reprs 0.16666666666666666, 0.3333333333333333, whose rounding intervals contain 1/6
+    # and 1/3, so order 4 is reached to digits and nothing is exact (not even Σb = 1)
+    from support.clirun import run_cli
+
+    A, b = RK4_FLOATS
+    assert Fraction(1, 6) != Fraction(1 / 6)  # the binary value is not 1/6: "exact" would fail
+    path = tmp_path / "rk4.json"
+    path.write_text(json.dumps({"A": A, "b": b}))
+    cli = json.loads(run_cli(capsys, "verify", str(path), "--order", "5", "--format", "json").out)
+    with pytest.warns(rkcheck.RkcheckWarning):
+        api = rkcheck.verify(rkcheck.from_arrays(np.array(A), np.array(b)), order=5).to_dict()
+    assert api["summary"] == cli["summary"] and api["conditions"] == cli["conditions"]
+    s = api["summary"]
+    assert (s["classical_order"], s["classical_order_to_digits"]) == (0, 4)
+    assert s["verdict"] == "fails" and s["first_failure"]["order"] == 5  # RK4's energy order is 4
+    with pytest.warns(rkcheck.RkcheckWarning):
+        exact = rkcheck.verify(rkcheck.from_arrays(np.array(A), np.array(b), floats="exact"), order=5)
+    assert exact.classical.to_digits == 0  # Σb = 1 fails by the binary rounding of 1/6 and 1/3
 
 
 def test_numpy_gauss_avf_binary_fails_tiny_and_trusted_digits_hold_to_digits():
@@ -117,7 +162,8 @@ def test_numpy_gauss_avf_binary_fails_tiny_and_trusted_digits_hold_to_digits():
     c = np.array([0.5 - np.sqrt(3) / 6, 0.5 + np.sqrt(3) / 6])
     b = np.array([0.5, 0.5])
     A = np.outer(c, b)
-    exact = rkcheck.verify(rkcheck.from_arrays(A, b), degree=3, order=5)
+    with pytest.warns(rkcheck.RkcheckWarning):
+        exact = rkcheck.verify(rkcheck.from_arrays(A, b, floats="exact"), degree=3, order=5)
     assert exact.verdict == "fails"
     assert all(abs(f.enclosure[0]) < Fraction(1, 10**15) for f in exact.failures)  # only the rounding
     # the digits one trusts, as strings: rounded decimals (definitions §5), judged over their intervals
@@ -126,7 +172,8 @@ def test_numpy_gauss_avf_binary_fails_tiny_and_trusted_digits_hold_to_digits():
     assert result.verdict == "holds_to_digits" and not result.failures
     assert 12 <= min(c.digits for c in result.conditions) <= 16
     # shortest: the repr digits, the same tableau as a file with those strings would be
-    shortest = rkcheck.from_arrays(A, b, floats="shortest")
+    with pytest.warns(rkcheck.RkcheckWarning):
+        shortest = rkcheck.from_arrays(A, b)  # the default
     as_file = rkcheck.loads("[tableau]\nA = " + json.dumps([[repr(float(x)) for x in r] for r in A])
                             + "\nb = " + json.dumps([repr(float(x)) for x in b]) + "\n")
     mine = rkcheck.verify(shortest, degree=3, order=5).to_dict()

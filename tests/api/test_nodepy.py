@@ -17,17 +17,62 @@ sp = pytest.importorskip("sympy")
 LIBRARY = rk.loadRKM("All")
 
 
+def _is_float(x) -> bool:
+    return isinstance(x, (float, sp.Float))
+
+
+@pytest.mark.filterwarnings("ignore::rkcheck.RkcheckWarning")
 @pytest.mark.parametrize("key", sorted(LIBRARY))
 def test_every_nodepy_method_reads(key):
     method = LIBRARY[key]
     tab = rkcheck.from_nodepy(method)
+    exact = rkcheck.from_nodepy(method, floats="exact")
     assert tab.stages == len(method.b)
-    for row, nrow in zip(tab.A, method.A):
-        for e, x in zip(row, nrow):
+    for row, erow, nrow in zip(tab.A, exact.A, method.A):
+        for e, f, x in zip(row, erow, nrow):
             if isinstance(x, sp.Rational):
-                assert e.exact == Fraction(int(x.p), int(x.q))
-            elif isinstance(x, float):
-                assert e.exact == Fraction(x)  # the exact binary value
+                assert e.exact == f.exact == Fraction(int(x.p), int(x.q))
+            elif _is_float(x):
+                assert e.text == repr(float(x))  # the decimal it prints as, by default
+                assert f.exact == Fraction(float(x))  # the exact binary value, on request
+
+
+#: nodepy's methods with entries stored as floats (numpy floats or sympy Floats)
+FLOATS = [k for k in sorted(LIBRARY) if any(_is_float(x) for x in list(LIBRARY[k].A.flat) + list(LIBRARY[k].b))]
+
+
+def _json_number(x):
+    if isinstance(x, sp.Rational):
+        return f"{x.p}/{x.q}"
+    return float(x) if _is_float(x) else str(x)
+
+
+@pytest.mark.parametrize("key", FLOATS)
+def test_float_methods_read_as_verify_reads_their_json(key, tmp_path, capsys):
+    # the same floats written to JSON (json.dumps writes each float's repr) and checked by
+    # the CLI: the API reading must give the same document, condition for condition
+    import json
+
+    from support.clirun import run_cli
+
+    method = LIBRARY[key]
+    doc = {"A": [[_json_number(x) for x in row] for row in method.A], "b": [_json_number(x) for x in method.b],
+           "c": [_json_number(x) for x in method.c]}
+    path = tmp_path / f"{key}.json"
+    path.write_text(json.dumps(doc))
+    cli = json.loads(run_cli(capsys, "verify", str(path), "--order", "6", "--format", "json").out)
+    with pytest.warns(rkcheck.RkcheckWarning):
+        api = rkcheck.verify(rkcheck.from_nodepy(method), order=6).to_dict()
+    assert api["summary"] == cli["summary"] and api["conditions"] == cli["conditions"]
+
+
+def test_tsit5_reaches_order_5_to_digits():
+    # Tsitouras (2011) designed Tsit5 with classical order 5; nodepy stores it in
+    # doubles, so order 5 is reached to digits only, and order 6 certainly fails
+    with pytest.warns(rkcheck.RkcheckWarning):
+        result = rkcheck.verify(rkcheck.from_nodepy(LIBRARY["Tsit5"]), order=6)
+    assert result.classical.to_digits == 5 and result.classical.first_failure is not None
+    assert result.classical_order < 5 and result.classical.digits is not None
 
 
 EXACT = [k for k in sorted(LIBRARY) if all(isinstance(x, sp.Rational) for x in list(LIBRARY[k].A.flat)

@@ -69,6 +69,31 @@ def test_auto_covers_the_double_only_for_shortest_reprs():
     assert parse("0.0").interval("float64") is None  # zero keeps the structure exact
 
 
+@pytest.mark.parametrize("text, digits", [("0.500000000000000000000000000000", 30), ("0.5000000000000000", 16),
+                                          ("0.16666666666666666000", 20), ("1.000000", 7)])
+def test_auto_judges_the_binary64_reading_from_the_text(text, digits):
+    # by hand: a literal with D significant digits whose last digit sits at 10^e stands
+    # for ± 5·10^(e−1); these are not what repr() prints for their double (0.5, 1/6, 1.0
+    # print as '0.5', '0.16666666666666666', '1.0'), so the double's ±2^-54-wide interval
+    # must not be added, whatever the value
+    lit = parse(text)
+    assert lit.digits == digits
+    exponent = -(len(text.split(".")[1]))
+    half = Fraction(5, 10) * Fraction(10) ** exponent
+    assert lit.interval("auto") == (lit.value - half, lit.value + half)
+    assert lit.interval("auto") == lit.interval("rounded")
+
+
+def test_thirty_digit_half_holds_to_thirty_digits_not_to_sixteen(tmp_path):
+    # one stage, a = 0.5 (30 digits written), b = 1: R([τ²]) = 1/2 − a (by hand), so on the
+    # box |R| ≤ 5·10⁻³¹ (30 digits); read as the double 0.5 it would be 2⁻⁵⁴ ≈ 5.6·10⁻¹⁷
+    path = _write(tmp_path, "half30.json", {"tableau": {"A": [["0.500000000000000000000000000000"]], "b": ["1"]}})
+    doc = _json(run_subprocess("verify", path, "--degree", "2", "--order", "2", "--format", "json"))
+    row = next(c for c in doc["conditions"] if c["id"] == "1,2,2")
+    assert row["state"] == "holds_to_digits" and row["digits"] >= 30
+    assert Fraction(row["radius"]) <= Fraction(5, 10**31) * 2
+
+
 # ------------------------------------------------------------------ the issue's cases
 
 
@@ -93,13 +118,16 @@ def test_rk4_from_json_dumps_keeps_order_four(tmp_path):
     path.write_text(json.dumps({"tableau": {"A": A, "b": b}}))  # 0.16666666666666666, ...
     doc = _json(run_subprocess("verify", str(path), "--order", "5", "--format", "json"))
     s = doc["summary"]
-    assert s["classical_order"] == 4
-    assert s["energy_order"] == 4
+    # order 4 is reached to digits only: the orders count proven holds (definitions §5),
+    # and a(τ) = Σb = 1 already holds only to digits for these doubles' rounding intervals
+    assert (s["classical_order"], s["classical_order_to_digits"]) == (0, 4)
+    assert (s["energy_order"], s["energy_order_to_digits"]) == (1, 4)
+    assert 14 <= s["classical_order_digits"] <= 17 and 14 <= s["energy_order_digits"] <= 17
     held = [c for c in doc["conditions"] if c["order"] <= 4]
     assert held and all(c["state"] == "holds to digits" or c["digits"] for c in held)
     assert 14 <= s["per_order"][0]["min_digits"] <= 17
     rounded = _json(run_subprocess("verify", str(path), "--order", "5", "--decimals", "rounded", "--format", "json"))
-    assert rounded["summary"]["classical_order"] == 3  # half a unit of the 17th digit excludes 1/6
+    assert rounded["summary"]["classical_order_to_digits"] == 3  # half a unit of the 17th digit excludes 1/6
 
 
 def test_six_digit_gauss2_is_not_called_a_certificate(tmp_path):

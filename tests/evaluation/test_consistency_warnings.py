@@ -1,0 +1,55 @@
+"""The consistency warnings (definitions §1) print exact values or the decimals the user
+wrote — never a value passed through a binary float (``Σb = 0.98999999999999999`` for
+b summing to 0.99, ``Σb = 1 ≠ 1`` for RK4 in floats)."""
+
+from __future__ import annotations
+
+import json
+import warnings
+from fractions import Fraction
+
+from support.clirun import run_cli
+
+import rkcheck
+from rkcheck.api.tableaux import tableau_warnings
+
+RK4_A = [[0, 0, 0, 0], [0.5, 0, 0, 0], [0, 0.5, 0, 0], [0, 0, 1.0, 0]]
+RK4_B = [1 / 6, 1 / 3, 1 / 3, 1 / 6]
+
+
+def _sum_warning(lines):
+    return next(w for w in lines if w.startswith("Σb ="))
+
+
+def test_weights_summing_to_099_print_099(tmp_path, capsys):
+    # by hand: 0.49 + 0.5 = 0.99 exactly, as decimals; the binary values do not sum to it
+    assert Fraction(0.49) + Fraction(0.5) != Fraction(99, 100)
+    path = tmp_path / "s99.json"
+    path.write_text(json.dumps({"A": [["0", "0"], ["1", "0"]], "b": ["0.49", "0.5"]}))
+    out = run_cli(capsys, "verify", str(path), "--order", "2").out
+    assert "warning: Σb = 0.99 ≠ 1: the method is inconsistent" in out
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rkcheck.RkcheckWarning)
+        floats = rkcheck.from_arrays([[0, 0], [1, 0]], [0.49, 0.5])  # the API reads the printed decimals
+    assert _sum_warning(tableau_warnings(floats)) == "Σb = 0.99 ≠ 1: the method is inconsistent (not even order 1)"
+
+
+def test_float_rk4_at_its_binary_values_prints_the_exact_sum():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rkcheck.RkcheckWarning)
+        tab = rkcheck.from_arrays(RK4_A, RK4_B, floats="exact")
+    total = sum((Fraction(x) for x in RK4_B), Fraction(0))  # the binary values, added exactly
+    assert total != 1
+    text = _sum_warning(tableau_warnings(tab))
+    assert text.startswith(f"Σb = {total.numerator}/{total.denominator} ≠ 1")
+
+
+def test_float_rk4_read_at_face_value_prints_the_decimals_sum(tmp_path, capsys):
+    # json.dumps writes 0.16666666666666666 and 0.3333333333333333; at face value
+    # 2·(0.16666666666666666 + 0.3333333333333333) = 0.99999999999999992 (by hand)
+    path = tmp_path / "rk4.json"
+    path.write_text(json.dumps({"A": RK4_A, "b": RK4_B}))
+    out = run_cli(capsys, "verify", str(path), "--order", "2", "--decimals", "exact").out
+    assert "warning: Σb = 0.99999999999999992 ≠ 1" in out
+    # read as the doubles' rounding intervals (auto), Σb = 1 is possible: no warning
+    assert "Σb" not in run_cli(capsys, "verify", str(path), "--order", "2").out.split("quadrature order")[0]
