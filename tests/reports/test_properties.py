@@ -29,7 +29,7 @@ def test_verify_json_has_the_property_keys(capsys):
     assert s["stability"]["defect"] == "R(z)R(−z) − 1 = z⁶/72 + z⁸/576"
     assert s["stability"]["numerator"] == ["1", "1", "1/2", "1/6", "1/24"] and s["stability"]["denominator"] == ["1"]
     assert s["reduction"] == {"stages": 4, "reduced_stages": 4, "classes": [[1], [2], [3], [4]], "dropped": [],
-                              "exact": True}
+                              "cancelled": [], "exact": True}
     # RK4 (all H) first fails at 6 vertices: C² = Σ R² over those conditions, by brute force
     squares = sum(ref.energy_residual(c, RK4_A, RK4_b) ** 2 for c in ref.energy_conditions(6))
     ec = s["error_constant"]
