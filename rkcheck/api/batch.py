@@ -286,7 +286,8 @@ def catalog(
     for every degree bound m in ``degrees`` (None or ``"none"``: all Hamiltonians) up to
     energy order ``order``: classical, quadrature and energy orders (definitions §3–4),
     whether it is AVF, its claims, symplecticity and symmetry, and the energy error
-    constants.  A file that cannot be read is a row with its ``error``.  With a single
+    constants.  A file that cannot be read is a row with its ``error``; families (files
+    with free ``[parameters]``) are left out.  With a single
     folder, row paths are relative to it.  ``progress(done, total)`` is called as files
     finish.  Refuses orders whose tables do not fit in memory (``ResourceError``)."""
     from pathlib import Path as FsPath
@@ -308,7 +309,10 @@ def catalog(
     if not degs:
         raise UserError("expected at least one degree", "degrees")
     guard(order, None if None in degs else max(d for d in degs if d is not None))  # the resource guard
-    files = find_tableau_files(roots, exclude=["README*", "*/README*"])
+    from rkcheck.io.loader import is_family_file
+
+    # families (free [parameters]) are not one tableau: `rkcheck solve` is their catalogue
+    files = [f for f in find_tableau_files(roots, exclude=["README*", "*/README*"]) if not is_family_file(f)]
     root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
     rows = []
     if progress is not None:
