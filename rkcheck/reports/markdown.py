@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 from rkcheck.batch.catalog import CatalogRow
+from rkcheck.numbers.formatting import decimal_string
 
 
 def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: int, command: str) -> str:
@@ -36,8 +39,8 @@ def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: i
     return "\n".join(lines) + "\n"
 
 
-def _c(value: float) -> str:
-    return f"{value:.3g}" if value else "0"
+def _c(value: Fraction) -> str:
+    return decimal_string(value, 3) if value else "0"
 
 
 def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -> list[str]:

@@ -10,9 +10,11 @@ from __future__ import annotations
 import csv
 import io
 import json
+from fractions import Fraction
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
+from rkcheck.numbers.formatting import decimal_digits, decimal_string
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 from rkcheck.version import __version__
 
@@ -150,7 +152,7 @@ def failure_message(o: dict[str, Any]) -> str:
         s = _summary(o)
         parts.append(
             f"{s.get('conditions_failed', len(fails))} failing conditions (energy order {s.get('energy_order')}), first: "
-            + ", ".join(f"{c['id']} {c['bracket']} (R = {float(c['residual']):.6g})" for c in fails[:3])
+            + ", ".join(f"{c['id']} {c['bracket']} (R = {decimal_string(Fraction(c['residual']), 6)})" for c in fails[:3])
         )
     return "; ".join(parts) or "check failed"
 
@@ -239,14 +241,16 @@ def scan_github(outcomes: list[dict[str, Any]]) -> str:
 # ---------------------------------------------------------------------- text
 
 
-def compact_constant(value: float) -> str:
-    """An error constant in at most 7 characters: ``0.15``, ``0.042``, ``1.5e-4``."""
+def compact_constant(value: Fraction | str) -> str:
+    """An error constant in a few characters: ``0.15``, ``0.042``, ``1.5e-4``, ``2e+200``
+    (exact decimal rounding: a constant past 1e308 is no float)."""
+    value = Fraction(value)
     if value == 0:
         return "0"
-    if 0.01 <= value < 100:
-        return f"{value:.2g}"
-    mant, exp = f"{value:.1e}".split("e")
-    return f"{mant}e{int(exp)}"
+    if Fraction(1, 100) <= value < 100:
+        return decimal_string(value, 2)
+    n, e = decimal_digits(value, 2)
+    return f"{n // 10}.{n % 10}e{e}"
 
 
 def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
@@ -316,7 +320,7 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
     if s and s.get("classical_first_failure") is None:
         classical = f"≥ {classical}"
     ec = s.get("error_constant")
-    extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
+    extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
     return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
                  "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
 

@@ -1,0 +1,94 @@
+"""Values at the edges of what numbers can say: magnitudes past float64's range, constants
+chained through decimals.  Each ends in the right answer or one line and exit 2, never
+an internal error (exit 3)."""
+
+from __future__ import annotations
+
+import json
+import math
+from decimal import Decimal, getcontext
+from fractions import Fraction as F
+
+import pytest
+from support import reference as ref
+from support.clirun import run_cli
+
+
+def write(tmp_path, name: str, text: str) -> str:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def no_bug(r) -> None:
+    assert r.code in (0, 1, 2), r.err
+    assert "internal error" not in r.err and "Traceback" not in r.err, r.err
+
+
+# ------------------------------------------------------------------ large magnitudes
+
+def one_stage(a: str, b: str = "1") -> str:
+    return f'[tableau]\nA = [["{a}"]]\nb = ["{b}"]\n'
+
+
+def test_an_entry_of_1e200_gets_its_error_constant_exactly(tmp_path, capsys):
+    # A = [[1e200]], b = [1]: the first failing order is 2 (three vertices); C is the
+    # norm of the reference residuals there, far beyond float64 once squared
+    path = write(tmp_path, "big.toml", one_stage("1e200"))
+    r = run_cli(capsys, "verify", path, "--order", "3", "--format", "json")
+    assert r.code == 1, r.err
+    ec = json.loads(r.out)["summary"]["error_constant"]
+    A, b = [[F(10) ** 200]], [F(1)]
+    residuals = [ref.energy_residual(c, A, b) for c in ref.energy_conditions(3)]
+    squared = sum(x * x for x in residuals)
+    assert ec["order"] == 2 and F(ec["squared"]) == squared
+    getcontext().prec = 60
+    root = (Decimal(squared.numerator) / Decimal(squared.denominator)).sqrt()
+    assert abs(Decimal(ec["value"]) / root - 1) < Decimal("1e-11")
+    assert Decimal(ec["lower"]) <= root <= Decimal(ec["upper"])
+
+
+@pytest.mark.parametrize("entry", ["1e200", "-1e250", "2^1100", "10^999", "sqrt(2)*10^400", "1e-300",
+                                   "root(x^3-2,1)*10^500", "0.2113248654051871e400"])
+@pytest.mark.parametrize("command", [
+    ["verify", "--order", "4"], ["verify", "--order", "4", "--arithmetic", "ball"],
+    ["verify", "--order", "4", "--decimals", "float64"], ["verify", "--order", "3", "--format", "json"],
+    ["show"], ["simulate", "--problem", "harmonic", "--steps", "5"], ["bench", "--order", "3"],
+    ["explain", "1,2,2", "--tableau"], ["scan", "--order", "4", "--sort", "energy"], ["catalog"],
+])
+def test_huge_and_tiny_entries_never_end_in_an_internal_error(tmp_path, capsys, entry, command):
+    a = write(tmp_path, "a.toml", f'[tableau]\nA = [["{entry}", "0"], ["1", "0"]]\nb = ["{entry}", "1"]\n')
+    r = run_cli(capsys, *command, a)
+    no_bug(r)
+
+
+def test_a_step_beyond_float64_is_refused_with_the_value(tmp_path, capsys):
+    path = write(tmp_path, "a.toml", one_stage("10^999"))
+    r = run_cli(capsys, "simulate", path, "--problem", "harmonic", "--steps", "5")
+    assert r.code == 2 and "beyond float64's range" in r.err and "--dps" in r.err, r.err
+
+
+def test_ball_bounds_past_float64_are_refused_with_the_reason(tmp_path, capsys):
+    path = write(tmp_path, "a.toml", one_stage("10^999"))
+    r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
+    assert r.code == 2 and "overflow float64" in r.err and "magnitude" in r.err, r.err
+
+
+def test_explain_evaluates_irrational_entries(tmp_path, capsys):
+    # A = [[√2]], b = [1]: condition 1,2,2 has R = Σb·Σb/2 − Σ b_i c_i = 1/2 − √2
+    path = write(tmp_path, "a.toml", one_stage("sqrt(2)"))
+    r = run_cli(capsys, "explain", "1,2,2", "--tableau", path)
+    assert r.code == 0, r.err
+    line = [x for x in r.out.splitlines() if x.startswith("R = -")][0]
+    shown = F(line.split()[2])
+    assert abs(shown - (F(1, 2) - F(math.sqrt(2)))) < F(1, 10**10) and line.endswith("fails")
+
+
+def test_scan_constants_column_past_float64(tmp_path, capsys):
+    folder = tmp_path / "d"
+    folder.mkdir()
+    (folder / "big.toml").write_text(one_stage("1e200"), encoding="utf-8")
+    (folder / "rk.toml").write_text(one_stage("1/2", "1"), encoding="utf-8")
+    r = run_cli(capsys, "scan", str(folder), "--order", "4", "--sort", "energy")
+    no_bug(r)
+    assert "1.0e200" in r.out, r.out
