@@ -39,7 +39,7 @@ class Constants:
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
         self._enclosures: dict[tuple[int, DecimalsMode], dict[str, Interval]] = {}
-        self._rounded: dict[str, bool] = {}
+        self._rounded: dict[str, int | None] = {}  # fewest digits of its rounded decimals, through others too
         self._decimal: dict[str, bool] = {}
         for name in self._order:
             node = self.definitions[name]
@@ -47,9 +47,9 @@ class Constants:
             self._decimal[name] = any(lit.is_decimal for lit in ex.literals(node)) or any(
                 self._decimal[u] for u in used
             )
-            self._rounded[name] = any(lit.is_rounded_decimal for lit in ex.literals(node)) or any(
-                self._rounded[u] for u in used
-            )
+            digits = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
+            digits += [d for u in used if (d := self._rounded[u]) is not None]
+            self._rounded[name] = min(digits) if digits else None
 
     def _topological_order(self) -> list[str]:
         """The constants in an order where each comes after those it uses (depth first,
@@ -113,6 +113,11 @@ class Constants:
         return self._enclosures[key]
 
     def is_rounded(self, name: str) -> bool:
+        return self._rounded[name] is not None
+
+    def rounded_digits(self, name: str) -> int | None:
+        """The fewest significant digits among the rounded decimals ``name`` depends on,
+        directly or through other constants (None: it depends on none)."""
         return self._rounded[name]
 
     def has_decimal(self, name: str) -> bool:
@@ -164,15 +169,9 @@ class Entry:
         constants.check_names(node)
         used = {n.name for n in ex.names(node)}
         rounded = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
-        via_constant = [u for u in used if constants.is_rounded(u)]
+        # a constant counts with the fewest digits it depends on (s = "1 - r", r a decimal)
+        rounded += [d for u in used if (d := constants.rounded_digits(u)) is not None]
         rounded_digits = min(rounded) if rounded else None
-        if via_constant and rounded_digits is None:
-            rounded_digits = min(
-                lit.digits
-                for u in via_constant
-                for lit in ex.literals(constants.definitions[u])
-                if lit.digits is not None and lit.is_rounded_decimal
-            )
         exact = ex.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.

@@ -92,3 +92,29 @@ def test_scan_constants_column_past_float64(tmp_path, capsys):
     r = run_cli(capsys, "scan", str(folder), "--order", "4", "--sort", "energy")
     no_bug(r)
     assert "1.0e200" in r.out, r.out
+
+
+# ------------------------------------------------------------------ constants through decimals
+
+CHAIN = """[constants]
+r = "0.2113248654051871"
+s = "1 - r"
+t = "s * s"
+[tableau]
+A = [["r", "0"], ["s", "0"]]
+b = ["1/2", "1/2"]
+"""
+
+
+def test_a_constant_chained_through_a_decimal_is_read_as_rounded(tmp_path, capsys):
+    # r has 16 significant digits; s and t depend on r only through other constants
+    path = write(tmp_path, "chain.toml", CHAIN)
+    r = run_cli(capsys, "verify", path, "--order", "3")
+    no_bug(r)
+    assert r.code == 0 and "as few as 16" in r.out, r.out
+    from rkcheck.io.loader import loads
+    from rkcheck.numbers.entries import Entry
+
+    tab = loads(CHAIN, "chain.toml")
+    assert [e.rounded_digits for e in tab.A[1]] == [16, None]
+    assert Entry.parse("t + 1/3", tab.info.constants).rounded_digits == 16
