@@ -11,7 +11,7 @@ import csv
 import io
 import json
 from fractions import Fraction
-from typing import Any
+from typing import Any, Callable
 from xml.sax.saxutils import escape, quoteattr
 
 from rkcheck.numbers.formatting import decimal_digits, decimal_string
@@ -26,19 +26,44 @@ CSV_COLUMNS = [
 ]
 
 
-def outcome_docs(outcomes) -> list[dict[str, Any]]:
+def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None) -> list[dict[str, Any]]:
     """Plain documents of the outcomes: path, status, error, time, lines, and under
-    ``result`` the ``verify --format json`` object of each checked file."""
-    return [
-        {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
-         "result": None if o.result is None else check_doc(o.result)}
-        for o in outcomes
-    ]
+    ``result`` the ``verify --format json`` object of each checked file.
+
+    A file whose document (or, given ``row_check``, its row of the report) cannot be
+    built becomes an ``error`` row with the reason, like a file that could not be read:
+    one file never aborts the report of the others.  The outcome itself is marked so,
+    and the scan's exit code counts it."""
+    docs = []
+    for o in outcomes:
+        doc = {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
+               "result": None}
+        try:
+            doc["result"] = None if o.result is None else check_doc(o.result)
+            if row_check is not None:
+                row_check(doc)
+        except Exception as err:  # a bug (or a value no format can say): this row says so
+            o.status, o.result = "error", None
+            o.error = (f"{o.path}: internal error while writing its report: {type(err).__name__}: {err} "
+                       "(a bug in rkcheck; please report it)")
+            doc.update(status=o.status, error=o.error, result=None)
+        docs.append(doc)
+    return docs
+
+
+def _row_renderer(fmt: str, elapsed: float = 0.0) -> Callable[[dict[str, Any]], Any]:
+    """How one row of a format is rendered (tried per file before the whole report)."""
+    return {"json": lambda d: json.dumps(d, ensure_ascii=False), "csv": lambda d: scan_csv([d]),
+            "junit": lambda d: scan_junit([d], elapsed), "github": lambda d: scan_github([d]),
+            "text": lambda d: (_scan_row(d, str, True), failure_message(d) if d["status"] == "failed" else None),
+            }[fmt]
 
 
 def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any], elapsed: float) -> str:
     """The scan report in a machine format: json, csv, junit or github."""
-    docs = outcome_docs(outcomes)
+    if fmt not in ("json", "csv", "junit", "github"):
+        raise ValueError(f"unknown scan format {fmt!r}")
+    docs = outcome_docs(outcomes, _row_renderer(fmt, elapsed))
     if fmt == "json":
         return scan_json(docs, interrupted, options) + "\n"
     if fmt == "csv":
@@ -257,7 +282,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
                      constants: bool = False) -> None:
     """The scan table; ``constants``: with a column C (the energy error constant), as
     ``scan --sort energy`` shows it."""
-    outcomes = outcome_docs(outcomes)
+    outcomes = outcome_docs(outcomes, _row_renderer("text"))
     root, shown = _common_root([o["path"] for o in outcomes])
     t = _scan_table(f"files under {root}/" if root else None, constants)
     for o in outcomes:

@@ -118,3 +118,33 @@ def test_a_constant_chained_through_a_decimal_is_read_as_rounded(tmp_path, capsy
     tab = loads(CHAIN, "chain.toml")
     assert [e.rounded_digits for e in tab.A[1]] == [16, None]
     assert Entry.parse("t + 1/3", tab.info.constants).rounded_digits == 16
+
+
+# ------------------------------------------------------------------ one bad row, not a bad report
+
+@pytest.mark.parametrize("fmt", ["json", "csv", "junit", "github", "text"])
+def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, capsys, monkeypatch, fmt):
+    import rkcheck.reports.scan as scan_report
+
+    folder = tmp_path / "d"
+    folder.mkdir()
+    for name in ("a", "bad", "c"):
+        (folder / f"{name}.toml").write_text(one_stage("1/2"), encoding="utf-8")
+    real = scan_report.check_doc
+
+    def broken(result):
+        if result.tableau.name == "bad":
+            raise ZeroDivisionError("injected")
+        return real(result)
+
+    monkeypatch.setattr(scan_report, "check_doc", broken)
+    out = tmp_path / f"report.{fmt}"
+    r = run_cli(capsys, "scan", str(folder), "--order", "3", "--jobs", "1", "--format", fmt, "-o", str(out))
+    assert r.code == 1, r.err
+    text = out.read_text(encoding="utf-8")
+    words = " ".join(text.split())  # the text table wraps long messages
+    assert "bad.toml" in text and "internal error while writing its report: ZeroDivisionError: injected" in words
+    if fmt == "json":
+        files = {f["file"].rsplit("/", 1)[-1]: f for f in json.loads(text)["files"]}
+        assert [files[k]["status"] for k in ("a.toml", "bad.toml", "c.toml")] == ["ok", "error", "ok"]
+        assert files["a.toml"]["result"] is not None and files["bad.toml"]["result"] is None
