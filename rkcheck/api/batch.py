@@ -116,7 +116,12 @@ def _config(project: bool | ProjectConfig) -> ProjectConfig:
 def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectConfig = False) -> list[str]:
     """The roots a scan starts from: ``paths``, else the ``paths`` of ``[tool.rkcheck]``
     (with ``project``); none at all is an error (the CLI's message)."""
-    roots = [os.fspath(p) for p in paths] or _config(project).paths
+    if isinstance(paths, (str, bytes, os.PathLike)):  # one path, not a sequence of its characters
+        paths = [paths]
+    try:
+        roots = [os.fsdecode(p) for p in paths] or _config(project).paths
+    except TypeError:
+        raise UserError("expected a path or a list of paths (str or os.PathLike)", "paths") from None
     if not roots:
         raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
     return roots

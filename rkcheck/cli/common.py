@@ -313,15 +313,17 @@ def write_text(text: str, output: str | None) -> None:
     import tempfile
     from pathlib import Path
 
-    target = Path(os.path.realpath(output))
     try:
-        mode = target.stat().st_mode
+        # the path itself, links followed by the system: /dev/stdout on a pipe resolves to
+        # no file name (realpath gives /proc/…/fd/pipe:[…]) but opens fine
+        mode = os.stat(output).st_mode
     except FileNotFoundError:
         mode = None
     if mode is not None and not stat.S_ISREG(mode):
-        with open(target, "w", encoding="utf-8") as fh:
+        with open(output, "w", encoding="utf-8", errors="surrogateescape") as fh:
             fh.write(text)
         return
+    target = Path(os.path.realpath(output))
     umask = os.umask(0)
     os.umask(umask)
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")

@@ -19,6 +19,7 @@ shipped tableau (:mod:`rkcheck.io.library`) or a classical method
 
 from __future__ import annotations
 
+import io
 import re
 import sys
 import tomllib
@@ -26,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.io.bounded import MAX_FILE_BYTES, bounded_read, max_file_bytes
 from rkcheck.io.printable import printable
 from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import MethodInfo, Tableau
@@ -38,7 +40,6 @@ from rkcheck.options import (
     validate_check_table,
 )
 
-MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "tableau", "check", "expect", "family")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
@@ -72,17 +73,30 @@ def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
 
 
 def read_text(path: str) -> str:
-    """Read a file (``-`` = standard input) as UTF-8, as a UserError on failure."""
-    if path == "-":
-        return sys.stdin.read()
-    p = Path(path)
+    """Read a file (``-`` = standard input) as UTF-8, at most :func:`max_file_bytes`
+    bytes, as a UserError on failure."""
+    import stat
+
+    limit = max_file_bytes()
     try:
-        if p.is_dir():
+        if path == "-":
+            stdin = getattr(sys.stdin, "buffer", None)
+            if stdin is None:  # a text stream put in place by a caller (tests, an embedding program)
+                text = sys.stdin.read(limit + 1)
+                bounded_read(io.BytesIO(text.encode("utf-8", "surrogateescape")), limit, path)
+                return text
+            return bounded_read(stdin, limit, path).decode("utf-8")
+        p = Path(path)
+        mode = p.stat().st_mode
+        if stat.S_ISDIR(mode):
             raise UserError("is a directory, not a tableau file", source=path)
-        size = p.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise UserError(f"file too large ({size:,} bytes; limit {MAX_FILE_BYTES:,})", source=path)
-        return p.read_text(encoding="utf-8")
+        if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+            raise UserError("is a device, not a tableau file", source=path)
+        if stat.S_ISREG(mode) and p.stat().st_size > limit:
+            raise UserError(f"file too large ({p.stat().st_size:,} bytes; the limit MAX_FILE_BYTES is {limit:,}; "
+                            "set RKCHECK_MAX_FILE_BYTES to change it)", source=path)
+        with open(p, "rb") as fh:  # a FIFO (bash's <(…)) too: read with the limit
+            return bounded_read(fh, limit, path).decode("utf-8")
     except FileNotFoundError:
         raise UserError("no such file", source=path) from None
     except PermissionError:
