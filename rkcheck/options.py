@@ -22,6 +22,9 @@ from rkcheck.numbers.reading import DEFAULT_DPS, Arithmetic, DecimalsMode, Readi
 DEFAULT_ORDER = 8
 DEFAULT_DECIMALS = DecimalsMode.AUTO
 DEFAULT_MAX_STAGES = 64
+#: What --max-stages (and the API's max_stages) accepts: an importer allocates the s×s
+#: matrix of the highest stage index it reads, so the bound bounds its memory too.
+MAX_STAGES_RANGE = (1, 1000)
 
 #: The highest energy order any source may ask for.  What actually fits is decided by the
 #: resource guard from exact condition counts (rkcheck.energy.budget): order 20 needs

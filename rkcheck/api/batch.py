@@ -15,6 +15,7 @@ from rkcheck.api.verification import UNSET, Verification, _option, check_flags
 from rkcheck.errors import UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
+    MAX_STAGES_RANGE,
     DEFAULT_ORDER,
     FAIL_ON,
     JOBS_RANGE,
@@ -181,7 +182,7 @@ def scan(
         jobs = _option(lambda: parse_int_in(jobs, JOBS_RANGE, "jobs"))
     jobs = jobs or config.jobs or default_jobs()
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
-    max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
+    max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
     files_budget = _scan_budget(flags, config, max_conditions)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []

@@ -20,6 +20,7 @@ from rkcheck.errors import UserError
 from rkcheck.options import (
     DECIMALS_MODES,
     DEFAULT_MAX_STAGES,
+    MAX_STAGES_RANGE,
     DPS_RANGE,
     FAIL_ON,
     MAX_DEGREE,
@@ -153,7 +154,7 @@ def degree_option(default: Any = None, help: str | None = None) -> Callable:
 
 def max_stages_option(f: Callable) -> Callable:
     return click.option(
-        "--max-stages", type=click.IntRange(1), default=DEFAULT_MAX_STAGES, show_default=True,
+        "--max-stages", type=click.IntRange(*MAX_STAGES_RANGE), default=DEFAULT_MAX_STAGES, show_default=True,
         help="Refuse tableaux with more stages than this.",
     )(f)
 

@@ -35,6 +35,8 @@ from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
+    MAX_STAGES_RANGE,
+    parse_int_in,
     INPUT_FORMATS,
     parse_strings,
     validate_check_table,
@@ -85,7 +87,7 @@ def read_text(path: str) -> str:
                 text = sys.stdin.read(limit + 1)
                 bounded_read(io.BytesIO(text.encode("utf-8", "surrogateescape")), limit, path)
                 return text
-            return bounded_read(stdin, limit, path).decode("utf-8")
+            return bounded_read(stdin, limit, path).decode("utf-8-sig")  # -sig: a leading BOM is dropped
         p = Path(path)
         mode = p.stat().st_mode
         if stat.S_ISDIR(mode):
@@ -96,7 +98,7 @@ def read_text(path: str) -> str:
             raise UserError(f"file too large ({p.stat().st_size:,} bytes; the limit MAX_FILE_BYTES is {limit:,}; "
                             "set RKCHECK_MAX_FILE_BYTES to change it)", source=path)
         with open(p, "rb") as fh:  # a FIFO (bash's <(…)) too: read with the limit
-            return bounded_read(fh, limit, path).decode("utf-8")
+            return bounded_read(fh, limit, path).decode("utf-8-sig")  # spreadsheets write a BOM
     except FileNotFoundError:
         raise UserError("no such file", source=path) from None
     except PermissionError:
@@ -366,6 +368,8 @@ def loads(
 ) -> Tableau:
     """Parse tableau text (``fmt``: one of :data:`INPUT_FORMATS`, default by the source's
     suffix and the content)."""
+    parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages")
+    text = text.removeprefix("\ufeff")  # a byte order mark, as spreadsheets and editors write it
     fmt = fmt or detect_format(source, text)
     if fmt not in INPUT_FORMATS:
         raise UserError(f"unknown input format {fmt!r} (known: {', '.join(INPUT_FORMATS)})", source=source)
@@ -375,7 +379,7 @@ def loads(
             from rkcheck.io.nodepy_text import parse_nodepy_text
 
             stem = Path(source).stem if source not in ("-", "<string>") else "stdin"
-            data = (parse_delimited if fmt == "csv" else parse_nodepy_text)(text, stem)
+            data = parse_delimited(text, stem) if fmt == "csv" else parse_nodepy_text(text, stem, max_stages)
         else:
             data = parse_document(text, fmt)
     except UserError as err:
