@@ -29,6 +29,7 @@ linear ``gcd(f(z), g(η − tz))`` over ``Q(η)``, read off two minors (:func:`_
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Iterable, Mapping, Sequence
@@ -41,6 +42,9 @@ from rkcheck.numbers.polynomials import poly_text, real_root_intervals
 #: Largest field degree :func:`field_of` builds; beyond it the entries are left to balls
 #: (the exact engine's work grows with the degree: one channel per conjugate).
 MAX_FIELD_DEGREE = 48
+#: Longest time :func:`field_of` spends building one field; beyond it the entries are left
+#: to balls too (nested radicals can need exponential work before the degree is known).
+FIELD_SECONDS = 10.0
 
 
 class NotAlgebraic(Exception):
@@ -538,6 +542,12 @@ class _Builder:
         self.constants: dict[str, FieldElement] = {}
         self._sqrt_cache: dict[int, FieldElement] = {}  # keyed by the square-free m
         self._power_tables: dict[int, list] = {}  # step j: powers of θ_old in chain[j]
+        self.deadline = time.monotonic() + FIELD_SECONDS
+
+    def check_time(self) -> None:
+        if time.monotonic() > self.deadline:
+            raise NotAlgebraic(f"building their number field took more than {FIELD_SECONDS:g} s "
+                               "(the limit FIELD_SECONDS)")
 
     # ------------------------------------------------------------- lifting
     def lift(self, x: FieldElement) -> FieldElement:
@@ -586,7 +596,11 @@ class _Builder:
         if mirror is not None:
             self.generators[gamma] = mirror
             return mirror
+        self.check_time()
         if K.is_rational:
+            if f.degree() > self.max_degree:  # root(p, k) of a high degree p: the same limit
+                raise NotAlgebraic(f"the entries generate a number field of degree {f.degree()} "
+                                   f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             L = NumberField(list(gamma.f), gamma.index)
             self._push(L, L(0))
             self.generators[gamma] = L.gen
@@ -596,7 +610,7 @@ class _Builder:
         # work of finding it (a characteristic polynomial of a D×D matrix)
         if D > 4 * self.max_degree:
             raise NotAlgebraic(f"the entries generate a number field of degree up to {D} "
-                               f"(more than {self.max_degree})")
+                               f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
         for t in _separating_multipliers(K.g, f):
             R = _charpoly_sum(K.g, f, t)
 
@@ -606,10 +620,10 @@ class _Builder:
             h = _identify([fac for fac, _ in R.factor()[1]], eta_enc)
             if h.degree() > self.max_degree:
                 raise NotAlgebraic(f"the entries generate a number field of degree {h.degree()} "
-                                   f"(more than {self.max_degree})")
+                                   f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             eta = _real_of(h, eta_enc)
             L = NumberField(list(eta.f), eta.index)
-            theta_old = _theta_in(L, K.g, f, t)
+            theta_old = _theta_in(L, K.g, f, t, self.check_time)
             gamma_new = (L.gen - theta_old) / t
             self._push(L, theta_old)
             self.generators[gamma] = gamma_new
@@ -684,6 +698,7 @@ class _Builder:
         return left / right
 
     def _call(self, node: ex.Call) -> FieldElement:
+        self.check_time()
         if node.func == "root":
             k = self.lift(self.value(node.args[1])).rational()
             if k is None or k.denominator != 1 or k < 1:
@@ -796,7 +811,7 @@ def _charpoly_mul(alpha: FieldElement):
     return M.charpoly()
 
 
-def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
+def _theta_in(L: NumberField, g, f, t: int, check_time=lambda: None) -> FieldElement:
     """θ (root of g) in L = Q(η), η = θ + tγ: ``η − tγ``, with γ the one common root of
     ``f(z)`` and ``r(z) = g(η − tz) mod f`` over L (t separates the conjugates).
 
@@ -823,6 +838,7 @@ def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
     for i, row in enumerate(rows):
         nxt: dict[tuple[int, ...], FieldElement] = {}
         for cols, m in minors.items():
+            check_time()  # the minors can number 2^n
             for j in range(n):
                 if j in cols or row[j].is_zero():
                     continue

@@ -148,3 +148,64 @@ def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, cap
         files = {f["file"].rsplit("/", 1)[-1]: f for f in json.loads(text)["files"]}
         assert [files[k]["status"] for k in ("a.toml", "bad.toml", "c.toml")] == ["ok", "error", "ok"]
         assert files["a.toml"]["result"] is not None and files["bad.toml"]["result"] is None
+
+
+# ------------------------------------------------------------------ long decimals
+
+def test_a_decimal_of_4437_digits_gets_exact_residuals(tmp_path, capsys):
+    # thousands of primes for the exact residuals: merged by a product tree (Garner's
+    # digits took minutes); each residual is checked against the reference in Fractions
+    from support.guards import hang_guard
+
+    digits = "0." + ("1234567890" * 444)[:4437]
+    path = write(tmp_path, "long.toml", one_stage(digits))
+    with hang_guard(120):
+        r = run_cli(capsys, "verify", path, "--order", "6", "--decimals", "exact", "--format", "json")
+    assert r.code == 1, r.err
+    A, b = [[F(digits)]], [F(1)]
+    expected = {}
+    for n in range(3, 8):
+        for cond in ref.energy_conditions(n):
+            expected[",".join(map(str, cond["id"]))] = ref.energy_residual(cond, A, b)
+    got = {c["id"]: F(c["residual_exact"]) for c in json.loads(r.out)["conditions"]}
+    assert got == expected
+
+
+# ------------------------------------------------------------------ number-field limits
+
+def test_root_obeys_the_field_degree_limit(tmp_path, capsys):
+    # root(x^60 - 2, 1) generates Q(2^(1/60)), of degree 60 > MAX_FIELD_DEGREE = 48
+    from rkcheck.numbers.algebraic import MAX_FIELD_DEGREE, NotAlgebraic, field_of
+    from rkcheck.numbers.grammar import parse
+
+    assert MAX_FIELD_DEGREE < 60
+    with pytest.raises(NotAlgebraic, match="degree 60 .more than 48, the limit MAX_FIELD_DEGREE"):
+        field_of([parse("root(x^60 - 2, 1)")])
+    assert field_of([parse("root(x^48 - 2, 1)")]).field.degree == 48
+    path = write(tmp_path, "r.toml", one_stage("root(x^60 - 2, 1)"))
+    r = run_cli(capsys, "verify", path, "--order", "3")
+    assert r.code == 1 and "not exact: the entries generate a number field of degree 60" in " ".join(r.out.split())
+
+
+def test_building_a_field_stops_at_its_time_limit(tmp_path, capsys, monkeypatch):
+    # a nested radical of degree 16 needs seconds of exact work: with the limit at zero
+    # it is left to balls at once, and the report says which limit
+    import rkcheck.numbers.algebraic as alg
+    from rkcheck.numbers.grammar import parse
+
+    monkeypatch.setattr(alg, "FIELD_SECONDS", 0.0)
+    with pytest.raises(alg.NotAlgebraic, match="the limit FIELD_SECONDS"):
+        alg.field_of([parse("sqrt(2 + sqrt(3 + sqrt(5)))")])
+    path = write(tmp_path, "n.toml", one_stage("sqrt(2 + sqrt(3 + sqrt(5)))"))
+    r = run_cli(capsys, "verify", path, "--order", "3")
+    assert r.code == 1 and "not exact: building their number field took more than 0 s (the limit FIELD_SECONDS)" in (
+        " ".join(r.out.split())), r.out
+
+
+def test_a_nested_radical_of_degree_512_ends_within_the_field_limit(tmp_path):
+    # run as a process with its own timeout: FIELD_SECONDS (10 s) bounds the exact attempt
+    from support.clirun import run_subprocess
+
+    path = write(tmp_path, "n.toml", one_stage("sqrt(2+sqrt(3+sqrt(5+sqrt(7+sqrt(11)))))"))
+    r = run_subprocess("verify", path, "--order", "3", timeout=90)
+    assert r.code == 1 and "not exact" in r.out, r.err
