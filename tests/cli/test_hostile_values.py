@@ -209,3 +209,25 @@ def test_a_nested_radical_of_degree_512_ends_within_the_field_limit(tmp_path):
     path = write(tmp_path, "n.toml", one_stage("sqrt(2+sqrt(3+sqrt(5+sqrt(7+sqrt(11)))))"))
     r = run_subprocess("verify", path, "--order", "3", timeout=90)
     assert r.code == 1 and "not exact" in r.out, r.err
+
+
+# ------------------------------------------------------------------ claims within limits
+
+def test_a_classical_order_claim_beyond_its_limit_is_refused(tmp_path, capsys):
+    path = write(tmp_path, "c.toml", one_stage("1/2") + "[expect]\nclassical_order = 20\n")
+    r = run_cli(capsys, "verify", path)
+    assert r.code == 2 and r.err == (f"rkcheck: error: {path}: expect.classical_order: expected an integer from 0 "
+                                     "to 14, got 20 (the limit MAX_CLASSICAL_CLAIM: judging it checks every rooted "
+                                     "tree of one more vertex)\n"), r.err
+
+
+@pytest.mark.parametrize("claim, met", [(2, True), (3, False), (14, False)])
+def test_a_classical_order_claim_is_judged_without_an_energy_run_to_its_order(tmp_path, capsys, claim, met):
+    # the implicit midpoint rule has classical order 2 (Butcher); --order 1 asks for one
+    # energy order only, and the claim is still judged exactly
+    path = write(tmp_path, "c.toml", one_stage("1/2") + f"[expect]\nclassical_order = {claim}\n")
+    r = run_cli(capsys, "verify", path, "--order", "1", "--format", "json")
+    assert r.code == (0 if met else 1), r.err
+    doc = json.loads(r.out)
+    (c,) = doc["claims"]
+    assert (c["met"], c["found"]) == (met, "2") and doc["options"]["order"] == 1
