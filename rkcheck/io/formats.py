@@ -321,7 +321,11 @@ def write(tab: Tableau, fmt: str) -> str:
     else 60-digit decimals — so every format reads back (never the "≈" display texts)."""
     if fmt not in WRITERS:
         raise UserError(f"unknown output format {fmt!r} (known: {', '.join(WRITE_FORMATS)})")
-    return WRITERS[fmt](_as_written(tab))
+    try:
+        return WRITERS[fmt](_as_written(tab))
+    except RecursionError:  # a sum of thousands of terms is a tree too deep to render recursively
+        raise UserError(f"an entry is nested too deeply to write as {fmt} (a chain of thousands of terms); "
+                        "write the tableau as TOML or JSON") from None
 
 
 def _as_written(tab: Tableau) -> Tableau:

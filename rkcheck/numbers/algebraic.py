@@ -922,7 +922,10 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     a negative number.  Decimal literals are read at face value: the caller decides
     whether the entries are exact (definitions §5)."""
     builder = _Builder(constants, max_degree)
-    values = [builder.value(n) for n in nodes]
+    try:
+        values = [builder.value(n) for n in nodes]
+    except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
+        raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
     values = [builder.lift(v) for v in values]
     # sqrt(2) - sqrt(2) needs no field: when every value is rational, Q is the field
     if builder.field.is_rational or all(v.rational() is not None for v in values):

@@ -17,6 +17,7 @@ precision, however often it is used.
 
 from __future__ import annotations
 
+import copyreg
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Mapping, Protocol
@@ -215,3 +216,71 @@ class Entry:
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""
         return self.exact == 0
+
+
+# ------------------------------------------------------------------ pickling
+
+# An entry's expression can be a tree thousands of levels deep (a sum of a thousand
+# square roots leans left); pickle walks objects recursively and fails on it, and a scan
+# worker sends its results by pickle.  Each tree is therefore pickled as its nodes in
+# post-order, flat, and rebuilt with an explicit stack.
+
+
+def _children(node: ex.Expr) -> tuple[ex.Expr, ...]:
+    if isinstance(node, ex.Unary):
+        return (node.operand,)
+    if isinstance(node, ex.Binary):
+        return (node.left, node.right)
+    if isinstance(node, ex.Power):
+        return (node.base, node.exponent)
+    if isinstance(node, ex.Call):
+        return node.args  # with root's polynomial: every node is kept
+    return ()
+
+
+def _record(node: ex.Expr) -> tuple:
+    if isinstance(node, ex.Num):
+        return ("N", node.value, node.text, node.digits, node.last_digit_exponent)
+    if isinstance(node, ex.Name):
+        return ("V", node.name, node.column)
+    if isinstance(node, ex.Unary):
+        return ("U", node.op)
+    if isinstance(node, ex.Binary):
+        return ("B", node.op, node.column)
+    if isinstance(node, ex.Power):
+        return ("P", node.column)
+    assert isinstance(node, ex.Call)
+    return ("C", node.func, len(node.args), node.column)
+
+
+def _rebuild(flat: list[tuple]) -> ex.Expr:
+    stack: list[ex.Expr] = []
+    for kind, *f in flat:
+        if kind == "N":
+            stack.append(ex.Num(*f))
+        elif kind == "V":
+            stack.append(ex.Name(*f))
+        elif kind == "U":
+            stack.append(ex.Unary(f[0], stack.pop()))
+        elif kind == "B":
+            right, left = stack.pop(), stack.pop()
+            stack.append(ex.Binary(f[0], left, right, f[1]))
+        elif kind == "P":
+            exponent, base = stack.pop(), stack.pop()
+            stack.append(ex.Power(base, exponent, f[0]))
+        else:
+            func, n, column = f
+            args = tuple(stack[len(stack) - n:])
+            del stack[len(stack) - n:]
+            stack.append(ex.Call(func, args, column))
+    return stack[0]
+
+
+def _reduce_expr(node: ex.Expr):
+    flat: list[tuple] = []
+    ex.fold(node, lambda n, _: flat.append(_record(n)), _children)
+    return _rebuild, (flat,)
+
+
+for _cls in (ex.Num, ex.Name, ex.Unary, ex.Binary, ex.Power, ex.Call):
+    copyreg.pickle(_cls, _reduce_expr)

@@ -231,3 +231,51 @@ def test_a_classical_order_claim_is_judged_without_an_energy_run_to_its_order(tm
     doc = json.loads(r.out)
     (c,) = doc["claims"]
     assert (c["met"], c["found"]) == (met, "2") and doc["options"]["order"] == 1
+
+
+# ------------------------------------------------------------------ deep expressions
+
+SQRT_SUM = "+".join(f"sqrt({p})" for p in (2, 3, 5, 7, 11, 13) * 200)  # 1 200 terms, a tree 1 200 deep
+
+
+def test_a_long_sum_of_square_roots_is_checked_in_balls(tmp_path, capsys):
+    import mpmath
+
+    path = write(tmp_path, "s.toml", one_stage(SQRT_SUM))
+    r = run_cli(capsys, "verify", path, "--order", "2", "--format", "json")
+    assert r.code == 1, r.err
+    doc = json.loads(r.out)
+    # condition 1,2,2: R = (Σb)²/2 − Σ b_i c_i = 1/2 − a, a = 200·(√2 + √3 + … + √13)
+    mpmath.mp.dps = 30
+    a = 200 * sum(mpmath.sqrt(p) for p in (2, 3, 5, 7, 11, 13))
+    (cond,) = doc["conditions"]
+    assert abs(mpmath.mpf(cond["residual"]) - (mpmath.mpf(1) / 2 - a)) < mpmath.mpf(10) ** -20
+
+
+def test_a_deep_expression_survives_a_scan_with_workers(tmp_path, capsys):
+    folder = tmp_path / "d"
+    folder.mkdir()
+    (folder / "s.toml").write_text(one_stage(SQRT_SUM), encoding="utf-8")
+    (folder / "t.toml").write_text(one_stage("1/2"), encoding="utf-8")
+    r = run_cli(capsys, "scan", str(folder), "--order", "2", "--jobs", "2", "--format", "json")
+    assert r.code == 0, r.err
+    assert [f["status"] for f in json.loads(r.out)["files"]] == ["ok", "ok"]
+
+
+def test_deep_expression_trees_pickle_without_recursion():
+    import pickle
+
+    from rkcheck.numbers import grammar as ex
+
+    node = ex.parse(SQRT_SUM + " - root(x^3 - 2*x + 1, 2)*1.25e3 / -c^2")
+    back = pickle.loads(pickle.dumps(node))
+    shape = [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in ex.walk(node)]
+    assert [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in ex.walk(back)] == shape
+
+
+@pytest.mark.parametrize("fmt", ["python", "latex", "julia"])
+def test_writing_a_deep_expression_as_code_is_one_line(tmp_path, capsys, fmt):
+    path = write(tmp_path, "s.toml", one_stage(SQRT_SUM))
+    r = run_cli(capsys, "show", path, "--format", fmt)
+    assert r.code == 2 and r.err == (f"rkcheck: error: an entry is nested too deeply to write as {fmt} (a chain "
+                                     "of thousands of terms); write the tableau as TOML or JSON\n"), r.err
