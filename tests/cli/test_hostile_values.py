@@ -279,3 +279,18 @@ def test_writing_a_deep_expression_as_code_is_one_line(tmp_path, capsys, fmt):
     r = run_cli(capsys, "show", path, "--format", fmt)
     assert r.code == 2 and r.err == (f"rkcheck: error: an entry is nested too deeply to write as {fmt} (a chain "
                                      "of thousands of terms); write the tableau as TOML or JSON\n"), r.err
+
+
+# ------------------------------------------------------------------ the advertised precision range
+
+@pytest.mark.parametrize("dps", ["700", "5000"])
+def test_the_whole_dps_range_works_on_decimal_tableaux(capsys, dps):
+    # 50-digit decimals of AVF(Gauss-2): the same verdicts at the top of the range as at 50
+    from support.paths import TABLEAUX
+
+    path = str(TABLEAUX / "avf" / "avf-gauss-2-decimal50.toml")
+    base = run_cli(capsys, "verify", path, "--order", "5", "--format", "json")
+    high = run_cli(capsys, "verify", path, "--order", "5", "--format", "json", "--dps", dps)
+    assert base.code == high.code == 0, high.err
+    states = [[c["state"] for c in json.loads(r.out)["conditions"]] for r in (base, high)]
+    assert states[0] == states[1]
