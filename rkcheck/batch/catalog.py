@@ -6,6 +6,7 @@ Pure: it loads and checks the files it is given and returns rows; rendering (Mar
 
 from __future__ import annotations
 
+from fractions import Fraction
 from dataclasses import dataclass, field
 
 from rkcheck.energy.check import CheckOptions
@@ -13,6 +14,7 @@ from rkcheck.energy.error_constants import error_constant
 from rkcheck.energy.verdicts import State
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
+from rkcheck.numbers.formatting import decimal_string
 
 
 @dataclass
@@ -30,7 +32,7 @@ class CatalogRow:
     symplectic: str = ""  # "yes" / "no" / "yes†" (held to the working precision only)
     symmetric: str = ""
     energy_orders: dict[str, int | None] = field(default_factory=dict)  # label -> energy order (None: all / ≥ N)
-    constants: dict[str, float | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
+    constants: dict[str, Fraction | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
 
 
 def _property_cell(pv) -> str:
@@ -57,7 +59,8 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
         row.energy[label] = res.energy_order_label
         ec = error_constant(res)
         row.energy_orders[label] = ec.energy_order if ec is not None else None
-        row.constants[label] = ec.value if ec is not None else None
+        # 15 significant digits, as the catalogue compares them ("=" when they agree there)
+        row.constants[label] = Fraction(decimal_string(ec.value, 15)) if ec is not None else None
         if res.properties is not None and not row.symplectic:
             row.symplectic = _property_cell(res.properties.symplectic)
             row.symmetric = _property_cell(res.properties.symmetric)
