@@ -294,3 +294,21 @@ def test_the_whole_dps_range_works_on_decimal_tableaux(capsys, dps):
     assert base.code == high.code == 0, high.err
     states = [[c["state"] for c in json.loads(r.out)["conditions"]] for r in (base, high)]
     assert states[0] == states[1]
+
+
+# ------------------------------------------------------------------ kernel within its limit
+
+@pytest.mark.parametrize("args, size", [(["-s", "6", "-m", "40"], "747 × 36"), (["-s", "12", "-m", "12"], "67 × 144")])
+def test_kernel_beyond_its_work_limit_is_refused_before_any_work(capsys, args, size):
+    r = run_cli(capsys, "kernel", *args)
+    assert r.code == 2 and f"is {size}" in r.err and "the limit MAX_KERNEL_WORK = 500,000" in r.err, r.err
+    import rkcheck
+
+    with pytest.raises(rkcheck.RkcheckError, match="MAX_KERNEL_WORK"):
+        rkcheck.kernel(int(args[3]), int(args[1]))
+
+
+def test_kernel_within_its_limit_still_answers(capsys):
+    # Gauss, m = 2s (seed Lemma 2): rank M = s² − 1
+    r = run_cli(capsys, "kernel", "-s", "2", "-m", "4")
+    assert r.code == 0 and "rank M = 3" in r.out, r.out
