@@ -3,6 +3,8 @@ one-line message, never in another exception."""
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import pytest
 from support.paths import TABLEAUX
 
@@ -20,3 +22,25 @@ def test_scan_of_one_folder_given_as_a_string_scans_that_folder():
 def test_scan_of_something_that_is_no_path_is_an_rkcheck_error():
     with pytest.raises(rkcheck.RkcheckError, match="expected a path or a list of paths"):
         rkcheck.scan([42])
+
+
+def test_a_numpy_longdouble_entry_is_read_like_a_float():
+    import warnings
+
+    import numpy as np
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the API warns when it reads floats
+        tab = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)])
+    x = np.longdouble(1) / 3
+    num, den = x.as_integer_ratio()
+    assert tab.A[0][0].exact == Fraction(num, den) and tab.b[0].exact == 1
+
+
+@pytest.mark.parametrize("value", ["inf", "nan"])
+def test_a_non_finite_longdouble_is_an_rkcheck_error_naming_the_entry(value):
+    import numpy as np
+
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.from_arrays([[np.longdouble(value)]], [1])
+    assert str(err.value) == f"A[1][1]: {value} is not a finite number"
