@@ -14,6 +14,7 @@ from fractions import Fraction
 from typing import Any, Callable
 from xml.sax.saxutils import escape, quoteattr
 
+from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import decimal_digits, decimal_string
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 from rkcheck.version import __version__
@@ -36,8 +37,10 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
     and the scan's exit code counts it."""
     docs = []
     for o in outcomes:
-        doc = {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
-               "result": None}
+        # the path as shown (a name that is not UTF-8, an escape or a newline in it would
+        # otherwise reach the terminal, the annotations and the JSON/XML as raw bytes)
+        doc = {"path": printable(o.path), "status": o.status, "error": o.error and printable(o.error),
+               "time": o.time, "lines": o.lines, "result": None}
         try:
             doc["result"] = None if o.result is None else check_doc(o.result)
             if row_check is not None:

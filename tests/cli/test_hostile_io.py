@@ -71,3 +71,32 @@ def test_output_to_dev_stdout_on_a_pipe(command):
         assert json.loads(r.out)["totals"]["files"] == 1
     else:
         compile(r.out, "conditions.py", "exec")
+
+
+NAMES = {b"bad\xff.toml": "bad\\xff.toml", b"esc\x1b[2J.toml": "esc\\x1b[2J.toml", b"nl\nx.toml": "nl\\nx.toml"}
+
+
+@pytest.mark.parametrize("fmt", ["json", "junit", "github", "csv", "text"])
+def test_file_names_that_are_not_text_are_shown_escaped_in_every_format(tmp_path, fmt):
+    claim = ONE_STAGE + "[expect]\nclassical_order = 3\n"  # broken: every row is a failure with its path
+    for raw in NAMES:
+        (tmp_path / os.fsdecode(raw)).write_text(claim, encoding="utf-8")
+    proc = subprocess.run([sys.executable, "-m", "rkcheck", "scan", ".", "--order", "2", "--jobs", "1", "--format",
+                           fmt], capture_output=True, timeout=60, cwd=tmp_path, env=dict(os.environ, NO_COLOR="1"))
+    assert proc.returncode == 1, proc.stderr
+    out = proc.stdout.decode("utf-8")  # valid UTF-8: no raw byte of a name
+    assert not any(ch in out for ch in "\x1b\xff") and "\udcff" not in out
+    for shown in NAMES.values():
+        assert (json.dumps(shown)[1:-1] if fmt == "json" else shown) in out, (shown, out)
+    if fmt == "junit":
+        import xml.etree.ElementTree as ET
+
+        names = {case.get("name") for case in ET.fromstring(out).iter("testcase")}
+        assert names == {os.path.join(".", n) for n in NAMES.values()} or names == set(NAMES.values())
+
+
+def test_a_file_name_with_an_escape_is_shown_escaped_by_verify(tmp_path):
+    path = tmp_path / "esc\x1b[2J.toml"
+    path.write_text(ONE_STAGE, encoding="utf-8")
+    code, out, err = run("verify", str(path), "--order", "2")
+    assert code == 0 and "\x1b" not in out and "esc\\x1b[2J.toml" in out, out
