@@ -20,7 +20,7 @@ from __future__ import annotations
 import copyreg
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Mapping, Protocol
+from typing import Any, Mapping, Protocol
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
@@ -276,7 +276,7 @@ def _rebuild(flat: list[tuple]) -> ex.Expr:
     return stack[0]
 
 
-def _reduce_expr(node: ex.Expr):
+def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple]]]:
     flat: list[tuple] = []
     ex.fold(node, lambda n, _: flat.append(_record(n)), _children)
     return _rebuild, (flat,)

@@ -102,7 +102,7 @@ def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -
         out.append(f"| {_code(r.path)} | " + " | ".join(cells) + " |")
     out += ["", "## Methods of equal energy order, ranked by C", ""]
     for lbl in degrees_labels:
-        groups: dict[int, list[tuple[float, CatalogRow]]] = {}  # order -> (C, row)
+        groups: dict[int, list[tuple[Fraction, CatalogRow]]] = {}  # order -> (C, row)
         for r in ok:
             q, c = r.energy_orders.get(lbl), r.constants.get(lbl)
             if q is not None and c is not None:
