@@ -16,7 +16,7 @@ from typing import Any, Callable, Iterator
 
 import click
 
-from rkcheck.errors import UserError
+from rkcheck.errors import OptionError, UserError
 from rkcheck.options import (
     DECIMALS_MODES,
     DEFAULT_MAX_STAGES,
@@ -74,7 +74,16 @@ def output_options(f: Callable) -> Callable:
             quiet=inherited.quiet if quiet is None else quiet,
             verbose=inherited.verbose if verbose is None else verbose,
         )
-        return f(*args, **kwargs)
+        try:
+            return f(*args, **kwargs)
+        except UserError as err:
+            # an error of the check itself (not of reading the file) still names the
+            # file it is about: one line names file and place, whatever raised it
+            file = kwargs.get("file")
+            about_options = isinstance(err, OptionError) or type(err).__name__ == "ResourceError"
+            if isinstance(file, str) and not err.source and not about_options:
+                raise err.located(source=file) from None
+            raise
 
     return wrapper
 

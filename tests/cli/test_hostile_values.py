@@ -312,3 +312,19 @@ def test_kernel_within_its_limit_still_answers(capsys):
     # Gauss, m = 2s (seed Lemma 2): rank M = s² − 1
     r = run_cli(capsys, "kernel", "-s", "2", "-m", "4")
     assert r.code == 0 and "rank M = 3" in r.out, r.out
+
+
+# ------------------------------------------------------------------ errors of the check name file and place
+
+def test_an_irrational_square_root_of_a_negative_number_names_its_entry(tmp_path, capsys):
+    # 1 − √3 < 0: found while building the number field, not while parsing
+    path = write(tmp_path, "n.toml", '[constants]\nq = "1 - sqrt(3)"\n[tableau]\nA = [["0", "0"], ["1", "sqrt(q)"]]\n'
+                                     'b = ["1", "0"]\n')
+    r = run_cli(capsys, "verify", path)
+    assert r.code == 2 and r.err == f"rkcheck: error: {path}: A[2][2]: square root of a negative number at column 1\n"
+
+
+def test_an_error_of_the_check_names_the_file(tmp_path, capsys):
+    path = write(tmp_path, "a.toml", one_stage("10^999"))
+    r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
+    assert r.code == 2 and r.err.startswith(f"rkcheck: error: {path}: the certified error bounds overflow"), r.err
