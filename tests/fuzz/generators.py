@@ -196,86 +196,123 @@ file_cases = mutated_files() | mutated_files() | document_files() | byte_files()
 
 # ------------------------------------------------------------------ options
 
-VALUES = ["0", "1", "2", "3", "-1", "31", "10", "40", "700", "5000", "5001", "none", "x", "", "1e9", "exact",
-          "ball", "json", "99999999999999999999", "1e300", "1/16", "0.1", "nan", "inf", "1e-1000", "junit", "/dev/stdout"]
+#: hostile values, tried on any flag
+VALUES = ["0", "-1", "31", "5001", "x", "", "1e9", "99999999999999999999", "1e300", "nan", "inf", "1e-1000",
+          "/dev/stdout", "\x1b[2J"]
+#: values each flag accepts (most runs use one, so that the run gets past validation)
+VALID = {
+    "--order": ["1", "2", "3", "4", "5"], "-N": ["1", "2", "3", "4", "5"], "--dps": ["10", "15", "30", "50", "700"],
+    "--degree": ["2", "3", "4", "none"], "-m": ["2", "3", "4", "6", "none"],
+    "--decimals": ["auto", "rounded", "float64", "exact"], "--max-stages": ["1", "2", "64", "1000"],
+    "--arithmetic": ["auto", "exact", "ball"], "--max-conditions": ["1", "10", "100000"],
+    "--require": ["any", "proof", "digits:10", "digits:100"], "--jobs": ["1", "2"],
+    "--fail-on": ["auto", "conditions", "claims", "never"], "-o": ["out.txt", "/dev/stdout", "missing/out.txt", "-"],
+    "--sort": ["path", "energy"], "--emit": ["python", "sympy", "julia", "matlab", "latex"],
+    "-s": ["1", "2", "3", "4"], "--stages": ["1", "2", "3"], "--rule": ["gauss", "radau-i", "radau-ii", "lobatto",
+                                                                      "zeta:1/3", "zeta:-1", "zeta:1e7", "x"],
+    "--tableau": ["t.toml", "@rk4", "missing.toml"], "--problem": ["harmonic", "quartic", "henon-heiles",
+                                                                  "random:degree=4", "random:degree=99,dim=99"],
+    "--h": ["1/10", "0.1", "1/16", "1e300", "1e-1000", "0", "-1"], "--steps": ["1", "10", "50", "20000000"],
+    "--points": ["1", "2", "101"], "--eps": ["1/1000", "1e-3,1e-6", "0", "2", "1e-300"],
+    "--digits": ["1", "10", "60", "5000"], "--zeta": ["1/3", "-1", "0", "1e7"],
+    "--format": ["text", "json", "csv", "junit", "github", "toml", "tableau-json", "latex", "julia", "python"],
+    "--direction": ["random", "kernel", "entry:1,1", "entry:9,9", "x"], "--seed": ["1", "-5"],
+}
 COMMAND_OPTIONS = {
     "verify": ["--order", "--dps", "--degree", "--decimals", "--max-stages", "--arithmetic", "--format",
-               "--max-conditions", "--require", "--all"],
+               "--max-conditions", "--require", "--all", "--fail-on", "--fail-fast"],
     "show": ["--format", "--max-stages", "--decimals"],
-    "scan": ["--order", "--dps", "--degree", "--format", "--jobs", "--fail-on", "-o", "--sort", "--max-conditions"],
-    "conditions": ["-N", "-m", "--emit", "--max-conditions", "--count", "-s"],
-    "explain": ["--tableau", "--dps"],
-    "kernel": ["-s", "-m", "--dps", "--rule"],
-    "simulate": ["--problem", "--h", "--steps", "--dps", "--points"],
-    "perturb": ["--eps", "--order", "--degree", "--dps"],
-    "new": ["--digits", "-s", "--stages", "--zeta", "-o"],
+    "scan": ["--order", "--dps", "--degree", "--format", "--jobs", "--fail-on", "-o", "--sort", "--max-conditions",
+             "--decimals", "--require"],
+    "conditions": ["-N", "-m", "--emit", "--max-conditions", "--count", "-s", "--format", "--classical"],
+    "explain": ["--tableau", "--dps", "--decimals"],
+    "kernel": ["-s", "-m", "--dps", "--rule", "--tableau"],
+    "simulate": ["--problem", "--h", "--steps", "--dps", "--points", "--energy-order"],
+    "perturb": ["--eps", "--order", "--degree", "--dps", "--seed"],
+    "new": ["--digits", "-s", "--zeta", "-o", "--exact"],
+    "catalog": ["--order", "-o"],
 }
-SMALL = {"--order": ["1", "2", "3", "4", "31", "0", "-1", "x"], "-N": ["1", "3", "4", "31", "0"],
-         "--steps": ["1", "10", "100", "0", "-1", "x", "20000000"],
-         "--tableau": ["t.toml", "@rk4", "missing.toml"],
-         "--emit": ["python", "sympy", "julia", "matlab", "latex", "x"], "-s": ["1", "2", "3", "12", "13", "0"],
-         "-m": ["2", "3", "6", "none", "41", "x"],
-         "--problem": ["harmonic", "quartic", "henon-heiles", "random:degree=4", "random:degree=99,dim=99", "x"],
-         "--eps": ["1/1000", "0", "2", "1e-300", "x"], "--points": ["1", "2", "0", "101"]}
+FLAGS = {"--all", "--count", "--fail-fast", "--classical", "--energy-order", "--exact"}
+OPTION_FILE = b'[tableau]\nA = [["1/4", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4"]]\nb = ["1/2", "1/2"]\n'
 
 
 @st.composite
 def option_cases(draw) -> Case:
     command = draw(st.sampled_from(list(COMMAND_OPTIONS)))
     args = [command]
-    if command in ("verify", "show", "scan", "simulate", "perturb"):
-        args.append(draw(st.sampled_from(["t.toml", "@rk4", "@gauss-2", "missing.toml", "."])))
+    if command in ("verify", "show", "scan", "simulate", "perturb", "catalog"):
+        args.append(draw(st.sampled_from(["t.toml", "t.toml", "@rk4", "@gauss-2", "missing.toml", "."])))
     if command == "explain":
-        args.append(draw(st.sampled_from(["1", "3", "0", "999", "x", "1,2,2", "1,2,3,3,2,2"])))
+        args.append(draw(st.sampled_from(["1,2,2", "1,2,3,3", "1,2,3,3,2,2", "3", "0", "x"])))
     if command == "new":
         args.append(draw(st.sampled_from(["gauss", "avf", "lobatto-iiia", "radau-iia", "x"])))
+    if command == "perturb":
+        args += ["--direction", draw(st.sampled_from(VALID["--direction"]))]
     for flag in draw(st.lists(st.sampled_from(COMMAND_OPTIONS[command]), max_size=4)):
-        args += [flag] if flag in ("--all", "--count") else [flag, draw(st.sampled_from(SMALL.get(flag, VALUES)))]
+        if flag in FLAGS:
+            args.append(flag)
+            continue
+        hostile = draw(st.integers(0, 4)) == 0
+        args += [flag, draw(st.sampled_from(VALUES if hostile else VALID.get(flag, VALUES)))]
     # keep each run small: options that pass validation must still finish in seconds
-    if command in ("verify", "scan", "perturb") and "--order" not in args:
+    if command in ("verify", "scan", "perturb", "catalog") and "--order" not in args:
         args += ["--order", "4"]
-    if command == "conditions" and "-N" not in args and "--order" not in args:
+    if command == "conditions" and "-N" not in args:
         args += ["-N", "4"]
-    if command == "simulate" and "--steps" not in args:
-        args += ["--steps", "50"]
-    if command == "kernel" and "-m" not in args:
-        args += ["-m", "6"]
+    if command == "simulate":
+        if "--problem" not in args:
+            args += ["--problem", "harmonic"]
+        if "--steps" not in args:
+            args += ["--steps", "50"]
+    if command == "kernel":
+        if "-m" not in args:
+            args += ["-m", "6"]
+        if "-s" not in args and "--tableau" not in args:
+            args += ["-s", "2"]
     if command == "scan" and "--jobs" not in args:
         args += ["--jobs", "1"]
-    return Case(args, {"t.toml": b'[tableau]\nA = [["1/2"]]\nb = [1]\n'})
+    return Case(args, {"t.toml": OPTION_FILE})
 
 
 # ------------------------------------------------------------------ importers
 
-nodepy_values = st.sampled_from(["0.5", "1", "0", "-0.25", "1e200", "x", "1/3", "0.2113248654051871"]) | entry_texts
+nodepy_values = (st.sampled_from(["0.5", "1", "0", "-0.25", "0.2113248654051871", "0.788675134594813"])
+                 | st.sampled_from(["1e200", "x", "1/3", "sqrt(3)/6", "1,5"]) | entry_texts)
 
 
 @st.composite
 def nodepy_cases(draw) -> Case:
     lines = []
-    index = st.integers(0, 4) | st.sampled_from([99999, 10**30, 64, 65])
-    for section in draw(st.lists(st.sampled_from(["A[k,j]", "b[k]", "c[k]", "bhat[k]", "junk"]), max_size=5)):
+    huge = st.sampled_from([99999, 10**30, 64, 65])
+    sections = ["A[k,j]", "b[k]"] + draw(st.lists(st.sampled_from(["A[k,j]", "b[k]", "c[k]", "bhat[k]", "junk"]),
+                                                  max_size=3))
+    for section in sections:
         lines.append(draw(st.sampled_from(["", "Feagin ", "#"])) + section)
         for _ in range(draw(st.integers(0, 5))):
-            width = draw(st.integers(1, 4))
+            width = (3 if section == "A[k,j]" else 2) if draw(st.integers(0, 9)) else draw(st.integers(1, 4))
+            index = huge if draw(st.integers(0, 29)) == 0 else st.integers(0, 2)
             words = [str(draw(index)) for _ in range(width - 1)] + [draw(nodepy_values).replace(" ", "")]
-            if draw(st.integers(0, 9)) == 0:
-                words[0] = draw(st.sampled_from(["-1", "x", "1.5", "\u0661", "+2"]))
+            if draw(st.integers(0, 19)) == 0:
+                words[0] = draw(st.sampled_from(["-1", "x", "1.5", "\u0661", "+2", "\u00b2"]))
             lines.append(" ".join(words))
     name = draw(st.sampled_from(["m.txt", "m.nodepy"]))
     return Case(["verify", name, "--order", "3"], {name: "\n".join(lines).encode("utf-8", "surrogateescape")})
 
 
-csv_cells = st.sampled_from(["0", "1/2", "1", "0.5", "", "\"1/2\"", "\"0.5\"", "\"1,5\"", "\"\"", "\"a\"\"b\"",
-                             "\"", "1e200", "sqrt(3)/6", " 1 "]) | entry_texts
+csv_cells = (st.sampled_from(["0", "1/2", "1", "0.5", "1/3", "2/3", "1/4", "\"1/2\"", "\"0.5\"", " 1 ", "sqrt(3)/6"])
+             | st.sampled_from(["", "\"1,5\"", "\"\"", "\"a\"\"b\"", "\"", "1e200"]) | entry_texts)
 
 
 @st.composite
 def csv_cases(draw) -> Case:
-    n = draw(st.integers(1, 4))
-    width = draw(st.sampled_from([n, n + 2, n + 1]))
+    n = draw(st.integers(2, 5))  # rows: s + 1 of a Butcher array, s of the GeometricIntegrators layout
+    width = draw(st.sampled_from([n, n, n + 2, n + 1]))
     sep = draw(st.sampled_from([",", ";", "\t", " "]))
-    rows = [sep.join(draw(csv_cells).replace("\n", "") for _ in range(width)) for _ in range(n)]
+    def cell():  # a separator inside a cell is quoted, as a spreadsheet does it
+        text = draw(csv_cells).replace("\n", "")
+        return f'"{text}"' if sep in text and not text.startswith('"') and draw(st.integers(0, 3)) else text
+
+    rows = [sep.join(cell() for _ in range(width)) for _ in range(n)]
     if draw(st.booleans()):
         rows.insert(0, "# order stages type")
     text = "\n".join(rows) + draw(st.sampled_from(["", "\n", "\r\n"]))
