@@ -44,3 +44,21 @@ def test_a_non_finite_longdouble_is_an_rkcheck_error_naming_the_entry(value):
     with pytest.raises(rkcheck.RkcheckError) as err:
         rkcheck.from_arrays([[np.longdouble(value)]], [1])
     assert str(err.value) == f"A[1][1]: {value} is not a finite number"
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: rkcheck.load(123), "source: expected a path (str or os.PathLike) or '@name', got int"),
+    (lambda: rkcheck.load(None), "source: expected a path (str or os.PathLike) or '@name', got NoneType"),
+    (lambda: rkcheck.loads(b"\xff"), "<string>: not UTF-8 text (byte 0)"),
+    (lambda: rkcheck.loads(42), "<string>: expected the text of a tableau file (str), got int"),
+    (lambda: rkcheck.write(5, "toml"), "expected a Tableau (rkcheck.load, rkcheck.from_arrays), got int"),
+])
+def test_wrong_types_are_rkcheck_errors(call, message):
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        call()
+    assert str(err.value) == message
+
+
+def test_loads_takes_the_bytes_of_a_file():
+    tab = rkcheck.loads('[tableau]\nA = [["1/2"]]\nb = [1]\n'.encode())
+    assert str(tab.A[0][0].exact) == "1/2"
