@@ -92,7 +92,7 @@ def run_all(cases: list[tuple[str, Case]], timeout: float, jobs: int, progress: 
     pending = list(enumerate(cases))
     running: dict[int, tuple[int, float, str]] = {}
     results = []
-    done = 0
+    done = bad = timeouts = 0
     while pending or running:
         while pending and len(running) < jobs:
             k, (family, case) = pending.pop(0)
@@ -110,6 +110,9 @@ def run_all(cases: list[tuple[str, Case]], timeout: float, jobs: int, progress: 
                     os.waitpid(p, 0)
                     del running[p]
                     results.append((k, "timeout", "", now - t0, folder))
+                    timeouts += 1
+                    if progress:
+                        print(f"  timeout: {cases[k][1].describe()[:300]}", file=sys.stderr, flush=True)
             time.sleep(0.005)
             continue
         k, t0, folder = running.pop(pid)
@@ -117,8 +120,13 @@ def run_all(cases: list[tuple[str, Case]], timeout: float, jobs: int, progress: 
         err = Path(folder, "stderr").read_text(encoding="utf-8", errors="replace")
         results.append((k, code, err, time.monotonic() - t0, folder))
         done += 1
+        if code not in (0, 1, 2) or "Traceback" in err or "internal error" in err:
+            bad += 1
+            if progress:  # at once: a long run shows its problems as they come
+                print(f"  problem (exit {code}): {cases[k][1].describe()[:300]}\n    -> {err.strip()[-300:]}",
+                      file=sys.stderr, flush=True)
         if progress and done % 200 == 0:
-            print(f"  {done}/{len(cases)}", file=sys.stderr, flush=True)
+            print(f"  {done}/{len(cases)}, {bad} problems, {timeouts} timeouts", file=sys.stderr, flush=True)
     for k, code, err, seconds, folder in sorted(results, key=lambda r: r[0]):
         for name in os.listdir(folder):
             p = Path(folder, name)
