@@ -42,15 +42,22 @@ def _property_cell(pv) -> str:
 
 
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
+    """One file's row; a file that cannot be read or checked is a row with its error."""
+    row = CatalogRow(path)
+    try:
+        _fill_row(row, path, degrees, order, dps)
+    except UserError as err:  # one file's error is its row, the catalogue goes on
+        row.error = str(err if err.source else err.located(source=path))
+    except (RecursionError, MemoryError) as err:
+        row.error = f"{path}: {'nesting too deep' if isinstance(err, RecursionError) else 'out of memory'}"
+    return row
+
+
+def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int, dps: int) -> None:
     from rkcheck.energy.check import CheckRunner
     from rkcheck.energy.claims import check_claims
 
-    row = CatalogRow(path)
-    try:
-        tab = load(path)
-    except UserError as err:
-        row.error = str(err)
-        return row
+    tab = load(path)
     row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
     runner = CheckRunner()
     for deg in degrees:
@@ -73,4 +80,3 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
     if tab.info.claims:
         results = check_claims(tab, list(tab.info.claims), CheckOptions(order=order, dps=dps), runner)
         row.claims = "ok" if all(r.met for r in results) else "BROKEN"
-    return row

@@ -328,3 +328,16 @@ def test_an_error_of_the_check_names_the_file(tmp_path, capsys):
     path = write(tmp_path, "a.toml", one_stage("10^999"))
     r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
     assert r.code == 2 and r.err.startswith(f"rkcheck: error: {path}: the certified error bounds overflow"), r.err
+
+
+def test_one_files_check_error_is_its_catalogue_row(tmp_path, capsys):
+    folder = tmp_path / "d"
+    folder.mkdir()
+    (folder / "good.toml").write_text(one_stage("1/2"), encoding="utf-8")
+    (folder / "neg.toml").write_text(one_stage("sqrt(1 - sqrt(3))"), encoding="utf-8")
+    r = run_cli(capsys, "catalog", str(folder))
+    assert r.code == 0, r.err
+    rows = [line for line in r.out.splitlines() if line.startswith("| `")]
+    assert any(line.startswith("| `good.toml` | good |") for line in rows), rows
+    assert any("neg.toml` | error: " in line and "A\\[1\\]\\[1\\]: square root of a negative number" in line
+               for line in rows), rows
