@@ -19,11 +19,14 @@ use, so that ``import rkcheck`` is fast and has no side effects.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
-
 from rkcheck.version import __version__ as __version__
 
+# not `from typing import TYPE_CHECKING`: importing typing is the slowest part of starting
+# the program (a Ctrl-C in it would be a traceback); type checkers read this as True
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from rkcheck.api import *  # noqa: F403
 
 

@@ -22,6 +22,9 @@ from rkcheck.numbers.reading import DEFAULT_DPS, Arithmetic, DecimalsMode, Readi
 DEFAULT_ORDER = 8
 DEFAULT_DECIMALS = DecimalsMode.AUTO
 DEFAULT_MAX_STAGES = 64
+#: What --max-stages (and the API's max_stages) accepts: an importer allocates the s×s
+#: matrix of the highest stage index it reads, so the bound bounds its memory too.
+MAX_STAGES_RANGE = (1, 1000)
 
 #: The highest energy order any source may ask for.  What actually fits is decided by the
 #: resource guard from exact condition counts (rkcheck.energy.budget): order 20 needs
@@ -48,6 +51,10 @@ DIGITS_RANGE = (1, 5000)
 KERNEL_STAGES_RANGE = (1, 12)
 KERNEL_DEGREE_RANGE = (3, 40)
 STUDY_DPS_RANGE = (15, 2000)
+#: ``kernel``: the most elimination work on M, counted as rows × columns² (columns = s²),
+#: times (dps/50)^1.5 when the rank is numerical; about a minute on one core at the limit
+#: (-s 8 -m 16 is 430 080; -s 12 -m 12 took 72 s at 1 140 480, -s 6 -m 40 over 400 s).
+MAX_KERNEL_WORK = 500_000
 #: ``bench --repeat``: best of this many runs.
 REPEAT_RANGE = (1, 50)
 #: ``simulate --steps`` and ``simulate --energy-order --points``.

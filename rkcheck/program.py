@@ -19,10 +19,19 @@ def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-depend
     os._exit(130)
 
 
-def tune_process() -> None:
-    """The settings of the program's process (not of a library user's)."""
+def _quiet_start() -> None:
     signal.signal(signal.SIGINT, _early_interrupt)
     signal.signal(signal.SIGTERM, _early_interrupt)
+
+
+# at once, not when main() is called: only the program imports this module, and every
+# import before main() is a window for a Ctrl-C traceback
+_quiet_start()
+
+
+def tune_process() -> None:
+    """The settings of the program's process (not of a library user's)."""
+    _quiet_start()
     # numpy's bundled OpenBLAS starts a worker thread per core when numpy is imported, and
     # each idle worker spins for 2^28 cycles (~0.1 s) before it sleeps: on a 2-core machine
     # that takes a core from every command's start-up (~60 ms of a ~0.4 s verify).  2^4

@@ -18,6 +18,7 @@ from rkcheck.options import (
     DEFAULT_ORDER,
     FAIL_ON,
     JOBS_RANGE,
+    MAX_STAGES_RANGE,
     ORDER_RANGE,
     SCAN_SORTS,
     parse_choice,
@@ -116,7 +117,12 @@ def _config(project: bool | ProjectConfig) -> ProjectConfig:
 def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectConfig = False) -> list[str]:
     """The roots a scan starts from: ``paths``, else the ``paths`` of ``[tool.rkcheck]``
     (with ``project``); none at all is an error (the CLI's message)."""
-    roots = [os.fspath(p) for p in paths] or _config(project).paths
+    if isinstance(paths, (str, bytes, os.PathLike)):  # one path, not a sequence of its characters
+        paths = [paths]
+    try:
+        roots = [os.fsdecode(p) for p in paths] or _config(project).paths
+    except TypeError:
+        raise UserError("expected a path or a list of paths (str or os.PathLike)", "paths") from None
     if not roots:
         raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
     return roots
@@ -177,7 +183,7 @@ def scan(
         jobs = _option(lambda: parse_int_in(jobs, JOBS_RANGE, "jobs"))
     jobs = jobs or config.jobs or default_jobs()
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
-    max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
+    max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
     files_budget = _scan_budget(flags, config, max_conditions)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []

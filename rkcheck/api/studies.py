@@ -19,6 +19,7 @@ from rkcheck.options import (
     DEFAULT_DPS,
     KERNEL_DEGREE_RANGE,
     KERNEL_STAGES_RANGE,
+    MAX_KERNEL_WORK,
     REPEAT_RANGE,
     STUDY_DPS_RANGE,
     parse_dps_list,
@@ -72,10 +73,22 @@ def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", table
     if tableau is not None:
         tab = as_tableau(tableau)
         b, c, exact = tableau_rule(tab, dps)
+        _kernel_work_guard(len(b), degree, exact, dps)
         return replace(kernel_of(b, c, degree, exact, dps), tableau=tab)
     if stages is None:
         raise OptionError("give --stages/-s (or --tableau FILE)")
+    _kernel_work_guard(stages, degree, True, dps)  # named rules: an exact rank over Q
     return replace(rule_kernel(rule, stages, degree, dps), rule=rule)
+
+
+def _kernel_work_guard(s: int, degree: int, exact: bool, dps: int) -> None:
+    """Refuse a map M whose elimination would run for minutes (MAX_KERNEL_WORK)."""
+    rows, columns = (degree - 1) * (degree - 2) // 2 + s, s * s
+    work = rows * columns**2 * (1 if exact else max(1.0, dps / 50) ** 1.5)
+    if work > MAX_KERNEL_WORK:
+        raise OptionError(f"M for s = {s}, m = {degree} is {rows} × {columns}: about {round(work):,} units of "
+                          f"elimination work (rows × columns²{'' if exact else ' × (dps/50)^1.5'}), beyond the limit "
+                          f"MAX_KERNEL_WORK = {MAX_KERNEL_WORK:,}; lower -m, -s or --dps", "kernel")
 
 
 # ------------------------------------------------------------------ perturb

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import os
 
-from rkcheck.errors import TableauError
+from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.tableau import Tableau
 
 #: ``rkcheck.from_arrays``: :meth:`Tableau.from_arrays`
@@ -22,7 +22,9 @@ def load(source: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_STAGES
     subclasses with the CLI's one-line message."""
     from rkcheck.io.loader import load as load_file
 
-    return load_file(os.fspath(source), max_stages=max_stages, fmt=format)
+    if not isinstance(source, (str, os.PathLike)):
+        raise UserError(f"expected a path (str or os.PathLike) or '@name', got {type(source).__name__}", "source")
+    return load_file(os.fsdecode(source), max_stages=max_stages, fmt=format)
 
 
 def loads(text: str, *, format: str = "toml", name: str = "<string>",
@@ -30,6 +32,13 @@ def loads(text: str, *, format: str = "toml", name: str = "<string>",
     """A tableau from the text of a tableau file (``format``: toml, json, csv, nodepy)."""
     from rkcheck.io.loader import loads as load_text
 
+    if isinstance(text, (bytes, bytearray)):
+        try:
+            text = bytes(text).decode("utf-8")
+        except UnicodeDecodeError as err:
+            raise UserError(f"not UTF-8 text (byte {err.start})", source=name) from None
+    if not isinstance(text, str):
+        raise UserError(f"expected the text of a tableau file (str), got {type(text).__name__}", source=name)
     return load_text(text, source=name, fmt=format, max_stages=max_stages)
 
 
@@ -47,6 +56,8 @@ def write(tableau: Tableau, format: str = "toml") -> str:
     ``latex`` (a Butcher array), ``julia`` or ``python`` (code with exact entries)."""
     from rkcheck.io.formats import write as write_tableau
 
+    if not isinstance(tableau, Tableau):
+        raise UserError(f"expected a Tableau (rkcheck.load, rkcheck.from_arrays), got {type(tableau).__name__}")
     return write_tableau(tableau, format)
 
 

@@ -7,12 +7,14 @@ Pure: it loads and checks the files it is given and returns rows; rendering (Mar
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 from rkcheck.energy.check import CheckOptions
 from rkcheck.energy.error_constants import error_constant
 from rkcheck.energy.verdicts import State
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
+from rkcheck.numbers.formatting import decimal_string
 
 
 @dataclass
@@ -30,7 +32,7 @@ class CatalogRow:
     symplectic: str = ""  # "yes" / "no" / "yes†" (held to the working precision only)
     symmetric: str = ""
     energy_orders: dict[str, int | None] = field(default_factory=dict)  # label -> energy order (None: all / ≥ N)
-    constants: dict[str, float | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
+    constants: dict[str, Fraction | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
 
 
 def _property_cell(pv) -> str:
@@ -40,15 +42,22 @@ def _property_cell(pv) -> str:
 
 
 def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
+    """One file's row; a file that cannot be read or checked is a row with its error."""
+    row = CatalogRow(path)
+    try:
+        _fill_row(row, path, degrees, order, dps)
+    except UserError as err:  # one file's error is its row, the catalogue goes on
+        row.error = str(err if err.source else err.located(source=path))
+    except (RecursionError, MemoryError) as err:
+        row.error = f"{path}: {'nesting too deep' if isinstance(err, RecursionError) else 'out of memory'}"
+    return row
+
+
+def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int, dps: int) -> None:
     from rkcheck.energy.check import CheckRunner
     from rkcheck.energy.claims import check_claims
 
-    row = CatalogRow(path)
-    try:
-        tab = load(path)
-    except UserError as err:
-        row.error = str(err)
-        return row
+    tab = load(path)
     row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
     runner = CheckRunner()
     for deg in degrees:
@@ -57,7 +66,8 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
         row.energy[label] = res.energy_order_label
         ec = error_constant(res)
         row.energy_orders[label] = ec.energy_order if ec is not None else None
-        row.constants[label] = ec.value if ec is not None else None
+        # 15 significant digits, as the catalogue compares them ("=" when they agree there)
+        row.constants[label] = Fraction(decimal_string(ec.value, 15)) if ec is not None else None
         if res.properties is not None and not row.symplectic:
             row.symplectic = _property_cell(res.properties.symplectic)
             row.symmetric = _property_cell(res.properties.symmetric)
@@ -70,7 +80,6 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
     if tab.info.claims:
         results = check_claims(tab, list(tab.info.claims), CheckOptions(order=order, dps=dps), runner)
         row.claims = "ok" if all(r.met for r in results) else "BROKEN"
-    return row
 
 
 def _order_cell(reach, r) -> str:

@@ -15,6 +15,13 @@ from rkcheck.energy.error_constants import error_constant
 
 
 def energy_key(outcome) -> tuple:
+    try:
+        return _energy_key(outcome)
+    except Exception:  # noqa: BLE001 - a row that cannot be ranked goes last; the report says why
+        return (1, "", 0.0, 0.0, outcome.path)
+
+
+def _energy_key(outcome) -> tuple:
     res = outcome.result
     if res is None:
         return (1, "", 0.0, 0.0, outcome.path)

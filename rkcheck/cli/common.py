@@ -16,7 +16,7 @@ from typing import Any, Callable, Iterator
 
 import click
 
-from rkcheck.errors import UserError
+from rkcheck.errors import OptionError, UserError
 from rkcheck.options import (
     DECIMALS_MODES,
     DEFAULT_MAX_STAGES,
@@ -24,6 +24,7 @@ from rkcheck.options import (
     FAIL_ON,
     MAX_DEGREE,
     MAX_ORDER,
+    MAX_STAGES_RANGE,
     parse_degree,
     parse_require,
 )
@@ -88,7 +89,16 @@ def output_options(f: Callable) -> Callable:
             quiet=inherited.quiet if quiet is None else quiet,
             verbose=inherited.verbose if verbose is None else verbose,
         )
-        return f(*args, **kwargs)
+        try:
+            return f(*args, **kwargs)
+        except UserError as err:
+            # an error of the check itself (not of reading the file) still names the
+            # file it is about: one line names file and place, whatever raised it
+            file = kwargs.get("file")
+            about_options = isinstance(err, OptionError) or type(err).__name__ == "ResourceError"
+            if isinstance(file, str) and not err.source and not about_options:
+                raise err.located(source=file) from None
+            raise
 
     return wrapper
 
@@ -198,7 +208,7 @@ def degree_option(default: Any = None, help: str | None = None) -> Callable:
 
 def max_stages_option(f: Callable) -> Callable:
     return click.option(
-        "--max-stages", type=click.IntRange(1), default=DEFAULT_MAX_STAGES, show_default=True,
+        "--max-stages", type=click.IntRange(*MAX_STAGES_RANGE), default=DEFAULT_MAX_STAGES, show_default=True,
         help="Refuse tableaux with more stages than this.",
     )(f)
 
@@ -358,15 +368,17 @@ def write_text(text: str, output: str | None) -> None:
     import tempfile
     from pathlib import Path
 
-    target = Path(os.path.realpath(output))
     try:
-        mode = target.stat().st_mode
+        # the path itself, links followed by the system: /dev/stdout on a pipe resolves to
+        # no file name (realpath gives /proc/…/fd/pipe:[…]) but opens fine
+        mode = os.stat(output).st_mode
     except FileNotFoundError:
         mode = None
     if mode is not None and not stat.S_ISREG(mode):
-        with open(target, "w", encoding="utf-8") as fh:
+        with open(output, "w", encoding="utf-8", errors="surrogateescape") as fh:
             fh.write(text)
         return
+    target = Path(os.path.realpath(output))
     umask = os.umask(0)
     os.umask(umask)
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")

@@ -149,6 +149,8 @@ def _run(argv: list[str] | None) -> None:
     except KeyboardInterrupt:
         click.echo("rkcheck: interrupted", err=True)
         sys.exit(EXIT_INTERRUPTED)
+    except RecursionError:  # input nested beyond Python's stack (the grammar bounds parentheses, not chains)
+        _error("an expression is nested too deeply for this command (a chain of thousands of terms?)", EXIT_USAGE)
     except MemoryError:
         _error("out of memory; lower --order, --degree or --dps (docs/errors.md)", EXIT_USAGE)
     except OSError as err:  # -o into a missing folder, a full disk, ...: the environment, not a bug

@@ -38,6 +38,14 @@ def _finite(ctx, y: Sequence[Any]) -> bool:
     return size == size and size != float("inf")  # NaN != NaN; mpf('inf') == inf
 
 
+def _magnitude(x) -> str:
+    from fractions import Fraction
+
+    from rkcheck.numbers.formatting import decimal_string
+
+    return decimal_string(Fraction(x), 3)
+
+
 class Float64:
     name = "float64"
 
@@ -51,9 +59,13 @@ class Float64:
     def num(self, x) -> float:
         from fractions import Fraction
 
-        if isinstance(x, Fraction):
-            return x.numerator / x.denominator
-        return float(x)
+        try:
+            if isinstance(x, Fraction):
+                return x.numerator / x.denominator
+            return float(x)
+        except OverflowError:
+            raise UserError(f"a value of about {_magnitude(x)} is beyond float64's range (about 1.8e308); "
+                            "integrate in mpmath with --dps") from None
 
     def norm(self, v: Sequence[float]) -> float:
         return max((abs(x) for x in v), default=0.0)

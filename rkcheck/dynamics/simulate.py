@@ -25,6 +25,7 @@ from fractions import Fraction
 from typing import Any
 
 from rkcheck.dynamics.integrator import MP, Float64, RKMethod, integrate, step
+from rkcheck.errors import UserError
 from rkcheck.numbers.reading import DecimalsMode
 
 H_EXPONENTS = tuple(range(3, 11))  # h = 2^-3 ... 2^-10
@@ -226,6 +227,18 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
     return Agreement(degree, alg, emp, agree, msg, cert, fit.dps)
 
 
+def _reportable(x, what: str) -> float:
+    """An mpmath value as the float the table and the chart use; mpmath has no overflow,
+    so a value past float64's range is refused here instead of printed as ``inf``."""
+    import mpmath
+
+    f = float(x)
+    if math.isinf(f):
+        raise UserError(f"{what} reaches about {mpmath.nstr(x, 3)}, beyond float64's range (about 1.8e308) that the "
+                        "report and the chart use; the step is probably too large: try a smaller --h", "--h")
+    return f
+
+
 def energy_series(tableau, ham, y0: list[Fraction], h: Fraction, steps: int, dps: int | None = None,
                   record: int = 200):
     """(times, |H(y_n) − H(y_0)|) as floats, float64 unless ``dps`` is given."""
@@ -238,7 +251,7 @@ def energy_series(tableau, ham, y0: list[Fraction], h: Fraction, steps: int, dps
             ctx = MP(dps)
             method = RKMethod.from_tableau(tableau, ctx)
             t, _, E = integrate(method, ham, [ctx.num(x) for x in y0], ctx.num(h), steps, ctx, every)
-            return [float(x) for x in t], [float(abs(e - E[0])) for e in E]
+            return [_reportable(x, "t") for x in t], [_reportable(abs(e - E[0]), "|ΔH|") for e in E]
     ctx = Float64()
     method = RKMethod.from_tableau(tableau, ctx)
     t, _, E = integrate(method, ham, [ctx.num(x) for x in y0], ctx.num(h), steps, ctx, every)

@@ -141,4 +141,4 @@ def theorem1_remark(
 
 def _value_text(x) -> str:
     """A certainly nonzero entry: exact when exact, else its mid-point to 6 digits."""
-    return sc.text(x, 6) if sc.is_exact(x) else f"{sc.approx(x):.6g}"
+    return sc.text(x, 6) if sc.is_exact(x) else sc.approx_text(x, 6)

@@ -53,7 +53,9 @@ class ClaimResult:
 
 def needed_options(claims: list[Claim], base):
     """The distinct check runs the claims need: one per degree, each to the highest order
-    any claim on that degree needs.  ``base`` is the run the user asked for."""
+    any claim on that degree needs.  ``base`` is the run the user asked for.  A classical
+    order claim needs no energy run of its own (:func:`judge` checks the rooted trees
+    it needs on the base run's values)."""
     runs: dict[int | None, int] = {base.degree: base.order}
     for c in claims:
         if c.kind in ("energy_order", "avf"):
@@ -61,8 +63,6 @@ def needed_options(claims: list[Claim], base):
             if c.kind == "energy_order" and isinstance(c.value, int):
                 need = max(need, c.value + 1)
             runs[c.degree] = max(runs.get(c.degree, 0), need)
-        elif c.kind == "classical_order":
-            runs[base.degree] = max(runs[base.degree], int(c.value) + 1)
     return {deg: replace(base, degree=deg, order=order, fail_fast=False) for deg, order in runs.items()}
 
 
@@ -72,6 +72,12 @@ def judge(claim: Claim, result) -> ClaimResult:
         return judge_property(claim, result)
     if claim.kind == "quadrature_order" or claim.kind == "classical_order":
         r = result.quadrature if claim.kind == "quadrature_order" else result.classical
+        if claim.kind == "classical_order" and r.first_failure is None and r.checked < int(claim.value) + 1:
+            from rkcheck.energy.orders import (
+                classical_order,  # one order beyond the claim decides it
+            )
+
+            r = classical_order(result.values, int(claim.value) + 1)
         found = r.to_digits
         if claim.kind == "classical_order" and r.first_failure is None:
             return ClaimResult(claim, False, f"≥ {_reach(found, r.digits)}", f"checked to order {r.checked} only")

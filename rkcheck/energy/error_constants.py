@@ -26,6 +26,7 @@ Methods of equal energy order are compared by ``C_m``: smaller is better.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -47,29 +48,48 @@ class ErrorConstant:
     exact: bool
 
     @property
-    def value(self) -> float:
-        """``C_m`` as a float (the mid-point of the enclosure when not exact)."""
+    def value(self) -> Fraction:
+        """``C_m`` to about 60 significant digits (the mid-point of the enclosure when not
+        exact), in exact rational arithmetic: a float overflows past C ≈ 1e154."""
         sq = self.squared if isinstance(self.squared, Fraction) else self.squared.mid
-        return float(sq) ** 0.5
+        return sqrt_fraction(Fraction(sq))
 
     @property
-    def bounds(self) -> tuple[float, float]:
-        """Lower and upper bound of ``C_m`` (equal when exact)."""
-        if isinstance(self.squared, Fraction):
-            return self.value, self.value
-        lo, hi = self.squared.lo, self.squared.hi
-        return float(max(lo, Fraction(0))) ** 0.5, float(hi) ** 0.5
+    def bounds(self) -> tuple[Fraction, Fraction]:
+        """Lower and upper bound of ``C_m`` (a square root apart when exact)."""
+        lo, hi = (self.squared, self.squared) if isinstance(self.squared, Fraction) else (self.squared.lo,
+                                                                                           self.squared.hi)
+        return sqrt_fraction(max(Fraction(lo), Fraction(0)), up=False), sqrt_fraction(Fraction(hi), up=True)
 
     def text(self, sig: int = 4) -> str:
         """``0.006944 (C² = 1/20736)``: the exact square when rational and short."""
-        value = decimal_string(Fraction(self.value), sig)
+        value = decimal_string(self.value, sig)
         if self.exact:
             sq = str(self.squared)
             return f"{value} (C² = {sq})" if len(sq) <= 24 else value
         return value
 
     def short(self, sig: int = 3) -> str:
-        return decimal_string(Fraction(self.value), sig)
+        return decimal_string(self.value, sig)
+
+
+#: bits of the square roots of :func:`sqrt_fraction` (about 60 decimal digits)
+SQRT_BITS = 200
+
+
+def sqrt_fraction(x: Fraction, up: bool | None = None) -> Fraction:
+    """√x for a rational x ≥ 0, to SQRT_BITS bits, in integers (no float, so no overflow
+    at any magnitude): rounded down (``up=False``), up (``up=True``) or either way."""
+    if x <= 0:
+        return Fraction(0)
+    p, q = x.numerator, x.denominator
+    # √(p/q) = √(p·q·4^k) / (q·2^k): k makes the integer square root SQRT_BITS long
+    k = max(0, (2 * SQRT_BITS - (p * q).bit_length()) // 2 + 1)
+    n = p * q << (2 * k)
+    r = math.isqrt(n)
+    if up and r * r != n:
+        r += 1
+    return Fraction(r, q << k)
 
 
 def error_constant(result) -> ErrorConstant | None:

@@ -231,7 +231,15 @@ def _weights(A: list[list[Any]], b: list[Any], one: Any):
 def _enclosure(x: Any) -> Enclosure:
     if isinstance(x, Interval):
         return Enclosure(x.mid, x.rad, False)
-    return Enclosure.of(x)
+    if isinstance(x, (Fraction, int)):
+        return Enclosure.of(x)
+    # an element of a number field (sqrt, root entries): exact when rational, else a
+    # nonzero algebraic number, enclosed tightly enough to show it
+    rational = x.rational()
+    if rational is not None:
+        return Enclosure.of(rational)
+    enc = x.enclosure(256)
+    return Enclosure(enc.mid, enc.rad, False)
 
 
 def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> EnergyCondition:

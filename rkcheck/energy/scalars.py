@@ -107,8 +107,12 @@ def enclosure(x: Scalar, bits: int = 128) -> Interval:
     return x.enclosure(bits)
 
 
-def approx(x: Scalar) -> float:
-    return float(enclosure(x, 64).mid)
+def approx_text(x: Scalar, sig: int) -> str:
+    """``x`` to ``sig`` significant digits, as text (exact decimal rounding of an
+    enclosure's mid-point: no float, so no overflow at any magnitude)."""
+    from rkcheck.numbers.formatting import decimal_string
+
+    return decimal_string(Fraction(enclosure(x, 64 + 4 * sig).mid), sig)
 
 
 def rational(x: Scalar) -> Fraction | None:

@@ -81,7 +81,7 @@ def symplecticity(red: Reduction) -> PropertyVerdict:
         if q is not None:
             value = f"|M[{gi}][{gj}]| = {sc.text(abs(q), 12)}"
         elif sc.is_interval(m):
-            value = f"M[{gi}][{gj}] ≈ {sc.approx(m):.12g}"
+            value = f"M[{gi}][{gj}] ≈ {sc.approx_text(m, 12)}"
         else:
             value = f"M[{gi}][{gj}] = {sc.text(m, 12)}"
         return PropertyVerdict(

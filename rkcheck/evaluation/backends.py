@@ -16,6 +16,7 @@ job (:mod:`rkcheck.energy`).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Callable, Iterable, Mapping, Sequence
 
 from rkcheck.evaluation.algorithm import condition_sums
@@ -45,12 +46,25 @@ class Evaluation:
     scaled: ScaledTableau | None = None
 
 
+#: how far below the widest entry radius the ball arithmetic works (bits)
+BALL_BITS_BELOW_RADIUS = 1000
+
+
 def certified_context(A: Sequence[Sequence[Interval]], b: Sequence[Interval], bits: int,
                       vertices: int | None = None) -> EnclosingContext:
     """The ball context for trees with up to ``vertices`` vertices: int64 digit
     mid-points (:class:`~rkcheck.evaluation.limbs.LimbBallContext`, faster on large
     listings) when the listing is large and the precision and the size of the weights
-    allow it, else :class:`BallContext` (``vertices=None``: always)."""
+    allow it, else :class:`BallContext` (``vertices=None``: always).
+
+    Entries that are intervals (decimals read as rounded) cap the working precision at
+    about 1000 bits below their widest radius: the float radii span about 2000 binary
+    orders of magnitude, and precision beyond the entries' own accuracy buys nothing
+    (without the cap ``--dps 700`` on a 50-digit decimal overflowed the radii)."""
+    widest = max((x.rad for row in (*A, b) for x in row), default=0)
+    if widest > 0:
+        below = Fraction(widest).denominator.bit_length() - Fraction(widest).numerator.bit_length()
+        bits = min(bits, max(below, 0) + BALL_BITS_BELOW_RADIUS)
     if vertices is not None and vertices >= LIMB_MIN_VERTICES and bits <= LIMB_MAX_BITS:
         ctx = LimbBallContext.create(A, b, bits, vertices)
         if ctx is not None:

@@ -41,9 +41,21 @@ INFLATE = 1.0 + 16 * U
 
 
 def _fraction_float_up(x: Fraction) -> float:
-    """A float ≥ x >= 0 (correctly rounded, then one ulp up)."""
-    f = float(x)
+    """A float ≥ x >= 0 (correctly rounded, then one ulp up); inf (no claim) past
+    float64's range."""
+    try:
+        f = float(x)
+    except OverflowError:
+        return math.inf
     return math.nextafter(f, math.inf) if Fraction(f) < x else f
+
+
+def _float_or_inf(x: Fraction) -> float:
+    """x as a float, ±inf past float64's range (the float screen then claims nothing)."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
 
 
 def _ball_at(x: Interval, bits: int, shift: int) -> tuple[int, float, float]:
@@ -166,8 +178,9 @@ def summed_radii(radii: np.ndarray, k: int, bits: int) -> np.ndarray:
     if not np.all(np.isfinite(rads)):
         from rkcheck.errors import UserError
 
-        raise UserError(f"the certified radii exceed the floating-point range at {bits} bits; "
-                        "use a lower --dps (or exact arithmetic)")
+        raise UserError(f"the certified error bounds overflow float64 (about 1.8e308) at {bits} bits: the "
+                        "entries are too large in magnitude, or --dps is too high; lower --dps, or read the "
+                        "decimals at face value (--decimals exact) for exact arithmetic")
     return rads
 
 
@@ -217,10 +230,10 @@ class FloatContext:
 
     def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval]):
         self.s = len(b)
-        Am = np.array([[float(x.mid) for x in row] for row in A])
-        Ar = np.array([[_fraction_float_up(x.rad) + abs(float(x.mid)) * U for x in row] for row in A]) * INFLATE + ETA
-        bm = np.array([float(x.mid) for x in b])
-        br = np.array([_fraction_float_up(x.rad) + abs(float(x.mid)) * U for x in b]) * INFLATE + ETA
+        Am = np.array([[_float_or_inf(x.mid) for x in row] for row in A])
+        Ar = np.array([[_fraction_float_up(x.rad) + abs(_float_or_inf(x.mid)) * U for x in row] for row in A]) * INFLATE + ETA
+        bm = np.array([_float_or_inf(x.mid) for x in b])
+        br = np.array([_fraction_float_up(x.rad) + abs(_float_or_inf(x.mid)) * U for x in b]) * INFLATE + ETA
         self.Am_t, self.Ar_t, self.Aabs_t = Am.T.copy(), Ar.T.copy(), np.abs(Am).T.copy()
         self.bm, self.br, self.babs = bm, br, np.abs(bm)
         self._gamma = (self.s + 1) * U / (1 - (self.s + 1) * U)

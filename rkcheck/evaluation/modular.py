@@ -141,25 +141,10 @@ class ExactOrderSums:
         if self.tableau.degree != 1:
             return [self.value(k) for k in range(len(self.residues))]
         mods = [p for p, _ in self.primes]
-        r = self.residues[:, :, 0].astype(np.int64)
-        digits: list[np.ndarray] = []
-        for i, p in enumerate(mods):
-            # x_i = (r_i − (x_0 + x_1 m_0 + …)) / (m_0 … m_{i−1})  (mod p_i)
-            acc = np.zeros(len(r), dtype=np.int64)
-            weight = 1
-            for j in range(i):
-                acc = (acc + digits[j] * (weight % p)) % p
-                weight *= mods[j]
-            inv = pow(weight % p, -1, p)
-            digits.append(((r[:, i] - acc) % p) * inv % p)
         total = math.prod(mods)
-        out = []
-        weights = [math.prod(mods[:i]) for i in range(len(mods))]
-        cols = [d.tolist() for d in digits]
-        for row in zip(*cols) if cols else [() for _ in range(len(r))]:
-            x = sum(d * w for d, w in zip(row, weights))
-            out.append(Fraction(x - total if x > total // 2 else x, self.scale))
-        return out
+        columns = [self.residues[:, i, 0].tolist() for i in range(len(mods))]
+        combined = _crt_columns(columns, mods) if mods else [0] * len(self.residues)
+        return [Fraction(x - total if x > total // 2 else x, self.scale) for x in combined]
 
     def _coefficients(self, k: int) -> list[int]:
         D = self.tableau.degree
@@ -179,6 +164,23 @@ def _vandermonde_solve(roots: list[int], values: list[int], p: int) -> list[int]
     V = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p)
     x = V.solve(nmod_mat([[v] for v in values], p))
     return [int(x[i, 0]) for i in range(D)]
+
+
+def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
+    """The integers in [0, Π moduli) with residues ``columns[i][k]`` modulo ``moduli[i]``,
+    for every k: the moduli are merged pairwise, a product tree, so thousands of primes (a
+    decimal of thousands of digits) cost O(M(N) log k) per integer where Garner's digits
+    cost k² vector operations (52 s for 3 559 primes)."""
+    nodes = [([int(x) for x in col], m) for col, m in zip(columns, moduli)]
+    while len(nodes) > 1:
+        merged = []
+        for (xa, ma), (xb, mb) in zip(nodes[::2], nodes[1::2]):
+            inv = pow(ma, -1, mb)
+            merged.append(([a + ma * (((b - a) * inv) % mb) for a, b in zip(xa, xb)], ma * mb))
+        if len(nodes) % 2:
+            merged.append(nodes[-1])
+        nodes = merged
+    return nodes[0][0]
 
 
 def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:

@@ -126,7 +126,9 @@ class TableauValues:
         if tab.info.family is not None and not tab.is_rational:
             return "computed by its family at the working precision"
         if tab.uses_sqrt:
-            return "algebraic (roots)" if _uses_root(tab) else "algebraic (square roots)"
+            kind = "algebraic (roots)" if _uses_root(tab) else "algebraic (square roots)"
+            # not silently in balls: say which limit kept them from being exact
+            return kind if self.kind is not NumberKind.NUMERIC else f"{kind}, not exact: {self.reason}"
         digits = tab.rounded_digits
         if decimals is DecimalsMode.FLOAT64 and self.kind is NumberKind.BOX:
             return "decimals read as binary64 doubles (each within half an ulp)"

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.io.bounded import bounded_read, max_file_bytes
 from rkcheck.io.printable import printable
 from rkcheck.options import (
     FAIL_ON,
@@ -61,7 +62,8 @@ def load_config(start: Path | None = None) -> Config:
     if path is None:
         return Config()
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        with open(path, "rb") as fh:  # bounded: pyproject.toml may be a link to a device
+            data = tomllib.loads(bounded_read(fh, max_file_bytes(), str(path)).decode("utf-8"))
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError, ValueError) as err:
         raise UserError(f"cannot read [tool.rkcheck]: {printable(str(err))}", source=str(path)) from None
     except RecursionError:

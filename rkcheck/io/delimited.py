@@ -18,6 +18,7 @@ validates it with the same one-line errors (``A[2][3]: …``).
 
 from __future__ import annotations
 
+import csv
 import re
 from typing import Any
 
@@ -26,10 +27,26 @@ from rkcheck.errors import TableauError
 SUFFIXES = (".csv", ".tsv")
 
 
-def _cells(line: str) -> list[str]:
+def _cells(line: str, delimiter: str | None) -> list[str]:
+    if delimiter is not None:  # quoted cells ("1,5", "a""b"), as spreadsheets write them
+        return [c.strip() for c in next(csv.reader([line], delimiter=delimiter, skipinitialspace=True), [])]
     if "," in line or ";" in line or "\t" in line:
         return [c.strip() for c in re.split(r"[,;\t]", line)]
     return line.split()
+
+
+def _quoted_delimiter(lines: list[str]) -> str | None:
+    """With quoted cells, the one separator (comma, semicolon or tab) that occurs outside
+    the quotes most often; None without quotes (then any of them separates)."""
+    if not any('"' in line for line in lines):
+        return None
+    counts = dict.fromkeys(",;\t", 0)
+    for line in lines:
+        outside = re.sub(r'"(?:[^"]|"")*"?', "", line)
+        for sep in counts:
+            counts[sep] += outside.count(sep)
+    best = max(counts, key=lambda sep: counts[sep])
+    return best if counts[best] else ","
 
 
 def parse_delimited(text: str, name: str) -> dict[str, Any]:
@@ -37,10 +54,11 @@ def parse_delimited(text: str, name: str) -> dict[str, Any]:
     docstring for the two layouts); a shape that fits neither is a :class:`TableauError`."""
     rows: list[list[str]] = []
     line_of: list[int] = []
-    for no, line in enumerate(text.splitlines(), start=1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        rows.append(_cells(line))
+    data = [(no, line) for no, line in enumerate(text.removeprefix("\ufeff").splitlines(), start=1)
+            if line.strip() and not line.lstrip().startswith("#")]
+    delimiter = _quoted_delimiter([line for _, line in data])
+    for no, line in data:
+        rows.append(_cells(line, delimiter))
         line_of.append(no)
     if not rows:
         raise TableauError("no rows: expected a Butcher array (s+1 rows of s+1 cells: c | A, then · | b)")

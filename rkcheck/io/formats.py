@@ -12,7 +12,7 @@ is meant to be pasted, and is never read back by rkcheck.
 from __future__ import annotations
 
 import json
-from typing import Any, Callable
+from typing import Any, Callable, Iterable
 
 from rkcheck.errors import UserError
 from rkcheck.io.writers import document_toml, render_toml
@@ -66,8 +66,30 @@ class _Code:
     def number(self, n: ex.Num) -> str:
         return str(n.value) if n.value.denominator == 1 else f"{n.value.numerator}/{n.value.denominator}"
 
+    #: names the written code defines or uses itself, besides the language's keywords
+    reserved: frozenset[str] = frozenset({"A", "b", "c"})
+    names: dict[str, str] = {}
+
+    def identifiers(self, constants: Iterable[str]) -> dict[str, str]:
+        """Each constant's name in the written code: a keyword (``None``, ``import``,
+        ``end``) or a name the code uses (``Fraction``, ``A``) gets underscores appended
+        until it is free."""
+        taken = set(constants)
+        out = {}
+        for name in constants:
+            new = name
+            while new in self.reserved or self.is_keyword(new) or (new != name and new in taken):
+                new += "_"
+            taken.add(new)
+            out[name] = new
+        self.names = out
+        return out
+
+    def is_keyword(self, name: str) -> bool:
+        return False
+
     def name(self, n: ex.Name) -> str:
-        return n.name
+        return self.names.get(n.name, n.name)
 
     def div(self, left: str, right: str) -> str:
         return f"{left}/{right}"
@@ -108,6 +130,12 @@ class _Code:
         return self.paren(text) if parent > p else text
 
 
+_JULIA_KEYWORDS = frozenset(
+    "baremodule begin break catch const continue do else elseif end export false finally for function global if "
+    "import let local macro module quote return struct true try using while abstract mutable primitive type where "
+    "outer".split())
+
+
 def _is_integer(node: ex.Expr) -> bool:
     return isinstance(node, ex.Num) and node.digits is None and node.value.denominator == 1
 
@@ -130,6 +158,12 @@ def _fold_fraction(node: ex.Expr) -> ex.Expr:
 class _Julia(_Code):
     """Julia: exact ``Rational{BigInt}`` literals (``big(1)//6``), ``sqrt(big(3))``."""
 
+    reserved = frozenset({"A", "b", "c", "big", "sqrt", "pi", "im", "true", "false", "nothing", "missing", "Inf",
+                          "NaN"})
+
+    def is_keyword(self, name: str) -> bool:
+        return name in _JULIA_KEYWORDS
+
     def number(self, n: ex.Num) -> str:
         v = n.value
         return f"big({v.numerator})" if v.denominator == 1 else f"big({v.numerator})//{v.denominator}"
@@ -145,6 +179,13 @@ class _Julia(_Code):
 
 class _Python(_Code):
     """Python: ``Fraction`` literals; ``sympy.sqrt`` keeps square roots exact."""
+
+    reserved = frozenset({"A", "b", "c", "Fraction", "sympy"})
+
+    def is_keyword(self, name: str) -> bool:
+        import keyword
+
+        return keyword.iskeyword(name)
 
     sqrt = "sympy.sqrt"
 
@@ -328,7 +369,8 @@ def _code_lines(tab: Tableau, code: _Code, assign: str, vector: Callable[[list[s
                 matrix: Callable[[list[list[str]]], str]) -> list[str]:
     A, b, c = _entries(tab)
     constants = _used_constants(tab, [x for row in A for x in row] + b + c)
-    lines = [f"{name}{assign}{code.render(value)}" for name, value in constants.items()]
+    names = code.identifiers(constants)
+    lines = [f"{names[name]}{assign}{code.render(value)}" for name, value in constants.items()]
     lines.append(f"A{assign}" + matrix([[code.render(x) for x in row] for row in A]))
     lines.append(f"b{assign}" + vector([code.render(x) for x in b]))
     lines.append(f"c{assign}" + vector([code.render(x) for x in c]))
@@ -371,7 +413,11 @@ def write(tab: Tableau, fmt: str) -> str:
     else 60-digit decimals — so every format reads back (never the "≈" display texts)."""
     if fmt not in WRITERS:
         raise UserError(f"unknown output format {fmt!r} (known: {', '.join(WRITE_FORMATS)})")
-    return WRITERS[fmt](_as_written(tab))
+    try:
+        return WRITERS[fmt](_as_written(tab))
+    except RecursionError:  # a sum of thousands of terms is a tree too deep to render recursively
+        raise UserError(f"an entry is nested too deeply to write as {fmt} (a chain of thousands of terms); "
+                        "write the tableau as TOML or JSON") from None
 
 
 def _as_written(tab: Tableau) -> Tableau:

@@ -19,6 +19,7 @@ shipped tableau (:mod:`rkcheck.io.library`) or a classical method
 
 from __future__ import annotations
 
+import io
 import re
 import sys
 import tomllib
@@ -26,6 +27,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rkcheck.errors import UserError
+from rkcheck.io.bounded import bounded_read, max_file_bytes
 from rkcheck.io.printable import printable
 from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import MethodInfo, Tableau
@@ -39,11 +41,12 @@ if TYPE_CHECKING:
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     INPUT_FORMATS,
+    MAX_STAGES_RANGE,
+    parse_int_in,
     parse_strings,
     validate_check_table,
 )
 
-MAX_FILE_BYTES = 16 * 1024 * 1024
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
@@ -77,17 +80,30 @@ def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
 
 
 def read_text(path: str) -> str:
-    """Read a file (``-`` = standard input) as UTF-8, as a UserError on failure."""
-    if path == "-":
-        return sys.stdin.read()
-    p = Path(path)
+    """Read a file (``-`` = standard input) as UTF-8, at most :func:`max_file_bytes`
+    bytes, as a UserError on failure."""
+    import stat
+
+    limit = max_file_bytes()
     try:
-        if p.is_dir():
+        if path == "-":
+            stdin = getattr(sys.stdin, "buffer", None)
+            if stdin is None:  # a text stream put in place by a caller (tests, an embedding program)
+                text = sys.stdin.read(limit + 1)
+                bounded_read(io.BytesIO(text.encode("utf-8", "surrogateescape")), limit, path)
+                return text
+            return bounded_read(stdin, limit, path).decode("utf-8-sig")  # -sig: a leading BOM is dropped
+        p = Path(path)
+        mode = p.stat().st_mode
+        if stat.S_ISDIR(mode):
             raise UserError("is a directory, not a tableau file", source=path)
-        size = p.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise UserError(f"file too large ({count_text(size)} bytes; limit {count_text(MAX_FILE_BYTES)})", source=path)
-        return p.read_text(encoding="utf-8")
+        if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+            raise UserError("is a device, not a tableau file", source=path)
+        if stat.S_ISREG(mode) and p.stat().st_size > limit:
+            raise UserError(f"file too large ({count_text(p.stat().st_size)} bytes; the limit MAX_FILE_BYTES is {count_text(limit)}; "
+                            "set RKCHECK_MAX_FILE_BYTES to change it)", source=path)
+        with open(p, "rb") as fh:  # a FIFO (bash's <(…)) too: read with the limit
+            return bounded_read(fh, limit, path).decode("utf-8-sig")  # spreadsheets write a BOM
     except FileNotFoundError:
         raise UserError("no such file", source=path) from None
     except PermissionError:
@@ -404,6 +420,8 @@ def loads(
 ) -> Tableau:
     """Parse tableau text (``fmt``: one of :data:`INPUT_FORMATS`, default by the source's
     suffix and the content)."""
+    parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages")
+    text = text.removeprefix("\ufeff")  # a byte order mark, as spreadsheets and editors write it
     fmt = fmt or detect_format(source, text)
     if fmt not in INPUT_FORMATS:
         raise UserError(f"unknown input format {fmt!r} (known: {', '.join(INPUT_FORMATS)})", source=source)
@@ -413,7 +431,7 @@ def loads(
             from rkcheck.io.nodepy_text import parse_nodepy_text
 
             stem = Path(source).stem if source not in ("-", "<string>") else "stdin"
-            data = (parse_delimited if fmt == "csv" else parse_nodepy_text)(text, stem)
+            data = parse_delimited(text, stem) if fmt == "csv" else parse_nodepy_text(text, stem, max_stages)
         else:
             data = parse_document(text, fmt)
     except UserError as err:

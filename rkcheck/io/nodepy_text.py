@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 from rkcheck.errors import TableauError
+from rkcheck.options import DEFAULT_MAX_STAGES
 
 SUFFIXES = (".txt", ".nodepy")
 _SECTIONS = {"c[k]": "c", "A[k,j]": "A", "b[k]": "b", "bhat[k]": "bhat"}
@@ -23,8 +24,9 @@ def looks_like_nodepy(text: str) -> bool:
     return any(line.split()[-1:] in (["A[k,j]"], ["b[k]"]) for line in text.splitlines())
 
 
-def parse_nodepy_text(text: str, name: str) -> dict[str, Any]:
-    """The file's ``A``, ``b`` and ``c`` as a tableau document (entries as text)."""
+def parse_nodepy_text(text: str, name: str, max_stages: int = DEFAULT_MAX_STAGES) -> dict[str, Any]:
+    """The file's ``A``, ``b`` and ``c`` as a tableau document (entries as text); an
+    index beyond ``max_stages`` is refused before anything is allocated."""
     section: str | None = None
     values: dict[str, dict[tuple[int, ...], str]] = {k: {} for k in ("A", "b", "c", "bhat")}
     for no, line in enumerate(text.splitlines(), start=1):
@@ -37,9 +39,14 @@ def parse_nodepy_text(text: str, name: str) -> dict[str, Any]:
         if section is None:
             continue
         width = 3 if section == "A" else 2
-        if len(words) != width or not all(w.isdigit() for w in words[:-1]):
+        # ASCII digits only: '²'.isdigit() is true, but int('²') fails
+        if len(words) != width or not all(w.isascii() and w.isdigit() for w in words[:-1]):
             raise TableauError(f"expected {width - 1} index(es) and a value in section {section}", f"line {no}")
-        values[section][tuple(int(w) for w in words[:-1])] = words[-1]
+        key = tuple(int(w) for w in words[:-1])
+        if max(key) >= max_stages:
+            raise TableauError(f"stage index {max(key)} means {max(key) + 1} stages, which exceeds the limit of "
+                               f"{max_stages} (raise it with --max-stages)", f"line {no}")
+        values[section][key] = words[-1]
     if not values["b"]:
         raise TableauError("no b[k] section: not a nodepy tableau file")
     indices = [k for sec in ("A", "b", "c") for key in values[sec] for k in key]

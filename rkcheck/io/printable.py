@@ -15,4 +15,12 @@ def printable(text: str) -> str:
     ``\\ud800``); printable text, including non-ASCII letters, is unchanged."""
     if text.isprintable():
         return text
-    return "".join(ch if ch.isprintable() else ascii(ch)[1:-1] for ch in text)
+    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
+
+
+def _escape(ch: str) -> str:
+    # U+DC80..U+DCFF is how Python keeps a byte that is not UTF-8 in a file name or an
+    # argument (surrogateescape): show the byte itself, as ls and git do
+    if "\udc80" <= ch <= "\udcff":
+        return f"\\x{ord(ch) - 0xDC00:02x}"
+    return ascii(ch)[1:-1]

@@ -65,6 +65,23 @@ def _float_entry(x: float, floats: FloatMode, place: str) -> tuple[Entry, bool]:
     return entry, Fraction(text) != Fraction(x) or Entry.parse(text).is_rounded
 
 
+def _longdouble_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
+    """A numpy extended-precision float: its exact binary value (or, ``shortest``, the
+    shortest decimal numpy prints for it), like a float."""
+    try:
+        value = Fraction(*x.as_integer_ratio())
+    except (OverflowError, ValueError, AttributeError):
+        raise TableauError(f"{x} is not a finite number", place) from None
+    shortest = str(x)
+    if floats == "shortest":
+        return Entry.parse(shortest), False
+    try:
+        differs = Fraction(shortest) != value
+    except ValueError:
+        differs = True
+    return Entry.of(value), differs
+
+
 def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry, bool]:
     """One value as an :class:`Entry` (see the module docstring for what each type
     means) and whether it was a float whose readings (shortest repr, exact binary
@@ -98,9 +115,13 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
                     return Entry.parse(_sympy_root_text(x, place)), False
             raise TableauError(f"expected a number, got the sympy expression {x}", place)
         if hasattr(x, "item") and hasattr(x, "dtype"):  # a numpy scalar
-            return entry_of(x.item(), place, floats)
+            item = x.item()
+            if type(item) is type(x):  # numpy.longdouble: no Python type holds it
+                return _longdouble_entry(x, floats, place)
+            return entry_of(item, place, floats)
     except UserError as err:
-        raise TableauError(err.message, f"{place}: {err.place}" if err.place else place) from None
+        inner = err.place if err.place and not err.place.startswith(place) else None
+        raise TableauError(err.message, f"{place}: {inner}" if inner else (err.place or place)) from None
     raise TableauError(f"expected a number (int, Fraction, str, float), got {type(x).__name__}", place)
 
 

@@ -17,6 +17,7 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any, Mapping, Protocol, Sequence
 
+from rkcheck.errors import UserError
 from rkcheck.methods.arrays import FloatMode, entries_from_arrays
 from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
 from rkcheck.numbers.entries import Constants, Entry, TableauEntry
@@ -176,10 +177,26 @@ class Tableau:
             found = field_of([e.node for e in entries], self.info.constants.definitions)  # type: ignore[attr-defined]
         except NotAlgebraic as err:
             return str(err)
+        except UserError as err:  # the square root of a negative number: name the entry
+            raise err.located(self._place_of_error(entries)) from None
         s = self.stages
         v = found.values
         A = [v[i * s:(i + 1) * s] for i in range(s)]
         return ExactValues(found.field, A, v[s * s:s * s + s], v[s * s + s:] if self.c is not None else None)
+
+    def _place_of_error(self, entries: list) -> str | None:
+        """The first entry (``A[i][j]``, ``b[i]``, ``c[i]``) that fails on its own."""
+        s = self.stages
+        places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]
+        places += [f"c[{i + 1}]" for i in range(s)]
+        for place, e in zip(places, entries):
+            try:
+                field_of([e.node], self.info.constants.definitions)
+            except UserError:
+                return place
+            except NotAlgebraic:
+                continue
+        return None
 
     def exact_values(self) -> ExactValues | None:
         """The entries at face value, exactly, in one number field

@@ -17,9 +17,10 @@ precision, however often it is used.
 
 from __future__ import annotations
 
+import copyreg
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Mapping, Protocol
+from typing import Any, Mapping, Protocol
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
@@ -39,7 +40,7 @@ class Constants:
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
         self._enclosures: dict[tuple[int, DecimalsMode], dict[str, Interval]] = {}
-        self._rounded: dict[str, bool] = {}
+        self._rounded: dict[str, int | None] = {}  # fewest digits of its rounded decimals, through others too
         self._decimal: dict[str, bool] = {}
         for name in self._order:
             node = self.definitions[name]
@@ -47,9 +48,9 @@ class Constants:
             self._decimal[name] = any(lit.is_decimal for lit in ex.literals(node)) or any(
                 self._decimal[u] for u in used
             )
-            self._rounded[name] = any(lit.is_rounded_decimal for lit in ex.literals(node)) or any(
-                self._rounded[u] for u in used
-            )
+            digits = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
+            digits += [d for u in used if (d := self._rounded[u]) is not None]
+            self._rounded[name] = min(digits) if digits else None
 
     def _topological_order(self) -> list[str]:
         """The constants in an order where each comes after those it uses (depth first,
@@ -113,6 +114,11 @@ class Constants:
         return self._enclosures[key]
 
     def is_rounded(self, name: str) -> bool:
+        return self._rounded[name] is not None
+
+    def rounded_digits(self, name: str) -> int | None:
+        """The fewest significant digits among the rounded decimals ``name`` depends on,
+        directly or through other constants (None: it depends on none)."""
         return self._rounded[name]
 
     def has_decimal(self, name: str) -> bool:
@@ -164,15 +170,9 @@ class Entry:
         constants.check_names(node)
         used = {n.name for n in ex.names(node)}
         rounded = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
-        via_constant = [u for u in used if constants.is_rounded(u)]
+        # a constant counts with the fewest digits it depends on (s = "1 - r", r a decimal)
+        rounded += [d for u in used if (d := constants.rounded_digits(u)) is not None]
         rounded_digits = min(rounded) if rounded else None
-        if via_constant and rounded_digits is None:
-            rounded_digits = min(
-                lit.digits
-                for u in via_constant
-                for lit in ex.literals(constants.definitions[u])
-                if lit.digits is not None and lit.is_rounded_decimal
-            )
         exact = ex.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
@@ -216,3 +216,71 @@ class Entry:
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""
         return self.exact == 0
+
+
+# ------------------------------------------------------------------ pickling
+
+# An entry's expression can be a tree thousands of levels deep (a sum of a thousand
+# square roots leans left); pickle walks objects recursively and fails on it, and a scan
+# worker sends its results by pickle.  Each tree is therefore pickled as its nodes in
+# post-order, flat, and rebuilt with an explicit stack.
+
+
+def _children(node: ex.Expr) -> tuple[ex.Expr, ...]:
+    if isinstance(node, ex.Unary):
+        return (node.operand,)
+    if isinstance(node, ex.Binary):
+        return (node.left, node.right)
+    if isinstance(node, ex.Power):
+        return (node.base, node.exponent)
+    if isinstance(node, ex.Call):
+        return node.args  # with root's polynomial: every node is kept
+    return ()
+
+
+def _record(node: ex.Expr) -> tuple:
+    if isinstance(node, ex.Num):
+        return ("N", node.value, node.text, node.digits, node.last_digit_exponent)
+    if isinstance(node, ex.Name):
+        return ("V", node.name, node.column)
+    if isinstance(node, ex.Unary):
+        return ("U", node.op)
+    if isinstance(node, ex.Binary):
+        return ("B", node.op, node.column)
+    if isinstance(node, ex.Power):
+        return ("P", node.column)
+    assert isinstance(node, ex.Call)
+    return ("C", node.func, len(node.args), node.column)
+
+
+def _rebuild(flat: list[tuple]) -> ex.Expr:
+    stack: list[ex.Expr] = []
+    for kind, *f in flat:
+        if kind == "N":
+            stack.append(ex.Num(*f))
+        elif kind == "V":
+            stack.append(ex.Name(*f))
+        elif kind == "U":
+            stack.append(ex.Unary(f[0], stack.pop()))
+        elif kind == "B":
+            right, left = stack.pop(), stack.pop()
+            stack.append(ex.Binary(f[0], left, right, f[1]))
+        elif kind == "P":
+            exponent, base = stack.pop(), stack.pop()
+            stack.append(ex.Power(base, exponent, f[0]))
+        else:
+            func, n, column = f
+            args = tuple(stack[len(stack) - n:])
+            del stack[len(stack) - n:]
+            stack.append(ex.Call(func, args, column))
+    return stack[0]
+
+
+def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple]]]:
+    flat: list[tuple] = []
+    ex.fold(node, lambda n, _: flat.append(_record(n)), _children)
+    return _rebuild, (flat,)
+
+
+for _cls in (ex.Num, ex.Name, ex.Unary, ex.Binary, ex.Power, ex.Call):
+    copyreg.pickle(_cls, _reduce_expr)

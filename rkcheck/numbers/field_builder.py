@@ -13,6 +13,7 @@ linear ``gcd(f(z), g(η − tz))`` over ``Q(η)``, read off two minors (:func:`_
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Iterable, Mapping, Sequence
@@ -43,6 +44,11 @@ from rkcheck.numbers.polynomials import (
 )
 
 # ---------------------------------------------------------------------- field_of
+
+
+#: Longest time :func:`field_of` spends building one field; beyond it the entries are left
+#: to balls too (nested radicals can need exponential work before the degree is known).
+FIELD_SECONDS = 10.0
 
 
 @dataclass(frozen=True)
@@ -104,6 +110,12 @@ class _Builder:
         self.constants: dict[str, FieldElement] = {}
         self._sqrt_cache: dict[int, FieldElement] = {}  # keyed by the square-free m
         self._power_tables: dict[int, list] = {}  # step j: powers of θ_old in chain[j]
+        self.deadline = time.monotonic() + FIELD_SECONDS
+
+    def check_time(self) -> None:
+        if time.monotonic() > self.deadline:
+            raise NotAlgebraic(f"building their number field took more than {FIELD_SECONDS:g} s "
+                               "(the limit FIELD_SECONDS)")
 
     # ------------------------------------------------------------- lifting
     def lift(self, x: FieldElement) -> FieldElement:
@@ -152,7 +164,11 @@ class _Builder:
         if mirror is not None:
             self.generators[gamma] = mirror
             return mirror
+        self.check_time()
         if K.is_rational:
+            if f.degree() > self.max_degree:  # root(p, k) of a high degree p: the same limit
+                raise NotAlgebraic(f"the entries generate a number field of degree {f.degree()} "
+                                   f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             L = NumberField(list(gamma.f), gamma.index)
             self._push(L, L(0))
             self.generators[gamma] = L.gen
@@ -162,7 +178,7 @@ class _Builder:
         # work of finding it (a characteristic polynomial of a D×D matrix)
         if D > 4 * self.max_degree:
             raise NotAlgebraic(f"the entries generate a number field of degree up to {D} "
-                               f"(more than {self.max_degree})")
+                               f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
         for t in _separating_multipliers(K.g, f):
             R = _charpoly_sum(K.g, f, t)
 
@@ -172,10 +188,10 @@ class _Builder:
             h = _identify([fac for fac, _ in R.factor()[1]], eta_enc)
             if h.degree() > self.max_degree:
                 raise NotAlgebraic(f"the entries generate a number field of degree {h.degree()} "
-                                   f"(more than {self.max_degree})")
+                                   f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             eta = _real_of(h, eta_enc)
             L = NumberField(list(eta.f), eta.index)
-            theta_old = _theta_in(L, K.g, f, t)
+            theta_old = _theta_in(L, K.g, f, t, self.check_time)
             gamma_new = (L.gen - theta_old) / t
             self._push(L, theta_old)
             self.generators[gamma] = gamma_new
@@ -250,6 +266,7 @@ class _Builder:
         return left / right
 
     def _call(self, node: ex.Call) -> FieldElement:
+        self.check_time()
         if node.func == "root":
             k = self.lift(self.value(node.args[1])).rational()
             if k is None or k.denominator != 1 or k < 1:
@@ -345,7 +362,7 @@ def _charpoly_sum(g, f, t: int):
     return M.charpoly()
 
 
-def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
+def _theta_in(L: NumberField, g, f, t: int, check_time=lambda: None) -> FieldElement:
     """θ (root of g) in L = Q(η), η = θ + tγ: ``η − tγ``, with γ the one common root of
     ``f(z)`` and ``r(z) = g(η − tz) mod f`` over L (t separates the conjugates).
 
@@ -372,6 +389,7 @@ def _theta_in(L: NumberField, g, f, t: int) -> FieldElement:
     for i, row in enumerate(rows):
         nxt: dict[tuple[int, ...], FieldElement] = {}
         for cols, m in minors.items():
+            check_time()  # the minors can number 2^n
             for j in range(n):
                 if j in cols or row[j].is_zero():
                     continue
@@ -412,7 +430,10 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     a negative number.  Decimal literals are read at face value: the caller decides
     whether the entries are exact (definitions §5)."""
     builder = _Builder(constants, max_degree)
-    values = [builder.value(n) for n in nodes]
+    try:
+        values = [builder.value(n) for n in nodes]
+    except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
+        raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
     values = [builder.lift(v) for v in values]
     # sqrt(2) - sqrt(2) needs no field: when every value is rational, Q is the field
     if builder.field.is_rational or all(v.rational() is not None for v in values):

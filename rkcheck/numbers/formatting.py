@@ -43,6 +43,11 @@ def _digits(x: Fraction, sig: int, up: bool = False) -> tuple[int, int]:
     return n, e
 
 
+def decimal_digits(x: Fraction, sig: int) -> tuple[int, int]:
+    """(N, e) with |x| ≈ N · 10^(e-sig+1), N of ``sig`` digits (x ≠ 0, rounded half-even)."""
+    return _digits(Fraction(x), sig)
+
+
 def decimal_string(x: Fraction | int | float, sig: int = 20, up: bool = False, keep_zeros: bool = False) -> str:
     """``x`` rounded to ``sig`` significant digits (``up``: away from zero), e.g.
     ``-3.4722222222222222222e-4``, ``0.5``, ``12.25``.  Trailing zeros are dropped unless

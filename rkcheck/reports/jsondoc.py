@@ -11,6 +11,7 @@ from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.energy.results import Condition
 from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import TableauValues
+from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.grammar import to_text
@@ -244,7 +245,7 @@ def check_doc(res: CheckResult) -> dict[str, Any]:
     return {
         "schema": SCHEMA,
         "rkcheck": __version__,
-        "file": res.tableau.info.source,
+        "file": printable(res.tableau.info.source),
         "method": method_doc(res.tableau),
         "tableau": {
             "stages": res.tableau.stages,

@@ -34,6 +34,7 @@ from rkcheck.energy.stability import (
 )
 from rkcheck.energy.verdicts import FAILS, HOLDS
 from rkcheck.evaluation.values import TableauValues
+from rkcheck.numbers.formatting import decimal_string
 
 _SUP = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 STYLE = {HOLDS: "green", "holds_to_digits": "yellow", FAILS: "red"}
@@ -90,8 +91,9 @@ def error_constant_doc(ec: ErrorConstant | None) -> dict[str, Any] | None:
         "failing": ec.failing,
         "value": ec.short(12),
         "squared": str(ec.squared) if ec.exact else None,
-        "lower": repr(lo),
-        "upper": repr(hi),
+        # 17 significant digits, rounded outwards (a bound stays a bound)
+        "lower": decimal_string(lo - lo / 10**16, 17),
+        "upper": decimal_string(hi, 17, up=True),
     }
 
 

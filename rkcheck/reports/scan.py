@@ -10,11 +10,13 @@ from __future__ import annotations
 import csv
 import io
 import json
+from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 from xml.sax.saxutils import escape, quoteattr
 
-from rkcheck.numbers.formatting import counted
+from rkcheck.io.printable import printable
+from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string
 from rkcheck.reports.jsondoc import SCHEMA, check_doc
 from rkcheck.version import __version__
 
@@ -26,19 +28,46 @@ CSV_COLUMNS = [
 ]
 
 
-def outcome_docs(outcomes) -> list[dict[str, Any]]:
+def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None) -> list[dict[str, Any]]:
     """Plain documents of the outcomes: path, status, error, time, lines, and under
-    ``result`` the ``verify --format json`` object of each checked file."""
-    return [
-        {"path": o.path, "status": o.status, "error": o.error, "time": o.time, "lines": o.lines,
-         "result": None if o.result is None else check_doc(o.result)}
-        for o in outcomes
-    ]
+    ``result`` the ``verify --format json`` object of each checked file.
+
+    A file whose document (or, given ``row_check``, its row of the report) cannot be
+    built becomes an ``error`` row with the reason, like a file that could not be read:
+    one file never aborts the report of the others.  The outcome itself is marked so,
+    and the scan's exit code counts it."""
+    docs = []
+    for o in outcomes:
+        # the path as shown (a name that is not UTF-8, an escape or a newline in it would
+        # otherwise reach the terminal, the annotations and the JSON/XML as raw bytes)
+        doc = {"path": printable(o.path), "status": o.status, "error": o.error and printable(o.error),
+               "time": o.time, "lines": o.lines, "result": None}
+        try:
+            doc["result"] = None if o.result is None else check_doc(o.result)
+            if row_check is not None:
+                row_check(doc)
+        except Exception as err:  # a bug (or a value no format can say): this row says so
+            o.status, o.result = "error", None
+            o.error = (f"{o.path}: internal error while writing its report: {type(err).__name__}: {err} "
+                       "(a bug in rkcheck; please report it)")
+            doc.update(status=o.status, error=o.error, result=None)
+        docs.append(doc)
+    return docs
+
+
+def _row_renderer(fmt: str, elapsed: float = 0.0) -> Callable[[dict[str, Any]], Any]:
+    """How one row of a format is rendered (tried per file before the whole report)."""
+    return {"json": lambda d: json.dumps(d, ensure_ascii=False), "csv": lambda d: scan_csv([d]),
+            "junit": lambda d: scan_junit([d], elapsed), "github": lambda d: scan_github([d]),
+            "text": lambda d: (_scan_row(d, str, True), failure_message(d) if d["status"] == "failed" else None),
+            }[fmt]
 
 
 def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any], elapsed: float) -> str:
     """The scan report in a machine format: json, csv, junit or github."""
-    docs = outcome_docs(outcomes)
+    if fmt not in ("json", "csv", "junit", "github"):
+        raise ValueError(f"unknown scan format {fmt!r}")
+    docs = outcome_docs(outcomes, _row_renderer(fmt, elapsed))
     if fmt == "json":
         return scan_json(docs, interrupted, options) + "\n"
     if fmt == "csv":
@@ -342,14 +371,16 @@ def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
 # ---------------------------------------------------------------------- text
 
 
-def compact_constant(value: float) -> str:
-    """An error constant in at most 7 characters: ``0.15``, ``0.042``, ``1.5e-4``."""
+def compact_constant(value: Fraction | str) -> str:
+    """An error constant in a few characters: ``0.15``, ``0.042``, ``1.5e-4``, ``2e+200``
+    (exact decimal rounding: a constant past 1e308 is no float)."""
+    value = Fraction(value)
     if value == 0:
         return "0"
-    if 0.01 <= value < 100:
-        return f"{value:.2g}"
-    mant, exp = f"{value:.1e}".split("e")
-    return f"{mant}e{int(exp)}"
+    if Fraction(1, 100) <= value < 100:
+        return decimal_string(value, 2)
+    n, e = decimal_digits(value, 2)
+    return f"{n // 10}.{n % 10}e{e}"
 
 
 def render_scan_text(outcomes, console, total_time: float, interrupted: bool, verbose: bool = False,
@@ -357,7 +388,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     """The scan table; ``constants``: with a column C (the energy error constant), as
     ``scan --sort energy`` shows it; ``quiet``: problems only (the rows of files that
     fail or cannot be checked, no table when there are none), then the totals."""
-    outcomes = outcome_docs(outcomes)
+    outcomes = outcome_docs(outcomes, _row_renderer("text"))
     root, shown = _common_root([o["path"] for o in outcomes])
     rows = [o for o in outcomes if not quiet or o["status"] in ("failed", "error")]
     if rows or not quiet:
@@ -424,7 +455,7 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
     if s and s.get("classical_first_failure") is None:
         classical = f"≥ {classical}"
     ec = s.get("error_constant")
-    extra = ["—" if not ec else compact_constant(float(ec["value"]))] if constants else []
+    extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
     return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
                  "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
 

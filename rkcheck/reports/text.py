@@ -16,6 +16,7 @@ from rkcheck.energy.gate import requirement_shortfall
 from rkcheck.energy.results import Condition
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.evaluation.values import Backend, TableauValues
+from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import (
@@ -75,7 +76,7 @@ def header(values: TableauValues) -> Group:
     title = Text(tab.name, style="bold")
     source = tab.info.source
     if source and source not in ("<memory>", "<string>"):
-        title.append(f"  ({source})", style="dim")
+        title.append(f"  ({printable(source)})", style="dim")
     facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {values.describe()}"
     return Group(title, Text(facts))
 

@@ -127,3 +127,13 @@ def test_the_program_tunes_its_own_process():
     env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_THREAD_TIMEOUT"}
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
     assert run.stdout.split()[-2:] == ["100000", "4"], run.stderr
+
+
+def test_a_ctrl_c_is_quiet_from_the_programs_first_import():
+    # the package's own start-up (before main() runs) is covered too: importing the
+    # program installs the quiet handler at once, and `import rkcheck` stays light
+    # (typing, its slowest import, is not loaded)
+    code = ("import signal, sys; before = 'typing' in sys.modules; import rkcheck.program; "
+            "print(signal.getsignal(signal.SIGINT).__name__, before or 'typing' not in sys.modules)")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.stdout.split() == ["_early_interrupt", "True"], run.stderr

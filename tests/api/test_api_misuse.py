@@ -1,0 +1,64 @@
+"""What a library caller can get wrong ends in an RkcheckError subclass with the CLI's
+one-line message, never in another exception."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+from support.paths import TABLEAUX
+
+import rkcheck
+
+
+def test_scan_of_one_folder_given_as_a_string_scans_that_folder():
+    folder = TABLEAUX / "explicit"
+    one = rkcheck.scan(str(folder), order=2, jobs=1)
+    listed = rkcheck.scan([str(folder)], order=2, jobs=1)
+    assert [r.path for r in one.rows] == [r.path for r in listed.rows]
+    assert len(one.rows) == len(list(folder.glob("*.toml")))
+
+
+def test_scan_of_something_that_is_no_path_is_an_rkcheck_error():
+    with pytest.raises(rkcheck.RkcheckError, match="expected a path or a list of paths"):
+        rkcheck.scan([42])
+
+
+def test_a_numpy_longdouble_entry_is_read_like_a_float():
+    import warnings
+
+    import numpy as np
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the API warns when it reads floats
+        tab = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)])
+    x = np.longdouble(1) / 3
+    num, den = x.as_integer_ratio()
+    assert tab.A[0][0].exact == Fraction(num, den) and tab.b[0].exact == 1
+
+
+@pytest.mark.parametrize("value", ["inf", "nan"])
+def test_a_non_finite_longdouble_is_an_rkcheck_error_naming_the_entry(value):
+    import numpy as np
+
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.from_arrays([[np.longdouble(value)]], [1])
+    assert str(err.value) == f"A[1][1]: {value} is not a finite number"
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: rkcheck.load(123), "source: expected a path (str or os.PathLike) or '@name', got int"),
+    (lambda: rkcheck.load(None), "source: expected a path (str or os.PathLike) or '@name', got NoneType"),
+    (lambda: rkcheck.loads(b"\xff"), "<string>: not UTF-8 text (byte 0)"),
+    (lambda: rkcheck.loads(42), "<string>: expected the text of a tableau file (str), got int"),
+    (lambda: rkcheck.write(5, "toml"), "expected a Tableau (rkcheck.load, rkcheck.from_arrays), got int"),
+])
+def test_wrong_types_are_rkcheck_errors(call, message):
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        call()
+    assert str(err.value) == message
+
+
+def test_loads_takes_the_bytes_of_a_file():
+    tab = rkcheck.loads('[tableau]\nA = [["1/2"]]\nb = [1]\n'.encode())
+    assert str(tab.A[0][0].exact) == "1/2"
