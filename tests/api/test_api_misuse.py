@@ -32,9 +32,12 @@ def test_a_numpy_longdouble_entry_is_read_like_a_float():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the API warns when it reads floats
         tab = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)])
+        binary = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)], floats="exact")
     x = np.longdouble(1) / 3
     num, den = x.as_integer_ratio()
-    assert tab.A[0][0].exact == Fraction(num, den) and tab.b[0].exact == 1
+    # by default a float stands for the shortest decimal it prints as; floats="exact": its binary value
+    assert tab.A[0][0].exact == Fraction(str(x)) and tab.b[0].exact == 1
+    assert binary.A[0][0].exact == Fraction(num, den)
 
 
 @pytest.mark.parametrize("value", ["inf", "nan"])

@@ -12,6 +12,7 @@ from fractions import Fraction as F
 import pytest
 from support import reference as ref
 from support.clirun import run_cli
+from support.paths import TABLEAUX
 
 
 def write(tmp_path, name: str, text: str) -> str:
@@ -175,7 +176,8 @@ def test_a_decimal_of_4437_digits_gets_exact_residuals(tmp_path, capsys):
 
 def test_root_obeys_the_field_degree_limit(tmp_path, capsys):
     # root(x^60 - 2, 1) generates Q(2^(1/60)), of degree 60 > MAX_FIELD_DEGREE = 48
-    from rkcheck.numbers.algebraic import MAX_FIELD_DEGREE, NotAlgebraic, field_of
+    from rkcheck.numbers.algebraic import MAX_FIELD_DEGREE, NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
     from rkcheck.numbers.grammar import parse
 
     assert MAX_FIELD_DEGREE < 60
@@ -278,8 +280,8 @@ def test_deep_expression_trees_pickle_without_recursion():
 def test_writing_a_deep_expression_as_code_is_one_line(tmp_path, capsys, fmt):
     path = write(tmp_path, "s.toml", one_stage(SQRT_SUM))
     r = run_cli(capsys, "show", path, "--format", fmt)
-    assert r.code == 2 and r.err == (f"rkcheck: error: an entry is nested too deeply to write as {fmt} (a chain "
-                                     "of thousands of terms); write the tableau as TOML or JSON\n"), r.err
+    assert r.code == 2 and r.err == (f"rkcheck: error: {path}: an entry is nested too deeply to write as {fmt} "
+                                     "(a chain of thousands of terms); write the tableau as TOML or JSON\n"), r.err
 
 
 # ------------------------------------------------------------------ the advertised precision range
@@ -299,14 +301,16 @@ def test_the_whole_dps_range_works_on_decimal_tableaux(capsys, dps):
 
 # ------------------------------------------------------------------ kernel within its limit
 
-@pytest.mark.parametrize("args, size", [(["-s", "6", "-m", "40"], "747 × 36"), (["-s", "12", "-m", "12"], "67 × 144")])
-def test_kernel_beyond_its_work_limit_is_refused_before_any_work(capsys, args, size):
-    r = run_cli(capsys, "kernel", *args)
-    assert r.code == 2 and f"is {size}" in r.err and "the limit MAX_KERNEL_WORK = 500,000" in r.err, r.err
+def test_kernel_beyond_its_work_limit_is_refused_before_any_work(capsys):
+    # a tableau's rule (not a named one, whose rank is exact over Q) is eliminated entry by
+    # entry: HBVM(6, 2) has 6 stages, so m = 40 makes M 741 + 6 rows by 36 columns
+    hbvm = str(TABLEAUX / "hbvm" / "hbvm-6-2.toml")
+    r = run_cli(capsys, "kernel", "-m", "40", "--tableau", hbvm)
+    assert r.code == 2 and "is 747 × 36" in r.err and "the limit MAX_KERNEL_WORK = 500,000" in r.err, r.err
     import rkcheck
 
     with pytest.raises(rkcheck.RkcheckError, match="MAX_KERNEL_WORK"):
-        rkcheck.kernel(int(args[3]), int(args[1]))
+        rkcheck.kernel(40, tableau=hbvm)
 
 
 def test_kernel_within_its_limit_still_answers(capsys):

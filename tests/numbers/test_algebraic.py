@@ -122,7 +122,7 @@ GAUSS6 = "924*x^6 - 2772*x^5 + 3150*x^4 - 1680*x^3 + 420*x^2 - 42*x + 1"
 def test_mirrored_roots_of_a_symmetric_polynomial_are_not_adjoined_again(monkeypatch):
     # P4(1 − x) = P4(x): the largest node is 1 − the smallest, already in Q(c1); with the
     # compositum's characteristic polynomial out of reach only the mirror can place it
-    import rkcheck.numbers.algebraic as alg
+    import rkcheck.numbers.field_builder as alg
 
     def no_compositum(*args):
         raise AssertionError("the compositum was built")
