@@ -248,7 +248,8 @@ def _vector(value: Any, name: str, s: int, constants: Constants) -> tuple[Entry,
     return tuple(_parse_entry(x, f"{name}[{i}]", constants) for i, x in enumerate(value, start=1))
 
 
-def _constants(table: dict[str, Any]) -> Constants:
+def _constant_definitions(table: dict[str, Any]) -> dict[str, ex.Expr]:
+    """The ``[constants]`` table parsed: each name an identifier, each value an entry."""
     defs: dict[str, ex.Expr] = {}
     for name, value in table.items():
         place = f"constants.{name}"
@@ -259,7 +260,11 @@ def _constants(table: dict[str, Any]) -> Constants:
             defs[name] = ex.parse(text)
         except UserError as err:
             raise err.located(place) from None
-    constants = Constants(defs)
+    return defs
+
+
+def _constants(table: dict[str, Any]) -> Constants:
+    constants = Constants(_constant_definitions(table))
     constants.exact_values()  # report a broken constant at its own place, used or not
     return constants
 
@@ -342,16 +347,8 @@ def _build_family(data: dict[str, Any], tab: dict[str, Any], name: str, info: Me
 
     raw_constants = _table(data, "constants")
     parameters = parse_parameters(_table(data, "parameters"), raw_constants)
-    constants: dict[str, ex.Expr] = {}
-    for cname, value in raw_constants.items():
-        place = f"constants.{cname}"
-        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", cname) or cname in ex.FUNCTIONS:
-            raise UserError("a constant's name must be an identifier (letters, digits, _) other than a function name (sqrt, root)", place)
-        text, _ = _entry_text(value, place)
-        try:
-            constants[cname] = ex.parse(text)
-        except UserError as err:
-            raise err.located(place) from None
+    # constants may use the parameters: parsed here, resolved with them by the family
+    constants = _constant_definitions(raw_constants)
     if "c" in tab:
         info = info.replace(warnings=info.warnings + ("tableau.c ignored: a family's nodes are its row sums",))
     A, b = _entry_texts(tab, max_stages)

@@ -1,7 +1,7 @@
 """Slow, independent reference implementation for the rkcheck test-suite.
 
 Everything here is derived by brute force from the definitions in
-``shared/SPEC.md`` sections 2 and 3 (Celledoni/Owren/Sun, Section 2;
+``docs/definitions.md`` §2 and §3 (Celledoni/Owren/Sun, Section 2;
 Chartier/Faou/Murua Theorem 2).  Nothing is imported from ``rkcheck``.
 Speed is irrelevant; clarity is the point.
 
