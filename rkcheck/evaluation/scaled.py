@@ -112,6 +112,7 @@ class ScaledTableau:
         # prime in D (or in the Galois group's order) splits, and every order asks again
         if not hasattr(self, "_split"):
             self._split: list[tuple[int, list[int]]] = []
+            self._split_roots: dict[int, list[int]] = {}  # the same, by prime (looked up per channel)
             self._scanned = 0
         chosen: list[tuple[int, list[int]]] = []
         total = 0.0
@@ -122,6 +123,7 @@ class ScaledTableau:
                     roots = self._roots_mod(p)
                     if roots is not None:
                         self._split.append((p, roots))
+                        self._split_roots[p] = roots
                 self._scanned += 64
                 continue
             p, roots = self._split[i]
@@ -168,9 +170,9 @@ class ScaledTableau:
         return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
 
     def _roots_of(self, p: int) -> list[int]:
-        for q, roots in getattr(self, "_split", ()):
-            if q == p:
-                return roots
+        known = getattr(self, "_split_roots", {}).get(p)
+        if known is not None:
+            return known
         roots = self._roots_mod(p)
         assert roots is not None, "a channel prime must split the minimal polynomial"
         return roots
