@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, given, settings
 from support.clirun import run_cli
 from support.guards import hang_guard
 
-EXAMPLES = int(os.environ.get("RKCHECK_FUZZ_EXAMPLES", "25"))
+EXAMPLES = int(os.environ.get("RKCHECK_FUZZ_EXAMPLES", "40"))
 FUZZ = settings(max_examples=EXAMPLES, deadline=None, derandomize=not os.environ.get("RKCHECK_FUZZ_EXAMPLES"),
                 database=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 #: the per-run limit: a guard against a hang, not a timing target (runs take well under 1 s)
