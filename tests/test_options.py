@@ -78,7 +78,8 @@ def test_command_line_refuses_the_same_order_and_dps(tmp_path, capsys):
 @pytest.mark.parametrize(
     "claim, message",
     [
-        ("classical_order = 100000", "expect.classical_order: expected an integer from 0 to 29, got 100000"),
+        ("classical_order = 100000", "expect.classical_order: expected an integer from 0 to 14, got 100000 (the "
+         "limit MAX_CLASSICAL_CLAIM: judging it checks every rooted tree of one more vertex)"),
         ("energy_order = {degree = 2, value = 100000}",
          "expect.energy_order.value: expected an integer from 1 to 29, got 100000"),
         ("energy_order = {degree = 2, value = 3, order = 99999}",
@@ -86,7 +87,8 @@ def test_command_line_refuses_the_same_order_and_dps(tmp_path, capsys):
     ],
 )
 def test_claims_cannot_ask_for_orders_past_the_limit(tmp_path, capsys, claim, message):
-    # judging a claim of order N checks order N + 1: the claim is bounded by MAX_ORDER - 1
+    # judging a claim of order N checks order N + 1: energy claims are bounded by MAX_ORDER - 1,
+    # classical ones by MAX_CLASSICAL_CLAIM (the rooted trees of N + 1 vertices)
     f = tmp_path / "t.toml"
     f.write_text(MIDPOINT + "[expect]\n" + claim + "\n", encoding="utf-8")
     r = run_cli(capsys, "verify", str(f))
