@@ -341,3 +341,18 @@ def test_one_files_check_error_is_its_catalogue_row(tmp_path, capsys):
     assert any(line.startswith("| `good.toml` | good |") for line in rows), rows
     assert any("neg.toml` | error: " in line and "A\\[1\\]\\[1\\]: square root of a negative number" in line
                for line in rows), rows
+
+
+def test_simulate_energy_order_on_a_weight_of_10_to_999(tmp_path, capsys):
+    # the leading one-step error is R·h²·F(H)(y0) with R = b²/2 − b·c ≈ 5e1997 (b = 10^999,
+    # c = 1/2) and F(H)(y0) of order 1 at a random point: about 1e1996 at h = 1/8, printed
+    # with its own exponent (float64 would say inf)
+    import re
+
+    path = write(tmp_path, "c.toml", one_stage("1/2", "10^999"))
+    r = run_cli(capsys, "simulate", path, "--problem", "harmonic", "--energy-order", "--points", "1")
+    assert r.code in (0, 1), r.err
+    assert "inf" not in r.out, r.out
+    first = next(line for line in r.out.splitlines() if line.strip().startswith("2^-3"))
+    exponent = int(re.search(r"e\+(\d+)", first).group(1))
+    assert 1993 <= exponent <= 1998, first
