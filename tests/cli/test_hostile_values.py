@@ -356,3 +356,13 @@ def test_simulate_energy_order_on_a_weight_of_10_to_999(tmp_path, capsys):
     first = next(line for line in r.out.splitlines() if line.strip().startswith("2^-3"))
     exponent = int(re.search(r"e\+(\d+)", first).group(1))
     assert 1993 <= exponent <= 1998, first
+
+
+def test_ball_magnitude_bounds_past_float64_are_infinite_not_an_error(tmp_path, capsys):
+    # b[2] = 1/6 − √(10^300) ≈ −1e150: its products pass 1e308 in the magnitude bounds
+    path = write(tmp_path, "m.json", json.dumps({"constants": {"c0": "-(root(x^2 - (10^300), 1))"},
+                                                 "tableau": {"A": [["1/4", "0"], ["1/2", "1/4"]],
+                                                             "b": ["1/2", "c0 + 1/6"]}}))
+    r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
+    no_bug(r)
+    assert r.code == 1 and "energy order 1" in r.out, r.out
