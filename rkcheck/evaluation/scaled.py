@@ -30,6 +30,12 @@ from rkcheck.evaluation.channels import (
 MAX_BATCHED_TREES = 1500
 
 
+#: How many primes the exact route may try in search of those over which the field splits
+#: (about one in the order of its Galois group does; a field of degree 20 from entries
+#: of 300 digits needed minutes of search): beyond it the check stops with one line.
+MAX_PRIMES_SCANNED = 30_000
+
+
 @dataclass
 class ScaledTableau:
     """``Â = d·A`` and ``b̂ = d·b`` over ``Z[θ]``: entries are integer coefficient lists
@@ -119,6 +125,13 @@ class ScaledTableau:
         i = 0
         while total <= bits:
             if i == len(self._split):
+                if self._scanned >= MAX_PRIMES_SCANNED:
+                    from rkcheck.errors import UserError
+
+                    raise UserError(
+                        f"exact arithmetic needs primes over which the entries' number field (degree {self.degree}) "
+                        f"splits, and only {len(self._split)} of the first {self._scanned:,} primes do (the limit "
+                        "MAX_PRIMES_SCANNED); use --arithmetic ball")
                 for p in primes(64, self._scanned):
                     roots = self._roots_mod(p)
                     if roots is not None:

@@ -366,3 +366,16 @@ def test_ball_magnitude_bounds_past_float64_are_infinite_not_an_error(tmp_path, 
     r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
     no_bug(r)
     assert r.code == 1 and "energy order 1" in r.out, r.out
+
+
+def test_the_search_for_split_primes_stops_at_its_limit(capsys, monkeypatch):
+    # with no prime allowed, Q(√3) of Gauss-2 cannot be checked exactly: one line names
+    # the limit and the way out, which works
+    import rkcheck.evaluation.scaled as scaled
+
+    monkeypatch.setattr(scaled, "MAX_PRIMES_SCANNED", 0)
+    r = run_cli(capsys, "verify", "@gauss-2", "--order", "3")
+    assert r.code == 2 and "(the limit MAX_PRIMES_SCANNED); use --arithmetic ball" in r.err, r.err
+    assert len(r.err.splitlines()) == 1
+    r = run_cli(capsys, "verify", "@gauss-2", "--order", "3", "--arithmetic", "ball")
+    assert r.code == 0, r.err
