@@ -87,7 +87,8 @@ def test_command_line_refuses_the_same_order_and_dps(tmp_path, capsys):
     ],
 )
 def test_claims_cannot_ask_for_orders_past_the_limit(tmp_path, capsys, claim, message):
-    # judging a claim of order N checks order N + 1: the claim is bounded by MAX_ORDER - 1
+    # judging a claim of order N checks order N + 1: energy claims are bounded by MAX_ORDER - 1,
+    # classical ones by MAX_CLASSICAL_CLAIM (the rooted trees of N + 1 vertices)
     f = tmp_path / "t.toml"
     f.write_text(MIDPOINT + "[expect]\n" + claim + "\n", encoding="utf-8")
     r = run_cli(capsys, "verify", str(f))

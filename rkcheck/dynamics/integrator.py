@@ -64,8 +64,8 @@ class Float64:
                 return x.numerator / x.denominator
             return float(x)
         except OverflowError:
-            raise UserError(f"a value of about {_magnitude(x)} is beyond float64's range (about 1.8e308); "
-                            "integrate in mpmath with --dps") from None
+            raise UserError(f"a value of about {_magnitude(x)} is beyond float64's range (about 1.8e308), in which "
+                            "this integration runs (simulate --dps integrates in mpmath)") from None
 
     def norm(self, v: Sequence[float]) -> float:
         return max((abs(x) for x in v), default=0.0)

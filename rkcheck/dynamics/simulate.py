@@ -26,6 +26,7 @@ from typing import Any
 
 from rkcheck.dynamics.integrator import MP, Float64, RKMethod, integrate, step
 from rkcheck.errors import UserError
+from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.reading import DecimalsMode
 
 H_EXPONENTS = tuple(range(3, 11))  # h = 2^-3 ... 2^-10
@@ -136,7 +137,7 @@ def needed_dps(result, exponents=H_EXPONENTS, floor: int = 40) -> int:
     if first is None:
         return floor
     r = abs(first.enclosure.mid)
-    size = -math.log10(float(r)) if r else 0.0
+    size = -_log10_abs(r) if r else 0.0
     n = result.energy_order_to_digits  # where the residuals start to be nonzero, proven or not
     return max(floor, math.ceil(size + (n + 1) * max(exponents) * math.log10(2) + 20))
 
@@ -181,14 +182,24 @@ def dominant_order(result, fit: EnergyFit) -> int:
     first failing conditions fail by very little (a decimal tableau read at face value)."""
     if not fit.fitted:
         return result.energy_order_to_digits
-    h = float(min(fit.fitted))
-    best, best_size = result.energy_order_to_digits, -1.0
+    log_h = _log10_abs(min(fit.fitted))
+    best, best_size = result.energy_order_to_digits, -math.inf
     for r in result.failures:
         n = r.order - 1
-        size = float(abs(r.enclosure.mid)) * h ** (n + 1)
+        if not r.enclosure.mid:
+            continue
+        size = _log10_abs(r.enclosure.mid) + (n + 1) * log_h  # log10 of |R|·h^(n+1): no overflow
         if size > best_size:
             best, best_size = n, size
     return best
+
+
+def _log10_abs(x) -> float:
+    """log10 |x| of a nonzero rational or float, at any magnitude (math.log10 takes
+    integers of any size; a float of 1e400 does not exist)."""
+    if isinstance(x, Fraction):
+        return math.log10(abs(x.numerator)) - math.log10(x.denominator)
+    return math.log10(abs(x))
 
 
 def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int = 10, result=None,
@@ -216,8 +227,7 @@ def compare_with_verify(tableau, degree: int | None, fit: EnergyFit, order: int 
             return Agreement(degree, alg, emp, True,
                              f"agree: empirical {emp} is order {expected}, the failing order whose residuals dominate "
                              f"for h ≥ {h_min}; the energy order is {alg}, but its conditions fail by only "
-                             f"{float(_max_residual(sizes, res.energy_order_to_digits)):.2g} and dominate at "
-                             "smaller steps",
+                             f"{decimal_string(Fraction(_max_residual(sizes, res.energy_order_to_digits)), 2)} and dominate at smaller steps",
                              cert, fit.dps)
     if agree:
         msg = f"agree: algebraic energy order {alg}, empirical {emp}"

@@ -160,6 +160,7 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     if values.backend is Backend.EXACT:
         scaled = values.scaled
         channels: list[tuple[int, int, TreeWeights]] = []
+        opened: list[int] = []
         for p in range(1, max_order + 1):
             table.grow_to(p)
             ids = np.arange(table.first[p], table.first[p + 1])
@@ -173,8 +174,10 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
             e = scaled.integral_d or scaled.d
             bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(e)) + 1
             primes = scaled.primes_for(bits)
-            while len(channels) < sum(len(r) for _, r in primes):
-                q, roots = primes[len({c[0] for c in channels})]
+            # one channel per (prime, root); the primes already open are the first ones
+            # (counted, not searched: thousands of primes for entries of thousands of digits)
+            for q, roots in primes[len(opened):]:
+                opened.append(q)
                 for r in roots:
                     channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
             failing = np.zeros(len(ids), dtype=bool)

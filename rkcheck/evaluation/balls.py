@@ -210,7 +210,10 @@ class BallSums:
         for i, (m, r) in enumerate(zip(self.mids.tolist(), self.rads.tolist())):
             m = abs(int(m))
             e = max(0, m.bit_length() - 60)
-            mid_up = math.ldexp(float((m >> e) + 1), e - self.bits)  # >= |m|·2^−P
+            try:
+                mid_up = math.ldexp(float((m >> e) + 1), e - self.bits)  # >= |m|·2^−P
+            except OverflowError:  # past float64: an infinite bound is still a bound
+                mid_up = math.inf
             out[i] = (mid_up + math.ldexp(r, -self.shift)) / f * (1 + 2.0**-50) + ETA
         return out
 

@@ -30,6 +30,12 @@ from rkcheck.evaluation.channels import (
 MAX_BATCHED_TREES = 1500
 
 
+#: How many primes the exact route may try in search of those over which the field splits
+#: (about one in the order of its Galois group does; a field of degree 20 from entries
+#: of 300 digits needed minutes of search): beyond it the check stops with one line.
+MAX_PRIMES_SCANNED = 30_000
+
+
 @dataclass
 class ScaledTableau:
     """``Â = d·A`` and ``b̂ = d·b`` over ``Z[θ]``: entries are integer coefficient lists
@@ -112,16 +118,25 @@ class ScaledTableau:
         # prime in D (or in the Galois group's order) splits, and every order asks again
         if not hasattr(self, "_split"):
             self._split: list[tuple[int, list[int]]] = []
+            self._split_roots: dict[int, list[int]] = {}  # the same, by prime (looked up per channel)
             self._scanned = 0
         chosen: list[tuple[int, list[int]]] = []
         total = 0.0
         i = 0
         while total <= bits:
             if i == len(self._split):
+                if self._scanned >= MAX_PRIMES_SCANNED:
+                    from rkcheck.errors import UserError
+
+                    raise UserError(
+                        f"exact arithmetic needs primes over which the entries' number field (degree {self.degree}) "
+                        f"splits, and only {len(self._split)} of the first {self._scanned:,} primes do (the limit "
+                        "MAX_PRIMES_SCANNED); use --arithmetic ball")
                 for p in primes(64, self._scanned):
                     roots = self._roots_mod(p)
                     if roots is not None:
                         self._split.append((p, roots))
+                        self._split_roots[p] = roots
                 self._scanned += 64
                 continue
             p, roots = self._split[i]
@@ -168,9 +183,9 @@ class ScaledTableau:
         return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
 
     def _roots_of(self, p: int) -> list[int]:
-        for q, roots in getattr(self, "_split", ()):
-            if q == p:
-                return roots
+        known = getattr(self, "_split_roots", {}).get(p)
+        if known is not None:
+            return known
         roots = self._roots_mod(p)
         assert roots is not None, "a channel prime must split the minimal polynomial"
         return roots

@@ -3,7 +3,7 @@ can be a device (/dev/zero) or a pipe that never ends, whose size cannot be aske
 
 from __future__ import annotations
 
-from rkcheck.errors import UserError
+from rkcheck.errors import OptionError, UserError
 from rkcheck.io.printable import printable
 
 #: The size limit of one tableau file (and of standard input, and of pyproject.toml);
@@ -20,7 +20,7 @@ def max_file_bytes() -> int:
     if not value:
         return MAX_FILE_BYTES
     if not value.isdigit() or int(value) < 1:
-        raise UserError(f"RKCHECK_MAX_FILE_BYTES: expected a positive number of bytes, got {printable(value)!r}")
+        raise OptionError(f"RKCHECK_MAX_FILE_BYTES: expected a positive number of bytes, got {printable(value)!r}")
     return int(value)
 
 

@@ -58,7 +58,7 @@ def method_doc(tab: Tableau) -> dict[str, Any]:
 def show_doc(tab: Tableau, file: str, decimals: DecimalsMode, warnings: list[str]) -> dict[str, Any]:
     """``rkcheck show --format json``."""
     values = TableauValues(tab, Reading(decimals))
-    return {"schema": SCHEMA, "file": file, "method": method_doc(tab), "tableau": tableau_doc(values),
+    return {"schema": SCHEMA, "file": printable(file), "method": method_doc(tab), "tableau": tableau_doc(values),
             "stability": stability_doc(tableau_stability(values)), "warnings": warnings}
 
 

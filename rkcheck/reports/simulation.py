@@ -12,7 +12,15 @@ from rkcheck.reports.text import plain
 
 
 def _e(x) -> str:
-    return f"{float(x):.3e}"
+    """``1.234e-05``; an mpmath value past float64's range keeps its own exponent."""
+    import math
+
+    f = float(x)
+    if math.isinf(f) and not (isinstance(x, float) or str(x) in ("inf", "+inf", "-inf")):
+        import mpmath
+
+        return mpmath.nstr(mpmath.mpf(x), 4, min_fixed=0, max_fixed=0)
+    return f"{f:.3e}"
 
 
 def render_energy_fit(tab, ham, fit, agreement, console: Console) -> None:

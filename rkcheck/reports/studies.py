@@ -9,6 +9,7 @@ from rich.console import Console, JustifyMethod
 from rich.table import Table
 from rich.text import Text
 
+from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import count_text, decimal_string
 from rkcheck.reports.text import plain
 
@@ -67,7 +68,7 @@ def bench_doc(file: str, degree, order: int, rows, t_tables: float) -> dict:
     from rkcheck.reports.jsondoc import SCHEMA
 
     return {
-        "schema": SCHEMA, "file": file, "degree": degree, "order": order, "tables_seconds": t_tables,
+        "schema": SCHEMA, "file": printable(file), "degree": degree, "order": order, "tables_seconds": t_tables,
         "backends": [
             {"backend": r.backend, "seconds": r.seconds, "conditions": r.conditions,
              "conditions_per_second": r.per_second, "min_digits": r.min_digits, "failures": r.failures,
@@ -82,7 +83,7 @@ def perturb_doc(file: str, degree, order: int, res) -> dict:
     from rkcheck.reports.jsondoc import SCHEMA
 
     return {
-        "schema": SCHEMA, "file": file, "direction": res.direction, "degree": degree, "order": order,
+        "schema": SCHEMA, "file": printable(file), "direction": res.direction, "degree": degree, "order": order,
         "slope": res.slope,
         "thresholds": {k: None if v is None else str(v) for k, v in res.thresholds.items()},
         "floors": res.floors,

@@ -46,3 +46,16 @@ def test_order_6_row_has_the_reference_counts_and_sane_measurements():
 def test_orders_beyond_20_are_refused_before_any_work():
     proc = run("--orders", "21", "--startup-runs", "0", "--repeat", "1")
     assert proc.returncode == 2 and "between 2 and 20" in proc.stderr
+
+
+def test_the_fuzzer_runs_its_families_and_counts_every_run():
+    # a handful of cases per family, each in its own forked process with a timeout
+    proc = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "fuzz.py"), "--entries", "4", "--files", "3",
+                           "--options", "3", "--importers", "3", "--timeout", "60"],
+                          capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    rows = {line.split()[0]: [int(x) for x in line.split()[1:]] for line in proc.stdout.splitlines()
+            if line.split()[:1] in (["entries"], ["files"], ["options"], ["importers"])}
+    # columns: exit 0, 1, 2, 3, other, timeout, traceback; every case is counted once
+    assert {k: sum(v[:6]) for k, v in rows.items()} == {"entries": 4, "files": 3, "options": 3, "importers": 3}
+    assert all(v[3] == v[4] == v[5] == v[6] == 0 for v in rows.values())

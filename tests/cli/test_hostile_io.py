@@ -100,3 +100,13 @@ def test_a_file_name_with_an_escape_is_shown_escaped_by_verify(tmp_path):
     path.write_text(ONE_STAGE, encoding="utf-8")
     code, out, err = run("verify", str(path), "--order", "2")
     assert code == 0 and "\x1b" not in out and "esc\\x1b[2J.toml" in out, out
+
+
+@pytest.mark.parametrize("command", [["show", "--format", "json"], ["bench", "--order", "2", "--format", "json"],
+                                     ["perturb", "--order", "2", "--direction", "random", "--format", "json"]])
+def test_json_documents_name_a_file_that_is_not_utf8_escaped(tmp_path, command):
+    (tmp_path / os.fsdecode(b"bad\xff.toml")).write_text(ONE_STAGE, encoding="utf-8")
+    proc = subprocess.run([sys.executable, "-m", "rkcheck", command[0], os.fsdecode(b"bad\xff.toml"), *command[1:]],
+                          capture_output=True, timeout=120, cwd=tmp_path, env=dict(os.environ, NO_COLOR="1"))
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout.decode("utf-8"))["file"] == "bad\\xff.toml"

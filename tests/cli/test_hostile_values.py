@@ -346,3 +346,41 @@ def test_one_files_check_error_is_its_catalogue_row(tmp_path, capsys):
     assert any(line.startswith("| `good.toml` | good |") for line in rows), rows
     assert any("neg.toml` | error: " in line and "A\\[1\\]\\[1\\]: square root of a negative number" in line
                for line in rows), rows
+
+
+def test_simulate_energy_order_on_a_weight_of_10_to_999(tmp_path, capsys):
+    # the leading one-step error is R·h²·F(H)(y0) with R = b²/2 − b·c ≈ 5e1997 (b = 10^999,
+    # c = 1/2) and F(H)(y0) of order 1 at a random point: about 1e1996 at h = 1/8, printed
+    # with its own exponent (float64 would say inf)
+    import re
+
+    path = write(tmp_path, "c.toml", one_stage("1/2", "10^999"))
+    r = run_cli(capsys, "simulate", path, "--problem", "harmonic", "--energy-order", "--points", "1")
+    assert r.code in (0, 1), r.err
+    assert "inf" not in r.out, r.out
+    first = next(line for line in r.out.splitlines() if line.strip().startswith("2^-3"))
+    exponent = int(re.search(r"e\+(\d+)", first).group(1))
+    assert 1993 <= exponent <= 1998, first
+
+
+def test_ball_magnitude_bounds_past_float64_are_infinite_not_an_error(tmp_path, capsys):
+    # b[2] = 1/6 − √(10^300) ≈ −1e150: its products pass 1e308 in the magnitude bounds
+    path = write(tmp_path, "m.json", json.dumps({"constants": {"c0": "-(root(x^2 - (10^300), 1))"},
+                                                 "tableau": {"A": [["1/4", "0"], ["1/2", "1/4"]],
+                                                             "b": ["1/2", "c0 + 1/6"]}}))
+    r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
+    no_bug(r)
+    assert r.code == 1 and "energy order 1" in r.out, r.out
+
+
+def test_the_search_for_split_primes_stops_at_its_limit(capsys, monkeypatch):
+    # with no prime allowed, Q(√3) of Gauss-2 cannot be checked exactly: one line names
+    # the limit and the way out, which works
+    import rkcheck.evaluation.scaled as scaled
+
+    monkeypatch.setattr(scaled, "MAX_PRIMES_SCANNED", 0)
+    r = run_cli(capsys, "verify", "@gauss-2", "--order", "3")
+    assert r.code == 2 and "(the limit MAX_PRIMES_SCANNED); use --arithmetic ball" in r.err, r.err
+    assert len(r.err.splitlines()) == 1
+    r = run_cli(capsys, "verify", "@gauss-2", "--order", "3", "--arithmetic", "ball")
+    assert r.code == 0, r.err

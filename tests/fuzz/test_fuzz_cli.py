@@ -23,7 +23,7 @@ from support.clirun import run_cli
 from support.guards import hang_guard
 from support.limits import run_limited
 
-EXAMPLES = int(os.environ.get("RKCHECK_FUZZ_EXAMPLES", "25"))
+EXAMPLES = int(os.environ.get("RKCHECK_FUZZ_EXAMPLES", "40"))
 FUZZ = settings(max_examples=EXAMPLES, deadline=None, derandomize=not os.environ.get("RKCHECK_FUZZ_EXAMPLES"),
                 database=None, suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 #: the per-run limit: a guard against a hang, not a timing target (runs take well under 1 s)
