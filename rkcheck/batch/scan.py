@@ -46,7 +46,10 @@ def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):
 
 
 def _is_tableau_document(data: dict[str, Any]) -> bool:
-    return any(k in data for k in ("tableau", "family", "method"))
+    """A table the loader reads, or the short form (``A`` and ``b`` at the top level), as
+    ``verify`` accepts it; any other document (``package.json``, ``pyproject.toml``) is
+    skipped."""
+    return any(k in data for k in ("tableau", "family", "method")) or ("A" in data and "b" in data)
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
@@ -81,7 +84,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
                 raise err.located(source=path) from None
             out.lines = locate_lines(text, fmt)
             if not _is_tableau_document(data):
-                out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
+                out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table, no top-level A and b)"
                 return out
             built = build_tableau(data, path, max_stages)
             if not isinstance(built, Tableau):

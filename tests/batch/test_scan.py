@@ -359,3 +359,21 @@ def test_junit_judged_by_conditions_lists_them_exactly_or_as_balls(capsys, tmp_p
         assert m, line
         mid, rad = Fraction(m.group(2)), Fraction(m.group(3))
         assert 0 < rad < Fraction(1, 10**25) and abs(mid - exact[m.group(1)]) <= rad
+
+
+def test_the_short_form_is_scanned_like_verify_reads_it(capsys, tmp_path):
+    # A and b at the top level (the documented short form): the implicit midpoint rule
+    (tmp_path / "midpoint.json").write_text('{"A": [["1/2"]], "b": ["1"]}', encoding="utf-8")
+    (tmp_path / "package.json").write_text('{"name": "x", "b": 1}', encoding="utf-8")
+    _, doc = scan_json(capsys, tmp_path, "--degree", "3", "--order", "3")
+    status = {Path(f["file"]).name: f["status"] for f in doc["files"]}
+    assert status == {"midpoint.json": "ok", "package.json": "skipped"}
+    row = next(f for f in doc["files"] if f["file"].endswith("midpoint.json"))
+    verified = json.loads(run_cli(capsys, "verify", str(tmp_path / "midpoint.json"), "--degree", "3",
+                                  "--order", "3", "--format", "json").out)
+    # the midpoint rule: classical order 2 (one stage, c = 1/2 is the Gauss point)
+    scanned, alone = row["result"]["summary"], verified["summary"]
+    assert scanned["classical_order"] == alone["classical_order"] == 2
+    # degree 3 needs the rule exact for cubics; the midpoint rule is not (Σ b c² = 1/4 ≠ 1/3),
+    # and the bush [τ³] fails at order 3
+    assert scanned["energy_order"] == alone["energy_order"] == 2
