@@ -44,10 +44,13 @@ from rkcheck.numbers.intervals import Interval
 #: which needs only the series, is still decided)
 MAX_INTERVAL_DET_STAGES = 16
 
-#: rational tableaux with at most this many stages stay in Python's Fractions (the generic
-#: exact path); larger ones go to FLINT, whose import (~50 ms) would otherwise dominate a
-#: small check's start-up, while Fraction growth only hurts beyond ~15 stages
+#: rational tableaux with at most this many stages, and entries of at most
+#: MAX_FRACTION_BITS bits, stay in Python's Fractions (the generic exact path); the others go
+#: to FLINT, whose import (~50 ms) would otherwise dominate a small check's start-up, while
+#: Fraction growth hurts beyond ~15 stages, or already at 8 stages with 40-digit entries
+#: (Euclid's algorithm on Fractions: 16 s, against milliseconds in FLINT)
 MAX_FRACTION_STAGES = 8
+MAX_FRACTION_BITS = 64
 
 _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
@@ -193,12 +196,14 @@ class StabilityFunction:
 
 
 def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | None:
-    """For a rational tableau of more than :data:`MAX_FRACTION_STAGES` stages: the series
-    r_0 … r_2s, and P, Q in lowest terms with Q(0) = 1, computed with FLINT (exact rational matrices and polynomials: Fraction
-    arithmetic and Euclid's algorithm on Fractions grow too fast beyond ~15 stages)."""
-    if len(b) <= MAX_FRACTION_STAGES:
+    """For a rational tableau of more than :data:`MAX_FRACTION_STAGES` stages or with an
+    entry longer than :data:`MAX_FRACTION_BITS`: the series r_0 … r_2s, and P, Q in lowest
+    terms with Q(0) = 1, computed with FLINT (exact rational matrices and polynomials:
+    Fraction arithmetic and Euclid's algorithm on Fractions grow too fast)."""
+    entries = [x for row in A for x in row] + list(b)
+    if not all(isinstance(x, (Fraction, int)) for x in entries):
         return None
-    if not all(isinstance(x, (Fraction, int)) for row in A for x in row) or not all(isinstance(x, (Fraction, int)) for x in b):
+    if len(b) <= MAX_FRACTION_STAGES and all(_bits(x) <= MAX_FRACTION_BITS for x in entries):
         return None
     from flint import fmpq, fmpq_mat, fmpq_poly
 
@@ -214,6 +219,11 @@ def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | Non
     P = (Q * poly.to_flint(series[: s + 1])).truncate(s + 1)
     numerator, denominator = poly.rational_lowest_terms(P, Q)
     return series, numerator, denominator
+
+
+def _bits(x: Fraction | int) -> int:
+    x = Fraction(x)
+    return max(x.numerator.bit_length(), x.denominator.bit_length())
 
 
 def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
