@@ -179,7 +179,7 @@ class _Builder:
         if D > 4 * self.max_degree:
             raise NotAlgebraic(f"the entries generate a number field of degree up to {D} "
                                f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
-        for t in _separating_multipliers(K.g, f):
+        for t in _separating_multipliers(K.g, f, check_time=self.check_time):
             R = _charpoly_sum(K.g, f, t)
 
             def eta_enc(bits: int, t=t) -> Interval:
@@ -311,20 +311,32 @@ class _Builder:
         return self.adjoin(_real_of(f, enc))
 
 
-def _separating_multipliers(g, f, candidates=(1, -1, 2, -2, 3, -3, 5, 7, 11, 13)):
+def _separating_multipliers(g, f, candidates=(1, -1, 2, -2, 3, -3, 5, 7, 11, 13), check_time=lambda: None):
     """The integers t (from ``candidates``) for which the sums ``θ_i + t·γ_j`` over all
     conjugates are pairwise distinct — proven with certified complex balls (FLINT acb):
     two balls whose difference excludes 0 are distinct numbers.  Then the characteristic
-    polynomial of ``θ + tγ`` is square-free without computing a gcd."""
+    polynomial of ``θ + tγ`` is square-free without computing a gcd.
+
+    The roots are enclosed at 256 bits beyond the coefficients' own size, then at four and
+    sixteen times that: conjugates of size 10^77 (``sqrt(sqrt(1e155))``) leave balls of
+    fixed precision too wide to tell apart, while a t that truly makes two sums equal is
+    never certified at any precision."""
     from flint import ctx
 
-    with ctx.workprec(256):
-        thetas = [r for r, _ in g.numer().complex_roots()]
-        gammas = [r for r, _ in f.numer().complex_roots()]
-        for t in candidates:
-            sums = [a + t * b for a in thetas for b in gammas]
-            if all(not (sums[i] - sums[j]).contains(0) for i in range(len(sums)) for j in range(i)):
-                yield t
+    size = max(abs(int(c)).bit_length() for p in (g, f) for c in p.numer().coeffs())
+    tried: set[int] = set()
+    for bits in (256 + 2 * size, 1024 + 8 * size, 4096 + 32 * size):
+        check_time()
+        with ctx.workprec(bits):
+            thetas = [r for r, _ in g.numer().complex_roots()]
+            gammas = [r for r, _ in f.numer().complex_roots()]
+            for t in candidates:
+                if t in tried:
+                    continue
+                sums = [a + t * b for a in thetas for b in gammas]
+                if all(not (sums[i] - sums[j]).contains(0) for i in range(len(sums)) for j in range(i)):
+                    tried.add(t)
+                    yield t
 
 
 def _companion(g):

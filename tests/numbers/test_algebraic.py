@@ -73,6 +73,19 @@ def test_field_degree_is_the_compositum_degree():
     assert _values("sqrt(5/36 + sqrt(70)/126)", "sqrt(5/36 - sqrt(70)/126)").field.degree == 8
 
 
+def test_conjugates_of_huge_size_are_told_apart():
+    # sqrt(1e155) = 10^77·√10: conjugate sums of size 10^38 that fixed-precision balls
+    # could not separate; √5 = √10/√2 is already in the field, so the degree is 2·2·2·2
+    texts = ["sqrt(sqrt(1e155) + sqrt(2))", "sqrt(7)", "sqrt(5)"]
+    exprs = [sp.sqrt(sp.sqrt(sp.Integer(10)**155) + sp.sqrt(2)), sp.sqrt(7), sp.sqrt(5)]
+    r = _values(*texts)
+    assert r.field.degree == 16
+    for v, e in zip(r.values, exprs):
+        enc, ref = v.enclosure(400), sp.Rational(str(sp.N(e, 120)))
+        assert enc.lo - sp.Rational(1, 10**60) <= ref <= enc.hi + sp.Rational(1, 10**60)
+        assert _same(v, e)
+
+
 def test_arithmetic_identities_exactly():
     r = _values("sqrt(2)", "sqrt(3)")
     a, b = r.values
