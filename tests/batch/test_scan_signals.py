@@ -34,9 +34,10 @@ def dense_folder(tmp_path: Path, n: int) -> Path:
 
 def start_scan(folder: Path, out: Path, *extra: str, order: int = 15) -> subprocess.Popen:
     env = dict(os.environ, NO_COLOR="1")
+    # a session of its own: finish() can kill the scan with its workers
     return subprocess.Popen([sys.executable, "-m", "rkcheck", "scan", str(folder), "--order", str(order), "--jobs", "2",
                              "--format", "json", "-o", str(out), "--verbose", *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
 
 
 def wait_until_a_file_finished(proc: subprocess.Popen) -> list[str]:
@@ -52,8 +53,14 @@ def wait_until_a_file_finished(proc: subprocess.Popen) -> list[str]:
 
 
 def finish(proc: subprocess.Popen) -> tuple[str, str]:
-    stdout, stderr = proc.communicate(timeout=60)
-    return stdout, stderr
+    """The scan's output once it ended; a scan still running a minute after its signal is
+    killed (with its workers: no process outlives the test) and the test fails."""
+    try:
+        return proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        _, stderr = proc.communicate()
+        pytest.fail(f"the scan did not end within 60 s of its signal; stderr: {stderr[-2000:]}")
 
 
 @pytest.mark.parametrize("signals", [(signal.SIGINT,), (signal.SIGINT, signal.SIGINT), (signal.SIGTERM,)],
