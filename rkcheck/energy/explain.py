@@ -26,10 +26,10 @@ from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.free import FreeTree
+from rkcheck.trees.graph import adjacency, centres, distances, rooted_at
 from rkcheck.trees.rooted import (
     bracket,
     bracket_of_forest,
-    canonical_level_sequence,
     children_of_level_sequence,
 )
 
@@ -130,65 +130,6 @@ class EnergyCondition:
 
 
 # ------------------------------------------------------------------ the free tree
-
-
-def adjacency(seq: tuple[int, ...]) -> list[list[int]]:
-    """The tree of a level sequence as adjacency lists (vertex 0 = the given root)."""
-    adj: list[list[int]] = [[] for _ in seq]
-    last_at_depth: dict[int, int] = {}
-    for v, d in enumerate(seq):
-        if d > 1:
-            p = last_at_depth[d - 1]
-            adj[p].append(v)
-            adj[v].append(p)
-        last_at_depth[d] = v
-    return adj
-
-
-def rooted_at(adj: list[list[int]], root: int) -> tuple[int, ...]:
-    """Canonical level sequence of the tree rooted at ``root``."""
-    order, depth, parent = [], {root: 1}, {root: -1}
-    stack = [root]
-    while stack:  # depth-first, iteratively: the sequence is canonicalised afterwards
-        v = stack.pop()
-        order.append(v)
-        for w in reversed(adj[v]):
-            if w != parent[v]:
-                parent[w], depth[w] = v, depth[v] + 1
-                stack.append(w)
-    return canonical_level_sequence([depth[v] for v in order])
-
-
-def centres(adj: list[list[int]]) -> list[int]:
-    """The one or two centres, by peeling leaves."""
-    n = len(adj)
-    if n <= 2:
-        return list(range(n))
-    degree = [len(a) for a in adj]
-    layer = [v for v in range(n) if degree[v] == 1]
-    remaining = n
-    while remaining > 2:
-        remaining -= len(layer)
-        nxt = []
-        for v in layer:
-            for w in adj[v]:
-                degree[w] -= 1
-                if degree[w] == 1:
-                    nxt.append(w)
-        layer = nxt
-    return sorted(layer)
-
-
-def distances(adj: list[list[int]], source: int) -> list[int]:
-    dist = [-1] * len(adj)
-    dist[source] = 0
-    queue = [source]
-    for v in queue:
-        for w in adj[v]:
-            if dist[w] < 0:
-                dist[w] = dist[v] + 1
-                queue.append(w)
-    return dist
 
 
 def sigma_of(seq: tuple[int, ...]) -> int:

@@ -15,41 +15,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from rkcheck.trees.graph import adjacency, centres
 from rkcheck.trees.rooted import canonical_level_sequence
 
 VERTEX = "●"
-
-
-def _adjacency(seq: tuple[int, ...]) -> list[list[int]]:
-    adj: list[list[int]] = [[] for _ in seq]
-    last_at_level: dict[int, int] = {}
-    for v, level in enumerate(seq):
-        if level > 1:
-            parent = last_at_level[level - 1]
-            adj[parent].append(v)
-            adj[v].append(parent)
-        last_at_level[level] = v
-    return adj
-
-
-def _centres(adj: list[list[int]]) -> list[int]:
-    """The one or two centres: the vertices left when leaves are peeled layer by layer."""
-    n = len(adj)
-    if n <= 2:
-        return list(range(n))
-    degree = [len(a) for a in adj]
-    layer = [v for v in range(n) if degree[v] == 1]
-    remaining = n
-    while remaining > 2:
-        remaining -= len(layer)
-        nxt = []
-        for v in layer:
-            for w in adj[v]:
-                degree[w] -= 1
-                if degree[w] == 1:
-                    nxt.append(w)
-        layer = nxt
-    return sorted(layer)
 
 
 def _subtrees(adj: list[list[int]], top: int) -> tuple[dict[int, int], dict[int, tuple[int, ...]]]:
@@ -125,9 +94,9 @@ class TreeDrawing:
 def draw(seq: tuple[int, ...] | list[int]) -> TreeDrawing:
     """The drawing of the free tree of level sequence ``seq`` (any rooting of it)."""
     seq = tuple(seq)
-    adj = _adjacency(seq)
-    centres = _centres(adj)
-    top = max(centres, key=lambda c: canonical_level_sequence(_subtrees(adj, c)[1][c]))
+    adj = adjacency(seq)
+    middle = centres(adj)
+    top = max(middle, key=lambda c: canonical_level_sequence(_subtrees(adj, c)[1][c]))
     parent, canon = _subtrees(adj, top)
     order: list[int] = []  # the given vertices in drawing order
     stack = [top]
@@ -141,7 +110,7 @@ def draw(seq: tuple[int, ...] | list[int]) -> TreeDrawing:
     depth: list[int] = []
     for k, p in enumerate(parents):
         depth.append(0 if p < 0 else depth[p] + 1)
-    return TreeDrawing(seq, parents, tuple(depth), tuple(sorted(index[c] for c in centres)), index[0],
+    return TreeDrawing(seq, parents, tuple(depth), tuple(sorted(index[c] for c in middle)), index[0],
                        _layout(parents))
 
 
