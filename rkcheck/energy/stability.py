@@ -37,6 +37,7 @@ from fractions import Fraction
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.numbers import polynomials as poly
+from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
 
@@ -51,6 +52,9 @@ MAX_INTERVAL_DET_STAGES = 16
 #: (Euclid's algorithm on Fractions: 16 s, against milliseconds in FLINT)
 MAX_FRACTION_STAGES = 8
 MAX_FRACTION_BITS = 64
+
+#: longest time spent cancelling the common factors of P/Q over a number field
+STABILITY_SECONDS = 10.0
 
 _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
@@ -291,9 +295,22 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
         Q = charpoly
         P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
         if sc.is_exact(like):
-            P, Q = poly.lowest_terms(P, Q, sc.const(0, like), _is_zero)
+            P, Q = _cancelled(P, Q, like)
         numerator, denominator = _trim(P), _trim(Q)
     return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
+
+
+def _cancelled(P: list, Q: list, like) -> tuple[list, list]:
+    """P/Q in lowest terms with Q(0) = 1.  Over a number field Euclid's algorithm can take
+    minutes (inverses in a field of degree 40 with long coefficients), so it runs under
+    :data:`STABILITY_SECONDS` in a child process; past it R = P/Q is kept as it is, correct
+    but not cancelled (Q(0) = det(I) = 1 already)."""
+    if all(isinstance(x, (Fraction, int)) for x in P + Q):
+        return poly.lowest_terms(P, Q, sc.const(0, like), _is_zero)
+    try:
+        return call_within(STABILITY_SECONDS, poly.lowest_terms, P, Q, sc.const(0, like), _is_zero)
+    except Overrun:
+        return P, Q
 
 
 def _from_parts(s: int, exact: bool, series: list, numerator, denominator) -> StabilityFunction:

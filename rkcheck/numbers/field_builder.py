@@ -19,6 +19,7 @@ from fractions import Fraction
 from typing import Any, Iterable, Mapping, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import (
     MAX_FIELD_DEGREE,
@@ -49,6 +50,11 @@ from rkcheck.numbers.polynomials import (
 #: Longest time :func:`field_of` spends building one field; beyond it the entries are left
 #: to balls too (nested radicals can need exponential work before the degree is known).
 FIELD_SECONDS = 10.0
+
+
+def _too_slow() -> NotAlgebraic:
+    return NotAlgebraic(f"building their number field took more than {FIELD_SECONDS:g} s (the limit FIELD_SECONDS)")
+
 
 
 @dataclass(frozen=True)
@@ -114,8 +120,7 @@ class _Builder:
 
     def check_time(self) -> None:
         if time.monotonic() > self.deadline:
-            raise NotAlgebraic(f"building their number field took more than {FIELD_SECONDS:g} s "
-                               "(the limit FIELD_SECONDS)")
+            raise _too_slow()
 
     # ------------------------------------------------------------- lifting
     def lift(self, x: FieldElement) -> FieldElement:
@@ -438,9 +443,25 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     ``constants``: the ``[constants]`` definitions they may name), and their values in it.
 
     Raises :class:`NotAlgebraic` (with the reason) when the field would exceed
-    ``max_degree``, and :class:`UserError` for a division by zero or the square root of
-    a negative number.  Decimal literals are read at face value: the caller decides
-    whether the entries are exact (definitions §5)."""
+    ``max_degree`` or take longer than :data:`FIELD_SECONDS` to build, and
+    :class:`UserError` for a division by zero or the square root of a negative number.
+    Decimal literals are read at face value: the caller decides whether the entries are
+    exact (definitions §5).
+
+    Expressions with a square root or ``root(p, k)`` are worked on in a child process
+    (:mod:`rkcheck.numbers.deadline`), so that the time limit holds inside FLINT's root
+    isolation too; purely rational ones need no field and stay here."""
+    everything = list(nodes) + list((constants or {}).values())
+    if not any(isinstance(node, ex.Call) for expr in everything for node in ex.walk(expr)):
+        return _field_of(nodes, constants, max_degree)
+    try:
+        return call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)
+    except Overrun:
+        raise _too_slow() from None
+
+
+def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
+              max_degree: int) -> FieldValues:
     builder = _Builder(constants, max_degree)
     try:
         values = [builder.value(n) for n in nodes]
