@@ -384,3 +384,14 @@ def test_the_search_for_split_primes_stops_at_its_limit(capsys, monkeypatch):
     assert len(r.err.splitlines()) == 1
     r = run_cli(capsys, "verify", "@gauss-2", "--order", "3", "--arithmetic", "ball")
     assert r.code == 0, r.err
+
+
+@pytest.mark.heavy
+def test_a_root_isolation_that_runs_for_minutes_is_stopped_at_the_field_limit(tmp_path):
+    # one FLINT call (roots of a degree-8 polynomial with 8 000-bit coefficients) ran for
+    # minutes: the limit holds inside it, and the check goes on in ball arithmetic
+    from support.clirun import run_subprocess
+
+    path = write(tmp_path, "n.toml", one_stage("sqrt(sqrt(sqrt(2^-1000 + 10^300))) + sqrt(3)"))
+    r = run_subprocess("verify", path, "--order", "3", timeout=120)
+    assert "the limit FIELD_SECONDS" in " ".join(r.out.split()), (r.out, r.err)
