@@ -360,7 +360,7 @@ class StabilityCertificate:
     def claim_note(self) -> str:
         return "stability-function certificate (R(z)R(−z) ≡ 1): every order"
 
-    def refuted(self, condition_id: str) -> "StabilityCertificate":
+    def refuted(self, condition_id: str) -> StabilityCertificate:
         return StabilityCertificate(
             self.degree, Verdict(FAILS),
             f"R(z)R(−z) = 1 only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",

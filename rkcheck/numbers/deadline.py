@@ -19,7 +19,8 @@ import pickle
 import select
 import signal
 import time
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 #: set to False to run every computation in this process (a debugger, a profiler)
 FORK = hasattr(os, "fork")

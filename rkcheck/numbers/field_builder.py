@@ -14,12 +14,12 @@ linear ``gcd(f(z), g(η − tz))`` over ``Q(η)``, read off two minors (:func:`_
 from __future__ import annotations
 
 import time
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import (
     MAX_FIELD_DEGREE,
@@ -30,6 +30,7 @@ from rkcheck.numbers.algebraic import (
     integral_scale,
     is_root,
 )
+from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.intervals import Interval, exact_sqrt
 from rkcheck.numbers.polynomials import (
     add,
