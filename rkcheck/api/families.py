@@ -23,6 +23,8 @@ from rkcheck.options import (
 #: The largest order ``solve`` and the polynomial conditions go to (their size grows
 #: quickly with it: order 9 has 1 842 rooted trees, each a polynomial of degree 9).
 MAX_FAMILY_ORDER = 12
+#: How ``solve`` may go (see :func:`solve`).
+ROUTES = ("auto", "structured", "plain")
 #: The time limit of ``solve`` (seconds), and the range the option accepts.
 MAX_SECONDS_RANGE = (1, 86_400)
 
@@ -75,12 +77,18 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
 
 def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, order: int,
           classical_order: int | None = None, where: Sequence[str] = (),
-          max_seconds: float = 60) -> SolutionSet:
+          max_seconds: float = 60, route: str = "auto") -> SolutionSet:
     """The exact solution set of every energy condition up to ``order`` (degree ≤
     ``degree``), the classical order conditions up to ``classical_order`` and the extra
     equations ``where`` (``"a11 = a22"``): a reduced Gröbner basis, the dimension, and
-    for finitely many solutions each one exactly (:mod:`rkcheck.numbers.solving`)."""
+    for finitely many solutions each one exactly (:mod:`rkcheck.numbers.solving`).
+
+    ``route``: ``"auto"`` takes the structured route (:mod:`rkcheck.energy.family_solve`:
+    quadrature conditions, then the conditions linear in A) when it applies and the
+    plain one otherwise; ``"plain"`` always one Gröbner basis of every condition;
+    ``"structured"`` refuses a family it does not apply to."""
     from rkcheck.energy.family_conditions import family_conditions as compute
+    from rkcheck.energy.family_solve import layout_of, solve_structured
     from rkcheck.numbers.parametric import THETA
     from rkcheck.numbers.solving import solve_system
 
@@ -93,10 +101,35 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     if isinstance(where, str):
         where = [where]
     extra = [fam.equation(w) for w in where]
+    theta = THETA if fam.ring.field is not None else None
+    if route not in ROUTES:
+        raise OptionError(f"expected one of {', '.join(ROUTES)}, got {route!r}", "route")
+    layout = layout_of(fam, extra) if route != "plain" else None
+    if layout is not None:
+        found = solve_structured(fam, layout, deg, N, q, extra, seconds, _count(deg, N, q) + len(extra))
+        if found is not None:
+            return found
+    if route == "structured":
+        raise OptionError("the structured route needs A free (each entry its own parameter), weights that are "
+                          "numbers or their own parameters, --where equations in the weights only, and finitely "
+                          "many solutions of the quadrature conditions", "route")
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
-    theta = THETA if fam.ring.field is not None else None
     return solve_system(polys, theta, fam.ring.field, seconds)
+
+
+def _count(degree: int | None, order: int, classical: int | None) -> int:
+    """How many conditions: energy conditions up to ``order`` and rooted trees up to
+    ``classical``."""
+    from rkcheck.trees.listing import condition_listing
+    from rkcheck.trees.table import TreeTable
+
+    total = len(condition_listing(order, degree))
+    if classical is not None:
+        table = TreeTable(1)
+        table.grow_to(classical)
+        total += int(table.first[classical + 1] - table.first[1])
+    return total
 
 
 __all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",

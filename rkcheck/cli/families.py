@@ -55,11 +55,14 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
               help="An extra equation in the parameters, e.g. \"a11 = a22\" or \"b1 + b2 + b3 = 1\" (repeatable).")
 @click.option("--max-seconds", type=click.IntRange(1, 86_400), default=60, show_default=True,
               help="Time limit of the Gröbner bases; beyond it, a one-line error.")
+@click.option("--route", type=click.Choice(["auto", "structured", "plain"]), default="auto", show_default=True,
+              help="structured: quadrature conditions, then the conditions linear in A (A free); plain: one "
+                   "Gröbner basis of every condition; auto: structured where it applies.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
               help="Write the report to this file.")
 @output_options
-def solve(file, degree, order, classical_order, where, max_seconds, fmt, output) -> None:
+def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, output) -> None:
     """The exact solution set of a family's conditions: every energy condition up to
     --order for Hamiltonians of degree <= --degree (plus --classical-order and --where
     equations), as a reduced Gröbner basis, its dimension, and every solution exactly
@@ -79,12 +82,13 @@ def solve(file, degree, order, classical_order, where, max_seconds, fmt, output)
     check_output_target(output)
     family = load_family(file)
     result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
-                 max_seconds=max_seconds)
+                 max_seconds=max_seconds, route=route)
     if fmt == "json":
         from rkcheck.reports.families import solve_doc
         from rkcheck.reports.jsondoc import dumps
 
-        options = {"degree": degree, "order": order, "classical_order": classical_order, "where": list(where)}
+        options = {"degree": degree, "order": order, "classical_order": classical_order, "where": list(where),
+                   "route": route}
         text = dumps(solve_doc(family, result, options))
         if output:
             write_text(text + "\n", output)

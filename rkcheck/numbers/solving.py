@@ -83,6 +83,11 @@ class SolutionSet:
     eliminated: dict[str, Any] = field(default_factory=dict)
     solutions: list[Solution] | None = None
     seconds: float = 0.0
+    #: "plain" (one Gröbner basis of every condition) or "structured"
+    #: (:mod:`rkcheck.energy.family_solve`: quadrature conditions first, no single basis)
+    route: str = "plain"
+    #: the pieces of the solution set (structured route): ``family_solve.Component``
+    components: list[Any] | None = None
 
     def __repr__(self) -> str:
         found = "" if self.solutions is None else f", {len(self.solutions)} solutions"

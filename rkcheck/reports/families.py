@@ -119,12 +119,28 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
-        "groebner": [polynomial_text(g, field) for g in shown_basis(result)],
+        # the structured route gives components, not one basis of the whole system
+        "groebner": None if result.route == "structured" else [polynomial_text(g, field) for g in shown_basis(result)],
         "dimension": result.dimension,
+        "route": result.route,
+        "components": None if result.components is None else [component_doc(c) for c in result.components],
+        "avf_on_every_component": avf_everywhere(result),
         "solutions": None if result.solutions is None else [
             {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
         "seconds": round(result.seconds, 3),
     }
+
+
+def component_doc(c: Any) -> dict[str, Any]:
+    return {"dimension": c.dimension, "points": c.points, "real": c.real, "avf": c.avf, "equations": c.equations}
+
+
+def avf_everywhere(result: Any) -> bool | None:
+    """Whether A = (A·1) bᵀ on every component (None: not decided, or no components)."""
+    if not result.components:
+        return None
+    flags = [c.avf for c in result.components]
+    return None if any(f is None for f in flags) else all(flags)
 
 
 def render_solution_set(family: Any, result: Any, console: Console) -> None:
@@ -133,9 +149,12 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     note = _field_note(field)
     if note:
         console.print(note)
-    console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
-    for g in shown_basis(result):
-        console.print(f"  {polynomial_text(g, field)} = 0")
+    if result.route == "structured":
+        _render_components(result, console)
+    else:
+        console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
+        for g in shown_basis(result):
+            console.print(f"  {polynomial_text(g, field)} = 0")
     if result.dimension < 0:
         console.print(Text("no solution: the conditions are inconsistent", style="bold red"))
         return
@@ -148,3 +167,17 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     for k, s in enumerate(sols, start=1):
         values = ", ".join(f"{name} = {v.text}" for name, v in s.values.items())
         console.print(f"  {k}. {values}{'' if s.real else '  (not real)'}")
+
+
+def _render_components(result: Any, console: Console) -> None:
+    """The structured route: quadrature conditions first, then the conditions linear in A
+    per solution orbit of the nodes, then the rest (docs/families.md)."""
+    comps = result.components or []
+    console.print(f"structured route: quadrature conditions, then the conditions linear in A, per orbit of "
+                  f"nodes; {len(comps)} component{'s' if len(comps) != 1 else ''}")
+    for k, c in enumerate(comps, start=1):
+        what = f"{c.points} point{'s' if c.points != 1 else ''}" if c.dimension == 0 else f"dimension {c.dimension}"
+        avf = {True: "A = (A·1) bᵀ (AVF)", False: "not A = (A·1) bᵀ", None: "AVF not decided"}[c.avf]
+        console.print(f"  component {k}: {what}, {avf}")
+        for e in c.equations:
+            console.print(f"    {e} = 0")

@@ -1,0 +1,438 @@
+"""The structured route of ``rkcheck solve``: quadrature conditions first, then the
+conditions linear in A, then a small system in the kernel directions.
+
+It applies when every entry of A is its own free parameter (A free) and each weight is
+either a parameter-free number or its own parameter, and the extra equations (``--where``)
+use only the weights.  Then, with ``c = A·1`` as new unknowns:
+
+1. **Quadrature conditions.**  The energy condition of the star with k leaves is
+   ``Σ bᵢcᵢ^(k−1) − (Σb)^k/k`` (times a constant), k = 2 … min(m, N): a system in b and c
+   alone.  When its solutions are finitely many they are computed exactly
+   (:mod:`rkcheck.numbers.groebner`) and grouped in Galois orbits: one irreducible φ(z)
+   per orbit, every coordinate a polynomial in z modulo φ — a number field K = Q[z]/φ.
+2. **Linear conditions.**  For one orbit, b and c are numbers of K and the double-bush
+   conditions (definitions §3, with the star terms kept: they hold without assuming
+   Σb = 1) and the row sums ``A·1 = c`` are linear in A: exact Gaussian elimination over
+   K gives ``A = A₀ + Σ k_f N_f``, the k_f being the entries of A on the free columns.
+3. **The rest.**  Every condition is evaluated on that A, over K, as a polynomial in the
+   few k_f (:mod:`rkcheck.energy.family_conditions`); their Gröbner basis together with
+   φ(z) gives the orbit's solutions (or its dimension).
+
+Every step is exact and every solution of the full system lies in one orbit; nothing
+is sampled.  The raw route (one Gröbner basis of every condition in every entry) is
+:mod:`rkcheck.numbers.solving`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from math import factorial
+from typing import Any, Sequence
+
+from rkcheck.numbers.groebner import (
+    dimension,
+    fmpq_of,
+    groebner,
+    integer_dicts,
+    leading_monomial,
+    solve_zero_dimensional,
+)
+from rkcheck.numbers.parametric import THETA, ParameterRing
+from rkcheck.numbers.solving import (
+    AlgebraicValue,
+    Solution,
+    SolutionSet,
+    _compose,
+    _coordinate,
+    _is_the_field_generator,
+    _minpoly_in,
+    _poly_text,
+    eliminate_linear,
+    root_value,
+)
+
+
+@dataclass
+class Component:
+    """One piece of the solution set: ``dimension``, the number of points when finite
+    (complex, counted with the family's own field generator), the real ones, whether
+    ``A = (A·1) bᵀ`` on all of it (None: not decided), and its defining equations
+    (texts, in the parameters) when it is positive-dimensional."""
+
+    dimension: int
+    points: int | None = None
+    real: int | None = None
+    avf: bool | None = None
+    equations: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Layout:
+    """Which parameter is which: ``A[i][j]`` the name of entry (i, j); ``b[i]`` a
+    parameter name or None (then ``b_fixed[i]`` is its value, a polynomial in θ)."""
+
+    A: list[list[str]]
+    b: list[str | None]
+    b_fixed: list[Any]
+
+
+def layout_of(family: Any, extra: Sequence[Any]) -> Layout | None:
+    """The layout when the structured route applies (module docstring), else None."""
+    ring = family.ring
+    gens = {name: ring.parameter(name) for name in ring.parameters}
+
+    def bare(p: Any) -> str | None:
+        return next((n for n, g in gens.items() if p == g), None)
+
+    A = [[bare(p) for p in row] for row in family.A]
+    flat = [n for row in A for n in row]
+    if any(n is None for n in flat) or len(set(flat)) != len(flat):
+        return None
+    b: list[str | None] = []
+    fixed: list[Any] = []
+    names = ring.variables
+    for p in family.b:
+        name = bare(p)
+        used = {names[i] for m in p.monoms() for i, e in enumerate(m) if e} - {THETA}
+        if name is None and used:
+            return None
+        b.append(name)
+        fixed.append(None if name else p)
+    b_names = {n for n in b if n}
+    if b_names & set(flat) or len(b_names) != len([n for n in b if n]):
+        return None
+    for q in extra:
+        used = {names[i] for m in q.monoms() for i, e in enumerate(m) if e} - {THETA}
+        if not used <= b_names:
+            return None
+    return Layout(A, b, fixed)  # type: ignore[arg-type]
+
+
+# ------------------------------------------------------------------ step 1: b and c
+
+
+@dataclass
+class Orbit:
+    """A Galois orbit of solutions of the quadrature system: K = Q[z]/φ and each
+    variable of the family's ring (θ, the weights' parameters) and each node cᵢ as a
+    polynomial in z modulo φ."""
+
+    phi: Any  # fmpq_poly, irreducible
+    coords: dict[str, Any]
+    nodes: list[Any]
+
+
+def quadrature_system(family: Any, layout: Layout, degree: int | None, order: int, extra: Sequence[Any]):
+    """The star conditions and the extra equations over a context in (θ, weights'
+    parameters, c₁ … c_s): ``(polys, ctx, node names)``."""
+    from flint import fmpq_mpoly_ctx
+
+    ring = family.ring
+    s = family.stages
+    b_params = [n for n in layout.b if n]
+    nodes = [f"__c{i + 1}" for i in range(s)]
+    head = (THETA,) if ring.field is not None else ()
+    ctx = fmpq_mpoly_ctx.get(head + tuple(b_params) + tuple(nodes), "lex")
+    gens = dict(zip(ctx.names(), ctx.gens()))
+    images = [gens.get(n, ctx.constant(0)) for n in ring.variables]
+    b = [gens[n] if n else layout.b_fixed[i].compose(*images) for i, n in enumerate(layout.b)]
+    c = [gens[n] for n in nodes]
+    total = sum(b[1:], b[0])
+    top = order if degree is None else min(degree, order)
+    polys = []
+    for k in range(2, top + 1):
+        star = sum((bi * ci ** (k - 1) for bi, ci in zip(b, c)), ctx.constant(0))
+        polys.append(star - total ** k * ctx.constant(fmpq_of(Fraction(1, k))))
+    polys += [q.compose(*images) for q in extra]
+    return polys, ctx, nodes
+
+
+def finite_orbits(polys: list[Any], ctx: Any, theta: str | None, field_: Any, deadline: float) -> list[Orbit] | None:
+    """The orbits of the finitely many solutions (None when infinitely many; [] when
+    none)."""
+    from flint import fmpq_poly
+
+    names = tuple(ctx.names())
+    if theta is not None:
+        polys = list(polys) + [_minpoly_in(ctx, theta, field_)]
+    eqs, subs, inconsistent = eliminate_linear(polys, theta)
+    if inconsistent:
+        return []
+    rest = tuple(n for n in names if n not in subs)
+    keep = [names.index(n) for n in rest]
+    dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in integer_dicts(eqs)]
+    basis = groebner(dicts, rest, "degrevlex", deadline)
+    dim = dimension([leading_monomial(d, "degrevlex") for d in basis], len(rest)) if basis else len(rest)
+    if dim < 0:
+        return []
+    if dim > 0:
+        return None
+    f, h = solve_zero_dimensional(basis, rest, deadline)
+    fz = fmpq_poly([fmpq_of(x) for x in f])
+    out = []
+    for phi, _ in fz.factor()[1]:
+        coords = {v: fmpq_poly([fmpq_of(x) for x in h[i]]) % phi for i, v in enumerate(rest)}
+        for v, e in subs.items():
+            coords[v] = _compose(e, names, coords, phi)
+        out.append(Orbit(phi, coords, [coords[n] for n in names if n.startswith("__c")]))
+    return out
+
+
+# ------------------------------------------------------------------ step 2: linear in A
+
+
+def double_bush_rows(b: list[Any], c: list[Any], degree: int | None, order: int) -> list[list[Any]]:
+    """The double-bush conditions ``t_{p,q}`` present up to ``order`` (p+q+2 vertices)
+    within the degree bound (q+1 ≤ m), as rows ``[coefficient of a_ij …, constant]``:
+
+        p bᵀC^(p−1)Ac^q − q bᵀC^(q−1)Ac^p − (Σb)^p bᵀc^q + (Σb)^q bᵀc^p
+
+    (the residual times p!q!; the last two terms are the rootings at the centres)."""
+    s = len(b)
+    total = sum(b[1:], b[0])
+    rows = []
+    for q in range(2, order):
+        if degree is not None and q + 1 > degree:
+            break
+        for p in range(1, q):
+            if p + q + 2 > order + 1:
+                break
+            row = [p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p
+                   for i in range(s) for j in range(s)]
+            bq = sum((bi * ci ** q for bi, ci in zip(b, c)), b[0] * 0)
+            bp = sum((bi * ci ** p for bi, ci in zip(b, c)), b[0] * 0)
+            rows.append(row + [total ** q * bp - total ** p * bq])
+    return rows
+
+
+def row_sum_rows(c: list[Any]) -> list[list[Any]]:
+    s = len(c)
+    zero, one = c[0] * 0, c[0] * 0 + 1
+    return [[one if k // s == i else zero for k in range(s * s)] + [-c[i]] for i in range(s)]
+
+
+def affine_solution(rows: list[list[Any]], n: int) -> tuple[list[Any], dict[int, list[Any]]] | None:
+    """``x = x₀ + Σ k_f v_f`` solving ``rows·(x, 1) = 0`` exactly, with the free columns
+    f as keys (None: inconsistent)."""
+    from rkcheck.energy.double_bush import nullspace_exact
+
+    _, basis = nullspace_exact(rows, n + 1)
+    particular = [v for v in basis if v[n] != 0]
+    if not particular:
+        return None
+    x0 = particular[0]
+    kernel = {next(j for j in range(n) if v[j] == 1 and all(w is v or w[j] == 0 for w in basis)): v
+              for v in basis if v is not x0}
+    return x0[:n], {f: v[:n] for f, v in kernel.items()}
+
+
+# ------------------------------------------------------------------ the whole route
+
+
+@dataclass
+class OrbitResult:
+    component: Component
+    points: list[tuple[Any, dict[str, Any]]] = field(default_factory=list)  # (ψ, variable → poly in w)
+
+
+def solve_structured(family: Any, layout: Layout, degree: int | None, order: int, classical: int | None,
+                     extra: Sequence[Any], max_seconds: float, equations: int) -> SolutionSet | None:
+    """The solution set by the structured route, or None when the quadrature system has
+    infinitely many solutions (the raw route then applies)."""
+    t0 = time.monotonic()
+    deadline = t0 + max_seconds
+    ring = family.ring
+    theta = THETA if ring.field is not None else None
+    polys, ctx, _ = quadrature_system(family, layout, degree, order, extra)
+    orbits = finite_orbits(polys, ctx, theta, ring.field, deadline)
+    if orbits is None:
+        return None
+    results = [_solve_orbit(family, layout, o, ctx, degree, order, classical, deadline) for o in orbits]
+    solutions: list[Solution] = []
+    for r in results:
+        found = _points(r.points, ring, theta)
+        solutions += found
+        if r.component.dimension == 0:
+            r.component.points, r.component.real = len(found), sum(s.real for s in found)
+    components = [r.component for r in results if r.component.dimension >= 0 and r.component.points != 0]
+    dim = max((c.dimension for c in components), default=-1)
+    out = SolutionSet(tuple(ring.parameters), equations, [], dim, {}, solutions if dim <= 0 else None)
+    out.route = "structured"
+    out.components = components
+    out.seconds = time.monotonic() - t0
+    return out
+
+
+def _orbit_field(orbit: Orbit) -> Any:
+    from rkcheck.numbers.algebraic import NumberField
+
+    coeffs = [Fraction(int(x.p), int(x.q)) for x in orbit.phi.coeffs()]
+    return NumberField(coeffs, 1, name="z")
+
+
+def _element(K: Any, p: Any) -> Any:
+    return K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()] or [0])
+
+
+def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: int | None, order: int,
+                 classical: int | None, deadline: float) -> OrbitResult:
+    from rkcheck.energy.family_conditions import classical_conditions, energy_conditions
+
+    s = family.stages
+    K = _orbit_field(orbit)
+    b = [_element(K, orbit.coords[n]) if n else _element(K, _at_orbit(layout.b_fixed[i], family, ctx, orbit))
+         for i, n in enumerate(layout.b)]
+    c = [_element(K, x) for x in orbit.nodes]
+    solved = affine_solution(row_sum_rows(c) + double_bush_rows(b, c, degree, order), s * s)
+    if solved is None:
+        return OrbitResult(Component(-1))
+    x0, kernel = solved
+    flat = [n for row in layout.A for n in row]
+    free = [flat[f] for f in sorted(kernel)]
+    R = ParameterRing(free, K)
+    A_flat = [R.element(x0[k]) for k in range(s * s)]
+    for f, v in kernel.items():
+        for k in range(s * s):
+            if not v[k].is_zero():
+                A_flat[k] = A_flat[k] + R.element(v[k]) * R.parameter(flat[f])
+    A = [A_flat[i * s:(i + 1) * s] for i in range(s)]
+    bR = [R.element(x) for x in b]
+    conds = [cd.polynomial for cd in energy_conditions(R, A, bR, order, degree)]
+    if classical is not None:
+        conds += [cd.polynomial for cd in classical_conditions(R, A, bR, classical)]
+    rest = [p for p in conds if not p.is_zero()]
+    values = _values(family, layout, orbit, R, A_flat, ctx)
+    avf_polys = [R.reduce(A[i][j] - sum(A[i][1:], A[i][0]) * bR[j]) for i in range(s) for j in range(s)]
+    if not free:
+        if rest:
+            return OrbitResult(Component(-1))
+        avf = all(p.is_zero() for p in avf_polys)
+        return OrbitResult(Component(0, avf=avf), [(orbit.phi, {v: _as_z(p) for v, p in values.items()})])
+    return _kernel_system(R, rest, values, avf_polys, deadline)
+
+
+def _at_orbit(p: Any, family: Any, ctx: Any, orbit: Orbit) -> Any:
+    """A polynomial of the family's ring in θ (and weights' parameters) at the orbit."""
+    names = tuple(ctx.names())
+    images = [ctx.gens()[names.index(v)] if v in names else ctx.constant(0) for v in family.ring.variables]
+    return _compose(p.compose(*images), names, orbit.coords, orbit.phi)
+
+
+def _as_z(p: Any) -> Any:
+    """A polynomial in z alone (an fmpq_mpoly over (z,)) as an fmpq_poly."""
+    from flint import fmpq_poly
+
+    coeffs = [Fraction(0)] * (max((int(m[0]) for m in p.monoms()), default=0) + 1)
+    for m, x in p.to_dict().items():
+        coeffs[int(m[0])] += Fraction(int(x.p), int(x.q))
+    return fmpq_poly([fmpq_of(x) for x in coeffs])
+
+
+def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat: list[Any], ctx: Any) -> dict:
+    """Every variable of the family's ring (θ and the parameters) over R."""
+    from flint import fmpq_poly
+
+    def of(p: Any) -> Any:
+        return R.element(_element(R.field, p))
+
+    out = {}
+    flat = [n for row in layout.A for n in row]
+    for n, p in zip(flat, A_flat):
+        out[n] = p
+    for n in family.ring.variables:
+        if n in orbit.coords:
+            out[n] = of(orbit.coords[n])
+    for n in family.ring.parameters:
+        if n not in out:  # a parameter no entry uses: free
+            out[n] = R.parameter(n) if n in R.parameters else of(fmpq_poly([0]))
+    return out
+
+
+def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: list[Any],
+                   deadline: float) -> OrbitResult:
+    """The conditions left in the kernel directions (with φ(z)): their solutions."""
+    from flint import fmpq_poly
+
+    names = tuple(R.ctx.names())
+    polys = rest + [R.minpoly]
+    basis = groebner(integer_dicts(polys), names, "degrevlex", deadline)
+    dim = dimension([leading_monomial(d, "degrevlex") for d in basis], len(names))
+    if dim < 0:
+        return OrbitResult(Component(-1))
+    if dim > 0:
+        gens = [R.ctx.from_dict(d) for d in basis]
+        avf = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
+        return OrbitResult(Component(dim, avf=avf, equations=[str(g) for g in gens]))
+    f, h = solve_zero_dimensional(basis, names, deadline)
+    fz = fmpq_poly([fmpq_of(x) for x in f])
+    points = []
+    avf = True
+    for psi, _ in fz.factor()[1]:
+        coords = {v: fmpq_poly([fmpq_of(x) for x in h[i]]) % psi for i, v in enumerate(names)}
+        points.append((psi, {v: _compose(p, names, coords, psi) for v, p in values.items()}))
+        avf = avf and all(_compose(p, names, coords, psi).is_zero() for p in avf_polys)
+    return OrbitResult(Component(0, avf=avf), points)
+
+
+def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float) -> bool:
+    """Whether p lies in the ideal of a reduced Gröbner basis: adding it leaves the
+    (unique) reduced basis unchanged."""
+    if p.is_zero():
+        return True
+    more = groebner(basis + integer_dicts([p]), names, "degrevlex", deadline)
+    return sorted(map(sorted_items, more)) == sorted(map(sorted_items, basis))
+
+
+def sorted_items(d: dict) -> list:
+    return sorted(d.items())
+
+
+def _points(pieces: list[tuple[Any, dict[str, Any]]], ring: ParameterRing, theta: str | None) -> list[Solution]:
+    """The solutions of each orbit piece ψ: one per root of ψ whose θ is the family's."""
+    out = []
+    for psi, values in pieces:
+        minimal: dict[str, list[Fraction] | None] = {}
+        for k, (root, _) in enumerate(psi.complex_roots()):
+            vals = {v: _value(p % psi, psi, root, k, minimal, v) for v, p in values.items()}
+            if theta is not None and not _is_the_field_generator(vals[theta], ring.field):
+                continue
+            real = all(x.real for x in vals.values())
+            out.append(Solution({v: vals[v] for v in ring.parameters}, real))
+    return out
+
+
+def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> AlgebraicValue:
+    """A coordinate ``p(z)`` at a root of ψ, shown through its own minimal polynomial
+    (rational, a square-root closed form, or a numbered root of it) rather than as a
+    polynomial in z: in a field of degree 8 the coordinates of A = c bᵀ have degree 4."""
+    if p.degree() <= 0 or psi.degree() <= 2:
+        return _coordinate(p, psi, root, k)
+    if name not in minimal:
+        from rkcheck.numbers.algebraic import NumberField
+
+        K = NumberField([Fraction(int(x.p), int(x.q)) for x in psi.coeffs()], 1, name="z")
+        minimal[name] = K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]).minimal_polynomial()
+    P = minimal[name]
+    value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
+    if len(P) <= 3:
+        from flint import fmpq_poly
+
+        return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), value, 0) if len(P) == 3 \
+            else _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
+    from flint import fmpq_poly
+
+    roots = [r for r, _ in fmpq_poly([fmpq_of(x) for x in P]).complex_roots()]
+    j = next(i for i, r in enumerate(roots) if r.overlaps(value))
+    real = roots[j].imag == 0
+    approx = complex(float(value.real.mid()), float(value.imag.mid()))
+    kind = "" if real else "complex "
+    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}"
+                          f"{'' if real else f' + {approx.imag:.10g}i'})", real, approx, tuple(P), value)
+
+
+def star_constant(k: int) -> Fraction:
+    """The residual of the star with k leaves is this times ``Σbc^(k−1) − (Σb)^k/k``
+    (rooted at the centre: (Σb)^k/k!, at a leaf: −Σbc^(k−1)/(k−1)!)."""
+    return Fraction(-1, factorial(k - 1))

@@ -1,0 +1,124 @@
+"""The structured route of ``solve`` (quadrature conditions, then the conditions linear in
+A): its formulas against the condition engine, its answers against the plain route, and
+the seed's Theorem 1 for four stages (m = 8) against the AVF tableaux of the 4-point
+Gauss rule."""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import pytest
+from support.paths import TABLEAUX
+
+import rkcheck
+from rkcheck.energy.family_solve import double_bush_rows, star_constant
+
+FAMILIES = TABLEAUX / "families"
+
+
+def _proportional(p, q) -> bool:
+    """p = r·q for a nonzero rational r."""
+    if p.is_zero() or q.is_zero():
+        return p.is_zero() and q.is_zero()
+    r = p.leading_coefficient() / q.leading_coefficient()
+    return p == q * r
+
+
+def _free_family(s: int):
+    A = [[f"a{i}{j}" for j in range(1, s + 1)] for i in range(1, s + 1)]
+    b = [f"b{i}" for i in range(1, s + 1)]
+    return rkcheck.family_from_arrays(A, b, parameters=[x for row in A for x in row] + b)
+
+
+def test_star_and_double_bush_formulas_are_the_engines_conditions():
+    from flint import fmpq
+
+    fam = _free_family(2)
+    fc = rkcheck.family_conditions(fam, degree=3, order=4)
+    A, b = fam.A, fam.b
+    c = [A[i][0] + A[i][1] for i in range(2)]
+    total = b[0] + b[1]
+    by_tree = {cd.level_sequence: cd.polynomial for cd in fc.energy}
+    # stars with 2 and 3 leaves: the residual is star_constant(k)·(Σbc^(k−1) − (Σb)^k/k)
+    for k in (2, 3):
+        star = sum(bi * ci ** (k - 1) for bi, ci in zip(b, c)) - total ** k / k
+        r = star_constant(k)
+        assert by_tree[(1,) + (2,) * k] == star * fmpq(r.numerator, r.denominator)
+    # the double bush t_{1,2} (five vertices, degree 3): proportional to the linear row
+    (row,) = double_bush_rows(b, c, 3, 4)
+    flat = [A[i][j] for i in range(2) for j in range(2)]
+    linear = sum((x * a for x, a in zip(row, flat)), row[-1])
+    five = [p for ls, p in by_tree.items() if len(ls) == 5]
+    assert sum(_proportional(p, linear) for p in five) == 1
+
+
+@pytest.mark.parametrize(("name", "degree", "order"), [("theorem1-s2-m3", 3, 6), ("theorem1-s2-m4", 4, 6),
+                                                       ("theorem1-s3-m6", 6, 7)])
+def test_structured_and_plain_routes_find_the_same_solutions(name, degree, order):
+    path = FAMILIES / f"{name}.toml"
+    plain = rkcheck.solve(path, degree=degree, order=order, route="plain")
+    structured = rkcheck.solve(path, degree=degree, order=order, route="structured")
+    assert structured.route == "structured" and plain.route == "plain"
+    assert structured.dimension == plain.dimension == 0
+
+    def key(res):
+        return sorted(tuple(round(v.approx.real, 12) for v in s.values.values()) for s in res.solutions)
+
+    assert key(structured) == key(plain)
+    assert len(structured.solutions) == len(plain.solutions)
+
+
+def test_structured_route_refuses_a_family_it_does_not_fit():
+    with pytest.raises(rkcheck.RkcheckError, match="structured route needs A free"):
+        rkcheck.solve(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6, route="structured")
+
+
+def _gauss4():
+    """The 4-point Gauss rule from its tableau file (exact entries): nodes and weights as
+    certified enclosures."""
+    tab = rkcheck.load(TABLEAUX / "collocation" / "gauss-4.toml")
+    b = [e.enclosure(80) for e in tab.b]
+    c = [sum((e.enclosure(80) for e in row[1:]), row[0].enclosure(80)) for row in tab.A]
+    return c, b
+
+
+def test_theorem1_s4_m8_is_avf_over_gauss_in_the_four_compatible_orders():
+    res = rkcheck.solve(FAMILIES / "theorem1-s4-m8.toml", degree=8, order=9)
+    assert res.dimension == 0 and len(res.solutions) == 4 and all(s.real for s in res.solutions)
+    c, b = _gauss4()
+    # the file's weights: outer, inner, inner, outer; the nodes may move only within a pair
+    outer, inner = (0, 3), (1, 2)
+    orders = {(o[0], i[0], i[1], o[1]) for o in itertools.permutations(outer) for i in itertools.permutations(inner)}
+    assert len(orders) == 4
+    found = set()
+    for s in res.solutions:
+        got = [[s.values[f"a{i + 1}{j + 1}"].approx.real for j in range(4)] for i in range(4)]
+        match = [p for p in orders
+                 if all(abs(got[i][j] - float(c[p[i]].mid) * float(b[j].mid)) < 1e-12 for i in range(4) for j in range(4))]
+        assert len(match) == 1
+        found.add(match[0])
+    assert found == orders
+    assert all(comp.avf for comp in res.components)
+
+
+def test_the_s4_m8_avf_tableau_preserves_energy_exactly():
+    # the independent engine on one of the four: exact arithmetic in the rule's field
+    b = [f"({x})" for x in ("1/4 - sqrt(30)/72", "1/4 + sqrt(30)/72", "1/4 + sqrt(30)/72", "1/4 - sqrt(30)/72")]
+    nodes = ["1/2 - sqrt(3/28 + sqrt(30)/70)", "1/2 - sqrt(3/28 - sqrt(30)/70)",
+             "1/2 + sqrt(3/28 - sqrt(30)/70)", "1/2 + sqrt(3/28 + sqrt(30)/70)"]
+    A = [[f"({ci})*{bj}" for bj in b] for ci in nodes]
+    assert rkcheck.verify(rkcheck.from_arrays(A, b), degree=8, order=9).verdict == "holds"
+
+
+def test_components_report_avf_in_json(capsys):
+    import json
+
+    from support.clirun import run_cli
+
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
+                "--format", "json")
+    doc = json.loads(r.out)
+    assert doc["route"] == "structured" and doc["avf_on_every_component"] is True
+    assert sum(c["points"] for c in doc["components"]) == len(doc["solutions"]) == 2
+    assert Fraction(doc["solutions"][0]["values"]["a11"]) in {Fraction(1, 4), Fraction(1, 2)}
