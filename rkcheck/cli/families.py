@@ -19,7 +19,8 @@ from rkcheck.cli.common import (
 DEFAULT_FAMILY_ORDER = 6
 
 
-def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool) -> None:
+def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
+                  emit: str | None = None, output: str | None = None) -> None:
     """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
     line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
@@ -34,6 +35,14 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     classical = order if classical_order == "order" else classical_order
     assert classical is None or isinstance(classical, int)
     result = family_conditions(family, degree=degree, order=order, classical_order=classical)
+    if emit is not None:  # the polynomials as code (rkcheck.reports.family_code)
+        from rkcheck.errors import UserError
+        from rkcheck.reports.family_code import FAMILY_LANGUAGES, emit_family
+
+        if emit not in FAMILY_LANGUAGES:
+            raise UserError(f"--emit {emit}: a family's conditions are written in {', '.join(FAMILY_LANGUAGES)}")
+        write_text(emit_family(result, emit), output)
+        return
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
         from rkcheck.reports.jsondoc import dumps
