@@ -116,3 +116,52 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         write_text(buffer.getvalue(), output)
         return
     render_solution_set(family, result, stdout_console())
+
+
+@click.command(epilog=exit_codes(usage="a bad file, grid or option, or matplotlib missing for --plot (one line on stderr)"))
+@click.argument("file", metavar="FILE")
+@click.option("--grid", "grids", multiple=True, required=True, metavar="NAME=LO:HI:N",
+              help="N equally spaced rational values of a parameter from LO to HI (or NAME=VALUE: one value); "
+                   "every parameter needs one.")
+@click.option("--degree", "-m", type=DEGREE, default=None, help="Polynomial degree m (default: the file's [check]).")
+@click.option("--order", "-N", type=click.IntRange(1, 12), default=None,
+              help="Energy order checked at each point (default: the file's [check], else 6).")
+@click.option("--plot", metavar="OUT.png|.svg|.pdf", default=None, help="Chart the energy order over the grid "
+              "(needs matplotlib: rkcheck[plot]).")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--json", "as_json", is_flag=True, help="Same as --format json.")
+@output_options
+def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
+    """The energy order of a family at every point of a grid of parameter values, each
+    evaluated exactly (rational grid points, the conditions as exact polynomials).
+
+    \b
+    Examples:
+      rkcheck sweep tableaux/families/avf-s2-m3-plane.toml --grid "beta=-1:1:21" --grid "gamma=-1:1:21"
+      rkcheck sweep FAMILY --grid "beta=-1:1:41" --grid "gamma=0:2:41" --plot order.png --json
+    """
+    from rkcheck.api.families import _orders, load_family
+    from rkcheck.energy.family_sweep import sweep as run
+
+    family = load_family(file)
+    check = family.info.check
+    deg, N, _ = _orders(degree if degree is not None else check.get("degree"),
+                        order if order is not None else check.get("order", DEFAULT_FAMILY_ORDER), None)
+    if plot is not None:
+        from rkcheck.reports.charts import pyplot
+
+        pyplot("--plot")  # matplotlib present: fail before the work, not after
+    result = run(family, list(grids), deg, N)
+    if plot is not None:
+        from rkcheck.reports.sweep import sweep_chart
+
+        sweep_chart(result, plot)
+    if fmt == "json" or as_json:
+        from rkcheck.reports.jsondoc import dumps
+        from rkcheck.reports.sweep import sweep_doc
+
+        click.echo(dumps(sweep_doc(result)))
+        return
+    from rkcheck.reports.sweep import render_sweep
+
+    render_sweep(result, stdout_console())
