@@ -89,6 +89,7 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     ``"structured"`` refuses a family it does not apply to."""
     from rkcheck.energy.family_conditions import family_conditions as compute
     from rkcheck.energy.family_solve import layout_of, solve_structured
+    from rkcheck.numbers.groebner import SolveLimitError
     from rkcheck.numbers.parametric import THETA
     from rkcheck.numbers.solving import solve_system
 
@@ -109,13 +110,22 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
         found = solve_structured(fam, layout, deg, N, q, extra, seconds, _count(deg, N, q) + len(extra))
         if found is not None:
             return found
+        hint = ("; the quadrature conditions leave infinitely many weights and nodes, so the structured route "
+                "does not apply: fix a weight with --where (e.g. \"b1 = 1/4\") to solve that slice")
+    else:
+        hint = ""
     if route == "structured":
         raise OptionError("the structured route needs A free (each entry its own parameter), weights that are "
                           "numbers or their own parameters, --where equations in the weights only, and finitely "
                           "many solutions of the quadrature conditions", "route")
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
-    return solve_system(polys, theta, fam.ring.field, seconds)
+    try:
+        return solve_system(polys, theta, fam.ring.field, seconds)
+    except SolveLimitError as err:
+        if not hint:
+            raise
+        raise SolveLimitError(err.message + hint) from None
 
 
 def _count(degree: int | None, order: int, classical: int | None) -> int:

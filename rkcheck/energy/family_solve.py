@@ -25,6 +25,7 @@ is sampled.  The raw route (one Gröbner basis of every condition in every entry
 
 from __future__ import annotations
 
+import itertools
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -176,8 +177,53 @@ def finite_orbits(polys: list[Any], ctx: Any, theta: str | None, field_: Any, de
         coords = {v: fmpq_poly([fmpq_of(x) for x in h[i]]) % phi for i, v in enumerate(rest)}
         for v, e in subs.items():
             coords[v] = _compose(e, names, coords, phi)
-        out.append(Orbit(phi, coords, [coords[n] for n in names if n.startswith("__c")]))
+        out.append(rebased(Orbit(phi, coords, [coords[n] for n in names if n.startswith("__c")])))
     return out
+
+
+def _size(P: Sequence[Fraction]) -> int:
+    return sum(c.numerator.bit_length() + c.denominator.bit_length() for c in P)
+
+
+def rebased(orbit: Orbit) -> Orbit:
+    """The same orbit with a generator of small minimal polynomial: the separating form's
+    polynomial often has coefficients of dozens of digits, while a node that generates
+    the same field has a small one — and every later Gröbner basis in z runs on these
+    coefficients."""
+    from flint import fmpq_mat, fmpq_poly
+
+    D = orbit.phi.degree()
+    if D <= 1:
+        return orbit
+    K = _orbit_field(orbit)
+    best = None
+    for p in list(orbit.nodes) + list(orbit.coords.values()):
+        if p.degree() <= 0:
+            continue
+        P = _element(K, p).minimal_polynomial()
+        if len(P) == D + 1 and (best is None or _size(P) < _size(best[1])):
+            best = (p, P)
+    if best is None or _size(best[1]) >= _size([Fraction(int(x.p), int(x.q)) for x in orbit.phi.coeffs()]):
+        return orbit
+    g, P = best
+    M = fmpq_mat(D, D)  # column j: g^j in the powers of z
+    power = fmpq_poly([1])
+    for j in range(D):
+        for i, c in enumerate(power.coeffs()):
+            M[i, j] = c
+        power = (power * g) % orbit.phi
+    Minv = M.inv()
+
+    def convert(p: Any) -> Any:
+        X = fmpq_mat(D, 1)
+        for i, c in enumerate(p.coeffs()):
+            X[i, 0] = c
+        Y = Minv * X
+        return fmpq_poly([Y[i, 0] for i in range(D)])
+
+    phi = fmpq_poly([fmpq_of(c) for c in P])
+    coords = {v: convert(p) for v, p in orbit.coords.items()}
+    return Orbit(phi, coords, [convert(p) for p in orbit.nodes])
 
 
 # ------------------------------------------------------------------ step 2: linear in A
@@ -285,18 +331,21 @@ def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: in
     b = [_element(K, orbit.coords[n]) if n else _element(K, _at_orbit(layout.b_fixed[i], family, ctx, orbit))
          for i, n in enumerate(layout.b)]
     c = [_element(K, x) for x in orbit.nodes]
-    solved = affine_solution(row_sum_rows(c) + double_bush_rows(b, c, degree, order), s * s)
+    rows = row_sum_rows(c) + double_bush_rows(b, c, degree, order)
+    solved = affine_solution(rows, s * s)
     if solved is None:
         return OrbitResult(Component(-1))
     x0, kernel = solved
-    flat = [n for row in layout.A for n in row]
-    free = [flat[f] for f in sorted(kernel)]
+    avf_point = [c[i] * b[j] for i in range(s) for j in range(s)]
+    if all(sum((r[k] * avf_point[k] for k in range(s * s)), r[-1]).is_zero() for r in rows):
+        x0 = avf_point  # the kernel coordinates then measure the distance from AVF (0 there)
+    free = [f"__k{f + 1}" for f in sorted(kernel)]
     R = ParameterRing(free, K)
     A_flat = [R.element(x0[k]) for k in range(s * s)]
-    for f, v in kernel.items():
+    for name, v in zip(free, (kernel[f] for f in sorted(kernel))):
         for k in range(s * s):
             if not v[k].is_zero():
-                A_flat[k] = A_flat[k] + R.element(v[k]) * R.parameter(flat[f])
+                A_flat[k] = A_flat[k] + R.element(v[k]) * R.parameter(name)
     A = [A_flat[i * s:(i + 1) * s] for i in range(s)]
     bR = [R.element(x) for x in b]
     conds = [cd.polynomial for cd in energy_conditions(R, A, bR, order, degree)]
@@ -310,7 +359,7 @@ def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: in
             return OrbitResult(Component(-1))
         avf = all(p.is_zero() for p in avf_polys)
         return OrbitResult(Component(0, avf=avf), [(orbit.phi, {v: _as_z(p) for v, p in values.items()})])
-    return _kernel_system(R, rest, values, avf_polys, deadline)
+    return _kernel_system(R, rest, values, avf_polys, deadline, orbit.phi)
 
 
 def _at_orbit(p: Any, family: Any, ctx: Any, orbit: Orbit) -> Any:
@@ -351,11 +400,20 @@ def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat:
 
 
 def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: list[Any],
-                   deadline: float) -> OrbitResult:
+                   deadline: float, phi: Any) -> OrbitResult:
     """The conditions left in the kernel directions (with φ(z)): their solutions."""
     from flint import fmpq_poly
 
     names = tuple(R.ctx.names())
+    forced = forced_zero(R, rest)
+    if forced is not None:  # every kernel coordinate is 0 on the solutions, or there are none
+        origin = [R.ctx.constant(0)] * len(names)
+        origin[0] = R.ctx.gens()[0]
+        if not forced or any(not R.reduce(p.compose(*origin)).is_zero() for p in rest):
+            return OrbitResult(Component(-1))
+        at = {v: _as_z(R.reduce(p.compose(*origin))) for v, p in values.items()}
+        avf = all(R.reduce(p.compose(*origin)).is_zero() for p in avf_polys)
+        return OrbitResult(Component(0, avf=avf), [(phi, at)])
     polys = rest + [R.minpoly]
     basis = groebner(integer_dicts(polys), names, "degrevlex", deadline)
     dim = dimension([leading_monomial(d, "degrevlex") for d in basis], len(names))
@@ -374,6 +432,89 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
         points.append((psi, {v: _compose(p, names, coords, psi) for v, p in values.items()}))
         avf = avf and all(_compose(p, names, coords, psi).is_zero() for p in avf_polys)
     return OrbitResult(Component(0, avf=avf), points)
+
+
+#: The Macaulay matrices of the kernel system go this many degrees past its largest one.
+MACAULAY_EXTRA_DEGREES = 3
+#: ... and stop at this many columns (monomials): the linear algebra is over K.
+MAX_MACAULAY_COLUMNS = 400
+
+
+def forced_zero(R: ParameterRing, rest: list[Any]) -> bool | None:
+    """True when, for every kernel coordinate k, some power k^e lies in the ideal of the
+    remaining conditions over K (so k = 0 at every solution); False when 1 does (no
+    solution); None when neither shows up to the degree limit (a Gröbner basis decides).
+
+    Membership is decided by exact linear algebra over K on the Macaulay matrix: the
+    conditions times every monomial, up to a total degree D in the kernel coordinates."""
+    K = R.field
+    n = len(R.ctx.names()) - 1
+    polys = [_by_monomial(p, K) for p in rest]
+    top = max((sum(m) for d in polys for m in d), default=0)
+    for D in range(top, top + MACAULAY_EXTRA_DEGREES + 1):
+        columns = _monomials(n, D)
+        if len(columns) > MAX_MACAULAY_COLUMNS:
+            return None
+        index = {m: i for i, m in enumerate(columns)}
+        rows = []
+        for d in polys:
+            deg = max(sum(m) for m in d)
+            for u in _monomials(n, D - deg):
+                row = [K(0)] * len(columns)
+                for m, a in d.items():
+                    row[index[tuple(x + y for x, y in zip(m, u))]] = a
+                rows.append(row)
+        pivots = _echelon(rows)
+        if _member(pivots, index[(0,) * n], len(columns), K):
+            return False
+        if all(any(_member(pivots, index[tuple(e if j == i else 0 for j in range(n))], len(columns), K)
+                   for e in range(1, D + 1)) for i in range(n)):
+            return True
+    return None
+
+
+def _by_monomial(p: Any, K: Any) -> dict[tuple[int, ...], Any]:
+    """A polynomial over K in the kernel coordinates: monomial → coefficient in K."""
+    groups: dict[tuple[int, ...], list[Fraction]] = {}
+    for m, c in p.to_dict().items():
+        key = tuple(int(e) for e in m[1:])
+        coeffs = groups.setdefault(key, [Fraction(0)] * K.degree)
+        coeffs[int(m[0])] += Fraction(int(c.p), int(c.q))
+    return {m: K(c) for m, c in groups.items()}
+
+
+def _monomials(n: int, D: int) -> list[tuple[int, ...]]:
+    """Every monomial of total degree ≤ D in n variables, highest degree first."""
+    out = [m for m in itertools.product(range(D + 1), repeat=n) if sum(m) <= D]
+    return sorted(out, key=lambda m: (-sum(m), m))
+
+
+def _echelon(rows: list[list[Any]]) -> dict[int, list[Any]]:
+    """Reduced pivot rows keyed by pivot column (Gaussian elimination over K)."""
+    pivots: dict[int, list[Any]] = {}
+    for row in rows:
+        row = _reduce(row, pivots)
+        col = next((j for j, x in enumerate(row) if not x.is_zero()), None)
+        if col is None:
+            continue
+        inv = 1 / row[col]
+        pivots[col] = [x * inv for x in row]
+    return pivots
+
+
+def _reduce(row: list[Any], pivots: dict[int, list[Any]]) -> list[Any]:
+    for col in sorted(pivots):
+        f = row[col]
+        if not f.is_zero():
+            row = [x - f * y for x, y in zip(row, pivots[col])]
+    return row
+
+
+def _member(pivots: dict[int, list[Any]], column: int, size: int, K: Any) -> bool:
+    """Whether the monomial of ``column`` lies in the row space."""
+    unit = [K(0)] * size
+    unit[column] = K(1)
+    return all(x.is_zero() for x in _reduce(unit, pivots))
 
 
 def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float) -> bool:

@@ -160,3 +160,31 @@ def test_emitted_latex_and_julia_write_every_condition(capsys):
     assert "1//72*beta^2" in julia and "theta=sqrt(3)" in julia
     r = run_cli(capsys, "conditions", str(path), "--order", "6", "--emit", "matlab")
     assert r.code == 2 and "python, sympy, julia, latex" in r.err
+
+
+def test_theorem1_s3_m5_slice_of_the_zeta_family_is_avf():
+    """A and b free, m = 5 = 2s − 1: the weights and nodes form a curve (the seed's
+    ζ-family); fixing b1 leaves finitely many, each with only its AVF matrix."""
+    from flint import acb
+
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=["b1 + b2 + b3 = 1", "b1 = 1/4"])
+    assert res.route == "structured" and res.dimension == 0 and res.solutions
+    assert all(comp.avf for comp in res.components)
+    for s in res.solutions:
+        b = [s.values[f"b{i}"].ball for i in (1, 2, 3)]
+        A = [[s.values[f"a{i}{j}"].ball for j in (1, 2, 3)] for i in (1, 2, 3)]
+        c = [sum(row[1:], row[0]) for row in A]
+        for i in range(3):  # A = c bᵀ, from the solution's own enclosures
+            for j in range(3):
+                assert (A[i][j] - c[i] * b[j]).contains(0)
+        for k in range(5):  # the rule (b, c) integrates polynomials of degree ≤ 4
+            assert (sum(bi * ci ** k for bi, ci in zip(b, c)) - acb(1) / (k + 1)).contains(0)
+        assert not (b[0] - acb(1) / 5).contains(0)  # a ball that can exclude: the test can fail
+
+
+def test_the_whole_zeta_curve_asks_for_a_slice(capsys, tmp_path):
+    from support.clirun import run_cli
+
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "5", "--order", "6",
+                "--where", "b1 + b2 + b3 = 1", "--max-seconds", "1")
+    assert r.code == 2 and r.err.count("\n") == 1 and 'fix a weight with --where' in r.err, r.err
