@@ -121,11 +121,35 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
     try:
-        return solve_system(polys, theta, fam.ring.field, seconds)
+        result = solve_system(polys, theta, fam.ring.field, seconds)
     except SolveLimitError as err:
         if not hint:
             raise
         raise SolveLimitError(err.message + hint) from None
+    if result.pieces:
+        _avf_on_pieces(fam, result, seconds)
+    return result
+
+
+def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
+    """Whether A − (A·1) bᵀ lies in the ideal of each piece (True), else not decided
+    (None: it may still vanish on the piece without lying in its ideal)."""
+    import time
+
+    from rkcheck.numbers.decompose import contains
+    from rkcheck.numbers.groebner import integer_dicts
+
+    deadline = time.monotonic() + seconds
+    ctx = fam.ring.ctx
+    names = tuple(ctx.names())
+    images = [ctx.gens()[i] if n not in result.eliminated else result.eliminated[n] for i, n in enumerate(names)]
+    keep = [names.index(n) for n in result.rest]
+    s = fam.stages
+    gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j]) for i in range(s) for j in range(s)]
+    gaps = [g.compose(*images) for g in gaps]
+    dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in integer_dicts([g for g in gaps if not g.is_zero()])]
+    for piece, comp in zip(result.pieces, result.components):
+        comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
 
 
 def _count(degree: int | None, order: int, classical: int | None) -> int:

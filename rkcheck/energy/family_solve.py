@@ -43,6 +43,7 @@ from rkcheck.numbers.groebner import (
 from rkcheck.numbers.parametric import THETA, ParameterRing
 from rkcheck.numbers.solving import (
     AlgebraicValue,
+    Component,
     Solution,
     SolutionSet,
     _compose,
@@ -53,20 +54,6 @@ from rkcheck.numbers.solving import (
     eliminate_linear,
     root_value,
 )
-
-
-@dataclass
-class Component:
-    """One piece of the solution set: ``dimension``, the number of points when finite
-    (complex, counted with the family's own field generator), the real ones, whether
-    ``A = (A·1) bᵀ`` on all of it (None: not decided), and its defining equations
-    (texts, in the parameters) when it is positive-dimensional."""
-
-    dimension: int
-    points: int | None = None
-    real: int | None = None
-    avf: bool | None = None
-    equations: list[str] = field(default_factory=list)
 
 
 @dataclass

@@ -62,6 +62,20 @@ class AlgebraicValue:
     ball: Any = None  # a certified complex enclosure (flint acb)
 
 
+@dataclass
+class Component:
+    """One piece of the solution set: ``dimension``, the number of points when finite
+    (complex, counted with the family's own field generator), the real ones, whether
+    ``A = (A·1) bᵀ`` on all of it (None: not decided), and its defining equations
+    (polynomials in the parameters, or texts) when it is positive-dimensional."""
+
+    dimension: int
+    points: int | None = None
+    real: int | None = None
+    avf: bool | None = None
+    equations: list[Any] = field(default_factory=list)
+
+
 @dataclass(frozen=True)
 class Solution:
     values: dict[str, AlgebraicValue]
@@ -86,8 +100,11 @@ class SolutionSet:
     #: "plain" (one Gröbner basis of every condition) or "structured"
     #: (:mod:`rkcheck.energy.family_solve`: quadrature conditions first, no single basis)
     route: str = "plain"
-    #: the pieces of the solution set (structured route): ``family_solve.Component``
+    #: the pieces of the solution set: the orbits of the structured route, or the pieces
+    #: of a positive-dimensional set split along factors (:mod:`rkcheck.numbers.decompose`)
     components: list[Any] | None = None
+    pieces: list[Any] | None = None
+    rest: tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         found = "" if self.solutions is None else f", {len(self.solutions)} solutions"
@@ -171,6 +188,14 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
     gb = [_from_dict(ctx, names, keep, d) for d in basis]
     gb = [ctx.gens()[names.index(v)] - e for v, e in subs.items()] + gb
     out = SolutionSet(params, equations, gb, dim, subs)
+    if dim > 0:
+        from rkcheck.numbers.decompose import as_polynomials, split
+
+        out.pieces = split(basis, rest, deadline)
+        eliminated = [ctx.gens()[names.index(v)] - e for v, e in subs.items()]
+        out.components = [Component(p.dimension, equations=eliminated + as_polynomials(p, ctx, rest))
+                          for p in out.pieces]
+        out.rest = rest
     if dim == 0:
         f, h = solve_zero_dimensional(basis, rest, deadline)
         out.solutions = _solutions(f, h, rest, subs, ctx, theta, field)

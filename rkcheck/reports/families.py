@@ -123,7 +123,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "groebner": None if result.route == "structured" else [polynomial_text(g, field) for g in shown_basis(result)],
         "dimension": result.dimension,
         "route": result.route,
-        "components": None if result.components is None else [component_doc(c) for c in result.components],
+        "components": None if result.components is None else [component_doc(c, field) for c in result.components],
         "avf_on_every_component": avf_everywhere(result),
         "solutions": None if result.solutions is None else [
             {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
@@ -131,8 +131,9 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
     }
 
 
-def component_doc(c: Any) -> dict[str, Any]:
-    return {"dimension": c.dimension, "points": c.points, "real": c.real, "avf": c.avf, "equations": c.equations}
+def component_doc(c: Any, field: Any = None) -> dict[str, Any]:
+    return {"dimension": c.dimension, "points": c.points, "real": c.real, "avf": c.avf,
+            "equations": [e if isinstance(e, str) else polynomial_text(e, field) for e in c.equations]}
 
 
 def avf_everywhere(result: Any) -> bool | None:
@@ -160,6 +161,13 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
         return
     if result.dimension > 0:
         console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the set above", style="bold"))
+        if result.components and len(result.components) > 1:
+            console.print(f"split along factors into {len(result.components)} pieces (each solution lies in one; "
+                          "a piece is not proven irreducible):")
+            _render_pieces(result, console, field)
+        elif result.components:
+            avf = {True: "A = (A·1) bᵀ on all of it (AVF)", False: "not A = (A·1) bᵀ", None: ""}[result.components[0].avf]
+            console.print(f"no basis element factors: one piece{', ' + avf if avf else ''}")
         return
     sols = result.solutions or []
     real = sum(s.real for s in sols)
@@ -181,3 +189,11 @@ def _render_components(result: Any, console: Console) -> None:
         console.print(f"  component {k}: {what}, {avf}")
         for e in c.equations:
             console.print(f"    {e} = 0")
+
+
+def _render_pieces(result: Any, console: Console, field: Any) -> None:
+    for k, c in enumerate(result.components, start=1):
+        avf = {True: ", A = (A·1) bᵀ (AVF)", False: ", not A = (A·1) bᵀ", None: ""}[c.avf]
+        console.print(f"  piece {k}: dimension {c.dimension}{avf}")
+        for e in c.equations:
+            console.print(f"    {e if isinstance(e, str) else polynomial_text(e, field)} = 0")

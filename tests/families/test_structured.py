@@ -188,3 +188,29 @@ def test_the_whole_zeta_curve_asks_for_a_slice(capsys, tmp_path):
     r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "5", "--order", "6",
                 "--where", "b1 + b2 + b3 = 1", "--max-seconds", "1")
     assert r.code == 2 and r.err.count("\n") == 1 and 'fix a weight with --where' in r.err, r.err
+
+
+def test_design_query_splits_into_avf_and_symmetric_weights():
+    """All 2-stage methods with energy order ≥ 4 for cubic H and classical order ≥ 2:
+    every point of each piece is checked at rational points of it by the exact engine."""
+    res = rkcheck.solve(FAMILIES / "design-s2-m3.toml", degree=3, order=4, classical_order=2)
+    assert res.dimension == 1 and len(res.components) == 2
+    assert sorted(c.avf is True for c in res.components) == [False, True]
+    fam = rkcheck.load_family(FAMILIES / "design-s2-m3.toml")
+    # a rational point of the AVF piece: the rule with nodes (0, 2/3), weights (1/4, 3/4)
+    # (Radau I, exact for degree ≤ 2) and A = c bᵀ; the exact engine agrees, and the
+    # point lies on the AVF piece only
+    b = [Fraction(1, 4), Fraction(3, 4)]
+    c = [Fraction(0), Fraction(2, 3)]
+    point = {"a11": c[0] * b[0], "a12": c[0] * b[1], "a21": c[1] * b[0], "a22": c[1] * b[1], "b1": b[0], "b2": b[1]}
+    tab = fam.at(point)
+    v = rkcheck.verify(tab, degree=3, order=4)
+    assert v.energy_order >= 4
+    ctx = fam.ring.ctx
+    from flint import fmpq
+
+    values = [fmpq(point[n].numerator, point[n].denominator) for n in ctx.names()]
+    avf_piece = next(c for c in res.components if c.avf)
+    assert all(e(*values) == 0 for e in avf_piece.equations)
+    other = next(c for c in res.components if not c.avf)
+    assert any(e(*values) != 0 for e in other.equations)
