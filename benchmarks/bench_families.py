@@ -20,7 +20,10 @@ CASES = [
     ("seed-kernel-zeta-0.toml", 3, 6),
     ("theorem1-s3-m6.toml", 6, 7),
     ("theorem1-s4-m8.toml", 8, 9),
+    ("theorem1-s3-m5.toml", 5, 6),  # a slice of the curve of rules: b1 fixed (WHERE)
 ]
+#: Extra equations per family.
+WHERE = {"theorem1-s3-m5.toml": ["b1 + b2 + b3 = 1", "b1 = 1/4"]}
 #: The plain route (one Gröbner basis of every condition) as well, where it finishes.
 PLAIN = {"theorem1-s2-m3.toml", "theorem1-s2-m4.toml", "theorem1-s3-m6.toml"}
 CHILD = """
@@ -28,7 +31,7 @@ import json, sys, time
 sys.path.insert(0, {root!r})
 import rkcheck
 t0 = time.perf_counter()
-res = rkcheck.solve({path!r}, degree={degree}, order={order}, route={route!r})
+res = rkcheck.solve({path!r}, degree={degree}, order={order}, route={route!r}, where={where!r})
 print(json.dumps({{"seconds": time.perf_counter() - t0, "equations": res.equations, "dimension": res.dimension,
                   "solutions": len(res.solutions or []), "route": res.route}}))
 """
@@ -40,7 +43,8 @@ def main() -> None:
     for name, degree, order in CASES:
         path = str(ROOT / "tableaux" / "families" / name)
         for route in ("auto", "plain") if name in PLAIN else ("auto",):
-            code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order, route=route)
+            code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order, route=route,
+                                where=WHERE.get(name, []))
             out = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                             check=True).stdout)
             print(f"{name:28} {degree:>2} {order:>2} {out['route']:>10} {out['equations']:>9} {out['dimension']:>3} "
