@@ -148,7 +148,7 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
     gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j]) for i in range(s) for j in range(s)]
     gaps = [g.compose(*images) for g in gaps]
     dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in integer_dicts([g for g in gaps if not g.is_zero()])]
-    for piece, comp in zip(result.pieces, result.components):
+    for piece, comp in zip(result.pieces or [], result.components or []):
         comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
 
 

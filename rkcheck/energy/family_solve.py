@@ -25,7 +25,6 @@ is sampled.  The raw route (one Gröbner basis of every condition in every entry
 
 from __future__ import annotations
 
-import itertools
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -40,6 +39,7 @@ from rkcheck.numbers.groebner import (
     leading_monomial,
     solve_zero_dimensional,
 )
+from rkcheck.numbers.macaulay import forced_zero
 from rkcheck.numbers.parametric import THETA, ParameterRing
 from rkcheck.numbers.solving import (
     AlgebraicValue,
@@ -306,7 +306,7 @@ def _orbit_field(orbit: Orbit) -> Any:
 
 
 def _element(K: Any, p: Any) -> Any:
-    return K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()] or [0])
+    return K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()] or [Fraction(0)])
 
 
 def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: int | None, order: int,
@@ -421,89 +421,6 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
     return OrbitResult(Component(0, avf=avf), points)
 
 
-#: The Macaulay matrices of the kernel system go this many degrees past its largest one.
-MACAULAY_EXTRA_DEGREES = 3
-#: ... and stop at this many columns (monomials): the linear algebra is over K.
-MAX_MACAULAY_COLUMNS = 400
-
-
-def forced_zero(R: ParameterRing, rest: list[Any]) -> bool | None:
-    """True when, for every kernel coordinate k, some power k^e lies in the ideal of the
-    remaining conditions over K (so k = 0 at every solution); False when 1 does (no
-    solution); None when neither shows up to the degree limit (a Gröbner basis decides).
-
-    Membership is decided by exact linear algebra over K on the Macaulay matrix: the
-    conditions times every monomial, up to a total degree D in the kernel coordinates."""
-    K = R.field
-    n = len(R.ctx.names()) - 1
-    polys = [_by_monomial(p, K) for p in rest]
-    top = max((sum(m) for d in polys for m in d), default=0)
-    for D in range(top, top + MACAULAY_EXTRA_DEGREES + 1):
-        columns = _monomials(n, D)
-        if len(columns) > MAX_MACAULAY_COLUMNS:
-            return None
-        index = {m: i for i, m in enumerate(columns)}
-        rows = []
-        for d in polys:
-            deg = max(sum(m) for m in d)
-            for u in _monomials(n, D - deg):
-                row = [K(0)] * len(columns)
-                for m, a in d.items():
-                    row[index[tuple(x + y for x, y in zip(m, u))]] = a
-                rows.append(row)
-        pivots = _echelon(rows)
-        if _member(pivots, index[(0,) * n], len(columns), K):
-            return False
-        if all(any(_member(pivots, index[tuple(e if j == i else 0 for j in range(n))], len(columns), K)
-                   for e in range(1, D + 1)) for i in range(n)):
-            return True
-    return None
-
-
-def _by_monomial(p: Any, K: Any) -> dict[tuple[int, ...], Any]:
-    """A polynomial over K in the kernel coordinates: monomial → coefficient in K."""
-    groups: dict[tuple[int, ...], list[Fraction]] = {}
-    for m, c in p.to_dict().items():
-        key = tuple(int(e) for e in m[1:])
-        coeffs = groups.setdefault(key, [Fraction(0)] * K.degree)
-        coeffs[int(m[0])] += Fraction(int(c.p), int(c.q))
-    return {m: K(c) for m, c in groups.items()}
-
-
-def _monomials(n: int, D: int) -> list[tuple[int, ...]]:
-    """Every monomial of total degree ≤ D in n variables, highest degree first."""
-    out = [m for m in itertools.product(range(D + 1), repeat=n) if sum(m) <= D]
-    return sorted(out, key=lambda m: (-sum(m), m))
-
-
-def _echelon(rows: list[list[Any]]) -> dict[int, list[Any]]:
-    """Reduced pivot rows keyed by pivot column (Gaussian elimination over K)."""
-    pivots: dict[int, list[Any]] = {}
-    for row in rows:
-        row = _reduce(row, pivots)
-        col = next((j for j, x in enumerate(row) if not x.is_zero()), None)
-        if col is None:
-            continue
-        inv = 1 / row[col]
-        pivots[col] = [x * inv for x in row]
-    return pivots
-
-
-def _reduce(row: list[Any], pivots: dict[int, list[Any]]) -> list[Any]:
-    for col in sorted(pivots):
-        f = row[col]
-        if not f.is_zero():
-            row = [x - f * y for x, y in zip(row, pivots[col])]
-    return row
-
-
-def _member(pivots: dict[int, list[Any]], column: int, size: int, K: Any) -> bool:
-    """Whether the monomial of ``column`` lies in the row space."""
-    unit = [K(0)] * size
-    unit[column] = K(1)
-    return all(x.is_zero() for x in _reduce(unit, pivots))
-
-
 def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float) -> bool:
     """Whether p lies in the ideal of a reduced Gröbner basis: adding it leaves the
     (unique) reduced basis unchanged."""
@@ -551,7 +468,8 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> Alg
             else _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
     from flint import fmpq_poly
 
-    roots = [r for r, _ in fmpq_poly([fmpq_of(x) for x in P]).complex_roots()]
+    found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
+    roots = [r for r, _ in found]
     j = next(i for i, r in enumerate(roots) if r.overlaps(value))
     real = roots[j].imag == 0
     approx = complex(float(value.real.mid()), float(value.imag.mid()))
