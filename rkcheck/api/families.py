@@ -152,6 +152,22 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
         comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
 
 
+def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degree: int | str | None = None,
+          order: int = 6) -> Any:
+    """The energy order of the family at every point of a grid of rational parameter
+    values (``"beta=-1:1:41"``: 41 equally spaced rationals from −1 to 1; ``"gamma=1/2"``:
+    one value; every parameter needs one), each evaluated exactly from the conditions as
+    polynomials: a :class:`~rkcheck.energy.family_sweep.Sweep` (``points()``,
+    ``orders``, ``generic``)."""
+    from rkcheck.energy.family_sweep import sweep as run
+
+    fam = _family(family)
+    deg, N, _ = _orders(degree, order, None)
+    if isinstance(grids, str):
+        grids = [grids]
+    return run(fam, list(grids), deg, N)
+
+
 def _count(degree: int | None, order: int, classical: int | None) -> int:
     """How many conditions: energy conditions up to ``order`` and rooted trees up to
     ``classical``."""
@@ -167,4 +183,4 @@ def _count(degree: int | None, order: int, classical: int | None) -> int:
 
 
 __all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",
-           "family_conditions", "family_from_arrays", "is_family_file", "load_family", "solve"]
+           "family_conditions", "family_from_arrays", "is_family_file", "load_family", "solve", "sweep"]

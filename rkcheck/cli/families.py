@@ -140,18 +140,18 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
       rkcheck sweep tableaux/families/avf-s2-m3-plane.toml --grid "beta=-1:1:21" --grid "gamma=-1:1:21"
       rkcheck sweep FAMILY --grid "beta=-1:1:41" --grid "gamma=0:2:41" --plot order.png --json
     """
-    from rkcheck.api.families import _orders, load_family
-    from rkcheck.energy.family_sweep import sweep as run
+    from rkcheck.api.families import load_family
+    from rkcheck.api.families import sweep as run
 
     family = load_family(file)
     check = family.info.check
-    deg, N, _ = _orders(degree if degree is not None else check.get("degree"),
-                        order if order is not None else check.get("order", DEFAULT_FAMILY_ORDER), None)
+    deg = degree if degree is not None else check.get("degree")
+    N = order if order is not None else check.get("order", DEFAULT_FAMILY_ORDER)
     if plot is not None:
         from rkcheck.reports.charts import pyplot
 
         pyplot("--plot")  # matplotlib present: fail before the work, not after
-    result = run(family, list(grids), deg, N)
+    result = run(family, list(grids), degree=deg, order=N)
     if plot is not None:
         from rkcheck.reports.sweep import sweep_chart
 

@@ -34,6 +34,11 @@ def test_each_point_has_the_order_of_the_tableau_there(name):
         assert rkcheck.verify(fam.at(point), degree=3, order=6).energy_order == order, point
 
 
+def test_the_api_sweep_is_the_command():
+    sw = rkcheck.sweep(FAMILIES / "sweep-s2-lobatto.toml", ["beta=0:1:3", "gamma=0:1:3"], degree=3, order=4)
+    assert sw.orders == [1, 2, 1] * 3 and sw.generic == 1
+
+
 def test_the_kernel_family_is_avf_only_at_zero(capsys):
     r = run_cli(capsys, "sweep", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--grid", "beta=-1:1:9", "--json")
     assert r.code == 0, r.err
