@@ -13,10 +13,13 @@ use only the weights.  Then, with ``c = A·1`` as new unknowns:
 2. **Linear conditions.**  For one orbit, b and c are numbers of K and the double-bush
    conditions (definitions §3, with the star terms kept: they hold without assuming
    Σb = 1) and the row sums ``A·1 = c`` are linear in A: exact Gaussian elimination over
-   K gives ``A = A₀ + Σ k_f N_f``, the k_f being the entries of A on the free columns.
+   K gives ``A = A₀ + Σ k_f N_f`` — with ``A₀ = c bᵀ`` (AVF) whenever it solves them, so
+   the kernel coordinates k_f measure the distance from AVF.
 3. **The rest.**  Every condition is evaluated on that A, over K, as a polynomial in the
-   few k_f (:mod:`rkcheck.energy.family_conditions`); their Gröbner basis together with
-   φ(z) gives the orbit's solutions (or its dimension).
+   few k_f (:mod:`rkcheck.energy.family_conditions`).  Exact linear algebra over K on
+   their Macaulay matrix (:mod:`rkcheck.numbers.macaulay`) shows a power of each k_f in
+   the ideal (every k_f = 0: the orbit's one method) or 1 in it (none); failing that, a
+   Gröbner basis with z as a variable and φ(z) among the equations decides.
 
 Every step is exact and every solution of the full system lies in one orbit; nothing
 is sampled.  The raw route (one Gröbner basis of every condition in every entry) is
