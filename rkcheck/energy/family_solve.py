@@ -294,7 +294,8 @@ def solve_structured(family: Any, layout: Layout, degree: int | None, order: int
             r.component.points, r.component.real = len(found), sum(s.real for s in found)
     components = [r.component for r in results if r.component.dimension >= 0 and r.component.points != 0]
     dim = max((c.dimension for c in components), default=-1)
-    out = SolutionSet(tuple(ring.parameters), equations, [], dim, {}, solutions if dim <= 0 else None)
+    # with a positive-dimensional component, these are the points of the finite ones
+    out = SolutionSet(tuple(ring.parameters), equations, [], dim, {}, solutions)
     out.route = "structured"
     out.components = components
     out.seconds = time.monotonic() - t0
@@ -349,7 +350,9 @@ def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: in
             return OrbitResult(Component(-1))
         avf = all(p.is_zero() for p in avf_polys)
         return OrbitResult(Component(0, avf=avf), [(orbit.phi, {v: _as_z(p) for v, p in values.items()})])
-    return _kernel_system(R, rest, values, avf_polys, deadline, orbit.phi)
+    flat = [n for row in layout.A for n in row]
+    named = dict(zip(free, (flat[f] for f in sorted(kernel))))
+    return _kernel_system(R, rest, values, avf_polys, deadline, orbit.phi, named)
 
 
 def _at_orbit(p: Any, family: Any, ctx: Any, orbit: Orbit) -> Any:
@@ -390,8 +393,9 @@ def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat:
 
 
 def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: list[Any],
-                   deadline: float, phi: Any) -> OrbitResult:
-    """The conditions left in the kernel directions (with φ(z)): their solutions."""
+                   deadline: float, phi: Any, named: dict[str, str]) -> OrbitResult:
+    """The conditions left in the kernel directions (with φ(z)): their solutions.
+    ``named``: each kernel coordinate's entry of A (its free column)."""
     from flint import fmpq_poly
 
     names = tuple(R.ctx.names())
@@ -411,8 +415,10 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
         return OrbitResult(Component(-1))
     if dim > 0:
         gens = [R.ctx.from_dict(d) for d in basis]
-        avf = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
-        return OrbitResult(Component(dim, avf=avf, equations=[str(g) for g in gens]))
+        avf: bool | None = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
+        if not avf:  # certain only when the kernel coordinates are free (the basis is φ alone)
+            avf = False if all(not any(m[1:]) for g in gens for m in g.monoms()) else None
+        return OrbitResult(Component(dim, avf=avf, equations=_in_parameters(R, values, gens, named)))
     f, h = solve_zero_dimensional(basis, names, deadline)
     fz = fmpq_poly([fmpq_of(x) for x in f])
     points = []
@@ -422,6 +428,24 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
         points.append((psi, {v: _compose(p, names, coords, psi) for v, p in values.items()}))
         avf = avf and all(_compose(p, names, coords, psi).is_zero() for p in avf_polys)
     return OrbitResult(Component(0, avf=avf), points)
+
+
+def _in_parameters(R: ParameterRing, values: dict, gens: list[Any], named: dict[str, str]) -> list[Any]:
+    """A positive-dimensional orbit piece as equations in z (a root of φ, the first
+    equation) and the parameters: the kernel system's basis with each kernel coordinate
+    written as its entry of A minus that entry's value at k = 0, and every other
+    parameter equal to its value."""
+    from flint import fmpq_mpoly_ctx
+
+    params = [v for v in values if v != THETA]
+    z = "z" if "z" not in params else "z_"
+    E = fmpq_mpoly_ctx.get((z,) + tuple(params), "lex")
+    g = dict(zip(E.names(), E.gens()))
+    at_z = [g[z]] + [E.constant(0)] * (len(R.ctx.names()) - 1)
+    images = [g[z]] + [g[named[k]] - (values[named[k]] - R.parameter(k)).compose(*at_z) for k in R.ctx.names()[1:]]
+    out = [p.compose(*images) for p in gens]
+    out += [g[v] - values[v].compose(*images) for v in params if v not in named.values()]
+    return out
 
 
 def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float) -> bool:
@@ -477,8 +501,9 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> Alg
     real = roots[j].imag == 0
     approx = complex(float(value.real.mid()), float(value.imag.mid()))
     kind = "" if real else "complex "
-    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}"
-                          f"{'' if real else f' + {approx.imag:.10g}i'})", real, approx, tuple(P), value)
+    imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
+    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}{imag})", real, approx,
+                          tuple(P), value)
 
 
 def star_constant(k: int) -> Fraction:

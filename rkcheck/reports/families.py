@@ -159,6 +159,13 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     if result.dimension < 0:
         console.print(Text("no solution: the conditions are inconsistent", style="bold red"))
         return
+    if result.dimension > 0 and result.route == "structured":
+        console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the components above",
+                           style="bold"))
+        if result.solutions:
+            console.print(f"the points of the finite components ({len(result.solutions)}):")
+            _render_points(result.solutions, console)
+        return
     if result.dimension > 0:
         console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the set above", style="bold"))
         if result.components and len(result.components) > 1:
@@ -172,6 +179,10 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     sols = result.solutions or []
     real = sum(s.real for s in sols)
     console.print(Text(f"{len(sols)} solution{'s' if len(sols) != 1 else ''} ({real} real)", style="bold green"))
+    _render_points(sols, console)
+
+
+def _render_points(sols: list[Any], console: Console) -> None:
     for k, s in enumerate(sols, start=1):
         values = ", ".join(f"{name} = {v.text}" for name, v in s.values.items())
         console.print(f"  {k}. {values}{'' if s.real else '  (not real)'}")

@@ -214,3 +214,62 @@ def test_design_query_splits_into_avf_and_symmetric_weights():
     assert all(e(*values) == 0 for e in avf_piece.equations)
     other = next(c for c in res.components if not c.avf)
     assert any(e(*values) != 0 for e in other.equations)
+
+
+def test_at_order_6_the_gauss_rule_carries_non_avf_methods():
+    """A finding: at order 6 (m = 5, A and b free) the slice b1 = 5/18 through the Gauss
+    rule has, besides AVF methods, two planes of non-AVF methods over Gauss (one per
+    order of the weights). The exact engine confirms a point of one: energy order 6
+    exactly, not AVF. At order 7 the same slice is AVF only."""
+    from flint import fmpq
+
+    where = ["b1 + b2 + b3 = 1", "b1 = 5/18"]
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=where)
+    planes = [c for c in res.components if c.dimension == 2]
+    assert res.dimension == 2 and len(planes) == 2 and all(c.avf is False for c in planes)
+    # a point of the first plane: z = c1 a Gauss node, two entries chosen, the rest solved
+    eqs = planes[0].equations
+    ctx = eqs[0].context()
+    assert str(eqs[0]) == "10*z^2 - 10*z + 1"
+    free = {n for n in ctx.names() if n != "z"} - {n for e in eqs[1:] for n in [_lead_name(e)]}
+    choice = {n: fmpq(k + 1, 10) for k, n in enumerate(sorted(free))}
+    values = {}
+    for e in eqs[1:]:
+        name = _lead_name(e)
+        rest = e - ctx.gens()[ctx.names().index(name)]
+        values[name] = _text_of(-rest, choice)
+    values.update({n: str(v) for n, v in choice.items()})
+    A = [[values[f"a{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)]
+    b = [values[f"b{i}"] for i in (1, 2, 3)]
+    v = rkcheck.verify(rkcheck.from_arrays(A, b), degree=5, order=8)
+    assert v.energy_order == 6 and v.avf.verdict.state == "fails"
+    higher = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=7, where=where)
+    assert higher.dimension == 0 and all(c.avf for c in higher.components)
+
+
+def _lead_name(e) -> str:
+    """The parameter an equation of a plane is solved for: its one non-z variable with
+    coefficient 1 that no other equation uses first (lex order puts it ahead)."""
+    names = e.context().names()
+    for m, c in e.to_dict().items():
+        used = [names[i] for i, x in enumerate(m) if x]
+        if len(used) == 1 and used[0] != "z" and c == 1 and sum(m) == 1:
+            return used[0]
+    raise AssertionError(str(e))
+
+
+def _text_of(p, choice) -> str:
+    """p (linear in z and the chosen parameters) at the choice, as an entry text with
+    z = 1/2 - sqrt(15)/10."""
+    from flint import fmpq
+
+    names = p.context().names()
+    q = p.subs({n: v for n, v in choice.items() if n in names})
+    z_coeff = fmpq(0)
+    const = fmpq(0)
+    for m, c in q.to_dict().items():
+        if any(m):
+            z_coeff += c
+        else:
+            const += c
+    return f"({const}) + ({z_coeff})*(1/2 - sqrt(15)/10)"
