@@ -295,10 +295,24 @@ def solve_structured(family: Any, layout: Layout, degree: int | None, order: int
     components = [r.component for r in results if r.component.dimension >= 0 and r.component.points != 0]
     dim = max((c.dimension for c in components), default=-1)
     # with a positive-dimensional component, these are the points of the finite ones
-    out = SolutionSet(tuple(ring.parameters), equations, [], dim, {}, solutions)
+    out = SolutionSet(tuple(ring.parameters), equations, _points_basis(results, ring) if dim == 0 else [], dim, {},
+                      solutions)
     out.route = "structured"
     out.components = components
     out.seconds = time.monotonic() - t0
+    return out
+
+
+def _points_basis(results: list[OrbitResult], ring: ParameterRing) -> list[Any]:
+    """The reduced degrevlex Gröbner basis of all the solutions (θ among the variables,
+    its conjugates' solutions included, as in the plain route), from their orbits."""
+    from rkcheck.numbers.points import points_basis
+
+    names = ring.variables
+    orbits = [(psi, [values[v] % psi for v in names]) for r in results for psi, values in r.points]
+    out = []
+    for d in points_basis(orbits, len(names)):
+        out.append(ring.ctx.from_dict({m: fmpq_of(c) for m, c in d.items()}))
     return out
 
 

@@ -119,8 +119,10 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
-        # the structured route gives components, not one basis of the whole system
-        "groebner": None if result.route == "structured" else [polynomial_text(g, field) for g in shown_basis(result)],
+        # the structured route has the basis of finitely many solutions, none for a
+        # positive-dimensional set (components instead)
+        "groebner": (None if result.route == "structured" and result.dimension > 0
+                     else [polynomial_text(g, field) for g in shown_basis(result)]),
         "dimension": result.dimension,
         "route": result.route,
         "components": None if result.components is None else [component_doc(c, field) for c in result.components],
@@ -192,6 +194,10 @@ def _render_components(result: Any, console: Console) -> None:
     """The structured route: quadrature conditions first, then the conditions linear in A
     per solution orbit of the nodes, then the rest (docs/families.md)."""
     comps = result.components or []
+    basis = shown_basis(result)
+    if basis:
+        console.print(f"reduced Gröbner basis of the solutions (degree reverse lexicographic): {len(basis)} "
+                      "polynomials (--format json lists them)")
     console.print(f"structured route: quadrature conditions, then the conditions linear in A, per orbit of "
                   f"nodes; {len(comps)} component{'s' if len(comps) != 1 else ''}")
     for k, c in enumerate(comps, start=1):
