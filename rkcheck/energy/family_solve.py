@@ -45,17 +45,13 @@ from rkcheck.numbers.groebner import (
 from rkcheck.numbers.macaulay import forced_zero
 from rkcheck.numbers.parametric import THETA, ParameterRing
 from rkcheck.numbers.solving import (
-    AlgebraicValue,
     Component,
     Solution,
     SolutionSet,
     _compose,
-    _coordinate,
-    _is_the_field_generator,
     _minpoly_in,
-    _poly_text,
     eliminate_linear,
-    root_value,
+    orbit_solutions,
 )
 
 
@@ -288,7 +284,7 @@ def solve_structured(family: Any, layout: Layout, degree: int | None, order: int
     results = [_solve_orbit(family, layout, o, ctx, degree, order, classical, deadline) for o in orbits]
     solutions: list[Solution] = []
     for r in results:
-        found = _points(r.points, ring, theta)
+        found = orbit_solutions(r.points, ring.parameters, theta, ring.field)
         solutions += found
         if r.component.dimension == 0:
             r.component.points, r.component.real = len(found), sum(s.real for s in found)
@@ -429,10 +425,10 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
         return OrbitResult(Component(-1))
     if dim > 0:
         gens = [R.ctx.from_dict(d) for d in basis]
-        avf: bool | None = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
-        if not avf:  # certain only when the kernel coordinates are free (the basis is φ alone)
-            avf = False if all(not any(m[1:]) for g in gens for m in g.monoms()) else None
-        return OrbitResult(Component(dim, avf=avf, equations=_in_parameters(R, values, gens, named)))
+        flag: bool | None = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
+        if not flag:  # certain only when the kernel coordinates are free (the basis is φ alone)
+            flag = False if all(not any(m[1:]) for g in gens for m in g.monoms()) else None
+        return OrbitResult(Component(dim, avf=flag, equations=_in_parameters(R, values, gens, named)))
     f, h = solve_zero_dimensional(basis, names, deadline)
     fz = fmpq_poly([fmpq_of(x) for x in f])
     points = []
@@ -473,51 +469,6 @@ def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float
 
 def sorted_items(d: dict) -> list:
     return sorted(d.items())
-
-
-def _points(pieces: list[tuple[Any, dict[str, Any]]], ring: ParameterRing, theta: str | None) -> list[Solution]:
-    """The solutions of each orbit piece ψ: one per root of ψ whose θ is the family's."""
-    out = []
-    for psi, values in pieces:
-        minimal: dict[str, list[Fraction] | None] = {}
-        for k, (root, _) in enumerate(psi.complex_roots()):
-            vals = {v: _value(p % psi, psi, root, k, minimal, v) for v, p in values.items()}
-            if theta is not None and not _is_the_field_generator(vals[theta], ring.field):
-                continue
-            real = all(x.real for x in vals.values())
-            out.append(Solution({v: vals[v] for v in ring.parameters}, real))
-    return out
-
-
-def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> AlgebraicValue:
-    """A coordinate ``p(z)`` at a root of ψ, shown through its own minimal polynomial
-    (rational, a square-root closed form, or a numbered root of it) rather than as a
-    polynomial in z: in a field of degree 8 the coordinates of A = c bᵀ have degree 4."""
-    if p.degree() <= 0 or psi.degree() <= 2:
-        return _coordinate(p, psi, root, k)
-    if name not in minimal:
-        from rkcheck.numbers.algebraic import NumberField
-
-        K = NumberField([Fraction(int(x.p), int(x.q)) for x in psi.coeffs()], 1, name="z")
-        minimal[name] = K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]).minimal_polynomial()
-    P = minimal[name]
-    value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
-    if len(P) <= 3:
-        from flint import fmpq_poly
-
-        return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), value, 0) if len(P) == 3 \
-            else _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
-    from flint import fmpq_poly
-
-    found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
-    roots = [r for r, _ in found]
-    j = next(i for i, r in enumerate(roots) if r.overlaps(value))
-    real = roots[j].imag == 0
-    approx = complex(float(value.real.mid()), float(value.imag.mid()))
-    kind = "" if real else "complex "
-    imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
-    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}{imag})", real, approx,
-                          tuple(P), value)
 
 
 def star_constant(k: int) -> Fraction:
