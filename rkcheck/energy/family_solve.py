@@ -35,6 +35,7 @@ from math import factorial
 from typing import Any, Sequence
 
 from rkcheck.numbers.groebner import (
+    SolveLimitError,
     dimension,
     fmpq_of,
     groebner,
@@ -281,7 +282,12 @@ def solve_structured(family: Any, layout: Layout, degree: int | None, order: int
     orbits = finite_orbits(polys, ctx, theta, ring.field, deadline)
     if orbits is None:
         return None
-    results = [_solve_orbit(family, layout, o, ctx, degree, order, classical, deadline) for o in orbits]
+    results = []
+    for o in orbits:
+        if time.monotonic() > deadline:  # the steps between Gröbner bases count against the limit too
+            raise SolveLimitError("the structured route did not finish within the time limit (--max-seconds); "
+                                  "fix more parameters, lower --order or --degree, or raise the limit")
+        results.append(_solve_orbit(family, layout, o, ctx, degree, order, classical, deadline))
     solutions: list[Solution] = []
     for r in results:
         found = orbit_solutions(r.points, ring.parameters, theta, ring.field)

@@ -28,7 +28,7 @@ def _order_key(m: tuple[int, ...]) -> tuple:
 def points_basis(orbits: Sequence[tuple[Any, Sequence[Any]]], n: int) -> list[dict[tuple[int, ...], Fraction]]:
     """The reduced degrevlex basis of the ideal of the points (``orbits``: ψ and the n
     coordinates as fmpq_poly in w), as dicts monomial → coefficient (leading
-    coefficient 1)."""
+    coefficient 1); empty beyond MAX_POINTS points."""
     from flint import fmpq_poly
 
     sizes = [psi.degree() for psi, _ in orbits]

@@ -121,7 +121,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
         # the structured route has the basis of finitely many solutions, none for a
         # positive-dimensional set (components instead)
-        "groebner": (None if result.route == "structured" and result.dimension > 0
+        "groebner": (None if result.route == "structured" and (result.dimension > 0 or not result.groebner)
                      else [polynomial_text(g, field) for g in shown_basis(result)]),
         "dimension": result.dimension,
         "route": result.route,
