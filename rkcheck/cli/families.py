@@ -83,6 +83,7 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     \b
     Examples:
       rkcheck solve tableaux/families/theorem1-s2-m3.toml --degree 3 --order 6
+      rkcheck solve tableaux/families/theorem1-s4-m8.toml --degree 8 --order 9
       rkcheck solve family.toml -m 5 -N 6 --where "b1 + b2 + b3 = 1" --format json
     """
     from rkcheck.api.families import load_family
@@ -137,7 +138,7 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
 
     \b
     Examples:
-      rkcheck sweep tableaux/families/avf-s2-m3-plane.toml --grid "beta=-1:1:21" --grid "gamma=-1:1:21"
+      rkcheck sweep tableaux/families/sweep-s2-lobatto.toml --grid "beta=-1:1:21" --grid "gamma=0:1:21"
       rkcheck sweep FAMILY --grid "beta=-1:1:41" --grid "gamma=0:2:41" --plot order.png --json
     """
     from rkcheck.api.families import load_family
