@@ -19,27 +19,36 @@ CASES = [
     ("theorem1-s2-m4.toml", 4, 6),
     ("seed-kernel-zeta-0.toml", 3, 6),
     ("theorem1-s3-m6.toml", 6, 7),
+    ("theorem1-s4-m8.toml", 8, 9),
+    ("theorem1-s3-m5.toml", 5, 6),  # a slice of the curve of rules: b1 fixed (WHERE)
 ]
+#: Extra equations per family.
+WHERE = {"theorem1-s3-m5.toml": ["b1 + b2 + b3 = 1", "b1 = 1/4"]}
+#: The plain route (one Gröbner basis of every condition) as well, where it finishes.
+PLAIN = {"theorem1-s2-m3.toml", "theorem1-s2-m4.toml", "theorem1-s3-m6.toml"}
 CHILD = """
 import json, sys, time
 sys.path.insert(0, {root!r})
 import rkcheck
 t0 = time.perf_counter()
-res = rkcheck.solve({path!r}, degree={degree}, order={order})
+res = rkcheck.solve({path!r}, degree={degree}, order={order}, route={route!r}, where={where!r})
 print(json.dumps({{"seconds": time.perf_counter() - t0, "equations": res.equations, "dimension": res.dimension,
-                  "solutions": len(res.solutions or [])}}))
+                  "solutions": len(res.solutions or []), "route": res.route}}))
 """
 
 
 def main() -> None:
-    print(f"{'family':28} {'m':>2} {'N':>2} {'equations':>9} {'dim':>3} {'solutions':>9} {'seconds':>8}")
+    print(f"{'family':28} {'m':>2} {'N':>2} {'route':>10} {'equations':>9} {'dim':>3} {'solutions':>9} "
+          f"{'seconds':>8}")
     for name, degree, order in CASES:
         path = str(ROOT / "tableaux" / "families" / name)
-        code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order)
-        out = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                                        check=True).stdout)
-        print(f"{name:28} {degree:>2} {order:>2} {out['equations']:>9} {out['dimension']:>3} "
-              f"{out['solutions']:>9} {out['seconds']:>8.2f}")
+        for route in ("auto", "plain") if name in PLAIN else ("auto",):
+            code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order, route=route,
+                                where=WHERE.get(name, []))
+            out = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                            check=True).stdout)
+            print(f"{name:28} {degree:>2} {order:>2} {out['route']:>10} {out['equations']:>9} {out['dimension']:>3} "
+                  f"{out['solutions']:>9} {out['seconds']:>8.2f}")
 
 
 if __name__ == "__main__":

@@ -23,6 +23,8 @@ from rkcheck.options import (
 #: The largest order ``solve`` and the polynomial conditions go to (their size grows
 #: quickly with it: order 9 has 1 842 rooted trees, each a polynomial of degree 9).
 MAX_FAMILY_ORDER = 12
+#: How ``solve`` may go (see :func:`solve`).
+ROUTES = ("auto", "structured", "plain")
 #: The time limit of ``solve`` (seconds), and the range the option accepts.
 MAX_SECONDS_RANGE = (1, 86_400)
 
@@ -75,12 +77,19 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
 
 def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, order: int,
           classical_order: int | None = None, where: Sequence[str] = (),
-          max_seconds: float = 60) -> SolutionSet:
+          max_seconds: float = 60, route: str = "auto") -> SolutionSet:
     """The exact solution set of every energy condition up to ``order`` (degree ≤
     ``degree``), the classical order conditions up to ``classical_order`` and the extra
     equations ``where`` (``"a11 = a22"``): a reduced Gröbner basis, the dimension, and
-    for finitely many solutions each one exactly (:mod:`rkcheck.numbers.solving`)."""
+    for finitely many solutions each one exactly (:mod:`rkcheck.numbers.solving`).
+
+    ``route``: ``"auto"`` takes the structured route (:mod:`rkcheck.energy.family_solve`:
+    quadrature conditions, then the conditions linear in A) when it applies and the
+    plain one otherwise; ``"plain"`` always one Gröbner basis of every condition;
+    ``"structured"`` refuses a family it does not apply to."""
     from rkcheck.energy.family_conditions import family_conditions as compute
+    from rkcheck.energy.family_solve import layout_of, solve_structured
+    from rkcheck.numbers.groebner import SolveLimitError
     from rkcheck.numbers.parametric import THETA
     from rkcheck.numbers.solving import solve_system
 
@@ -93,11 +102,85 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     if isinstance(where, str):
         where = [where]
     extra = [fam.equation(w) for w in where]
+    theta = THETA if fam.ring.field is not None else None
+    if route not in ROUTES:
+        raise OptionError(f"expected one of {', '.join(ROUTES)}, got {route!r}", "route")
+    layout = layout_of(fam, extra) if route != "plain" else None
+    if layout is not None:
+        found = solve_structured(fam, layout, deg, N, q, extra, seconds, _count(deg, N, q) + len(extra))
+        if found is not None:
+            return found
+        hint = ("; the quadrature conditions leave infinitely many weights and nodes, so the structured route "
+                "does not apply: fix a weight with --where (e.g. \"b1 = 1/4\") to solve that slice")
+    else:
+        hint = ""
+    if route == "structured":
+        raise OptionError("the structured route needs A free (each entry its own parameter), weights that are "
+                          "numbers or their own parameters, --where equations in the weights only, and finitely "
+                          "many solutions of the quadrature conditions", "route")
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
-    theta = THETA if fam.ring.field is not None else None
-    return solve_system(polys, theta, fam.ring.field, seconds)
+    try:
+        result = solve_system(polys, theta, fam.ring.field, seconds)
+    except SolveLimitError as err:
+        if not hint:
+            raise
+        raise SolveLimitError(err.message + hint) from None
+    if result.pieces:
+        _avf_on_pieces(fam, result, seconds)
+    return result
+
+
+def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
+    """Whether A − (A·1) bᵀ lies in the ideal of each piece (True), else not decided
+    (None: it may still vanish on the piece without lying in its ideal)."""
+    import time
+
+    from rkcheck.numbers.decompose import contains
+    from rkcheck.numbers.groebner import integer_dicts
+
+    deadline = time.monotonic() + seconds
+    ctx = fam.ring.ctx
+    names = tuple(ctx.names())
+    images = [ctx.gens()[i] if n not in result.eliminated else result.eliminated[n] for i, n in enumerate(names)]
+    keep = [names.index(n) for n in result.rest]
+    s = fam.stages
+    gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j]) for i in range(s) for j in range(s)]
+    gaps = [g.compose(*images) for g in gaps]
+    dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in integer_dicts([g for g in gaps if not g.is_zero()])]
+    for piece, comp in zip(result.pieces or [], result.components or []):
+        comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
+
+
+def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degree: int | str | None = None,
+          order: int = 6) -> Any:
+    """The energy order of the family at every point of a grid of rational parameter
+    values (``"beta=-1:1:41"``: 41 equally spaced rationals from −1 to 1; ``"gamma=1/2"``:
+    one value; every parameter needs one), each evaluated exactly from the conditions as
+    polynomials: a :class:`~rkcheck.energy.family_sweep.Sweep` (``points()``,
+    ``orders``, ``generic``)."""
+    from rkcheck.energy.family_sweep import sweep as run
+
+    fam = _family(family)
+    deg, N, _ = _orders(degree, order, None)
+    if isinstance(grids, str):
+        grids = [grids]
+    return run(fam, list(grids), deg, N)
+
+
+def _count(degree: int | None, order: int, classical: int | None) -> int:
+    """How many conditions: energy conditions up to ``order`` and rooted trees up to
+    ``classical``."""
+    from rkcheck.trees.listing import condition_listing
+    from rkcheck.trees.table import TreeTable
+
+    total = len(condition_listing(order, degree))
+    if classical is not None:
+        table = TreeTable(1)
+        table.grow_to(classical)
+        total += int(table.first[classical + 1] - table.first[1])
+    return total
 
 
 __all__ = ["AlgebraicValue", "Family", "FamilyConditions", "PolynomialCondition", "Solution", "SolutionSet",
-           "family_conditions", "family_from_arrays", "is_family_file", "load_family", "solve"]
+           "family_conditions", "family_from_arrays", "is_family_file", "load_family", "solve", "sweep"]

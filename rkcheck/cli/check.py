@@ -159,11 +159,12 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     from rkcheck.api.trees import conditions as list_conditions
 
     if file is not None:
-        if emit is not None or count or stages or explicit or output:
-            raise UserError("with a FAMILY file: --order, --degree, --classical and --format only")
+        if count or stages or explicit or (output and emit is None):
+            raise UserError("with a FAMILY file: --order, --degree, --classical, --format, --emit and --output only")
         from rkcheck.cli.families import family_report
 
-        family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True)
+        family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True,
+                      emit=emit, output=output)
         return
     if emit is None and (classical or stages or explicit or output):
         raise UserError("--classical, --stages, --explicit and --output go with --emit")

@@ -19,7 +19,8 @@ from rkcheck.cli.common import (
 DEFAULT_FAMILY_ORDER = 6
 
 
-def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool) -> None:
+def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
+                  emit: str | None = None, output: str | None = None) -> None:
     """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
     line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
@@ -34,6 +35,14 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     classical = order if classical_order == "order" else classical_order
     assert classical is None or isinstance(classical, int)
     result = family_conditions(family, degree=degree, order=order, classical_order=classical)
+    if emit is not None:  # the polynomials as code (rkcheck.reports.family_code)
+        from rkcheck.errors import UserError
+        from rkcheck.reports.family_code import FAMILY_LANGUAGES, emit_family
+
+        if emit not in FAMILY_LANGUAGES:
+            raise UserError(f"--emit {emit}: a family's conditions are written in {', '.join(FAMILY_LANGUAGES)}")
+        write_text(emit_family(result, emit), output)
+        return
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
         from rkcheck.reports.jsondoc import dumps
@@ -55,11 +64,14 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
               help="An extra equation in the parameters, e.g. \"a11 = a22\" or \"b1 + b2 + b3 = 1\" (repeatable).")
 @click.option("--max-seconds", type=click.IntRange(1, 86_400), default=60, show_default=True,
               help="Time limit of the Gröbner bases; beyond it, a one-line error.")
+@click.option("--route", type=click.Choice(["auto", "structured", "plain"]), default="auto", show_default=True,
+              help="structured: quadrature conditions, then the conditions linear in A (A free); plain: one "
+                   "Gröbner basis of every condition; auto: structured where it applies.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
               help="Write the report to this file.")
 @output_options
-def solve(file, degree, order, classical_order, where, max_seconds, fmt, output) -> None:
+def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, output) -> None:
     """The exact solution set of a family's conditions: every energy condition up to
     --order for Hamiltonians of degree <= --degree (plus --classical-order and --where
     equations), as a reduced Gröbner basis, its dimension, and every solution exactly
@@ -71,6 +83,7 @@ def solve(file, degree, order, classical_order, where, max_seconds, fmt, output)
     \b
     Examples:
       rkcheck solve tableaux/families/theorem1-s2-m3.toml --degree 3 --order 6
+      rkcheck solve tableaux/families/theorem1-s4-m8.toml --degree 8 --order 9
       rkcheck solve family.toml -m 5 -N 6 --where "b1 + b2 + b3 = 1" --format json
     """
     from rkcheck.api.families import load_family
@@ -79,12 +92,13 @@ def solve(file, degree, order, classical_order, where, max_seconds, fmt, output)
     check_output_target(output)
     family = load_family(file)
     result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
-                 max_seconds=max_seconds)
+                 max_seconds=max_seconds, route=route)
     if fmt == "json":
         from rkcheck.reports.families import solve_doc
         from rkcheck.reports.jsondoc import dumps
 
-        options = {"degree": degree, "order": order, "classical_order": classical_order, "where": list(where)}
+        options = {"degree": degree, "order": order, "classical_order": classical_order, "where": list(where),
+                   "route": route}
         text = dumps(solve_doc(family, result, options))
         if output:
             write_text(text + "\n", output)
@@ -103,3 +117,52 @@ def solve(file, degree, order, classical_order, where, max_seconds, fmt, output)
         write_text(buffer.getvalue(), output)
         return
     render_solution_set(family, result, stdout_console())
+
+
+@click.command(epilog=exit_codes(usage="a bad file, grid or option, or matplotlib missing for --plot (one line on stderr)"))
+@click.argument("file", metavar="FILE")
+@click.option("--grid", "grids", multiple=True, required=True, metavar="NAME=LO:HI:N",
+              help="N equally spaced rational values of a parameter from LO to HI (or NAME=VALUE: one value); "
+                   "every parameter needs one.")
+@click.option("--degree", "-m", type=DEGREE, default=None, help="Polynomial degree m (default: the file's [check]).")
+@click.option("--order", "-N", type=click.IntRange(1, 12), default=None,
+              help="Energy order checked at each point (default: the file's [check], else 6).")
+@click.option("--plot", metavar="OUT.png|.svg|.pdf", default=None, help="Chart the energy order over the grid "
+              "(needs matplotlib: rkcheck[plot]).")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--json", "as_json", is_flag=True, help="Same as --format json.")
+@output_options
+def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
+    """The energy order of a family at every point of a grid of parameter values, each
+    evaluated exactly (rational grid points, the conditions as exact polynomials).
+
+    \b
+    Examples:
+      rkcheck sweep tableaux/families/sweep-s2-lobatto.toml --grid "beta=-1:1:21" --grid "gamma=0:1:21"
+      rkcheck sweep FAMILY --grid "beta=-1:1:41" --grid "gamma=0:2:41" --plot order.png --json
+    """
+    from rkcheck.api.families import load_family
+    from rkcheck.api.families import sweep as run
+
+    family = load_family(file)
+    check = family.info.check
+    deg = degree if degree is not None else check.get("degree")
+    N = order if order is not None else check.get("order", DEFAULT_FAMILY_ORDER)
+    if plot is not None:
+        from rkcheck.reports.charts import pyplot
+
+        pyplot("--plot")  # matplotlib present: fail before the work, not after
+    result = run(family, list(grids), degree=deg, order=N)
+    if plot is not None:
+        from rkcheck.reports.sweep import sweep_chart
+
+        sweep_chart(result, plot)
+    if fmt == "json" or as_json:
+        from rkcheck.reports.jsondoc import dumps
+        from rkcheck.reports.sweep import sweep_doc
+
+        click.echo(dumps(sweep_doc(result)))
+        return
+    from rkcheck.reports.sweep import render_sweep
+
+    render_sweep(result, stdout_console())

@@ -88,7 +88,15 @@ class ParameterRing:
 
 
 def uses(node: ex.Expr, names: set[str]) -> bool:
-    return any(n.name in names for n in ex.names(node))
+    """Whether the expression uses one of ``names`` — also inside a root's polynomial,
+    whose names the grammar keeps apart (its x is bound), so that ``root(x^2 - beta, 2)``
+    counts as using beta."""
+    for n in ex.walk(node):
+        if isinstance(n, ex.Name) and n.name in names:
+            return True
+        if isinstance(n, ex.Call) and n.func == "root" and n.args and uses(n.args[0], names):
+            return True
+    return False
 
 
 def parameter_closure(constants: Mapping[str, ex.Expr], parameters: Sequence[str]) -> set[str]:

@@ -33,7 +33,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import Any, Sequence
 
 from rkcheck.numbers.groebner import (
     MAX_SOLVE_SECONDS,
@@ -62,6 +62,20 @@ class AlgebraicValue:
     ball: Any = None  # a certified complex enclosure (flint acb)
 
 
+@dataclass
+class Component:
+    """One piece of the solution set: ``dimension``, the number of points when finite
+    (complex, counted with the family's own field generator), the real ones, whether
+    ``A = (A·1) bᵀ`` on all of it (None: not decided), and its defining equations
+    (polynomials in the parameters, or texts) when it is positive-dimensional."""
+
+    dimension: int
+    points: int | None = None
+    real: int | None = None
+    avf: bool | None = None
+    equations: list[Any] = field(default_factory=list)
+
+
 @dataclass(frozen=True)
 class Solution:
     values: dict[str, AlgebraicValue]
@@ -83,6 +97,14 @@ class SolutionSet:
     eliminated: dict[str, Any] = field(default_factory=dict)
     solutions: list[Solution] | None = None
     seconds: float = 0.0
+    #: "plain" (one Gröbner basis of every condition) or "structured"
+    #: (:mod:`rkcheck.energy.family_solve`: quadrature conditions first, no single basis)
+    route: str = "plain"
+    #: the pieces of the solution set: the orbits of the structured route, or the pieces
+    #: of a positive-dimensional set split along factors (:mod:`rkcheck.numbers.decompose`)
+    components: list[Any] | None = None
+    pieces: list[Any] | None = None
+    rest: tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         found = "" if self.solutions is None else f", {len(self.solutions)} solutions"
@@ -166,6 +188,14 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
     gb = [_from_dict(ctx, names, keep, d) for d in basis]
     gb = [ctx.gens()[names.index(v)] - e for v, e in subs.items()] + gb
     out = SolutionSet(params, equations, gb, dim, subs)
+    if dim > 0:
+        from rkcheck.numbers.decompose import as_polynomials, split
+
+        out.pieces = split(basis, rest, deadline)
+        eliminated = [ctx.gens()[names.index(v)] - e for v, e in subs.items()]
+        out.components = [Component(p.dimension, equations=eliminated + as_polynomials(p, ctx, rest))
+                          for p in out.pieces]
+        out.rest = rest
     if dim == 0:
         f, h = solve_zero_dimensional(basis, rest, deadline)
         out.solutions = _solutions(f, h, rest, subs, ctx, theta, field)
@@ -340,3 +370,53 @@ def _is_the_field_generator(value: AlgebraicValue, field: Any) -> bool:
     if any(ball.overlaps(r) for r in others):
         raise SolveLimitError("cannot tell the field generator from its conjugates at this precision")
     return True
+
+
+# ------------------------------------------------------------------ orbits of solutions
+
+
+def orbit_solutions(pieces: list[tuple[Any, dict[str, Any]]], parameters: Sequence[str], theta: str | None,
+                    field: Any) -> list[Solution]:
+    """The solutions of each orbit piece (ψ, variable → polynomial in w): one per root of
+    ψ whose θ is the family's (``theta``: the generator's name, ``field`` its field)."""
+    out = []
+    for psi, values in pieces:
+        minimal: dict[str, list[Fraction] | None] = {}
+        for k, (root, _) in enumerate(psi.complex_roots()):
+            vals = {v: _value(p % psi, psi, root, k, minimal, v) for v, p in values.items()}
+            if theta is not None and not _is_the_field_generator(vals[theta], field):
+                continue
+            real = all(x.real for x in vals.values())
+            out.append(Solution({v: vals[v] for v in parameters}, real))
+    return out
+
+
+def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> AlgebraicValue:
+    """A coordinate ``p(z)`` at a root of ψ, shown through its own minimal polynomial
+    (rational, a square-root closed form, or a numbered root of it) rather than as a
+    polynomial in z: in a field of degree 8 the coordinates of A = c bᵀ have degree 4."""
+    if p.degree() <= 0 or psi.degree() <= 2:
+        return _coordinate(p, psi, root, k)
+    if name not in minimal:
+        from rkcheck.numbers.algebraic import NumberField
+
+        K = NumberField([Fraction(int(x.p), int(x.q)) for x in psi.coeffs()], 1, name="z")
+        minimal[name] = K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]).minimal_polynomial()
+    P = minimal[name]
+    value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
+    if len(P) <= 3:
+        from flint import fmpq_poly
+
+        return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), value, 0) if len(P) == 3 \
+            else _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
+    from flint import fmpq_poly
+
+    found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
+    roots = [r for r, _ in found]
+    j = next(i for i, r in enumerate(roots) if r.overlaps(value))
+    real = roots[j].imag == 0
+    approx = complex(float(value.real.mid()), float(value.imag.mid()))
+    kind = "" if real else "complex "
+    imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
+    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}{imag})", real, approx,
+                          tuple(P), value)

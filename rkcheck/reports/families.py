@@ -119,12 +119,31 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
-        "groebner": [polynomial_text(g, field) for g in shown_basis(result)],
+        # the structured route has the basis of finitely many solutions, none for a
+        # positive-dimensional set (components instead)
+        "groebner": (None if result.route == "structured" and (result.dimension > 0 or not result.groebner)
+                     else [polynomial_text(g, field) for g in shown_basis(result)]),
         "dimension": result.dimension,
+        "route": result.route,
+        "components": None if result.components is None else [component_doc(c, field) for c in result.components],
+        "avf_on_every_component": avf_everywhere(result),
         "solutions": None if result.solutions is None else [
             {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
         "seconds": round(result.seconds, 3),
     }
+
+
+def component_doc(c: Any, field: Any = None) -> dict[str, Any]:
+    return {"dimension": c.dimension, "points": c.points, "real": c.real, "avf": c.avf,
+            "equations": [e if isinstance(e, str) else polynomial_text(e, field) for e in c.equations]}
+
+
+def avf_everywhere(result: Any) -> bool | None:
+    """Whether A = (A·1) bᵀ on every component (None: not decided, or no components)."""
+    if not result.components:
+        return None
+    flags = [c.avf for c in result.components]
+    return None if any(f is None for f in flags) else all(flags)
 
 
 def render_solution_set(family: Any, result: Any, console: Console) -> None:
@@ -133,18 +152,65 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
     note = _field_note(field)
     if note:
         console.print(note)
-    console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
-    for g in shown_basis(result):
-        console.print(f"  {polynomial_text(g, field)} = 0")
+    if result.route == "structured":
+        _render_components(result, console)
+    else:
+        console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
+        for g in shown_basis(result):
+            console.print(f"  {polynomial_text(g, field)} = 0")
     if result.dimension < 0:
         console.print(Text("no solution: the conditions are inconsistent", style="bold red"))
         return
+    if result.dimension > 0 and result.route == "structured":
+        console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the components above",
+                           style="bold"))
+        if result.solutions:
+            console.print(f"the points of the finite components ({len(result.solutions)}):")
+            _render_points(result.solutions, console)
+        return
     if result.dimension > 0:
         console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the set above", style="bold"))
+        if result.components and len(result.components) > 1:
+            console.print(f"split along factors into {len(result.components)} pieces (each solution lies in one; "
+                          "a piece is not proven irreducible):")
+            _render_pieces(result, console, field)
+        elif result.components:
+            avf = {True: "A = (A·1) bᵀ on all of it (AVF)", False: "not A = (A·1) bᵀ", None: ""}[result.components[0].avf]
+            console.print(f"no basis element factors: one piece{', ' + avf if avf else ''}")
         return
     sols = result.solutions or []
     real = sum(s.real for s in sols)
     console.print(Text(f"{len(sols)} solution{'s' if len(sols) != 1 else ''} ({real} real)", style="bold green"))
+    _render_points(sols, console)
+
+
+def _render_points(sols: list[Any], console: Console) -> None:
     for k, s in enumerate(sols, start=1):
         values = ", ".join(f"{name} = {v.text}" for name, v in s.values.items())
         console.print(f"  {k}. {values}{'' if s.real else '  (not real)'}")
+
+
+def _render_components(result: Any, console: Console) -> None:
+    """The structured route: quadrature conditions first, then the conditions linear in A
+    per solution orbit of the nodes, then the rest (docs/families.md)."""
+    comps = result.components or []
+    basis = shown_basis(result)
+    if basis:
+        console.print(f"reduced Gröbner basis of the solutions (degree reverse lexicographic): {len(basis)} "
+                      "polynomials (--format json lists them)")
+    console.print(f"structured route: quadrature conditions, then the conditions linear in A, per orbit of "
+                  f"nodes; {len(comps)} component{'s' if len(comps) != 1 else ''}")
+    for k, c in enumerate(comps, start=1):
+        what = f"{c.points} point{'s' if c.points != 1 else ''}" if c.dimension == 0 else f"dimension {c.dimension}"
+        avf = {True: "A = (A·1) bᵀ (AVF)", False: "not A = (A·1) bᵀ", None: "AVF not decided"}[c.avf]
+        console.print(f"  component {k}: {what}, {avf}")
+        for e in c.equations:
+            console.print(f"    {e} = 0")
+
+
+def _render_pieces(result: Any, console: Console, field: Any) -> None:
+    for k, c in enumerate(result.components, start=1):
+        avf = {True: ", A = (A·1) bᵀ (AVF)", False: ", not A = (A·1) bᵀ", None: ""}[c.avf]
+        console.print(f"  piece {k}: dimension {c.dimension}{avf}")
+        for e in c.equations:
+            console.print(f"    {e if isinstance(e, str) else polynomial_text(e, field)} = 0")

@@ -81,3 +81,19 @@ def test_dimension_from_leading_monomials_by_hand():
     assert dimension([(2, 0)], 2) == 1
     assert dimension([(0, 0)], 2) == -1
     assert dimension([(1, 0, 0), (0, 1, 0), (0, 0, 3)], 3) == 0
+
+
+def test_split_along_factors_gives_each_line_of_a_cross():
+    import time
+
+    from rkcheck.numbers.decompose import contains, split
+    from rkcheck.numbers.groebner import groebner
+
+    names = ("x", "y", "z")
+    # V(x·y, z): the two lines x = z = 0 and y = z = 0
+    basis = groebner([{(1, 1, 0): 1}, {(0, 0, 1): 1}], names, "degrevlex", time.monotonic() + 30)
+    pieces = split(basis, names, time.monotonic() + 30)
+    assert sorted(sorted(map(lambda d: tuple(sorted(d.items())), p.basis)) for p in pieces) == [
+        [(((0, 0, 1), 1),), (((0, 1, 0), 1),)], [(((0, 0, 1), 1),), (((1, 0, 0), 1),)]]
+    assert all(p.dimension == 1 for p in pieces)
+    assert contains(pieces[0], {(1, 1, 0): 1}, names, time.monotonic() + 30)

@@ -1,0 +1,64 @@
+"""Bad input to the family commands: each a one-line error naming the place, exit 2, no
+partial output."""
+
+from __future__ import annotations
+
+import pytest
+from support.clirun import run_cli
+from support.paths import TABLEAUX
+
+from rkcheck.numbers.parametric import MAX_PARAMETERS
+
+FAMILIES = TABLEAUX / "families"
+
+
+def _one_line(r, *words):
+    assert r.code == 2 and r.err.count("\n") == 1 and not r.out, (r.code, r.out, r.err)
+    for w in words:
+        assert w in r.err, r.err
+
+
+def test_too_many_parameters(capsys, tmp_path):
+    n = MAX_PARAMETERS + 1
+    names = [f"p{k}" for k in range(n)]
+    path = tmp_path / "many.toml"
+    entries = ", ".join(f'"{x}"' for x in names[:1])
+    path.write_text("[parameters]\n" + "\n".join(f'{x} = "free"' for x in names)
+                    + f"\n[tableau]\nA = [[{entries}]]\nb = [\"1\"]\n", encoding="utf-8")
+    _one_line(run_cli(capsys, "solve", str(path), "--degree", "2", "--order", "2"), "MAX_PARAMETERS", str(n))
+
+
+@pytest.mark.parametrize(("equation", "words"), [
+    ("a11 = delta", ["unknown name 'delta'", "--where"]),
+    ("sqrt(a11) = 1", ["a parameter under sqrt", "--where"]),
+    ("2^a11 = 1", ["a parameter in an exponent", "--where"]),
+    ("a11 = (1", ["cannot read the equation", "--where"]),
+])
+def test_bad_where_equations(capsys, equation, words):
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
+                "--where", equation)
+    _one_line(r, *words)
+
+
+def test_parameter_under_root_in_a_constant(capsys, tmp_path):
+    path = tmp_path / "c.toml"
+    path.write_text('[parameters]\nbeta = "free"\n[constants]\nk = "root(x^2 - beta, 2)"\n'
+                    '[tableau]\nA = [["k"]]\nb = ["1"]\n', encoding="utf-8")
+    _one_line(run_cli(capsys, "verify", str(path)), "constants.k")
+
+
+def test_time_limit_prints_nothing_partial(capsys):
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "5", "--order", "6",
+                "--where", "b1 + b2 + b3 = 1", "--max-seconds", "1", "--format", "json")
+    _one_line(r, "time limit")
+
+
+def test_unknown_route_and_structured_on_a_family_it_does_not_fit(capsys):
+    r = run_cli(capsys, "solve", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--degree", "3", "--order", "6",
+                "--route", "structured")
+    _one_line(r, "structured route needs A free")
+
+
+def test_emit_with_a_family_needs_a_family_language(capsys):
+    r = run_cli(capsys, "conditions", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--order", "4", "--emit", "matlab")
+    _one_line(r, "python, sympy, julia, latex")

@@ -1,0 +1,302 @@
+"""The structured route of ``solve`` (quadrature conditions, then the conditions linear in
+A): its formulas against the condition engine, its answers against the plain route, and
+the seed's Theorem 1 for four stages (m = 8) against the AVF tableaux of the 4-point
+Gauss rule."""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import pytest
+from support.paths import TABLEAUX
+
+import rkcheck
+from rkcheck.energy.family_solve import double_bush_rows, star_constant
+
+FAMILIES = TABLEAUX / "families"
+
+
+def _proportional(p, q) -> bool:
+    """p = r·q for a nonzero rational r."""
+    if p.is_zero() or q.is_zero():
+        return p.is_zero() and q.is_zero()
+    r = p.leading_coefficient() / q.leading_coefficient()
+    return p == q * r
+
+
+def _free_family(s: int):
+    A = [[f"a{i}{j}" for j in range(1, s + 1)] for i in range(1, s + 1)]
+    b = [f"b{i}" for i in range(1, s + 1)]
+    return rkcheck.family_from_arrays(A, b, parameters=[x for row in A for x in row] + b)
+
+
+def test_star_and_double_bush_formulas_are_the_engines_conditions():
+    from flint import fmpq
+
+    fam = _free_family(2)
+    fc = rkcheck.family_conditions(fam, degree=3, order=4)
+    A, b = fam.A, fam.b
+    c = [A[i][0] + A[i][1] for i in range(2)]
+    total = b[0] + b[1]
+    by_tree = {cd.level_sequence: cd.polynomial for cd in fc.energy}
+    # stars with 2 and 3 leaves: the residual is star_constant(k)·(Σbc^(k−1) − (Σb)^k/k)
+    for k in (2, 3):
+        star = sum(bi * ci ** (k - 1) for bi, ci in zip(b, c)) - total ** k / k
+        r = star_constant(k)
+        assert by_tree[(1,) + (2,) * k] == star * fmpq(r.numerator, r.denominator)
+    # the double bush t_{1,2} (five vertices, degree 3): proportional to the linear row
+    (row,) = double_bush_rows(b, c, 3, 4)
+    flat = [A[i][j] for i in range(2) for j in range(2)]
+    linear = sum((x * a for x, a in zip(row, flat)), row[-1])
+    five = [p for ls, p in by_tree.items() if len(ls) == 5]
+    assert sum(_proportional(p, linear) for p in five) == 1
+
+
+@pytest.mark.parametrize(("name", "degree", "order"), [("theorem1-s2-m3", 3, 6), ("theorem1-s2-m4", 4, 6),
+                                                       ("theorem1-s3-m6", 6, 7)])
+def test_structured_and_plain_routes_find_the_same_solutions(name, degree, order):
+    path = FAMILIES / f"{name}.toml"
+    plain = rkcheck.solve(path, degree=degree, order=order, route="plain")
+    structured = rkcheck.solve(path, degree=degree, order=order, route="structured")
+    assert structured.route == "structured" and plain.route == "plain"
+    assert structured.dimension == plain.dimension == 0
+
+    def key(res):
+        return sorted(tuple(round(v.approx.real, 12) for v in s.values.values()) for s in res.solutions)
+
+    assert key(structured) == key(plain)
+    assert len(structured.solutions) == len(plain.solutions)
+
+
+def test_structured_route_refuses_a_family_it_does_not_fit():
+    with pytest.raises(rkcheck.RkcheckError, match="structured route needs A free"):
+        rkcheck.solve(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6, route="structured")
+
+
+def _gauss4():
+    """The 4-point Gauss rule from its tableau file (exact entries): nodes and weights as
+    certified enclosures."""
+    tab = rkcheck.load(TABLEAUX / "collocation" / "gauss-4.toml")
+    b = [e.enclosure(80) for e in tab.b]
+    c = [sum((e.enclosure(80) for e in row[1:]), row[0].enclosure(80)) for row in tab.A]
+    return c, b
+
+
+def test_theorem1_s4_m8_is_avf_over_gauss_in_the_four_compatible_orders():
+    res = rkcheck.solve(FAMILIES / "theorem1-s4-m8.toml", degree=8, order=9)
+    assert res.dimension == 0 and len(res.solutions) == 4 and all(s.real for s in res.solutions)
+    c, b = _gauss4()
+    # the file's weights: outer, inner, inner, outer; the nodes may move only within a pair
+    outer, inner = (0, 3), (1, 2)
+    orders = {(o[0], i[0], i[1], o[1]) for o in itertools.permutations(outer) for i in itertools.permutations(inner)}
+    assert len(orders) == 4
+    found = set()
+    for s in res.solutions:
+        got = [[s.values[f"a{i + 1}{j + 1}"].approx.real for j in range(4)] for i in range(4)]
+        match = [p for p in orders
+                 if all(abs(got[i][j] - float(c[p[i]].mid) * float(b[j].mid)) < 1e-12 for i in range(4) for j in range(4))]
+        assert len(match) == 1
+        found.add(match[0])
+    assert found == orders
+    assert all(comp.avf for comp in res.components)
+
+
+def test_the_s4_m8_avf_tableau_preserves_energy_exactly():
+    # the independent engine on one of the four: exact arithmetic in the rule's field
+    b = [f"({x})" for x in ("1/4 - sqrt(30)/72", "1/4 + sqrt(30)/72", "1/4 + sqrt(30)/72", "1/4 - sqrt(30)/72")]
+    nodes = ["1/2 - sqrt(3/28 + sqrt(30)/70)", "1/2 - sqrt(3/28 - sqrt(30)/70)",
+             "1/2 + sqrt(3/28 - sqrt(30)/70)", "1/2 + sqrt(3/28 + sqrt(30)/70)"]
+    A = [[f"({ci})*{bj}" for bj in b] for ci in nodes]
+    assert rkcheck.verify(rkcheck.from_arrays(A, b), degree=8, order=9).verdict == "holds"
+
+
+def test_components_report_avf_in_json(capsys):
+    import json
+
+    from support.clirun import run_cli
+
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
+                "--format", "json")
+    doc = json.loads(r.out)
+    assert doc["route"] == "structured" and doc["avf_on_every_component"] is True
+    assert sum(c["points"] for c in doc["components"]) == len(doc["solutions"]) == 2
+    assert Fraction(doc["solutions"][0]["values"]["a11"]) in {Fraction(1, 4), Fraction(1, 2)}
+
+
+@pytest.mark.parametrize("lang", ["python", "sympy"])
+def test_emitted_family_conditions_agree_with_the_exact_engine(capsys, tmp_path, lang):
+    """The emitted code, run at a rational point, gives the residuals that rkcheck's
+    exact engine gives for the tableau at that point."""
+    from support.clirun import run_cli
+
+    if lang == "sympy":
+        pytest.importorskip("sympy")
+    path = FAMILIES / "theorem1-s2-m3.toml"
+    r = run_cli(capsys, "conditions", str(path), "--order", "5", "--degree", "3", "--emit", lang)
+    assert r.code == 0, r.err
+    namespace: dict = {}
+    exec(compile(r.out, f"<emitted {lang}>", "exec"), namespace)  # our own generated code, not file content
+    point = {"a11": Fraction(1, 3), "a12": Fraction(-2, 7), "a21": Fraction(5, 4), "a22": Fraction(0)}
+    args = [point[n] for n in ("a11", "a12", "a21", "a22")]
+    if lang == "sympy":
+        import sympy
+
+        args = [sympy.Rational(x.numerator, x.denominator) for x in args]
+    got = [Fraction(str(v)) for v in namespace["residuals"](*args)]
+    fam = rkcheck.load_family(path)
+    want = {c.id: c.residual for c in rkcheck.verify(fam.at(point), degree=3, order=5).conditions}
+    ids = [c.id for c in rkcheck.family_conditions(fam, degree=3, order=5).energy]
+    assert got == [want[i] for i in ids]
+
+
+def test_emitted_latex_and_julia_write_every_condition(capsys):
+    from support.clirun import run_cli
+
+    path = FAMILIES / "seed-kernel-zeta-0.toml"
+    latex = run_cli(capsys, "conditions", str(path), "--order", "6", "--degree", "3", "--emit", "latex").out
+    assert "\\tfrac{1}{72} beta^{2}" in latex and latex.count("R_{") == 12
+    julia = run_cli(capsys, "conditions", str(path), "--order", "6", "--degree", "3", "--emit", "julia").out
+    assert "1//72*beta^2" in julia and "theta=sqrt(3)" in julia
+    r = run_cli(capsys, "conditions", str(path), "--order", "6", "--emit", "matlab")
+    assert r.code == 2 and "python, sympy, julia, latex" in r.err
+
+
+def test_theorem1_s3_m5_slice_of_the_zeta_family_is_avf():
+    """A and b free, m = 5 = 2s − 1: the weights and nodes form a curve (the seed's
+    ζ-family); fixing b1 leaves finitely many, each with only its AVF matrix."""
+    from flint import acb
+
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=["b1 + b2 + b3 = 1", "b1 = 1/4"])
+    assert res.route == "structured" and res.dimension == 0 and res.solutions
+    assert all(comp.avf for comp in res.components)
+    for s in res.solutions:
+        b = [s.values[f"b{i}"].ball for i in (1, 2, 3)]
+        A = [[s.values[f"a{i}{j}"].ball for j in (1, 2, 3)] for i in (1, 2, 3)]
+        c = [sum(row[1:], row[0]) for row in A]
+        for i in range(3):  # A = c bᵀ, from the solution's own enclosures
+            for j in range(3):
+                assert (A[i][j] - c[i] * b[j]).contains(0)
+        for k in range(5):  # the rule (b, c) integrates polynomials of degree ≤ 4
+            assert (sum(bi * ci ** k for bi, ci in zip(b, c)) - acb(1) / (k + 1)).contains(0)
+        assert not (b[0] - acb(1) / 5).contains(0)  # a ball that can exclude: the test can fail
+
+
+def test_the_whole_zeta_curve_asks_for_a_slice(capsys, tmp_path):
+    from support.clirun import run_cli
+
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "5", "--order", "6",
+                "--where", "b1 + b2 + b3 = 1", "--max-seconds", "1")
+    assert r.code == 2 and r.err.count("\n") == 1 and 'fix a weight with --where' in r.err, r.err
+
+
+def test_design_query_splits_into_avf_and_symmetric_weights():
+    """All 2-stage methods with energy order ≥ 4 for cubic H and classical order ≥ 2:
+    every point of each piece is checked at rational points of it by the exact engine."""
+    res = rkcheck.solve(FAMILIES / "design-s2-m3.toml", degree=3, order=4, classical_order=2)
+    assert res.dimension == 1 and len(res.components) == 2
+    assert sorted(c.avf is True for c in res.components) == [False, True]
+    fam = rkcheck.load_family(FAMILIES / "design-s2-m3.toml")
+    # a rational point of the AVF piece: the rule with nodes (0, 2/3), weights (1/4, 3/4)
+    # (Radau I, exact for degree ≤ 2) and A = c bᵀ; the exact engine agrees, and the
+    # point lies on the AVF piece only
+    b = [Fraction(1, 4), Fraction(3, 4)]
+    c = [Fraction(0), Fraction(2, 3)]
+    point = {"a11": c[0] * b[0], "a12": c[0] * b[1], "a21": c[1] * b[0], "a22": c[1] * b[1], "b1": b[0], "b2": b[1]}
+    tab = fam.at(point)
+    v = rkcheck.verify(tab, degree=3, order=4)
+    assert v.energy_order >= 4
+    ctx = fam.ring.ctx
+    from flint import fmpq
+
+    values = [fmpq(point[n].numerator, point[n].denominator) for n in ctx.names()]
+    avf_piece = next(c for c in res.components if c.avf)
+    assert all(e(*values) == 0 for e in avf_piece.equations)
+    other = next(c for c in res.components if not c.avf)
+    assert any(e(*values) != 0 for e in other.equations)
+
+
+def test_at_order_6_the_gauss_rule_carries_non_avf_methods():
+    """A finding: at order 6 (m = 5, A and b free) the slice b1 = 5/18 through the Gauss
+    rule has, besides AVF methods, two planes of non-AVF methods over Gauss (one per
+    order of the weights). The exact engine confirms a point of one: energy order 6
+    exactly, not AVF. At order 7 the same slice is AVF only."""
+    from flint import fmpq
+
+    where = ["b1 + b2 + b3 = 1", "b1 = 5/18"]
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=where)
+    planes = [c for c in res.components if c.dimension == 2]
+    assert res.dimension == 2 and len(planes) == 2 and all(c.avf is False for c in planes)
+    # a point of the first plane: z = c1 a Gauss node, two entries chosen, the rest solved
+    eqs = planes[0].equations
+    ctx = eqs[0].context()
+    assert str(eqs[0]) == "10*z^2 - 10*z + 1"
+    free = {n for n in ctx.names() if n != "z"} - {n for e in eqs[1:] for n in [_lead_name(e)]}
+    choice = {n: fmpq(k + 1, 10) for k, n in enumerate(sorted(free))}
+    values = {}
+    for e in eqs[1:]:
+        name = _lead_name(e)
+        rest = e - ctx.gens()[ctx.names().index(name)]
+        values[name] = _text_of(-rest, choice)
+    values.update({n: str(v) for n, v in choice.items()})
+    A = [[values[f"a{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)]
+    b = [values[f"b{i}"] for i in (1, 2, 3)]
+    v = rkcheck.verify(rkcheck.from_arrays(A, b), degree=5, order=8)
+    assert v.energy_order == 6 and v.avf.verdict.state == "fails"
+    higher = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=7, where=where)
+    assert higher.dimension == 0 and all(c.avf for c in higher.components)
+
+
+def _lead_name(e) -> str:
+    """The parameter an equation of a plane is solved for: its one non-z variable with
+    coefficient 1 that no other equation uses first (lex order puts it ahead)."""
+    names = e.context().names()
+    for m, c in e.to_dict().items():
+        used = [names[i] for i, x in enumerate(m) if x]
+        if len(used) == 1 and used[0] != "z" and c == 1 and sum(m) == 1:
+            return used[0]
+    raise AssertionError(str(e))
+
+
+def _text_of(p, choice) -> str:
+    """p (linear in z and the chosen parameters) at the choice, as an entry text with
+    z = 1/2 - sqrt(15)/10."""
+    from flint import fmpq
+
+    names = p.context().names()
+    q = p.subs({n: v for n, v in choice.items() if n in names})
+    z_coeff = fmpq(0)
+    const = fmpq(0)
+    for m, c in q.to_dict().items():
+        if any(m):
+            z_coeff += c
+        else:
+            const += c
+    return f"({const}) + ({z_coeff})*(1/2 - sqrt(15)/10)"
+
+
+@pytest.mark.parametrize(("name", "degree", "order"), [("theorem1-s3-m6", 6, 7), ("theorem1-s2-m4", 4, 6)])
+def test_the_basis_of_the_points_is_flints_basis_of_the_conditions(name, degree, order):
+    """Buchberger–Möller on the structured route's points against FLINT's Buchberger on
+    every condition: the same reduced degrevlex basis where the conditions' ideal is
+    radical (these two; for s = 2, m = 3 it is not: a double zero)."""
+    import time
+
+    from rkcheck.numbers.groebner import groebner, integer_dicts
+
+    path = FAMILIES / f"{name}.toml"
+    fam = rkcheck.load_family(path)
+    res = rkcheck.solve(path, degree=degree, order=order, route="structured")
+    conds = [c.polynomial for c in rkcheck.family_conditions(fam, degree=degree, order=order).energy]
+    ring = fam.ring
+    if ring.minpoly is not None:
+        conds.append(ring.minpoly)
+    names = tuple(ring.ctx.names())
+    flint_basis = groebner(integer_dicts([p for p in conds if not p.is_zero()]), names, "degrevlex",
+                           time.monotonic() + 60)
+
+    def monic(p):
+        return p / p.leading_coefficient()
+
+    theirs = {str(monic(ring.ctx.from_dict(d))) for d in flint_basis}
+    assert {str(monic(g)) for g in res.groebner} == theirs
