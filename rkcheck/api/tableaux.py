@@ -84,11 +84,13 @@ TableauLike = Tableau | str | os.PathLike[str]
 
 def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
     """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``)."""
-    if isinstance(tableau, Tableau):
+    if isinstance(tableau, Tableau) or getattr(tableau, "is_continuous", False):
         return tableau
     if isinstance(tableau, (str, os.PathLike)):
         return load(tableau, max_stages=max_stages)
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
-__all__ = ["from_arrays", "library", "load", "loads", "write"]
+from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402 - a public name
+
+__all__ = ["ContinuousMethod", "from_arrays", "library", "load", "loads", "write"]

@@ -179,10 +179,26 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
 
     The claim runs share the main run when their options coincide (one CheckRunner);
     ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
+    if getattr(tableau, "is_continuous", False):  # its B-series through an exact surrogate tableau
+        tableau = tableau.surrogate(vertices_needed(options, list(tableau.info.claims)))
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
     return result_type.of(result, claims=claims, failed=file_fails(conditions_ok(result), claims, fail_on))
+
+
+def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:
+    """The largest tree a check and its claims read: energy conditions to order n have
+    n + 1 vertices; an order claim p is decided one order beyond it."""
+    need = options.order + 1
+    for c in claims:
+        if c.kind in ("energy_order", "avf"):
+            need = max(need, (c.order or options.order) + 1)
+            if isinstance(c.value, int) and not isinstance(c.value, bool):
+                need = max(need, c.value + 2)
+        elif c.kind in ("classical_order", "quadrature_order"):
+            need = max(need, int(c.value) + 1)
+    return need
 
 
 # ---------------------------------------------------------------- exit policy

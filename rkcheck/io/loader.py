@@ -47,7 +47,7 @@ from rkcheck.options import (
     validate_check_table,
 )
 
-KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family")
+KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")
@@ -321,6 +321,13 @@ def _build(
         own = name if name != Path(source).stem else None
         return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
+    if "continuous" in data:
+        if "tableau" in data or "parameters" in data:
+            raise UserError("give either [tableau] or [continuous], not both (a kernel with [parameters] is not supported)")
+        from rkcheck.io.continuous import build_continuous
+
+        info = info.replace(constants=_constants(_table(data, "constants")))
+        return build_continuous(data["continuous"], name, info, warnings)  # type: ignore[return-value]
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)
@@ -434,6 +441,8 @@ def loads(
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
+    if getattr(tableau, "is_continuous", False):
+        return tableau.replace(info=tableau.info.replace(lines=locate_lines(text, fmt)))
     if not isinstance(tableau, Tableau):
         raise UserError("this file has free [parameters]: it is a family, not one tableau; check it with "
                         "`rkcheck verify`, `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",

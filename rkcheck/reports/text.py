@@ -77,8 +77,17 @@ def header(values: TableauValues) -> Group:
     source = tab.info.source
     if source and source not in ("<memory>", "<string>"):
         title.append(f"  ({printable(source)})", style="dim")
+    if tab.info.continuous is not None:
+        return Group(title, Text(continuous_facts(tab.info.continuous, values)))
     facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {values.describe()}"
     return Group(title, Text(facts))
+
+
+def continuous_facts(surrogate, values: TableauValues) -> str:
+    """The header of a continuous-stage method: its kernel and how its B-series is exact."""
+    m = surrogate.method
+    return (f"continuous-stage method: A(τ, σ) = {m.A}, B(τ) = {m.b}\n{values.describe()}; elementary weights exact "
+            f"for trees up to {surrogate.vertices} vertices (an exact {surrogate.nodes}-node rational rule)")
 
 
 def conditions_table(results: Sequence[Condition], title: str) -> Table:
@@ -169,7 +178,7 @@ def render_check(
             else:
                 label = Text("no", style="red")
             label.append(f" — {a.reason}", style="")
-            kv.add_row(*plain(f"AVF (degree {a.degree})", label))
+            kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))
             for note in a.notes:
                 kv.add_row(*plain("", note))
         if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
