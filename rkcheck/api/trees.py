@@ -94,6 +94,8 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
         tab: Tableau | None = load(tableau, max_stages=max_stages)
     else:
         tab = as_tableau(tableau) if tableau is not None else None
+    if getattr(tab, "is_continuous", False):  # its weights through a surrogate exact for this tree
+        tab = tab.surrogate(len(seq))  # type: ignore[union-attr]
     return explain(seq, None if tab is None else TableauValues(tab, Reading(DecimalsMode(decimals), dps)))
 
 

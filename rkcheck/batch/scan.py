@@ -46,7 +46,7 @@ def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):
 
 
 def _is_tableau_document(data: dict[str, Any]) -> bool:
-    return any(k in data for k in ("tableau", "family", "method"))
+    return any(k in data for k in ("tableau", "family", "method", "continuous"))
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
@@ -84,7 +84,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
                 return out
             built = build_tableau(data, path, max_stages)
-            if not isinstance(built, Tableau):
+            if not isinstance(built, Tableau) and not getattr(built, "is_continuous", False):
                 out.status, out.error = "skipped", "a family with free [parameters] (check it with rkcheck solve)"
                 return out
             tab = built.replace(info=built.info.replace(lines=out.lines))

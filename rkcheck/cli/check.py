@@ -66,6 +66,12 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 
     config = project_config()
     if is_family_file(file):  # free [parameters]: the conditions as polynomials
+        from rkcheck.api.families import is_family_file
+        from rkcheck.io.loader import load as load_file
+
+        if not is_family_file(file) and getattr(load_file(file), "is_continuous", False):
+            raise UserError("a continuous-stage method has no free parameters: `rkcheck verify FILE --all` lists "
+                            "every condition with its exact residual", source=file)
         from rkcheck.cli.families import family_report
 
         family_report(file, flag_values("degree", "order"), "order", fmt, show_all)
@@ -113,6 +119,11 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
     from rkcheck.api.tableaux import tableau_warnings, write  # the public rkcheck.write
 
     tab = load_input(file, max_stages, input_format)
+    if getattr(tab, "is_continuous", False):
+        from rkcheck.reports.continuous import show_continuous
+
+        show_continuous(tab, fmt, file)
+        return
     if fmt not in ("text", "json"):
         click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)
         return
@@ -161,6 +172,12 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     if file is not None:
         if emit is not None or count or stages or explicit or output:
             raise UserError("with a FAMILY file: --order, --degree, --classical and --format only")
+        from rkcheck.api.families import is_family_file
+        from rkcheck.io.loader import load as load_file
+
+        if not is_family_file(file) and getattr(load_file(file), "is_continuous", False):
+            raise UserError("a continuous-stage method has no free parameters: `rkcheck verify FILE --all` lists "
+                            "every condition with its exact residual", source=file)
         from rkcheck.cli.families import family_report
 
         family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True)

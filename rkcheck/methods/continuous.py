@@ -97,21 +97,35 @@ class ContinuousMethod:
         ``A(τ,σ) = Σ M_ij τ^i/i σ^(j−1)``, ``B(σ) = A(1, σ)``."""
         info = info or MethodInfo(source=name)
         rows = [[str(x) for x in row] for row in M]
-        A_terms, b_terms = [], []
+        values: dict[tuple[int, int], Fraction | None] = {}
         for i, row in enumerate(rows, start=1):
             for j, text in enumerate(row, start=1):
                 try:
                     node = ex.parse(text)
                     info.constants.check_names(node)
+                    values[i, j] = ex.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
                     raise err.located(f"M[{i}][{j}]") from None
-                A_terms.append(f"({text})*tau^{i}/{i}*sigma^{j - 1}")
-                b_terms.append(f"({text})/{i}*tau^{j - 1}")
-        return ContinuousMethod(" + ".join(A_terms), " + ".join(b_terms), name, info,
+        A_terms, b_terms = [], []
+        for (i, j), value in values.items():
+            if value == 0:
+                continue
+            coeff = f"({value / i})" if value is not None else f"({rows[i - 1][j - 1]})/{i}"
+            A_terms.append(coeff + _monomial("tau", i) + _monomial("sigma", j - 1))
+            b_terms.append(coeff + _monomial("tau", j - 1))
+        return ContinuousMethod(" + ".join(A_terms) or "0", " + ".join(b_terms) or "0", name, info,
                                 tuple(tuple(r) for r in rows))
 
     def replace(self, **changes: Any) -> "ContinuousMethod":
         return dataclasses.replace(self, **changes)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("kernel", None)  # FLINT polynomials do not pickle; rebuilt on first use
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
 
     # ----------------------------------------------------------------- the kernel
 
@@ -305,6 +319,10 @@ class Kernel:
         A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
         b = tuple(_entry_at(self.nodes[1], w[i], x[i], Fraction(0), constants) for i in range(n))
         return A, b
+
+
+def _monomial(name: str, power: int) -> str:
+    return "" if power == 0 else (f"*{name}" if power == 1 else f"*{name}^{power}")
 
 
 def _literal(q: Fraction) -> ex.Expr:
