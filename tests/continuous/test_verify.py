@@ -1,0 +1,163 @@
+"""Continuous-stage methods through verify, the API and the CLI: the quoted cases of
+definitions §6, a brute-force route (a k-point Gauss discretisation at high precision,
+k large enough for every integral the conditions need) and the one-line errors."""
+
+import json
+import subprocess
+import sys
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath
+import pytest
+
+import rkcheck
+from rkcheck.errors import RkcheckError
+from rkcheck.methods.continuous import ContinuousMethod
+
+ROOT = Path(__file__).resolve().parents[2]
+S2 = "tau + 3*(tau^2 - tau)*(2*sigma - 1)"
+S3 = S2 + " + 5*(2*tau^3 - 3*tau^2 + tau)*(6*sigma^2 - 6*sigma + 1)"
+MB4 = [["-6/5", "72/5", "-36", "24"], ["72/5", "-144/5", "-48", "72"],
+       ["-36", "-48", "720", "-720"], ["24", "72", "-720", "720"]]
+
+
+def run(*args, stdin=None):
+    return subprocess.run([sys.executable, "-m", "rkcheck", *args], capture_output=True, text=True, input=stdin,
+                          cwd=ROOT)
+
+
+def test_avf_kernel_and_matrix():
+    for method in (ContinuousMethod.from_kernel("tau"), ContinuousMethod.from_matrix([["1"]])):
+        res = rkcheck.verify(method, degree=None, order=6)
+        assert res.verdict == "holds" and res.energy_order_all
+        assert res.avf.equals_avf
+        assert res.classical_order == 2
+
+
+def test_collocation_orders():
+    res = rkcheck.verify(ContinuousMethod.from_kernel(S2), degree=None, order=8)
+    assert res.verdict == "holds" and res.energy_order_all and not res.avf.equals_avf
+    assert res.classical_order == 4  # Hairer 2010: order 2s
+    res3 = rkcheck.verify(ContinuousMethod.from_kernel(S3), degree=None, order=7)
+    assert res3.classical_order == 6
+
+
+def test_two_tau_sigma_first_failure_by_hand():
+    """A = 2τσ, B = 1.  The condition [[τ]²] (5 vertices) is, from its rootings,
+    R = (∫BC)²/2 − ∫∫B A C · ∫B + ∫∫∫ B A A C with C(τ) = τ:
+    1/8 − 1/3 + 2/9 = 1/72 (∫2τσ·σ = 1/3; ∫A(σ,ρ)ρ dρ = 2σ/3, ∫A(τ,σ)2σ/3 dσ = 4τ/9, ∫4τ/9 = 2/9)."""
+    res = rkcheck.verify(ContinuousMethod.from_kernel("2*tau*sigma"), degree=None, order=5)
+    first = res.first_failure
+    assert len(first.tree.level_sequence) == 5 and first.tree.level_sequence == (1, 2, 3, 2, 3)
+    assert abs(first.residual) == Fraction(1, 72)
+    assert not res.energy_order_all and res.certificate is not None and not res.certificate.certified
+
+
+def test_miyatake_butcher_4x4_preserves_energy():
+    res = rkcheck.verify(ContinuousMethod.from_matrix(MB4), degree=None, order=7)
+    assert res.verdict == "holds" and len(res.failures) == 0 and res.energy_order_all
+
+
+def gauss_tableau(A_text, b_text, k, dps=60):
+    """a_ij = b_j A(c_i, c_j), b_i = b_i B(c_i) on the k-point Gauss rule, as 60-digit decimals."""
+    import sympy
+
+    mpmath.mp.dps = dps + 10
+    x, w = mpmath.mp.gauss_quadrature(k, "legendre") if hasattr(mpmath.mp, "gauss_quadrature") else _gauss(k)
+    c = [(xi + 1) / 2 for xi in x]
+    bw = [wi / 2 for wi in w]
+    t, s = sympy.symbols("tau sigma")
+    A = sympy.lambdify((t, s), sympy.sympify(A_text.replace("^", "**")), "mpmath")
+    B = sympy.lambdify((t,), sympy.sympify(b_text.replace("^", "**")), "mpmath")
+    text = lambda v: mpmath.nstr(mpmath.mpf(v), dps, strip_zeros=False)  # noqa: E731
+    return rkcheck.from_arrays([[text(bw[j] * A(c[i], c[j])) for j in range(k)] for i in range(k)],
+                               [text(bw[i] * B(c[i])) for i in range(k)])
+
+
+def _gauss(k):
+    """Gauss–Legendre nodes and weights on [−1, 1] by mpmath's polynomial roots."""
+    P = lambda z: mpmath.legendre(k, z)  # noqa: E731
+    x = [mpmath.findroot(P, mpmath.cos(mpmath.pi * (i + 0.75) / (k + 0.5))) for i in range(k)]
+    w = [2 / ((1 - xi ** 2) * mpmath.diff(P, xi) ** 2) for xi in x]
+    return x, w
+
+
+@pytest.mark.parametrize("A_text,b_text", [("2*tau*sigma", "1"), ("tau - tau^2*sigma + 2*tau*sigma^2/3", "3/2 - tau")])
+def test_every_condition_against_gauss_brute_force(A_text, b_text):
+    order = 5  # 6 vertices: integrands of degree ≤ 1 + 5·2 = 11 < 2k with k = 8
+    exact = rkcheck.verify(ContinuousMethod.from_kernel(A_text, b_text), degree=None, order=order)
+    brute = rkcheck.verify(gauss_tableau(A_text, b_text, 8), degree=None, order=order, decimals="exact",
+                           arithmetic="ball", dps=50)
+    pairs = list(zip(exact.conditions, brute.conditions))
+    assert len(pairs) == len(exact.conditions) == len(brute.conditions) > 0
+    for e, g in pairs:
+        assert e.id == g.id
+        assert abs(Fraction(e.residual) - Fraction(g.enclosure.mid)) < Fraction(1, 10**40), e.id
+
+
+def test_certificate_never_meets_a_failure_in_the_library():
+    for path in sorted((ROOT / "tableaux" / "continuous").glob("*.toml")):
+        res = rkcheck.verify(str(path), degree=None, order=6)
+        if res.certificate is not None and res.certificate.certified:
+            assert len(res.failures) == 0, path
+        assert res.ok, path  # every [expect] claim of a shipped method is met
+
+
+def test_api_load_and_json():
+    method = rkcheck.load(str(ROOT / "tableaux" / "continuous" / "epcm-2.toml"))
+    assert isinstance(method, rkcheck.ContinuousMethod)
+    doc = json.loads(rkcheck.verify(method, order=4).to_json())
+    assert doc["tableau"]["structure"] == "continuous"
+    assert doc["tableau"]["kernel"]["degree_tau"] == 2 and doc["tableau"]["kernel"]["degree_sigma"] == 1
+    assert doc["summary"]["certificate"]["kind"] == "continuous_kernel"
+    assert doc["summary"]["energy_order_all"] is True
+
+
+def test_symmetry_and_symplecticity_of_kernels():
+    # Gauss-like kernel of the 1-stage midpoint in continuous form: A = 1/2, B = 1 is
+    # symmetric and symplectic (B(τ)A(τ,σ)+B(σ)A(σ,τ) = 1 = B(τ)B(σ))
+    res = rkcheck.verify(ContinuousMethod.from_kernel("1/2"), degree=None, order=3)
+    assert res.properties.symmetric.holds and res.properties.symplectic.holds
+    res = rkcheck.verify(ContinuousMethod.from_kernel("2*tau*sigma"), degree=None, order=3)
+    assert not res.properties.symmetric.holds
+
+
+@pytest.mark.parametrize("table,message", [
+    ('A = "tau"\nM = [["1"]]', "either A (and b) or M"),
+    ('A = "sqrt(tau)"', "continuous.A"),
+    ('A = "1/tau"', "continuous.A"),
+    ('A = "tau*x"', "unknown name 'x'"),
+    ('M = [["1", "2"], ["3"]]', "M[2]"),
+    ('A = "tau^(1/2)"', "continuous.A"),
+])
+def test_bad_kernels_are_one_line_errors(tmp_path, table, message):
+    f = tmp_path / "k.toml"
+    f.write_text(f"[continuous]\n{table}\n")
+    out = run("verify", str(f))
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and message in out.stderr and str(f) in out.stderr
+    with pytest.raises(RkcheckError):
+        rkcheck.load(str(f))
+
+
+def test_greek_aliases_and_decimals():
+    greek = ContinuousMethod.from_kernel("τ + 3*(τ^2 - τ)*(2*σ - 1)")
+    assert rkcheck.verify(greek, order=4).classical_order == 4
+    # a decimal at face value is exact; it is the same kernel as 1/2
+    assert rkcheck.verify(ContinuousMethod.from_kernel("0.5"), order=3, decimals="exact").properties.symplectic.holds
+
+
+def test_cli_verify_scan_show(tmp_path):
+    f = tmp_path / "k.toml"
+    f.write_text('[continuous]\nA = "2*tau*sigma"\n')
+    out = run("verify", str(f), "--order", "4", "--format", "json")
+    assert out.returncode == 1
+    doc = json.loads(out.stdout)
+    assert doc["summary"]["first_failure"]["id"] == "1,2,3,2,3"
+    out = run("scan", str(ROOT / "tableaux" / "continuous"), str(f), "--order", "4")
+    assert "epcm-2.toml" in out.stdout and "8 files" in out.stdout and "0 errors" in out.stdout
+    out = run("show", str(f))
+    assert out.returncode == 0 and "certificate  no" in out.stdout
+    out = run("--no-color", "verify", str(f), "--require", "proof", "--order", "3")
+    assert out.returncode == 0
