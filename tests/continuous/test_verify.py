@@ -155,8 +155,12 @@ def test_cli_verify_scan_show(tmp_path):
     assert out.returncode == 1
     doc = json.loads(out.stdout)
     assert doc["summary"]["first_failure"]["id"] == "1,2,3,2,3"
-    out = run("scan", str(ROOT / "tableaux" / "continuous"), str(f), "--order", "4")
-    assert "epcm-2.toml" in out.stdout and "8 files" in out.stdout and "0 errors" in out.stdout
+    out = run("scan", str(ROOT / "tableaux" / "continuous"), str(f), "--order", "4", "--format", "json")
+    files = json.loads(out.stdout)["files"]
+    assert len(files) == 8 and all(x["status"] == "ok" for x in files)  # no claims in k.toml: not judged
+    mine = next(x for x in files if x["file"] == str(f))
+    assert mine["result"]["summary"]["first_failure"]["id"] == "1,2,3,2,3"
+    assert mine["result"]["tableau"]["structure"] == "continuous"
     out = run("show", str(f))
     assert out.returncode == 0 and "certificate  no" in out.stdout
     out = run("--no-color", "verify", str(f), "--require", "proof", "--order", "3")
