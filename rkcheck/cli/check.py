@@ -66,12 +66,6 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
 
     config = project_config()
     if is_family_file(file):  # free [parameters]: the conditions as polynomials
-        from rkcheck.api.families import is_family_file
-        from rkcheck.io.loader import load as load_file
-
-        if not is_family_file(file) and getattr(load_file(file), "is_continuous", False):
-            raise UserError("a continuous-stage method has no free parameters: `rkcheck verify FILE --all` lists "
-                            "every condition with its exact residual", source=file)
         from rkcheck.cli.families import family_report
 
         family_report(file, flag_values("degree", "order"), "order", fmt, show_all)
@@ -173,7 +167,7 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         if emit is not None or count or stages or explicit or output:
             raise UserError("with a FAMILY file: --order, --degree, --classical and --format only")
         from rkcheck.api.families import is_family_file
-        from rkcheck.io.loader import load as load_file
+        from rkcheck.api.tableaux import load as load_file
 
         if not is_family_file(file) and getattr(load_file(file), "is_continuous", False):
             raise UserError("a continuous-stage method has no free parameters: `rkcheck verify FILE --all` lists "
