@@ -93,4 +93,20 @@ def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Ta
 
 from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402 - a public name
 
-__all__ = ["ContinuousMethod", "from_arrays", "library", "load", "loads", "write"]
+
+def discretize(method: "ContinuousMethod | str | os.PathLike[str]", rule: str, *, command: str = "") -> tuple[str, str]:
+    """The tableau file (TOML text) of a continuous-stage method on a quadrature rule
+    (``gauss-3``, ``radau-ii-2``, ``lobatto-4``, ``newton-cotes-5``, or a tableau file whose
+    b and c are the rule), and a sentence on the degree of Hamiltonian it keeps."""
+    from rkcheck.methods.discretize import discretize as build, discretized_toml
+
+    m = as_tableau(method)
+    if not getattr(m, "is_continuous", False):
+        raise TableauError("discretize takes a continuous-stage method ([continuous] A, b or M), not a tableau")
+    if not isinstance(rule, str):
+        raise UserError(f"expected a rule name or a tableau file, got {type(rule).__name__}", "rule")
+    d = build(m, rule)
+    return discretized_toml(m, d, command), d.reason
+
+
+__all__ = ["ContinuousMethod", "discretize", "from_arrays", "library", "load", "loads", "write"]
