@@ -106,15 +106,20 @@ class ContinuousMethod:
                     values[i, j] = ex.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
                     raise err.located(f"M[{i}][{j}]") from None
+        if all(v is not None for v in values.values()):  # rational: the polynomials collected
+            A_coeffs: dict[tuple[int, int], Fraction] = {}
+            b_coeffs: dict[tuple[int, int], Fraction] = {}
+            for (i, j), v in values.items():
+                A_coeffs[i, j - 1] = A_coeffs.get((i, j - 1), Fraction(0)) + v / i  # type: ignore[operator]
+                b_coeffs[j - 1, 0] = b_coeffs.get((j - 1, 0), Fraction(0)) + v / i  # type: ignore[operator]
+            return ContinuousMethod(_poly_text(A_coeffs), _poly_text(b_coeffs), name, info,
+                                    tuple(tuple(r) for r in rows))
         A_terms, b_terms = [], []
         for (i, j), value in values.items():
-            if value == 0:
-                continue
-            coeff = f"({value / i})" if value is not None else f"({rows[i - 1][j - 1]})/{i}"
+            coeff = f"({rows[i - 1][j - 1]})/{i}"
             A_terms.append(coeff + _monomial("tau", i) + _monomial("sigma", j - 1))
             b_terms.append(coeff + _monomial("tau", j - 1))
-        return ContinuousMethod(" + ".join(A_terms) or "0", " + ".join(b_terms) or "0", name, info,
-                                tuple(tuple(r) for r in rows))
+        return ContinuousMethod(" + ".join(A_terms), " + ".join(b_terms), name, info, tuple(tuple(r) for r in rows))
 
     def replace(self, **changes: Any) -> "ContinuousMethod":
         return dataclasses.replace(self, **changes)
@@ -319,6 +324,19 @@ class Kernel:
         A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
         b = tuple(_entry_at(self.nodes[1], w[i], x[i], Fraction(0), constants) for i in range(n))
         return A, b
+
+
+def _poly_text(coeffs: dict[tuple[int, int], Fraction]) -> str:
+    """``Σ c τ^i σ^j`` as an entry text, highest powers of τ last (``tau - 3*tau^2*sigma``)."""
+    out = ""
+    for (i, j), c in sorted(coeffs.items()):
+        if c == 0:
+            continue
+        mono = (_monomial("tau", i) + _monomial("sigma", j)).lstrip("*")
+        mag = abs(c)
+        term = (str(mag) if not mono or mag != 1 else "") + ("*" if mono and mag != 1 else "") + mono
+        out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
+    return out or "0"
 
 
 def _monomial(name: str, power: int) -> str:
