@@ -82,12 +82,20 @@ def tableau_warnings(tableau: Tableau, decimals: str = "auto") -> list[str]:
 TableauLike = Tableau | str | os.PathLike[str]
 
 
-def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
-    """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``)."""
-    if isinstance(tableau, Tableau) or getattr(tableau, "is_continuous", False):
-        return tableau
+def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES, *, continuous: bool = False) -> Tableau:
+    """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``).
+    ``continuous``: a continuous-stage method is welcome too (the checks take one; the
+    commands that need stages refuse it in one line)."""
     if isinstance(tableau, (str, os.PathLike)):
-        return load(tableau, max_stages=max_stages)
+        tableau = load(tableau, max_stages=max_stages)
+    if getattr(tableau, "is_continuous", False):
+        if continuous:
+            return tableau
+        raise TableauError("a continuous-stage method has no stages of its own, and this needs a tableau; "
+                           "`rkcheck discretize FILE --rule gauss-K` (rkcheck.discretize) writes one",
+                           source=tableau.info.source)
+    if isinstance(tableau, Tableau):
+        return tableau
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
@@ -100,7 +108,7 @@ def discretize(method: "ContinuousMethod | str | os.PathLike[str]", rule: str, *
     b and c are the rule), and a sentence on the degree of Hamiltonian it keeps."""
     from rkcheck.methods.discretize import discretize as build, discretized_toml
 
-    m = as_tableau(method)
+    m = as_tableau(method, continuous=True)
     if not getattr(m, "is_continuous", False):
         raise TableauError("discretize takes a continuous-stage method ([continuous] A, b or M), not a tableau")
     if not isinstance(rule, str):

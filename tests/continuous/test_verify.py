@@ -14,6 +14,7 @@ import pytest
 import rkcheck
 from rkcheck.errors import RkcheckError
 from rkcheck.methods.continuous import ContinuousMethod
+from support.paths import continuous_files
 
 ROOT = Path(__file__).resolve().parents[2]
 S2 = "tau + 3*(tau^2 - tau)*(2*sigma - 1)"
@@ -97,7 +98,9 @@ def test_every_condition_against_gauss_brute_force(A_text, b_text):
 
 
 def test_certificate_never_meets_a_failure_in_the_library():
-    for path in sorted((ROOT / "tableaux" / "continuous").glob("*.toml")):
+    files = continuous_files()
+    assert len(files) >= 8 and any("counterexamples" in f for f in files)
+    for path in files:
         res = rkcheck.verify(str(path), degree=None, order=6)
         if res.certificate is not None and res.certificate.certified:
             assert len(res.failures) == 0, path
@@ -165,3 +168,18 @@ def test_cli_verify_scan_show(tmp_path):
     assert out.returncode == 0 and "certificate  no" in out.stdout
     out = run("--no-color", "verify", str(f), "--require", "proof", "--order", "3")
     assert out.returncode == 0
+
+
+@pytest.mark.parametrize("args", [["simulate", "{f}", "--problem", "harmonic"], ["bench", "{f}"],
+                                  ["perturb", "{f}", "--direction", "random"], ["kernel", "-m", "3", "--tableau", "{f}"],
+                                  ["conditions", "{f}", "--order", "3"]])
+def test_commands_that_need_stages_refuse_a_kernel_in_one_line(args):
+    f = str(ROOT / "tableaux" / "continuous" / "avf.toml")
+    out = run(*[a.format(f=f) for a in args])
+    assert out.returncode == 2 and out.stderr.count("\n") == 1 and "continuous-stage method" in out.stderr
+    assert out.stderr.startswith(f"rkcheck: error: {f}")
+
+
+def test_api_functions_that_need_stages_refuse_a_kernel():
+    with pytest.raises(rkcheck.TableauError, match="continuous-stage method"):
+        rkcheck.bench(ContinuousMethod.from_kernel("tau"))
