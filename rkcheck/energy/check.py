@@ -255,9 +255,11 @@ def _continuous_facts(surrogate, quad: OrderResult, options: CheckOptions, value
 
     n = surrogate.vertices
     if quad.checked > n:  # beyond n vertices the surrogate's rule, not the method, answers
-        exact_failure = quad.first_failure if quad.order < n else None
+        # the failing power k = to_digits + 1 is the method's only when k <= n
+        exact_failure = quad.first_failure if quad.first_failure and (quad.to_digits or 0) + 1 <= n else None
         quad = OrderResult(min(quad.order, n), n, quad.verdict, exact_failure, min(quad.to_digits or 0, n))
-    facts = kernel_facts(surrogate.method, options.degree, values.tableau.is_box(options.decimals))
+    box = options.decimals if surrogate.method.is_box(options.decimals) else None
+    facts = kernel_facts(surrogate.method, options.degree, box)
     return quad, facts.properties, facts.avf, facts.certificate
 
 

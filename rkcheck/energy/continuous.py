@@ -16,13 +16,15 @@ surrogate tableau that carries the B-series (:mod:`rkcheck.methods.continuous`).
 * **Symplectic**: ``B(τ)A(τ,σ) + B(σ)A(σ,τ) = B(τ)B(σ)`` (Tang & Sun 2012), the
   continuous form of ``BA + AᵀB = bbᵀ``.
 
-A kernel with rounded decimals (a box, definitions §5.2) is judged at face value and
-its verdicts are "holds to D digits" (D its fewest digits): never proofs.
+A kernel whose decimals stand for intervals (a box, definitions §5.2) is judged over the
+whole box (:mod:`rkcheck.energy.kernel_box`): "fails" only when every kernel of the box
+fails, otherwise "holds to D digits" — never a proof.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from rkcheck.energy.symplectic import PropertyVerdict
 from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
@@ -108,15 +110,37 @@ def _holds(ok: bool, digits: int | None) -> Verdict:
     return Verdict(HOLDS) if digits is None else Verdict(HOLDS_TO_DIGITS, digits)
 
 
-def kernel_facts(method: ContinuousMethod, degree: int | None, box: bool) -> KernelFacts:
-    """Certificate, AVF, symmetry and symplecticity of ``method``'s kernel; ``box``:
-    its decimals stand for intervals (verdicts then only to digits)."""
+def kernel_facts(method: ContinuousMethod, degree: int | None, box: Any = None) -> KernelFacts:
+    """Certificate, AVF, symmetry and symplecticity of ``method``'s kernel; ``box``: the
+    decimals mode under which its decimals stand for intervals (None: the kernel at face
+    value), judged over the whole box (:mod:`rkcheck.energy.kernel_box`)."""
+    facts = _exact_facts(method, degree)
+    if box is None:
+        return facts
+    from rkcheck.energy.kernel_box import box_verdicts
+
+    v = box_verdicts(method, box)
+    cert = facts.certificate
+    if v["certificate"].state == FAILS and cert.certified:
+        cert = ContinuousCertificate(degree, v["certificate"], "no kernel certificate over the box of its decimals")
+    elif cert.certified:
+        cert = ContinuousCertificate(degree, v["certificate"], cert.reason)
+    props = facts.properties
+    return KernelFacts(
+        ContinuousAvf(degree, v["avf"], facts.avf.reason),
+        cert,
+        ContinuousProperties(False, PropertyVerdict("symplectic", v["symplectic"], props.symplectic.reason),
+                             PropertyVerdict("symmetric", v["symmetric"], props.symmetric.reason)),
+    )
+
+
+def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
     k = method.kernel
     ring = k.ring
     tau, sigma = k.gens()
     one, zero = ring.constant(1), ring.constant(0)
     A, B = k.A_poly, k.B_poly
-    digits = method.rounded_digits if box else None
+    digits = None
     B_sigma = k.substitute(B, sigma, tau)
 
     starts = k.is_zero(k.substitute(A, zero, sigma))

@@ -115,7 +115,7 @@ def discretize(method: ContinuousMethod, rule_spec: str) -> Discretisation:
           for j in range(k)] for i in range(k)]
     b = [f"{_par(w[i])}*({ex.to_text(_substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
     consts, A, b, c_out = _simplified(A, b, c, consts)
-    facts = kernel_facts(method, None, False)
+    facts = kernel_facts(method, None)
     p = method.kernel.deg_tau
     if facts.certificate.certified and p > 0:
         kept = order // p

@@ -17,7 +17,7 @@ def show_doc(method: Any, file: str) -> dict[str, Any]:
     from rkcheck.version import __version__
 
     k = method.kernel
-    facts = kernel_facts(method, None, False)
+    facts = kernel_facts(method, None)
     return {
         "schema": SCHEMA, "rkcheck": __version__, "file": printable(file),
         "method": {"name": method.name, "description": method.info.description,

@@ -183,3 +183,19 @@ def test_commands_that_need_stages_refuse_a_kernel_in_one_line(args):
 def test_api_functions_that_need_stages_refuse_a_kernel():
     with pytest.raises(rkcheck.TableauError, match="continuous-stage method"):
         rkcheck.bench(ContinuousMethod.from_kernel("tau"))
+
+
+def test_rounded_decimals_make_a_box_judged_to_digits():
+    """0.50000000000000000000 (20 digits) stands for [0.5 − 5e−21, 0.5 + 5e−21]: twice it
+    is τ up to 1e−20 — the certificate holds only to digits (two independent literals in
+    ∂τA − its swap: |D| ≤ 2e−20, so 19 digits), never as a proof; at face value
+    (decimals exact) it is AVF exactly."""
+    m = ContinuousMethod.from_kernel("0.50000000000000000000*tau + 0.50000000000000000000*tau")
+    res = rkcheck.verify(m, order=4)
+    assert not res.energy_order_all and res.energy_order_all_digits == 19
+    assert res.avf.verdict.state == "holds_to_digits"
+    exact = rkcheck.verify(m, order=4, decimals="exact")
+    assert exact.energy_order_all and exact.avf.verdict.state == "holds"
+    # a box every kernel of which lacks the certificate: fails, certainly
+    bent = ContinuousMethod.from_kernel("2.0000000000000000000*tau*sigma")
+    assert rkcheck.verify(bent, order=4).certificate.verdict.state == "fails"
