@@ -66,3 +66,21 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
     if "A" not in table:
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau") or M', "continuous")
     return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)
+
+
+def build_kernel_family(data: dict[str, Any], name: str, info: MethodInfo) -> Any:
+    """A ``[continuous]`` kernel with free ``[parameters]``: a family
+    (:func:`~rkcheck.methods.continuous_family.kernel_family`)."""
+    from rkcheck.io.loader import _constant_definitions, _table
+    from rkcheck.methods.continuous_family import kernel_family
+    from rkcheck.methods.parametric import parse_parameters
+
+    table = _table(data, "continuous")
+    if "M" in table:
+        raise UserError("a kernel with [parameters] is given by A (and b), not M", "continuous")
+    if "A" not in table:
+        raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau")', "continuous")
+    raw_constants = _table(data, "constants")
+    parameters = parse_parameters(_table(data, "parameters"), raw_constants)
+    return kernel_family(name, parameters, _text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"),
+                         _constant_definitions(raw_constants), info)

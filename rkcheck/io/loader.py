@@ -322,10 +322,12 @@ def _build(
         return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
     if "continuous" in data:
-        if "tableau" in data or "parameters" in data:
-            raise UserError("give either [tableau] or [continuous], not both (a kernel with [parameters] is not supported)")
-        from rkcheck.io.continuous import build_continuous
+        from rkcheck.io.continuous import build_continuous, build_kernel_family
 
+        if "tableau" in data:
+            raise UserError("give either [tableau] or [continuous], not both")
+        if "parameters" in data:
+            return build_kernel_family(data, name, info.replace(warnings=tuple(warnings)))
         info = info.replace(constants=_constants(_table(data, "constants")))
         return build_continuous(data["continuous"], name, info, warnings)  # type: ignore[return-value]
     if "tableau" not in data:
