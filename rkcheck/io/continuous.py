@@ -51,6 +51,18 @@ def _entry(value: Any, place: str) -> str:
     return str(value)
 
 
+def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str]) -> Any:
+    """The method (or, with ``[parameters]``, the family) of a document with ``[continuous]``."""
+    from rkcheck.io.loader import _constants, _table
+
+    if "tableau" in data:
+        raise UserError("give either [tableau] or [continuous], not both")
+    if "parameters" in data:
+        return build_kernel_family(data, name, info.replace(warnings=tuple(warnings)))
+    info = info.replace(constants=_constants(_table(data, "constants")))
+    return build_continuous(data["continuous"], name, info, warnings)
+
+
 def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str]) -> ContinuousMethod:
     """The method of a ``[continuous]`` table (``info`` carries the ``[constants]``)."""
     if not isinstance(table, dict):

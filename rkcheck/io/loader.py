@@ -321,15 +321,10 @@ def _build(
         own = name if name != Path(source).stem else None
         return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
-    if "continuous" in data:
-        from rkcheck.io.continuous import build_continuous, build_kernel_family
+    if "continuous" in data:  # a continuous-stage method (or a family of them)
+        from rkcheck.io.continuous import from_document
 
-        if "tableau" in data:
-            raise UserError("give either [tableau] or [continuous], not both")
-        if "parameters" in data:
-            return build_kernel_family(data, name, info.replace(warnings=tuple(warnings)))
-        info = info.replace(constants=_constants(_table(data, "constants")))
-        return build_continuous(data["continuous"], name, info, warnings)  # type: ignore[return-value]
+        return from_document(data, name, info, warnings)
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)

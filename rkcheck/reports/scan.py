@@ -456,7 +456,9 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
         classical = f"≥ {classical}"
     ec = s.get("error_constant")
     extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
-    return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), _stages_cell(r.get("tableau") or {}),
+    t = r.get("tableau") or {}  # s: the stage count, or cont. for a continuous-stage method
+    stages = "cont." if t.get("structure") == "continuous" else t.get("stages", "")
+    return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), stages,
                  "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
 
 
@@ -498,8 +500,3 @@ def _totals_line(outcomes: list[dict[str, Any]], total_time: float, interrupted:
     if interrupted:
         line.append("  (interrupted: partial results)", style="bold yellow")
     return line
-
-
-def _stages_cell(tableau: dict) -> str:
-    """The s column: the stage count, or ``cont.`` for a continuous-stage method."""
-    return "cont." if tableau.get("structure") == "continuous" else tableau.get("stages", "")
