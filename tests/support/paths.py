@@ -20,7 +20,8 @@ def tableau_files() -> list[str]:
 
 def continuous_files() -> list[str]:
     """The shipped continuous-stage methods (``[continuous]``: a kernel, not a tableau;
-    tests/continuous covers them)."""
+    tests/continuous covers them), without kernel families (``[parameters]``)."""
     from rkcheck.io.discovery import find_tableau_files
 
-    return [f for f in find_tableau_files([str(TABLEAUX)]) if "[continuous]" in Path(f).read_text(encoding="utf-8")]
+    return [f for f in find_tableau_files([str(TABLEAUX)])
+            if "[continuous]" in (text := Path(f).read_text(encoding="utf-8")) and "[parameters]" not in text]
