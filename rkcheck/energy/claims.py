@@ -188,14 +188,17 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
 
 
 def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:
-    """The largest tree a check and its claims read: energy conditions to order n have
-    n + 1 vertices; an order claim p is decided one order beyond it."""
-    need = options.order + 1
+    """The largest rooted tree whose elementary weight a check and its claims read.  An
+    energy condition of a free tree with n + 1 vertices (order n) is
+    ``Σ_u ±1/σ(u) Π_{t ∈ B₋(u)} a(t)`` (definitions §3): the trees of the forests
+    ``B₋(u)`` have at most n vertices, as have the classical conditions to order n; an
+    order claim is decided one order beyond it."""
+    need = options.order
     for c in claims:
         if c.kind in ("energy_order", "avf"):
-            need = max(need, (c.order or options.order) + 1)
+            need = max(need, c.order or options.order)
             if isinstance(c.value, int) and not isinstance(c.value, bool):
-                need = max(need, c.value + 2)
+                need = max(need, c.value + 1)
         elif c.kind in ("classical_order", "quadrature_order"):
             need = max(need, int(c.value) + 1)
     return need

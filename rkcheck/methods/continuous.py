@@ -316,9 +316,9 @@ class Kernel:
             constants.has_decimal(u.name) for node in self.nodes for u in ex.names(node) if u.name in constants.definitions)
         if plain:
             tau, sigma = self.gens()
-            A = tuple(tuple(Entry.of(w[j] * self.number(self.substitute(
+            A = tuple(tuple(_rational_entry(w[j] * self.number(self.substitute(
                 self.A_poly, self.ring.constant(x[i]), self.ring.constant(x[j])))) for j in range(n)) for i in range(n))
-            b = tuple(Entry.of(w[i] * self.number(self.substitute(
+            b = tuple(_rational_entry(w[i] * self.number(self.substitute(
                 self.B_poly, self.ring.constant(x[i]), sigma))) for i in range(n))
             return A, b
         A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
@@ -337,6 +337,20 @@ def _poly_text(coeffs: dict[tuple[int, int], Fraction]) -> str:
         term = (str(mag) if not mono or mag != 1 else "") + ("*" if mono and mag != 1 else "") + mono
         out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
     return out or "0"
+
+
+def _rational_entry(q: Fraction) -> Entry:
+    """The entry ``p/q`` built directly (what ``Entry.of`` parses, without the parser:
+    a surrogate has thousands of entries)."""
+    num: ex.Expr = ex.Num(Fraction(abs(q.numerator)), str(abs(q.numerator)), None, 0)
+    if q < 0:
+        num = ex.Unary("-", num)
+    node = num if q.denominator == 1 else ex.Binary("/", num, ex.Num(Fraction(q.denominator), str(q.denominator), None, 0),
+                                                     len(str(q.numerator)) + 1)
+    return Entry(str(q), node, _NO_CONSTANTS, q, False, None)
+
+
+_NO_CONSTANTS = Constants()
 
 
 def _monomial(name: str, power: int) -> str:
