@@ -220,20 +220,17 @@ class Kernel:
     def of(A: str, b: str, constants: Constants, matrix_place: str | None = None) -> "Kernel":
         from rkcheck.numbers.parametric import ParametricEntries
 
-        nodes, entries = [], []
-        for place, text in (("A", A), ("b", b)):
-            shown = matrix_place or f"continuous.{place}"
+        nodes = []
+        places = [matrix_place or "continuous.A", matrix_place or "continuous.b"]
+        for place, text in zip(places, (A, b)):
             try:
                 node = ex.parse(text)
                 for used in ex.names(node):
                     if used.name not in VARIABLES and used.name not in constants.definitions:
                         raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a "
                                         "polynomial in tau and sigma (and the [constants])")
-                # the entry as a number: tau and sigma read as the constants 0 (its decimals, its roots)
-                probe = Constants(dict(constants.definitions) | {v: ex.parse("0") for v in VARIABLES})
-                entries.append(Entry.parse(text, probe))
             except UserError as err:
-                raise err.located(shown) from None
+                raise err.located(place) from None
             nodes.append(node)
         if any(n.name == "tau" for n in ex.names(nodes[1])) and any(n.name == "sigma" for n in ex.names(nodes[1])):
             raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma",
@@ -245,8 +242,18 @@ class Kernel:
                                        VARIABLES, constants.definitions)
         except UserError as err:
             raise UserError(err.message.replace("parameter", "variable (tau, sigma)").replace(
-                "in the variable (tau, sigma)s", "in tau and sigma"), err.place) from None
+                "entries must be polynomials in the variable (tau, sigma)s", "a kernel is a polynomial in tau and sigma"),
+                err.place) from None
         A_poly, B_poly = parsed.values
+        # each as a number (its decimals, its roots): tau and sigma read as the constant 0,
+        # which divides nothing now that both are known to be polynomials
+        probe = Constants(dict(constants.definitions) | {v: ex.parse("0") for v in VARIABLES})
+        entries = []
+        for place, text in zip(places, (A, b)):
+            try:
+                entries.append(Entry.parse(text, probe))
+            except UserError as err:
+                raise err.located(place) from None
         return Kernel(tuple(nodes), tuple(entries), parsed.ring, A_poly, B_poly, parsed)
 
     # ---------------------------------------------------------------- structure
