@@ -18,8 +18,9 @@ def load(source: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_STAGES
          format: str | None = None) -> Tableau:
     """A tableau from a file (TOML, JSON, ``.csv``/``.tsv``, nodepy ``.txt``; ``format``
     overrides the guess by suffix) or ``"@name"`` (a shipped tableau such as ``@gauss-3``,
-    or a classical method such as ``@rk4``).  Raises :class:`~rkcheck.errors.UserError`
-    subclasses with the CLI's one-line message."""
+    or a classical method such as ``@rk4``).  A file with a ``[continuous]`` table gives a
+    :class:`ContinuousMethod` (definitions §6), which ``verify`` takes like a tableau.
+    Raises :class:`~rkcheck.errors.UserError` subclasses with the CLI's one-line message."""
     from rkcheck.io.loader import load as load_file
 
     if not isinstance(source, (str, os.PathLike)):

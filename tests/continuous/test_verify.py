@@ -199,3 +199,20 @@ def test_rounded_decimals_make_a_box_judged_to_digits():
     # a box every kernel of which lacks the certificate: fails, certainly
     bent = ContinuousMethod.from_kernel("2.0000000000000000000*tau*sigma")
     assert rkcheck.verify(bent, order=4).certificate.verdict.state == "fails"
+
+
+def test_algebraic_kernel_is_exact_in_its_field():
+    """A = τ + √2(τ² − τ)(2σ − 1): ∂τA = 1 + √2(2τ − 1)(2σ − 1) is symmetric, so the
+    certificate holds, and exactly (in Q(√2)); C(τ) = τ, so a([τ]) = 1/2 but
+    a([[τ]]) = ∫∫A σ = 1/6 + √2·∫(τ²−τ)dτ·∫(2σ−1)σ dσ = 1/6 − √2/36 ≠ 1/6: order 2."""
+    m = ContinuousMethod.from_kernel("tau + r*(tau^2 - tau)*(2*sigma - 1)", constants={"r": "sqrt(2)"})
+    res = rkcheck.verify(m, order=5)
+    assert res.backend == "exact" and res.verdict == "holds" and res.energy_order_all
+    assert res.classical_order == 2 and res.classical.first_failure is not None
+
+
+def test_json_file_with_greek_letters(tmp_path):
+    f = tmp_path / "k.json"
+    f.write_text('{"method": {"name": "AVF"}, "continuous": {"A": "τ", "b": "1"}}', encoding="utf-8")
+    res = rkcheck.verify(str(f), order=4)
+    assert res.avf.equals_avf and res.energy_order_all and res.tableau.name == "AVF"
