@@ -107,3 +107,28 @@ def test_rational_rule_is_exact_to_its_degree():
     for k in range(6):
         assert sum(wi * xi ** k for xi, wi in zip(x, w)) == Fraction(1, k + 1)
     assert sum(wi * xi ** 6 for xi, wi in zip(x, w)) != Fraction(1, 7)
+
+
+def gamma(tree):
+    """The density γ(t) = |t| Π γ(children)."""
+    def size(t):
+        return 1 + sum(size(c) for c in t)
+    out = size(tree)
+    for c in tree:
+        out *= gamma(c)
+    return out
+
+
+def test_miyatake_butcher_4x4_classical_order_by_sympy():
+    """The 4×4 Miyatake–Butcher matrix of the library: a(t) = 1/γ(t) for every tree with
+    ≤ 4 vertices, not for every tree with 5 — classical order 4, by symbolic integration."""
+    M = [["-6/5", "72/5", "-36", "24"], ["72/5", "-144/5", "-48", "72"],
+         ["-36", "-48", "720", "-720"], ["24", "72", "-720", "720"]]
+    A = sum(sympy.Rational(M[i][j]) * tau ** (i + 1) / (i + 1) * sigma ** j for i in range(4) for j in range(4))
+    B = A.subs(tau, 1).subs(sigma, tau)
+    ok = {n: all(weight_sympy(t, A, B) == Fraction(1, gamma(t)) for t in rooted_trees(n)) for n in range(1, 6)}
+    assert ok == {1: True, 2: True, 3: True, 4: True, 5: False}
+    method = ContinuousMethod.from_matrix(M)
+    import rkcheck
+
+    assert rkcheck.verify(method, order=5).classical_order == 4
