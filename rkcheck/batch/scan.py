@@ -83,7 +83,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             if not _is_tableau_document(data):
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table)"
                 return out
-            built = build_tableau(data, path, max_stages)
+            built: Any = build_tableau(data, path, max_stages)
             if not isinstance(built, Tableau) and not getattr(built, "is_continuous", False):
                 out.status, out.error = "skipped", "a family with free [parameters] (check it with rkcheck solve)"
                 return out

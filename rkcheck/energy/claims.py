@@ -23,6 +23,7 @@ property claim: the found column says so and the note gives the proven order.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 from rkcheck.energy.budget import Budget
 from rkcheck.energy.check import CheckResult, CheckRunner
@@ -180,7 +181,8 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
     The claim runs share the main run when their options coincide (one CheckRunner);
     ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
     if getattr(tableau, "is_continuous", False):  # its B-series through an exact surrogate tableau
-        tableau = tableau.surrogate(vertices_needed(options, list(tableau.info.claims)))
+        method: Any = tableau
+        tableau = method.surrogate(vertices_needed(options, list(method.info.claims)))
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None

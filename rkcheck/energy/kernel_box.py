@@ -134,5 +134,5 @@ def box_verdicts(method: Any, decimals: DecimalsMode, bits: int = 256) -> dict[s
 def _weakest(verdicts: list[Verdict]) -> Verdict:
     if any(v.state == FAILS for v in verdicts):
         return Verdict(FAILS)
-    digits = [v.digits for v in verdicts if v.state == HOLDS_TO_DIGITS]
+    digits = [v.digits for v in verdicts if v.state == HOLDS_TO_DIGITS and v.digits is not None]
     return Verdict(HOLDS_TO_DIGITS, min(digits)) if digits else Verdict(HOLDS)

@@ -51,15 +51,17 @@ def _entry(value: Any, place: str) -> str:
     return str(value)
 
 
-def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str]) -> Any:
-    """The method (or, with ``[parameters]``, the family) of a document with ``[continuous]``."""
-    from rkcheck.io.loader import _constants, _table
-
+def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str],
+                  parameters: dict[str, Any] | None = None, raw_constants: dict[str, Any] | None = None,
+                  definitions: dict[str, Any] | None = None) -> Any:
+    """The method of a document with ``[continuous]`` (``info`` carries its constants), or
+    with ``parameters`` (the ``[parameters]`` table, the raw ``[constants]`` and their
+    parsed definitions) the family of kernels."""
     if "tableau" in data:
         raise UserError("give either [tableau] or [continuous], not both")
-    if "parameters" in data:
-        return build_kernel_family(data, name, info.replace(warnings=tuple(warnings)))
-    info = info.replace(constants=_constants(_table(data, "constants")))
+    if parameters is not None:
+        return build_kernel_family(data["continuous"], name, info.replace(warnings=tuple(warnings)), parameters,
+                                   raw_constants or {}, definitions or {})
     return build_continuous(data["continuous"], name, info, warnings)
 
 
@@ -80,19 +82,19 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
     return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)
 
 
-def build_kernel_family(data: dict[str, Any], name: str, info: MethodInfo) -> Any:
+def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_table: dict[str, Any],
+                        raw_constants: dict[str, Any], definitions: dict[str, Any]) -> Any:
     """A ``[continuous]`` kernel with free ``[parameters]``: a family
     (:func:`~rkcheck.methods.continuous_family.kernel_family`)."""
-    from rkcheck.io.loader import _constant_definitions, _table
     from rkcheck.methods.continuous_family import kernel_family
     from rkcheck.methods.parametric import parse_parameters
 
-    table = _table(data, "continuous")
+    if not isinstance(table, dict):
+        raise UserError("[continuous] must be a table", "continuous")
     if "M" in table:
         raise UserError("a kernel with [parameters] is given by A (and b), not M", "continuous")
     if "A" not in table:
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau")', "continuous")
-    raw_constants = _table(data, "constants")
-    parameters = parse_parameters(_table(data, "parameters"), raw_constants)
+    parameters = parse_parameters(parameters_table, raw_constants)
     return kernel_family(name, parameters, _text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"),
-                         _constant_definitions(raw_constants), info)
+                         definitions, info)

@@ -321,10 +321,13 @@ def _build(
         own = name if name != Path(source).stem else None
         return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
-    if "continuous" in data:  # a continuous-stage method (or a family of them)
+    if "continuous" in data:  # a continuous-stage method (or a family of kernels)
         from rkcheck.io.continuous import from_document
 
-        return from_document(data, name, info, warnings)
+        raw = _table(data, "constants")
+        if "parameters" in data:  # constants may use the parameters: resolved by the family
+            return from_document(data, name, info, warnings, _table(data, "parameters"), raw, _constant_definitions(raw))
+        return from_document(data, name, info.replace(constants=_constants(raw)), warnings)
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)
@@ -438,8 +441,9 @@ def loads(
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
-    if getattr(tableau, "is_continuous", False):
-        return tableau.replace(info=tableau.info.replace(lines=locate_lines(text, fmt)))
+    if getattr(tableau, "is_continuous", False):  # a ContinuousMethod: verify takes it like a tableau
+        method: Any = tableau
+        return method.replace(info=method.info.replace(lines=locate_lines(text, fmt)))
     if not isinstance(tableau, Tableau):
         raise UserError("this file has free [parameters]: it is a family, not one tableau; check it with "
                         "`rkcheck verify`, `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",

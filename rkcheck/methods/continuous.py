@@ -110,8 +110,9 @@ class ContinuousMethod:
             A_coeffs: dict[tuple[int, int], Fraction] = {}
             b_coeffs: dict[tuple[int, int], Fraction] = {}
             for (i, j), v in values.items():
-                A_coeffs[i, j - 1] = A_coeffs.get((i, j - 1), Fraction(0)) + v / i  # type: ignore[operator]
-                b_coeffs[j - 1, 0] = b_coeffs.get((j - 1, 0), Fraction(0)) + v / i  # type: ignore[operator]
+                term = Fraction(v or 0) / i
+                A_coeffs[i, j - 1] = A_coeffs.get((i, j - 1), Fraction(0)) + term
+                b_coeffs[j - 1, 0] = b_coeffs.get((j - 1, 0), Fraction(0)) + term
             return ContinuousMethod(_poly_text(A_coeffs), _poly_text(b_coeffs), name, info,
                                     tuple(tuple(r) for r in rows))
         A_terms, b_terms = [], []
@@ -254,7 +255,7 @@ class Kernel:
                 entries.append(Entry.parse(text, probe))
             except UserError as err:
                 raise err.located(place) from None
-        return Kernel(tuple(nodes), tuple(entries), parsed.ring, A_poly, B_poly, parsed)
+        return Kernel((nodes[0], nodes[1]), (entries[0], entries[1]), parsed.ring, A_poly, B_poly, parsed)
 
     # ---------------------------------------------------------------- structure
 

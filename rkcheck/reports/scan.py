@@ -456,8 +456,8 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
         classical = f"≥ {classical}"
     ec = s.get("error_constant")
     extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
-    t = r.get("tableau") or {}  # s: the stage count, or cont. for a continuous-stage method
-    stages = "cont." if t.get("structure") == "continuous" else t.get("stages", "")
+    t = r.get("tableau") or {}  # s: the stage count, or ∞ for a continuous-stage method (Butcher: infinitely many stages)
+    stages = "∞" if t.get("structure") == "continuous" else t.get("stages", "")
     return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), stages,
                  "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
 

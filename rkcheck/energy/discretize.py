@@ -43,12 +43,15 @@ class Discretisation:
     reason: str
 
 
-def _rule_texts(spec: str) -> tuple[list[str], list[str], dict[str, str], int, str]:
+def _rule_texts(spec: Any) -> tuple[list[str], list[str], dict[str, str], int, str]:
     """Node and weight texts (possibly naming constants), those constants, the rule's
-    quadrature order and its name, for a rule name or a tableau file."""
+    quadrature order and its name, for a rule name or a tableau (its b and c)."""
+    if not isinstance(spec, str):
+        return _tableau_rule(spec)
     m = RULE_PATTERN.fullmatch(spec.strip().lower())
     if m is None:
-        return _file_rule(spec)
+        raise UserError(f"unknown rule {spec!r}: gauss-K, radau-i-K, radau-ii-K, lobatto-K, newton-cotes-K, "
+                        "or a tableau file", "rule")
     name, k = m.group(1), int(m.group(2))
     if not 1 <= k <= MAX_RULE_NODES:
         raise UserError(f"{k} nodes: a rule has 1 to {MAX_RULE_NODES} (MAX_RULE_NODES)", "rule")
@@ -67,38 +70,36 @@ def _rule_texts(spec: str) -> tuple[list[str], list[str], dict[str, str], int, s
         x, w = r.exact_nodes_weights()
         return [str(v) for v in x], [str(v) for v in w], {}, order, f"{name}-{k}"
     forms = r.node_closed_forms()
+    if forms is None:  # every named rule's nodes have root(p, k) forms; kept for the type
+        raise UserError(f"the nodes of {name}-{k} have no exact form", "rule")
     cn = [f"c{i + 1}" for i in range(k)]
     consts = {cn[i]: forms[i] for i in range(k)} | {f"w{j + 1}": lagrange_integral_text(cn, j, "0", "1")
                                                     for j in range(k)}
     return cn, [f"w{j + 1}" for j in range(k)], consts, order, f"{name}-{k}"
 
 
-def _file_rule(path: str) -> tuple[list[str], list[str], dict[str, str], int, str]:
-    """The rule (b, c) of a tableau file (c = A·1 when the file gives none)."""
+def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, str]:
+    """The rule (b, c) of a tableau (c = A·1 when it gives none)."""
     from rkcheck.energy import scalars as sc
     from rkcheck.energy.orders import quadrature_order
     from rkcheck.evaluation.values import TableauValues
-    from rkcheck.io.loader import load
-    from rkcheck.methods.tableau import Tableau
     from rkcheck.numbers.reading import DecimalsMode, Reading
 
-    tab = load(path)
-    if not isinstance(tab, Tableau):
-        raise UserError("--rule FILE takes a tableau file (its b and c)", source=path)
     consts = {f"r_{k}": ex.to_text(v) for k, v in tab.info.constants.definitions.items()}
-    rename = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}
+    rename: dict[str, ex.Expr] = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}
     text = lambda e: ex.to_text(_substituted(e.node, rename))  # noqa: E731
     c = [text(e) for e in tab.c] if tab.c is not None else [
         " + ".join(f"({text(e)})" for e in row) for row in tab.A]
     b = [text(e) for e in tab.b]
     values = TableauValues(tab, Reading(DecimalsMode.EXACT))
     order = quadrature_order(*sc.tableau_values(values)).order
-    return c, b, consts, order, path
+    return c, b, consts, order, tab.info.source
 
 
-def discretize(method: ContinuousMethod, rule_spec: str) -> Discretisation:
-    """The tableau of ``method`` on the rule ``rule_spec`` (a name such as ``gauss-3``
-    or a tableau file), as exact entry texts, and the degree it keeps (module docstring)."""
+def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
+    """The tableau of ``method`` on the rule ``rule_spec`` (a name such as ``gauss-3``,
+    or a :class:`~rkcheck.methods.tableau.Tableau` whose b and c are the rule), as exact
+    entry texts, and the degree it keeps (module docstring)."""
     from rkcheck.energy.continuous import kernel_facts
 
     c, w, consts, order, name = _rule_texts(rule_spec)
@@ -141,21 +142,3 @@ def _simplified(A: list[list[str]], b: list[str], c: list[str], consts: dict[str
         return simplified_texts(consts, A, b, c)
     except UserError:
         return consts, A, b, c
-
-
-def discretized_toml(method: ContinuousMethod, d: Discretisation, command: str = "") -> str:
-    """The tableau file (TOML) of a discretisation, through the one writer."""
-    from rkcheck.io.writers import document_toml
-
-    desc = (f"{method.name} discretised with the {d.rule} rule (quadrature order {d.quadrature_order}): "
-            f"a_ij = b_j A(c_i, c_j), b_i = b_i B(c_i). {d.reason[0].upper()}{d.reason[1:]}.")
-    if command:
-        desc += f" Written by `{command}`."
-    doc: dict[str, dict[str, Any]] = {"method": {"name": f"{method.name}, {d.rule}", "description": desc}}
-    if d.constants:
-        doc["constants"] = d.constants
-    doc["tableau"] = {"A": d.A, "b": d.b, "c": d.c}
-    if d.kept_degree is not None:
-        doc["check"] = {"degree": d.kept_degree}
-        doc["expect"] = {"energy_order": [{"degree": d.kept_degree, "value": "all"}]}
-    return document_toml(doc, block_matrix=True)
