@@ -216,3 +216,12 @@ def test_json_file_with_greek_letters(tmp_path):
     f.write_text('{"method": {"name": "AVF"}, "continuous": {"A": "τ", "b": "1"}}', encoding="utf-8")
     res = rkcheck.verify(str(f), order=4)
     assert res.avf.equals_avf and res.energy_order_all and res.tableau.name == "AVF"
+
+
+def test_non_symmetric_miyatake_butcher_matrix_has_no_certificate_and_fails():
+    """M = [[1, 2], [0, −4]]: ∂τA = 1 + 2σ − 4τσ is not symmetric (M₁₂ ≠ M₂₁); B = A(1, σ)
+    = 1. C(τ) = ∫A dσ = 2τ − τ², so a([τ]) = ∫C = 2/3 ≠ 1/2: the 3-vertex condition
+    a([τ]) − a(τ)²/2 (by its two rootings) is ±1/6."""
+    res = rkcheck.verify(ContinuousMethod.from_matrix([["1", "2"], ["0", "-4"]]), order=4)
+    assert not res.certificate.certified and "not symmetric" in res.certificate.reason
+    assert res.first_failure.id == "1,2,2" and abs(res.first_failure.residual) == Fraction(1, 6)
