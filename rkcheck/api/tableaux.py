@@ -58,6 +58,8 @@ def write(tableau: Tableau, format: str = "toml") -> str:
     ``latex`` (a Butcher array), ``julia`` or ``python`` (code with exact entries)."""
     from rkcheck.io.formats import write as write_tableau
 
+    if getattr(tableau, "is_continuous", False):
+        as_tableau(tableau)  # refused in one line, with the way to a tableau (discretize)
     if not isinstance(tableau, Tableau):
         raise UserError(f"expected a Tableau (rkcheck.load, rkcheck.from_arrays), got {type(tableau).__name__}")
     return write_tableau(tableau, format)

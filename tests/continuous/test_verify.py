@@ -181,8 +181,9 @@ def test_commands_that_need_stages_refuse_a_kernel_in_one_line(args):
 
 
 def test_api_functions_that_need_stages_refuse_a_kernel():
-    with pytest.raises(rkcheck.TableauError, match="continuous-stage method"):
-        rkcheck.bench(ContinuousMethod.from_kernel("tau"))
+    for call in (rkcheck.bench, rkcheck.write):
+        with pytest.raises(rkcheck.TableauError, match="continuous-stage method"):
+            call(ContinuousMethod.from_kernel("tau"))
 
 
 def test_rounded_decimals_make_a_box_judged_to_digits():
