@@ -83,3 +83,15 @@ def test_rules_and_cli(tmp_path):
     out = subprocess.run([sys.executable, "-m", "rkcheck", "discretize", str(rule_file), "--rule", "gauss-2"],
                          capture_output=True, text=True)
     assert out.returncode == 2 and "continuous" in out.stderr
+
+
+def test_no_degree_without_the_certificate():
+    m = rkcheck.ContinuousMethod.from_kernel("2*tau*sigma")
+    text, note = rkcheck.discretize(m, "gauss-2")
+    assert "no degree is guaranteed" in note
+    doc = tomllib.loads(text)
+    assert "check" not in doc and "expect" not in doc
+    # the tableau is a_ij = b_j·2c_i c_j, b_i: with Gauss-2 nodes c = 1/2 ∓ √3/6, b = 1/2
+    tab = rkcheck.loads(text)
+    c1 = 0.5 - 3 ** 0.5 / 6
+    assert abs(float(tab.A[0][0].enclosure(64).mid) - 0.5 * 2 * c1 * c1) < 1e-15
