@@ -4,6 +4,7 @@ says what each kind of value means), and written forms."""
 from __future__ import annotations
 
 import os
+from typing import Any
 
 from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.tableau import Tableau
@@ -18,8 +19,9 @@ def load(source: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_STAGES
          format: str | None = None) -> Tableau:
     """A tableau from a file (TOML, JSON, ``.csv``/``.tsv``, nodepy ``.txt``; ``format``
     overrides the guess by suffix) or ``"@name"`` (a shipped tableau such as ``@gauss-3``,
-    or a classical method such as ``@rk4``).  Raises :class:`~rkcheck.errors.UserError`
-    subclasses with the CLI's one-line message."""
+    or a classical method such as ``@rk4``).  A file with a ``[continuous]`` table gives a
+    :class:`ContinuousMethod` (definitions §6), which ``verify`` takes like a tableau.
+    Raises :class:`~rkcheck.errors.UserError` subclasses with the CLI's one-line message."""
     from rkcheck.io.loader import load as load_file
 
     if not isinstance(source, (str, os.PathLike)):
@@ -56,6 +58,8 @@ def write(tableau: Tableau, format: str = "toml") -> str:
     ``latex`` (a Butcher array), ``julia`` or ``python`` (code with exact entries)."""
     from rkcheck.io.formats import write as write_tableau
 
+    if getattr(tableau, "is_continuous", False):
+        as_tableau(tableau)  # refused in one line, with the way to a tableau (discretize)
     if not isinstance(tableau, Tableau):
         raise UserError(f"expected a Tableau (rkcheck.load, rkcheck.from_arrays), got {type(tableau).__name__}")
     return write_tableau(tableau, format)
@@ -82,13 +86,64 @@ def tableau_warnings(tableau: Tableau, decimals: str = "auto") -> list[str]:
 TableauLike = Tableau | str | os.PathLike[str]
 
 
-def as_tableau(tableau: TableauLike, max_stages: int = DEFAULT_MAX_STAGES) -> Tableau:
-    """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``)."""
+def as_tableau(tableau: "TableauLike | ContinuousMethod", max_stages: int = DEFAULT_MAX_STAGES, *,
+               continuous: bool = False) -> Tableau:
+    """A tableau given as itself, a path or ``@name`` (files read with ``max_stages``).
+    ``continuous``: a continuous-stage method is welcome too (the checks take one, and
+    then it is returned as it is; the commands that need stages refuse it in one line)."""
+    if isinstance(tableau, (str, os.PathLike)):
+        tableau = load(tableau, max_stages=max_stages)
+    if getattr(tableau, "is_continuous", False):
+        if continuous:
+            method: Any = tableau  # checked like a tableau (definitions §6)
+            return method
+        raise TableauError("a continuous-stage method has no stages of its own, and this needs a tableau; "
+                           "`rkcheck discretize FILE --rule gauss-K` (rkcheck.discretize) writes one",
+                           source=tableau.info.source)
     if isinstance(tableau, Tableau):
         return tableau
-    if isinstance(tableau, (str, os.PathLike)):
-        return load(tableau, max_stages=max_stages)
     raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
 
 
-__all__ = ["from_arrays", "library", "load", "loads", "write"]
+from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402 - a public name
+
+
+def discretize(method: "ContinuousMethod | str | os.PathLike[str]", rule: "str | Tableau", *,
+               command: str = "") -> tuple[str, str]:
+    """The tableau file (TOML text) of a continuous-stage method on a quadrature rule
+    (``gauss-3``, ``radau-ii-2``, ``lobatto-4``, ``newton-cotes-5``, or a tableau — or its
+    file — whose b and c are the rule), and a sentence on the degree of Hamiltonian it keeps."""
+    from rkcheck.energy.discretize import RULE_PATTERN
+    from rkcheck.energy.discretize import discretize as build
+
+    m = as_tableau(method, continuous=True)
+    if not getattr(m, "is_continuous", False):
+        raise TableauError("discretize takes a continuous-stage method ([continuous] A, b or M), not a tableau")
+    if isinstance(rule, (str, os.PathLike)) and not RULE_PATTERN.fullmatch(os.fspath(rule).strip().lower()):
+        rule = as_tableau(rule)  # a tableau file: its b and c
+    elif not isinstance(rule, (str, Tableau)):
+        raise UserError(f"expected a rule name, a tableau or its file, got {type(rule).__name__}", "rule")
+    kernel: Any = m
+    d = build(kernel, rule if isinstance(rule, Tableau) else os.fspath(rule))
+    return _discretized_toml(m, d, command), d.reason
+
+
+def _discretized_toml(method: Any, d: Any, command: str = "") -> str:
+    """The tableau file (TOML) of a discretisation, through the one writer."""
+    from rkcheck.io.writers import document_toml
+
+    desc = (f"{method.name} discretised with the {d.rule} rule (quadrature order {d.quadrature_order}): "
+            f"a_ij = b_j A(c_i, c_j), b_i = b_i B(c_i). {d.reason[0].upper()}{d.reason[1:]}.")
+    if command:
+        desc += f" Written by `{command}`."
+    doc: dict[str, dict[str, Any]] = {"method": {"name": f"{method.name}, {d.rule}", "description": desc}}
+    if d.constants:
+        doc["constants"] = d.constants
+    doc["tableau"] = {"A": d.A, "b": d.b, "c": d.c}
+    if d.kept_degree is not None:
+        doc["check"] = {"degree": d.kept_degree}
+        doc["expect"] = {"energy_order": [{"degree": d.kept_degree, "value": "all"}]}
+    return document_toml(doc, block_matrix=True)
+
+
+__all__ = ["ContinuousMethod", "discretize", "from_arrays", "library", "load", "loads", "write"]

@@ -93,7 +93,9 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
     if isinstance(tableau, (str, os.PathLike)):
         tab: Tableau | None = load(tableau, max_stages=max_stages)
     else:
-        tab = as_tableau(tableau) if tableau is not None else None
+        tab = as_tableau(tableau, continuous=True) if tableau is not None else None
+    if getattr(tab, "is_continuous", False):  # its weights through a surrogate exact for this tree
+        tab = tab.surrogate(len(seq))  # type: ignore[union-attr]
     return explain(seq, None if tab is None else TableauValues(tab, Reading(DecimalsMode(decimals), dps)))
 
 

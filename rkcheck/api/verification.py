@@ -167,7 +167,7 @@ def verify(
         project_check = config.check
         if fail_on == "auto" and config.fail_on:
             fail_on = config.fail_on
-    tab = as_tableau(tableau)
+    tab = as_tableau(tableau, continuous=True)
     return run_check(tab, flags, project_check, fail_on, Budget(available_memory(), max_conditions, None))
 
 

@@ -49,7 +49,7 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
     """A table the loader reads, or the short form (``A`` and ``b`` at the top level), as
     ``verify`` accepts it; any other document (``package.json``, ``pyproject.toml``) is
     skipped."""
-    return any(k in data for k in ("tableau", "family", "method")) or ("A" in data and "b" in data)
+    return any(k in data for k in ("tableau", "family", "method", "continuous")) or ("A" in data and "b" in data)
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
@@ -84,10 +84,10 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
                 raise err.located(source=path) from None
             out.lines = locate_lines(text, fmt)
             if not _is_tableau_document(data):
-                out.status, out.error = "skipped", "not a tableau file (no [tableau], [family] or [method] table, no top-level A and b)"
+                out.status, out.error = "skipped", "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"
                 return out
-            built = build_tableau(data, path, max_stages)
-            if not isinstance(built, Tableau):
+            built: Any = build_tableau(data, path, max_stages)
+            if not isinstance(built, Tableau) and not getattr(built, "is_continuous", False):
                 out.status, out.error = "skipped", "a family with free [parameters] (check it with rkcheck solve)"
                 return out
             tab = built.replace(info=built.info.replace(lines=out.lines))

@@ -113,6 +113,11 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
     from rkcheck.api.tableaux import tableau_warnings, write  # the public rkcheck.write
 
     tab = load_input(file, max_stages, input_format)
+    if getattr(tab, "is_continuous", False):
+        from rkcheck.reports.continuous import show_continuous
+
+        show_continuous(tab, fmt, file)
+        return
     if fmt not in ("text", "json"):
         click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)
         return
@@ -161,6 +166,12 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     if file is not None:
         if count or stages or explicit or (output and emit is None):
             raise UserError("with a FAMILY file: --order, --degree, --classical, --format, --emit and --output only")
+        from rkcheck.api.families import is_family_file
+        from rkcheck.api.tableaux import load as load_file
+
+        if not is_family_file(file) and getattr(load_file(file), "is_continuous", False):
+            raise UserError("a continuous-stage method has no free parameters: `rkcheck verify FILE --all` lists "
+                            "every condition with its exact residual", source=file)
         from rkcheck.cli.families import family_report
 
         family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True,

@@ -193,10 +193,13 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     # tableau-level algebra: the irreducible form, R(z), symplecticity, symmetry; the AVF
     # verdict and the certificate of every order (AVF, line integral, and for m = 2 the
     # stability function)
-    props = properties_of_values(*scalars)
-    avf, cert = props.certificates(options.degree) if options.degree is not None else (None, None)
+    surrogate = tableau.info.continuous
+    if surrogate is not None:  # a continuous method: its kernel speaks for itself, not the surrogate
+        quad, props, avf, cert = _continuous_facts(surrogate, quad, options, values)
+    else:
+        props = properties_of_values(*scalars)
+        avf, cert = props.certificates(options.degree) if options.degree is not None else (None, None)
     timings["orders_and_avf"] = time.perf_counter() - t2
-
     conditions = ConditionResults(listing, orders)
     per_order = per_order_counts(listing, orders)
     avf, cert = _refuted(avf, cert, conditions.first_record(FAILS))
@@ -212,7 +215,8 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
         energy_order=proven, energy_order_to_digits=to_digits,
         energy_order_all=bool(cert and cert.certified and cert.verdict.state == HOLDS),
         quadrature=quad, classical=classical, avf=avf, certificate=cert,
-        theorem1=_theorem1(avf, conditions, per_order, options.order), warnings=warnings, values=values,
+        theorem1=None if surrogate is not None else _theorem1(avf, conditions, per_order, options.order),
+        warnings=warnings, values=values,
         properties=props, timings=timings, interrupted=interrupted,
     )
     if interrupted:
@@ -242,6 +246,21 @@ def _judged_orders(listing: ConditionListing, values: TableauValues, options: Ch
     except EvaluationInterrupted:
         return orders, True, None
     return orders, False, note
+
+
+def _continuous_facts(surrogate, quad: OrderResult, options: CheckOptions, values: TableauValues):
+    """A continuous method's quadrature order (the surrogate's, where its rule is exact),
+    kernel properties, equals-AVF and certificate (:mod:`rkcheck.energy.continuous`)."""
+    from rkcheck.energy.continuous import kernel_facts
+
+    n = surrogate.vertices
+    if quad.checked > n:  # beyond n vertices the surrogate's rule, not the method, answers
+        # the failing power k = to_digits + 1 is the method's only when k <= n
+        exact_failure = quad.first_failure if quad.first_failure and (quad.to_digits or 0) + 1 <= n else None
+        quad = OrderResult(min(quad.order, n), n, quad.verdict, exact_failure, min(quad.to_digits or 0, n))
+    box = options.decimals if surrogate.method.is_box(options.decimals) else None
+    facts = kernel_facts(surrogate.method, options.degree, box)
+    return quad, facts.properties, facts.avf, facts.certificate
 
 
 def _refuted(avf: AvfVerdict | None, cert: Certificate | None,

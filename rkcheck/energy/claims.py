@@ -23,6 +23,7 @@ property claim: the found column says so and the note gives the proven order.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 from rkcheck.energy.budget import Budget
 from rkcheck.energy.check import CheckResult, CheckRunner
@@ -179,10 +180,30 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
 
     The claim runs share the main run when their options coincide (one CheckRunner);
     ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
+    if getattr(tableau, "is_continuous", False):  # its B-series through an exact surrogate tableau
+        method: Any = tableau
+        tableau = method.surrogate(vertices_needed(options, list(method.info.claims)))
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
     return result_type.of(result, claims=claims, failed=file_fails(conditions_ok(result), claims, fail_on))
+
+
+def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:
+    """The largest rooted tree whose elementary weight a check and its claims read.  An
+    energy condition of a free tree with n + 1 vertices (order n) is
+    ``Σ_u ±1/σ(u) Π_{t ∈ B₋(u)} a(t)`` (definitions §3): the trees of the forests
+    ``B₋(u)`` have at most n vertices, as have the classical conditions to order n; an
+    order claim is decided one order beyond it."""
+    need = options.order
+    for c in claims:
+        if c.kind in ("energy_order", "avf"):
+            need = max(need, c.order or options.order)
+            if isinstance(c.value, int) and not isinstance(c.value, bool):
+                need = max(need, c.value + 1)
+        elif c.kind in ("classical_order", "quadrature_order"):
+            need = max(need, int(c.value) + 1)
+    return need
 
 
 # ---------------------------------------------------------------- exit policy

@@ -47,7 +47,7 @@ from rkcheck.options import (
     validate_check_table,
 )
 
-KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family")
+KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
 #: the smallest valid tableau file, shown when a file has no tableau at all
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")
@@ -321,6 +321,13 @@ def _build(
         own = name if name != Path(source).stem else None
         return build_family(_table(data, "family"), own, info.replace(warnings=tuple(warnings)))
 
+    if "continuous" in data:  # a continuous-stage method (or a family of kernels)
+        from rkcheck.io.continuous import from_document
+
+        raw = _table(data, "constants")
+        if "parameters" in data:  # constants may use the parameters: resolved by the family
+            return from_document(data, name, info, warnings, _table(data, "parameters"), raw, _constant_definitions(raw))
+        return from_document(data, name, info.replace(constants=_constants(raw)), warnings)
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)
@@ -434,6 +441,9 @@ def loads(
     except UserError as err:
         raise err.located(source=source) from None
     tableau = build_tableau(data, source, max_stages)
+    if getattr(tableau, "is_continuous", False):  # a ContinuousMethod: verify takes it like a tableau
+        method: Any = tableau
+        return method.replace(info=method.info.replace(lines=locate_lines(text, fmt)))
     if not isinstance(tableau, Tableau):
         raise UserError("this file has free [parameters]: it is a family, not one tableau; check it with "
                         "`rkcheck verify`, `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",

@@ -35,7 +35,7 @@ class MethodInfo:
     written and ``claims`` its parsed claims (:class:`~rkcheck.methods.claims.Claim`);
     ``lines``: where keys were written (``"tableau"``, ``"expect.avf"`` -> line);
     ``family``: the ``[family]`` parameters of a generated method; ``constants``: the
-    ``[constants]`` table the entries may name."""
+    ``[constants]`` table the entries may name; ``continuous``: see below."""
 
     description: str = ""
     references: tuple[str, ...] = ()
@@ -47,6 +47,9 @@ class MethodInfo:
     lines: Mapping[str, int] = field(default_factory=dict)
     family: Mapping[str, Any] | None = None
     constants: Constants = field(default_factory=Constants)
+    #: a surrogate tableau's :class:`~rkcheck.methods.continuous.Surrogate`: the
+    #: continuous-stage method whose B-series it carries, and how far
+    continuous: Any = None
 
     def replace(self, **changes: Any) -> "MethodInfo":
         return dataclasses.replace(self, **changes)

@@ -247,11 +247,7 @@ def check_doc(res: CheckResult) -> dict[str, Any]:
         "rkcheck": __version__,
         "file": printable(res.tableau.info.source),
         "method": method_doc(res.tableau),
-        "tableau": {
-            "stages": res.tableau.stages,
-            "structure": res.tableau.structure,
-            "numbers": res.values.describe(),
-        },
+        "tableau": _tableau_summary(res),
         "options": {
             "degree": o.degree,
             "order": o.order,
@@ -266,4 +262,20 @@ def check_doc(res: CheckResult) -> dict[str, Any]:
         "conditions": [condition_doc(r, o.dps) for r in res.conditions],
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},
+    }
+
+
+def _tableau_summary(res: Any) -> dict[str, Any]:
+    """``tableau`` of the verify document; a continuous-stage method adds its kernel (the
+    stage count is None: its B-series comes from a surrogate, not from stages)."""
+    surrogate = res.tableau.info.continuous
+    if surrogate is None:
+        return {"stages": res.tableau.stages, "structure": res.tableau.structure, "numbers": res.values.describe()}
+    m = surrogate.method
+    k = m.kernel
+    return {
+        "stages": None, "structure": "continuous", "numbers": res.values.describe(),
+        "kernel": {"A": m.A, "b": m.b, "M": None if m.M is None else [list(r) for r in m.M],
+                   "degree_tau": k.deg_tau, "degree_sigma": k.deg_sigma, "degree_b": k.deg_b},
+        "surrogate": {"nodes": surrogate.nodes, "exact_to_vertices": surrogate.vertices},
     }

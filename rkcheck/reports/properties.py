@@ -102,6 +102,14 @@ def properties_doc(res) -> dict[str, Any]:
     props = res.properties
     if props is None:
         return {}
+    if getattr(props, "continuous", False):  # a kernel: no stage reduction, no R(z)
+        return {
+            "symplectic": {"state": props.symplectic.verdict.state, "digits": props.symplectic.verdict.digits,
+                           "reason": props.symplectic.reason},
+            "symmetric": {"state": props.symmetric.verdict.state, "digits": props.symmetric.verdict.digits,
+                          "reason": props.symmetric.reason},
+            "error_constant": error_constant_doc(error_constant(res)),
+        }
     red = props.reduction
     sym, symm = props.symplectic, props.symmetric
     defect = None
@@ -156,7 +164,8 @@ def property_rows(res) -> list[tuple[str, Text | str]]:
     rows.append(("symplectic", _verdict_text(props.symplectic)))
     rows.append(("symmetric", _verdict_text(props.symmetric)))
     stab = props.stability
-    rows.append(("stability", f"{stab.text()};  {stab.defect_text()}"))
+    if stab is not None:  # None for a continuous method's kernel
+        rows.append(("stability", f"{stab.text()};  {stab.defect_text()}"))
     return rows
 
 

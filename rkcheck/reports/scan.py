@@ -456,7 +456,9 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
         classical = f"≥ {classical}"
     ec = s.get("error_constant")
     extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
-    return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), (r.get("tableau") or {}).get("stages", ""),
+    t = r.get("tableau") or {}  # s: the stage count, or ∞ for a continuous-stage method (Butcher: infinitely many stages)
+    stages = "∞" if t.get("structure") == "continuous" else t.get("stages", "")
+    return plain(shown(o["path"]), (r.get("method") or {}).get("name", ""), stages,
                  "—" if deg is None else deg, classical, energy, *extra, avf, claims_t, f"{o['time']:.2f}")
 
 

@@ -77,8 +77,17 @@ def header(values: TableauValues) -> Group:
     source = tab.info.source
     if source and source not in ("<memory>", "<string>"):
         title.append(f"  ({printable(source)})", style="dim")
+    if tab.info.continuous is not None:
+        return Group(title, Text(continuous_facts(tab.info.continuous, values)))
     facts = f"{tab.stages} stage{'s' if tab.stages != 1 else ''}, {tab.structure}, {values.describe()}"
     return Group(title, Text(facts))
+
+
+def continuous_facts(surrogate, values: TableauValues) -> str:
+    """The header of a continuous-stage method: its kernel and how its B-series is exact."""
+    m = surrogate.method
+    return (f"continuous-stage method: A(τ, σ) = {m.A}, B(τ) = {m.b}\n{values.describe()}; elementary weights exact "
+            f"for trees up to {surrogate.vertices} vertices (an exact {surrogate.nodes}-node rational rule)")
 
 
 def conditions_table(results: Sequence[Condition], title: str) -> Table:
@@ -160,7 +169,8 @@ def render_check(
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
         kv = _kv_table()
-        kv.add_row(*plain("quadrature order", _order_text(res.quadrature, "quadrature")))
+        kv.add_row(*plain("quadrature order", _order_text(res.quadrature, "quadrature",
+                                                          res.tableau.info.continuous is not None)))
         kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
         if res.avf is not None:
             a = res.avf
@@ -169,7 +179,7 @@ def render_check(
             else:
                 label = Text("no", style="red")
             label.append(f" — {a.reason}", style="")
-            kv.add_row(*plain(f"AVF (degree {a.degree})", label))
+            kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))
             for note in a.notes:
                 kv.add_row(*plain("", note))
         if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
@@ -224,17 +234,22 @@ def judged_by_conditions(res: CheckResult, fail_on: str) -> bool:
     return fail_on == "conditions" or (fail_on == "auto" and not res.claims)
 
 
-def _order_text(r, what: str) -> str:
+def _order_text(r, what: str, continuous: bool = False) -> str:
     """``4  (Σ b_i c_i^4 = 1/5 fails)``; an order reached only to digits says so:
     ``0, holds to 15 digits beyond order 0 up to order 4  (…)`` (definitions §5)."""
-    open_ended = what == "classical" and not r.first_failure
+    # a continuous method's quadrature order is checked as far as its exact B-series goes
+    open_ended = (what == "classical" or (what == "quadrature" and continuous)) and not r.first_failure
     text = (f"≥ {r.to_digits}" if open_ended else f"{r.to_digits}") if r.digits is None else (
         beyond_digits(r.order, r.digits, r.to_digits))
     if r.first_failure:
         text += f"  ({r.first_failure} fails)"
-    elif what == "classical":
+    elif what == "classical" or open_ended:
         text += f"  (checked up to {r.checked})"
     return text
+
+
+def _degree_words(degree: int | None) -> str:
+    return "every Hamiltonian" if degree is None else f"degree ≤ {degree}"
 
 
 def beyond_digits(proven: int, digits: int, reach: int | str) -> str:
@@ -275,9 +290,9 @@ def _energy_text(res: CheckResult) -> Text:
     if res.certified_all:
         digits = _numeric_certificate(res)
         if digits is not None:
-            return Text(f"to {digits} digits: all orders for degree ≤ {o.degree} ({_certificate_name(res)}, "
+            return Text(f"to {digits} digits: all orders for {_degree_words(o.degree)} ({_certificate_name(res)}, "
                         f"not a proof); {o.order} verified", style="yellow")
-        return Text(f"all orders for degree ≤ {o.degree} ({_certificate_name(res)}); {o.order} verified", style="green")
+        return Text(f"all orders for {_degree_words(o.degree)} ({_certificate_name(res)}); {o.order} verified", style="green")
     first = res.first_failure
     if first is None:
         if res.energy_order_digits is not None:
@@ -337,7 +352,7 @@ def final_line(res: CheckResult) -> Text:
                 style="bold yellow",
             )
         return Text(
-            f"OK: energy preserved to all orders for degree ≤ {res.options.degree} ({_certificate_name(res)}); "
+            f"OK: energy preserved to all orders for {_degree_words(res.options.degree)} ({_certificate_name(res)}); "
             f"{n} checked",
             style="bold green",
         )

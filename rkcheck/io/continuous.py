@@ -1,0 +1,100 @@
+"""The ``[continuous]`` table of a method file (definitions §6) ->
+:class:`~rkcheck.methods.continuous.ContinuousMethod`.
+
+Either ``A`` (a polynomial in ``tau`` and ``sigma``, ``τ``/``σ`` accepted) with an
+optional ``b`` (``B(τ)``, default ``"1"``), or ``M``, the Miyatake–Butcher matrix
+(SIAM J. Numer. Anal. 54 (2016), eq. (2.6)).  Coefficients follow the entry grammar and
+the ``[constants]`` table; every problem is a one-line error naming the place.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
+from rkcheck.methods.continuous import ContinuousMethod, _unalias
+from rkcheck.methods.tableau import MethodInfo
+
+KEYS = ("A", "b", "M")
+#: the Miyatake–Butcher matrix has at most this many rows and columns
+MAX_KERNEL_MATRIX = 40
+
+
+def _text(value: Any, place: str) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, str)):
+        raise UserError(f"expected a polynomial in tau and sigma (a string), got {type(value).__name__}", place)
+    return _unalias(str(value))
+
+
+def _matrix(value: Any) -> list[list[str]]:
+    if not isinstance(value, list) or not value:
+        raise UserError("expected a non-empty list of rows", "continuous.M")
+    if len(value) > MAX_KERNEL_MATRIX:
+        raise UserError(f"{len(value)} rows exceed the limit MAX_KERNEL_MATRIX = {MAX_KERNEL_MATRIX}", "continuous.M")
+    width = None
+    rows = []
+    for i, row in enumerate(value, start=1):
+        if not isinstance(row, list) or not row:
+            raise UserError("expected a non-empty row (a list)", f"M[{i}]")
+        if width is None:
+            width = len(row)
+        if len(row) != width or width > MAX_KERNEL_MATRIX:
+            raise UserError(f"row has {len(row)} entries, expected {width} (every row of M has the same length)", f"M[{i}]")
+        rows.append([_entry(x, f"M[{i}][{j}]") for j, x in enumerate(row, start=1)])
+    return rows
+
+
+def _entry(value: Any, place: str) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, str)):
+        raise UserError("expected a number or a string", place)
+    return str(value)
+
+
+def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str],
+                  parameters: dict[str, Any] | None = None, raw_constants: dict[str, Any] | None = None,
+                  definitions: dict[str, Any] | None = None) -> Any:
+    """The method of a document with ``[continuous]`` (``info`` carries its constants), or
+    with ``parameters`` (the ``[parameters]`` table, the raw ``[constants]`` and their
+    parsed definitions) the family of kernels."""
+    if "tableau" in data:
+        raise UserError("give either [tableau] or [continuous], not both")
+    if parameters is not None:
+        return build_kernel_family(data["continuous"], name, info.replace(warnings=tuple(warnings)), parameters,
+                                   raw_constants or {}, definitions or {})
+    return build_continuous(data["continuous"], name, info, warnings)
+
+
+def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str]) -> ContinuousMethod:
+    """The method of a ``[continuous]`` table (``info`` carries the ``[constants]``)."""
+    if not isinstance(table, dict):
+        raise UserError("[continuous] must be a table", "continuous")
+    for key in table:
+        if key not in KEYS:
+            warnings.append(f"unknown key continuous.{printable(key)} ignored (known: A, b, M)")
+    info = info.replace(warnings=tuple(warnings))
+    if "M" in table:
+        if "A" in table or "b" in table:
+            raise UserError("give either A (and b) or M, not both: M defines A and B itself", "continuous")
+        return ContinuousMethod.from_matrix(_matrix(table["M"]), name=name, info=info)
+    if "A" not in table:
+        raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau") or M', "continuous")
+    return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)
+
+
+def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_table: dict[str, Any],
+                        raw_constants: dict[str, Any], definitions: dict[str, Any]) -> Any:
+    """A ``[continuous]`` kernel with free ``[parameters]``: a family
+    (:func:`~rkcheck.methods.continuous_family.kernel_family`)."""
+    from rkcheck.methods.continuous_family import kernel_family
+    from rkcheck.methods.parametric import parse_parameters
+
+    if not isinstance(table, dict):
+        raise UserError("[continuous] must be a table", "continuous")
+    if "M" in table:
+        raise UserError("a kernel with [parameters] is given by A (and b), not M", "continuous")
+    if "A" not in table:
+        raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau")', "continuous")
+    parameters = parse_parameters(parameters_table, raw_constants)
+    return kernel_family(name, parameters, _text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"),
+                         definitions, info)

@@ -1,0 +1,407 @@
+"""Continuous-stage Runge–Kutta methods (definitions §6): a kernel ``A(τ, σ)`` and a
+weight ``B(τ)``, polynomials with coefficients in Q or in the number field of their
+constants (square roots, ``root``).
+
+A :class:`ContinuousMethod` keeps the kernel as written (its text and parsed expression,
+so that decimal literals keep their meaning under the decimals rule of definitions §5)
+and as exact polynomials over a :class:`~rkcheck.numbers.parametric.ParameterRing` in
+the variables ``tau`` and ``sigma``.
+
+Every B-series quantity goes through an exact *surrogate tableau*
+(:meth:`ContinuousMethod.surrogate`): with ``N`` distinct rational nodes ``x_i`` and the
+interpolatory weights ``w_i`` (exact for polynomials of degree ``< N``), the tableau
+``a_ij = w_j A(x_i, x_j)``, ``b_i = w_i B(x_i)`` has exactly the method's elementary
+weights for every tree with at most ``n`` vertices when
+``N − 1 ≥ max(q + (n − 2)p, d_B + (n − 1)p)`` (``p = deg_τ A``, ``q = deg_σ A``,
+``d_B = deg B``).  Why: the stage function of a tree whose root has ``k`` children is a
+product of ``k`` functions ``∫A(τ,σ)g(σ)dσ``, each of τ-degree ≤ p, so it has degree
+≤ kp; every integral the weight of a tree with n vertices needs is
+``∫A(x, σ)g(σ)dσ`` with g the stage function of a proper subtree (≤ n − 1 vertices,
+root with ≤ n − 2 children: degree ≤ q + (n − 2)p) or ``∫B g_t`` (root with ≤ n − 1
+children: ≤ d_B + (n − 1)p); a rule exact to that degree reproduces each of them, and by
+induction the surrogate's stage values are the stage functions at the nodes.
+
+What is not a B-series property (the stability function, symplecticity and symmetry
+of the surrogate, its stage count) is never read from the surrogate:
+:mod:`rkcheck.energy.continuous` judges the kernel itself.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property
+from typing import Any, Sequence
+
+from rkcheck.errors import UserError
+from rkcheck.methods.tableau import MethodInfo, Tableau
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.numbers.reading import DecimalsMode
+
+#: the two variables of a kernel, and the Greek letters accepted for them
+VARIABLES = ("tau", "sigma")
+ALIASES = {"τ": "tau", "σ": "sigma"}
+#: the surrogate tableau never has more nodes than this (a kernel of τ-degree 4 checked
+#: to order 12 needs 49)
+MAX_SURROGATE_NODES = 400
+
+
+def _unalias(text: str) -> str:
+    for greek, name in ALIASES.items():
+        text = text.replace(greek, name)
+    return text
+
+
+@dataclass(frozen=True)
+class ContinuousMethod:
+    """A continuous-stage method: ``A(τ, σ)`` and ``B(τ)`` as written (``A``, ``b``:
+    expressions in ``tau`` and ``sigma``), ``M`` the Miyatake–Butcher matrix when the
+    file gave one, a name and the file's :class:`MethodInfo`."""
+
+    A: str
+    b: str = "1"
+    name: str = "continuous-stage method"
+    info: MethodInfo = field(default_factory=MethodInfo, compare=False, repr=False)
+    M: tuple[tuple[str, ...], ...] | None = None
+
+    structure = "continuous"
+    is_continuous = True
+
+    def __post_init__(self) -> None:
+        self.kernel  # noqa: B018 - parse now: a bad kernel is refused at construction
+
+    # ----------------------------------------------------------------- construction
+
+    @staticmethod
+    def from_kernel(A: str, b: str = "1", *, name: str = "continuous-stage method",
+                    constants: dict[str, str] | None = None) -> "ContinuousMethod":
+        """A method from its kernel ``A(τ, σ)`` and weight ``B(τ)`` (``rkcheck.ContinuousMethod``)."""
+        for what, value in (("A", A), ("b", b)):
+            if not isinstance(value, str):
+                raise UserError(f"expected an expression in tau and sigma (a str), got {type(value).__name__}", what)
+        defs = {}
+        for key, text in (constants or {}).items():
+            try:
+                defs[key] = ex.parse(str(text))
+            except UserError as err:
+                raise err.located(f"constants.{key}") from None
+        consts = Constants(defs)
+        return ContinuousMethod(_unalias(A), _unalias(b), name, MethodInfo(source=name, constants=consts))
+
+    @staticmethod
+    def from_matrix(M: Sequence[Sequence[Any]], *, name: str = "continuous-stage method",
+                    info: MethodInfo | None = None) -> "ContinuousMethod":
+        """The Miyatake–Butcher method of the matrix ``M`` (indices from 1):
+        ``A(τ,σ) = Σ M_ij τ^i/i σ^(j−1)``, ``B(σ) = A(1, σ)``."""
+        info = info or MethodInfo(source=name)
+        rows = [[str(x) for x in row] for row in M]
+        values: dict[tuple[int, int], Fraction | None] = {}
+        for i, row in enumerate(rows, start=1):
+            for j, text in enumerate(row, start=1):
+                try:
+                    node = ex.parse(text)
+                    info.constants.check_names(node)
+                    values[i, j] = ex.evaluate_exact(node, info.constants.exact_values())
+                except UserError as err:
+                    raise err.located(f"M[{i}][{j}]") from None
+        if all(v is not None for v in values.values()):  # rational: the polynomials collected
+            A_coeffs: dict[tuple[int, int], Fraction] = {}
+            b_coeffs: dict[tuple[int, int], Fraction] = {}
+            for (i, j), v in values.items():
+                term = Fraction(v or 0) / i
+                A_coeffs[i, j - 1] = A_coeffs.get((i, j - 1), Fraction(0)) + term
+                b_coeffs[j - 1, 0] = b_coeffs.get((j - 1, 0), Fraction(0)) + term
+            return ContinuousMethod(_poly_text(A_coeffs), _poly_text(b_coeffs), name, info,
+                                    tuple(tuple(r) for r in rows))
+        A_terms, b_terms = [], []
+        for (i, j), value in values.items():
+            coeff = f"({rows[i - 1][j - 1]})/{i}"
+            A_terms.append(coeff + _monomial("tau", i) + _monomial("sigma", j - 1))
+            b_terms.append(coeff + _monomial("tau", j - 1))
+        return ContinuousMethod(" + ".join(A_terms), " + ".join(b_terms), name, info, tuple(tuple(r) for r in rows))
+
+    def replace(self, **changes: Any) -> "ContinuousMethod":
+        return dataclasses.replace(self, **changes)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("kernel", None)  # FLINT polynomials do not pickle; rebuilt on first use
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+
+    # ----------------------------------------------------------------- the kernel
+
+    @cached_property
+    def kernel(self) -> "Kernel":
+        return Kernel.of(self.A, self.b, self.info.constants, "M" if self.M is not None else None)
+
+    @property
+    def nodes(self) -> tuple[ex.Expr, ex.Expr]:
+        return self.kernel.nodes
+
+    @property
+    def rounded_digits(self) -> int | None:
+        """Fewest significant digits of a rounded decimal in the kernel (None: none)."""
+        digits = [e.rounded_digits for e in self.kernel.entries if e.rounded_digits is not None]
+        return min(digits) if digits else None
+
+    def is_box(self, decimals: DecimalsMode) -> bool:
+        """Some decimal literal of the kernel stands for an interval (definitions §5.2)."""
+        return any(e.is_box(DecimalsMode(decimals)) for e in self.kernel.entries)
+
+    @property
+    def is_rational(self) -> bool:
+        return self.kernel.ring.field is None
+
+    # ----------------------------------------------------------------- the surrogate
+
+    def nodes_for(self, vertices: int) -> int:
+        """How many rational nodes make the surrogate exact for trees up to ``vertices``."""
+        k = self.kernel
+        need = max(k.deg_sigma + max(vertices - 2, 0) * k.deg_tau, k.deg_b + (vertices - 1) * k.deg_tau)
+        return need + 1
+
+    def surrogate(self, vertices: int) -> Tableau:
+        """A tableau with the method's elementary weights for every tree with at most
+        ``vertices`` vertices (module docstring); its ``info.continuous`` says so."""
+        n_nodes = self.nodes_for(vertices)
+        if n_nodes > MAX_SURROGATE_NODES:
+            raise UserError(f"the exact B-series to {vertices} vertices needs {n_nodes} quadrature nodes, "
+                            f"more than the limit MAX_SURROGATE_NODES = {MAX_SURROGATE_NODES}; check a lower order",
+                            source=self.info.source)
+        x, w = rational_rule(n_nodes)
+        A, b = self.kernel.surrogate_entries(x, w, self.info.constants)
+        info = self.info.replace(continuous=Surrogate(self, vertices, n_nodes))
+        return Tableau(A=A, b=b, c=None, name=self.name, info=info)
+
+
+@dataclass(frozen=True)
+class Surrogate:
+    """What a surrogate tableau stands for: ``method``, exact for trees up to ``vertices``."""
+
+    method: ContinuousMethod
+    vertices: int
+    nodes: int
+
+
+def rational_rule(n: int) -> tuple[list[Fraction], list[Fraction]]:
+    """``n`` equispaced rational nodes on [0, 1] (the midpoint for n = 1) and the
+    weights that integrate every polynomial of degree < n exactly."""
+    from flint import fmpq, fmpq_mat
+
+    if n == 1:
+        return [Fraction(1, 2)], [Fraction(1)]
+    x = [Fraction(i, n - 1) for i in range(n)]
+    V = fmpq_mat(n, n, [fmpq(xi.numerator, xi.denominator) ** k for k in range(n) for xi in x])
+    rhs = fmpq_mat(n, 1, [fmpq(1, k + 1) for k in range(n)])
+    sol = V.solve(rhs)
+    return x, [Fraction(int(sol[i, 0].p), int(sol[i, 0].q)) for i in range(n)]
+
+
+# --------------------------------------------------------------------------- the kernel
+
+
+@dataclass(frozen=True)
+class Kernel:
+    """``A`` and ``B`` parsed (``nodes``, ``entries`` as written) and as exact
+    polynomials (``A_poly``, ``B_poly`` over ``ring``: variables θ?, tau, sigma)."""
+
+    nodes: tuple[ex.Expr, ex.Expr]
+    entries: tuple[Entry, Entry]
+    ring: Any
+    A_poly: Any
+    B_poly: Any
+    parsed: Any
+
+    @staticmethod
+    def of(A: str, b: str, constants: Constants, matrix_place: str | None = None) -> "Kernel":
+        from rkcheck.numbers.parametric import ParametricEntries
+
+        nodes = []
+        places = [matrix_place or "continuous.A", matrix_place or "continuous.b"]
+        for place, text in zip(places, (A, b)):
+            try:
+                node = ex.parse(text)
+                for used in ex.names(node):
+                    if used.name not in VARIABLES and used.name not in constants.definitions:
+                        raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a "
+                                        "polynomial in tau and sigma (and the [constants])")
+            except UserError as err:
+                raise err.located(place) from None
+            nodes.append(node)
+        if any(n.name == "tau" for n in ex.names(nodes[1])) and any(n.name == "sigma" for n in ex.names(nodes[1])):
+            raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma",
+                            matrix_place or "continuous.b")
+        if any(n.name == "sigma" for n in ex.names(nodes[1])):  # B written in σ (as B(σ) = A(1, σ))
+            nodes[1] = _rename(nodes[1], "sigma", "tau")
+        try:
+            parsed = ParametricEntries(nodes, [matrix_place or "continuous.A", matrix_place or "continuous.b"],
+                                       VARIABLES, constants.definitions)
+        except UserError as err:
+            raise UserError(err.message.replace("parameter", "variable (tau, sigma)").replace(
+                "entries must be polynomials in the variable (tau, sigma)s", "a kernel is a polynomial in tau and sigma"),
+                err.place) from None
+        A_poly, B_poly = parsed.values
+        # each as a number (its decimals, its roots): tau and sigma read as the constant 0,
+        # which divides nothing now that both are known to be polynomials
+        probe = Constants(dict(constants.definitions) | {v: ex.parse("0") for v in VARIABLES})
+        entries = []
+        for place, text in zip(places, (A, b)):
+            try:
+                entries.append(Entry.parse(text, probe))
+            except UserError as err:
+                raise err.located(place) from None
+        return Kernel((nodes[0], nodes[1]), (entries[0], entries[1]), parsed.ring, A_poly, B_poly, parsed)
+
+    # ---------------------------------------------------------------- structure
+
+    def _index(self, name: str) -> int:
+        return self.ring.variables.index(name)
+
+    def degree(self, p: Any, name: str) -> int:
+        if p.is_zero():
+            return 0
+        return int(max(m[self._index(name)] for m in p.monoms()))
+
+    @property
+    def deg_tau(self) -> int:
+        return self.degree(self.A_poly, "tau")
+
+    @property
+    def deg_sigma(self) -> int:
+        return self.degree(self.A_poly, "sigma")
+
+    @property
+    def deg_b(self) -> int:
+        return self.degree(self.B_poly, "tau")
+
+    def gens(self) -> tuple[Any, Any]:
+        return self.ring.parameter("tau"), self.ring.parameter("sigma")
+
+    def substitute(self, p: Any, tau: Any, sigma: Any) -> Any:
+        """``p`` with tau and sigma replaced by polynomials of the ring."""
+        args = [self.ring.theta] if self.ring.theta is not None else []
+        return self.ring.reduce(p.compose(*args, tau, sigma, ctx=self.ring.ctx))
+
+    def integrate(self, p: Any, name: str) -> Any:
+        """``∫₀¹ p d(name)``."""
+        k = self._index(name)
+        out = self.ring.constant(0)
+        for monom, c in zip(p.monoms(), p.coeffs()):
+            e = list(monom)
+            power = e[k]
+            e[k] = 0
+            term = self.ring.ctx.from_dict({tuple(e): c})
+            out = out + term * self.ring.constant(Fraction(1, power + 1))
+        return out
+
+    def is_zero(self, p: Any) -> bool:
+        return self.ring.is_zero(p)
+
+    def number(self, p: Any) -> Any:
+        """A constant polynomial as a Fraction or an element of the field."""
+        ring = self.ring
+        if ring.field is None:
+            if p.is_zero():
+                return Fraction(0)
+            (c,) = p.coeffs()
+            return Fraction(int(c.p), int(c.q))
+        return self.parsed._field_element(p) if not p.is_zero() else ring.field([Fraction(0)] * ring.field.degree)
+
+    # ---------------------------------------------------------------- surrogate
+
+    def surrogate_entries(self, x: list[Fraction], w: list[Fraction], constants: Constants):
+        """``a_ij = w_j A(x_i, x_j)``, ``b_i = w_i B(x_i)`` as tableau entries: exact
+        fractions for a rational kernel without decimals, otherwise the kernel's own
+        expression at the nodes (its decimals and roots then read as in any entry)."""
+        n = len(x)
+        plain = self.ring.field is None and not any(
+            lit.is_decimal for node in self.nodes for lit in ex.literals(node)) and not any(
+            constants.has_decimal(u.name) for node in self.nodes for u in ex.names(node) if u.name in constants.definitions)
+        if plain:
+            tau, sigma = self.gens()
+            A = tuple(tuple(_rational_entry(w[j] * self.number(self.substitute(
+                self.A_poly, self.ring.constant(x[i]), self.ring.constant(x[j])))) for j in range(n)) for i in range(n))
+            b = tuple(_rational_entry(w[i] * self.number(self.substitute(
+                self.B_poly, self.ring.constant(x[i]), sigma))) for i in range(n))
+            return A, b
+        A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
+        b = tuple(_entry_at(self.nodes[1], w[i], x[i], Fraction(0), constants) for i in range(n))
+        return A, b
+
+
+def _poly_text(coeffs: dict[tuple[int, int], Fraction]) -> str:
+    """``Σ c τ^i σ^j`` as an entry text, highest powers of τ last (``tau - 3*tau^2*sigma``)."""
+    out = ""
+    for (i, j), c in sorted(coeffs.items()):
+        if c == 0:
+            continue
+        mono = (_monomial("tau", i) + _monomial("sigma", j)).lstrip("*")
+        mag = abs(c)
+        term = (str(mag) if not mono or mag != 1 else "") + ("*" if mono and mag != 1 else "") + mono
+        out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
+    return out or "0"
+
+
+def _rational_entry(q: Fraction) -> Entry:
+    """The entry ``p/q`` built directly (what ``Entry.of`` parses, without the parser:
+    a surrogate has thousands of entries)."""
+    num: ex.Expr = ex.Num(Fraction(abs(q.numerator)), str(abs(q.numerator)), None, 0)
+    if q < 0:
+        num = ex.Unary("-", num)
+    node = num if q.denominator == 1 else ex.Binary("/", num, ex.Num(Fraction(q.denominator), str(q.denominator), None, 0),
+                                                     len(str(q.numerator)) + 1)
+    return Entry(str(q), node, _NO_CONSTANTS, q, False, None)
+
+
+_NO_CONSTANTS = Constants()
+
+
+def _monomial(name: str, power: int) -> str:
+    return "" if power == 0 else (f"*{name}" if power == 1 else f"*{name}^{power}")
+
+
+def _literal(q: Fraction) -> ex.Expr:
+    return ex.parse(f"({q.numerator}/{q.denominator})")
+
+
+def _rename(node: ex.Expr, old: str, new: str) -> ex.Expr:
+    return _substituted(node, {old: ex.Name(new, 1)})
+
+
+def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
+    def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
+        if isinstance(n, ex.Unary):
+            return (n.operand,)
+        if isinstance(n, ex.Binary):
+            return (n.left, n.right)
+        if isinstance(n, ex.Power):
+            return (n.base, n.exponent)
+        if isinstance(n, ex.Call):
+            return n.args
+        return ()
+
+    def combine(n: ex.Expr, vals: list[ex.Expr]) -> ex.Expr:
+        if isinstance(n, ex.Name):
+            return values.get(n.name, n)
+        if isinstance(n, ex.Unary):
+            return ex.Unary(n.op, vals[0])
+        if isinstance(n, ex.Binary):
+            return ex.Binary(n.op, vals[0], vals[1], n.column)
+        if isinstance(n, ex.Power):
+            return ex.Power(vals[0], vals[1], n.column)
+        if isinstance(n, ex.Call):
+            return ex.Call(n.func, tuple(vals), n.column)
+        return n
+
+    return ex.fold(node, combine, operands)
+
+
+def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:
+    value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
+    text = f"{weight.numerator}/{weight.denominator}*({ex.to_text(value)})"
+    return Entry.parse(text, constants)

@@ -1,0 +1,64 @@
+"""A continuous-stage kernel with free ``[parameters]`` as a family
+(:class:`~rkcheck.methods.parametric.Family`): its exact surrogate tableau
+(:mod:`rkcheck.methods.continuous`) on rational nodes keeps every entry a polynomial in
+the parameters, so the family machinery (conditions as polynomials, ``rkcheck solve``)
+applies unchanged.  The surrogate is exact for every tree the family commands can read
+(:data:`FAMILY_VERTICES`: energy order 12, classical order 12)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any, Mapping
+
+from rkcheck.errors import UserError
+from rkcheck.methods.continuous import MAX_SURROGATE_NODES, VARIABLES, _literal, _substituted, rational_rule
+from rkcheck.methods.tableau import MethodInfo
+from rkcheck.numbers import grammar as ex
+
+#: trees of up to 13 vertices: energy order ≤ 12 and classical order ≤ 12 (the family limits)
+FAMILY_VERTICES = 13
+
+
+def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, constants: Mapping[str, ex.Expr],
+                  info: MethodInfo, vertices: int = FAMILY_VERTICES) -> Any:
+    """The family of the kernel ``A``, ``b`` (texts in tau, sigma and the parameters)."""
+    from rkcheck.methods.parametric import build_family
+    from rkcheck.numbers.parametric import ParametricEntries
+
+    clash = sorted(set(parameters) & set(VARIABLES))
+    if clash:
+        raise UserError(f"{clash[0]} is a kernel variable, not a parameter", f"parameters.{clash[0]}")
+    nodes = []
+    for place, text in (("continuous.A", A), ("continuous.b", b)):
+        try:
+            node = ex.parse(text)
+        except UserError as err:
+            raise err.located(place) from None
+        for used in ex.names(node):
+            if used.name not in VARIABLES and used.name not in parameters and used.name not in constants:
+                raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a polynomial in "
+                                "tau and sigma (and the [parameters] and [constants])", place)
+        nodes.append(node)
+    if any(n.name == "sigma" for n in ex.names(nodes[1])):
+        nodes[1] = _substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
+    poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
+    ring = poly.ring
+    deg = lambda p, v: max((int(m[ring.variables.index(v)]) for m in p.monoms()), default=0)  # noqa: E731
+    A_poly, B_poly = poly.values
+    p, q, dB = deg(A_poly, "tau"), deg(A_poly, "sigma"), deg(B_poly, "tau")
+    n_nodes = max(q + (vertices - 2) * p, dB + (vertices - 1) * p) + 1
+    if n_nodes > MAX_SURROGATE_NODES:
+        raise UserError(f"the kernel needs {n_nodes} quadrature nodes, more than MAX_SURROGATE_NODES = "
+                        f"{MAX_SURROGATE_NODES}", "continuous")
+    x, w = rational_rule(n_nodes)
+    A_text = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
+    b_text = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
+    note = (f"a continuous-stage kernel: its exact surrogate on {n_nodes} rational nodes (elementary weights exact "
+            f"for trees up to {vertices} vertices)")
+    info = info.replace(warnings=info.warnings + (note,))
+    return build_family(name, parameters, A_text, b_text, constants, info)
+
+
+def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> str:
+    value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
+    return f"{weight.numerator}/{weight.denominator}*({ex.to_text(value)})"

@@ -1,0 +1,97 @@
+"""Discretisation of continuous-stage methods: HBVM(k, 2) is the s = 2 energy-preserving
+collocation kernel on k Gauss nodes (Brugnano–Iavernaro–Trigiante 2010, Hairer 2010),
+compared with the shipped tableaux exactly; the degree it keeps against verify."""
+
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+import rkcheck
+from rkcheck.methods.continuous import _substituted
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.field_builder import field_of
+
+ROOT = Path(__file__).resolve().parents[2]
+EPCM2 = ROOT / "tableaux" / "continuous" / "epcm-2.toml"
+
+
+def _renamed(node, names, prefix):
+    return _substituted(node, {n: ex.Name(prefix + n, 1) for n in names})
+
+
+def assert_same_tableau(mine, theirs):
+    """Every entry of A and b equal exactly: the differences (each file's constants kept
+    apart by a prefix) are zero in the number field of them all."""
+    defs = {}
+    for prefix, tab in (("m_", mine), ("t_", theirs)):
+        names = list(tab.info.constants.definitions)
+        defs |= {prefix + k: _renamed(v, names, prefix) for k, v in tab.info.constants.definitions.items()}
+    pairs = [(x, y) for rm, rt in zip(mine.A, theirs.A) for x, y in zip(rm, rt)] + list(zip(mine.b, theirs.b))
+    assert mine.stages == theirs.stages and len(pairs) == mine.stages * (mine.stages + 1)
+    m_names, t_names = list(mine.info.constants.definitions), list(theirs.info.constants.definitions)
+    diffs = [ex.Binary("-", _renamed(x.node, m_names, "m_"), _renamed(y.node, t_names, "t_"), 1) for x, y in pairs]
+    found = field_of(diffs, defs)
+    assert all(v == 0 or (hasattr(v, "coeffs") and not any(v.coeffs)) for v in found.values)
+
+
+@pytest.mark.parametrize("k", [3, 4])
+def test_gauss_k_discretisation_is_hbvm_k_2(k):
+    text, note = rkcheck.discretize(str(EPCM2), f"gauss-{k}")
+    mine = rkcheck.loads(text)
+    theirs = rkcheck.load(f"@hbvm-{k}-2")
+    assert_same_tableau(mine, theirs)
+    assert f"degree ≤ {k}" in note  # 2k/s with s = 2 (the shipped HBVM(k, 2) claims the same)
+
+
+def test_a_different_tableau_is_told_apart():
+    mine = rkcheck.loads(rkcheck.discretize(str(EPCM2), "gauss-3")[0])
+    other = rkcheck.load("@hbvm-3-2")
+    bent = other.replace(b=(other.b[1], other.b[0], other.b[2]))
+    with pytest.raises(AssertionError):
+        assert_same_tableau(mine, bent)
+
+
+def test_kept_degree_against_verify():
+    """Gauss-3 on the s = 2 kernel: ⌊6/2⌋ = 3.  Degree 3: every condition holds; degree 4:
+    one fails (the quadrature error of the line integral)."""
+    text, _ = rkcheck.discretize(str(EPCM2), "gauss-3")
+    tab = rkcheck.loads(text)
+    assert tomllib.loads(text)["check"]["degree"] == 3
+    assert rkcheck.verify(tab, degree=3, order=8).all_hold
+    assert not rkcheck.verify(tab, degree=4, order=8).all_hold
+
+
+def test_rules_and_cli(tmp_path):
+    avf = ROOT / "tableaux" / "continuous" / "avf.toml"
+    # AVF on Lobatto-3 is the shipped avf-lobatto-3 tableau (rational)
+    tab = rkcheck.loads(rkcheck.discretize(str(avf), "lobatto-3")[0])
+    shipped = rkcheck.load("@avf-lobatto-3")
+    assert [[e.exact for e in r] for r in tab.A] == [[e.exact for e in r] for r in shipped.A]
+    assert [e.exact for e in tab.b] == [e.exact for e in shipped.b]
+    # a rule from a file: the b and c of Gauss-2 collocation
+    rule_file = ROOT / "tableaux" / "collocation" / "gauss-2.toml"
+    t2 = rkcheck.loads(rkcheck.discretize(str(EPCM2), str(rule_file))[0])
+    assert_same_tableau(t2, rkcheck.load("@gauss-2"))  # HBVM(s, s) is Gauss collocation
+    nc = rkcheck.loads(rkcheck.discretize(str(avf), "newton-cotes-3")[0])
+    assert [e.exact for e in nc.b] == [e.exact for e in rkcheck.load("@avf-lobatto-3").b]  # Simpson
+    out = subprocess.run([sys.executable, "-m", "rkcheck", "discretize", str(EPCM2), "--rule", "gauss-9x"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    out = subprocess.run([sys.executable, "-m", "rkcheck", "discretize", str(rule_file), "--rule", "gauss-2"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and "continuous" in out.stderr
+
+
+def test_no_degree_without_the_certificate():
+    m = rkcheck.ContinuousMethod.from_kernel("2*tau*sigma")
+    text, note = rkcheck.discretize(m, "gauss-2")
+    assert "no degree is guaranteed" in note
+    doc = tomllib.loads(text)
+    assert "check" not in doc and "expect" not in doc
+    # the tableau is a_ij = b_j·2c_i c_j, b_i: with Gauss-2 nodes c = 1/2 ∓ √3/6, b = 1/2
+    tab = rkcheck.loads(text)
+    c1 = 0.5 - 3 ** 0.5 / 6
+    assert abs(float(tab.A[0][0].enclosure(64).mid) - 0.5 * 2 * c1 * c1) < 1e-15
