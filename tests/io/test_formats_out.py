@@ -5,19 +5,21 @@ Julia are compared with arrays written by hand."""
 from __future__ import annotations
 
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 import sympy as sp
 from support.clirun import run_cli
 from support.heavy import heavy
 from support.numbers import exact_under
-from support.paths import TABLEAUX
+from support.paths import TABLEAUX, tableau_files
 
 from rkcheck.io.formats import to_json, to_julia, to_latex, to_python, to_toml, write
 from rkcheck.io.loader import load, loads
 from rkcheck.numbers.grammar import to_text
 
-FILES = sorted(p for p in TABLEAUX.rglob("*.toml") if "[family]" not in p.read_text() and "[parameters]" not in p.read_text())
+# the tableaux (not the families or continuous-stage kernels), without [family] generators
+FILES = sorted(Path(f) for f in tableau_files() if f.endswith(".toml") and "[family]" not in Path(f).read_text())
 
 
 def texts(tab):
