@@ -148,6 +148,7 @@ def scan(
     allow_empty: bool | None = None,
     progress: Callable[[int, int], None] | None = None,
     on_file: Callable[[ScanRow, int, int], None] | None = None,
+    scheduler: str | None = None,
 ) -> ScanResult:
     """Check every ``*.toml``/``*.json`` tableau under ``paths`` (folders recursively,
     files, ``"@name"``) — the work of ``rkcheck scan``, with the same rows, order and exit
@@ -169,10 +170,17 @@ def scan(
     :class:`ProjectConfig`) applies ``[tool.rkcheck]`` of the nearest pyproject.toml
     (paths, exclude, check options, fail_on, jobs) under the arguments, as the CLI does.
 
+    ``scheduler`` (``"tcp://host:8786"``; default: the environment variable
+    ``RKCHECK_SCHEDULER``, else ``scheduler`` in ``[tool.rkcheck]``) runs the files on
+    that Dask cluster instead of local processes (``pip install 'rkcheck[cluster]'``),
+    with the same rows; a worker lost mid-scan has its files checked by the others.
+    Without Dask, or with a scheduler that does not answer within
+    SCHEDULER_CONNECT_TIMEOUT, it raises :class:`~rkcheck.errors.RkcheckError`.
+
     ``progress(done, total)`` is called when the files are known and after each one;
-    ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers and returns
-    the files that finished, with ``interrupted`` set."""
-    from rkcheck.batch.scan import default_jobs, run_scan
+    ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers (cancels
+    the cluster's jobs) and returns the files that finished, with ``interrupted`` set."""
+    from rkcheck.batch.executors import default_jobs, resolve_scheduler
     from rkcheck.io.discovery import find_tableau_files
 
     config = _config(project)
@@ -185,6 +193,7 @@ def scan(
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
     max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
     files_budget = _scan_budget(flags, config, max_conditions)
+    address = resolve_scheduler(scheduler, config.scheduler)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []
     interrupted = False
@@ -192,9 +201,8 @@ def scan(
         files = find_tableau_files(roots, list(exclude) + config.exclude)
         if not files and not (config.allow_empty if allow_empty is None else allow_empty):
             raise UserError(_nothing_found(roots, list(exclude) + config.exclude), "scan")
-        on_result = _reporter(len(files), progress, on_file)
-        outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
-                                         files_budget)
+        args = (files, flags, config.check, fail_on, jobs, max_stages)
+        outcomes, interrupted = _run_files(args, address, files_budget, _reporter(len(files), progress, on_file))
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0
@@ -203,7 +211,23 @@ def scan(
 
         outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
+    if address:
+        options["scheduler"] = address
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
+
+
+def _run_files(args: tuple, address: str | None, files_budget: Any,
+               on_result: Callable[["FileOutcome"], None]) -> "tuple[list[FileOutcome], bool]":
+    """The scan's files on local processes, or on the Dask cluster at ``address``
+    (connected here: an unreachable scheduler is a UserError before any file)."""
+    from rkcheck.batch.scan import run_scan
+
+    if not address or not args[0]:
+        return run_scan(*args, on_result, files_budget)
+    from rkcheck.batch.executors import executor_for
+
+    with executor_for(address, args[4]) as executor:
+        return run_scan(*args, on_result, files_budget, executor=executor)
 
 
 def _nothing_found(roots: list[str], exclude: list[str]) -> str:
