@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
@@ -180,7 +181,8 @@ def scan(
     ``progress(done, total)`` is called when the files are known and after each one;
     ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers (cancels
     the cluster's jobs) and returns the files that finished, with ``interrupted`` set."""
-    from rkcheck.batch.executors import default_jobs, resolve_scheduler
+    from rkcheck.batch.executors import default_jobs, executor_for, resolve_scheduler
+    from rkcheck.batch.scan import run_scan
     from rkcheck.io.discovery import find_tableau_files
 
     config = _config(project)
@@ -201,8 +203,11 @@ def scan(
         files = find_tableau_files(roots, list(exclude) + config.exclude)
         if not files and not (config.allow_empty if allow_empty is None else allow_empty):
             raise UserError(_nothing_found(roots, list(exclude) + config.exclude), "scan")
-        args = (files, flags, config.check, fail_on, jobs, max_stages)
-        outcomes, interrupted = _run_files(args, address, files_budget, _reporter(len(files), progress, on_file))
+        on_result = _reporter(len(files), progress, on_file)
+        # connected here: an unreachable scheduler stops the scan before any file
+        with executor_for(address, jobs) if address and files else nullcontext() as executor:
+            outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
+                                             files_budget, executor=executor)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0
@@ -214,20 +219,6 @@ def scan(
     if address:
         options["scheduler"] = address
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
-
-
-def _run_files(args: tuple, address: str | None, files_budget: Any,
-               on_result: Callable[["FileOutcome"], None]) -> "tuple[list[FileOutcome], bool]":
-    """The scan's files on local processes, or on the Dask cluster at ``address``
-    (connected here: an unreachable scheduler is a UserError before any file)."""
-    from rkcheck.batch.scan import run_scan
-
-    if not address or not args[0]:
-        return run_scan(*args, on_result, files_budget)
-    from rkcheck.batch.executors import executor_for
-
-    with executor_for(address, args[4]) as executor:
-        return run_scan(*args, on_result, files_budget, executor=executor)
 
 
 def _nothing_found(roots: list[str], exclude: list[str]) -> str:

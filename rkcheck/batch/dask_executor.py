@@ -135,13 +135,13 @@ class DaskExecutor(Executor):
             except Exception as err:  # the result could not be brought back
                 return failed(item, f"internal error: the result cannot be sent back ({type(err).__name__}: {err})")
         try:
-            err = future.exception()
+            raised = future.exception()
         except Exception as exc:  # cancelled: the scheduler forgot it (restarted?)
             return failed(item, f"the Dask scheduler dropped this job ({type(exc).__name__})")
-        if isinstance(err, KilledWorker):
+        if isinstance(raised, KilledWorker):
             return failed(item, "the Dask workers running it died each time it was tried (out of memory?); "
                                 "the limit is distributed.scheduler.allowed-failures")
-        return failed(item, internal_error(err))
+        return failed(item, internal_error(raised))
 
     def close(self) -> None:
         client = getattr(self, "client", None)

@@ -21,7 +21,7 @@ workers are forked, and Dask pickles it to workers that import ``rkcheck`` thems
 from __future__ import annotations
 
 import os
-from typing import Callable, Iterator, Sequence, TypeVar
+from typing import Callable, Generator, Sequence, TypeVar
 
 from rkcheck.errors import UserError
 
@@ -46,7 +46,7 @@ class Executor:
     where: str = "this process"
 
     def map_unordered(self, fn: Callable[[T], R], items: Sequence[T],
-                      failed: Callable[[T, str], R]) -> Iterator[tuple[int, R]]:
+                      failed: Callable[[T, str], R]) -> Generator[tuple[int, R], None, None]:
         raise NotImplementedError
 
     def close(self) -> None:
