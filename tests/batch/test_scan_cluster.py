@@ -238,3 +238,14 @@ def test_ctrl_c_cancels_the_clusters_jobs_and_reports_what_finished(tmp_path):
     assert all(f["status"] == "ok" for f in doc["files"])
     files = [f["file"] for f in doc["files"]]
     assert files == sorted(files)
+
+
+def test_a_bad_scheduler_in_the_project_is_one_line_naming_the_key(tmp_path, capsys, monkeypatch):
+    monkeypatch.delenv(SCHEDULER_ENV, raising=False)
+    folder = mixed_folder(tmp_path)
+    (tmp_path / "pyproject.toml").write_text("[tool.rkcheck]\nscheduler = 8786\n", encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    r = run_cli(capsys, "scan", str(folder))
+    assert r.code == 2
+    assert r.err == (f"rkcheck: error: {tmp_path / 'pyproject.toml'}: tool.rkcheck.scheduler: expected a scheduler "
+                     "address such as 'tcp://host:8786', got 8786\n")
