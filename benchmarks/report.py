@@ -193,13 +193,13 @@ def chart(results: list[tuple[str, str, int, dict]], path: str, title: str) -> N
              title="time")
     ax_m.set(yscale="log", xlabel="energy order N (all Hamiltonians)", ylabel="peak resident memory (MB)",
              title="peak memory (whole process)")
-    from matplotlib.ticker import MaxNLocator, ScalarFormatter
+    from matplotlib.ticker import MaxNLocator, NullFormatter, ScalarFormatter
 
     for ax in (ax_t, ax_m):
         ax.grid(True, which="both", alpha=0.3)
         ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax_m.yaxis.set_major_formatter(ScalarFormatter())
-    ax_m.yaxis.set_minor_formatter(ScalarFormatter())
+    ax_m.yaxis.set_minor_formatter(NullFormatter())
     ax_t.legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()

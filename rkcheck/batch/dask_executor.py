@@ -6,9 +6,12 @@ version as this process (checked when connecting).  Each worker process keeps it
 and condition tables between jobs, as a local worker does.  Worker threads of one
 process share those tables, which are not built for concurrent use: jobs in one worker
 process run one at a time (start workers with ``--nthreads 1 --nworkers N`` to use N
-cores).  When a worker dies, the scheduler gives its jobs to the others; a job that has
-killed ``distributed.scheduler.allowed-failures`` + 1 workers (3 + 1 by default) is
-given up and becomes ``failed(item, why)``.
+cores).  Items go to the cluster in small chunks (:func:`chunk_size`): one Dask task
+per item would pay a round trip through the scheduler per item.  When a worker dies,
+the scheduler gives its tasks to the others; a task that has killed
+``distributed.scheduler.allowed-failures`` + 1 workers (3 + 1 by default) is given up:
+a chunk of several items is then tried once more item by item, so that only the item
+that kills its workers becomes ``failed(item, why)``.
 """
 
 from __future__ import annotations
@@ -17,16 +20,35 @@ import threading
 import uuid
 from typing import Any, Callable
 
-from rkcheck.batch.jobs import CLUSTER_EXTRA, Executor, internal_error, scheduler_timeout
+from rkcheck.batch.jobs import CLUSTER_EXTRA, Executor, Failure, internal_error, scheduler_timeout
 from rkcheck.errors import UserError
 
 #: One job at a time per worker process: the tables a check builds are shared, unlocked.
 _ONE_AT_A_TIME = threading.Lock()
 
 
-def _run_one(fn: Callable[[Any], Any], item: Any) -> Any:
+#: At most this many items in one Dask task.  One task per item costs a round trip
+#: through the scheduler per item (milliseconds on a quiet machine, tens of them on a
+#: loaded one); a few items per task amortise it while the progress stays fine-grained.
+MAX_CHUNK = 16
+
+
+def chunk_size(items: int, threads: int) -> int:
+    """Items per task: about 8 tasks per worker thread, 1 to MAX_CHUNK items each."""
+    return max(1, min(MAX_CHUNK, items // (8 * max(1, threads))))
+
+
+def _run_chunk(fn: Callable[[Any], Any], batch: list) -> list:
+    """``fn`` on each item of ``batch``, one at a time in this worker process; an item
+    whose ``fn`` raises gives a :class:`Failure`, the others their result."""
+    out: list = []
     with _ONE_AT_A_TIME:
-        return fn(item)
+        for item in batch:
+            try:
+                out.append(fn(item))
+            except Exception as err:
+                out.append(Failure(internal_error(err)))
+    return out
 
 
 def _worker_version() -> str:
@@ -102,46 +124,68 @@ class DaskExecutor(Executor):
             raise UserError(f"the workers of {address} run rkcheck {', '.join(wrong)}, this is {__version__}: "
                             "install the same version everywhere", "scheduler")
         self.workers = max(1, len(versions))
+        self.threads = max(1, sum(self.client.nthreads().values()))
 
     def map_unordered(self, fn, items, failed):
         from distributed import as_completed
 
         tag = uuid.uuid4().hex[:12]
-        keys = [f"rkcheck-{tag}-{i}" for i in range(len(items))]
-        futures = self.client.map(_run_one, [fn] * len(items), list(items), key=keys, pure=False)
-        index = {f.key: i for i, f in enumerate(futures)}
-        pending = set(index)
+        size = chunk_size(len(items), self.threads)
+        chunks = {f"rkcheck-{tag}-{k}": list(range(k, min(k + size, len(items)))) for k in range(0, len(items), size)}
+        futures = self._submit(fn, items, chunks)
+        pending = dict(futures)
         try:
-            for future in as_completed(futures, loop=self.client.loop):
-                i = index[future.key]
-                pending.discard(future.key)
-                result = self._result(future, items[i], failed)
+            done = as_completed(list(futures.values()), loop=self.client.loop)
+            for future in done:
+                del pending[future.key]
+                indices = chunks[future.key]
+                results = self._results(future, [items[i] for i in indices], failed)
                 future.release()
-                yield i, result
+                if results is None:  # a chunk that killed its workers: each file once more, alone
+                    alone = {f"{future.key}-{i}": [i] for i in indices}
+                    chunks.update(alone)
+                    more = self._submit(fn, items, alone)
+                    pending.update(more)
+                    done.update(more.values())
+                    continue
+                yield from zip(indices, results)
         finally:
             if pending:  # Ctrl-C or an early close: the rest is not wanted any more
                 try:
-                    self.client.cancel([f for f in futures if f.key in pending], force=True)
+                    self.client.cancel(list(pending.values()), force=True)
                 except Exception:
                     pass
 
+    def _submit(self, fn, items, chunks: dict[str, list[int]]) -> dict[str, Any]:
+        keys = list(chunks)
+        batches = [[items[i] for i in chunks[k]] for k in keys]
+        futures = self.client.map(_run_chunk, [fn] * len(keys), batches, key=keys, pure=False)
+        return {f.key: f for f in futures}
+
     @staticmethod
-    def _result(future: Any, item: Any, failed: Callable[[Any, str], Any]) -> Any:
+    def _results(future: Any, batch: list, failed: Callable[[Any, str], Any]) -> list | None:
+        """The results of one finished chunk, failures turned into ``failed(item, why)``;
+        None when the chunk killed its workers and holds more than one item."""
         from distributed import KilledWorker
 
-        if future.status == "finished":
-            try:
-                return future.result()
-            except Exception as err:  # the result could not be brought back
-                return failed(item, f"internal error: the result cannot be sent back ({type(err).__name__}: {err})")
         try:
-            raised = future.exception()
-        except Exception as exc:  # cancelled: the scheduler forgot it (restarted?)
-            return failed(item, f"the Dask scheduler dropped this job ({type(exc).__name__})")
-        if isinstance(raised, KilledWorker):
-            return failed(item, "the Dask workers running it died each time it was tried (out of memory?); "
-                                "the limit is distributed.scheduler.allowed-failures")
-        return failed(item, internal_error(raised))
+            # waits when the result was lost with a dead worker after it finished: the
+            # scheduler computes it again
+            results = future.result()
+        except KilledWorker:
+            if len(batch) > 1:
+                return None
+            return [failed(batch[0], "the Dask workers running it died each time it was tried (out of memory?); "
+                                     "the limit is distributed.scheduler.allowed-failures")]
+        except BaseException as err:
+            if isinstance(err, KeyboardInterrupt):
+                raise
+            if future.cancelled():  # the scheduler forgot it (restarted?)
+                why = "the Dask scheduler dropped this job"
+            else:  # the tasks catch what a check raises: this is the transport failing
+                why = f"internal error: the result cannot be brought back ({type(err).__name__}: {err})"
+            return [failed(item, why) for item in batch]
+        return [failed(item, r.why) if isinstance(r, Failure) else r for item, r in zip(batch, results)]
 
     def close(self) -> None:
         client = getattr(self, "client", None)

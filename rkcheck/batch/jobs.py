@@ -59,6 +59,13 @@ class Executor:
         self.close()
 
 
+class Failure:
+    """What a worker sends back instead of a result: why there is none."""
+
+    def __init__(self, why: str):
+        self.why = why
+
+
 def internal_error(err: BaseException) -> str:
     return f"internal error: {type(err).__name__}: {err} (a bug in rkcheck; please report it)"
 

@@ -9,14 +9,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from rkcheck.batch.jobs import Executor, internal_error
-
-
-class _Failure:
-    """What a local worker sends back instead of a result: why there is none."""
-
-    def __init__(self, why: str):
-        self.why = why
+from rkcheck.batch.jobs import Executor, Failure, internal_error
 
 
 def _worker_main(conn, fn: Callable[[Any], Any]) -> None:
@@ -36,13 +29,13 @@ def _worker_main(conn, fn: Callable[[Any], Any]) -> None:
         try:
             result = fn(item)
         except Exception as err:
-            result = _Failure(internal_error(err))
+            result = Failure(internal_error(err))
         try:
             conn.send((index, result))
         except (EOFError, OSError):
             return
         except Exception as err:  # the result cannot be pickled: still one result, not a lost worker
-            conn.send((index, _Failure(f"internal error: the result cannot be sent back ({type(err).__name__}: {err})")))
+            conn.send((index, Failure(f"internal error: the result cannot be sent back ({type(err).__name__}: {err})")))
 
 
 @dataclass
@@ -130,7 +123,7 @@ class LocalExecutor(Executor):
                     index, result = w.conn.recv()
                     item = w.task[1]  # type: ignore[index]
                     w.task = None
-                    done.append((index, failed(item, result.why) if isinstance(result, _Failure) else result))
+                    done.append((index, failed(item, result.why) if isinstance(result, Failure) else result))
                     continue
             except (EOFError, OSError):
                 pass
