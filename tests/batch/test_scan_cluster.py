@@ -256,3 +256,13 @@ def test_a_bad_scheduler_in_the_project_is_one_line_naming_the_key(tmp_path, cap
     assert r.code == 2
     assert r.err == (f"rkcheck: error: {tmp_path / 'pyproject.toml'}: tool.rkcheck.scheduler: expected a scheduler "
                      "address such as 'tcp://host:8786', got 8786\n")
+
+
+def test_a_scheduler_without_workers_is_one_line(tmp_path, capsys, monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    monkeypatch.setenv(SCHEDULER_TIMEOUT_ENV, "1")
+    with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster, hang_guard(60):
+        r = run_cli(capsys, "scan", str(mixed_folder(tmp_path)), "--scheduler", cluster.scheduler_address)
+    assert r.code == 2 and r.out == ""
+    assert r.err == (f"rkcheck: error: scheduler: the Dask scheduler at {cluster.scheduler_address} has no worker "
+                     "(waited 1 s, the limit SCHEDULER_CONNECT_TIMEOUT)\n")
