@@ -16,6 +16,7 @@ that kills its workers becomes ``failed(item, why)``.
 
 from __future__ import annotations
 
+import logging
 import threading
 import uuid
 from typing import Any, Callable
@@ -94,9 +95,17 @@ class DaskExecutor(Executor):
         distributed = _import_distributed()
         timeout = scheduler_timeout()
         _probe(address, timeout)
+        # what Dask logs on its own recoveries ("Couldn't gather keys" when a worker dies
+        # holding results) is not the user's business: the scan's rows say what happened
+        # (Dask's configuration gives several of its loggers levels of their own)
+        names = [n for n in logging.Logger.manager.loggerDict if n == "distributed" or n.startswith("distributed.")]
+        self._log_levels = {n: logging.getLogger(n).level for n in names + ["distributed"]}
+        for n in self._log_levels:
+            logging.getLogger(n).setLevel(logging.CRITICAL)
         try:
             self.client = distributed.Client(address, timeout=timeout, set_as_default=False)
         except Exception as err:
+            self.close()
             raise UserError(f"cannot connect to the Dask scheduler at {address}: {type(err).__name__}: {err}",
                             "scheduler") from None
         try:
@@ -195,3 +204,6 @@ class DaskExecutor(Executor):
                 client.close(timeout=scheduler_timeout())
             except Exception:
                 pass
+        for name, level in getattr(self, "_log_levels", {}).items():
+            logging.getLogger(name).setLevel(level)
+        self._log_levels = {}

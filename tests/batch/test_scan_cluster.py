@@ -238,6 +238,7 @@ def test_ctrl_c_cancels_the_clusters_jobs_and_reports_what_finished(tmp_path):
             _, stderr = proc.communicate()
             assert proc.returncode == 130, stderr
             assert "Traceback" not in stderr
+            assert all(line.startswith("rkcheck: ") for line in stderr.splitlines()), stderr  # no Dask log lines
             while any(key.startswith("rkcheck-") for keys in client.processing().values() for key in keys):
                 time.sleep(0.1)  # cancelled: the worker is left with nothing of ours
     doc = json.loads(out.read_text())
