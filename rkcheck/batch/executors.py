@@ -22,10 +22,13 @@ from rkcheck.batch.local_pool import LocalExecutor, default_jobs
 
 def resolve_scheduler(given: str | None, configured: str | None = None) -> str | None:
     """The scheduler address to use: ``given`` (an option), else ``RKCHECK_SCHEDULER``,
-    else ``configured`` (``[tool.rkcheck] scheduler``); None (or empty): run locally."""
+    else ``configured`` (``[tool.rkcheck] scheduler``); unset or empty ones are skipped.
+    None: run locally, also when the first one set is ``local`` (so that an option can
+    override the environment)."""
     for value in (given, os.environ.get(SCHEDULER_ENV), configured):
         if value is not None and str(value).strip():
-            return str(value).strip()
+            address = str(value).strip()
+            return None if address == "local" else address
     return None
 
 

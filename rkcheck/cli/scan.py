@@ -36,7 +36,8 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 @check_options
 @click.option("--jobs", "-j", type=click.IntRange(*JOBS_RANGE), default=None, help="Worker processes [default: all cores].")
 @click.option("--scheduler", metavar="ADDRESS", default=None,
-              help="Check the files on this Dask cluster (tcp://host:8786) instead of local processes "
+              help="Check the files on this Dask cluster (tcp://host:8786) instead of local processes; "
+              "'local': local processes whatever the environment says "
               "[default: RKCHECK_SCHEDULER, else [tool.rkcheck] scheduler; needs rkcheck[cluster]].")
 @click.option("--exclude", multiple=True, metavar="GLOB", help="Skip files matching GLOB (path or name); repeatable.")
 @click.option("--format", "fmt", type=click.Choice(SCAN_FORMATS), default=None,

@@ -71,8 +71,10 @@ def test_the_scheduler_comes_from_the_option_then_the_environment_then_the_proje
     monkeypatch.setenv(SCHEDULER_ENV, "tcp://e:1")
     assert resolve_scheduler(None, "tcp://c:1") == "tcp://e:1"
     assert resolve_scheduler("tcp://o:1", "tcp://c:1") == "tcp://o:1"
+    assert resolve_scheduler("local", "tcp://c:1") is None  # the option forces local processes
     monkeypatch.setenv(SCHEDULER_ENV, "  ")  # empty: not set
     assert resolve_scheduler(None, None) is None
+    assert resolve_scheduler(None, "local") is None
 
 
 def test_without_dask_a_scheduler_is_one_line_naming_the_extra(tmp_path, capsys, monkeypatch):
@@ -267,3 +269,13 @@ def test_a_scheduler_without_workers_is_one_line(tmp_path, capsys, monkeypatch):
     assert r.code == 2 and r.out == ""
     assert r.err == (f"rkcheck: error: scheduler: the Dask scheduler at {cluster.scheduler_address} has no worker "
                      "(waited 1 s, the limit SCHEDULER_CONNECT_TIMEOUT)\n")
+
+
+def test_scheduler_local_overrides_the_environment(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "distributed", None)  # and needs no Dask
+    monkeypatch.setenv(SCHEDULER_ENV, closed_port())
+    folder = mixed_folder(tmp_path)
+    r = run_cli(capsys, "scan", str(folder), "--order", "4", "--jobs", "1", "--format", "json", "--scheduler", "local")
+    doc = json.loads(r.out)
+    assert r.code == 1 and "scheduler" not in doc["options"] and len(doc["files"]) == 6
+    assert run_cli(capsys, "scan", str(folder), "--order", "4").code == 2  # without it, the environment's scheduler
