@@ -20,7 +20,8 @@ from contextlib import closing
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
-from rkcheck.batch.executors import Executor, default_jobs, executor_for
+from rkcheck.batch.executors import Executor, executor_for
+from rkcheck.batch.executors import default_jobs as default_jobs  # where callers found it before
 from rkcheck.errors import UserError
 from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
 
