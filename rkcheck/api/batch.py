@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
@@ -148,6 +149,7 @@ def scan(
     allow_empty: bool | None = None,
     progress: Callable[[int, int], None] | None = None,
     on_file: Callable[[ScanRow, int, int], None] | None = None,
+    scheduler: str | None = None,
 ) -> ScanResult:
     """Check every ``*.toml``/``*.json`` tableau under ``paths`` (folders recursively,
     files, ``"@name"``) — the work of ``rkcheck scan``, with the same rows, order and exit
@@ -169,10 +171,18 @@ def scan(
     :class:`ProjectConfig`) applies ``[tool.rkcheck]`` of the nearest pyproject.toml
     (paths, exclude, check options, fail_on, jobs) under the arguments, as the CLI does.
 
+    ``scheduler`` (``"tcp://host:8786"``; default: the environment variable
+    ``RKCHECK_SCHEDULER``, else ``scheduler`` in ``[tool.rkcheck]``) runs the files on
+    that Dask cluster instead of local processes (``pip install 'rkcheck[cluster]'``),
+    with the same rows; a worker lost mid-scan has its files checked by the others.
+    Without Dask, or with a scheduler that does not answer within
+    SCHEDULER_CONNECT_TIMEOUT, it raises :class:`~rkcheck.errors.RkcheckError`.
+
     ``progress(done, total)`` is called when the files are known and after each one;
-    ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers and returns
-    the files that finished, with ``interrupted`` set."""
-    from rkcheck.batch.scan import default_jobs, run_scan
+    ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers (cancels
+    the cluster's jobs) and returns the files that finished, with ``interrupted`` set."""
+    from rkcheck.batch.executors import default_jobs, executor_for, resolve_scheduler
+    from rkcheck.batch.scan import run_scan
     from rkcheck.io.discovery import find_tableau_files
 
     config = _config(project)
@@ -185,6 +195,7 @@ def scan(
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
     max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
     files_budget = _scan_budget(flags, config, max_conditions)
+    address = resolve_scheduler(scheduler, config.scheduler)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []
     interrupted = False
@@ -193,8 +204,10 @@ def scan(
         if not files and not (config.allow_empty if allow_empty is None else allow_empty):
             raise UserError(_nothing_found(roots, list(exclude) + config.exclude), "scan")
         on_result = _reporter(len(files), progress, on_file)
-        outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
-                                         files_budget)
+        # connected here: an unreachable scheduler stops the scan before any file
+        with executor_for(address, jobs) if address and files else nullcontext() as executor:
+            outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
+                                             files_budget, executor=executor)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0
@@ -203,6 +216,8 @@ def scan(
 
         outcomes = rank_outcomes(outcomes)
     options = dict(flags, fail_on=fail_on, jobs=jobs, paths=roots)
+    if address:
+        options["scheduler"] = address
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
 
 

@@ -3,23 +3,25 @@
 :func:`scan_file` checks one file and never raises for a bad file: a file that does not
 load is an outcome with ``status = "error"`` and its one-line message; a valid TOML/JSON
 document without ``[tableau]``/``[family]``/``[method]`` is ``"skipped"`` (a
-``pyproject.toml`` in the same folder is not a failure).  :func:`run_scan` runs it over
-a process pool whose workers keep their tree and condition tables between files (and,
-forked after the parent built the tables for the scan's default options, start with
-them).  Outcomes are :class:`FileOutcome` values (the check result itself, not a
-report: rendering is :mod:`rkcheck.reports.scan`'s job) and arrive in input order;
-Ctrl-C stops the pool and returns the outcomes that finished.
+``pyproject.toml`` in the same folder is not a failure).  :func:`run_scan` runs it on an
+:class:`~rkcheck.batch.executors.Executor`: by default a local process pool whose
+workers keep their tree and condition tables between files (and, forked after the
+parent built the tables for the scan's default options, start with them), or the
+workers of a Dask cluster.  Outcomes are :class:`FileOutcome` values (the check result
+itself, not a report: rendering is :mod:`rkcheck.reports.scan`'s job) and arrive in
+input order; Ctrl-C stops the workers and returns the outcomes that finished.
 """
 
 from __future__ import annotations
 
 import os
-import signal
 import time
-from contextlib import contextmanager
+from contextlib import closing
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
+from rkcheck.batch.executors import Executor, executor_for
+from rkcheck.batch.executors import default_jobs as default_jobs  # where callers found it before
 from rkcheck.errors import UserError
 from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
 
@@ -106,50 +108,23 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     return out
 
 
-# ------------------------------------------------------------------- workers
+# ------------------------------------------------------------------- running
 
 
-def _worker_main(conn, flags: dict[str, Any], project: dict[str, Any], fail_on: str, max_stages: int,
-                 budget=None) -> None:
-    """One worker: check the files the parent sends, one at a time, until told to stop."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C ...
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ... and stops us with SIGTERM
-    if hasattr(signal, "pthread_sigmask"):  # held back since the fork (_sigint_held), now ignored
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
-    while True:
-        try:
-            task = conn.recv()
-        except (EOFError, OSError):
-            return
-        if task is None:
-            return
-        index, path = task
-        outcome = scan_file(path, flags, project, fail_on, max_stages, budget)
-        try:
-            conn.send((index, outcome))
-        except (EOFError, OSError):
-            return
-        except Exception as err:  # the result cannot be pickled: still one row, not a lost worker
-            conn.send((index, FileOutcome(path, error=f"{path}: internal error: the result cannot be sent back "
-                                                     f"({type(err).__name__}: {err})", time=outcome.time)))
+def _check_path(args: tuple, path: str) -> FileOutcome:
+    """:func:`scan_file` with the scan's fixed arguments first (a module-level function
+    and a tuple: what a forked worker or a Dask worker can be given)."""
+    return scan_file(path, *args)
 
 
-@dataclass
-class _Worker:
-    process: Any
-    conn: Any
-    task: tuple[int, str] | None = None
-
-
-def _death_message(path: str, exitcode: int | None) -> str:
-    if exitcode is not None and exitcode < 0:
-        try:
-            how = f"was killed by {signal.Signals(-exitcode).name}"
-        except ValueError:
-            how = f"was killed by signal {-exitcode}"
-    else:
-        how = f"exited with code {exitcode}"
-    return f"{path}: the worker process checking this file {how} (out of memory?); the other files went on"
+def _lost(path: str, why: str) -> FileOutcome:
+    """The row of a file whose check gave no outcome (its worker died, or a bug)."""
+    if why.startswith("internal error"):
+        return FileOutcome(path, error=f"{path}: {why}")
+    worker = "the worker process "
+    if why.startswith(worker):  # "the worker process checking this file was killed by SIGKILL"
+        why = worker + "checking this file " + why[len(worker):]
+    return FileOutcome(path, error=f"{path}: {why}; the other files went on")
 
 
 def warm_tables(flags: dict[str, Any], project: dict[str, Any]) -> None:
@@ -170,147 +145,29 @@ def run_scan(
     max_stages: int = DEFAULT_MAX_STAGES,
     on_result: Callable[[FileOutcome], None] = lambda r: None,
     budget=None,
+    executor: Executor | None = None,
 ) -> tuple[list[FileOutcome], bool]:
     """All outcomes in input order, and whether the scan was interrupted (Ctrl-C or
     SIGTERM: then the outcomes are those that finished, still in input order).
-    ``budget`` goes to every file's check (see :func:`scan_file`)."""
-    jobs = max(1, min(jobs, len(files)))  # never more workers than files
-    if jobs <= 1:
-        results: list[FileOutcome] = []
-        try:
-            for f in files:
-                r = scan_file(f, flags, project, fail_on, max_stages, budget)
-                results.append(r)
-                on_result(r)
-        except KeyboardInterrupt:
-            return results, True
-        return results, False
-    pool = _Pool(files, (flags, project, fail_on, max_stages, budget), on_result)
+    ``budget`` goes to every file's check (see :func:`scan_file`).  The files run on
+    ``executor`` when given (a Dask cluster: :mod:`rkcheck.batch.executors`), else on
+    ``jobs`` local worker processes (never more than files; 1: in this process)."""
+    from functools import partial
+
+    if executor is None:
+        jobs = max(1, min(jobs, len(files)))
+        executor = executor_for(None, jobs, partial(warm_tables, flags, project))
+    check = partial(_check_path, (flags, project, fail_on, max_stages, budget))
+    done: dict[int, FileOutcome] = {}
     interrupted = False
     try:
-        warm_tables(flags, project)
-        for _ in range(jobs):
-            pool.start_worker()
-        while len(pool.done) < len(files):
-            pool.dispatch()
-            pool.collect()
+        with closing(executor.map_unordered(check, files, _lost)) as results:
+            for index, outcome in results:
+                done[index] = outcome
+                on_result(outcome)
     except KeyboardInterrupt:
         interrupted = True
-    finally:
-        _stop(pool.workers)
-    return [pool.done[i] for i in sorted(pool.done)], interrupted
-
-
-class _Pool:
-    """Worker processes fed one file at a time; a worker that dies holding a file makes
-    that file an error row and is replaced."""
-
-    def __init__(self, files: list[str], worker_args: tuple, on_result: Callable[[FileOutcome], None]):
-        import multiprocessing as mp
-
-        self.ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
-        self.queue = list(enumerate(files))[::-1]  # pop() from the end = input order
-        self.worker_args = worker_args
-        self.on_result = on_result
-        self.done: dict[int, FileOutcome] = {}
-        self.workers: list[_Worker] = []
-
-    def start_worker(self) -> None:
-        parent_end, child_end = self.ctx.Pipe()
-        proc = self.ctx.Process(target=_worker_main, args=(child_end, *self.worker_args), daemon=True)
-        # known before it exists: a Ctrl-C during the fork must not leave an unknown worker
-        self.workers.append(_Worker(proc, parent_end))
-        with _sigint_held():
-            proc.start()
-            child_end.close()
-
-    def finish(self, index: int, outcome: FileOutcome) -> None:
-        self.done[index] = outcome
-        self.on_result(outcome)
-
-    def dispatch(self) -> None:
-        """Give every idle worker the next file."""
-        for w in self.workers:
-            if w.task is None and self.queue:
-                w.task = self.queue.pop()
-                try:
-                    w.conn.send(w.task)
-                except (EOFError, OSError):
-                    pass  # died already: found by collect() through its sentinel
-
-    def collect(self) -> None:
-        """Wait until a busy worker answers or dies, and take what it gives."""
-        from multiprocessing.connection import wait
-
-        busy = [w for w in self.workers if w.task is not None]
-        ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy]))
-        for w in busy:
-            if w.conn not in ready and w.process.sentinel not in ready:
-                continue
-            try:
-                if w.conn.poll():
-                    index, outcome = w.conn.recv()
-                    w.task = None
-                    self.finish(index, outcome)
-                    continue
-            except (EOFError, OSError):
-                pass
-            if not w.process.is_alive():
-                self.replace_dead(w)
-
-    def replace_dead(self, w: _Worker) -> None:
-        """The worker died while holding ``w.task``: that file is an error row, and a new
-        worker takes the dead one's place."""
-        assert w.task is not None  # busy, and no outcome came back
-        index, path = w.task
-        w.process.join()
-        self.finish(index, FileOutcome(path, error=_death_message(path, w.process.exitcode)))
-        w.conn.close()
-        self.workers.remove(w)
-        if self.queue:
-            self.start_worker()
-
-
-@contextmanager
-def _sigint_held():
-    """Hold Ctrl-C back while a worker starts.  It reaches the whole process group: a
-    worker still inside multiprocessing's start-up, before it ignores SIGINT, would die
-    there with a traceback.  Forked with SIGINT blocked, the worker unblocks it once it
-    ignores it; the parent receives a Ctrl-C that came meanwhile when the new worker is
-    on the list that :func:`_stop` stops."""
-    if not hasattr(signal, "pthread_sigmask"):  # no POSIX signal masks (Windows)
-        yield
-        return
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-
-
-def _stop(workers: list[_Worker]) -> None:
-    """Stop every worker: idle ones are told to, busy ones are terminated; none is left."""
-    for w in workers:
-        try:
-            if w.task is None:
-                w.conn.send(None)
-            else:
-                w.process.terminate()
-        except (EOFError, OSError, ValueError):
-            pass
-    for w in workers:
-        if w.process.pid is None:  # interrupted before it started
-            w.conn.close()
-            continue
-        w.process.join(timeout=5)
-        if w.process.is_alive():
-            w.process.kill()
-            w.process.join()
-        w.conn.close()
-
-
-def default_jobs() -> int:
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return [done[i] for i in sorted(done)], interrupted
 
 
 def exit_status(outcomes: Iterable[FileOutcome]) -> int:

@@ -35,6 +35,10 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 @click.argument("paths", nargs=-1, metavar="[PATH...]")
 @check_options
 @click.option("--jobs", "-j", type=click.IntRange(*JOBS_RANGE), default=None, help="Worker processes [default: all cores].")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Check the files on this Dask cluster (tcp://host:8786) instead of local processes; "
+              "'local': local processes whatever the environment says "
+              "[default: RKCHECK_SCHEDULER, else [tool.rkcheck] scheduler; needs rkcheck[cluster]].")
 @click.option("--exclude", multiple=True, metavar="GLOB", help="Skip files matching GLOB (path or name); repeatable.")
 @click.option("--format", "fmt", type=click.Choice(SCAN_FORMATS), default=None,
               help="Output format [default: [tool.rkcheck] format, else text].")
@@ -47,14 +51,14 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
               help="Pass (exit 0) when the paths hold no tableau file [default: exit 2; also [tool.rkcheck] allow_empty].")
 @fail_on_option
 @output_options
-def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, exclude, fmt,
-         output, fail_on, sort, allow_empty) -> None:
+def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, jobs, scheduler, exclude,
+         fmt, output, fail_on, sort, allow_empty) -> None:
     """Check every *.toml / *.json tableau under PATH... (recursively, in parallel).
 
     One row per file in a fixed order; a file that cannot be read is a row with its error,
     never a crash; other TOML/JSON files (pyproject.toml) are skipped. Defaults come from
     [tool.rkcheck] in the nearest pyproject.toml (paths, exclude, degree, order, dps,
-    format, fail_on, jobs, allow_empty); flags override it.
+    format, fail_on, jobs, allow_empty, scheduler); flags override it.
     """
     from rkcheck.api.batch import scan as run_scan
     from rkcheck.api.batch import scan_roots
@@ -67,7 +71,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     with progress_steps("checking", "files") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,
                           max_stages=max_stages, max_conditions=max_conditions, project=config,
-                          allow_empty=allow_empty, progress=update, on_file=_announcer())
+                          allow_empty=allow_empty, progress=update, on_file=_announcer(), scheduler=scheduler)
     outcomes, elapsed, interrupted = result.outcomes, result.elapsed, result.interrupted
     if fmt == "text" and output and output != "-":
         write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy",

@@ -2,7 +2,7 @@
 
 Found by walking up from the current directory.  Keys: ``paths`` and ``exclude`` (for
 ``scan``), ``degree``, ``order``, ``dps``, ``decimals``, ``format``, ``fail_on``, ``jobs``,
-``allow_empty``.
+``allow_empty``, ``scheduler`` (a Dask scheduler address for ``scan``).
 Precedence, most specific first: command-line flags, then the file's own ``[check]``
 table, then ``[tool.rkcheck]``, then rkcheck's defaults.  Relative ``paths`` are
 relative to the directory of that ``pyproject.toml``.
@@ -29,7 +29,7 @@ from rkcheck.options import (
 )
 
 #: Keys of [tool.rkcheck] beyond the check options of :data:`rkcheck.options.CHECK_KEYS`.
-EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs", "allow_empty")
+EXTRA_KEYS = ("paths", "exclude", "format", "fail_on", "jobs", "allow_empty", "scheduler")
 
 
 @dataclass
@@ -45,6 +45,7 @@ class Config:
     fail_on: str | None = None
     jobs: int | None = None
     allow_empty: bool = False  # a scan that finds no file passes instead of exit 2
+    scheduler: str | None = None  # a Dask scheduler for scan (tcp://host:8786)
 
 
 def find_pyproject(start: Path | None = None) -> Path | None:
@@ -96,4 +97,8 @@ def load_config(start: Path | None = None) -> Config:
             if not isinstance(value, bool):
                 raise UserError(f"expected true or false, got {value!r}"[:80], place, src)
             cfg.allow_empty = value
+        elif key_n == "scheduler":
+            if not isinstance(value, str) or not 0 < len(value.strip()) <= 1000:
+                raise UserError(f"expected a scheduler address such as 'tcp://host:8786', got {value!r}"[:120], place, src)
+            cfg.scheduler = value.strip()
     return cfg

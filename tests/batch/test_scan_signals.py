@@ -245,10 +245,11 @@ def test_workers_are_born_with_ctrl_c_held_back(tmp_path, monkeypatch):
     # multiprocessing is still starting it (before it ignores SIGINT) printed a traceback
     # ("Process ForkProcess-2: Traceback ... util._close_stdin()").  Each worker must start
     # with SIGINT blocked, then ignore it and unblock it; the parent's mask comes back.
+    import rkcheck.batch.local_pool as local_pool
     import rkcheck.batch.scan as scan
 
     seen = tmp_path / "seen"
-    real = scan._worker_main
+    real = local_pool._worker_main
 
     def spy(*args):
         held = signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])
@@ -258,7 +259,7 @@ def test_workers_are_born_with_ctrl_c_held_back(tmp_path, monkeypatch):
         with open(seen, "a", encoding="utf-8") as fh:
             fh.write(f"{held} {after} {ignored}\n")
 
-    monkeypatch.setattr(scan, "_worker_main", spy)
+    monkeypatch.setattr(local_pool, "_worker_main", spy)
     folder = dense_folder(tmp_path, 2)
     files = sorted(str(p) for p in folder.iterdir())
     outcomes, interrupted = scan.run_scan(files, {"order": 4}, {}, "fail", jobs=2)

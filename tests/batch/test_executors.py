@@ -1,0 +1,66 @@
+"""The executor interface every batch of independent jobs uses (scan, sweeps): each
+implementation gives every item's result once, with its input index, and turns a job
+that raises into ``failed(item, why)`` without losing the others."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+from contextlib import closing
+from functools import partial
+
+import pytest
+
+from rkcheck.batch.executors import LocalExecutor, SerialExecutor, executor_for
+
+ITEMS = [5, -1, 0, 7, 3, 10, -4, 2]  # math.factorial raises ValueError for a negative number
+
+
+def expected() -> dict[int, object]:
+    return {i: ("failed", "internal error: ValueError") if n < 0 else math.factorial(n) for i, n in enumerate(ITEMS)}
+
+
+def collect(executor) -> dict[int, object]:
+    def failed(item, why):
+        return ("failed", why.split(":")[0] + ": " + why.split(":")[1].strip())
+
+    got: dict[int, object] = {}
+    with executor, closing(executor.map_unordered(math.factorial, ITEMS, failed)) as results:
+        for index, result in results:
+            assert index not in got  # each item once
+            got[index] = result
+    return got
+
+
+@pytest.mark.parametrize("make", [SerialExecutor, partial(LocalExecutor, 3)], ids=["serial", "local processes"])
+def test_local_executors_give_every_result_once(make):
+    assert collect(make()) == expected()
+
+
+def test_the_choice_of_executor():
+    assert isinstance(executor_for(None, 1), SerialExecutor)
+    pool = executor_for(None, 4)
+    assert isinstance(pool, LocalExecutor) and pool.workers == 4
+
+
+def test_a_dask_executor_gives_the_same_results():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        assert collect(executor_for(cluster.scheduler_address, 1)) == expected()
+
+
+def test_a_local_worker_that_dies_is_one_failed_item_and_is_replaced():
+    # os.kill(own pid, n) kills the worker for n = SIGKILL and returns None for n = 0
+    me = os.getpid()
+    items = [0, int(signal.SIGKILL), 0, 0]
+    pool = LocalExecutor(2)
+    with closing(pool.map_unordered(partial(_kill_self_with, me), items, lambda item, why: why)) as results:
+        got = dict(results)
+    assert got[0] is None and got[2] is None and got[3] is None
+    assert got[1] == "the worker process was killed by SIGKILL (out of memory?)"
+
+
+def _kill_self_with(parent: int, signum: int):
+    assert os.getpid() != parent  # in a worker, never in the test's own process
+    return os.kill(os.getpid(), signum) if signum else None
