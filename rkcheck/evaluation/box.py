@@ -25,7 +25,6 @@ screen; :func:`box_refinement_fits` says when that is affordable.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
@@ -55,11 +54,17 @@ class GradientContext:
 
     exact = False
 
-    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval]):
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None):
         self.f = FloatContext(A, b)
         s = len(b)
-        self.a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
-        self.b_vars = [i for i in range(s) if not b[i].is_point]
+        a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
+        b_vars = [i for i in range(s) if not b[i].is_point]
+        if directions is not None:  # only these of the interval entries (A's, then b's)
+            keep = set(range(len(a_vars) + len(b_vars))[directions])
+            a_vars, b_vars = ([v for e, v in enumerate(a_vars) if e in keep],
+                              [v for e, v in enumerate(b_vars, len(a_vars)) if e in keep])
+        self.a_vars = a_vars
+        self.b_vars = b_vars
         self.E = len(self.a_vars) + len(self.b_vars)
 
     def _zeros(self, shape):
@@ -134,20 +139,38 @@ def gradient_bytes(listing, s: int, E: int) -> int:
     return int(kept) * (2 * s + 2) * E * 16
 
 
-@dataclass
 class BoxRefinement:
     """The mean value form of every condition of one order (representative sign):
-    ``centre[k] = R(x̃)`` exactly, ``variation[k] = V`` (a float, rounded up)."""
+    ``R(x̃) = integers[k] / scale`` exactly, ``variation[k] = V`` (a float, rounded up).
 
-    centre: list[Fraction]
-    variation: np.ndarray
+    The centre is kept as integers over one common denominator and decided with integer
+    comparisons: a Fraction per condition (a gcd each) cost more than evaluating them."""
+
+    def __init__(self, integers: list[int], scale: int, variation: np.ndarray):
+        self.integers, self.scale, self.variation = integers, scale, variation
+
+    @property
+    def centre(self) -> list[Fraction]:
+        return [Fraction(x, self.scale) for x in self.integers]
+
+    def centre_at(self, k: int) -> Fraction:
+        return Fraction(self.integers[k], self.scale)
 
     def fails(self) -> np.ndarray:
-        return np.array([abs(c) > Fraction(v) for c, v in zip(self.centre, self.variation.tolist())], dtype=bool)
+        """``|R(x̃)| > V``, exactly: ``|N|·2^k > m·scale`` for ``V = m/2^k``."""
+        out = np.zeros(len(self.integers), dtype=bool)
+        q = self.scale
+        for i, (x, v) in enumerate(zip(self.integers, self.variation.tolist())):
+            if x:
+                m, k = v.as_integer_ratio()
+                out[i] = abs(x) * k > m * q
+        return out
 
     def bound(self) -> np.ndarray:
-        """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up)."""
-        c = np.array([float(abs(x)) for x in self.centre])
+        """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up);
+        ``|N|/scale`` is correctly rounded (integer true division), as ``float(Fraction)``."""
+        q = self.scale
+        c = np.array([abs(x) / q for x in self.integers], dtype=float)
         return (c * (1 + 4 * U) + self.variation) * INFLATE + ETA
 
 
@@ -163,35 +186,107 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, 
     return np.array([math.nextafter(float(r), math.inf) for r in out], dtype=float)
 
 
+#: bits of working precision beyond the bound of the centre's integer ``N`` (below): the
+#: balls' rounding grows with the number of operations, far below 2^40 of them
+CENTRE_GUARD_BITS = 40
+
+
+def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[int, tuple[list[int], int]]:
+    """``R(x̃)`` exactly for every condition of ``orders``: ``{n: (N, scale)}`` with
+    ``R = N_k / scale``, ``scale = (n−1)!·d^(n−1)`` (:mod:`~rkcheck.evaluation.modular`).
+
+    One pass of balls at a working precision ``P`` a few dozen bits above the bound of
+    ``|N|`` replaces the residues modulo as many primes (a decimal with 16 digits makes
+    ``d ≈ 10^16``: about 30 primes at 16 vertices) and their Chinese remaindering.  The
+    ball encloses ``R`` certifiably, so ``N`` lies in ``scale·(mid ± rad)``; once that
+    interval is shorter than 1 it holds one integer only, the nearest to its centre.  An
+    order where a ball is not that narrow is computed by residues instead: the answer is
+    exact either way."""
+    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.balls import BallContext
+    from rkcheck.evaluation.modular import exact_condition_sums
+    from rkcheck.evaluation.scaled import scaled_rational
+
+    scaled = scaled_rational(centre_A, centre_b)
+    bits = max(scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in orders) + CENTRE_GUARD_BITS
+    points_A = [[Interval(x, x) for x in row] for row in centre_A]
+    points_b = [Interval(x, x) for x in centre_b]
+    sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
+    out: dict[int, tuple[list[int], int]] = {}
+    missing = []
+    for n in orders:
+        ints = _round_to_integers(sums[n], scaled.d ** (n - 1))
+        if ints is None:
+            missing.append(n)
+        else:
+            out[n] = (ints, math.factorial(n - 1) * scaled.d ** (n - 1))
+    if missing:
+        for n, e in exact_condition_sums(scaled, listing, missing).items():
+            out[n] = (e.integers(), e.scale)
+    return out
+
+
+def _round_to_integers(sums, dpow: int) -> list[int] | None:
+    """The integers ``N_k = scale·R_k`` from ball sums ``R_k = mid_k/(f·2^P) ±
+    rad_k/(f·2^S)`` with ``scale = f·dpow``: ``N_k ∈ X/2^P ± Y`` with ``X = dpow·mid``,
+    ``Y = dpow·rad/2^S``; when ``Y < 1/2`` the one integer there is the nearest to
+    ``X/2^P`` (None when some ball is wider)."""
+    P, S = sums.bits, sums.shift
+    half = 1 << (P - 1)
+    out = []
+    for mid, rad in zip(sums.mids.tolist(), sums.rads.tolist()):
+        if not math.isfinite(rad):
+            return None
+        a, k = rad.as_integer_ratio()
+        if 2 * dpow * a >= k << S:  # Y >= 1/2
+            return None
+        X = dpow * int(mid)
+        N = (X + half) >> P  # the nearest integer to X/2^P
+        # the ball certifies an integer within Y of X/2^P: it can only be N
+        if abs((N << P) - X) * k << S > (dpow * a) << P:
+            return None
+        out.append(N)
+    return out
+
+
+def gradient_groups(listing, s: int, E: int) -> list[slice]:
+    """The directions (interval entries) split into passes whose derivative arrays fit in
+    :data:`MAX_GRADIENT_BYTES` — one direction per pass at worst: the refinement is
+    never skipped, a large box only takes more passes."""
+    per = max(1, MAX_GRADIENT_BYTES // max(gradient_bytes(listing, s, 1), 1))
+    return [slice(e, min(e + per, E)) for e in range(0, E, per)] or [slice(0, 0)]
+
+
 def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict[int, BoxRefinement]:
     """The mean value form (module docstring) of the conditions of ``orders``, for the box
     ``(A, b)`` of intervals and its point ``(centre_A, centre_b)`` (exact rationals)."""
     from rkcheck.evaluation.algorithm import condition_sums
-    from rkcheck.evaluation.modular import exact_condition_sums
-    from rkcheck.evaluation.scaled import scaled_rational
 
     wanted = sorted(orders)
     if not wanted:
         return {}
-    exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, wanted)
+    centre = centre_integers(listing, centre_A, centre_b, wanted)
     ctx = GradientContext(A, b)
-    grads = condition_sums(listing, ctx, len(b), wanted)
+    parts = [condition_sums(listing, GradientContext(A, b, group), len(b), wanted)
+             for group in gradient_groups(listing, len(b), ctx.E)]
     r = box_radii(A, b, centre_A, centre_b, ctx)
     out = {}
     for n in wanted:
-        G = grads[n]
+        # each direction's column is computed alone (GradientContext: no mixing between
+        # directions), so the passes' columns side by side are the one pass's matrix
+        G = np.concatenate([part[n] for part in parts], axis=1) if len(parts) > 1 else parts[0][n]
         V = (G @ r) * (1 + (ctx.E + 2) * U) * INFLATE + ETA if ctx.E else np.zeros(len(G))
-        out[n] = BoxRefinement(exact[n].values(), V)
+        out[n] = BoxRefinement(*centre[n], V)
     return out
 
 
 def box_refinement_fits(listing, A, b) -> bool:
-    """Whether the gradient fits in :data:`MAX_GRADIENT_BYTES`."""
-    E = sum(1 for row in A for x in row if not x.is_point) + sum(1 for x in b if not x.is_point)
-    return gradient_bytes(listing, len(b), E) <= MAX_GRADIENT_BYTES
+    """Whether the refinement can run: always, since its derivatives are computed in
+    passes that fit in :data:`MAX_GRADIENT_BYTES` (:func:`gradient_groups`)."""
+    return True
 
 
-__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "MAX_GRADIENT_BYTES"]
+__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "centre_integers", "MAX_GRADIENT_BYTES"]
 
 
 class RefinedSums:
@@ -218,5 +313,5 @@ class RefinedSums:
         from rkcheck.numbers.enclosure import Enclosure
 
         if self._fails[k] and not self._ball_excludes[k]:
-            return Enclosure(self.refinement.centre[k], Fraction(float(self.refinement.variation[k])), False)
+            return Enclosure(self.refinement.centre_at(k), Fraction(float(self.refinement.variation[k])), False)
         return self.balls.enclosure(k)
