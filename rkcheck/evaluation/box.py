@@ -200,8 +200,9 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     ``d ≈ 10^16``: about 30 primes at 16 vertices) and their Chinese remaindering.  The
     ball encloses ``R`` certifiably, so ``N`` lies in ``scale·(mid ± rad)``; once that
     interval is shorter than 1 it holds one integer only, the nearest to its centre.  An
-    order where a ball is not that narrow is computed by residues instead: the answer is
-    exact either way."""
+    order where a ball is not that narrow, or a listing whose balls would not fit in
+    :data:`MAX_CENTRE_BALL_BYTES`, is computed by residues instead: the answer is exact
+    either way."""
     from rkcheck.evaluation.algorithm import condition_sums
     from rkcheck.evaluation.balls import BallContext
     from rkcheck.evaluation.modular import exact_condition_sums
@@ -209,13 +210,15 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
 
     scaled = scaled_rational(centre_A, centre_b)
     bits = max(scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in orders) + CENTRE_GUARD_BITS
-    points_A = [[Interval(x, x) for x in row] for row in centre_A]
-    points_b = [Interval(x, x) for x in centre_b]
-    sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
     out: dict[int, tuple[list[int], int]] = {}
+    sums = {}
+    if centre_ball_bytes(listing, len(centre_b), max(orders), bits) <= MAX_CENTRE_BALL_BYTES:
+        points_A = [[Interval(x, x) for x in row] for row in centre_A]
+        points_b = [Interval(x, x) for x in centre_b]
+        sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
     missing = []
     for n in orders:
-        ints = _round_to_integers(sums[n], scaled.d ** (n - 1))
+        ints = _round_to_integers(sums[n], scaled.d ** (n - 1)) if n in sums else None
         if ints is None:
             missing.append(n)
         else:
@@ -224,6 +227,19 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
         for n, e in exact_condition_sums(scaled, listing, missing).items():
             out[n] = (e.integers(), e.scale)
     return out
+
+
+#: Bytes the centre's balls may take (Python integers of the working precision, one per
+#: stored weight, counted as if none were zero); above, the residues (int32 per prime,
+#: one prime at a time) compute the centre instead
+MAX_CENTRE_BALL_BYTES = 512 << 20
+
+
+def centre_ball_bytes(listing, s: int, top: int, bits: int) -> int:
+    """An estimate of the memory of the centre's balls (weights up to ``top`` vertices)."""
+    first = listing.first
+    values = 2 * s * first[max(top - 1, 2)] + 2 * first[top]
+    return values * (bits // 8 + 32 + 3 * 8)  # the integer object, its pointer, two floats
 
 
 def _round_to_integers(sums, dpow: int) -> list[int] | None:

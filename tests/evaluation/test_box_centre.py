@@ -180,3 +180,13 @@ def test_guard_bits_cover_the_rounding_of_a_long_pass():
     for n, s in sums.items():
         assert box._round_to_integers(s, scaled.d ** (n - 1)) is not None
         assert math.isfinite(float(np.max(s.rads)))
+
+
+def test_a_listing_too_large_for_the_balls_takes_the_residues(monkeypatch):
+    A, b = _exact(*GAUSS2_DECIMAL)
+    listing = ConditionListing(9, None)
+    wanted = sorted(listing.orders)
+    fast = box.centre_integers(listing, A, b, wanted)
+    monkeypatch.setattr(box, "MAX_CENTRE_BALL_BYTES", 0)
+    monkeypatch.setattr(box, "_round_to_integers", lambda sums, dpow: pytest.fail("no balls expected"))
+    assert box.centre_integers(listing, A, b, wanted) == fast
