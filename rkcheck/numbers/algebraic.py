@@ -123,7 +123,7 @@ def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":
 #: Fields of at least this degree remember products and inverses (:meth:`FieldElement._memo`)
 MEMO_MIN_DEGREE = 16
 #: and at most this many of them per field (then start again)
-MEMO_SIZE = 4096
+MEMO_SIZE = 2048
 
 
 class _PolyKey:
