@@ -223,6 +223,16 @@ def _coefficients(terms) -> np.ndarray:
     return cached
 
 
+def _float_coefficients(terms, n: int) -> np.ndarray:
+    """``c/(n−1)!`` as floats (correctly rounded), once per order's terms: the gradient
+    of a decimal box asks for them once per direction and block."""
+    cached = getattr(terms, "_coef_float", None)
+    if cached is None:
+        cached = np.array([float(Fraction(c, math.factorial(n - 1))) for c in terms.coefficients])
+        terms._coef_float = cached
+    return cached
+
+
 class FloatContext:
     """The float64 screen (module docstring): fast, certified, about 15 digits at best."""
 
@@ -281,8 +291,7 @@ class FloatContext:
         return [np.zeros(k), np.zeros(k), np.zeros(k), np.zeros(k)]  # mid, rad, Σ|term|, count
 
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
-        cf = np.array([float(Fraction(c, math.factorial(n - 1))) for c in terms.coefficients])
-        c = cf[terms.coefficient_index[i0:i1]]
+        c = _float_coefficients(terms, n)[terms.coefficient_index[i0:i1]]
         cond = terms.condition[i0:i1]
         tm = c * w_terms[0]
         # the coefficient is c(1 ± u) (a rounded quotient), the product rounds once more

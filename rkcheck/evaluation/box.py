@@ -244,25 +244,26 @@ def centre_ball_bytes(listing, s: int, top: int, bits: int) -> int:
 
 def _round_to_integers(sums, dpow: int) -> list[int] | None:
     """The integers ``N_k = scale·R_k`` from ball sums ``R_k = mid_k/(f·2^P) ±
-    rad_k/(f·2^S)`` with ``scale = f·dpow``: ``N_k ∈ X/2^P ± Y`` with ``X = dpow·mid``,
-    ``Y = dpow·rad/2^S``; when ``Y < 1/2`` the one integer there is the nearest to
-    ``X/2^P`` (None when some ball is wider)."""
+    rad_k/(f·2^S)`` with ``scale = f·dpow``: ``N_k ∈ X/2^P ± Y_k`` with ``X = dpow·mid``,
+    ``Y_k = dpow·rad_k/2^S``; when every ``Y_k < 1/2`` the one integer there is the
+    nearest to ``X/2^P`` (None when some ball is wider).  Vectorised over the conditions
+    (numpy object arrays of Python integers)."""
     P, S = sums.bits, sums.shift
-    half = 1 << (P - 1)
-    out = []
-    for mid, rad in zip(sums.mids.tolist(), sums.rads.tolist()):
-        if not math.isfinite(rad):
-            return None
-        a, k = rad.as_integer_ratio()
-        if 2 * dpow * a >= k << S:  # Y >= 1/2
-            return None
-        X = dpow * int(mid)
-        N = (X + half) >> P  # the nearest integer to X/2^P
-        # the ball certifies an integer within Y of X/2^P: it can only be N
-        if abs((N << P) - X) * k << S > (dpow * a) << P:
-            return None
-        out.append(N)
-    return out
+    if len(sums.mids) == 0:
+        return []
+    rmax = float(np.max(sums.rads))
+    if not math.isfinite(rmax):
+        return None
+    a, k = rmax.as_integer_ratio()
+    if 2 * dpow * a >= k << S:  # some Y_k >= 1/2
+        return None
+    X = np.asarray(sums.mids, dtype=object) * dpow
+    N = (X + (1 << (P - 1))) >> P  # the nearest integers to X/2^P
+    # the balls certify an integer within Y_k <= Y_max of X/2^P: it can only be N
+    # (a check of the arithmetic, never failing unless a ball is wrong)
+    if max(abs(x) for x in ((N << P) - X).tolist()) * k << S > (dpow * a) << P:
+        return None
+    return [int(x) for x in N.tolist()]
 
 
 def gradient_groups(listing, s: int, E: int) -> list[slice]:
