@@ -212,7 +212,7 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     bits = max(scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in orders) + CENTRE_GUARD_BITS
     out: dict[int, tuple[list[int], int]] = {}
     sums = {}
-    if centre_ball_bytes(listing, len(centre_b), max(orders), bits) <= MAX_CENTRE_BALL_BYTES:
+    if _centre_balls_fit(listing, centre_A, centre_b, max(orders), bits):
         points_A = [[Interval(x, x) for x in row] for row in centre_A]
         points_b = [Interval(x, x) for x in centre_b]
         sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
@@ -235,11 +235,82 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
 MAX_CENTRE_BALL_BYTES = 512 << 20
 
 
-def centre_ball_bytes(listing, s: int, top: int, bits: int) -> int:
-    """An estimate of the memory of the centre's balls (weights up to ``top`` vertices)."""
+def centre_ball_bytes(listing, s: int, top: int, bits: int, nonzero: int | None = None) -> int:
+    """An upper bound of the memory of the centre's balls (weights up to ``top``
+    vertices): a pointer and two floats per stored weight, and an integer object of
+    ``bits`` bits per weight that may be nonzero (``nonzero``; all when None — a zero is
+    Python's one shared 0)."""
     first = listing.first
     values = 2 * s * first[max(top - 1, 2)] + 2 * first[top]
-    return values * (bits // 8 + 32 + 3 * 8)  # the integer object, its pointer, two floats
+    return values * 3 * 8 + (values if nonzero is None else nonzero) * (bits // 8 + 32)
+
+
+def _centre_balls_fit(listing, centre_A, centre_b, top: int, bits: int) -> bool:
+    """Whether the centre's balls fit in :data:`MAX_CENTRE_BALL_BYTES`: at once when
+    every weight may be nonzero, else after counting the weights that are not zero by
+    the tableau's pattern of zeros (:class:`_SupportCounter`; an explicit RK4 at order
+    18 stores far fewer nonzero weights than its 13 million)."""
+    from rkcheck.evaluation.algorithm import condition_sums
+
+    s = len(centre_b)
+    if centre_ball_bytes(listing, s, top, bits) <= MAX_CENTRE_BALL_BYTES:
+        return True
+    counter = _SupportCounter(centre_A, centre_b)
+    condition_sums(listing, counter, s, [top])
+    return centre_ball_bytes(listing, s, top, bits, counter.nonzero) <= MAX_CENTRE_BALL_BYTES
+
+
+class _SupportCounter:
+    """The elementary weights' pattern of zeros: True where a weight may be nonzero
+    (products and sums of entries, none of which is zero), False where it is zero for
+    every tableau with the same zero entries.  Counts the weights stored that may be
+    nonzero (every stored block passes :meth:`put` once)."""
+
+    exact = False
+
+    def __init__(self, A, b):
+        kind = np.uint8 if len(b) < 256 else np.int32  # sums of s zeros and ones
+        self.A_t = np.array([[x != 0 for x in row] for row in A], dtype=kind).T.copy()
+        self.b = np.array([x != 0 for x in b], dtype=kind)
+        self.kind = kind
+        self.nonzero = 0
+
+    def vectors(self, n: int, s: int):
+        return np.zeros((n, s), dtype=bool)
+
+    def scalars(self, n: int):
+        return np.zeros(n, dtype=bool)
+
+    def ones(self, k: int, s: int):
+        return np.ones((k, s), dtype=bool)
+
+    def one(self, k: int):
+        return np.ones(k, dtype=bool)
+
+    def take(self, x, idx):
+        return x[idx]
+
+    def put(self, store, lo: int, x) -> None:
+        store[lo:lo + len(x)] = x
+        self.nonzero += int(np.count_nonzero(x))
+
+    def mul(self, x, y):
+        return x & y
+
+    def matvec(self, x):
+        return (x.astype(self.kind) @ self.A_t) > 0
+
+    def dot(self, x):
+        return (x.astype(self.kind) @ self.b) > 0
+
+    def sums(self, k: int, n: int):
+        return None
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        return None
+
+    def finish_sums(self, acc, k: int, n: int):
+        return None
 
 
 def _round_to_integers(sums, dpow: int) -> list[int] | None:

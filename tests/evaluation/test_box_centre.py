@@ -190,3 +190,32 @@ def test_a_listing_too_large_for_the_balls_takes_the_residues(monkeypatch):
     monkeypatch.setattr(box, "MAX_CENTRE_BALL_BYTES", 0)
     monkeypatch.setattr(box, "_round_to_integers", lambda sums, dpow: pytest.fail("no balls expected"))
     assert box.centre_integers(listing, A, b, wanted) == fast
+
+
+def test_the_support_counter_counts_the_weights_that_are_not_zero():
+    # RK4's weights by brute force (the reference's elementary weight vectors, exact):
+    # a weight the counter calls zero is zero, and it counts every one that is not
+    from rkcheck.evaluation.algorithm import condition_sums
+
+    A, b = _exact(*RK4_DECIMAL)
+    listing = ConditionListing(7, None)
+    top = max(listing.orders)
+    counter = box._SupportCounter(A, b)
+    condition_sums(listing, counter, 4, [top])
+    seq_of = listing.tree_level_sequence
+    nonzero = 0
+    for t in range(listing.first[top]):  # the stored a and w: trees with <= top − 1 vertices
+        seq = seq_of(t)
+        phi = ref.elementary_weight_vector(seq, A)
+        a = ref.elementary_weight(seq, A, b)
+        nonzero += a != 0
+        if t < listing.first[max(top - 1, 2)]:  # φ and ψ up to top − 2 vertices
+            psi = [sum(A[i][j] * phi[j] for j in range(4)) for i in range(4)]
+            nonzero += sum(x != 0 for x in phi) + sum(x != 0 for x in psi)
+    # w(u) = Π a(children): nonzero exactly when every child's a is (exact values)
+    for t in range(listing.first[top]):
+        kids = ref.subtrees_at_root(seq_of(t))
+        nonzero += all(ref.elementary_weight(k, A, b) != 0 for k in kids)
+    # the pattern bounds the count from above; RK4's entries are nonnegative, so no sum
+    # cancels and the bound is the count
+    assert counter.nonzero == nonzero
