@@ -30,7 +30,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
@@ -119,16 +119,32 @@ class GradientContext:
         return value, _add(grad, (em, er))
 
     def sums(self, k: int, n: int):
-        return [self.f.sums(k, n) for _ in range(self.E)]
+        # FloatContext's four accumulators (mid, rad, Σ|term|, count), one column per direction
+        return [np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros(k)]
 
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """:meth:`FloatContext.add_terms` for every direction at once: the same
+        elementwise operations, and one bincount over (condition, direction) pairs, which
+        adds each bin's terms in the same order as a bincount per direction (the sums
+        are the same, bit for bit)."""
         gm, gr = w_terms[1]
-        for e in range(self.E):
-            self.f.add_terms(acc[e], (gm[:, e], gr[:, e]), terms, n, i0, i1)
+        E = self.E
+        if not E:
+            return
+        c = _float_coefficients(terms, n)[terms.coefficient_index[i0:i1]][:, None]
+        cond = terms.condition[i0:i1]
+        tm = c * gm
+        tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
+        k = len(acc[3])
+        bins = (cond.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+        for a, x in zip(acc, (tm, tr, np.abs(tm))):
+            a += np.bincount(bins, weights=x.ravel(), minlength=k * E).reshape(k, E)
+        acc[3] += np.bincount(cond, minlength=k)
 
     def finish_sums(self, acc, k: int, n: int) -> np.ndarray:
         """``G[k, e]``: an upper bound of ``sup_X |∂R_k/∂x_e|``."""
-        cols = [self.f.finish_sums(a, k, n).magnitude_bound() for a in acc]
+        cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
+                for e in range(self.E)]
         return np.stack(cols, axis=1) if cols else np.zeros((k, 0))
 
 
