@@ -8,6 +8,8 @@ import random
 from fractions import Fraction
 
 import pytest
+from support.heavy import heavy
+from support.paths import TABLEAUX
 
 import rkcheck.numbers.algebraic as alg
 from rkcheck.numbers.algebraic import NumberField
@@ -63,3 +65,23 @@ def test_small_fields_do_not_remember():
     K = NumberField([-2, 0, 1], 2)
     x = K([1, 1])
     assert (x * x).poly == _fresh_product(x, x) and not K._products
+
+
+@heavy
+def test_an_hbvm_6_check_is_the_same_without_the_memo(monkeypatch):
+    # the degree-48 field of HBVM(6, 3): every verdict, residual and order as without
+    # remembering (each run builds its own field, so nothing is shared between them)
+    from rkcheck.api import load
+    from rkcheck.energy.check import check
+    from rkcheck.options import CheckOptions
+
+    def report():
+        t = load(str(TABLEAUX / "hbvm" / "hbvm-6-3.toml"))
+        t = getattr(t, "tableau", t)
+        r = check(t, CheckOptions(degree=5, order=7))
+        return ([(c.id, str(c.verdict), str(c.residual)) for c in r.conditions], r.energy_order,
+                r.quadrature, r.classical, str(r.certificate))
+
+    remembered = report()
+    monkeypatch.setattr(alg, "MEMO_MIN_DEGREE", 10**9)
+    assert report() == remembered
