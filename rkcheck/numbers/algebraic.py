@@ -120,10 +120,9 @@ def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":
     return FieldElement(field, to_flint(coeffs))
 
 
-#: Fields of at least this degree remember products and inverses (:meth:`FieldElement._memo`)
-MEMO_MIN_DEGREE = 16
-#: and at most this many of them per field (then start again)
-MEMO_SIZE = 2048
+#: Fields of at least this degree remember up to MEMO_SIZE products and inverses each
+#: (:meth:`FieldElement._memo`; then they start again)
+MEMO_MIN_DEGREE, MEMO_SIZE = 16, 2048
 
 
 class _PolyKey:
@@ -133,9 +132,8 @@ class _PolyKey:
     __slots__ = ("poly", "h")
 
     def __init__(self, poly):
-        self.poly = poly
         d = poly.degree()
-        self.h = hash((d, poly[0], poly[d // 2], poly[max(d, 0)]))
+        self.poly, self.h = poly, hash((d, poly[0], poly[d // 2], poly[max(d, 0)]))
 
     def __hash__(self) -> int:
         return self.h
@@ -155,22 +153,18 @@ class FieldElement:
         self._key: _PolyKey | None = None
 
     def _memo(self, op: str, other: "FieldElement | None", compute) -> "FieldElement":
-        """``compute()``, remembered per field when its degree is at least
-        :data:`MEMO_MIN_DEGREE`.  A product in a field of degree 48 costs about a
-        millisecond (coefficients of 1000–2000 bits), and the tableau's own algebra —
-        powers of the nodes for each order, the same row sums and products again for
-        each property — asks for the same ones many times: in HBVM(6, 3)'s check 8 714
-        products were 3 742 distinct ones, 70 inverses 19."""
+        """``compute()``, remembered per field of degree >= :data:`MEMO_MIN_DEGREE`: a
+        product in a field of degree 48 costs about a millisecond (coefficients of
+        1000–2000 bits), and the tableau's algebra asks for the same ones again (in
+        HBVM(6, 3)'s check 8 714 products were 3 742 distinct ones, 70 inverses 19)."""
         K = self.field
         if K.degree < MEMO_MIN_DEGREE:
             return compute()
-        if self._key is None:
-            self._key = _PolyKey(self.poly)
-        key: tuple = (op, self._key)
+        mine = self._key = self._key or _PolyKey(self.poly)
+        key: tuple = (op, mine)
         if other is not None:
-            if other._key is None:
-                other._key = _PolyKey(other.poly)
-            key = (op, self._key, other._key) if self._key.h <= other._key.h else (op, other._key, self._key)
+            theirs = other._key = other._key or _PolyKey(other.poly)
+            key = (op, mine, theirs) if mine.h <= theirs.h else (op, theirs, mine)
         hit = K._products.get(key)
         if hit is None:
             if len(K._products) >= MEMO_SIZE:
