@@ -219,6 +219,7 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     order where a ball is not that narrow, or a listing whose balls would not fit in
     :data:`MAX_CENTRE_BALL_BYTES`, is computed by residues instead: the answer is exact
     either way."""
+    from rkcheck.errors import UserError
     from rkcheck.evaluation.algorithm import condition_sums
     from rkcheck.evaluation.balls import BallContext
     from rkcheck.evaluation.modular import exact_condition_sums
@@ -231,7 +232,11 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     if _centre_balls_fit(listing, centre_A, centre_b, max(orders), bits):
         points_A = [[Interval(x, x) for x in row] for row in centre_A]
         points_b = [Interval(x, x) for x in centre_b]
-        sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
+        try:  # radii past float64 (huge entries) end as inf or NaN, or refused: residues
+            with np.errstate(over="ignore", invalid="ignore"):
+                sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
+        except (UserError, ArithmeticError):
+            sums = {}
     missing = []
     for n in orders:
         ints = _round_to_integers(sums[n], scaled.d ** (n - 1)) if n in sums else None

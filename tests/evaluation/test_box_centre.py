@@ -219,3 +219,18 @@ def test_the_support_counter_counts_the_weights_that_are_not_zero():
     # the pattern bounds the count from above; RK4's entries are nonnegative, so no sum
     # cancels and the bound is the count
     assert counter.nonzero == nonzero
+
+
+def test_entries_too_large_for_float_radii_take_the_residues():
+    # entries near 1e200: the balls' float radii overflow (a UserError in a ball check);
+    # the centre comes from the residues instead, and equals the reference
+    A = [[Fraction(0), Fraction(0)], [Fraction(10**200, 3), Fraction(0)]]
+    b = [Fraction(10**200, 7), Fraction(1, 3)]
+    listing = ConditionListing(6, None)
+    got = box.centre_integers(listing, A, b, sorted(listing.orders))
+    for n in sorted(listing.orders):
+        ints, scale = got[n]
+        by_id = {d["id"]: d for d in ref.energy_conditions(n)}
+        for k in range(len(listing.orders[n])):
+            expected = ref.energy_residual(by_id[listing.record(n, k).level_sequence], A, b)
+            assert Fraction(ints[k], scale) * listing.flip(n, k) == expected
