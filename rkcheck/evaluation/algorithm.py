@@ -120,4 +120,8 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                 on_order(n, out[n])
 
 
-_TERM_CHUNK = 1 << 20
+#: rows per block of the kernel: small enough that a block's temporaries stay in the
+#: processor's caches (the evaluation is bound by memory traffic, not arithmetic: blocks
+#: of 2^14 rows ran RK4 and Gauss-3 at order 16 15–20 % faster than blocks of 2^20),
+#: large enough that numpy's cost per call stays small
+_TERM_CHUNK = 1 << 14

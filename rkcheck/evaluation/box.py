@@ -25,13 +25,12 @@ screen; :func:`box_refinement_fits` says when that is affordable.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
@@ -55,11 +54,17 @@ class GradientContext:
 
     exact = False
 
-    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval]):
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None):
         self.f = FloatContext(A, b)
         s = len(b)
-        self.a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
-        self.b_vars = [i for i in range(s) if not b[i].is_point]
+        a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
+        b_vars = [i for i in range(s) if not b[i].is_point]
+        if directions is not None:  # only these of the interval entries (A's, then b's)
+            keep = set(range(len(a_vars) + len(b_vars))[directions])
+            a_vars, b_vars = ([v for e, v in enumerate(a_vars) if e in keep],
+                              [v for e, v in enumerate(b_vars, len(a_vars)) if e in keep])
+        self.a_vars = a_vars
+        self.b_vars = b_vars
         self.E = len(self.a_vars) + len(self.b_vars)
 
     def _zeros(self, shape):
@@ -114,16 +119,32 @@ class GradientContext:
         return value, _add(grad, (em, er))
 
     def sums(self, k: int, n: int):
-        return [self.f.sums(k, n) for _ in range(self.E)]
+        # FloatContext's four accumulators (mid, rad, Σ|term|, count), one column per direction
+        return [np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros(k)]
 
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """:meth:`FloatContext.add_terms` for every direction at once: the same
+        elementwise operations, and one bincount over (condition, direction) pairs, which
+        adds each bin's terms in the same order as a bincount per direction (the sums
+        are the same, bit for bit)."""
         gm, gr = w_terms[1]
-        for e in range(self.E):
-            self.f.add_terms(acc[e], (gm[:, e], gr[:, e]), terms, n, i0, i1)
+        E = self.E
+        if not E:
+            return
+        c = _float_coefficients(terms, n)[terms.coefficient_index[i0:i1]][:, None]
+        cond = terms.condition[i0:i1]
+        tm = c * gm
+        tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
+        k = len(acc[3])
+        bins = (cond.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+        for a, x in zip(acc, (tm, tr, np.abs(tm))):
+            a += np.bincount(bins, weights=x.ravel(), minlength=k * E).reshape(k, E)
+        acc[3] += np.bincount(cond, minlength=k)
 
     def finish_sums(self, acc, k: int, n: int) -> np.ndarray:
         """``G[k, e]``: an upper bound of ``sup_X |∂R_k/∂x_e|``."""
-        cols = [self.f.finish_sums(a, k, n).magnitude_bound() for a in acc]
+        cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
+                for e in range(self.E)]
         return np.stack(cols, axis=1) if cols else np.zeros((k, 0))
 
 
@@ -134,20 +155,38 @@ def gradient_bytes(listing, s: int, E: int) -> int:
     return int(kept) * (2 * s + 2) * E * 16
 
 
-@dataclass
 class BoxRefinement:
     """The mean value form of every condition of one order (representative sign):
-    ``centre[k] = R(x̃)`` exactly, ``variation[k] = V`` (a float, rounded up)."""
+    ``R(x̃) = integers[k] / scale`` exactly, ``variation[k] = V`` (a float, rounded up).
 
-    centre: list[Fraction]
-    variation: np.ndarray
+    The centre is kept as integers over one common denominator and decided with integer
+    comparisons: a Fraction per condition (a gcd each) cost more than evaluating them."""
+
+    def __init__(self, integers: list[int], scale: int, variation: np.ndarray):
+        self.integers, self.scale, self.variation = integers, scale, variation
+
+    @property
+    def centre(self) -> list[Fraction]:
+        return [Fraction(x, self.scale) for x in self.integers]
+
+    def centre_at(self, k: int) -> Fraction:
+        return Fraction(self.integers[k], self.scale)
 
     def fails(self) -> np.ndarray:
-        return np.array([abs(c) > Fraction(v) for c, v in zip(self.centre, self.variation.tolist())], dtype=bool)
+        """``|R(x̃)| > V``, exactly: ``|N|·2^k > m·scale`` for ``V = m/2^k``."""
+        out = np.zeros(len(self.integers), dtype=bool)
+        q = self.scale
+        for i, (x, v) in enumerate(zip(self.integers, self.variation.tolist())):
+            if x:
+                m, k = v.as_integer_ratio()
+                out[i] = abs(x) * k > m * q
+        return out
 
     def bound(self) -> np.ndarray:
-        """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up)."""
-        c = np.array([float(abs(x)) for x in self.centre])
+        """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up);
+        ``|N|/scale`` is correctly rounded (integer true division), as ``float(Fraction)``."""
+        q = self.scale
+        c = np.array([abs(x) / q for x in self.integers], dtype=float)
         return (c * (1 + 4 * U) + self.variation) * INFLATE + ETA
 
 
@@ -163,35 +202,200 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, 
     return np.array([math.nextafter(float(r), math.inf) for r in out], dtype=float)
 
 
+#: bits of working precision beyond the bound of the centre's integer ``N`` (below): the
+#: balls' rounding grows with the number of operations, far below 2^40 of them
+CENTRE_GUARD_BITS = 40
+
+
+def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[int, tuple[list[int], int]]:
+    """``R(x̃)`` exactly for every condition of ``orders``: ``{n: (N, scale)}`` with
+    ``R = N_k / scale``, ``scale = (n−1)!·d^(n−1)`` (:mod:`~rkcheck.evaluation.modular`).
+
+    One pass of balls at a working precision ``P`` a few dozen bits above the bound of
+    ``|N|`` replaces the residues modulo as many primes (a decimal with 16 digits makes
+    ``d ≈ 10^16``: about 30 primes at 16 vertices) and their Chinese remaindering.  The
+    ball encloses ``R`` certifiably, so ``N`` lies in ``scale·(mid ± rad)``; once that
+    interval is shorter than 1 it holds one integer only, the nearest to its centre.  An
+    order where a ball is not that narrow, or a listing whose balls would not fit in
+    :data:`MAX_CENTRE_BALL_BYTES`, is computed by residues instead: the answer is exact
+    either way."""
+    from rkcheck.errors import UserError
+    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.balls import BallContext
+    from rkcheck.evaluation.modular import exact_condition_sums
+    from rkcheck.evaluation.scaled import scaled_rational
+
+    scaled = scaled_rational(centre_A, centre_b)
+    bits = max(scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in orders) + CENTRE_GUARD_BITS
+    out: dict[int, tuple[list[int], int]] = {}
+    sums = {}
+    if _centre_balls_fit(listing, centre_A, centre_b, max(orders), bits):
+        points_A = [[Interval(x, x) for x in row] for row in centre_A]
+        points_b = [Interval(x, x) for x in centre_b]
+        try:  # radii past float64 (huge entries) end as inf or NaN, or refused: residues
+            with np.errstate(over="ignore", invalid="ignore"):
+                sums = condition_sums(listing, BallContext(points_A, points_b, bits), len(centre_b), orders)
+        except (UserError, ArithmeticError):
+            sums = {}
+    missing = []
+    for n in orders:
+        ints = _round_to_integers(sums[n], scaled.d ** (n - 1)) if n in sums else None
+        if ints is None:
+            missing.append(n)
+        else:
+            out[n] = (ints, math.factorial(n - 1) * scaled.d ** (n - 1))
+    if missing:
+        for n, e in exact_condition_sums(scaled, listing, missing).items():
+            out[n] = (e.integers(), e.scale)
+    return out
+
+
+#: Bytes the centre's balls may take (Python integers of the working precision, one per
+#: stored weight, counted as if none were zero); above, the residues (int32 per prime,
+#: one prime at a time) compute the centre instead
+MAX_CENTRE_BALL_BYTES = 512 << 20
+
+
+def centre_ball_bytes(listing, s: int, top: int, bits: int, nonzero: int | None = None) -> int:
+    """An upper bound of the memory of the centre's balls (weights up to ``top``
+    vertices): a pointer and two floats per stored weight, and an integer object of
+    ``bits`` bits per weight that may be nonzero (``nonzero``; all when None — a zero is
+    Python's one shared 0)."""
+    first = listing.first
+    values = 2 * s * first[max(top - 1, 2)] + 2 * first[top]
+    return values * 3 * 8 + (values if nonzero is None else nonzero) * (bits // 8 + 32)
+
+
+def _centre_balls_fit(listing, centre_A, centre_b, top: int, bits: int) -> bool:
+    """Whether the centre's balls fit in :data:`MAX_CENTRE_BALL_BYTES`: at once when
+    every weight may be nonzero, else after counting the weights that are not zero by
+    the tableau's pattern of zeros (:class:`_SupportCounter`; an explicit RK4 at order
+    18 stores far fewer nonzero weights than its 13 million)."""
+    from rkcheck.evaluation.algorithm import condition_sums
+
+    s = len(centre_b)
+    if centre_ball_bytes(listing, s, top, bits) <= MAX_CENTRE_BALL_BYTES:
+        return True
+    counter = _SupportCounter(centre_A, centre_b)
+    condition_sums(listing, counter, s, [top])
+    return centre_ball_bytes(listing, s, top, bits, counter.nonzero) <= MAX_CENTRE_BALL_BYTES
+
+
+class _SupportCounter:
+    """The elementary weights' pattern of zeros: True where a weight may be nonzero
+    (products and sums of entries, none of which is zero), False where it is zero for
+    every tableau with the same zero entries.  Counts the weights stored that may be
+    nonzero (every stored block passes :meth:`put` once)."""
+
+    exact = False
+
+    def __init__(self, A, b):
+        kind = np.uint8 if len(b) < 256 else np.int32  # sums of s zeros and ones
+        self.A_t = np.array([[x != 0 for x in row] for row in A], dtype=kind).T.copy()
+        self.b = np.array([x != 0 for x in b], dtype=kind)
+        self.kind = kind
+        self.nonzero = 0
+
+    def vectors(self, n: int, s: int):
+        return np.zeros((n, s), dtype=bool)
+
+    def scalars(self, n: int):
+        return np.zeros(n, dtype=bool)
+
+    def ones(self, k: int, s: int):
+        return np.ones((k, s), dtype=bool)
+
+    def one(self, k: int):
+        return np.ones(k, dtype=bool)
+
+    def take(self, x, idx):
+        return x[idx]
+
+    def put(self, store, lo: int, x) -> None:
+        store[lo:lo + len(x)] = x
+        self.nonzero += int(np.count_nonzero(x))
+
+    def mul(self, x, y):
+        return x & y
+
+    def matvec(self, x):
+        return (x.astype(self.kind) @ self.A_t) > 0
+
+    def dot(self, x):
+        return (x.astype(self.kind) @ self.b) > 0
+
+    def sums(self, k: int, n: int):
+        return None
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        return None
+
+    def finish_sums(self, acc, k: int, n: int):
+        return None
+
+
+def _round_to_integers(sums, dpow: int) -> list[int] | None:
+    """The integers ``N_k = scale·R_k`` from ball sums ``R_k = mid_k/(f·2^P) ±
+    rad_k/(f·2^S)`` with ``scale = f·dpow``: ``N_k ∈ X/2^P ± Y_k`` with ``X = dpow·mid``,
+    ``Y_k = dpow·rad_k/2^S``; when every ``Y_k < 1/2`` the one integer there is the
+    nearest to ``X/2^P`` (None when some ball is wider).  Vectorised over the conditions
+    (numpy object arrays of Python integers)."""
+    P, S = sums.bits, sums.shift
+    if len(sums.mids) == 0:
+        return []
+    rmax = float(np.max(sums.rads))
+    if not math.isfinite(rmax):
+        return None
+    a, k = rmax.as_integer_ratio()
+    if 2 * dpow * a >= k << S:  # some Y_k >= 1/2
+        return None
+    X = np.asarray(sums.mids, dtype=object) * dpow
+    N = (X + (1 << (P - 1))) >> P  # the nearest integers to X/2^P
+    # the balls certify an integer within Y_k <= Y_max of X/2^P: it can only be N
+    # (a check of the arithmetic, never failing unless a ball is wrong)
+    if max(abs(x) for x in ((N << P) - X).tolist()) * k << S > (dpow * a) << P:
+        return None
+    return [int(x) for x in N.tolist()]
+
+
+def gradient_groups(listing, s: int, E: int) -> list[slice]:
+    """The directions (interval entries) split into passes whose derivative arrays fit in
+    :data:`MAX_GRADIENT_BYTES` — one direction per pass at worst: the refinement is
+    never skipped, a large box only takes more passes."""
+    per = max(1, MAX_GRADIENT_BYTES // max(gradient_bytes(listing, s, 1), 1))
+    return [slice(e, min(e + per, E)) for e in range(0, E, per)] or [slice(0, 0)]
+
+
 def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict[int, BoxRefinement]:
     """The mean value form (module docstring) of the conditions of ``orders``, for the box
     ``(A, b)`` of intervals and its point ``(centre_A, centre_b)`` (exact rationals)."""
     from rkcheck.evaluation.algorithm import condition_sums
-    from rkcheck.evaluation.modular import exact_condition_sums
-    from rkcheck.evaluation.scaled import scaled_rational
 
     wanted = sorted(orders)
     if not wanted:
         return {}
-    exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, wanted)
+    centre = centre_integers(listing, centre_A, centre_b, wanted)
     ctx = GradientContext(A, b)
-    grads = condition_sums(listing, ctx, len(b), wanted)
+    parts = [condition_sums(listing, GradientContext(A, b, group), len(b), wanted)
+             for group in gradient_groups(listing, len(b), ctx.E)]
     r = box_radii(A, b, centre_A, centre_b, ctx)
     out = {}
     for n in wanted:
-        G = grads[n]
+        # each direction's column is computed alone (GradientContext: no mixing between
+        # directions), so the passes' columns side by side are the one pass's matrix
+        G = np.concatenate([part[n] for part in parts], axis=1) if len(parts) > 1 else parts[0][n]
         V = (G @ r) * (1 + (ctx.E + 2) * U) * INFLATE + ETA if ctx.E else np.zeros(len(G))
-        out[n] = BoxRefinement(exact[n].values(), V)
+        out[n] = BoxRefinement(*centre[n], V)
     return out
 
 
 def box_refinement_fits(listing, A, b) -> bool:
-    """Whether the gradient fits in :data:`MAX_GRADIENT_BYTES`."""
-    E = sum(1 for row in A for x in row if not x.is_point) + sum(1 for x in b if not x.is_point)
-    return gradient_bytes(listing, len(b), E) <= MAX_GRADIENT_BYTES
+    """Whether the refinement can run: always, since its derivatives are computed in
+    passes that fit in :data:`MAX_GRADIENT_BYTES` (:func:`gradient_groups`)."""
+    return True
 
 
-__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "MAX_GRADIENT_BYTES"]
+__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "centre_integers", "MAX_GRADIENT_BYTES"]
 
 
 class RefinedSums:
@@ -218,5 +422,5 @@ class RefinedSums:
         from rkcheck.numbers.enclosure import Enclosure
 
         if self._fails[k] and not self._ball_excludes[k]:
-            return Enclosure(self.refinement.centre[k], Fraction(float(self.refinement.variation[k])), False)
+            return Enclosure(self.refinement.centre_at(k), Fraction(float(self.refinement.variation[k])), False)
         return self.balls.enclosure(k)

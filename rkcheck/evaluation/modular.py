@@ -140,11 +140,18 @@ class ExactOrderSums:
         conditions: the mixed-radix digits in int64, then one integer per condition)."""
         if self.tableau.degree != 1:
             return [self.value(k) for k in range(len(self.residues))]
+        return [Fraction(x, self.scale) for x in self.integers()]
+
+    def integers(self) -> list[int]:
+        """Rationals only: every condition's integer ``N = scale·R`` (Chinese remaindering
+        over the primes, the symmetric residue)."""
+        assert self.tableau.degree == 1
+        self._complete()
         mods = [p for p, _ in self.primes]
         total = math.prod(mods)
         columns = [self.residues[:, i, 0].tolist() for i in range(len(mods))]
         combined = _crt_columns(columns, mods) if mods else [0] * len(self.residues)
-        return [Fraction(x - total if x > total // 2 else x, self.scale) for x in combined]
+        return [x - total if x > total // 2 else x for x in combined]
 
     def _coefficients(self, k: int) -> list[int]:
         D = self.tableau.degree

@@ -155,6 +155,13 @@ class ScaledTableau:
         from flint import nmod_poly
 
         f = nmod_poly([c % p for c in self.minpoly], p)
+        # f splits into distinct linear factors exactly when it divides the squarefree
+        # x^p − x, i.e. x^p ≡ x (mod f): a few dozen squarings modulo f, where finding the
+        # roots of a polynomial that does not split (all but about one prime in D) cost
+        # 3 ms each at degree 48 — 2.3 s of an HBVM(6, 3) check
+        x = nmod_poly([0, 1], p)
+        if x.pow_mod(p, f) != x:
+            return None
         roots = [int(r) for r, mult in f.roots() if mult == 1]
         return roots if len(roots) == self.degree else None
 
