@@ -30,7 +30,7 @@ COMMANDS = {
     "explain": "rkcheck.cli.check", "new": "rkcheck.cli.library", "scan": "rkcheck.cli.scan",
     "catalog": "rkcheck.cli.library", "bench": "rkcheck.cli.studies", "perturb": "rkcheck.cli.studies",
     "kernel": "rkcheck.cli.studies", "simulate": "rkcheck.cli.dynamics", "workprec": "rkcheck.cli.dynamics",
-    "solve": "rkcheck.cli.families",
+    "solve": "rkcheck.cli.families", "cache": "rkcheck.cli.cache",
 }
 
 
