@@ -8,11 +8,15 @@ import click
 from rkcheck.cli.common import exit_codes, output_options, settings
 
 
-def _size(n: int) -> str:
+def _short(n: int) -> str:
     for unit, scale in (("GiB", 1024**3), ("MiB", 1024**2), ("KiB", 1024)):
         if n >= scale:
-            return f"{n / scale:.1f} {unit} ({n:,} bytes)"
+            return f"{n / scale:.1f} {unit}"
     return f"{n:,} bytes"
+
+
+def _size(n: int) -> str:
+    return f"{_short(n)} ({n:,} bytes)" if n >= 1024 else _short(n)
 
 
 @click.group(epilog=exit_codes())
@@ -30,7 +34,7 @@ def cache() -> None:
 @cache.command(epilog=exit_codes())
 @output_options
 def info() -> None:
-    """Where the listing cache is, how many files and bytes it holds, and its limit."""
+    """Where the listing cache is, its files, their size, and the limit."""
     from rkcheck.api.settings import listing_cache
 
     state = listing_cache().info()
@@ -45,12 +49,12 @@ def info() -> None:
 @cache.command(epilog=exit_codes())
 @output_options
 def clear() -> None:
-    """Remove every listing file from the cache (nothing else in its directory)."""
+    """Remove the listing files (nothing else in the cache's directory)."""
     from rkcheck.api.settings import listing_cache
 
     store = listing_cache()
     before = store.info()
     removed = store.clear()
     if not settings().quiet:
-        click.echo(f"removed {removed} listing file{'s' if removed != 1 else ''} ({_size(before.bytes)}) "
+        click.echo(f"removed {removed} listing file{'s' if removed != 1 else ''} ({_short(before.bytes)}) "
                    f"from {before.path}")

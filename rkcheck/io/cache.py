@@ -25,7 +25,7 @@ import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 import numpy as np
 
@@ -117,45 +117,52 @@ def encode(key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, A
     return [MAGIC, len(head).to_bytes(8, "little"), head, *payload]
 
 
-def decode(data: bytearray, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
-    """The arrays and metadata of a file's bytes, or None unless it is intact and was
-    written for exactly ``key``.  The arrays are views of ``data`` (no copy)."""
-    start = len(MAGIC) + 8
-    if len(data) < start or bytes(data[:len(MAGIC)]) != MAGIC:
-        return None
-    size = int.from_bytes(data[len(MAGIC):start], "little")
-    if size > _MAX_HEADER or start + size > len(data):
-        return None
+def decode(f: BinaryIO, size: int, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+    """The arrays and metadata of an open file of ``size`` bytes, or None unless it is
+    intact and was written for exactly ``key``.  Each array is read into an array of its
+    own (a file's bytes are never held whole: the listing copies the factors and drops
+    them)."""
     import hashlib
     import json
 
+    start = len(MAGIC) + 8
+    lead = f.read(start)
+    if len(lead) != start or lead[:len(MAGIC)] != MAGIC:
+        return None
+    head_size = int.from_bytes(lead[len(MAGIC):], "little")
+    if head_size > _MAX_HEADER or start + head_size > size:
+        return None
     try:
-        header = json.loads(bytes(data[start:start + size]))
+        header = json.loads(f.read(head_size))
     except (ValueError, UnicodeDecodeError, RecursionError):
         return None
     if (not isinstance(header, dict) or set(header) != {"key", "meta", "arrays", "sha256"}
             or header["key"] != key or not isinstance(header["meta"], dict)
             or not isinstance(header["arrays"], list)):
         return None
+    claimed = header.pop("sha256")
+    digest = hashlib.sha256(_canonical(header))
     arrays: dict[str, np.ndarray] = {}
-    offset = start + size
-    body = offset
+    left = size - start - head_size
     for entry in header["arrays"]:
         if (not isinstance(entry, list) or len(entry) != 3 or not isinstance(entry[0], str)
                 or entry[1] not in _DTYPES or type(entry[2]) is not int or entry[2] < 0 or entry[0] in arrays):
             return None
         dtype = np.dtype(entry[1]).newbyteorder("<")
         nbytes = entry[2] * dtype.itemsize
-        if offset + nbytes > len(data):
+        padded = nbytes + (-nbytes % _ALIGN)
+        if padded > left:
             return None
-        arrays[entry[0]] = np.frombuffer(data, dtype=dtype, count=entry[2], offset=offset).astype(dtype.newbyteorder("="), copy=False)
-        offset += nbytes + (-nbytes % _ALIGN)
-    if offset != len(data):
-        return None
-    claimed = header.pop("sha256")
-    digest = hashlib.sha256(_canonical(header))
-    digest.update(memoryview(data)[body:])
-    if not isinstance(claimed, str) or digest.hexdigest() != claimed:
+        a = np.empty(entry[2], dtype=dtype)
+        view = memoryview(a).cast("B")
+        pad = bytearray(padded - nbytes)
+        if f.readinto(view) != nbytes or f.readinto(pad) != len(pad):
+            return None
+        digest.update(view)
+        digest.update(pad)
+        arrays[entry[0]] = a.astype(dtype.newbyteorder("="), copy=False)
+        left -= padded
+    if left != 0 or not isinstance(claimed, str) or digest.hexdigest() != claimed:
         return None
     return arrays, header["meta"]
 
@@ -186,14 +193,12 @@ class ListingCache:
         path = self.path(key)
         try:
             with open(path, "rb") as f:
-                size = os.fstat(f.fileno()).st_size
-                data = bytearray(size)  # writable: the arrays are views of it
-                if f.readinto(data) != size:
-                    return None
-            os.utime(path)  # recently used: evicted last
+                got = decode(f, os.fstat(f.fileno()).st_size, key)
+            if got is not None:
+                os.utime(path)  # recently used: evicted last
         except OSError:
             return None
-        return decode(data, key)
+        return got
 
     def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
         pieces = encode(key, arrays, meta)

@@ -290,7 +290,7 @@ def test_cache_clear(capsys, cli_cache):
     run_cli(capsys, "verify", RK4, "-N", "13")
     (cli_cache / "keep.txt").write_text("not a listing")
     r = run_cli(capsys, "cache", "clear")
-    assert r.code == 0 and r.out.startswith("removed 1 listing file (") and str(cli_cache) in r.out
+    assert r.code == 0 and r.out.startswith("removed 1 listing file (519.4 KiB) from ") and str(cli_cache) in r.out
     assert sorted(p.name for p in cli_cache.iterdir()) == ["keep.txt"]
 
 
