@@ -21,6 +21,10 @@ Cases, per order N:
   saved);
 * ``RK4 warm cache`` — the same again: the listing is read from the cache.
 
+``--tableau FILE`` checks that file instead of RK4 (``--tableau
+tableaux/collocation/gauss-3.toml``); ``--cases`` picks cases (``warm`` brings ``cold``,
+which fills the cache).
+
 The cache is a temporary directory (``RKCHECK_CACHE_DIR``), removed at the end.
 """
 
@@ -53,7 +57,11 @@ try:
     use_listing_cache({cache!r})
 except ImportError:  # a checkout from before the cache (--root): always built
     pass
-tableau = Tableau.from_values({A!r}, {b!r})
+if {path!r} is None:
+    tableau = Tableau.from_values({A!r}, {b!r})
+else:
+    from rkcheck.api.tableaux import load
+    tableau = load({path!r})
 t0, c0 = time.perf_counter(), time.process_time()
 result = check(tableau, CheckOptions(order={order!r}, degree=None, fail_fast={fail_fast!r}))
 seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
@@ -64,8 +72,9 @@ print(json.dumps({{"seconds": seconds, "check_cpu": cpu, "orders": len(result.co
 
 def measure(tableau, order: int, fail_fast: bool, cache: bool, cache_dir: Path, root: Path = ROOT) -> dict:
     """One check in a fresh process: its own timing and the process's CPU and memory."""
-    A, b = tableau
-    code = CHILD.format(root=str(root), cache=cache, A=A, b=b, order=order, fail_fast=fail_fast)
+    A, b = (None, None) if isinstance(tableau, Path) else tableau
+    path = str(tableau) if isinstance(tableau, Path) else None
+    code = CHILD.format(root=str(root), cache=cache, A=A, b=b, path=path, order=order, fail_fast=fail_fast)
     env = dict(os.environ, RKCHECK_CACHE_DIR=str(cache_dir))
     env.pop("RKCHECK_NO_CACHE", None)
     t0 = time.perf_counter()
@@ -87,18 +96,29 @@ def measure(tableau, order: int, fail_fast: bool, cache: bool, cache_dir: Path, 
 HEADER = "| order | case | check s | check CPU s | process CPU s | peak MB | orders checked | failing |"
 
 
-def rows(order: int, cache_dir: Path, root: Path = ROOT) -> list[str]:
+CASES = {  # name: (tableau, fail-fast, cache); in this order (the warm cache follows the cold one)
+    "full, fails at 2": (EULER, False, False),
+    "fail-fast, fails at 2": (EULER, True, False),
+    "RK4 no cache": (RK4, False, False),
+    "RK4 cold cache": (RK4, False, True),
+    "RK4 warm cache": (RK4, False, True),
+}
+SHORT = {"full": "full, fails at 2", "fail-fast": "fail-fast, fails at 2", "no-cache": "RK4 no cache",
+         "cold": "RK4 cold cache", "warm": "RK4 warm cache"}
+
+
+def rows(order: int, cache_dir: Path, root: Path = ROOT, cases: list[str] | None = None,
+         tableau: Path | None = None) -> list[str]:
     shutil.rmtree(cache_dir, ignore_errors=True)
-    cases = [
-        ("full, fails at 2", EULER, False, False),
-        ("fail-fast, fails at 2", EULER, True, False),
-        ("RK4 no cache", RK4, False, False),
-        ("RK4 cold cache", RK4, False, True),
-        ("RK4 warm cache", RK4, False, True),
-    ]
+    wanted = [SHORT[c] for c in cases] if cases else list(CASES)
+    if "RK4 warm cache" in wanted and "RK4 cold cache" not in wanted:
+        wanted.insert(wanted.index("RK4 warm cache"), "RK4 cold cache")  # it fills the cache
     out = []
-    for name, tableau, fail_fast, cache in cases:
-        r = measure(tableau, order, fail_fast, cache, cache_dir, root)
+    for name in [n for n in CASES if n in wanted]:
+        data, fail_fast, cache = CASES[name]
+        if tableau is not None and data is RK4:  # --tableau: checked instead of RK4
+            data, name = tableau, name.replace("RK4", tableau.stem)
+        r = measure(data, order, fail_fast, cache, cache_dir, root)
         out.append(f"| {order} | {name} | {r['seconds']:.2f} | {r['check_cpu']:.2f} | {r['cpu']:.2f} | {r['rss_mb']:.0f} "
                    f"| {r['orders']} | {r['failed']:,} |")
         print(out[-1], flush=True)
@@ -111,6 +131,10 @@ def main(argv: list[str] | None = None) -> None:
                         help="energy orders (2 to 20; default 16 18)")
     parser.add_argument("--root", type=Path, default=ROOT, metavar="DIR",
                         help="measure the rkcheck of another checkout (before/after; default this one)")
+    parser.add_argument("--cases", nargs="+", choices=list(SHORT), default=None, metavar="CASE",
+                        help=f"only these cases ({', '.join(SHORT)}; default all)")
+    parser.add_argument("--tableau", type=Path, default=None, metavar="FILE",
+                        help="check this tableau file instead of RK4 in the cache cases")
     args = parser.parse_args(argv)
     if any(not 2 <= n <= 20 for n in args.orders):
         parser.error("--orders: each order must be between 2 and 20")
@@ -120,7 +144,8 @@ def main(argv: list[str] | None = None) -> None:
     scratch = Path(tempfile.mkdtemp(prefix="rkcheck-bench-cache-"))
     try:
         for order in args.orders:
-            rows(order, scratch / "cache", args.root.resolve())
+            rows(order, scratch / "cache", args.root.resolve(), args.cases,
+                 None if args.tableau is None else args.tableau.resolve())
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 
