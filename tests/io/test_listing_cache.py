@@ -299,3 +299,20 @@ def test_a_bad_cache_limit_is_one_line_naming_it(capsys, cli_cache, monkeypatch)
     r = run_cli(capsys, "verify", RK4, "-N", "4")
     assert r.code == 2
     assert r.err.strip().count("\n") == 0 and "RKCHECK_MAX_CACHE_BYTES" in r.err
+
+
+@pytest.mark.parametrize("command", ["verify", "scan", "conditions"])
+def test_the_commands_that_list_conditions_take_no_cache(capsys, command):
+    r = run_cli(capsys, command, "--help")
+    assert r.code == 0 and "--no-cache" in r.out
+
+
+def test_scan_saves_the_listing_and_no_cache_does_not(capsys, cli_cache, tmp_path):
+    folder = tmp_path / "methods"
+    folder.mkdir()
+    (folder / "rk4.toml").write_text(Path(RK4).read_text(encoding="utf-8"), encoding="utf-8")
+    assert run_cli(capsys, "scan", str(folder), "-N", "13", "--jobs", "1", "--no-cache").code == 0
+    assert _listing_files(cli_cache) == []
+    _shared_listing.cache_clear()
+    assert run_cli(capsys, "scan", str(folder), "-N", "13", "--jobs", "1").code == 0
+    assert _listing_files(cli_cache) == ["condition-listing-f1-n14-mnone.rkl"]
