@@ -25,7 +25,8 @@ import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, BinaryIO
+from io import BufferedReader
+from typing import Any
 
 import numpy as np
 
@@ -102,7 +103,7 @@ def encode(key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, A
         if a.dtype.name not in _DTYPES or a.ndim != 1:
             raise ValueError(f"{name}: only one-dimensional integer arrays are stored")
         layout.append([name, a.dtype.name, len(a)])
-        payload.append(memoryview(a).cast("B"))
+        payload.append(a.view(np.uint8).data)
         pad = -a.nbytes % _ALIGN
         if pad:
             payload.append(b"\0" * pad)
@@ -117,7 +118,7 @@ def encode(key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, A
     return [MAGIC, len(head).to_bytes(8, "little"), head, *payload]
 
 
-def decode(f: BinaryIO, size: int, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+def decode(f: BufferedReader, size: int, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
     """The arrays and metadata of an open file of ``size`` bytes, or None unless it is
     intact and was written for exactly ``key``.  Each array is read into an array of its
     own (a file's bytes are never held whole: the listing copies the factors and drops
@@ -154,7 +155,7 @@ def decode(f: BinaryIO, size: int, key: dict[str, Any]) -> tuple[dict[str, np.nd
         if padded > left:
             return None
         a = np.empty(entry[2], dtype=dtype)
-        view = memoryview(a).cast("B")
+        view = a.view(np.uint8).data
         pad = bytearray(padded - nbytes)
         if f.readinto(view) != nbytes or f.readinto(pad) != len(pad):
             return None

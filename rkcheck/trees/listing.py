@@ -50,7 +50,8 @@ class _Orders(Mapping[int, OrderTerms]):
     (or loaded) the first time it is looked up, with every order below it."""
 
     def __init__(self, listing: "ConditionListing", keys: range):
-        self._listing, self._keys, self._built = listing, keys, {}
+        self._listing, self._keys = listing, keys
+        self._built: dict[int, OrderTerms] = {}
 
     def __getitem__(self, n: int) -> OrderTerms:
         if n not in self._keys:
@@ -139,9 +140,9 @@ class ConditionListing:
             return terms
         table = self._table
         if table is None:  # the first order built here: the table of the orders below, anew
-            bounds = (None, None) if self.degree is None else (self.degree, self.degree - 1)
-            table = self._table = TreeTable(1, *bounds, capacity=self.first[self.order + 1],
-                                            factors=(self.left, self.right))
+            m = self.degree
+            table = self._table = TreeTable(1, root_bound=m, inner_bound=None if m is None else m - 1,
+                                            capacity=self.first[self.order + 1], factors=(self.left, self.right))
         table.grow_to(min(n, self.order))
         if n <= self.order:
             if table.first[n:n + 2] != [lo, hi]:  # pragma: no cover - counted = generated

@@ -72,8 +72,8 @@ def from_record(vertices: int, first_id: int, terms: int, conditions: int, array
     if set(arrays) != set(expected):
         return None
     for name, (dtype, length) in expected.items():
-        a = arrays[name]
-        if not isinstance(a, np.ndarray) or a.dtype != np.dtype(dtype) or a.shape != (length,):
+        x = arrays[name]
+        if not isinstance(x, np.ndarray) or x.dtype != np.dtype(dtype) or x.shape != (length,):
             return None
     a = arrays
     # the factors index trees with fewer vertices; a class index ``conditions`` is the
