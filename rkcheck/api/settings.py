@@ -7,12 +7,16 @@ every command reads the project's settings and refuses oversized work the same w
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Callable
+import os
+from pathlib import Path
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Callable, Iterator
 
 from rkcheck.io.config import Config as ProjectConfig
 
 if TYPE_CHECKING:
     from rkcheck.energy.budget import Budget
+    from rkcheck.io.cache import ListingCache
 
 
 def project_config() -> ProjectConfig:
@@ -45,4 +49,42 @@ def guard(order: int, degree: int | None) -> None:
     check_budget(estimate(order, degree, "exact"), budget(), order)
 
 
-__all__ = ["ProjectConfig", "budget", "guard", "project_config"]
+def use_listing_cache(enabled: bool = True, directory: str | os.PathLike[str] | None = None) -> None:
+    """Keep the condition listings built from now on in the listing cache (the user
+    cache directory, ``RKCHECK_CACHE_DIR``, or ``directory``) and read them from there;
+    ``enabled=False`` (or the environment's ``RKCHECK_NO_CACHE=1``): neither.  The CLI
+    turns it on for each command unless ``--no-cache``; a program using the API opts in
+    here (listings already in memory are not affected)."""
+    from rkcheck.trees.listing import use_store
+
+    use_store(_store(enabled, directory))
+
+
+@contextmanager
+def listing_cache_scope(enabled: bool = True) -> Iterator[None]:
+    """:func:`use_listing_cache` for the duration of a ``with`` block (one CLI command)."""
+    from rkcheck.trees.listing import use_store
+
+    previous = use_store(_store(enabled, None))
+    try:
+        yield
+    finally:
+        use_store(previous)
+
+
+def _store(enabled: bool, directory: str | os.PathLike[str] | None) -> "ListingCache | None":
+    from rkcheck.io.cache import ListingCache, cache_disabled
+
+    if not enabled or cache_disabled():
+        return None
+    return ListingCache(None if directory is None else Path(directory))
+
+
+def listing_cache(directory: str | os.PathLike[str] | None = None) -> "ListingCache":
+    """The listing cache (``rkcheck cache info|clear``)."""
+    from rkcheck.io.cache import ListingCache
+
+    return ListingCache(None if directory is None else Path(directory))
+
+
+__all__ = ["ProjectConfig", "budget", "guard", "listing_cache", "listing_cache_scope", "project_config", "use_listing_cache"]

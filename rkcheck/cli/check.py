@@ -13,6 +13,7 @@ from rkcheck.cli.common import (
     EXIT_OK,
     announce_estimate,
     budget,
+    cache_option,
     check_options,
     decimals_option,
     dps_option,
@@ -148,6 +149,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
               help="--emit: write to this file instead of stdout.")
 @max_conditions_option
+@cache_option
 @output_options
 def conditions(file, order, degree, count, fmt, emit, classical, stages, explicit, output, max_conditions) -> None:
     """List the energy conditions (non-superfluous free trees) up to an order, or write

@@ -272,11 +272,28 @@ def require_option(f: Callable) -> Callable:
 
 def check_options(f: Callable) -> Callable:
     """--degree / --order / --dps / --decimals / --require / --max-stages / --max-conditions /
-    --arithmetic, shared by the checking commands."""
-    for decorator in (arithmetic_option, require_option, max_conditions_option, max_stages_option, decimals_option(), dps_option(),
-                      order_option(), degree_option()):
+    --arithmetic / --no-cache, shared by the checking commands."""
+    for decorator in (cache_option, arithmetic_option, require_option, max_conditions_option, max_stages_option,
+                      decimals_option(), dps_option(), order_option(), degree_option()):
         f = decorator(f)
     return f
+
+
+def cache_option(f: Callable) -> Callable:
+    """--no-cache: neither read nor save condition listings in the listing cache (also
+    RKCHECK_NO_CACHE=1); without it the command uses the cache."""
+
+    @click.option("--no-cache", is_flag=True, default=False,
+                  help="Build the condition listings afresh; neither read nor save the listing cache "
+                       "(also RKCHECK_NO_CACHE=1; see 'rkcheck cache info').")
+    @functools.wraps(f)
+    def wrapper(*args: Any, no_cache: bool, **kwargs: Any) -> Any:
+        from rkcheck.api.settings import listing_cache_scope
+
+        with listing_cache_scope(not no_cache):
+            return f(*args, **kwargs)
+
+    return wrapper
 
 
 def budget(max_conditions: int | None):

@@ -31,6 +31,7 @@ COMMANDS = {
     "catalog": "rkcheck.cli.library", "bench": "rkcheck.cli.studies", "perturb": "rkcheck.cli.studies",
     "kernel": "rkcheck.cli.studies", "simulate": "rkcheck.cli.dynamics", "workprec": "rkcheck.cli.dynamics",
     "solve": "rkcheck.cli.families", "sweep": "rkcheck.cli.families", "discretize": "rkcheck.cli.continuous",
+    "cache": "rkcheck.cli.cache",
 }
 
 

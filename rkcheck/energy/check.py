@@ -229,7 +229,8 @@ def _listing(values: TableauValues, options: CheckOptions, budget: Budget | None
     channels = channels_for(values, options.order) if values.backend is Backend.EXACT else 0
     check_budget(estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps),
                  budget, options.order)
-    return condition_listing(options.order, options.degree)
+    # built order by order as the evaluation asks: --fail-fast stops before the high orders
+    return condition_listing(options.order, options.degree, lazy=True)
 
 
 def _judged_orders(listing: ConditionListing, values: TableauValues, options: CheckOptions,

@@ -63,6 +63,7 @@ def condition_sums(
     out: dict[int, Any] = {}
     if not wanted:
         return out
+    listing.ensure(wanted[-1])  # a streamed listing builds its orders on demand: the factors first
     try:
         _weights_and_sums(listing, ctx, s, wanted, out, on_order)
     except KeyboardInterrupt:

@@ -33,13 +33,16 @@ from rkcheck.trees.table import _CHUNK, TreeTable
 from rkcheck.trees.terms import OrderTerms
 
 
-def classify(table: TreeTable, n: int, last: bool = False) -> OrderTerms:
+def classify(table: TreeTable, n: int, last: bool = False,
+             factors_out: tuple[np.ndarray, np.ndarray] | None = None) -> OrderTerms:
     """The conditions with ``n >= 3`` vertices as an :class:`~rkcheck.trees.terms.OrderTerms`.
 
     ``n`` may be one above the table's stored orders: its trees are then generated in
     chunks (:meth:`TreeTable.pairs`), classified, and kept only as terms.  ``last``: no
     order follows, so the table is reduced to its factors (:meth:`TreeTable.release`) as
-    soon as the classes are known, before the terms are sorted (the memory peak)."""
+    soon as the classes are known, before the terms are sorted (the memory peak).
+    ``factors_out``: where to write the factors of an order beyond the table (a
+    listing's own arrays, so that they are not copied there afterwards)."""
     stored = n <= table.max_order
     size = table.count(n) if stored else table.prepare_order(n)
     lo = table.first[n]
@@ -48,7 +51,7 @@ def classify(table: TreeTable, n: int, last: bool = False) -> OrderTerms:
         walk.step(table, a, U, V, at)
     if last:
         table.release()  # from here on only the factors are needed: the memory peak follows
-    U_all, V_all = (None, None) if stored else _term_factors(table, n, size)
+    U_all, V_all = (None, None) if stored else _term_factors(table, n, size, factors_out)
     rep = walk.representatives()
     cls, parity = walk.classes(rep["local"])
     counts = np.bincount(cls, minlength=len(rep["local"]) + 1)[:len(rep["local"])]
@@ -162,11 +165,13 @@ class _CentreWalk:
         return class_of[nxt], parity
 
 
-def _term_factors(table: TreeTable, n: int, size: int) -> tuple[np.ndarray, np.ndarray]:
+def _term_factors(table: TreeTable, n: int, size: int,
+                  out: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The factors of the terms of an order beyond the table, generated again (cheaper
-    than carrying them through the classification)."""
-    U_all = np.empty(size, dtype=np.int32)
-    V_all = np.empty(size, dtype=np.int32)
+    than carrying them through the classification), into ``out`` when given."""
+    U_all, V_all = out if out is not None else (np.empty(size, dtype=np.int32), np.empty(size, dtype=np.int32))
+    if len(U_all) != size or len(V_all) != size:
+        raise ValueError(f"the factor arrays must hold {size} rows")
     a = 0
     for U, V in table.pairs(n):
         U_all[a:a + len(U)], V_all[a:a + len(U)] = U, V

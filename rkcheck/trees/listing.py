@@ -18,53 +18,180 @@ the tableau and is shared by every check of the same ``(N, m)``.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from functools import lru_cache
 from typing import Iterator
 
+import numpy as np
+
 from rkcheck.trees.classes import classify
+from rkcheck.trees.counting import condition_counts, term_counts
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
+from rkcheck.trees.stored import ListingStore, from_record, record_key, to_record
 from rkcheck.trees.table import TreeTable
 from rkcheck.trees.terms import OrderTerms
+
+#: where listings are kept between runs when a listing is not given a store of its own
+#: (the CLI sets the user's cache: :func:`use_store`); None: nowhere
+_default_store: ListingStore | None = None
+
+
+def use_store(store: ListingStore | None) -> ListingStore | None:
+    """Keep the listings built from now on in ``store`` (None: nowhere); returns the
+    previous one.  Listings already in this process's memory are not affected."""
+    global _default_store
+    previous, _default_store = _default_store, store
+    return previous
+
+
+class _Orders(Mapping[int, OrderTerms]):
+    """The listing's orders by vertices: every key is known at once, an order is built
+    (or loaded) the first time it is looked up, with every order below it."""
+
+    def __init__(self, listing: "ConditionListing", keys: range):
+        self._listing, self._keys = listing, keys
+        self._built: dict[int, OrderTerms] = {}
+
+    def __getitem__(self, n: int) -> OrderTerms:
+        if n not in self._keys:
+            raise KeyError(n)
+        if n not in self._built:
+            self._listing.ensure(n)
+        return self._built[n]
+
+    def __contains__(self, n: object) -> bool:
+        return n in self._keys
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(self._keys)
+
+    def __len__(self) -> int:
+        return len(self._keys)
 
 
 class ConditionListing:
     """All energy conditions with ``3 … N+1`` vertices whose free trees have maximum
-    degree ``<= degree`` (None: no bound)."""
+    degree ``<= degree`` (None: no bound), built order by order as they are asked for.
 
-    def __init__(self, order: int, degree: int | None):
+    ``orders[n]`` builds the conditions with ``n`` vertices and every order below (a
+    check that stops at a low order never builds the high ones); :meth:`ensure` does the
+    same explicitly.  The counts (``len``, :meth:`counts_by_order`) come from generating
+    functions and build nothing.  With a ``store`` each order is read from it when it
+    holds a valid record and saved to it when built."""
+
+    def __init__(self, order: int, degree: int | None, store: ListingStore | None = None):
         if order < 1:
             raise ValueError("order must be at least 1")
         if degree is not None and degree < 1:
             raise ValueError("degree must be at least 1")
         self.order = order
         self.degree = degree
-        root_bound = None if degree is None else degree
-        inner_bound = None if degree is None else degree - 1
-        table = TreeTable(max(order, 1), root_bound, inner_bound)
-        self.orders: dict[int, OrderTerms] = {}
-        if degree is None or degree >= 2:
-            for n in range(3, order + 2):
-                self.orders[n] = classify(table, n, last=n == order + 1)
-        self.first = list(table.first)
-        self.left = table.left
-        self.right = table.right
+        self._store = store if store is not None else _default_store
         self._ls_cache: dict[int, tuple[int, ...]] = {0: (1,)}
+        self._table: TreeTable | None = None
+        self.cache_hits: list[int] = []  # vertices of the orders read from the store
+        top = order + 1
+        if degree is not None and degree < 2:  # no conditions: only the trees τ and [τ]
+            table = TreeTable(order, degree, degree - 1)
+            self.first, self.left, self.right = list(table.first), table.left, table.right
+            self.orders = _Orders(self, range(0))
+            self._built = top
+            return
+        counts = term_counts(top, degree)
+        self.first = [0, 0]
+        for n in range(1, top + 1):
+            self.first.append(self.first[-1] + counts[n])
+        self.left = np.empty(self.first[top + 1], dtype=np.int32)
+        self.right = np.empty(self.first[top + 1], dtype=np.int32)
+        self.left[0] = self.right[0] = -1  # τ
+        if top >= 2:
+            self.left[1] = self.right[1] = 0  # [τ] = τ ∘ τ
+        self._conditions = condition_counts(top, degree)
+        self.orders = _Orders(self, range(3, top + 1))
+        self._built = 2
 
     def __reduce__(self):
         # a listing is determined by (order, degree): send the key, rebuild (cached) there
-        return condition_listing, (self.order, self.degree)
+        return _shared_listing, (self.order, self.degree)
+
+    # --------------------------------------------------------------- building
+
+    def ensure(self, n: int) -> None:
+        """Build (or load) every order up to ``n`` vertices."""
+        for k in range(self._built + 1, min(n, self.order + 1) + 1):
+            self.orders._built[k] = self._build(k)
+            self._built = k
+
+    def complete(self) -> "ConditionListing":
+        """Every order built; returns the listing."""
+        self.ensure(self.order + 1)
+        return self
+
+    def _build(self, n: int) -> OrderTerms:
+        lo, hi = self.first[n], self.first[n + 1]
+        terms = self._load(n)
+        if terms is not None:
+            # a tree table of the orders below, if any, is grown only when an order is
+            # missing from the store (it then regrows through the ones read)
+            if n > self.order:
+                self._table = None
+            self.cache_hits.append(n)
+            return terms
+        table = self._table
+        if table is None:  # the first order built here: the table of the orders below, anew
+            m = self.degree
+            table = self._table = TreeTable(1, root_bound=m, inner_bound=None if m is None else m - 1,
+                                            capacity=self.first[self.order + 1], factors=(self.left, self.right))
+        table.grow_to(min(n, self.order))
+        if n <= self.order:
+            if table.first[n:n + 2] != [lo, hi]:  # pragma: no cover - counted = generated
+                raise AssertionError(f"the tree table disagrees with the counts at {n} vertices")
+            terms = classify(table, n)
+        else:  # the top order is never stored in the table: its factors go straight here
+            terms = classify(table, n, last=True, factors_out=(self.left[lo:hi], self.right[lo:hi]))
+            self._table = None
+        if table.left is not self.left:  # pragma: no cover - the capacity is exact
+            raise AssertionError("the tree table outgrew its capacity")
+        terms.first_id, terms.left, terms.right = lo, None, None
+        if self._stored(n):
+            assert self._store is not None
+            self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], self.right[lo:hi], terms))
+        return terms
+
+    def _load(self, n: int) -> OrderTerms | None:
+        """The order with ``n`` vertices from the store, when it holds a valid record."""
+        if not self._stored(n):
+            return None
+        assert self._store is not None
+        got = self._store.load(record_key(n, self.degree))
+        if got is None:
+            return None
+        lo, hi = self.first[n], self.first[n + 1]
+        record = from_record(n, lo, hi - lo, self._conditions[n], *got)
+        if record is None:
+            return None
+        left, right, terms = record
+        self.left[lo:hi], self.right[lo:hi] = left, right
+        return terms
+
+    def _stored(self, n: int) -> bool:
+        """Whether the order with ``n`` vertices is worth a store's file."""
+        return self._store is not None and self.first[n + 1] - self.first[n] >= self._store.min_terms
 
     # --------------------------------------------------------------- counts
 
     def __len__(self) -> int:
-        return sum(len(t) for t in self.orders.values())
+        return sum(self.counts_by_order().values())
 
     def counts_by_order(self) -> dict[int, int]:
-        """Conditions per energy order ``2 … N`` (vertices − 1)."""
-        return {k: len(self.orders[k + 1]) if k + 1 in self.orders else 0 for k in range(2, self.order + 1)}
+        """Conditions per energy order ``2 … N`` (vertices − 1), counted, not built."""
+        if not self.orders:
+            return {k: 0 for k in range(2, self.order + 1)}
+        return {k: self._conditions[k + 1] for k in range(2, self.order + 1)}
 
     def terms(self) -> int:
+        """The terms of every condition (builds the listing)."""
         return sum(t.terms for t in self.orders.values())
 
     # --------------------------------------------------------------- display
@@ -145,11 +272,13 @@ class ConditionListing:
 
 
 @lru_cache(maxsize=4)
-def condition_listing(order: int, degree: int | None) -> ConditionListing:
-    """The shared, cached listing for ``(order, degree)`` (a scan reuses it file after
-    file)."""
+def _shared_listing(order: int, degree: int | None) -> ConditionListing:
     return ConditionListing(order, degree)
 
 
-
-
+def condition_listing(order: int, degree: int | None, *, lazy: bool = False) -> ConditionListing:
+    """The shared, cached listing for ``(order, degree)`` (a scan reuses it file after
+    file), complete — or, with ``lazy``, built order by order as it is used (a check that
+    stops at a low order then never builds the high ones)."""
+    listing = _shared_listing(order, degree)
+    return listing if lazy else listing.complete()

@@ -68,7 +68,12 @@ class TreeTable:
     rank: IdArray
     inner_max: npt.NDArray[np.int8]
 
-    def __init__(self, max_order: int, root_bound: int | None = None, inner_bound: int | None = None):
+    def __init__(self, max_order: int, root_bound: int | None = None, inner_bound: int | None = None,
+                 capacity: int = 1, factors: tuple[IdArray, IdArray] | None = None):
+        """``capacity``: rows to allocate at once (the trees of every order the table will
+        hold, when known: growing then never copies); ``factors``: the arrays to keep
+        ``left``/``right`` in (at least ``capacity`` rows; a listing's own, so that they
+        are not copied when the table is released)."""
         if max_order < 1:
             raise ValueError("max_order must be at least 1")
         if root_bound is not None and inner_bound is not None and inner_bound > root_bound:
@@ -76,9 +81,16 @@ class TreeTable:
         self.root_bound = root_bound
         self.inner_bound = inner_bound
         self.first = [0, 0, 1]  # first[n] for n = 0, 1, 2 (order 1 is τ alone)
-        self._capacity = 1
+        self._capacity = max(capacity, 1)
         for name, dtype in _FIELDS.items():
-            setattr(self, name, np.zeros(1, dtype=dtype))
+            # np.empty: pages are only touched (and counted as resident) once written
+            setattr(self, name, np.empty(self._capacity, dtype=dtype))
+        if factors is not None:
+            if min(len(factors[0]), len(factors[1])) < self._capacity:
+                raise ValueError("the factor arrays are shorter than the capacity")
+            self.left, self.right = factors
+        for name in _FIELDS:
+            getattr(self, name)[0] = 0
         self.left[0] = self.right[0] = self.tall[0] = self.rest[0] = _NONE
         self.sigma[0] = self.order[0] = 1
         # lookup tables: base[n][r]; offset[n] covers the ids of orders < n

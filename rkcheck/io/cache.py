@@ -1,0 +1,277 @@
+"""The listing cache: condition listings kept on disk between runs, per (order, degree).
+
+A listing is pure combinatorics (it does not depend on the tableau), costs seconds to
+build at order 18 and loads in a fraction of that.  Each order is one file in the user
+cache directory (:func:`cache_dir`):
+
+* **never trusted**: a file is a magic line, a JSON header (format, the parameters it
+  was built for, every array's dtype and length, a SHA-256 of header and content) and
+  the raw arrays; anything that does not match exactly — truncated, corrupt, another
+  format, other parameters — is ignored (and rebuilt by the caller).  No pickle: the
+  arrays are read as plain little-endian integers;
+* **safe under concurrent runs**: a file is written to a temporary name in the same
+  directory and renamed into place (``os.replace``), so a reader sees the old file,
+  the new one or none, never a part;
+* **bounded**: after each save the oldest files (least recently used: a load touches
+  the file) are removed until the directory holds at most :data:`MAX_CACHE_BYTES`
+  (``RKCHECK_MAX_CACHE_BYTES``).
+
+Saving is best effort: a read-only or full disk only means no cache.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from io import BufferedReader
+from typing import Any
+
+import numpy as np
+
+from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
+
+#: the default bound on the cache directory's listing files (RKCHECK_MAX_CACHE_BYTES)
+MAX_CACHE_BYTES = 2 * 1024**3
+#: orders with fewer terms are built, not cached: they take milliseconds (order 12 and
+#: below for all H), less than reading a file
+MIN_CACHED_TERMS = 20_000
+
+MAGIC = b"RKCHECK-LISTING\n"
+_SUFFIX = ".rkl"
+_TEMP_PREFIX = ".tmp-"
+_MAX_HEADER = 1 << 20  # the header is a few kB (the coefficients of one order)
+_ALIGN = 8
+_DTYPES = {"int8", "int16", "int32", "int64"}
+
+
+def cache_dir() -> Path:
+    """Where listings are kept: ``RKCHECK_CACHE_DIR`` when set, else the platform's user
+    cache directory (the platformdirs convention): ``$XDG_CACHE_HOME/rkcheck`` or
+    ``~/.cache/rkcheck`` on Linux and other Unixes, ``~/Library/Caches/rkcheck`` on macOS,
+    ``%LOCALAPPDATA%\\rkcheck\\Cache`` on Windows."""
+    explicit = os.environ.get("RKCHECK_CACHE_DIR", "").strip()
+    if explicit:
+        return Path(explicit).expanduser()
+    if sys.platform == "win32":
+        base = os.environ.get("LOCALAPPDATA", "").strip()
+        return Path(base or Path.home() / "AppData" / "Local") / "rkcheck" / "Cache"
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "rkcheck"
+    xdg = os.environ.get("XDG_CACHE_HOME", "").strip()
+    # the XDG spec: a relative path is invalid and must be ignored
+    return (Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache") / "rkcheck"
+
+
+def cache_disabled() -> bool:
+    """``RKCHECK_NO_CACHE`` set to anything but ``""``/``0``: no listing is read or saved."""
+    return os.environ.get("RKCHECK_NO_CACHE", "").strip() not in ("", "0")
+
+
+def max_cache_bytes() -> int:
+    """:data:`MAX_CACHE_BYTES`, or the environment's ``RKCHECK_MAX_CACHE_BYTES`` (a
+    non-negative number of bytes; 0 keeps nothing)."""
+    raw = os.environ.get("RKCHECK_MAX_CACHE_BYTES", "").strip().replace("_", "")
+    if not raw:
+        return MAX_CACHE_BYTES
+    if not raw.isdigit() or len(raw) > 20:
+        raise UserError(f"RKCHECK_MAX_CACHE_BYTES: expected a non-negative number of bytes, got {printable(raw)!r}")
+    return int(raw)
+
+
+def _name(key: dict[str, Any]) -> str:
+    """The file of a record: readable, and distinct per key (the header repeats the key,
+    so that a renamed file is still recognised as foreign)."""
+    degree = "none" if key.get("degree") is None else key["degree"]
+    return f"{key['kind']}-f{key['format']}-n{key['vertices']}-m{degree}{_SUFFIX}"
+
+
+def _canonical(header: dict[str, Any]) -> bytes:
+    import json  # only when a listing is large enough to be cached: not at start-up
+
+    return json.dumps(header, sort_keys=True, separators=(",", ":")).encode()
+
+
+def encode(key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> list[bytes | memoryview]:
+    """The file's bytes, in pieces (the arrays are not copied)."""
+    layout = []
+    payload: list[bytes | memoryview] = []
+    for name, a in arrays.items():
+        a = np.ascontiguousarray(a, dtype=a.dtype.newbyteorder("<"))
+        if a.dtype.name not in _DTYPES or a.ndim != 1:
+            raise ValueError(f"{name}: only one-dimensional integer arrays are stored")
+        layout.append([name, a.dtype.name, len(a)])
+        payload.append(a.view(np.uint8).data)
+        pad = -a.nbytes % _ALIGN
+        if pad:
+            payload.append(b"\0" * pad)
+    header = {"key": key, "meta": meta, "arrays": layout}
+    import hashlib
+
+    digest = hashlib.sha256(_canonical(header))
+    for piece in payload:
+        digest.update(piece)
+    header["sha256"] = digest.hexdigest()
+    head = _canonical(header)
+    return [MAGIC, len(head).to_bytes(8, "little"), head, *payload]
+
+
+def decode(f: BufferedReader, size: int, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+    """The arrays and metadata of an open file of ``size`` bytes, or None unless it is
+    intact and was written for exactly ``key``.  Each array is read into an array of its
+    own (a file's bytes are never held whole: the listing copies the factors and drops
+    them)."""
+    import hashlib
+    import json
+
+    start = len(MAGIC) + 8
+    lead = f.read(start)
+    if len(lead) != start or lead[:len(MAGIC)] != MAGIC:
+        return None
+    head_size = int.from_bytes(lead[len(MAGIC):], "little")
+    if head_size > _MAX_HEADER or start + head_size > size:
+        return None
+    try:
+        header = json.loads(f.read(head_size))
+    except (ValueError, UnicodeDecodeError, RecursionError):
+        return None
+    if (not isinstance(header, dict) or set(header) != {"key", "meta", "arrays", "sha256"}
+            or header["key"] != key or not isinstance(header["meta"], dict)
+            or not isinstance(header["arrays"], list)):
+        return None
+    claimed = header.pop("sha256")
+    digest = hashlib.sha256(_canonical(header))
+    arrays: dict[str, np.ndarray] = {}
+    left = size - start - head_size
+    for entry in header["arrays"]:
+        if (not isinstance(entry, list) or len(entry) != 3 or not isinstance(entry[0], str)
+                or entry[1] not in _DTYPES or type(entry[2]) is not int or entry[2] < 0 or entry[0] in arrays):
+            return None
+        dtype = np.dtype(entry[1]).newbyteorder("<")
+        nbytes = entry[2] * dtype.itemsize
+        padded = nbytes + (-nbytes % _ALIGN)
+        if padded > left:
+            return None
+        a = np.empty(entry[2], dtype=dtype)
+        view = a.view(np.uint8).data
+        pad = bytearray(padded - nbytes)
+        if f.readinto(view) != nbytes or f.readinto(pad) != len(pad):
+            return None
+        digest.update(view)
+        digest.update(pad)
+        arrays[entry[0]] = a.astype(dtype.newbyteorder("="), copy=False)
+        left -= padded
+    if left != 0 or not isinstance(claimed, str) or digest.hexdigest() != claimed:
+        return None
+    return arrays, header["meta"]
+
+
+@dataclass(frozen=True)
+class CacheInfo:
+    """What ``rkcheck cache info`` reports."""
+
+    path: Path
+    files: int
+    bytes: int
+    limit: int
+    disabled: bool  # RKCHECK_NO_CACHE is set
+
+
+class ListingCache:
+    """A :class:`~rkcheck.trees.stored.ListingStore` on disk, in ``directory``."""
+
+    def __init__(self, directory: Path | None = None, limit: int | None = None, min_terms: int = MIN_CACHED_TERMS):
+        self.directory = Path(directory) if directory is not None else cache_dir()
+        self.limit = max_cache_bytes() if limit is None else limit
+        self.min_terms = min_terms
+
+    def path(self, key: dict[str, Any]) -> Path:
+        return self.directory / _name(key)
+
+    def load(self, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+        path = self.path(key)
+        try:
+            with open(path, "rb") as f:
+                got = decode(f, os.fstat(f.fileno()).st_size, key)
+            if got is not None:
+                os.utime(path)  # recently used: evicted last
+        except OSError:
+            return None
+        return got
+
+    def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
+        pieces = encode(key, arrays, meta)
+        size = sum(len(p) if isinstance(p, bytes) else p.nbytes for p in pieces)
+        if size > self.limit:
+            return
+        import tempfile
+
+        tmp = None
+        try:
+            self.directory.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=_TEMP_PREFIX, suffix=_SUFFIX, dir=self.directory)
+            with os.fdopen(fd, "wb") as f:
+                for piece in pieces:
+                    f.write(piece)
+            os.replace(tmp, self.path(key))
+            tmp = None
+            self.evict()
+        except OSError:
+            pass  # best effort: no cache is only slower
+        finally:
+            if tmp is not None:
+                _unlink(Path(tmp))
+
+    def files(self) -> list[tuple[Path, int, float]]:
+        """(path, size, last use) of the listing files, oldest first."""
+        out = []
+        try:
+            entries = list(os.scandir(self.directory))
+        except OSError:
+            return []
+        for entry in entries:
+            if entry.name.endswith(_SUFFIX) and not entry.name.startswith(_TEMP_PREFIX):
+                try:
+                    st = entry.stat(follow_symlinks=False)
+                except OSError:
+                    continue
+                if entry.is_file(follow_symlinks=False):
+                    out.append((Path(entry.path), st.st_size, st.st_mtime))
+        return sorted(out, key=lambda x: x[2])
+
+    def evict(self) -> None:
+        """Remove the least recently used files until the rest fit in the limit."""
+        files = self.files()
+        total = sum(size for _, size, _ in files)
+        for path, size, _ in files:
+            if total <= self.limit:
+                break
+            _unlink(path)
+            total -= size
+
+    def info(self) -> CacheInfo:
+        files = self.files()
+        return CacheInfo(self.directory, len(files), sum(size for _, size, _ in files), self.limit, cache_disabled())
+
+    def clear(self) -> int:
+        """Remove every listing file (and temporary files left by an interrupted save);
+        nothing else in the directory is touched.  Returns how many listing files."""
+        files = self.files()
+        for path, _, _ in files:
+            _unlink(path)
+        try:
+            for entry in os.scandir(self.directory):
+                if entry.name.startswith(_TEMP_PREFIX) and entry.name.endswith(_SUFFIX):
+                    _unlink(Path(entry.path))
+        except OSError:
+            pass
+        return len(files)
+
+
+def _unlink(path: Path) -> None:
+    try:
+        path.unlink()
+    except OSError:  # gone already (another run evicted it) or not ours to remove
+        pass
