@@ -73,16 +73,7 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
         (divisor,) = right.values()  # a number: checked when the kernel was read
         return {k: c / divisor for k, c in left.items()}
 
-    def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
-        if isinstance(n, ex.Unary):
-            return (n.operand,)
-        if isinstance(n, ex.Binary):
-            return (n.left, n.right)
-        if isinstance(n, ex.Power):
-            return (n.base,)
-        return ()
-
-    return ex.fold(node, combine, operands)
+    return ex.fold(node, combine, ex.polynomial_operands)
 
 
 def _affine(p: Poly, which: int) -> Poly:

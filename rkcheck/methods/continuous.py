@@ -374,17 +374,6 @@ def _rename(node: ex.Expr, old: str, new: str) -> ex.Expr:
 
 
 def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
-    def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
-        if isinstance(n, ex.Unary):
-            return (n.operand,)
-        if isinstance(n, ex.Binary):
-            return (n.left, n.right)
-        if isinstance(n, ex.Power):
-            return (n.base, n.exponent)
-        if isinstance(n, ex.Call):
-            return n.args
-        return ()
-
     def combine(n: ex.Expr, vals: list[ex.Expr]) -> ex.Expr:
         if isinstance(n, ex.Name):
             return values.get(n.name, n)
@@ -398,7 +387,7 @@ def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
             return ex.Call(n.func, tuple(vals), n.column)
         return n
 
-    return ex.fold(node, combine, operands)
+    return ex.fold(node, combine, ex.children)
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:

@@ -226,18 +226,6 @@ class Entry:
 # post-order, flat, and rebuilt with an explicit stack.
 
 
-def _children(node: ex.Expr) -> tuple[ex.Expr, ...]:
-    if isinstance(node, ex.Unary):
-        return (node.operand,)
-    if isinstance(node, ex.Binary):
-        return (node.left, node.right)
-    if isinstance(node, ex.Power):
-        return (node.base, node.exponent)
-    if isinstance(node, ex.Call):
-        return node.args  # with root's polynomial: every node is kept
-    return ()
-
-
 def _record(node: ex.Expr) -> tuple:
     if isinstance(node, ex.Num):
         return ("N", node.value, node.text, node.digits, node.last_digit_exponent)
@@ -278,7 +266,7 @@ def _rebuild(flat: list[tuple]) -> ex.Expr:
 
 def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple]]]:
     flat: list[tuple] = []
-    ex.fold(node, lambda n, _: flat.append(_record(n)), _children)
+    ex.fold(node, lambda n, _: flat.append(_record(n)), ex.children)
     return _rebuild, (flat,)
 
 

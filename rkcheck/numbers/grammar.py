@@ -455,7 +455,7 @@ def walk(node: Expr):
             stack.extend((n.exponent, n.base))
 
 
-def _operands(node: Expr) -> tuple[Expr, ...]:
+def operands(node: Expr) -> tuple[Expr, ...]:
     """The sub-expressions whose values an evaluation of ``node`` combines, in order
     (root's polynomial is not one: its x is a bound variable, see :func:`root_polynomial`)."""
     if isinstance(node, Unary):
@@ -469,8 +469,21 @@ def _operands(node: Expr) -> tuple[Expr, ...]:
     return ()
 
 
+def children(node: Expr) -> tuple[Expr, ...]:
+    """Every direct sub-expression of ``node``, root's polynomial too: its structure."""
+    return node.args if isinstance(node, Call) else operands(node)
+
+
+def polynomial_operands(node: Expr) -> tuple[Expr, ...]:
+    """The operands of ``node`` read as a polynomial in its names: a power's base only (its
+    exponent is a whole number, read on its own), and none of a call's (a call is a number)."""
+    if isinstance(node, Power):
+        return (node.base,)
+    return () if isinstance(node, Call) else operands(node)
+
+
 def fold(node: Expr, combine: Callable[[Expr, list[Any]], Any],
-         operands: Callable[[Expr], tuple[Expr, ...]] = _operands) -> Any:
+         operands: Callable[[Expr], tuple[Expr, ...]] = operands) -> Any:
     """``combine(n, [values of n's operands])`` for every node, operands first, left to
     right: a post-order evaluation with an explicit stack, so that a sum of 10 000 terms
     (a left-leaning tree 10 000 deep) needs no recursion."""
@@ -531,10 +544,8 @@ def root_polynomial(call: Call) -> list[Fraction]:
             raise UserError(f"{what} in root's polynomial must not depend on x (column {call.column})")
         return p[0]
 
-    def operands(node: Expr) -> tuple[Expr, ...]:
-        if isinstance(node, Call):
-            return ()  # refused in combine
-        return _operands(node)
+    def inside(node: Expr) -> tuple[Expr, ...]:
+        return () if isinstance(node, Call) else operands(node)  # a call is refused in combine
 
     def combine(node: Expr, vals: list[list[Fraction]]) -> list[Fraction]:
         if isinstance(node, Num):
@@ -573,7 +584,7 @@ def root_polynomial(call: Call) -> list[Fraction]:
         return [c / divisor for c in left]
 
     def go(node: Expr) -> list[Fraction]:
-        return fold(node, combine, operands)
+        return fold(node, combine, inside)
 
     coeffs = polynomials.trim(go(call.args[0]))
     if len(coeffs) < 2:
@@ -766,9 +777,6 @@ def to_text(node: Expr) -> str:
             return f"({text})" if context >= 4 else text
         return text
 
-    def operands(n: Expr) -> tuple[Expr, ...]:
-        return n.args if isinstance(n, Call) else _operands(n)
-
     def combine(n: Expr, texts: list[str]) -> str:
         if isinstance(n, Num):
             return n.text
@@ -786,4 +794,4 @@ def to_text(node: Expr) -> str:
         right = wrap(n.right, texts[1], p + 1 if n.op in "-/" else p)
         return f"{left} {n.op} {right}" if p == 1 else f"{left}{n.op}{right}"
 
-    return fold(node, combine, operands)
+    return fold(node, combine, children)

@@ -170,7 +170,7 @@ class ParametricEntries:
                     out.append((n, place))
                     continue
                 self._check_polynomial(n, place)
-                stack.extend(_operands(n))
+                stack.extend(ex.polynomial_operands(n))
         return out
 
     def _check_polynomial(self, n: ex.Expr, place: str) -> None:
@@ -191,7 +191,7 @@ class ParametricEntries:
         ring = self.ring
 
         def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
-            return () if id(n) in self._fixed else _operands(n)
+            return () if id(n) in self._fixed else ex.polynomial_operands(n)
 
         def combine(n: ex.Expr, vals: list[Any]) -> Any:
             if id(n) in self._fixed:
@@ -248,13 +248,3 @@ class ParametricEntries:
         for _ in range(int(exponent)):
             out = self.ring.reduce(out * base)
         return out
-
-
-def _operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
-    if isinstance(n, ex.Unary):
-        return (n.operand,)
-    if isinstance(n, ex.Binary):
-        return (n.left, n.right)
-    if isinstance(n, ex.Power):
-        return (n.base,)  # the exponent is a whole number, read on its own
-    return ()
