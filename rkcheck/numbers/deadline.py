@@ -36,6 +36,10 @@ def _child(write_fd: int, fn: Callable[..., Any], args: tuple) -> None:
         try:
             payload = pickle.dumps((True, fn(*args)), protocol=pickle.HIGHEST_PROTOCOL)
         except BaseException as exc:  # noqa: BLE001 - every outcome goes back to the parent
+            # the exception alone: its traceback and chained exceptions stay here (a library
+            # that pickles tracebacks, as distributed's tblib does, would otherwise send the
+            # thousand frames of a RecursionError it was raised from)
+            exc.__traceback__ = exc.__context__ = exc.__cause__ = None
             try:
                 payload = pickle.dumps((False, exc), protocol=pickle.HIGHEST_PROTOCOL)
             except Exception:  # noqa: BLE001 - an exception that does not pickle: its text does

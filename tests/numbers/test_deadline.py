@@ -37,3 +37,24 @@ def test_the_child_is_stopped_at_the_limit():
     # without the limit the call would return "finished" after a minute
     with pytest.raises(Overrun):
         call_within(0.3, _slow, 60)
+
+
+def _deep(n):
+    return _deep(n + 1)
+
+
+def _fails_after_a_recursion():
+    try:
+        _deep(0)
+    except RecursionError:
+        raise UserError("nested too deeply") from None
+
+
+def test_an_exception_comes_back_without_its_chain():
+    # distributed installs tblib's pickling of tracebacks and chained exceptions: the
+    # thousand frames of the RecursionError behind the error must not travel (pickling
+    # them overflowed the stack, and the error came back as a RuntimeError)
+    pickling_support = pytest.importorskip("tblib.pickling_support")
+    pickling_support.install()
+    with pytest.raises(UserError, match="nested too deeply"):
+        call_within(30, _fails_after_a_recursion)
