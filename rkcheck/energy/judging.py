@@ -14,7 +14,7 @@ from rkcheck.energy.results import OrderVerdicts, order_verdicts
 from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import Evaluation, evaluate
-from rkcheck.evaluation.box import RefinedSums, box_refinement_fits, refine_box
+from rkcheck.evaluation.box import RefinedSums, refine_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
@@ -77,14 +77,11 @@ def judge_box(listing: ConditionListing, values: TableauValues,
     """Decimal entries are one box of inputs (definitions §5.2): the conditions the balls
     left undecided are judged again by the mean value form around the face values
     (:mod:`rkcheck.evaluation.box`), which proves a failure on the whole box where the
-    balls' dependency problem hid it.  Returns the orders and a warning when the
-    refinement did not fit."""
+    balls' dependency problem hid it.  Returns the orders and no warning: the refinement
+    always runs (its derivatives are computed in passes that fit in memory)."""
     undecided = [n for n, o in orders.items() if o.any(HOLDS_TO_DIGITS)]
     if not undecided:
         return orders, None
-    if not box_refinement_fits(listing, values.A, values.b):
-        return orders, ("the box of decimal inputs is too large to bound its variation at this order: "
-                        "a condition reported as holding to D digits may still fail on the whole box")
     tab = values.tableau
     refined = refine_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), undecided)
     out = dict(orders)

@@ -19,7 +19,8 @@ few correct digits).  Then
 * otherwise it holds to the digits of ``min(ball bound, |R(x̃)| + V)``.
 
 The gradient costs ``E`` (the number of entries that are intervals) times the float
-screen; :func:`box_refinement_fits` says when that is affordable.
+screen; it is computed in passes that fit in :data:`MAX_GRADIENT_BYTES`, so the box is
+always judged, at any order.
 """
 
 from __future__ import annotations
@@ -389,13 +390,7 @@ def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict
     return out
 
 
-def box_refinement_fits(listing, A, b) -> bool:
-    """Whether the refinement can run: always, since its derivatives are computed in
-    passes that fit in :data:`MAX_GRADIENT_BYTES` (:func:`gradient_groups`)."""
-    return True
-
-
-__all__ = ["GradientContext", "BoxRefinement", "refine_box", "box_refinement_fits", "centre_integers", "MAX_GRADIENT_BYTES"]
+__all__ = ["GradientContext", "BoxRefinement", "refine_box", "centre_integers", "MAX_GRADIENT_BYTES"]
 
 
 class RefinedSums:
