@@ -1,5 +1,7 @@
 """Suite-wide settings: the listing cache lives in a temporary directory of this run,
-never in the user's cache (and is removed at the end)."""
+never in the user's cache, and so does Dask's scratch space (the cluster tests' workers
+would otherwise leave ``dask-scratch-space`` in the system's temporary folder); both are
+removed at the end."""
 
 from __future__ import annotations
 
@@ -7,16 +9,19 @@ import os
 import shutil
 import tempfile
 
-_CACHE_DIR: str | None = None
+_SCRATCH: str | None = None
 
 
 def pytest_configure(config) -> None:
-    global _CACHE_DIR
-    _CACHE_DIR = tempfile.mkdtemp(prefix="rkcheck-test-cache-")
-    os.environ["RKCHECK_CACHE_DIR"] = _CACHE_DIR  # subprocesses inherit it
+    global _SCRATCH
+    _SCRATCH = tempfile.mkdtemp(prefix="rkcheck-test-")
+    # environment variables: subprocesses and Dask's workers inherit them, and Dask reads
+    # DASK_* when it is first imported (no test has imported it yet)
+    os.environ["RKCHECK_CACHE_DIR"] = os.path.join(_SCRATCH, "cache")
+    os.environ["DASK_TEMPORARY_DIRECTORY"] = os.path.join(_SCRATCH, "dask")
     os.environ.pop("RKCHECK_NO_CACHE", None)
 
 
 def pytest_unconfigure(config) -> None:
-    if _CACHE_DIR is not None:
-        shutil.rmtree(_CACHE_DIR, ignore_errors=True)
+    if _SCRATCH is not None:
+        shutil.rmtree(_SCRATCH, ignore_errors=True)
