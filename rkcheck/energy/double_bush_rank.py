@@ -31,17 +31,16 @@ def pairs(m: int) -> list[tuple[int, int]]:
     return [(p, q) for q in range(2, m) for p in range(1, q)]
 
 
-def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
-    """The rows of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
+def map_row(b: Sequence[Any], c: Sequence[Any], p: int, q: int) -> list[Any]:
+    """Row (p, q) of M acting on vec(A) (row-major: index i*s + j), in the number type of b, c."""
     s = len(b)
-    rows = []
-    for p, q in pairs(m):
-        row = []
-        for i in range(s):
-            for j in range(s):
-                row.append(p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p)
-        rows.append(row)
-    return rows
+    return [p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p
+            for i in range(s) for j in range(s)]
+
+
+def map_rows(b: Sequence[Any], c: Sequence[Any], m: int) -> list[list[Any]]:
+    """The rows of M acting on vec(A), for every (p, q) of :func:`pairs`."""
+    return [map_row(b, c, p, q) for p, q in pairs(m)]
 
 
 def row_sum_rows(s: int) -> list[list[int]]:

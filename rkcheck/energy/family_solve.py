@@ -34,6 +34,8 @@ from fractions import Fraction
 from math import factorial
 from typing import Any, Sequence
 
+from rkcheck.energy.double_bush_rank import map_row
+from rkcheck.energy.double_bush_rank import row_sum_rows as unit_row_sums
 from rkcheck.numbers.groebner import (
     SolveLimitError,
     dimension,
@@ -223,7 +225,6 @@ def double_bush_rows(b: list[Any], c: list[Any], degree: int | None, order: int)
         p bᵀC^(p−1)Ac^q − q bᵀC^(q−1)Ac^p − (Σb)^p bᵀc^q + (Σb)^q bᵀc^p
 
     (the residual times p!q!; the last two terms are the rootings at the centres)."""
-    s = len(b)
     total = sum(b[1:], b[0])
     rows = []
     for q in range(2, order):
@@ -232,8 +233,7 @@ def double_bush_rows(b: list[Any], c: list[Any], degree: int | None, order: int)
         for p in range(1, q):
             if p + q + 2 > order + 1:
                 break
-            row = [p * b[i] * c[i] ** (p - 1) * c[j] ** q - q * b[i] * c[i] ** (q - 1) * c[j] ** p
-                   for i in range(s) for j in range(s)]
+            row = map_row(b, c, p, q)
             bq = sum((bi * ci ** q for bi, ci in zip(b, c)), b[0] * 0)
             bp = sum((bi * ci ** p for bi, ci in zip(b, c)), b[0] * 0)
             rows.append(row + [total ** q * bp - total ** p * bq])
@@ -241,9 +241,9 @@ def double_bush_rows(b: list[Any], c: list[Any], degree: int | None, order: int)
 
 
 def row_sum_rows(c: list[Any]) -> list[list[Any]]:
-    s = len(c)
-    zero, one = c[0] * 0, c[0] * 0 + 1
-    return [[one if k // s == i else zero for k in range(s * s)] + [-c[i]] for i in range(s)]
+    """The row sums ``Σ_j a_ij = c_i`` as rows ``[coefficients of a_ij …, −c_i]``, in c's type."""
+    zero = c[0] * 0
+    return [[zero + x for x in row] + [-ci] for row, ci in zip(unit_row_sums(len(c)), c)]
 
 
 def affine_solution(rows: list[list[Any]], n: int) -> tuple[list[Any], dict[int, list[Any]]] | None:
