@@ -10,6 +10,7 @@ import subprocess
 import sys
 
 from support import reference as ref
+from support.clirun import read_until_closed
 from support.paths import REPO
 
 from rkcheck.energy.claims import judge_tableau
@@ -66,18 +67,9 @@ def _stderr_on_a_terminal(*args: str) -> str:
     proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *args], stdout=subprocess.DEVNULL, stderr=slave,
                             env=env, cwd=REPO)
     os.close(slave)
-    chunks = []
-    while True:
-        try:
-            data = os.read(master, 65536)
-        except OSError:
-            break
-        if not data:
-            break
-        chunks.append(data)
-    os.close(master)
+    output = read_until_closed(master)
     assert proc.wait(timeout=120) in (0, 1)
-    return re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", b"".join(chunks).decode(errors="replace"))
+    return re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", output.decode(errors="replace"))
 
 
 def test_the_terminal_shows_each_run_with_its_unit():

@@ -10,6 +10,7 @@ import subprocess
 import sys
 
 import pytest
+from support.clirun import read_until_closed
 from support.paths import TABLEAUX
 
 from rkcheck.reports.console import OutputSettings, _StripTrailingSpaces, color_wanted
@@ -80,20 +81,11 @@ def tty_output(args, env) -> str:
     master, slave = pty.openpty()
     try:
         proc = run(args, env, stdout=slave)
-        os.close(slave)
-        chunks = []
-        while True:
-            try:
-                data = os.read(master, 65536)
-            except OSError:
-                break
-            if not data:
-                break
-            chunks.append(data)
     finally:
-        os.close(master)
+        os.close(slave)
+    output = read_until_closed(master)
     assert proc.returncode in (0, 1), proc.stderr
-    return b"".join(chunks).decode(errors="replace")
+    return output.decode(errors="replace")
 
 
 def test_terminal_output_is_coloured_unless_no_color():

@@ -36,3 +36,19 @@ def run_subprocess(*args: str, stdin: str | None = None, cwd: str | None = None,
         input=stdin, capture_output=True, text=True, cwd=cwd, env=env, timeout=timeout,
     )
     return Run(proc.returncode, proc.stdout, proc.stderr)
+
+
+def read_until_closed(fd: int) -> bytes:
+    """Everything written to a pseudo-terminal's master ``fd`` until its other end is
+    closed (Linux reports that as EIO, an OSError), then the fd closed."""
+    chunks = []
+    while True:
+        try:
+            data = os.read(fd, 65536)
+        except OSError:
+            break
+        if not data:
+            break
+        chunks.append(data)
+    os.close(fd)
+    return b"".join(chunks)
