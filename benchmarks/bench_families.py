@@ -14,16 +14,18 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+CURVE = ["b1 + b2 + b3 = 1"]
+#: (file, degree, order, extra equations)
 CASES = [
-    ("theorem1-s2-m3.toml", 3, 6),
-    ("theorem1-s2-m4.toml", 4, 6),
-    ("seed-kernel-zeta-0.toml", 3, 6),
-    ("theorem1-s3-m6.toml", 6, 7),
-    ("theorem1-s4-m8.toml", 8, 9),
-    ("theorem1-s3-m5.toml", 5, 6),  # a slice of the curve of rules: b1 fixed (WHERE)
+    ("theorem1-s2-m3.toml", 3, 6, []),
+    ("theorem1-s2-m4.toml", 4, 6, []),
+    ("seed-kernel-zeta-0.toml", 3, 6, []),
+    ("theorem1-s3-m6.toml", 6, 7, []),
+    ("theorem1-s4-m8.toml", 8, 9, []),
+    ("theorem1-s3-m5.toml", 5, 6, CURVE + ["b1 = 1/4"]),  # a slice of the curve of rules
+    ("theorem1-s3-m5.toml", 5, 6, CURVE),  # the whole curve of rules
+    ("theorem1-s3-m5.toml", 5, 7, CURVE),
 ]
-#: Extra equations per family.
-WHERE = {"theorem1-s3-m5.toml": ["b1 + b2 + b3 = 1", "b1 = 1/4"]}
 #: The plain route (one Gröbner basis of every condition) as well, where it finishes.
 PLAIN = {"theorem1-s2-m3.toml", "theorem1-s2-m4.toml", "theorem1-s3-m6.toml"}
 CHILD = """
@@ -40,11 +42,11 @@ print(json.dumps({{"seconds": time.perf_counter() - t0, "equations": res.equatio
 def main() -> None:
     print(f"{'family':28} {'m':>2} {'N':>2} {'route':>10} {'equations':>9} {'dim':>3} {'solutions':>9} "
           f"{'seconds':>8}")
-    for name, degree, order in CASES:
+    for name, degree, order, where in CASES:
         path = str(ROOT / "tableaux" / "families" / name)
         for route in ("auto", "plain") if name in PLAIN else ("auto",):
             code = CHILD.format(root=str(ROOT), path=path, degree=degree, order=order, route=route,
-                                where=WHERE.get(name, []))
+                                where=where)
             out = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                             check=True).stdout)
             print(f"{name:28} {degree:>2} {order:>2} {out['route']:>10} {out['equations']:>9} {out['dimension']:>3} "

@@ -280,26 +280,37 @@ def solve_structured(family: Any, layout: Layout, degree: int | None, order: int
     theta = THETA if ring.field is not None else None
     polys, ctx, _ = quadrature_system(family, layout, degree, order, extra)
     orbits = finite_orbits(polys, ctx, theta, ring.field, deadline)
-    if orbits is None:
-        return None
-    results = []
-    for o in orbits:
-        if time.monotonic() > deadline:  # the steps between Gröbner bases count against the limit too
-            raise SolveLimitError("the structured route did not finish within the time limit (--max-seconds); "
-                                  "fix more parameters, lower --order or --degree, or raise the limit")
-        results.append(_solve_orbit(family, layout, o, ctx, degree, order, classical, deadline))
+    ruled: list[Component] = []
+    rule_dimension = 0
+    if orbits is None:  # a curve of rules or more: the route over all of them at once
+        from rkcheck.energy.family_curve import solve_on_rules
+
+        on_rules = solve_on_rules(family, layout, degree, order, classical, extra, deadline)
+        if on_rules is None:
+            return None
+        rule_dimension, ruled, results = on_rules
+        if ruled:  # the AVF methods over the exceptional rules lie on the first component already
+            results = [r for r in results if not (r.component.dimension == 0 and r.component.avf)]
+    else:
+        results = []
+        for o in orbits:
+            if time.monotonic() > deadline:  # the steps between Gröbner bases count against the limit too
+                raise SolveLimitError("the structured route did not finish within the time limit (--max-seconds); "
+                                      "fix more parameters, lower --order or --degree, or raise the limit")
+            results.append(solve_orbit(family, layout, o, ctx, degree, order, classical, deadline))
     solutions: list[Solution] = []
     for r in results:
         found = orbit_solutions(r.points, ring.parameters, theta, ring.field)
         solutions += found
         if r.component.dimension == 0:
             r.component.points, r.component.real = len(found), sum(s.real for s in found)
-    components = [r.component for r in results if r.component.dimension >= 0 and r.component.points != 0]
+    components = ruled + [r.component for r in results if r.component.dimension >= 0 and r.component.points != 0]
     dim = max((c.dimension for c in components), default=-1)
     # with a positive-dimensional component, these are the points of the finite ones
     out = SolutionSet(tuple(ring.parameters), equations, _points_basis(results, ring) if dim == 0 else [], dim, {},
                       solutions)
     out.route = "structured"
+    out.rule_dimension = rule_dimension
     out.components = components
     out.seconds = time.monotonic() - t0
     return out
@@ -329,7 +340,7 @@ def _element(K: Any, p: Any) -> Any:
     return K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()] or [Fraction(0)])
 
 
-def _solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: int | None, order: int,
+def solve_orbit(family: Any, layout: Layout, orbit: Orbit, ctx: Any, degree: int | None, order: int,
                  classical: int | None, deadline: float) -> OrbitResult:
     from rkcheck.energy.family_conditions import classical_conditions, energy_conditions
 

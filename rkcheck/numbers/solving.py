@@ -105,6 +105,10 @@ class SolutionSet:
     components: list[Any] | None = None
     pieces: list[Any] | None = None
     rest: tuple[str, ...] = ()
+    #: the structured route: the dimension of the set of rules (b, c) the quadrature
+    #: conditions leave (0: finitely many, solved orbit by orbit; 1: a curve, solved over
+    #: all of it at once by :mod:`rkcheck.energy.family_curve`)
+    rule_dimension: int = 0
 
     def __repr__(self) -> str:
         found = "" if self.solutions is None else f", {len(self.solutions)} solutions"

@@ -125,6 +125,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
                      else [polynomial_text(g, field) for g in shown_basis(result)]),
         "dimension": result.dimension,
         "route": result.route,
+        "rule_dimension": result.rule_dimension,
         "components": None if result.components is None else [component_doc(c, field) for c in result.components],
         "avf_on_every_component": avf_everywhere(result),
         "solutions": None if result.solutions is None else [
@@ -198,8 +199,14 @@ def _render_components(result: Any, console: Console) -> None:
     if basis:
         console.print(f"reduced Gröbner basis of the solutions (degree reverse lexicographic): {len(basis)} "
                       "polynomials (--format json lists them)")
-    console.print(f"structured route: quadrature conditions, then the conditions linear in A, per orbit of "
-                  f"nodes; {len(comps)} component{'s' if len(comps) != 1 else ''}")
+    count = f"{len(comps)} component{'s' if len(comps) != 1 else ''}"
+    if result.rule_dimension:
+        console.print(f"structured route over the rules: the quadrature conditions leave a set of dimension "
+                      f"{result.rule_dimension}; the conditions linear in A and the rest solved on all of it at "
+                      f"once, then each exceptional orbit of nodes; {count}")
+    else:
+        console.print(f"structured route: quadrature conditions, then the conditions linear in A, per orbit of "
+                      f"nodes; {count}")
     for k, c in enumerate(comps, start=1):
         what = f"{c.points} point{'s' if c.points != 1 else ''}" if c.dimension == 0 else f"dimension {c.dimension}"
         avf = {True: "A = (A·1) bᵀ (AVF)", False: "not A = (A·1) bᵀ", None: "AVF not decided"}[c.avf]

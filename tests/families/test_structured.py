@@ -182,12 +182,88 @@ def test_theorem1_s3_m5_slice_of_the_zeta_family_is_avf():
         assert not (b[0] - acb(1) / 5).contains(0)  # a ball that can exclude: the test can fail
 
 
-def test_the_whole_zeta_curve_asks_for_a_slice(capsys, tmp_path):
+def test_a_surface_of_rules_asks_for_a_slice(capsys, tmp_path):
+    """m = 4 with b free: the quadrature conditions leave a surface of rules, beyond the
+    route over a curve; the plain route runs out of time and the error says what to fix."""
     from support.clirun import run_cli
 
-    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "5", "--order", "6",
+    r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s3-m5.toml"), "--degree", "4", "--order", "5",
                 "--where", "b1 + b2 + b3 = 1", "--max-seconds", "1")
     assert r.code == 2 and r.err.count("\n") == 1 and 'fix a weight with --where' in r.err, r.err
+
+
+RADAU_IIA = (["2/5 - sqrt(6)/10", "2/5 + sqrt(6)/10", "1"], ["4/9 - sqrt(6)/36", "4/9 + sqrt(6)/36", "1/9"])
+
+
+def test_the_whole_zeta_curve_at_order_7_is_avf_only():
+    """A and b free, m = 5, order 7, over the whole curve of rules at once: one component,
+    AVF.  Its equations vanish exactly (sympy) at AVF over the Radau IIA rule — a rule of
+    the curve in Q(√6) — and not after moving one entry; the exact tableau engine
+    confirms that AVF method satisfies every condition to order 8."""
+    import sympy
+
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=7, where=["b1 + b2 + b3 = 1"])
+    assert res.route == "structured" and res.rule_dimension == 1 and res.dimension == 1
+    assert len(res.components) == 1 and res.components[0].avf is True and res.components[0].dimension == 1
+    c = [sympy.sympify(x) for x in RADAU_IIA[0]]
+    b = [sympy.sympify(x) for x in RADAU_IIA[1]]
+    point = {f"c{i + 1}": c[i] for i in range(3)} | {f"b{j + 1}": b[j] for j in range(3)}
+    point |= {f"a{i + 1}{j + 1}": c[i] * b[j] for i in range(3) for j in range(3)}
+
+    def value(e, at):
+        names = e.context().names()
+        total = sum(sympy.Rational(int(k.p), int(k.q)) * sympy.Mul(*[at[n] ** int(x) for n, x in zip(names, m)])
+                    for m, k in e.to_dict().items())
+        return sympy.simplify(sympy.expand(total))
+
+    eqs = res.components[0].equations
+    assert all(value(e, point) == 0 for e in eqs)
+    moved = point | {"a12": point["a12"] + sympy.Rational(1, 100)}
+    assert any(value(e, moved) != 0 for e in eqs)
+    A = [[f"({RADAU_IIA[0][i]})*({RADAU_IIA[1][j]})" for j in range(3)] for i in range(3)]
+    v = rkcheck.verify(rkcheck.from_arrays(A, list(RADAU_IIA[1])), degree=5, order=8)
+    assert v.energy_order == 8
+
+
+def test_the_whole_zeta_curve_at_order_6_has_three_planes_over_gauss():
+    """The finding of the slice b1 = 5/18, on the whole curve: besides the AVF curve, three
+    planes of non-AVF methods over the Gauss rule, one per position of the weight 4/9; the
+    exact engine confirms a point of each (energy order exactly 6, not AVF)."""
+    import sympy
+
+    res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=["b1 + b2 + b3 = 1"])
+    assert res.dimension == 2 and res.rule_dimension == 1
+    curve, *planes = res.components
+    assert curve.dimension == 1 and curve.avf is True
+    assert len(planes) == 3 and all(p.dimension == 2 and p.avf is False for p in planes)
+    middle = set()
+    for plane in planes:
+        A, b = _plane_point(plane)
+        middle.add(next(i for i, x in enumerate(b) if sympy.sympify(x) == sympy.Rational(4, 9)))
+        v = rkcheck.verify(rkcheck.from_arrays(A, b), degree=5, order=8)
+        assert v.energy_order == 6 and v.avf.verdict.state == "fails"
+    assert middle == {0, 1, 2}
+
+
+def _plane_point(plane):
+    """A point of a plane of non-AVF methods over the Gauss rule: z = c1 a Gauss node, the
+    free entries chosen, the rest solved from the plane's equations; (A, b) as texts."""
+    from flint import fmpq
+
+    eqs = plane.equations
+    ctx = eqs[0].context()
+    assert str(eqs[0]) == "10*z^2 - 10*z + 1"
+    free = {n for n in ctx.names() if n != "z"} - {n for e in eqs[1:] for n in [_lead_name(e)]}
+    choice = {n: fmpq(k + 1, 10) for k, n in enumerate(sorted(free))}
+    values = {}
+    for e in eqs[1:]:
+        name = _lead_name(e)
+        rest = e - ctx.gens()[ctx.names().index(name)]
+        values[name] = _text_of(-rest, choice)
+    values.update({n: str(v) for n, v in choice.items()})
+    A = [[values[f"a{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)]
+    b = [values[f"b{i}"] for i in (1, 2, 3)]
+    return A, b
 
 
 def test_design_query_splits_into_avf_and_symmetric_weights():
@@ -221,26 +297,11 @@ def test_at_order_6_the_gauss_rule_carries_non_avf_methods():
     rule has, besides AVF methods, two planes of non-AVF methods over Gauss (one per
     order of the weights). The exact engine confirms a point of one: energy order 6
     exactly, not AVF. At order 7 the same slice is AVF only."""
-    from flint import fmpq
-
     where = ["b1 + b2 + b3 = 1", "b1 = 5/18"]
     res = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=6, where=where)
     planes = [c for c in res.components if c.dimension == 2]
     assert res.dimension == 2 and len(planes) == 2 and all(c.avf is False for c in planes)
-    # a point of the first plane: z = c1 a Gauss node, two entries chosen, the rest solved
-    eqs = planes[0].equations
-    ctx = eqs[0].context()
-    assert str(eqs[0]) == "10*z^2 - 10*z + 1"
-    free = {n for n in ctx.names() if n != "z"} - {n for e in eqs[1:] for n in [_lead_name(e)]}
-    choice = {n: fmpq(k + 1, 10) for k, n in enumerate(sorted(free))}
-    values = {}
-    for e in eqs[1:]:
-        name = _lead_name(e)
-        rest = e - ctx.gens()[ctx.names().index(name)]
-        values[name] = _text_of(-rest, choice)
-    values.update({n: str(v) for n, v in choice.items()})
-    A = [[values[f"a{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)]
-    b = [values[f"b{i}"] for i in (1, 2, 3)]
+    A, b = _plane_point(planes[0])
     v = rkcheck.verify(rkcheck.from_arrays(A, b), degree=5, order=8)
     assert v.energy_order == 6 and v.avf.verdict.state == "fails"
     higher = rkcheck.solve(FAMILIES / "theorem1-s3-m5.toml", degree=5, order=7, where=where)
