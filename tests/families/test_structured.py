@@ -245,25 +245,45 @@ def test_the_whole_zeta_curve_at_order_6_has_three_planes_over_gauss():
     assert middle == {0, 1, 2}
 
 
-def _plane_point(plane):
-    """A point of a plane of non-AVF methods over the Gauss rule: z = c1 a Gauss node, the
-    free entries chosen, the rest solved from the plane's equations; (A, b) as texts."""
+def _plane_point(plane, s: int = 3, node: tuple[str, str] = ("10*z^2 - 10*z + 1", "1/2 - sqrt(15)/10")):
+    """A point of a plane of non-AVF methods over a Gauss rule: z = c1 a Gauss node (its
+    minimal polynomial and the root chosen), the free entries chosen, the rest solved
+    from the plane's equations; (A, b) as texts."""
     from flint import fmpq
 
     eqs = plane.equations
     ctx = eqs[0].context()
-    assert str(eqs[0]) == "10*z^2 - 10*z + 1"
+    assert str(eqs[0]) == node[0]
     free = {n for n in ctx.names() if n != "z"} - {n for e in eqs[1:] for n in [_lead_name(e)]}
     choice = {n: fmpq(k + 1, 10) for k, n in enumerate(sorted(free))}
     values = {}
     for e in eqs[1:]:
         name = _lead_name(e)
         rest = e - ctx.gens()[ctx.names().index(name)]
-        values[name] = _text_of(-rest, choice)
+        values[name] = _text_of(-rest, choice, node[1])
     values.update({n: str(v) for n, v in choice.items()})
-    A = [[values[f"a{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)]
-    b = [values[f"b{i}"] for i in (1, 2, 3)]
+    A = [[values[f"a{i}{j}"] for j in range(1, s + 1)] for i in range(1, s + 1)]
+    b = [values[f"b{i}"] for i in range(1, s + 1)]
     return A, b
+
+
+def test_the_curve_route_agrees_with_slices_and_the_engine_for_two_stages():
+    """s = 2, A and b free, m = 3, order 4 over the curve of 2-point rules exact for
+    quadratics: the AVF curve and, over the Gauss rule only, a line of non-AVF methods
+    (the seed's kernel direction at ζ = 0).  Slices through four other rules, solved
+    orbit by orbit by the finite route, have AVF methods only; a point of the line is
+    checked by the exact engine: energy order exactly 4 (the seed's β²/72 at 6
+    vertices), not AVF."""
+    res = rkcheck.solve(FAMILIES / "design-s2-m3.toml", degree=3, order=4, where=["b1 + b2 = 1"])
+    assert res.rule_dimension == 1 and res.dimension == 1
+    curve, line = res.components
+    assert curve.avf is True and line.avf is False and line.dimension == 1
+    for b1 in ("1/4", "1/3", "2/5", "3/4"):
+        piece = rkcheck.solve(FAMILIES / "design-s2-m3.toml", degree=3, order=4, where=["b1 + b2 = 1", f"b1 = {b1}"])
+        assert piece.dimension == 0 and piece.solutions and all(c.avf for c in piece.components)
+    A, b = _plane_point(line, 2, ("6*z^2 - 6*z + 1", "1/2 - sqrt(3)/6"))
+    v = rkcheck.verify(rkcheck.from_arrays(A, b), degree=3, order=7)
+    assert v.energy_order == 4 and v.avf.verdict.state == "fails"
 
 
 def test_design_query_splits_into_avf_and_symmetric_weights():
@@ -319,9 +339,9 @@ def _lead_name(e) -> str:
     raise AssertionError(str(e))
 
 
-def _text_of(p, choice) -> str:
-    """p (linear in z and the chosen parameters) at the choice, as an entry text with
-    z = 1/2 - sqrt(15)/10."""
+def _text_of(p, choice, z: str = "1/2 - sqrt(15)/10") -> str:
+    """p (linear in z and the chosen parameters) at the choice, as an entry text with z
+    the given root (by default a node of the 3-point Gauss rule)."""
     from flint import fmpq
 
     names = p.context().names()
@@ -333,7 +353,7 @@ def _text_of(p, choice) -> str:
             z_coeff += c
         else:
             const += c
-    return f"({const}) + ({z_coeff})*(1/2 - sqrt(15)/10)"
+    return f"({const}) + ({z_coeff})*({z})"
 
 
 @pytest.mark.parametrize(("name", "degree", "order"), [("theorem1-s3-m6", 6, 7), ("theorem1-s2-m4", 4, 6)])
