@@ -22,6 +22,7 @@ from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.methods.continuous import ContinuousMethod, _substituted
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 
 #: rule names: gauss-k, radau-i-k, radau-ii-k, lobatto-k, newton-cotes-k
@@ -85,9 +86,9 @@ def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, 
     from rkcheck.evaluation.values import TableauValues
     from rkcheck.numbers.reading import DecimalsMode, Reading
 
-    consts = {f"r_{k}": ex.to_text(v) for k, v in tab.info.constants.definitions.items()}
+    consts = {f"r_{k}": xp.to_text(v) for k, v in tab.info.constants.definitions.items()}
     rename: dict[str, ex.Expr] = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}
-    text = lambda e: ex.to_text(_substituted(e.node, rename))  # noqa: E731
+    text = lambda e: xp.to_text(_substituted(e.node, rename))  # noqa: E731
     c = [text(e) for e in tab.c] if tab.c is not None else [
         " + ".join(f"({text(e)})" for e in row) for row in tab.A]
     b = [text(e) for e in tab.b]
@@ -103,7 +104,7 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     from rkcheck.energy.continuous import kernel_facts
 
     c, w, consts, order, name = _rule_texts(rule_spec)
-    own = {k: ex.to_text(v) for k, v in method.info.constants.definitions.items()}
+    own = {k: xp.to_text(v) for k, v in method.info.constants.definitions.items()}
     clash = sorted(set(own) & set(consts))
     if clash:
         raise UserError(f"the kernel's constants {', '.join(clash)} clash with the rule's names; rename them",
@@ -112,9 +113,9 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     A_node, B_node = method.nodes
     k = len(c)
     node = lambda t: ex.parse(f"({t})")  # noqa: E731
-    A = [[f"{_par(w[j])}*({ex.to_text(_substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
+    A = [[f"{_par(w[j])}*({xp.to_text(_substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
           for j in range(k)] for i in range(k)]
-    b = [f"{_par(w[i])}*({ex.to_text(_substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
+    b = [f"{_par(w[i])}*({xp.to_text(_substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
     consts, A, b, c_out = _simplified(A, b, c, consts)
     facts = kernel_facts(method, None)
     p = method.kernel.deg_tau

@@ -15,7 +15,14 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, certified_digits
+from rkcheck.energy.verdicts import (
+    FAILS,
+    HOLDS,
+    HOLDS_TO_DIGITS,
+    Verdict,
+    certified_digits,
+)
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import DecimalsMode
@@ -58,11 +65,11 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
                 return {(0, 1): ONE}
             return {(0, 0): constants[n.name]}
         if isinstance(n, (ex.Num, ex.Call)):  # a number (roots take no tau or sigma: the kernel is polynomial)
-            return {(0, 0): ex.enclose(n, bits, decimals, constants)}
+            return {(0, 0): xp.enclose(n, bits, decimals, constants)}
         if isinstance(n, ex.Unary):
             return {k: -c for k, c in vals[0].items()}
         if isinstance(n, ex.Power):
-            k = ex.evaluate_exact(n.exponent, {})
+            k = xp.evaluate_exact(n.exponent, {})
             assert k is not None and k.denominator == 1 and k >= 0  # checked when the kernel was read
             return _power(vals[0], int(k))
         left, right = vals
@@ -73,7 +80,7 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
         (divisor,) = right.values()  # a number: checked when the kernel was read
         return {k: c / divisor for k, c in left.items()}
 
-    return ex.fold(node, combine, ex.polynomial_operands)
+    return xp.fold(node, combine, xp.polynomial_operands)
 
 
 def _affine(p: Poly, which: int) -> Poly:

@@ -20,6 +20,7 @@ from typing import Any
 from rkcheck.errors import UserError
 from rkcheck.evaluation.scaled import ScaledTableau, scaled_field, scaled_rational
 from rkcheck.methods.tableau import ExactValues, Tableau
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.formatting import decimal_exponent, decimal_string, exact_string
 from rkcheck.numbers.intervals import Interval, interval_sum
@@ -163,7 +164,7 @@ class TableauValues:
 def _uses_root(tab: Tableau) -> bool:
     """Some entry (or a constant it names) takes a root of a polynomial, not only ``sqrt``."""
     nodes = [getattr(e, "node", None) for e in tab.entries()] + list(tab.info.constants.definitions.values())
-    return any(isinstance(n, ex.Call) and n.func == "root" for node in nodes if node is not None for n in ex.walk(node))
+    return any(isinstance(n, ex.Call) and n.func == "root" for node in nodes if node is not None for n in xp.walk(node))
 
 
 def _value_text(x: Interval, exact: Any = None) -> str:

@@ -17,6 +17,7 @@ from typing import Any, Callable, Iterable
 from rkcheck.errors import UserError
 from rkcheck.io.writers import document_toml, render_toml
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry, TableauEntry
 
@@ -34,7 +35,7 @@ def tableau_document(tab: Tableau) -> dict[str, Any]:
     if tab.info.references:
         doc["method"]["references"] = list(tab.info.references)
     if tab.info.constants.definitions:
-        doc["constants"] = {k: ex.to_text(v) for k, v in tab.info.constants.definitions.items()}
+        doc["constants"] = {k: xp.to_text(v) for k, v in tab.info.constants.definitions.items()}
     doc["tableau"] = {"A": [[e.text for e in row] for row in tab.A], "b": [e.text for e in tab.b]}
     if tab.c is not None:
         doc["tableau"]["c"] = [e.text for e in tab.c]
@@ -261,12 +262,12 @@ def _simplifiable(node: ex.Expr, constants: dict[str, ex.Expr]) -> bool:
     todo, calls = [node], 0
     while todo:
         n = todo.pop()
-        for sub in ex.walk(n):
+        for sub in xp.walk(n):
             if isinstance(sub, ex.Num) and sub.digits is not None:
                 return False
             if isinstance(sub, ex.Call):
                 calls += 1
-                if sub.func != "sqrt" or any(isinstance(x, ex.Call) for x in ex.walk(sub.args[0])):
+                if sub.func != "sqrt" or any(isinstance(x, ex.Call) for x in xp.walk(sub.args[0])):
                     return False
             if isinstance(sub, ex.Name) and sub.name not in seen:
                 seen.add(sub.name)
@@ -341,12 +342,12 @@ def _used_constants(tab: Tableau, nodes: list[ex.Expr]) -> dict[str, ex.Expr]:
     the table's order: a constant folded into every entry is not written."""
     definitions = tab.info.constants.definitions
     used: set[str] = set()
-    todo = [n.name for node in nodes for n in ex.names(node)]
+    todo = [n.name for node in nodes for n in xp.names(node)]
     while todo:
         name = todo.pop()
         if name not in used:
             used.add(name)
-            todo += [n.name for n in ex.names(definitions[name])]
+            todo += [n.name for n in xp.names(definitions[name])]
     return {k: v for k, v in definitions.items() if k in used}
 
 

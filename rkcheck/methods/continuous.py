@@ -36,6 +36,7 @@ from typing import Any, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
 from rkcheck.numbers.reading import DecimalsMode
@@ -103,7 +104,7 @@ class ContinuousMethod:
                 try:
                     node = ex.parse(text)
                     info.constants.check_names(node)
-                    values[i, j] = ex.evaluate_exact(node, info.constants.exact_values())
+                    values[i, j] = xp.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
                     raise err.located(f"M[{i}][{j}]") from None
         if all(v is not None for v in values.values()):  # rational: the polynomials collected
@@ -226,17 +227,17 @@ class Kernel:
         for place, text in zip(places, (A, b)):
             try:
                 node = ex.parse(text)
-                for used in ex.names(node):
+                for used in xp.names(node):
                     if used.name not in VARIABLES and used.name not in constants.definitions:
                         raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a "
                                         "polynomial in tau and sigma (and the [constants])")
             except UserError as err:
                 raise err.located(place) from None
             nodes.append(node)
-        if any(n.name == "tau" for n in ex.names(nodes[1])) and any(n.name == "sigma" for n in ex.names(nodes[1])):
+        if any(n.name == "tau" for n in xp.names(nodes[1])) and any(n.name == "sigma" for n in xp.names(nodes[1])):
             raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma",
                             matrix_place or "continuous.b")
-        if any(n.name == "sigma" for n in ex.names(nodes[1])):  # B written in σ (as B(σ) = A(1, σ))
+        if any(n.name == "sigma" for n in xp.names(nodes[1])):  # B written in σ (as B(σ) = A(1, σ))
             nodes[1] = _rename(nodes[1], "sigma", "tau")
         try:
             parsed = ParametricEntries(nodes, [matrix_place or "continuous.A", matrix_place or "continuous.b"],
@@ -320,8 +321,8 @@ class Kernel:
         expression at the nodes (its decimals and roots then read as in any entry)."""
         n = len(x)
         plain = self.ring.field is None and not any(
-            lit.is_decimal for node in self.nodes for lit in ex.literals(node)) and not any(
-            constants.has_decimal(u.name) for node in self.nodes for u in ex.names(node) if u.name in constants.definitions)
+            lit.is_decimal for node in self.nodes for lit in xp.literals(node)) and not any(
+            constants.has_decimal(u.name) for node in self.nodes for u in xp.names(node) if u.name in constants.definitions)
         if plain:
             tau, sigma = self.gens()
             A = tuple(tuple(_rational_entry(w[j] * self.number(self.substitute(
@@ -387,10 +388,10 @@ def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
             return ex.Call(n.func, tuple(vals), n.column)
         return n
 
-    return ex.fold(node, combine, ex.children)
+    return xp.fold(node, combine, xp.children)
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:
     value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
-    text = f"{weight.numerator}/{weight.denominator}*({ex.to_text(value)})"
+    text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
     return Entry.parse(text, constants)

@@ -11,8 +11,15 @@ from fractions import Fraction
 from typing import Any, Mapping
 
 from rkcheck.errors import UserError
-from rkcheck.methods.continuous import MAX_SURROGATE_NODES, VARIABLES, _literal, _substituted, rational_rule
+from rkcheck.methods.continuous import (
+    MAX_SURROGATE_NODES,
+    VARIABLES,
+    _literal,
+    _substituted,
+    rational_rule,
+)
 from rkcheck.methods.tableau import MethodInfo
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 
 #: trees of up to 13 vertices: energy order ≤ 12 and classical order ≤ 12 (the family limits)
@@ -34,12 +41,12 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
             node = ex.parse(text)
         except UserError as err:
             raise err.located(place) from None
-        for used in ex.names(node):
+        for used in xp.names(node):
             if used.name not in VARIABLES and used.name not in parameters and used.name not in constants:
                 raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a polynomial in "
                                 "tau and sigma (and the [parameters] and [constants])", place)
         nodes.append(node)
-    if any(n.name == "sigma" for n in ex.names(nodes[1])):
+    if any(n.name == "sigma" for n in xp.names(nodes[1])):
         nodes[1] = _substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
     poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
     ring = poly.ring
@@ -61,4 +68,4 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
 
 def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> str:
     value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
-    return f"{weight.numerator}/{weight.denominator}*({ex.to_text(value)})"
+    return f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"

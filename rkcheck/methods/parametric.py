@@ -14,6 +14,7 @@ from typing import Any, Mapping, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.parametric import ParameterRing, ParametricEntries
 
@@ -64,7 +65,7 @@ class Family:
             node = ex.parse(expr)
         except UserError as err:
             raise UserError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
-        unknown = {n.name for n in ex.names(node)} - set(self.parameters) - set(self.entries.constants)
+        unknown = {n.name for n in xp.names(node)} - set(self.parameters) - set(self.entries.constants)
         if unknown:
             raise UserError(f"unknown name {sorted(unknown)[0]!r} in {text!r} (the parameters are "
                             f"{', '.join(self.parameters)})", "--where")
@@ -76,7 +77,7 @@ class Family:
         if missing:
             raise UserError(f"no value for the parameter {missing[0]}")
         texts = [x for row in self.A_text for x in row] + list(self.b_text)
-        constants = {k: ex.to_text(v) for k, v in self.entries.constants.items()}
+        constants = {k: xp.to_text(v) for k, v in self.entries.constants.items()}
         subst = {p: f"({Fraction(values[p])})" for p in self.parameters}
         out = []
         for t in texts:
@@ -169,7 +170,7 @@ def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[st
             node = ex.parse(text)
         except UserError as err:
             raise err.located(place) from None
-        unknown = [n for n in ex.names(node) if n.name not in known]
+        unknown = [n for n in xp.names(node) if n.name not in known]
         if unknown:
             raise UserError(f"unknown name {unknown[0].name!r} at column {unknown[0].column} (parameters: "
                             f"{', '.join(parameters)})", place)

@@ -23,6 +23,7 @@ from fractions import Fraction
 from typing import Any, Mapping, Protocol
 
 from rkcheck.errors import UserError
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import DecimalsMode
@@ -44,11 +45,11 @@ class Constants:
         self._decimal: dict[str, bool] = {}
         for name in self._order:
             node = self.definitions[name]
-            used = {n.name for n in ex.names(node)}
-            self._decimal[name] = any(lit.is_decimal for lit in ex.literals(node)) or any(
+            used = {n.name for n in xp.names(node)}
+            self._decimal[name] = any(lit.is_decimal for lit in xp.literals(node)) or any(
                 self._decimal[u] for u in used
             )
-            digits = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
+            digits = [lit.digits for lit in xp.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
             digits += [d for u in used if (d := self._rounded[u]) is not None]
             self._rounded[name] = min(digits) if digits else None
 
@@ -62,7 +63,7 @@ class Constants:
                 continue
             path: list[str] = [root]
             state[root] = 1
-            pending = [iter(ex.names(self.definitions[root]))]
+            pending = [iter(xp.names(self.definitions[root]))]
             while pending:
                 used = next(pending[-1], None)
                 if used is None:
@@ -80,12 +81,12 @@ class Constants:
                     raise UserError(f"constants refer to each other in a cycle: {cycle}", f"constants.{path[0]}")
                 state[used.name] = 1
                 path.append(used.name)
-                pending.append(iter(ex.names(self.definitions[used.name])))
+                pending.append(iter(xp.names(self.definitions[used.name])))
         return order
 
     def check_names(self, node: ex.Expr) -> None:
         """Raise for a name in ``node`` that is not a constant of this table."""
-        for used in ex.names(node):
+        for used in xp.names(node):
             if used.name not in self.definitions:
                 known = ", ".join(sorted(self.definitions)) or "none defined"
                 raise UserError(f"unknown constant {used.name!r} at column {used.column} (constants: {known})")
@@ -95,7 +96,7 @@ class Constants:
             values: dict[str, Fraction | None] = {}
             for name in self._order:
                 try:
-                    values[name] = ex.evaluate_exact(self.definitions[name], values)
+                    values[name] = xp.evaluate_exact(self.definitions[name], values)
                 except UserError as err:
                     raise err.located(f"constants.{name}") from None
             self._exact = values
@@ -107,7 +108,7 @@ class Constants:
             values: dict[str, Interval] = {}
             for name in self._order:
                 try:
-                    values[name] = ex.enclose(self.definitions[name], bits, decimals, values)
+                    values[name] = xp.enclose(self.definitions[name], bits, decimals, values)
                 except UserError as err:
                     raise err.located(f"constants.{name}") from None
             self._enclosures[key] = values
@@ -168,15 +169,15 @@ class Entry:
         constants = constants or Constants()
         node = ex.parse(text)
         constants.check_names(node)
-        used = {n.name for n in ex.names(node)}
-        rounded = [lit.digits for lit in ex.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
+        used = {n.name for n in xp.names(node)}
+        rounded = [lit.digits for lit in xp.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
         # a constant counts with the fewest digits it depends on (s = "1 - r", r a decimal)
         rounded += [d for u in used if (d := constants.rounded_digits(u)) is not None]
         rounded_digits = min(rounded) if rounded else None
-        exact = ex.evaluate_exact(node, constants.exact_values())
+        exact = xp.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
-        has_decimal = any(lit.is_decimal for lit in ex.literals(node)) or any(constants.has_decimal(u) for u in used)
+        has_decimal = any(lit.is_decimal for lit in xp.literals(node)) or any(constants.has_decimal(u) for u in used)
         return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number, has_decimal)
 
     @staticmethod
@@ -211,7 +212,7 @@ class Entry:
         decimals = DecimalsMode(decimals)
         if self.exact is not None and not self.is_box(decimals):
             return Interval.point(self.exact)
-        return ex.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals))
+        return xp.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals))
 
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""
@@ -266,7 +267,7 @@ def _rebuild(flat: list[tuple]) -> ex.Expr:
 
 def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple]]]:
     flat: list[tuple] = []
-    ex.fold(node, lambda n, _: flat.append(_record(n)), ex.children)
+    xp.fold(node, lambda n, _: flat.append(_record(n)), xp.children)
     return _rebuild, (flat,)
 
 

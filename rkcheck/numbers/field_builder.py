@@ -20,6 +20,7 @@ from fractions import Fraction
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import (
     MAX_FIELD_DEGREE,
@@ -277,8 +278,8 @@ class _Builder:
             k = self.lift(self.value(node.args[1])).rational()
             if k is None or k.denominator != 1 or k < 1:
                 raise UserError(f"root(p, k): k must be a positive integer, got {k} (column {node.column})")
-            p = ex.root_polynomial(node)
-            iv = ex.root_enclosure(node, k, 64)  # raises the user's error for a missing root
+            p = xp.root_polynomial(node)
+            iv = xp.root_enclosure(node, k, 64)  # raises the user's error for a missing root
             if iv.is_point:
                 return self.field(iv.lo)
             root = int(k)
@@ -453,7 +454,7 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     (:mod:`rkcheck.numbers.deadline`), so that the time limit holds inside FLINT's root
     isolation too; purely rational ones need no field and stay here."""
     everything = list(nodes) + list((constants or {}).values())
-    if not any(isinstance(node, ex.Call) for expr in everything for node in ex.walk(expr)):
+    if not any(isinstance(node, ex.Call) for expr in everything for node in xp.walk(expr)):
         return _field_of(nodes, constants, max_degree)
     try:
         return call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)

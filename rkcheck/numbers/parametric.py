@@ -22,6 +22,7 @@ from fractions import Fraction
 from typing import Any, Mapping, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
 from rkcheck.numbers.field_builder import field_of
@@ -91,7 +92,7 @@ def uses(node: ex.Expr, names: set[str]) -> bool:
     """Whether the expression uses one of ``names`` — also inside a root's polynomial,
     whose names the grammar keeps apart (its x is bound), so that ``root(x^2 - beta, 2)``
     counts as using beta."""
-    for n in ex.walk(node):
+    for n in xp.walk(node):
         if isinstance(n, ex.Name) and n.name in names:
             return True
         if isinstance(n, ex.Call) and n.func == "root" and n.args and uses(n.args[0], names):
@@ -148,7 +149,7 @@ class ParametricEntries:
             if isinstance(leaf, ex.Name) and leaf.name in self.constants:
                 self._fixed[id(leaf)] = (leaf, self._name(leaf.name, place))
                 continue
-            value = ex.evaluate_exact(leaf, {})
+            value = xp.evaluate_exact(leaf, {})
             if value is None:
                 raise UserError("only rational numbers and the family's constants may appear here", place)
             self._fixed[id(leaf)] = (leaf, self.ring.constant(value))
@@ -170,7 +171,7 @@ class ParametricEntries:
                     out.append((n, place))
                     continue
                 self._check_polynomial(n, place)
-                stack.extend(ex.polynomial_operands(n))
+                stack.extend(xp.polynomial_operands(n))
         return out
 
     def _check_polynomial(self, n: ex.Expr, place: str) -> None:
@@ -191,7 +192,7 @@ class ParametricEntries:
         ring = self.ring
 
         def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
-            return () if id(n) in self._fixed else ex.polynomial_operands(n)
+            return () if id(n) in self._fixed else xp.polynomial_operands(n)
 
         def combine(n: ex.Expr, vals: list[Any]) -> Any:
             if id(n) in self._fixed:
@@ -214,7 +215,7 @@ class ParametricEntries:
             raise UserError(f"cannot read this part of the entry as a polynomial (column {getattr(n, 'column', 1)})",
                             place)
 
-        return ex.fold(node, combine, operands)
+        return xp.fold(node, combine, operands)
 
     def _name(self, name: str, place: str) -> Any:
         if name in self.ring.parameters:
@@ -241,7 +242,7 @@ class ParametricEntries:
         return field(coeffs)
 
     def _power(self, base: Any, n: ex.Power, place: str) -> Any:
-        exponent = ex.evaluate_exact(n.exponent, {})
+        exponent = xp.evaluate_exact(n.exponent, {})
         if exponent is None or exponent.denominator != 1 or not 0 <= exponent <= 64:
             raise UserError(f"a power of a parameter needs a whole exponent from 0 to 64 (column {n.column})", place)
         out = self.ring.constant(1)

@@ -13,8 +13,8 @@ from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.expressions import to_text
 from rkcheck.numbers.formatting import ball_strings, decimal_string
-from rkcheck.numbers.grammar import to_text
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
 from rkcheck.version import __version__

@@ -372,7 +372,7 @@ def render_tableau(tab: Tableau, console: Console, decimals: DecimalsMode = Deci
     for ref in tab.info.references:
         console.print(Text(f"reference: {ref}", style="dim"))
     if tab.info.constants.definitions:
-        from rkcheck.numbers.grammar import to_text
+        from rkcheck.numbers.expressions import to_text
 
         consts = ", ".join(f"{k} = {to_text(v)}" for k, v in tab.info.constants.definitions.items())
         console.print(f"constants: {consts}")

@@ -268,12 +268,13 @@ def test_a_deep_expression_survives_a_scan_with_workers(tmp_path, capsys):
 def test_deep_expression_trees_pickle_without_recursion():
     import pickle
 
+    from rkcheck.numbers import expressions as xp
     from rkcheck.numbers import grammar as ex
 
     node = ex.parse(SQRT_SUM + " - root(x^3 - 2*x + 1, 2)*1.25e3 / -c^2")
     back = pickle.loads(pickle.dumps(node))
-    shape = [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in ex.walk(node)]
-    assert [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in ex.walk(back)] == shape
+    shape = [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in xp.walk(node)]
+    assert [(type(n).__name__, getattr(n, "op", None), getattr(n, "text", None)) for n in xp.walk(back)] == shape
 
 
 @pytest.mark.parametrize("fmt", ["python", "latex", "julia"])

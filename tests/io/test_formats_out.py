@@ -16,7 +16,7 @@ from support.paths import TABLEAUX, tableau_files
 
 from rkcheck.io.formats import to_json, to_julia, to_latex, to_python, to_toml, write
 from rkcheck.io.loader import load, loads
-from rkcheck.numbers.grammar import to_text
+from rkcheck.numbers.expressions import to_text
 
 # the tableaux (not the families or continuous-stage kernels), without [family] generators
 FILES = sorted(Path(f) for f in tableau_files() if f.endswith(".toml") and "[family]" not in Path(f).read_text())

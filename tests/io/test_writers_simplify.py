@@ -12,7 +12,7 @@ from support.paths import TABLEAUX
 
 from rkcheck.io.formats import to_julia, to_latex, to_python
 from rkcheck.io.loader import load, loads
-from rkcheck.numbers.grammar import to_text
+from rkcheck.numbers.expressions import to_text
 
 CASES = {
     # the two the issue quotes: c = A·1 of a row (-1/3, 1) and of a row (1, -1, 1)
