@@ -152,12 +152,12 @@ class RuleFraction:
 
 def solve_on_rules(family: Any, layout: Any, degree: int | None, order: int, classical: int | None,
                    extra: Sequence[Any], deadline: float) -> tuple[int, list[Component], list[Any]] | None:
-    """``(dimension of the rules, components, orbit results of the exceptional rules)``
+    """``(dimension of the rules, components, Galois orbits of the exceptional rules)``
     when the route applies
     (module docstring), else None.  The first component is the AVF methods over every
     rule of Q outside the exceptional ones (present when c bᵀ solves every condition
     there)."""
-    from rkcheck.energy.family_solve import quadrature_system
+    from rkcheck.energy.family_rules import quadrature_system
 
     if family.ring.field is not None:
         return None
@@ -184,8 +184,7 @@ def solve_on_rules(family: Any, layout: Any, degree: int | None, order: int, cla
     components: list[Component] = []
     if not at_avf:
         components.append(Component(dim, avf=True, equations=_avf_equations(family, rules, polys, nodes)))
-    return dim, components, [_orbit_result(family, layout, o, qctx, degree, order, classical, deadline)
-                        for o in exceptional]
+    return dim, components, exceptional
 
 
 def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], degree: int | None, order: int):
@@ -193,7 +192,7 @@ def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], de
     kernel coordinates' names and the D_f; None when c bᵀ does not solve the linear
     conditions on the rules."""
     from rkcheck.energy.double_bush import nullspace_exact
-    from rkcheck.energy.family_solve import double_bush_rows, row_sum_rows
+    from rkcheck.energy.family_rules import double_bush_rows, row_sum_rows
 
     s = family.stages
     gens = dict(zip(rules.names, rules.ctx.gens()))
@@ -300,7 +299,7 @@ def _exceptional_orbits(polys: list[Any], qctx: Any, sets: list[list[dict]], dea
     """The Galois orbits of the rules in the union of the zero sets of ``Q + set`` for
     each set, each orbit once — told apart by the reduced Gröbner basis of its points,
     which is unique (None when one of the sets is infinite)."""
-    from rkcheck.energy.family_solve import finite_orbits
+    from rkcheck.energy.family_rules import finite_orbits
     from rkcheck.numbers.points import points_basis
 
     names = tuple(qctx.names())
@@ -319,13 +318,6 @@ def _exceptional_orbits(polys: list[Any], qctx: Any, sets: list[list[dict]], dea
 
 def _in_ctx(d: dict, ctx: Any) -> Any:
     return ctx.from_dict({m: int(c) for m, c in d.items()})
-
-
-def _orbit_result(family: Any, layout: Any, orbit: Any, qctx: Any, degree: int | None, order: int,
-                  classical: int | None, deadline: float) -> Any:
-    from rkcheck.energy.family_solve import solve_orbit
-
-    return solve_orbit(family, layout, orbit, qctx, degree, order, classical, deadline)
 
 
 def _avf_equations(family: Any, rules: RuleRing, polys: list[Any], nodes: list[str]) -> list[Any]:

@@ -12,7 +12,8 @@ import pytest
 from support.paths import TABLEAUX
 
 import rkcheck
-from rkcheck.energy.family_solve import double_bush_rows, star_constant
+from rkcheck.energy.family_rules import double_bush_rows
+from rkcheck.energy.family_solve import star_constant
 
 FAMILIES = TABLEAUX / "families"
 
