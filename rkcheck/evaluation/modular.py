@@ -53,10 +53,6 @@ from typing import Any
 
 import numpy as np
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
 from rkcheck.evaluation.scaled import ScaledTableau
 
 # ---------------------------------------------------------------------- results
@@ -128,10 +124,10 @@ class ExactOrderSums:
         chosen = self.tableau.primes_for(self.value_bits)
         extra = chosen[len(self.primes):]
         if extra:
-            more = np.zeros((len(self.residues), len(extra), self.tableau.degree), dtype=self.residues.dtype)
-            for i, (p, roots) in enumerate(extra):
-                more[:, i, :] = self.tableau.residues_at(self.listing, p, roots, [self.vertices])[self.vertices]
-            self.residues = np.concatenate([self.residues, more], axis=1)
+            step = self.tableau.primes_per_pass(self.listing, self.vertices)
+            more = [self.tableau.residues_at(self.listing, extra[i:i + step], [self.vertices])[self.vertices]
+                    for i in range(0, len(extra), step)]
+            self.residues = np.concatenate([self.residues, *(m.astype(self.residues.dtype) for m in more)], axis=1)
             self.primes = list(self.primes) + list(extra)
         self.value_bits = 0
 
@@ -202,7 +198,9 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
 
 def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
-    enough channels for each order's bound.  ``on_pass(done, total)`` after each prime.
+    enough channels for each order's bound, as many primes per pass over the listing as
+    fit (:meth:`ScaledTableau.primes_per_pass`).  ``on_pass(done, total)`` after each pass,
+    in primes.
     On Ctrl-C, :class:`~rkcheck.evaluation.algorithm.EvaluationInterrupted` carries the
     orders whose primes were all done (low orders need fewer primes: they finish first)."""
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
@@ -233,14 +231,18 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
+    # as many primes per pass as the pass's weights allow (ScaledTableau.primes_per_pass);
+    # an order takes the residues of its own primes, no more
+    step = scaled.primes_per_pass(listing, wanted[-1]) if wanted else 1
     done = 0
     try:
-        for i, (p, roots) in enumerate(channels[:passes]):
+        for i in range(0, passes, step):
+            j = min(passes, i + step)
             orders_i = [n for n in wanted if i < count[n]]
-            at_p = scaled.residues_at(listing, p, roots, orders_i)
+            at = scaled.residues_at(listing, channels[i:j], orders_i)
             for n in orders_i:
-                residues[n][:, i, :] = at_p[n]
-            done = i + 1
+                residues[n][:, i:min(j, count[n]), :] = at[n][:, :min(j, count[n]) - i, :]
+            done = j
             if on_pass is not None:
                 on_pass(done, passes)
     except KeyboardInterrupt:

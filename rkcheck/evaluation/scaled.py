@@ -13,21 +13,12 @@ from typing import Any, Sequence, cast
 
 import numpy as np
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
-from rkcheck.evaluation.channels import (
-    ModularChannel,
-    RootsChannel,
-    primes,
-)
+from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
-MAX_BATCHED_TREES = 1500
+#: the weights one pass holds (Φ and ψ of the trees with up to N − 1 vertices, a and w
+#: up to N; 4 bytes per channel each) may take this much memory: the channels of a check
+#: run together as long as they fit, so that every gather serves all of them
+PASS_BYTES = 1 << 29
 
 
 #: How many primes the exact route may try in search of those over which the field splits
@@ -200,19 +191,29 @@ class ScaledTableau:
     def channel(self, p: int, root: int) -> ModularChannel:
         return ModularChannel(p, *self._images(p, root))
 
-    def roots_channel(self, p: int, roots: Sequence[int]) -> RootsChannel:
-        images = [self._images(p, r) for r in roots]
-        return RootsChannel(p, np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
+    def channels(self, chosen: Sequence[tuple[int, Sequence[int]]]) -> PrimeChannels:
+        """One context for every root of every prime in ``chosen`` (prime-major)."""
+        images = [self._images(p, r) for p, roots in chosen for r in roots]
+        moduli = [p for p, roots in chosen for _ in roots]
+        return PrimeChannels(moduli, np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
 
-    def residues_at(self, listing: Any, p: int, roots: Sequence[int], orders: list[int]) -> dict[int, np.ndarray]:
-        """``{n: (conditions, roots) residues}`` of the given orders at one prime: all roots
-        in one pass on small listings, else root by root (:data:`MAX_BATCHED_TREES`)."""
+    def primes_per_pass(self, listing: Any, top: int) -> int:
+        """How many primes (each with its D roots) one pass over the listing evaluates for
+        orders up to ``top`` vertices within :data:`PASS_BYTES`; at least one."""
+        first = listing.first
+        trees_a = first[min(top, len(first) - 1)]
+        trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
+        per_channel = 4 * (2 * trees_phi * self.s + 2 * trees_a)
+        return max(1, PASS_BYTES // (per_channel * self.degree))
+
+    def residues_at(self, listing: Any, chosen: Sequence[tuple[int, Sequence[int]]],
+                    orders: list[int]) -> dict[int, np.ndarray]:
+        """``{n: (conditions, primes, roots) residues}`` of the given orders at the primes
+        ``chosen`` (each with its roots), all in one pass."""
         from rkcheck.evaluation.algorithm import condition_sums
 
-        if len(roots) > 1 and listing.first[max(orders)] <= MAX_BATCHED_TREES:
-            return condition_sums(listing, self.roots_channel(p, roots), self.s, orders)
-        per_root = [condition_sums(listing, self.channel(p, r), self.s, orders) for r in roots]
-        return {n: np.stack([sums[n] for sums in per_root], axis=1) for n in orders}
+        sums = condition_sums(listing, self.channels(chosen), self.s, orders)
+        return {n: sums[n].reshape(len(sums[n]), len(chosen), self.degree) for n in orders}
 
 
 def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:
