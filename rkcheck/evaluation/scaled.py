@@ -15,9 +15,9 @@ import numpy as np
 
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 
-#: the weights one pass holds (Φ and ψ of the trees with up to N − 1 vertices, a and w
-#: up to N; 4 bytes per channel each) may take this much memory: the channels of a check
-#: run together as long as they fit, so that every gather serves all of them
+#: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
+#: memory: the channels of a check run together as long as they fit, so that the work on
+#: indices (tree ids, factors, conditions) is done once for all of them
 PASS_BYTES = 1 << 29
 
 
@@ -191,29 +191,27 @@ class ScaledTableau:
     def channel(self, p: int, root: int) -> ModularChannel:
         return ModularChannel(p, *self._images(p, root))
 
-    def channels(self, chosen: Sequence[tuple[int, Sequence[int]]]) -> PrimeChannels:
-        """One context for every root of every prime in ``chosen`` (prime-major)."""
-        images = [self._images(p, r) for p, roots in chosen for r in roots]
-        moduli = [p for p, roots in chosen for _ in roots]
-        return PrimeChannels(moduli, np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
+    def channels(self, pairs: Sequence[tuple[int, int]]) -> PrimeChannels:
+        """One context for the channels ``(p, root)`` in ``pairs``, in that order."""
+        images = [self._images(p, r) for p, r in pairs]
+        return PrimeChannels([p for p, _ in pairs], np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
 
-    def primes_per_pass(self, listing: Any, top: int) -> int:
-        """How many primes (each with its D roots) one pass over the listing evaluates for
-        orders up to ``top`` vertices within :data:`PASS_BYTES`; at least one."""
+    def channels_per_pass(self, listing: Any, top: int) -> int:
+        """How many channels one pass over the listing evaluates for orders up to ``top``
+        vertices within :data:`PASS_BYTES` (at least one): Φ and ψ of the trees with up to
+        ``top − 2`` vertices, a and w up to ``top − 1``, 4 bytes each per channel."""
         first = listing.first
         trees_a = first[min(top, len(first) - 1)]
         trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
         per_channel = 4 * (2 * trees_phi * self.s + 2 * trees_a)
-        return max(1, PASS_BYTES // (per_channel * self.degree))
+        return max(1, PASS_BYTES // per_channel)
 
-    def residues_at(self, listing: Any, chosen: Sequence[tuple[int, Sequence[int]]],
-                    orders: list[int]) -> dict[int, np.ndarray]:
-        """``{n: (conditions, primes, roots) residues}`` of the given orders at the primes
-        ``chosen`` (each with its roots), all in one pass."""
+    def residues_at(self, listing: Any, pairs: Sequence[tuple[int, int]], orders: list[int]) -> dict[int, np.ndarray]:
+        """``{n: (conditions, channels) residues}`` of the given orders in the channels
+        ``(p, root)`` of ``pairs``, all in one pass."""
         from rkcheck.evaluation.algorithm import condition_sums
 
-        sums = condition_sums(listing, self.channels(chosen), self.s, orders)
-        return {n: sums[n].reshape(len(sums[n]), len(chosen), self.degree) for n in orders}
+        return condition_sums(listing, self.channels(pairs), self.s, orders)
 
 
 def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:

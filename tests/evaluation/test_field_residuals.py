@@ -274,19 +274,21 @@ def test_channels_in_one_pass_equal_channel_by_channel(path, monkeypatch):
     scaled = scaled_field(load(str(TABLEAUX / path)).exact_values())
     listing = ConditionListing(9, None)
     orders = sorted(listing.orders)
-    chosen = scaled.primes_for(120)
-    batched = scaled.residues_at(listing, chosen, orders)
-    for i, (p, roots) in enumerate(chosen):
-        for j, r in enumerate(roots):
-            alone = condition_sums(listing, scaled.channel(p, r), scaled.s, orders)
-            for n in orders:
-                assert np.array_equal(batched[n][:, i, j], alone[n]), (n, p, r)
+    pairs = [(p, r) for p, roots in scaled.primes_for(120) for r in roots]
+    batched = scaled.residues_at(listing, pairs, orders)
+    for c, (p, r) in enumerate(pairs):
+        alone = condition_sums(listing, scaled.channel(p, r), scaled.s, orders)
+        for n in orders:
+            assert np.array_equal(batched[n][:, c], alone[n]), (n, p, r)
     all_at_once = exact_condition_sums(scaled, listing)
-    monkeypatch.setattr(scaled_module, "PASS_BYTES", 0)
+    values = {n: [all_at_once[n].value(k) for k in range(len(all_at_once[n]))] for n in (3, 4, 5, 6)}
+    monkeypatch.setattr(scaled_module, "PASS_BYTES", 0)  # one channel per pass: a prime's roots split
     one_by_one = exact_condition_sums(scaled, listing)
     for n in one_by_one:
         assert one_by_one[n].primes == all_at_once[n].primes, n
         assert np.array_equal(one_by_one[n].residues, all_at_once[n].residues), n
+    for n, expected in values.items():  # values that need primes beyond the decision's, too
+        assert [one_by_one[n].value(k) for k in range(len(one_by_one[n]))] == expected, n
 
 
 def test_values_through_the_dual_basis_bound_equal_sympy(monkeypatch):
