@@ -233,35 +233,41 @@ class _Bins:
     """The condition sums of every channel, in float64 (a condition sums at most 21
     residues below 2^29: exact).  The terms' residues are binned in runs of many blocks:
     ``np.bincount`` costs the number of bins on every call, and at the top orders a
-    block of terms is far smaller than the millions of conditions it lands in."""
+    block of terms is far smaller than the millions of conditions it lands in.  A run
+    is gathered in a float64 buffer (the cast bincount would make anyway)."""
 
     def __init__(self, width: int, k: int):
         self.sums = np.zeros((width, k), dtype=np.float64)
-        self.limit = min(max(k, _MIN_RUN), max(_MAX_RUN // width, _MIN_RUN))  # rows per run
-        self._pending: list[np.ndarray] = []
-        self._lo = self._hi = 0
+        run = min(max(k, _MIN_RUN), max(_MAX_RUN // width, _MIN_RUN))
+        self._buffer = np.empty((width, run), dtype=np.float64)
+        self._used = self._lo = 0
         self._condition: np.ndarray | None = None
 
     def add(self, w: np.ndarray, condition: np.ndarray, i0: int, i1: int) -> None:
-        if self._pending and (i0 != self._hi or condition is not self._condition):
+        """The residues ``w`` (channels × terms) of the terms ``i0 … i1 − 1``."""
+        rows, room = i1 - i0, self._buffer.shape[1]
+        if self._used and (i0 != self._lo + self._used or condition is not self._condition
+                           or self._used + rows > room):
             self._flush()
-        if not self._pending:
+        if rows > room:
+            self._bin(w.astype(np.float64), condition[i0:i1])
+            return
+        if not self._used:
             self._lo, self._condition = i0, condition
-        self._pending.append(w)
-        self._hi = i1
-        if self._hi - self._lo >= self.limit:
-            self._flush()
+        self._buffer[:, self._used:self._used + rows] = w
+        self._used += rows
 
     def _flush(self) -> None:
-        if not self._pending:
-            return
-        assert self._condition is not None
-        w = self._pending[0] if len(self._pending) == 1 else np.concatenate(self._pending, axis=1)
-        cond = self._condition[self._lo:self._hi]
+        if self._used:
+            assert self._condition is not None
+            self._bin(self._buffer[:, :self._used], self._condition[self._lo:self._lo + self._used])
+            self._used = 0
+
+    def _bin(self, w: np.ndarray, condition: np.ndarray) -> None:
+        cond = condition.astype(np.intp)  # once for all channels (bincount would, per call)
         bins = self.sums.shape[1]
         for k in range(len(self.sums)):
             self.sums[k] += np.bincount(cond, weights=w[k], minlength=bins)
-        self._pending = []
 
     def total(self) -> np.ndarray:
         self._flush()
