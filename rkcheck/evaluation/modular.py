@@ -201,8 +201,8 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
 def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
     enough channels for each order's bound, as many channels per pass over the listing
-    as fit (:func:`channel_passes`).  ``on_pass(done, total)`` after each pass,
-    in primes.
+    as fit (:func:`channel_passes`).  ``on_pass(done, total)`` after each pass that
+    completes primes (counted in primes: every root of each done).
     On Ctrl-C, :class:`~rkcheck.evaluation.algorithm.EvaluationInterrupted` carries the
     orders whose primes were all done (low orders need fewer primes: they finish first)."""
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
