@@ -143,8 +143,11 @@ class _CentreWalk:
         distinct σ: a binary search in them costs a quarter of sorting every chunk."""
         known, ids = self._sigma_sorted, self._sigma_ids_sorted
         pos = np.searchsorted(known, sigma)
-        if len(known) == 0 or not np.array_equal(known[np.minimum(pos, len(known) - 1)], sigma):
-            for v in np.unique(sigma).tolist():
+        new = sigma if len(known) == 0 else sigma[known[np.minimum(pos, len(known) - 1)] != sigma]
+        if len(new):
+            # sorted and deduplicated by hand: np.unique would import numpy.ma (start-up)
+            new = np.sort(new)
+            for v in new[np.concatenate(([True], new[1:] != new[:-1]))].tolist():
                 self.sigma_of.setdefault(v, len(self.sigma_of))
             if len(self.sigma_of) >= 2**14:  # pragma: no cover - far beyond 21 vertices
                 raise OverflowError("too many distinct symmetry factors for an int16 index")
