@@ -100,6 +100,8 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                 ctx.put(phi, a0, phi_n)
                 ctx.put(psi, a0, ctx.matvec(phi_n))
             del phi_n
+        if n == top - 1:  # the trees with top vertices need only w and a: free Φ and ψ first
+            phi = psi = None
         terms = listing.orders.get(n) if n in wanted else None
         if terms is not None:
             acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
@@ -109,8 +111,7 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                     w_terms = ctx.take(w, np.arange(terms.first_id + t0, terms.first_id + t1))
                 else:  # w(u ∘ v) = w(u)·a(v), from the factors
                     if terms.first_id is not None:
-                        ids = np.arange(terms.first_id + t0, terms.first_id + t1)
-                        U, V = left[ids], right[ids]
+                        U, V = left[terms.first_id + t0:terms.first_id + t1], right[terms.first_id + t0:terms.first_id + t1]
                     else:
                         assert terms.left is not None and terms.right is not None  # top order: factors kept
                         U, V = terms.left[t0:t1], terms.right[t0:t1]

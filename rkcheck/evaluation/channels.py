@@ -1,7 +1,9 @@
-"""Prime channels of the exact evaluation: arithmetic modulo one prime ``p`` (rationals)
-or modulo ``p`` at the roots of the minimal polynomial (number fields), on numpy int64
-arrays — one :class:`~rkcheck.evaluation.protocols.NumberContext` per prime and root.
-Why primes decide exactly: :mod:`rkcheck.evaluation.modular`.
+"""Prime channels of the exact evaluation: arithmetic modulo a prime ``p`` (rationals) or
+modulo ``p`` at a root of the minimal polynomial (number fields), on numpy int64 arrays.
+:class:`PrimeChannels` runs many channels in one pass over the listing (the exact
+route); :class:`ModularChannel` is a single one (order conditions, and the reference
+the batched pass is tested against).  Why primes decide exactly:
+:mod:`rkcheck.evaluation.modular`.
 """
 
 from __future__ import annotations
@@ -143,50 +145,62 @@ class ModularChannel:
         return cached[1]
 
 
-class RootsChannel(ModularChannel):
-    """All ``R`` roots of one prime at once: the channels ``θ ↦ r_1 … r_R`` modulo the same
-    ``p`` share every index operation, so they run as one pass over arrays with a leading
-    root axis — vectors ``(R, n, s)``, scalars ``(R, n)`` — instead of ``R`` passes (the
-    per-call overhead of numpy dominates at the sizes of a field check).  Results are
-    the same residues, bit for bit, as ``R`` separate :class:`ModularChannel` passes."""
+class PrimeChannels:
+    """Several channels in one pass: channel ``k`` computes modulo ``P[k]`` with the images
+    ``A[k]``, ``b[k]`` of the tableau (distinct primes, the roots of one prime, or both).
 
-    def __init__(self, p: int, A: np.ndarray, b: np.ndarray):
-        # A: (R, s, s), b: (R, s) — the images of Â and b̂ under each root
-        self.p = p
-        self._coef_cache = {}
-        self.R = self.width = A.shape[0]
-        self.A_t = np.ascontiguousarray(np.transpose(A, (0, 2, 1)) % p)  # x @ Aᵀ per root
-        self.b = np.ascontiguousarray((b % p)[:, :, None])  # (R, s, 1)
+    Every array has a leading channel axis (vectors ``(K, n, s)``, scalars ``(K, n)``), so
+    each arithmetic call runs over long contiguous rows, and a block of rows costs one
+    call per operation for all channels: the tree ids, factors, conditions and
+    coefficient indices are read once per pass instead of once per channel.  Results are
+    the same residues, bit for bit, as one :class:`ModularChannel` pass per channel."""
+
+    exact = True
+
+    def __init__(self, moduli: list[int], A: np.ndarray, b: np.ndarray):
+        # A: (K, s, s), b: (K, s) — the images of Â and b̂ in each channel
+        self.width = len(moduli)
+        self.P = np.array(moduli, dtype=np.int64)
         self.s = b.shape[1]
+        self.A_t = np.ascontiguousarray(np.transpose(np.asarray(A, dtype=np.int64) % self.P[:, None, None], (0, 2, 1)))
+        self.b = np.ascontiguousarray((np.asarray(b, dtype=np.int64) % self.P[:, None])[:, :, None])  # (K, s, 1)
+        self._P2, self._P3 = self.P[:, None], self.P[:, None, None]
+        self._coef_cache: dict[int, tuple] = {}
 
     def vectors(self, n: int, s: int) -> np.ndarray:
-        return np.zeros((self.R, n, s), dtype=np.int32)
+        return np.zeros((self.width, n, s), dtype=np.int32)
 
     def scalars(self, n: int) -> np.ndarray:
-        return np.zeros((self.R, n), dtype=np.int32)
+        return np.zeros((self.width, n), dtype=np.int32)
 
     def ones(self, k: int, s: int) -> np.ndarray:
-        return np.ones((self.R, k, s), dtype=np.int64)
+        return np.ones((self.width, k, s), dtype=np.int64)
 
     def one(self, k: int) -> np.ndarray:
-        return np.ones((self.R, k), dtype=np.int64)
+        return np.ones((self.width, k), dtype=np.int64)
 
     def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return x[:, idx].astype(np.int64)
+        return np.take(x, idx, axis=1).astype(np.int64)
 
     def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
         store[:, lo:lo + x.shape[1]] = x
 
+    def _reduce(self, z: np.ndarray) -> np.ndarray:
+        z %= self._P3 if z.ndim == 3 else self._P2
+        return z
+
+    def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return self._reduce(x * y)
+
     def _product(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
-        """``x @ M`` per root modulo p, in slices of 32 stages (no int64 overflow)."""
+        """``x[k] @ M[k]`` per channel modulo ``P[k]``, in slices of 32 stages (a sum of
+        32 products of residues stays below 2^63)."""
         if self.s <= 32:
-            z = x @ M
-            z %= self.p
-            return z
+            return self._reduce(np.matmul(x, M))
         z = np.zeros(x.shape[:2] + M.shape[2:], dtype=np.int64)
         for k in range(0, self.s, 32):
-            z += (x[:, :, k:k + 32] @ M[:, k:k + 32]) % self.p
-            z %= self.p
+            z += self._reduce(np.matmul(x[:, :, k:k + 32], M[:, k:k + 32]))
+            self._reduce(z)
         return z
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
@@ -195,20 +209,75 @@ class RootsChannel(ModularChannel):
     def dot(self, x: np.ndarray) -> np.ndarray:
         return self._product(x, self.b)[:, :, 0]
 
-    def sums(self, k: int, n: int) -> np.ndarray:
-        return np.zeros((self.R, k), dtype=np.float64)
+    def sums(self, k: int, n: int) -> "_Bins":
+        return _Bins(self.width, k)
 
-    def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
-        p = self.p
-        w_terms *= self._coefficients(terms, n)[terms.coefficient_index[i0:i1]]
-        w_terms %= p
-        cond = terms.condition[i0:i1]
-        for r in range(self.R):
-            acc[r] += np.bincount(cond, weights=w_terms[r], minlength=acc.shape[1])
+    def add_terms(self, acc: "_Bins", w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
+        """Add ``((n−1)!/σ)·(±ŵ)`` modulo each channel's prime to the conditions' bins."""
+        w_terms *= np.take(self._coefficients(terms, n), terms.coefficient_index[i0:i1], axis=1)
+        acc.add(self._reduce(w_terms), terms.condition, i0, i1)
 
-    def finish_sums(self, acc: np.ndarray, k: int, n: int) -> np.ndarray:
-        """The residues per condition and root, ``(k, R)``."""
-        return (acc[:, :k].astype(np.int64) % self.p).T
+    def finish_sums(self, acc: "_Bins", k: int, n: int) -> np.ndarray:
+        """The residues per condition and channel, ``(k, K)``."""
+        return (acc.total()[:, :k].astype(np.int64) % self._P2).T
+
+    def _coefficients(self, terms, n: int) -> np.ndarray:
+        cached = self._coef_cache.get(n)
+        if cached is None or cached[0] is not terms:
+            table = np.array([[c % p for c in terms.coefficients] for p in self.P.tolist()], dtype=np.int64)
+            cached = self._coef_cache[n] = (terms, table)  # signs as residues
+        return cached[1]
+
+
+class _Bins:
+    """The condition sums of every channel, in float64 (a condition sums at most 21
+    residues below 2^29: exact).  The terms' residues are binned in runs of many blocks:
+    ``np.bincount`` costs the number of bins on every call, and at the top orders a
+    block of terms is far smaller than the millions of conditions it lands in.  A run
+    is gathered in a float64 buffer (the cast bincount would make anyway)."""
+
+    def __init__(self, width: int, k: int):
+        self.sums = np.zeros((width, k), dtype=np.float64)
+        run = min(max(k, _MIN_RUN), max(_MAX_RUN // width, _MIN_RUN))
+        self._buffer = np.empty((width, run), dtype=np.float64)
+        self._used = self._lo = 0
+        self._condition: np.ndarray | None = None
+
+    def add(self, w: np.ndarray, condition: np.ndarray, i0: int, i1: int) -> None:
+        """The residues ``w`` (channels × terms) of the terms ``i0 … i1 − 1``."""
+        rows, room = i1 - i0, self._buffer.shape[1]
+        if self._used and (i0 != self._lo + self._used or condition is not self._condition
+                           or self._used + rows > room):
+            self._flush()
+        if rows > room:
+            self._bin(w.astype(np.float64), condition[i0:i1])
+            return
+        if not self._used:
+            self._lo, self._condition = i0, condition
+        self._buffer[:, self._used:self._used + rows] = w
+        self._used += rows
+
+    def _flush(self) -> None:
+        if self._used:
+            assert self._condition is not None
+            self._bin(self._buffer[:, :self._used], self._condition[self._lo:self._lo + self._used])
+            self._used = 0
+
+    def _bin(self, w: np.ndarray, condition: np.ndarray) -> None:
+        cond = condition.astype(np.intp)  # once for all channels (bincount would, per call)
+        bins = self.sums.shape[1]
+        for k in range(len(self.sums)):
+            self.sums[k] += np.bincount(cond, weights=w[k], minlength=bins)
+
+    def total(self) -> np.ndarray:
+        self._flush()
+        return self.sums
+
+
+#: rows of terms binned at once (at least, and at most in all channels together): runs
+#: at least as long as the conditions are many keep bincount's cost per term bounded
+_MIN_RUN = 1 << 14
+_MAX_RUN = 1 << 22
 
 
 def _chunked_dot(x: np.ndarray, b: np.ndarray, p: int) -> np.ndarray:

@@ -49,14 +49,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
 from rkcheck.evaluation.scaled import ScaledTableau
 
 # ---------------------------------------------------------------------- results
@@ -128,9 +124,11 @@ class ExactOrderSums:
         chosen = self.tableau.primes_for(self.value_bits)
         extra = chosen[len(self.primes):]
         if extra:
+            n = self.vertices
             more = np.zeros((len(self.residues), len(extra), self.tableau.degree), dtype=self.residues.dtype)
-            for i, (p, roots) in enumerate(extra):
-                more[:, i, :] = self.tableau.residues_at(self.listing, p, roots, [self.vertices])[self.vertices]
+            for group, at in channel_passes(self.tableau, self.listing, extra, lambda i: [n], n):
+                for c, (i, j, _, _) in enumerate(group):
+                    more[:, i, j] = at[n][:, c]
             self.residues = np.concatenate([self.residues, more], axis=1)
             self.primes = list(self.primes) + list(extra)
         self.value_bits = 0
@@ -202,7 +200,9 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
 
 def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
-    enough channels for each order's bound.  ``on_pass(done, total)`` after each prime.
+    enough channels for each order's bound, as many channels per pass over the listing
+    as fit (:func:`channel_passes`).  ``on_pass(done, total)`` after each pass that
+    completes primes (counted in primes: every root of each done).
     On Ctrl-C, :class:`~rkcheck.evaluation.algorithm.EvaluationInterrupted` carries the
     orders whose primes were all done (low orders need fewer primes: they finish first)."""
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
@@ -235,14 +235,33 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
 
     done = 0
     try:
-        for i, (p, roots) in enumerate(channels[:passes]):
-            orders_i = [n for n in wanted if i < count[n]]
-            at_p = scaled.residues_at(listing, p, roots, orders_i)
-            for n in orders_i:
-                residues[n][:, i, :] = at_p[n]
-            done = i + 1
-            if on_pass is not None:
-                on_pass(done, passes)
+        for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
+                                        wanted[-1] if wanted else 0):
+            for n, sums in at.items():  # an order keeps the residues of its own primes, no more
+                for c, (i, j, _, _) in enumerate(group):
+                    if i < count[n]:
+                        residues[n][:, i, j] = sums[:, c]
+            i, j = group[-1][:2]
+            finished = i + 1 if j == len(channels[i][1]) - 1 else i  # primes with every root done
+            if finished > done:
+                done = finished
+                if on_pass is not None:
+                    on_pass(done, passes)
     except KeyboardInterrupt:
         raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
     return {n: result(n) for n in wanted}
+
+
+def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
+                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
+    """The channels of the primes ``chosen`` (prime i, root j), evaluated in passes of as
+    many as :meth:`ScaledTableau.channels_per_pass` allows, in order: yields ``(group,
+    sums)`` with ``group`` the pass's ``(i, j, p, r)`` and ``sums[n]`` its residues
+    ``(conditions, len(group))`` for the orders ``orders_for(i)`` of its first prime."""
+    flat = [(i, j, p, r) for i, (p, roots) in enumerate(chosen) for j, r in enumerate(roots)]
+    if not flat:
+        return
+    width = scaled.channels_per_pass(listing, top)
+    for g in range(0, len(flat), width):
+        group = flat[g:g + width]
+        yield group, scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders_for(group[0][0]))

@@ -13,21 +13,14 @@ from typing import Any, Sequence, cast
 
 import numpy as np
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
-from rkcheck.evaluation.channels import (
-    ModularChannel,
-    RootsChannel,
-    primes,
-)
+from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 
-#: all roots of a prime run in one pass while at most this many trees are stored (orders
-#: up to 10): there numpy's per-call overhead dominates and one pass is 2.5–3× faster than
-#: root by root; on larger listings the strided root axis costs more than it saves
-#: (measured on Gauss-3/4/5, orders 8–13)
-MAX_BATCHED_TREES = 1500
+#: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
+#: memory: channels run together while their weights fit, so that on small listings the
+#: cost of each numpy call is shared (a field's 80 channels at order 10–12: 1.5–4× faster);
+#: on larger ones a pass per channel is faster (RK4 at orders 16–18: 10–20 %), its hot
+#: weights (the small subtrees every product reads) staying in the caches
+PASS_BYTES = 8 << 20
 
 
 #: How many primes the exact route may try in search of those over which the field splits
@@ -200,19 +193,27 @@ class ScaledTableau:
     def channel(self, p: int, root: int) -> ModularChannel:
         return ModularChannel(p, *self._images(p, root))
 
-    def roots_channel(self, p: int, roots: Sequence[int]) -> RootsChannel:
-        images = [self._images(p, r) for r in roots]
-        return RootsChannel(p, np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
+    def channels(self, pairs: Sequence[tuple[int, int]]) -> PrimeChannels:
+        """One context for the channels ``(p, root)`` in ``pairs``, in that order."""
+        images = [self._images(p, r) for p, r in pairs]
+        return PrimeChannels([p for p, _ in pairs], np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
 
-    def residues_at(self, listing: Any, p: int, roots: Sequence[int], orders: list[int]) -> dict[int, np.ndarray]:
-        """``{n: (conditions, roots) residues}`` of the given orders at one prime: all roots
-        in one pass on small listings, else root by root (:data:`MAX_BATCHED_TREES`)."""
+    def channels_per_pass(self, listing: Any, top: int) -> int:
+        """How many channels one pass over the listing evaluates for orders up to ``top``
+        vertices within :data:`PASS_BYTES` (at least one): Φ and ψ of the trees with up to
+        ``top − 2`` vertices, a and w up to ``top − 1``, 4 bytes each per channel."""
+        first = listing.first
+        trees_a = first[min(top, len(first) - 1)]
+        trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
+        per_channel = 4 * (2 * trees_phi * self.s + 2 * trees_a)
+        return max(1, PASS_BYTES // per_channel)
+
+    def residues_at(self, listing: Any, pairs: Sequence[tuple[int, int]], orders: list[int]) -> dict[int, np.ndarray]:
+        """``{n: (conditions, channels) residues}`` of the given orders in the channels
+        ``(p, root)`` of ``pairs``, all in one pass."""
         from rkcheck.evaluation.algorithm import condition_sums
 
-        if len(roots) > 1 and listing.first[max(orders)] <= MAX_BATCHED_TREES:
-            return condition_sums(listing, self.roots_channel(p, roots), self.s, orders)
-        per_root = [condition_sums(listing, self.channel(p, r), self.s, orders) for r in roots]
-        return {n: np.stack([sums[n] for sums in per_root], axis=1) for n in orders}
+        return condition_sums(listing, self.channels(pairs), self.s, orders)
 
 
 def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:

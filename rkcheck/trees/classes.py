@@ -107,6 +107,8 @@ class _CentreWalk:
         self.parity = np.zeros(size, dtype=np.int8)
         self.sigma_index = np.empty(size, dtype=np.int16)  # distinct σ per order: a few thousand
         self.sigma_of: dict[int, int] = {}
+        self._sigma_sorted = np.zeros(0, dtype=np.int64)  # the keys of sigma_of, sorted
+        self._sigma_ids_sorted = np.zeros(0, dtype=np.int16)  # and their indices
         self.parts: list[dict[str, np.ndarray]] = []  # the representatives, found chunk by chunk
         self.superfluous = 0
 
@@ -133,11 +135,26 @@ class _CentreWalk:
             "tall": np.where(two, at["tall"][r], -1), "rest": np.where(two, at["rest"][r], -1),
             "max_degree": np.maximum(at["nchild"][r], at["inner_max"][r]),
         })
-        values, inverse = np.unique(at["sigma"], return_inverse=True)
-        ids = np.array([self.sigma_of.setdefault(int(v), len(self.sigma_of)) for v in values], dtype=np.int32)
-        if len(self.sigma_of) >= 2**14:  # pragma: no cover - far beyond 21 vertices
-            raise OverflowError("too many distinct symmetry factors for an int16 index")
-        self.sigma_index[a:a + len(gap)] = ids[inverse]
+        self.sigma_index[a:a + len(gap)] = self._sigma_ids(at["sigma"])
+
+    def _sigma_ids(self, sigma: np.ndarray) -> np.ndarray:
+        """The index of each σ among the order's distinct values, numbered as they first
+        appear (chunk by chunk, ascending within a chunk).  An order has a few hundred
+        distinct σ: a binary search in them costs a quarter of sorting every chunk."""
+        known, ids = self._sigma_sorted, self._sigma_ids_sorted
+        pos = np.searchsorted(known, sigma)
+        new = sigma if len(known) == 0 else sigma[known[np.minimum(pos, len(known) - 1)] != sigma]
+        if len(new):
+            # sorted and deduplicated by hand: np.unique would import numpy.ma (start-up)
+            new = np.sort(new)
+            for v in new[np.concatenate(([True], new[1:] != new[:-1]))].tolist():
+                self.sigma_of.setdefault(v, len(self.sigma_of))
+            if len(self.sigma_of) >= 2**14:  # pragma: no cover - far beyond 21 vertices
+                raise OverflowError("too many distinct symmetry factors for an int16 index")
+            known = self._sigma_sorted = np.array(sorted(self.sigma_of), dtype=np.int64)
+            ids = self._sigma_ids_sorted = np.array([self.sigma_of[v] for v in known.tolist()], dtype=np.int16)
+            pos = np.searchsorted(known, sigma)
+        return ids[pos]
 
     def representatives(self) -> dict[str, np.ndarray]:
         """The representatives' local ids, factors and shape data, in id order."""

@@ -258,26 +258,37 @@ def test_the_norm_decision_needs_fewer_primes_for_gauss_5():
     assert len(scaled.primes_for(scaled.decision_bits(10, terms))) < len(scaled.primes_for(scaled.coefficient_bits(10, terms))) / 2
 
 
-@pytest.mark.parametrize("path", ["collocation/gauss-5.toml", "avf/avf-gauss-4.toml", "collocation/radau-iia-3.toml"])
-def test_all_roots_in_one_pass_equal_root_by_root(path, monkeypatch):
-    # the batched channel (every root of a prime in one pass) against separate passes:
-    # the same residues, bit for bit, for every condition up to order 9
+@pytest.mark.parametrize("path", ["collocation/gauss-5.toml", "avf/avf-gauss-4.toml", "collocation/radau-iia-3.toml",
+                                  "explicit/rk4.toml"])
+def test_channels_in_one_pass_equal_channel_by_channel(path, monkeypatch):
+    # every root of every prime in one pass (PrimeChannels) against one ModularChannel
+    # pass per (prime, root): the same residues, bit for bit, for every condition up to
+    # order 9; and the exact sums with one prime per pass equal those with all at once
     import numpy as np
     from support.paths import TABLEAUX
 
+    import rkcheck.evaluation.scaled as scaled_module
+    from rkcheck.evaluation.algorithm import condition_sums
     from rkcheck.io.loader import load
 
     scaled = scaled_field(load(str(TABLEAUX / path)).exact_values())
-    assert scaled.degree > 1
     listing = ConditionListing(9, None)
-    import rkcheck.evaluation.scaled as scaled_module
-
-    monkeypatch.setattr(scaled_module, "MAX_BATCHED_TREES", 0)
+    orders = sorted(listing.orders)
+    pairs = [(p, r) for p, roots in scaled.primes_for(120) for r in roots]
+    batched = scaled.residues_at(listing, pairs, orders)
+    for c, (p, r) in enumerate(pairs):
+        alone = condition_sums(listing, scaled.channel(p, r), scaled.s, orders)
+        for n in orders:
+            assert np.array_equal(batched[n][:, c], alone[n]), (n, p, r)
+    all_at_once = exact_condition_sums(scaled, listing)
+    values = {n: [all_at_once[n].value(k) for k in range(len(all_at_once[n]))] for n in (3, 4, 5, 6)}
+    monkeypatch.setattr(scaled_module, "PASS_BYTES", 0)  # one channel per pass: a prime's roots split
     one_by_one = exact_condition_sums(scaled, listing)
-    monkeypatch.setattr(scaled_module, "MAX_BATCHED_TREES", 10**9)
-    batched = exact_condition_sums(scaled, listing)
     for n in one_by_one:
-        assert np.array_equal(one_by_one[n].residues, batched[n].residues), n
+        assert one_by_one[n].primes == all_at_once[n].primes, n
+        assert np.array_equal(one_by_one[n].residues, all_at_once[n].residues), n
+    for n, expected in values.items():  # values that need primes beyond the decision's, too
+        assert [one_by_one[n].value(k) for k in range(len(one_by_one[n]))] == expected, n
 
 
 def test_values_through_the_dual_basis_bound_equal_sympy(monkeypatch):
