@@ -161,14 +161,28 @@ class BallContext:
         cond = terms.condition[i0:i1]
         np.add.at(acc[0], cond, w_terms[0] * coef[idx])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
-                              minlength=len(acc[1]))
+        uniq, inv = block_bins(cond)
+        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
+                                    minlength=len(uniq))
 
     def finish_sums(self, acc, k: int, n: int) -> "BallSums":
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
         rounded up (the float additions into each bin, at most a few hundred, covered by
         γ_256)."""
         return BallSums(acc[0][:k], summed_radii(acc[1], k, self.bits), self.bits, self.shift, math.factorial(n - 1))
+
+
+def block_bins(cond: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(the distinct conditions of a block of terms, each term's index among them).
+
+    A block of terms touches a few thousand of an order's conditions, spread over all of
+    them: a bincount of the block over every condition (and the addition of that array
+    into the sums) cost far more than the block's arithmetic once an order has a few
+    hundred thousand conditions.  Binned by these indices, each bin still adds its terms
+    in their order starting from 0, and is then added to its condition's sum once: the
+    sums are the same, bit for bit."""
+    uniq, inv = np.unique(cond, return_inverse=True)
+    return uniq, inv.reshape(-1)
 
 
 def summed_radii(radii: np.ndarray, k: int, bits: int) -> np.ndarray:
@@ -313,11 +327,12 @@ class FloatContext:
         tm = c * w_terms[0]
         # the coefficient is c(1 ± u) (a rounded quotient), the product rounds once more
         tr = (np.abs(c) * w_terms[1] + 2 * U * np.abs(tm)) * INFLATE + ETA
-        k = len(acc[0])
-        acc[0] += np.bincount(cond, weights=tm, minlength=k)
-        acc[1] += np.bincount(cond, weights=tr, minlength=k)
-        acc[2] += np.bincount(cond, weights=np.abs(tm), minlength=k)
-        acc[3] += np.bincount(cond, minlength=k)
+        uniq, inv = block_bins(cond)
+        u = len(uniq)
+        acc[0][uniq] += np.bincount(inv, weights=tm, minlength=u)
+        acc[1][uniq] += np.bincount(inv, weights=tr, minlength=u)
+        acc[2][uniq] += np.bincount(inv, weights=np.abs(tm), minlength=u)
+        acc[3][uniq] += np.bincount(inv, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> "FloatSums":
         mid, rad, absum, count = (a[:k] for a in acc)

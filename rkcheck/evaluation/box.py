@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients, block_bins
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
@@ -136,11 +136,12 @@ class GradientContext:
         cond = terms.condition[i0:i1]
         tm = c * gm
         tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
-        k = len(acc[3])
-        bins = (cond.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+        uniq, inv = block_bins(cond)
+        u = len(uniq)
+        bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
         for a, x in zip(acc, (tm, tr, np.abs(tm))):
-            a += np.bincount(bins, weights=x.ravel(), minlength=k * E).reshape(k, E)
-        acc[3] += np.bincount(cond, minlength=k)
+            a[uniq] += np.bincount(bins, weights=x.ravel(), minlength=u * E).reshape(u, E)
+        acc[3][uniq] += np.bincount(inv, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> np.ndarray:
         """``G[k, e]``: an upper bound of ``sup_X |∂R_k/∂x_e|``."""

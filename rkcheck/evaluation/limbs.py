@@ -51,6 +51,7 @@ from rkcheck.evaluation.balls import (
     BallSums,
     _ball_at,
     _coefficients,
+    block_bins,
     summed_radii,
 )
 from rkcheck.numbers.enclosure import Enclosure
@@ -280,7 +281,9 @@ class LimbBallContext:
         if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
             raise ArithmeticError("certified digits: too many terms per condition for exact sums")
         idx = terms.coefficient_index[i0:i1]
-        cond = terms.condition[i0:i1]
+        uniq, inv = block_bins(terms.condition[i0:i1])
+        u = len(uniq)
+        local = np.zeros((L + C, u))
         for a0 in range(0, i1 - i0, _BLOCK):
             a1 = min(i1 - i0, a0 + _BLOCK)
             w_t = np.ascontiguousarray(w_terms[0][a0:a1].T, dtype=np.int64)  # (L, m)
@@ -289,11 +292,12 @@ class LimbBallContext:
             for j in range(C):
                 V[1 + j:1 + j + L] += w_t * cw_t[j]
             digits = self._carry(V)  # exact: position 0 holds nothing
-            cb = cond[a0:a1]
+            ib = inv[a0:a1]
             for p in range(L + C):
-                acc[0][p] += np.bincount(cb, weights=digits[p], minlength=k)
+                local[p] += np.bincount(ib, weights=digits[p], minlength=u)
+        acc[0][:, uniq] += local
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1] += np.bincount(cond, weights=w_terms[1] * cabs[idx] * _UP1, minlength=k)
+        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> BallSums:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
