@@ -51,7 +51,13 @@ def _expand(x):
 class GradientContext:
     """Values and their partial derivatives with respect to the interval entries, over
     the whole box, on the float screen: a value is ``(value, gradient)``, each a
-    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of length ``E``."""
+    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of one entry per
+    direction.
+
+    Φ and ψ = AΦ do not depend on b: their derivatives along b's entries are zero, exactly,
+    so a vector (Φ, ψ) carries only the ``EA`` directions of A's entries, and a scalar
+    (a = bᵀΦ, w) all ``E`` — A's, then b's.  On an explicit tableau with every weight a
+    decimal that is most of the directions, and most of the derivatives' memory."""
 
     exact = False
 
@@ -66,22 +72,23 @@ class GradientContext:
                               [v for e, v in enumerate(b_vars, len(a_vars)) if e in keep])
         self.a_vars = a_vars
         self.b_vars = b_vars
-        self.E = len(self.a_vars) + len(self.b_vars)
+        self.EA = len(self.a_vars)
+        self.E = self.EA + len(self.b_vars)
 
-    def _zeros(self, shape):
-        return np.zeros(shape + (self.E,)), np.zeros(shape + (self.E,))
+    def _zeros(self, shape, width: int):
+        return np.zeros(shape + (width,)), np.zeros(shape + (width,))
 
     def vectors(self, n: int, s: int):
-        return self.f.vectors(n, s), self._zeros((n, s))
+        return self.f.vectors(n, s), self._zeros((n, s), self.EA)
 
     def scalars(self, n: int):
-        return self.f.scalars(n), self._zeros((n,))
+        return self.f.scalars(n), self._zeros((n,), self.E)
 
     def ones(self, k: int, s: int):
-        return self.f.ones(k, s), self._zeros((k, s))
+        return self.f.ones(k, s), self._zeros((k, s), self.EA)
 
     def one(self, k: int):
-        return self.f.one(k), self._zeros((k,))
+        return self.f.one(k), self._zeros((k,), self.E)
 
     def take(self, x, idx):
         return self.f.take(x[0], idx), self.f.take(x[1], idx)
@@ -101,7 +108,7 @@ class GradientContext:
         dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
         grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
         # ∂(Ax)_i/∂a_ij = x_j
-        em, er = self._zeros(x[0][0].shape)
+        em, er = self._zeros(x[0][0].shape, self.EA)
         for e, (i, j) in enumerate(self.a_vars):
             em[..., i, e] = x[0][0][..., j]
             er[..., i, e] = x[0][1][..., j]
@@ -110,14 +117,16 @@ class GradientContext:
     def dot(self, x):
         value = self.f.dot(x[0])
         gm, gr = x[1]
-        grad = self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
-        # ∂(bᵀx)/∂b_i = x_i
-        em, er = self._zeros(x[0][0].shape[:-1])
-        offset = len(self.a_vars)
-        for e, i in enumerate(self.b_vars):
-            em[..., offset + e] = x[0][0][..., i]
-            er[..., offset + e] = x[0][1][..., i]
-        return value, _add(grad, (em, er))
+        # along A's entries: bᵀ∂x (b holds no A entry)
+        grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
+                      self._zeros(x[0][0].shape[:-1], self.EA))
+        if not self.b_vars:
+            return value, grad_a
+        # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
+        zero = self._zeros(x[0][0].shape[:-1], len(self.b_vars))
+        grad_b = _add(zero, (x[0][0][..., self.b_vars], x[0][1][..., self.b_vars]))
+        return value, (np.concatenate([grad_a[0], grad_b[0]], axis=-1),
+                       np.concatenate([grad_a[1], grad_b[1]], axis=-1))
 
     def sums(self, k: int, n: int):
         # FloatContext's four accumulators (mid, rad, Σ|term|, count), one column per direction
@@ -150,11 +159,14 @@ class GradientContext:
         return np.stack(cols, axis=1) if cols else np.zeros((k, 0))
 
 
-def gradient_bytes(listing, s: int, E: int) -> int:
-    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext` keeps)."""
+def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
+    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext`
+    keeps) along ``E`` directions, ``EA`` of them A's entries (None: all): a direction of
+    A's is carried by Φ, ψ, a and w, one of b's by a and w only."""
     top = max(listing.orders, default=1)
     kept = listing.first[min(top, len(listing.first) - 1)]
-    return int(kept) * (2 * s + 2) * E * 16
+    EA = E if EA is None else EA
+    return int(kept) * (2 * s * EA + 2 * E) * 16
 
 
 class BoxRefinement:
@@ -360,12 +372,18 @@ def _round_to_integers(sums, dpow: int) -> list[int] | None:
     return [int(x) for x in N.tolist()]
 
 
-def gradient_groups(listing, s: int, E: int) -> list[slice]:
-    """The directions (interval entries) split into passes whose derivative arrays fit in
-    :data:`MAX_GRADIENT_BYTES` — one direction per pass at worst: the refinement is
-    never skipped, a large box only takes more passes."""
-    per = max(1, MAX_GRADIENT_BYTES // max(gradient_bytes(listing, s, 1), 1))
-    return [slice(e, min(e + per, E)) for e in range(0, E, per)] or [slice(0, 0)]
+def gradient_groups(listing, s: int, E: int, EA: int | None = None) -> list[slice]:
+    """The directions (interval entries: ``EA`` of A's — None: all —, then b's) split
+    into passes whose derivative arrays fit in :data:`MAX_GRADIENT_BYTES` — one direction
+    per pass at worst: the refinement is never skipped, a large box only takes more
+    passes."""
+    EA = E if EA is None else EA
+    groups, lo = [], 0
+    for e in range(1, E + 1):
+        if e - lo > 1 and gradient_bytes(listing, s, e - lo, max(0, min(e, EA) - lo)) > MAX_GRADIENT_BYTES:
+            groups.append(slice(lo, e - 1))
+            lo = e - 1
+    return groups + [slice(lo, E)] if E else [slice(0, 0)]
 
 
 def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict[int, BoxRefinement]:
@@ -379,7 +397,7 @@ def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict
     centre = centre_integers(listing, centre_A, centre_b, wanted)
     ctx = GradientContext(A, b)
     parts = [condition_sums(listing, GradientContext(A, b, group), len(b), wanted)
-             for group in gradient_groups(listing, len(b), ctx.E)]
+             for group in gradient_groups(listing, len(b), ctx.E, ctx.EA)]
     r = box_radii(A, b, centre_A, centre_b, ctx)
     out = {}
     for n in wanted:
