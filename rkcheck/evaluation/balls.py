@@ -213,23 +213,34 @@ class BallSums:
         return Enclosure(Fraction(int(self.mids[k]), f << self.bits), Fraction(float(self.rads[k])) / (f << self.shift), False)
 
     def excludes_zero(self) -> np.ndarray:
-        """|mid| > rad, exactly (a Python int against a float compares exactly)."""
+        """|mid| > rad, exactly (a Python int against a float compares exactly; numpy's
+        comparison of an object array with floats is that comparison, element by element)."""
         limit = self.rads * 2.0 ** (self.bits - self.shift)  # rad in units of 2^−P (inf: no claim)
-        return np.array([abs(int(m)) > r for m, r in zip(self.mids.tolist(), limit.tolist())], dtype=bool)
+        return np.asarray(np.abs(self._ints()) > limit, dtype=bool)
 
     def magnitude_bound(self) -> np.ndarray:
-        """Floats bounding |mid| + rad from above."""
-        out = np.empty(len(self.mids))
-        f = self.factorial
-        for i, (m, r) in enumerate(zip(self.mids.tolist(), self.rads.tolist())):
-            m = abs(int(m))
-            e = max(0, m.bit_length() - 60)
-            try:
-                mid_up = math.ldexp(float((m >> e) + 1), e - self.bits)  # >= |m|·2^−P
-            except OverflowError:  # past float64: an infinite bound is still a bound
-                mid_up = math.inf
-            out[i] = (mid_up + math.ldexp(r, -self.shift)) / f * (1 + 2.0**-50) + ETA
-        return out
+        """Floats bounding |mid| + rad from above: ``|m|·2^−P`` rounded up through its 60
+        leading bits (``((|m| >> e) + 1)·2^(e−P)``), the radius added, over ``f``, the
+        whole inflated by ``1 + 2^−50`` (the three roundings)."""
+        m = np.abs(self._ints())
+        if not len(m):
+            return np.zeros(0)
+        e = np.maximum(_bit_length(m).astype(np.int64) - 60, 0)
+        top = ((m >> e.astype(object)) + 1).astype(float)  # below 2^61: a float within 2^−52
+        with np.errstate(over="ignore"):  # past float64: an infinite bound is still a bound
+            mid_up = np.ldexp(top, e - self.bits)  # >= |m|·2^−P
+            return (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) / float(self.factorial) \
+                * (1 + 2.0**-50) + ETA
+
+    def _ints(self) -> np.ndarray:
+        """The mid-points as an object array of Python integers."""
+        mids = np.asarray(self.mids, dtype=object)
+        if any(type(x) is not int for x in mids.tolist()):
+            mids = np.array([int(x) for x in mids.tolist()], dtype=object)
+        return mids
+
+
+_bit_length = np.frompyfunc(int.bit_length, 1, 1)
 
 
 def _coefficients(terms) -> np.ndarray:

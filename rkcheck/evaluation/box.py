@@ -178,6 +178,7 @@ class BoxRefinement:
 
     def __init__(self, integers: list[int], scale: int, variation: np.ndarray):
         self.integers, self.scale, self.variation = integers, scale, variation
+        self._c: np.ndarray | None = None
 
     @property
     def centre(self) -> list[Fraction]:
@@ -187,20 +188,47 @@ class BoxRefinement:
         return Fraction(self.integers[k], self.scale)
 
     def fails(self) -> np.ndarray:
-        """``|R(x̃)| > V``, exactly: ``|N|·2^k > m·scale`` for ``V = m/2^k``."""
+        """``|R(x̃)| > V``, exactly.  Rounding to nearest is monotone and V is a float, so
+        the correctly rounded ``c = |N|/scale`` above V proves ``|R(x̃)| > V`` and below V
+        disproves it; only ``c = V`` is decided in integers: ``|N|·2^k > m·scale`` for
+        ``V = m/2^k``."""
+        c = self._magnitudes()
+        if c is None:
+            return self._fails_exactly(range(len(self.integers)))
+        out = c > self.variation
+        tie = np.flatnonzero(c == self.variation)
+        if len(tie):
+            out[tie] = self._fails_exactly(tie.tolist())[tie]
+        return out
+
+    def _fails_exactly(self, indices) -> np.ndarray:
         out = np.zeros(len(self.integers), dtype=bool)
-        q = self.scale
-        for i, (x, v) in enumerate(zip(self.integers, self.variation.tolist())):
+        q, v = self.scale, self.variation
+        for i in indices:
+            x = self.integers[i]
             if x:
-                m, k = v.as_integer_ratio()
+                m, k = float(v[i]).as_integer_ratio()
                 out[i] = abs(x) * k > m * q
         return out
+
+    def _magnitudes(self) -> np.ndarray | None:
+        """``|N|/scale`` correctly rounded (integer true division, as ``float(Fraction)``),
+        element by element in numpy's loop; None past float64's range."""
+        if self._c is None:
+            try:
+                self._c = (np.abs(np.array(self.integers, dtype=object)) / self.scale).astype(float) \
+                    if len(self.integers) else np.zeros(0)
+            except OverflowError:
+                return None
+        return self._c
 
     def bound(self) -> np.ndarray:
         """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up);
         ``|N|/scale`` is correctly rounded (integer true division), as ``float(Fraction)``."""
-        q = self.scale
-        c = np.array([abs(x) / q for x in self.integers], dtype=float)
+        c = self._magnitudes()
+        if c is None:  # the integer division raises past float64's range, as float(Fraction) does
+            q = self.scale
+            c = np.array([abs(x) / q for x in self.integers], dtype=float)
         return (c * (1 + 4 * U) + self.variation) * INFLATE + ETA
 
 
@@ -367,9 +395,9 @@ def _round_to_integers(sums, dpow: int) -> list[int] | None:
     N = (X + (1 << (P - 1))) >> P  # the nearest integers to X/2^P
     # the balls certify an integer within Y_k <= Y_max of X/2^P: it can only be N
     # (a check of the arithmetic, never failing unless a ball is wrong)
-    if max(abs(x) for x in ((N << P) - X).tolist()) * k << S > (dpow * a) << P:
+    if np.max(np.abs((N << P) - X)) * k << S > (dpow * a) << P:
         return None
-    return [int(x) for x in N.tolist()]
+    return N.tolist()  # Python integers (an object array's elements)
 
 
 def gradient_groups(listing, s: int, E: int, EA: int | None = None) -> list[slice]:
