@@ -233,10 +233,11 @@ class BallSums:
                 * (1 + 2.0**-50) + ETA
 
     def _ints(self) -> np.ndarray:
-        """The mid-points as an object array of Python integers."""
+        """The mid-points as an object array of Python integers (what the contexts give:
+        a numpy integer would compare with a float inexactly)."""
         mids = np.asarray(self.mids, dtype=object)
-        if any(type(x) is not int for x in mids.tolist()):
-            mids = np.array([int(x) for x in mids.tolist()], dtype=object)
+        if len(mids) and type(mids[0]) is not int:
+            raise TypeError("ball sums: mid-points must be Python integers")
         return mids
 
 
