@@ -161,9 +161,8 @@ class BallContext:
         cond = terms.condition[i0:i1]
         np.add.at(acc[0], cond, w_terms[0] * coef[idx])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        uniq, inv = block_bins(cond)
-        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
-                                    minlength=len(uniq))
+        acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
+                              minlength=len(acc[1]))
 
     def finish_sums(self, acc, k: int, n: int) -> "BallSums":
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
