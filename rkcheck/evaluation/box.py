@@ -56,8 +56,9 @@ class GradientContext:
 
     Φ and ψ = AΦ do not depend on b: their derivatives along b's entries are zero, exactly,
     so a vector (Φ, ψ) carries only the ``EA`` directions of A's entries, and a scalar
-    (a = bᵀΦ, w) all ``E`` — A's, then b's.  On an explicit tableau with every weight a
-    decimal that is most of the directions, and most of the derivatives' memory."""
+    (a = bᵀΦ, w) all ``E`` — A's, then b's.  Where the decimals are mostly in b (RK4 in
+    decimals: its 0.5 and 1 are exact, b's four entries are the box) Φ and ψ carry no
+    derivatives at all."""
 
     exact = False
 
