@@ -321,13 +321,17 @@ class LimbBallContext:
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
 
 
-def _product_plan(Md: np.ndarray) -> list[tuple[int, int, list[int] | None, np.ndarray]]:
+#: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
+_Pass = tuple[int, int, list[int] | None, np.ndarray]
+
+
+def _product_plan(Md: np.ndarray) -> list[_Pass]:
     """The passes of :meth:`LimbBallContext._product` for the digit matrix ``Md``
     (outputs, s, L): ``(j, q, rows, coefficients)`` for every column ``j`` and digit
     ``q`` that is nonzero in some output — the outputs where it is nonzero one by one
     when they are at most half of them (``rows``), else all outputs at once (``rows``
     None, ``coefficients`` the whole digit column)."""
-    plan = []
+    plan: list[_Pass] = []
     outputs, s, L = Md.shape
     for j in range(s):
         for q in range(L):
