@@ -171,6 +171,19 @@ class BallContext:
         return BallSums(acc[0][:k], summed_radii(acc[1], k, self.bits), self.bits, self.shift, math.factorial(n - 1))
 
 
+def block_bins(cond: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(the distinct conditions of a block of terms, each term's index among them).
+
+    A block of terms touches a few thousand of an order's conditions, spread over all of
+    them: a bincount of the block over every condition (and the addition of that array
+    into the sums) cost far more than the block's arithmetic once an order has a few
+    hundred thousand conditions.  Binned by these indices, each bin still adds its terms
+    in their order starting from 0, and is then added to its condition's sum once: the
+    sums are the same, bit for bit."""
+    uniq, inv = np.unique(cond, return_inverse=True)
+    return uniq, inv.reshape(-1)
+
+
 def summed_radii(radii: np.ndarray, k: int, bits: int) -> np.ndarray:
     """The first k summed radii rounded up (the float additions into each bin, at most a
     few hundred, covered by γ_256); refused when they overflowed the float range."""
@@ -199,23 +212,35 @@ class BallSums:
         return Enclosure(Fraction(int(self.mids[k]), f << self.bits), Fraction(float(self.rads[k])) / (f << self.shift), False)
 
     def excludes_zero(self) -> np.ndarray:
-        """|mid| > rad, exactly (a Python int against a float compares exactly)."""
+        """|mid| > rad, exactly (a Python int against a float compares exactly; numpy's
+        comparison of an object array with floats is that comparison, element by element)."""
         limit = self.rads * 2.0 ** (self.bits - self.shift)  # rad in units of 2^−P (inf: no claim)
-        return np.array([abs(int(m)) > r for m, r in zip(self.mids.tolist(), limit.tolist())], dtype=bool)
+        return np.asarray(np.abs(self._ints()) > limit, dtype=bool)
 
     def magnitude_bound(self) -> np.ndarray:
-        """Floats bounding |mid| + rad from above."""
-        out = np.empty(len(self.mids))
-        f = self.factorial
-        for i, (m, r) in enumerate(zip(self.mids.tolist(), self.rads.tolist())):
-            m = abs(int(m))
-            e = max(0, m.bit_length() - 60)
-            try:
-                mid_up = math.ldexp(float((m >> e) + 1), e - self.bits)  # >= |m|·2^−P
-            except OverflowError:  # past float64: an infinite bound is still a bound
-                mid_up = math.inf
-            out[i] = (mid_up + math.ldexp(r, -self.shift)) / f * (1 + 2.0**-50) + ETA
-        return out
+        """Floats bounding |mid| + rad from above: ``|m|·2^−P`` rounded up through its 60
+        leading bits (``((|m| >> e) + 1)·2^(e−P)``), the radius added, over ``f``, the
+        whole inflated by ``1 + 2^−50`` (the three roundings)."""
+        m = np.abs(self._ints())
+        if not len(m):
+            return np.zeros(0)
+        e = np.maximum(_bit_length(m).astype(np.int64) - 60, 0)
+        top = ((m >> e.astype(object)) + 1).astype(float)  # below 2^61: a float within 2^−52
+        with np.errstate(over="ignore"):  # past float64: an infinite bound is still a bound
+            mid_up = np.ldexp(top, e - self.bits)  # >= |m|·2^−P
+            return (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) / float(self.factorial) \
+                * (1 + 2.0**-50) + ETA
+
+    def _ints(self) -> np.ndarray:
+        """The mid-points as an object array of Python integers (what the contexts give:
+        a numpy integer would compare with a float inexactly)."""
+        mids = np.asarray(self.mids, dtype=object)
+        if len(mids) and type(mids[0]) is not int:
+            raise TypeError("ball sums: mid-points must be Python integers")
+        return mids
+
+
+_bit_length = np.frompyfunc(int.bit_length, 1, 1)
 
 
 def _coefficients(terms) -> np.ndarray:
@@ -313,11 +338,12 @@ class FloatContext:
         tm = c * w_terms[0]
         # the coefficient is c(1 ± u) (a rounded quotient), the product rounds once more
         tr = (np.abs(c) * w_terms[1] + 2 * U * np.abs(tm)) * INFLATE + ETA
-        k = len(acc[0])
-        acc[0] += np.bincount(cond, weights=tm, minlength=k)
-        acc[1] += np.bincount(cond, weights=tr, minlength=k)
-        acc[2] += np.bincount(cond, weights=np.abs(tm), minlength=k)
-        acc[3] += np.bincount(cond, minlength=k)
+        uniq, inv = block_bins(cond)
+        u = len(uniq)
+        acc[0][uniq] += np.bincount(inv, weights=tm, minlength=u)
+        acc[1][uniq] += np.bincount(inv, weights=tr, minlength=u)
+        acc[2][uniq] += np.bincount(inv, weights=np.abs(tm), minlength=u)
+        acc[3][uniq] += np.bincount(inv, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> "FloatSums":
         mid, rad, absum, count = (a[:k] for a in acc)

@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatContext, U, _float_coefficients, block_bins
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
@@ -51,7 +51,14 @@ def _expand(x):
 class GradientContext:
     """Values and their partial derivatives with respect to the interval entries, over
     the whole box, on the float screen: a value is ``(value, gradient)``, each a
-    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of length ``E``."""
+    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of one entry per
+    direction.
+
+    Φ and ψ = AΦ do not depend on b: their derivatives along b's entries are zero, exactly,
+    so a vector (Φ, ψ) carries only the ``EA`` directions of A's entries, and a scalar
+    (a = bᵀΦ, w) all ``E`` — A's, then b's.  Where the decimals are mostly in b (RK4 in
+    decimals: its 0.5 and 1 are exact, b's four entries are the box) Φ and ψ carry no
+    derivatives at all."""
 
     exact = False
 
@@ -66,22 +73,23 @@ class GradientContext:
                               [v for e, v in enumerate(b_vars, len(a_vars)) if e in keep])
         self.a_vars = a_vars
         self.b_vars = b_vars
-        self.E = len(self.a_vars) + len(self.b_vars)
+        self.EA = len(self.a_vars)
+        self.E = self.EA + len(self.b_vars)
 
-    def _zeros(self, shape):
-        return np.zeros(shape + (self.E,)), np.zeros(shape + (self.E,))
+    def _zeros(self, shape, width: int):
+        return np.zeros(shape + (width,)), np.zeros(shape + (width,))
 
     def vectors(self, n: int, s: int):
-        return self.f.vectors(n, s), self._zeros((n, s))
+        return self.f.vectors(n, s), self._zeros((n, s), self.EA)
 
     def scalars(self, n: int):
-        return self.f.scalars(n), self._zeros((n,))
+        return self.f.scalars(n), self._zeros((n,), self.E)
 
     def ones(self, k: int, s: int):
-        return self.f.ones(k, s), self._zeros((k, s))
+        return self.f.ones(k, s), self._zeros((k, s), self.EA)
 
     def one(self, k: int):
-        return self.f.one(k), self._zeros((k,))
+        return self.f.one(k), self._zeros((k,), self.E)
 
     def take(self, x, idx):
         return self.f.take(x[0], idx), self.f.take(x[1], idx)
@@ -101,7 +109,7 @@ class GradientContext:
         dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
         grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
         # ∂(Ax)_i/∂a_ij = x_j
-        em, er = self._zeros(x[0][0].shape)
+        em, er = self._zeros(x[0][0].shape, self.EA)
         for e, (i, j) in enumerate(self.a_vars):
             em[..., i, e] = x[0][0][..., j]
             er[..., i, e] = x[0][1][..., j]
@@ -110,14 +118,16 @@ class GradientContext:
     def dot(self, x):
         value = self.f.dot(x[0])
         gm, gr = x[1]
-        grad = self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
-        # ∂(bᵀx)/∂b_i = x_i
-        em, er = self._zeros(x[0][0].shape[:-1])
-        offset = len(self.a_vars)
-        for e, i in enumerate(self.b_vars):
-            em[..., offset + e] = x[0][0][..., i]
-            er[..., offset + e] = x[0][1][..., i]
-        return value, _add(grad, (em, er))
+        # along A's entries: bᵀ∂x (b holds no A entry)
+        grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
+                      self._zeros(x[0][0].shape[:-1], self.EA))
+        if not self.b_vars:
+            return value, grad_a
+        # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
+        zero = self._zeros(x[0][0].shape[:-1], len(self.b_vars))
+        grad_b = _add(zero, (x[0][0][..., self.b_vars], x[0][1][..., self.b_vars]))
+        return value, (np.concatenate([grad_a[0], grad_b[0]], axis=-1),
+                       np.concatenate([grad_a[1], grad_b[1]], axis=-1))
 
     def sums(self, k: int, n: int):
         # FloatContext's four accumulators (mid, rad, Σ|term|, count), one column per direction
@@ -136,11 +146,12 @@ class GradientContext:
         cond = terms.condition[i0:i1]
         tm = c * gm
         tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
-        k = len(acc[3])
-        bins = (cond.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+        uniq, inv = block_bins(cond)
+        u = len(uniq)
+        bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
         for a, x in zip(acc, (tm, tr, np.abs(tm))):
-            a += np.bincount(bins, weights=x.ravel(), minlength=k * E).reshape(k, E)
-        acc[3] += np.bincount(cond, minlength=k)
+            a[uniq] += np.bincount(bins, weights=x.ravel(), minlength=u * E).reshape(u, E)
+        acc[3][uniq] += np.bincount(inv, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> np.ndarray:
         """``G[k, e]``: an upper bound of ``sup_X |∂R_k/∂x_e|``."""
@@ -149,11 +160,14 @@ class GradientContext:
         return np.stack(cols, axis=1) if cols else np.zeros((k, 0))
 
 
-def gradient_bytes(listing, s: int, E: int) -> int:
-    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext` keeps)."""
+def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
+    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext`
+    keeps) along ``E`` directions, ``EA`` of them A's entries (None: all): a direction of
+    A's is carried by Φ, ψ, a and w, one of b's by a and w only."""
     top = max(listing.orders, default=1)
     kept = listing.first[min(top, len(listing.first) - 1)]
-    return int(kept) * (2 * s + 2) * E * 16
+    EA = E if EA is None else EA
+    return int(kept) * (2 * s * EA + 2 * E) * 16
 
 
 class BoxRefinement:
@@ -165,6 +179,7 @@ class BoxRefinement:
 
     def __init__(self, integers: list[int], scale: int, variation: np.ndarray):
         self.integers, self.scale, self.variation = integers, scale, variation
+        self._c: np.ndarray | None = None
 
     @property
     def centre(self) -> list[Fraction]:
@@ -174,20 +189,47 @@ class BoxRefinement:
         return Fraction(self.integers[k], self.scale)
 
     def fails(self) -> np.ndarray:
-        """``|R(x̃)| > V``, exactly: ``|N|·2^k > m·scale`` for ``V = m/2^k``."""
+        """``|R(x̃)| > V``, exactly.  Rounding to nearest is monotone and V is a float, so
+        the correctly rounded ``c = |N|/scale`` above V proves ``|R(x̃)| > V`` and below V
+        disproves it; only ``c = V`` is decided in integers: ``|N|·2^k > m·scale`` for
+        ``V = m/2^k``."""
+        c = self._magnitudes()
+        if c is None:
+            return self._fails_exactly(range(len(self.integers)))
+        out = c > self.variation
+        tie = np.flatnonzero(c == self.variation)
+        if len(tie):
+            out[tie] = self._fails_exactly(tie.tolist())[tie]
+        return out
+
+    def _fails_exactly(self, indices) -> np.ndarray:
         out = np.zeros(len(self.integers), dtype=bool)
-        q = self.scale
-        for i, (x, v) in enumerate(zip(self.integers, self.variation.tolist())):
+        q, v = self.scale, self.variation
+        for i in indices:
+            x = self.integers[i]
             if x:
-                m, k = v.as_integer_ratio()
+                m, k = float(v[i]).as_integer_ratio()
                 out[i] = abs(x) * k > m * q
         return out
+
+    def _magnitudes(self) -> np.ndarray | None:
+        """``|N|/scale`` correctly rounded (integer true division, as ``float(Fraction)``),
+        element by element in numpy's loop; None past float64's range."""
+        if self._c is None:
+            try:
+                self._c = (np.abs(np.array(self.integers, dtype=object)) / self.scale).astype(float) \
+                    if len(self.integers) else np.zeros(0)
+            except OverflowError:
+                return None
+        return self._c
 
     def bound(self) -> np.ndarray:
         """An upper bound of ``|R|`` over the box: ``|R(x̃)| + V`` (floats, rounded up);
         ``|N|/scale`` is correctly rounded (integer true division), as ``float(Fraction)``."""
-        q = self.scale
-        c = np.array([abs(x) / q for x in self.integers], dtype=float)
+        c = self._magnitudes()
+        if c is None:  # the integer division raises past float64's range, as float(Fraction) does
+            q = self.scale
+            c = np.array([abs(x) / q for x in self.integers], dtype=float)
         return (c * (1 + 4 * U) + self.variation) * INFLATE + ETA
 
 
@@ -217,9 +259,10 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     ``d ≈ 10^16``: about 30 primes at 16 vertices) and their Chinese remaindering.  The
     ball encloses ``R`` certifiably, so ``N`` lies in ``scale·(mid ± rad)``; once that
     interval is shorter than 1 it holds one integer only, the nearest to its centre.  An
-    order where a ball is not that narrow, or a listing whose balls would not fit in
-    :data:`MAX_CENTRE_BALL_BYTES`, is computed by residues instead: the answer is exact
-    either way."""
+    order where a ball is not that narrow, a listing whose balls would not fit in
+    :data:`MAX_CENTRE_BALL_BYTES`, or a tableau whose weights are mostly nonzero
+    (:data:`CENTRE_BALL_MAX_NONZERO`: then the residues are faster) is computed by
+    residues instead: the answer is exact either way."""
     from rkcheck.errors import UserError
     from rkcheck.evaluation.algorithm import condition_sums
     from rkcheck.evaluation.balls import BallContext
@@ -230,7 +273,7 @@ def centre_integers(listing, centre_A, centre_b, orders: Sequence[int]) -> dict[
     bits = max(scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in orders) + CENTRE_GUARD_BITS
     out: dict[int, tuple[list[int], int]] = {}
     sums = {}
-    if _centre_balls_fit(listing, centre_A, centre_b, max(orders), bits):
+    if _centre_by_balls(listing, centre_A, centre_b, max(orders), bits):
         points_A = [[Interval(x, x) for x in row] for row in centre_A]
         points_b = [Interval(x, x) for x in centre_b]
         try:  # radii past float64 (huge entries) end as inf or NaN, or refused: residues
@@ -267,19 +310,35 @@ def centre_ball_bytes(listing, s: int, top: int, bits: int, nonzero: int | None 
     return values * 3 * 8 + (values if nonzero is None else nonzero) * (bits // 8 + 32)
 
 
-def _centre_balls_fit(listing, centre_A, centre_b, top: int, bits: int) -> bool:
-    """Whether the centre's balls fit in :data:`MAX_CENTRE_BALL_BYTES`: at once when
-    every weight may be nonzero, else after counting the weights that are not zero by
-    the tableau's pattern of zeros (:class:`_SupportCounter`; an explicit RK4 at order
-    18 stores far fewer nonzero weights than its 13 million)."""
+#: the centre is computed by balls only when at most this share of the stored weights
+#: may be nonzero by the tableau's pattern of zeros: a ball whose mid-point is the shared
+#: Python 0 costs next to nothing, a nonzero one of ~900 bits more than its residues
+#: modulo every prime.  Measured at order 16 with 16-digit decimals (about 30 primes):
+#: RK4 (4 % of its weights nonzero) 1.2 s by balls against 1.6 s by residues, Gauss-3
+#: (every weight nonzero) 10.4 s against 2.1 s: about even near 9 %.
+CENTRE_BALL_MAX_NONZERO = 0.1
+
+
+def _centre_by_balls(listing, centre_A, centre_b, top: int, bits: int) -> bool:
+    """Whether balls compute the centre (else residues): when few of the weights stored
+    may be nonzero (:data:`CENTRE_BALL_MAX_NONZERO`, counted by the tableau's pattern of
+    zeros: :class:`_SupportCounter`) and their memory fits in
+    :data:`MAX_CENTRE_BALL_BYTES` (an explicit RK4 at order 18 stores 0.3 million nonzero
+    weights of 13 million)."""
     from rkcheck.evaluation.algorithm import condition_sums
 
+    if all(x != 0 for row in (*centre_A, centre_b) for x in row):
+        return CENTRE_BALL_MAX_NONZERO >= 1 and _centre_balls_fit(listing, len(centre_b), top, bits, None)
     s = len(centre_b)
-    if centre_ball_bytes(listing, s, top, bits) <= MAX_CENTRE_BALL_BYTES:
-        return True
     counter = _SupportCounter(centre_A, centre_b)
     condition_sums(listing, counter, s, [top])
-    return centre_ball_bytes(listing, s, top, bits, counter.nonzero) <= MAX_CENTRE_BALL_BYTES
+    if counter.nonzero > CENTRE_BALL_MAX_NONZERO * counter.stored:
+        return False
+    return _centre_balls_fit(listing, s, top, bits, counter.nonzero)
+
+
+def _centre_balls_fit(listing, s: int, top: int, bits: int, nonzero: int | None) -> bool:
+    return centre_ball_bytes(listing, s, top, bits, nonzero) <= MAX_CENTRE_BALL_BYTES
 
 
 class _SupportCounter:
@@ -296,6 +355,7 @@ class _SupportCounter:
         self.b = np.array([x != 0 for x in b], dtype=kind)
         self.kind = kind
         self.nonzero = 0
+        self.stored = 0
 
     def vectors(self, n: int, s: int):
         return np.zeros((n, s), dtype=bool)
@@ -315,6 +375,7 @@ class _SupportCounter:
     def put(self, store, lo: int, x) -> None:
         store[lo:lo + len(x)] = x
         self.nonzero += int(np.count_nonzero(x))
+        self.stored += x.size
 
     def mul(self, x, y):
         return x & y
@@ -354,17 +415,23 @@ def _round_to_integers(sums, dpow: int) -> list[int] | None:
     N = (X + (1 << (P - 1))) >> P  # the nearest integers to X/2^P
     # the balls certify an integer within Y_k <= Y_max of X/2^P: it can only be N
     # (a check of the arithmetic, never failing unless a ball is wrong)
-    if max(abs(x) for x in ((N << P) - X).tolist()) * k << S > (dpow * a) << P:
+    if np.max(np.abs((N << P) - X)) * k << S > (dpow * a) << P:
         return None
-    return [int(x) for x in N.tolist()]
+    return N.tolist()  # Python integers (an object array's elements)
 
 
-def gradient_groups(listing, s: int, E: int) -> list[slice]:
-    """The directions (interval entries) split into passes whose derivative arrays fit in
-    :data:`MAX_GRADIENT_BYTES` — one direction per pass at worst: the refinement is
-    never skipped, a large box only takes more passes."""
-    per = max(1, MAX_GRADIENT_BYTES // max(gradient_bytes(listing, s, 1), 1))
-    return [slice(e, min(e + per, E)) for e in range(0, E, per)] or [slice(0, 0)]
+def gradient_groups(listing, s: int, E: int, EA: int | None = None) -> list[slice]:
+    """The directions (interval entries: ``EA`` of A's — None: all —, then b's) split
+    into passes whose derivative arrays fit in :data:`MAX_GRADIENT_BYTES` — one direction
+    per pass at worst: the refinement is never skipped, a large box only takes more
+    passes."""
+    EA = E if EA is None else EA
+    groups, lo = [], 0
+    for e in range(1, E + 1):
+        if e - lo > 1 and gradient_bytes(listing, s, e - lo, max(0, min(e, EA) - lo)) > MAX_GRADIENT_BYTES:
+            groups.append(slice(lo, e - 1))
+            lo = e - 1
+    return groups + [slice(lo, E)] if E else [slice(0, 0)]
 
 
 def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict[int, BoxRefinement]:
@@ -378,7 +445,7 @@ def refine_box(listing, A, b, centre_A, centre_b, orders: Sequence[int]) -> dict
     centre = centre_integers(listing, centre_A, centre_b, wanted)
     ctx = GradientContext(A, b)
     parts = [condition_sums(listing, GradientContext(A, b, group), len(b), wanted)
-             for group in gradient_groups(listing, len(b), ctx.E)]
+             for group in gradient_groups(listing, len(b), ctx.E, ctx.EA)]
     r = box_radii(A, b, centre_A, centre_b, ctx)
     out = {}
     for n in wanted:

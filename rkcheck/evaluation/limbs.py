@@ -51,6 +51,7 @@ from rkcheck.evaluation.balls import (
     BallSums,
     _ball_at,
     _coefficients,
+    block_bins,
     summed_radii,
 )
 from rkcheck.numbers.enclosure import Enclosure
@@ -122,6 +123,7 @@ class LimbBallContext:
         balls_b = [_ball_at(x, self.bits, 0) for x in b]
         self.Ad = np.array([[self._digits(m) for m, _, _ in row] for row in balls_A], dtype=np.int64)  # (s, s, L)
         self.bd = np.array([[self._digits(m) for m, _, _ in balls_b]], dtype=np.int64)  # (1, s, L)
+        self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
         self.Ar_t = np.array([[r for _, r, _ in row] for row in balls_A]).T
         self.Ag_t = np.array([[g for _, _, g in row] for row in balls_A]).T
         self.br = np.array([r for _, r, _ in balls_b])
@@ -211,18 +213,25 @@ class LimbBallContext:
         self._check(g)
         return out.reshape(xm.shape), rad, g
 
-    def _product(self, xm: np.ndarray, Md: np.ndarray) -> np.ndarray:
-        """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b."""
+    def _product(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+        """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b: digit
+        ``l`` of ``x_j`` times digit ``q`` of column ``j`` lands at position ``l + q``
+        (positions from ``K0`` on), one pass per nonzero digit ``q`` of a column
+        (:func:`_product_plan`: the zeros of a sparse tableau, and of entries such as 1/2
+        with one nonzero digit, cost nothing).  Integer sums: exact in any order."""
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
         out = np.empty((n, outputs, L), dtype=_STORE)
         for a0 in range(0, n, _BLOCK):
             xb = np.ascontiguousarray(xm[a0:a0 + _BLOCK].transpose(1, 2, 0), dtype=np.int64)  # (s, L, m)
             z = np.zeros((self.K, outputs, xb.shape[2]), dtype=np.int64)
-            for j in range(self.s):
-                for l in range(L):
-                    lo = max(K0, l)  # positions p = l + q, q = p − l a digit of the constant
-                    z[lo - K0:l + L - K0] += Md[:, j, lo - l:L].T[:, :, None] * xb[j, l]
+            for j, q, rows, coef in plan:
+                lo = max(0, K0 - q)  # the digits l of x_j with l + q >= K0
+                if rows is None:
+                    z[q + lo - K0:q + L - K0] += coef[None, :, None] * xb[j, lo:L][:, None, :]
+                else:
+                    for i, c in zip(rows, coef):
+                        z[q + lo - K0:q + L - K0, i] += c * xb[j, lo:L]
             out[a0:a0 + _BLOCK] = self._carry(z).transpose(2, 1, 0)
         return out
 
@@ -236,11 +245,11 @@ class LimbBallContext:
 
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
-        return self._product(x[0], self.Ad), rad, g
+        return self._product(x[0], self.Ad, self._A_plan), rad, g
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
-        return self._product(x[0], self.bd)[:, 0, :], rad, g
+        return self._product(x[0], self.bd, self._b_plan)[:, 0, :], rad, g
 
     def enclosures(self, x) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
@@ -280,7 +289,9 @@ class LimbBallContext:
         if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
             raise ArithmeticError("certified digits: too many terms per condition for exact sums")
         idx = terms.coefficient_index[i0:i1]
-        cond = terms.condition[i0:i1]
+        uniq, inv = block_bins(terms.condition[i0:i1])
+        u = len(uniq)
+        local = np.zeros((L + C, u))
         for a0 in range(0, i1 - i0, _BLOCK):
             a1 = min(i1 - i0, a0 + _BLOCK)
             w_t = np.ascontiguousarray(w_terms[0][a0:a1].T, dtype=np.int64)  # (L, m)
@@ -289,11 +300,12 @@ class LimbBallContext:
             for j in range(C):
                 V[1 + j:1 + j + L] += w_t * cw_t[j]
             digits = self._carry(V)  # exact: position 0 holds nothing
-            cb = cond[a0:a1]
+            ib = inv[a0:a1]
             for p in range(L + C):
-                acc[0][p] += np.bincount(cb, weights=digits[p], minlength=k)
+                local[p] += np.bincount(ib, weights=digits[p], minlength=u)
+        acc[0][:, uniq] += local
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1] += np.bincount(cond, weights=w_terms[1] * cabs[idx] * _UP1, minlength=k)
+        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> BallSums:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
@@ -307,6 +319,31 @@ class LimbBallContext:
             d = np.concatenate([np.zeros((1, k), dtype=np.int64), d])  # nothing to floor below
             mids = self.to_ints(np.ascontiguousarray(self._carry(d).T))
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
+
+
+#: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
+_Pass = tuple[int, int, list[int] | None, np.ndarray]
+
+
+def _product_plan(Md: np.ndarray) -> list[_Pass]:
+    """The passes of :meth:`LimbBallContext._product` for the digit matrix ``Md``
+    (outputs, s, L): ``(j, q, rows, coefficients)`` for every column ``j`` and digit
+    ``q`` that is nonzero in some output — the outputs where it is nonzero one by one
+    when they are at most half of them (``rows``), else all outputs at once (``rows``
+    None, ``coefficients`` the whole digit column)."""
+    plan: list[_Pass] = []
+    outputs, s, L = Md.shape
+    for j in range(s):
+        for q in range(L):
+            col = Md[:, j, q]
+            rows = np.flatnonzero(col)
+            if not len(rows):
+                continue
+            if 2 * len(rows) <= outputs:
+                plan.append((j, q, rows.tolist(), col[rows].copy()))
+            else:
+                plan.append((j, q, None, col.copy()))
+    return plan
 
 
 def _small_dot(x: np.ndarray, M: np.ndarray) -> np.ndarray:

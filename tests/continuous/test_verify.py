@@ -64,16 +64,16 @@ def gauss_tableau(A_text, b_text, k, dps=60):
     """a_ij = b_j A(c_i, c_j), b_i = b_i B(c_i) on the k-point Gauss rule, as 60-digit decimals."""
     import sympy
 
-    mpmath.mp.dps = dps + 10
-    x, w = mpmath.mp.gauss_quadrature(k, "legendre") if hasattr(mpmath.mp, "gauss_quadrature") else _gauss(k)
-    c = [(xi + 1) / 2 for xi in x]
-    bw = [wi / 2 for wi in w]
-    t, s = sympy.symbols("tau sigma")
-    A = sympy.lambdify((t, s), sympy.sympify(A_text.replace("^", "**")), "mpmath")
-    B = sympy.lambdify((t,), sympy.sympify(b_text.replace("^", "**")), "mpmath")
-    text = lambda v: mpmath.nstr(mpmath.mpf(v), dps, strip_zeros=False)  # noqa: E731
-    return rkcheck.from_arrays([[text(bw[j] * A(c[i], c[j])) for j in range(k)] for i in range(k)],
-                               [text(bw[i] * B(c[i])) for i in range(k)])
+    with mpmath.workdps(dps + 10):  # not the global precision: other tests read mpmath's default
+        x, w = mpmath.mp.gauss_quadrature(k, "legendre") if hasattr(mpmath.mp, "gauss_quadrature") else _gauss(k)
+        c = [(xi + 1) / 2 for xi in x]
+        bw = [wi / 2 for wi in w]
+        t, s = sympy.symbols("tau sigma")
+        A = sympy.lambdify((t, s), sympy.sympify(A_text.replace("^", "**")), "mpmath")
+        B = sympy.lambdify((t,), sympy.sympify(b_text.replace("^", "**")), "mpmath")
+        text = lambda v: mpmath.nstr(mpmath.mpf(v), dps, strip_zeros=False)  # noqa: E731
+        return rkcheck.from_arrays([[text(bw[j] * A(c[i], c[j])) for j in range(k)] for i in range(k)],
+                                   [text(bw[i] * B(c[i])) for i in range(k)])
 
 
 def _gauss(k):

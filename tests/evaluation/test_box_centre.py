@@ -63,8 +63,11 @@ def _box(A, b):
     return values.A, values.b
 
 
+@pytest.mark.parametrize("balls_always", [False, True])
 @pytest.mark.parametrize("data", [RK4_DECIMAL, DENSE_DECIMAL, GAUSS2_DECIMAL])
-def test_centre_is_the_reference_residual_at_the_face_values(data):
+def test_centre_is_the_reference_residual_at_the_face_values(monkeypatch, data, balls_always):
+    if balls_always:  # the balls also for dense tableaux, which take the residues otherwise
+        monkeypatch.setattr(box, "CENTRE_BALL_MAX_NONZERO", 1.0)
     A, b = _exact(*data)
     listing = ConditionListing(7, None)
     got = box.centre_integers(listing, A, b, sorted(listing.orders))
@@ -102,6 +105,7 @@ def test_a_ball_too_wide_falls_back_to_residues(monkeypatch):
 
     monkeypatch.setattr(box, "_round_to_integers", spy)
     monkeypatch.setattr(box, "CENTRE_GUARD_BITS", -60)  # far too few bits: balls wider than 1
+    monkeypatch.setattr(box, "CENTRE_BALL_MAX_NONZERO", 1.0)  # balls first, although dense
     got = box.centre_integers(listing, A, b, wanted)
     assert any(calls)  # the fallback ran
     residues = exact_condition_sums(scaled_rational(A, b), listing, wanted)
@@ -190,6 +194,24 @@ def test_a_listing_too_large_for_the_balls_takes_the_residues(monkeypatch):
     monkeypatch.setattr(box, "MAX_CENTRE_BALL_BYTES", 0)
     monkeypatch.setattr(box, "_round_to_integers", lambda sums, dpow: pytest.fail("no balls expected"))
     assert box.centre_integers(listing, A, b, wanted) == fast
+
+
+def test_a_dense_tableau_takes_the_residues_and_a_sparse_one_the_balls(monkeypatch):
+    # every weight of the dense tableau may be nonzero: residues (faster there); RK4's
+    # pattern of zeros leaves 8 % of the weights to 14 vertices nonzero: balls
+    calls = []
+    real = box._round_to_integers
+    monkeypatch.setattr(box, "_round_to_integers", lambda sums, dpow: calls.append(1) or real(sums, dpow))
+    listing = ConditionListing(9, None)
+    wanted = sorted(listing.orders)
+    A, b = _exact(*DENSE_DECIMAL)
+    dense = box.centre_integers(listing, A, b, wanted)
+    assert not calls
+    residues = exact_condition_sums(scaled_rational(A, b), listing, wanted)
+    assert all(dense[n] == (residues[n].integers(), residues[n].scale) for n in wanted)
+    large = ConditionListing(14, None)
+    box.centre_integers(large, *_exact(*RK4_DECIMAL), sorted(large.orders))
+    assert calls
 
 
 def test_the_support_counter_counts_the_weights_that_are_not_zero():

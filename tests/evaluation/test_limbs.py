@@ -154,12 +154,19 @@ def as_int(ctx, digits):
     return sum(int(d) << (ctx.digit_bits * j) for j, d in enumerate(digits))
 
 
-@settings(max_examples=40, deadline=None)
+def _entries(s: int):
+    """Entries with dense digits (p/(10^6·s)), and zeros and dyadic entries with one
+    nonzero digit (RK4's 0, 1/2, 1): the matrix products take other passes for those."""
+    dense = st.integers(-10**6, 10**6).map(lambda k: Fraction(k, 10**6 * s))
+    sparse = st.sampled_from([Fraction(0), Fraction(1, 2), Fraction(-1, 4), Fraction(1)])
+    return st.one_of(dense, sparse, sparse)
+
+
+@settings(max_examples=60, deadline=None)
 @given(st.integers(1, 6), st.sampled_from([60, 200, 400]), st.data())
 def test_single_operations_are_within_their_error_units(s, bits, data):
-    A = [[Interval.point(Fraction(data.draw(st.integers(-10**6, 10**6)), 10**6 * s)) for _ in range(s)]
-         for _ in range(s)]
-    b = [Interval.point(Fraction(data.draw(st.integers(-10**6, 10**6)), 10**6 * s)) for _ in range(s)]
+    A = [[Interval.point(data.draw(_entries(s))) for _ in range(s)] for _ in range(s)]
+    b = [Interval.point(data.draw(_entries(s))) for _ in range(s)]
     ctx = LimbBallContext.create(A, b, bits, vertices=4)
     assert ctx is not None
     P = ctx.bits
