@@ -150,6 +150,7 @@ def scan(
     progress: Callable[[int, int], None] | None = None,
     on_file: Callable[[ScanRow, int, int], None] | None = None,
     scheduler: str | None = None,
+    json_in_workers: bool = False,
 ) -> ScanResult:
     """Check every ``*.toml``/``*.json`` tableau under ``paths`` (folders recursively,
     files, ``"@name"``) — the work of ``rkcheck scan``, with the same rows, order and exit
@@ -178,12 +179,17 @@ def scan(
     Without Dask, or with a scheduler that does not answer within
     SCHEDULER_CONNECT_TIMEOUT, it raises :class:`~rkcheck.errors.RkcheckError`.
 
+    ``json_in_workers=True`` builds each file's JSON report in the worker that checked
+    it, so that ``report("json")`` only assembles them (what ``rkcheck scan --format
+    json`` does: on many small files the encoding costs more than the checks).
+
     ``progress(done, total)`` is called when the files are known and after each one;
     ``on_file(row, done, total)`` after each file.  Ctrl-C stops the workers (cancels
     the cluster's jobs) and returns the files that finished, with ``interrupted`` set."""
     from rkcheck.batch.executors import default_jobs, executor_for, resolve_scheduler
     from rkcheck.batch.scan import run_scan
     from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.reports import scan as scan_report
 
     config = _config(project)
     roots = scan_roots(paths, config)
@@ -207,7 +213,8 @@ def scan(
         # connected here: an unreachable scheduler stops the scan before any file
         with executor_for(address, jobs) if address and files else nullcontext() as executor:
             outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
-                                             files_budget, executor=executor)
+                                             files_budget, executor=executor,
+                                             document=scan_report.encoded_result if json_in_workers else None)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0

@@ -40,6 +40,10 @@ class FileOutcome:
     time: float = 0.0
     lines: dict[str, int] = field(default_factory=dict)
     result: Any = None  # the CheckResult, with its claims judged
+    #: the result's ``verify --format json`` document, already encoded, when the scan
+    #: asked the worker for it (the JSON report then splices it in: encoding the
+    #: documents was most of a JSON scan's time in the parent process)
+    document: str | None = None
 
 
 def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):
@@ -55,10 +59,13 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,
-              max_stages: int = DEFAULT_MAX_STAGES, budget=None) -> FileOutcome:
+              max_stages: int = DEFAULT_MAX_STAGES, budget=None,
+              document: Callable[[Any], str] | None = None) -> FileOutcome:
     """Check one file; never raises for a bad file (it becomes an ``error`` outcome).
     ``budget`` (:class:`rkcheck.energy.budget.Budget`) refuses a file whose own
-    ``[check]`` asks for more than fits: that file's row says so."""
+    ``[check]`` asks for more than fits: that file's row says so.  ``document(result)``,
+    when given, encodes the result's report here, in the worker (a failure leaves it to
+    the report, which says so in the file's row)."""
     from rkcheck.energy.claims import judge_tableau
     from rkcheck.io.loader import (
         build_tableau,
@@ -95,6 +102,11 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             tab = built.replace(info=built.info.replace(lines=out.lines))
         out.result = judge_tableau(tab, options_for(tab, flags, project), fail_on, budget)
         out.status = "failed" if out.result.failed else "ok"
+        if document is not None:
+            try:
+                out.document = document(out.result)
+            except Exception:  # the report builds it again and turns the failure into this row's error
+                out.document = None
     except UserError as err:
         out.error = str(err.located(source=path) if not err.source else err)
     except RecursionError:
@@ -146,18 +158,20 @@ def run_scan(
     on_result: Callable[[FileOutcome], None] = lambda r: None,
     budget=None,
     executor: Executor | None = None,
+    document: Callable[[Any], str] | None = None,
 ) -> tuple[list[FileOutcome], bool]:
     """All outcomes in input order, and whether the scan was interrupted (Ctrl-C or
     SIGTERM: then the outcomes are those that finished, still in input order).
     ``budget`` goes to every file's check (see :func:`scan_file`).  The files run on
     ``executor`` when given (a Dask cluster: :mod:`rkcheck.batch.executors`), else on
-    ``jobs`` local worker processes (never more than files; 1: in this process)."""
+    ``jobs`` local worker processes (never more than files; 1: in this process).
+    ``document`` encodes each result's report in the worker (see :func:`scan_file`)."""
     from functools import partial
 
     if executor is None:
         jobs = max(1, min(jobs, len(files)))
         executor = executor_for(None, jobs, partial(warm_tables, flags, project))
-    check = partial(_check_path, (flags, project, fail_on, max_stages, budget))
+    check = partial(_check_path, (flags, project, fail_on, max_stages, budget, document))
     done: dict[int, FileOutcome] = {}
     interrupted = False
     try:

@@ -71,7 +71,8 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
     with progress_steps("checking", "files") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,
                           max_stages=max_stages, max_conditions=max_conditions, project=config,
-                          allow_empty=allow_empty, progress=update, on_file=_announcer(), scheduler=scheduler)
+                          allow_empty=allow_empty, progress=update, on_file=_announcer(), scheduler=scheduler,
+                          json_in_workers=fmt == "json")
     outcomes, elapsed, interrupted = result.outcomes, result.elapsed, result.interrupted
     if fmt == "text" and output and output != "-":
         write_text(scan_report.scan_text(outcomes, elapsed, interrupted, constants=sort == "energy",

@@ -10,6 +10,9 @@ from __future__ import annotations
 import csv
 import io
 import json
+import re
+import secrets
+from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import Any, Callable
@@ -28,9 +31,25 @@ CSV_COLUMNS = [
 ]
 
 
-def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None) -> list[dict[str, Any]]:
+@dataclass(frozen=True)
+class Encoded:
+    """A file's ``result`` already encoded as JSON by the worker that checked it
+    (:func:`encoded_result`); only the JSON report takes it as it is."""
+
+    text: str
+
+
+def encoded_result(result: Any) -> str:
+    """``verify --format json`` of one check, encoded as the scan's JSON report nests it
+    (a scan's workers call this, so that the report only splices the texts together)."""
+    return json.dumps(check_doc(result), indent=2, ensure_ascii=False)
+
+
+def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None,
+                 encoded: bool = False) -> list[dict[str, Any]]:
     """Plain documents of the outcomes: path, status, error, time, lines, and under
-    ``result`` the ``verify --format json`` object of each checked file.
+    ``result`` the ``verify --format json`` object of each checked file — or, with
+    ``encoded``, the :class:`Encoded` text a worker made of it, where there is one.
 
     A file whose document (or, given ``row_check``, its row of the report) cannot be
     built becomes an ``error`` row with the reason, like a file that could not be read:
@@ -43,7 +62,9 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
         doc = {"path": printable(o.path), "status": o.status, "error": o.error and printable(o.error),
                "time": o.time, "lines": o.lines, "result": None}
         try:
-            doc["result"] = None if o.result is None else check_doc(o.result)
+            if o.result is not None:
+                done = getattr(o, "document", None)
+                doc["result"] = Encoded(done) if encoded and done is not None else check_doc(o.result)
             if row_check is not None:
                 row_check(doc)
         except Exception as err:  # a bug (or a value no format can say): this row says so
@@ -55,9 +76,14 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
     return docs
 
 
+def _json_row(d: dict[str, Any]) -> str:
+    """A row as JSON (a worker's encoded result is known to encode)."""
+    return json.dumps({**d, "result": None} if isinstance(d["result"], Encoded) else d, ensure_ascii=False)
+
+
 def _row_renderer(fmt: str, elapsed: float = 0.0) -> Callable[[dict[str, Any]], Any]:
     """How one row of a format is rendered (tried per file before the whole report)."""
-    return {"json": lambda d: json.dumps(d, ensure_ascii=False), "csv": lambda d: scan_csv([d]),
+    return {"json": _json_row, "csv": lambda d: scan_csv([d]),
             "junit": lambda d: scan_junit([d], elapsed), "github": lambda d: scan_github([d]),
             "text": lambda d: (_scan_row(d, str, True), failure_message(d) if d["status"] == "failed" else None),
             }[fmt]
@@ -67,7 +93,7 @@ def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any]
     """The scan report in a machine format: json, csv, junit or github."""
     if fmt not in ("json", "csv", "junit", "github"):
         raise ValueError(f"unknown scan format {fmt!r}")
-    docs = outcome_docs(outcomes, _row_renderer(fmt, elapsed))
+    docs = outcome_docs(outcomes, _row_renderer(fmt, elapsed), encoded=fmt == "json")
     if fmt == "json":
         return scan_json(docs, interrupted, options) + "\n"
     if fmt == "csv":
@@ -117,10 +143,16 @@ def totals(outcomes: list[dict[str, Any]]) -> dict[str, int]:
 
 def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[str, Any]) -> str:
     files = []
-    for o in outcomes:
+    encoded: dict[str, str] = {}
+    nonce = secrets.token_hex(8)  # stands in for an encoded result; no file's text can hold it
+    for k, o in enumerate(outcomes):
+        result = o.get("result")
+        if isinstance(result, Encoded):
+            result = f"{nonce}:{k}"
+            encoded[result] = o["result"].text
         files.append({
             "file": o["path"], "status": o["status"], "error": o["error"], "time": o["time"],
-            "result": o.get("result"),
+            "result": result,
         })
     doc = {
         "schema": SCHEMA,
@@ -131,7 +163,15 @@ def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[s
         "totals": totals(outcomes),
         "files": files,
     }
-    return json.dumps(doc, indent=2, ensure_ascii=False)
+    text = json.dumps(doc, indent=2, ensure_ascii=False)
+    if not encoded:
+        return text
+    # a file's keys sit at depth 3 (six spaces); its result's own lines move in as far
+    return _RESULT_LINE.sub(lambda m: m.group(1) + encoded[m.group(2)].replace("\n", "\n      "), text)
+
+
+#: the line of a file's ``result`` in the scan's JSON when it holds a placeholder
+_RESULT_LINE = re.compile(r'^(      "result": )"([0-9a-f]{16}:[0-9]+)"$', re.MULTILINE)
 
 
 # ----------------------------------------------------------------------- CSV

@@ -377,3 +377,32 @@ def test_the_short_form_is_scanned_like_verify_reads_it(capsys, tmp_path):
     # degree 3 needs the rule exact for cubics; the midpoint rule is not (Σ b c² = 1/4 ≠ 1/3),
     # and the bush [τ³] fails at order 3
     assert scanned["energy_order"] == alone["energy_order"] == 2
+
+
+def test_results_encoded_by_the_workers_give_the_same_json_report(folder):
+    """``json_in_workers``: each file's result is encoded where it was checked and the
+    report splices the texts; from the same outcomes, the report built the plain way
+    (every document encoded at once, in this process) is the same text, byte for byte —
+    files of the shipped library with algebraic entries and long names included."""
+    import rkcheck
+    from support.paths import TABLEAUX
+
+    res = rkcheck.scan([folder, TABLEAUX / "collocation", TABLEAUX / "continuous"], order=6, jobs=2,
+                       json_in_workers=True)
+    checked = [o for o in res.outcomes if o.result is not None]
+    assert checked and all(o.document is not None for o in checked)
+    spliced = res.report("json")
+    for o in res.outcomes:
+        o.document = None
+    assert spliced == res.report("json")
+    assert json.loads(spliced)["totals"]["files"] == len(res.outcomes)
+
+
+def test_a_worker_that_cannot_encode_leaves_the_result_to_the_report(folder):
+    from rkcheck.batch.scan import scan_file
+
+    def broken(result):
+        raise ValueError("no")
+
+    out = scan_file(str(folder / "a-good.toml"), {}, {}, "claims", document=broken)
+    assert out.status == "ok" and out.result is not None and out.document is None
