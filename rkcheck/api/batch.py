@@ -189,7 +189,7 @@ def scan(
     from rkcheck.batch.executors import default_jobs, executor_for, resolve_scheduler
     from rkcheck.batch.scan import run_scan
     from rkcheck.io.discovery import find_tableau_files
-    from rkcheck.reports import scan as scan_report
+    from rkcheck.reports.scan_json import encoded_result
 
     config = _config(project)
     roots = scan_roots(paths, config)
@@ -214,7 +214,7 @@ def scan(
         with executor_for(address, jobs) if address and files else nullcontext() as executor:
             outcomes, interrupted = run_scan(files, flags, config.check, fail_on, jobs, max_stages, on_result,
                                              files_budget, executor=executor,
-                                             document=scan_report.encoded_result if json_in_workers else None)
+                                             document=encoded_result if json_in_workers else None)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
     elapsed = time.perf_counter() - t0

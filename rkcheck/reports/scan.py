@@ -9,10 +9,7 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import re
-import secrets
-from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import Any, Callable
@@ -20,8 +17,8 @@ from xml.sax.saxutils import escape, quoteattr
 
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string
-from rkcheck.reports.jsondoc import SCHEMA, check_doc
-from rkcheck.version import __version__
+from rkcheck.reports.jsondoc import check_doc
+from rkcheck.reports.scan_json import Encoded, json_row, scan_json, totals
 
 CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
@@ -29,20 +26,6 @@ CSV_COLUMNS = [
     "conditions_failed", "first_failure", "claims", "claims_ok", "broken_claims", "time", "error",
     "symplectic", "symmetric", "error_constant",
 ]
-
-
-@dataclass(frozen=True)
-class Encoded:
-    """A file's ``result`` already encoded as JSON by the worker that checked it
-    (:func:`encoded_result`); only the JSON report takes it as it is."""
-
-    text: str
-
-
-def encoded_result(result: Any) -> str:
-    """``verify --format json`` of one check, encoded as the scan's JSON report nests it
-    (a scan's workers call this, so that the report only splices the texts together)."""
-    return json.dumps(check_doc(result), indent=2, ensure_ascii=False)
 
 
 def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None,
@@ -76,14 +59,9 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
     return docs
 
 
-def _json_row(d: dict[str, Any]) -> str:
-    """A row as JSON (a worker's encoded result is known to encode)."""
-    return json.dumps({**d, "result": None} if isinstance(d["result"], Encoded) else d, ensure_ascii=False)
-
-
 def _row_renderer(fmt: str, elapsed: float = 0.0) -> Callable[[dict[str, Any]], Any]:
     """How one row of a format is rendered (tried per file before the whole report)."""
-    return {"json": _json_row, "csv": lambda d: scan_csv([d]),
+    return {"json": json_row, "csv": lambda d: scan_csv([d]),
             "junit": lambda d: scan_junit([d], elapsed), "github": lambda d: scan_github([d]),
             "text": lambda d: (_scan_row(d, str, True), failure_message(d) if d["status"] == "failed" else None),
             }[fmt]
@@ -129,49 +107,6 @@ def failing_conditions(o: dict[str, Any], limit: int | None = 5) -> list[dict[st
 
 def energy_text(o: dict[str, Any]) -> str:
     return _summary(o).get("energy_order_label", "")
-
-
-def totals(outcomes: list[dict[str, Any]]) -> dict[str, int]:
-    t = {"files": len(outcomes), "ok": 0, "failed": 0, "error": 0, "skipped": 0}
-    for o in outcomes:
-        t[o["status"]] = t.get(o["status"], 0) + 1
-    return t
-
-
-# ---------------------------------------------------------------------- JSON
-
-
-def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[str, Any]) -> str:
-    files = []
-    encoded: dict[str, str] = {}
-    nonce = secrets.token_hex(8)  # stands in for an encoded result; no file's text can hold it
-    for k, o in enumerate(outcomes):
-        result = o.get("result")
-        if isinstance(result, Encoded):
-            result = f"{nonce}:{k}"
-            encoded[result] = o["result"].text
-        files.append({
-            "file": o["path"], "status": o["status"], "error": o["error"], "time": o["time"],
-            "result": result,
-        })
-    doc = {
-        "schema": SCHEMA,
-        "rkcheck": __version__,
-        "kind": "scan",
-        "options": options,
-        "interrupted": interrupted,
-        "totals": totals(outcomes),
-        "files": files,
-    }
-    text = json.dumps(doc, indent=2, ensure_ascii=False)
-    if not encoded:
-        return text
-    # a file's keys sit at depth 3 (six spaces); its result's own lines move in as far
-    return _RESULT_LINE.sub(lambda m: m.group(1) + encoded[m.group(2)].replace("\n", "\n      "), text)
-
-
-#: the line of a file's ``result`` in the scan's JSON when it holds a placeholder
-_RESULT_LINE = re.compile(r'^(      "result": )"([0-9a-f]{16}:[0-9]+)"$', re.MULTILINE)
 
 
 # ----------------------------------------------------------------------- CSV
@@ -377,7 +312,6 @@ def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
     """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
     ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file; files
     are named relative to their repository's root (:func:`annotation_path`)."""
-    import re
 
     out = []
     for o in outcomes:
