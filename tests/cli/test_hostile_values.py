@@ -126,6 +126,7 @@ def test_a_constant_chained_through_a_decimal_is_read_as_rounded(tmp_path, capsy
 @pytest.mark.parametrize("fmt", ["json", "csv", "junit", "github", "text"])
 def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, capsys, monkeypatch, fmt):
     import rkcheck.reports.scan as scan_report
+    import rkcheck.reports.scan_json as scan_json
 
     folder = tmp_path / "d"
     folder.mkdir()
@@ -139,6 +140,9 @@ def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, cap
         return real(result)
 
     monkeypatch.setattr(scan_report, "check_doc", broken)
+    # a JSON scan has its workers encode the documents first: there the failure leaves
+    # the document to the report, which fails again and turns it into the row's error
+    monkeypatch.setattr(scan_json, "check_doc", broken)
     out = tmp_path / f"report.{fmt}"
     r = run_cli(capsys, "scan", str(folder), "--order", "3", "--jobs", "1", "--format", fmt, "-o", str(out))
     assert r.code == 1, r.err
