@@ -33,7 +33,6 @@ entries lie in a number field), the caller falls back to the plain route.
 
 from __future__ import annotations
 
-from math import lcm
 from typing import Any, Sequence
 
 from rkcheck.numbers.groebner import (
@@ -69,10 +68,8 @@ class RuleRing:
 
 
 def integral(p: Any, zctx: Any) -> Any:
-    """p times the least common denominator of its coefficients, over Z."""
-    d = p.to_dict()
-    L = lcm(*(int(c.q) for c in d.values())) if d else 1
-    return zctx.from_dict({m: int(c * L) for m, c in d.items()})
+    """p with its denominators cleared, over Z (the same zeros, the same ideal)."""
+    return zctx.from_dict(integer_dicts([p])[0])
 
 
 class RuleFraction:
@@ -196,8 +193,7 @@ def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], de
 
     s = family.stages
     gens = dict(zip(rules.names, rules.ctx.gens()))
-    b = [rules.fraction(gens[n]) if n else rules.fraction(_fixed(layout.b_fixed[i], rules))
-         for i, n in enumerate(layout.b)]
+    b = [rules.fraction(w) for w in _weights(layout, rules)]
     c = [rules.fraction(gens[n]) for n in nodes]
     rows = row_sum_rows(c) + double_bush_rows(b, c, degree, order)
     avf = [c[i] * b[j] for i in range(s) for j in range(s)]
@@ -221,9 +217,12 @@ def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], de
     return R, [A[i * s:(i + 1) * s] for i in range(s)], scales
 
 
-def _fixed(p: Any, rules: RuleRing) -> Any:
-    """A parameter-free weight (a constant polynomial of the family's ring) on the rules."""
-    return rules.ctx.constant(sum(p.to_dict().values(), 0))
+def _weights(layout: Any, rules: RuleRing) -> list[Any]:
+    """The weights as polynomials on the rules: a weight's own parameter, or its value
+    (parameter-free: a constant polynomial of the family's ring)."""
+    gens = dict(zip(rules.names, rules.ctx.gens()))
+    return [gens[n] if n else rules.ctx.constant(sum(layout.b_fixed[i].to_dict().values(), 0))
+            for i, n in enumerate(layout.b)]
 
 
 def _embedding(rules: RuleRing, R: ParameterRing):
@@ -244,9 +243,7 @@ def _remaining(layout: Any, rules: RuleRing, R: ParameterRing, A: list[list[Any]
 
     from rkcheck.energy.family_conditions import classical_conditions, energy_conditions
 
-    up = _embedding(rules, R)
-    gens = dict(zip(rules.names, rules.ctx.gens()))
-    b = [up(gens[n]) if n else up(_fixed(layout.b_fixed[i], rules)) for i, n in enumerate(layout.b)]
+    b = [_embedding(rules, R)(w) for w in _weights(layout, rules)]
     conds = [cd.polynomial for cd in energy_conditions(R, A, b, order, degree)]
     if classical is not None:
         conds += [cd.polynomial for cd in classical_conditions(R, A, b, classical)]
@@ -290,7 +287,7 @@ def _irreducible_factors(polys: list[Any]) -> list[dict]:
         if p.is_constant():
             continue
         for g, _ in p.factor()[1]:
-            d = {tuple(m): c for m, c in integer_dicts([g])[0].items()}
+            d = integer_dicts([g])[0]
             seen.setdefault(str(sorted(d.items())), d)
     return list(seen.values())
 
