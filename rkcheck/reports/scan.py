@@ -45,9 +45,11 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
         doc = {"path": printable(o.path), "status": o.status, "error": o.error and printable(o.error),
                "time": o.time, "lines": o.lines, "result": None}
         try:
-            if o.result is not None:
-                done = getattr(o, "document", None)
-                doc["result"] = Encoded(done) if encoded and done is not None else check_doc(o.result)
+            done = getattr(o, "document", None)
+            if encoded and done is not None:  # the result itself is not read (not even unpickled)
+                doc["result"] = Encoded(done)
+            elif o.result is not None:
+                doc["result"] = check_doc(o.result)
             if row_check is not None:
                 row_check(doc)
         except Exception as err:  # a bug (or a value no format can say): this row says so

@@ -28,10 +28,15 @@ class Encoded:
     text: str
 
 
+#: how far a file's ``result`` sits in the scan's JSON report: its keys are at depth 3
+_NESTED = "\n" + " " * 6
+
+
 def encoded_result(result: Any) -> str:
-    """``verify --format json`` of one check, encoded as the scan's JSON report nests it
-    (a scan's workers call this, so that the report only splices the texts together)."""
-    return json.dumps(check_doc(result), indent=2, ensure_ascii=False)
+    """``verify --format json`` of one check, encoded and indented as the scan's JSON
+    report nests it (a scan's workers call this, so that the report only splices the
+    texts together)."""
+    return json.dumps(check_doc(result), indent=2, ensure_ascii=False).replace("\n", _NESTED)
 
 
 def json_row(d: dict[str, Any]) -> str:
@@ -64,8 +69,7 @@ def scan_json(outcomes: list[dict[str, Any]], interrupted: bool, options: dict[s
     text = json.dumps(doc, indent=2, ensure_ascii=False)
     if not encoded:
         return text
-    # a file's keys sit at depth 3 (six spaces); its result's own lines move in as far
-    return _RESULT_LINE.sub(lambda m: m.group(1) + encoded[m.group(2)].replace("\n", "\n      "), text)
+    return _RESULT_LINE.sub(lambda m: m.group(1) + encoded[m.group(2)], text)
 
 
 #: the line of a file's ``result`` in the scan's JSON when it holds a placeholder

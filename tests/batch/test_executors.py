@@ -64,3 +64,20 @@ def test_a_local_worker_that_dies_is_one_failed_item_and_is_replaced():
 def _kill_self_with(parent: int, signum: int):
     assert os.getpid() != parent  # in a worker, never in the test's own process
     return os.kill(os.getpid(), signum) if signum else None
+
+
+def test_a_dask_chunk_whose_result_cannot_be_sent_back_loses_only_that_item():
+    """A cluster's chunk comes back as one pickle; an item whose result does not pickle
+    becomes a Failure saying so, and the chunk's other results arrive intact."""
+    import pickle
+
+    from rkcheck.batch.dask_executor import _run_chunk
+    from rkcheck.batch.jobs import Failure
+
+    back = pickle.loads(_run_chunk(_unpicklable_for_two, [1, 2, 3]))
+    assert back[0] == 1 and back[2] == 9
+    assert isinstance(back[1], Failure) and "cannot be sent back" in back[1].why
+
+
+def _unpicklable_for_two(x):
+    return (lambda: x) if x == 2 else x * x

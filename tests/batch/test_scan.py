@@ -387,11 +387,19 @@ def test_results_encoded_by_the_workers_give_the_same_json_report(folder):
     import rkcheck
     from support.paths import TABLEAUX
 
+    from rkcheck.batch.scan import _Packed
+    from rkcheck.reports.jsondoc import check_doc
+
     res = rkcheck.scan([folder, TABLEAUX / "collocation", TABLEAUX / "continuous"], order=6, jobs=2,
                        json_in_workers=True)
-    checked = [o for o in res.outcomes if o.result is not None]
-    assert checked and all(o.document is not None for o in checked)
     spliced = res.report("json")
+    # the report came from the documents alone: the results crossed from the workers
+    # pickled and are still so; read, one is the check the worker encoded
+    packed = [o for o in res.outcomes if isinstance(o.__dict__["_result"], _Packed)]
+    assert packed and all(o.document is not None for o in packed)
+    assert check_doc(packed[0].result) == json.loads(packed[0].document)
+    checked = [o for o in res.outcomes if o.result is not None]
+    assert len(checked) == len(packed)
     for o in res.outcomes:
         o.document = None
     assert spliced == res.report("json")
