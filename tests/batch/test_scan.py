@@ -384,9 +384,9 @@ def test_results_encoded_by_the_workers_give_the_same_json_report(folder):
     report splices the texts; from the same outcomes, the report built the plain way
     (every document encoded at once, in this process) is the same text, byte for byte —
     files of the shipped library with algebraic entries and long names included."""
-    import rkcheck
     from support.paths import TABLEAUX
 
+    import rkcheck
     from rkcheck.batch.scan import _Packed
     from rkcheck.reports.jsondoc import check_doc
 
