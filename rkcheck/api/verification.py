@@ -10,7 +10,8 @@ flags), the tableau's own ``[check]`` table, ``[tool.rkcheck]`` of the nearest
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping
 
 from rkcheck.energy.check import CheckResult
 from rkcheck.energy.results import Condition
@@ -21,9 +22,11 @@ from rkcheck.options import (
     DECIMALS_MODES,
     DPS_RANGE,
     FAIL_ON,
+    JOBS_RANGE,
     MAX_ORDER,
     parse_choice,
     parse_degree,
+    parse_int_in,
     parse_positive,
     parse_require,
     resolve_check_options,
@@ -110,16 +113,37 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
 
 def run_check(tableau: Tableau, flags: Mapping[str, Any], project: Mapping[str, Any] | None = None,
               fail_on: str = "auto", budget: "Budget | None" = None,
-              progress: Callable[[int, int], None] | None = None) -> Verification:
+              progress: Callable[[int, int], None] | None = None,
+              scheduler: str | None = None, jobs: int = 1) -> Verification:
     """The check behind :func:`verify` and ``rkcheck verify``: options resolved
-    (flags, ``[check]``, ``project``, defaults), then every condition and every claim.
+    (flags, ``[check]``, ``project``, defaults), then every condition and every claim,
+    its exact passes on ``scheduler``'s cluster or ``jobs`` local processes when given.
     Ctrl-C raises :class:`~rkcheck.errors.CheckInterrupted` with what finished."""
     from rkcheck.energy.claims import judge_tableau
 
     options = resolve_check_options(flags, tableau.info.check, project or {})
-    result = judge_tableau(tableau, options, fail_on, budget, progress, Verification)
+    with _passes_elsewhere(scheduler, jobs):
+        result = judge_tableau(tableau, options, fail_on, budget, progress, Verification)
     assert isinstance(result, Verification)
     return result
+
+
+@contextmanager
+def _passes_elsewhere(scheduler: str | None, jobs: int) -> Iterator[None]:
+    """The exact passes of the checks in the block on the cluster at ``scheduler``, or
+    on ``jobs`` local processes (forked: they share this process's listing); neither:
+    here."""
+    address = None if scheduler is None or scheduler.strip() in ("", "local") else scheduler.strip()
+    if address is None and jobs <= 1:
+        yield
+        return
+    from rkcheck.batch.executors import executor_for
+    from rkcheck.batch.passes import executor_passes
+    from rkcheck.evaluation.modular import passes_run_by
+    from rkcheck.trees.listing import current_store
+
+    with executor_for(address, jobs) as executor, passes_run_by(executor_passes(executor, current_store() is not None)):
+        yield
 
 
 def verify(
@@ -135,6 +159,8 @@ def verify(
     arithmetic: str = UNSET,
     project: bool = False,
     max_conditions: int | None = None,
+    scheduler: str | None = None,
+    jobs: int = 1,
 ) -> Verification:
     """Check every energy condition of ``tableau`` (a Tableau, a path or ``"@name"``)
     up to ``order`` for polynomial Hamiltonians of degree ≤ ``degree`` (None or "none":
@@ -149,6 +175,11 @@ def verify(
     ``arithmetic``: "auto", "exact" or "ball".  ``max_conditions`` refuses larger checks; the memory available
     bounds them anyway (:class:`~rkcheck.energy.budget.ResourceError`).
 
+    A large exact check can be split: its passes (one per group of primes, each a pass
+    over every condition) run on the Dask cluster at ``scheduler`` (``"tcp://host:8786"``;
+    only when given — the environment's ``RKCHECK_SCHEDULER`` is for scans) or on
+    ``jobs`` local processes, each with its own weights.  The result is the same.
+
     Bad options raise :class:`~rkcheck.errors.OptionError`, bad tableaux
     :class:`~rkcheck.errors.TableauError` (both :class:`~rkcheck.errors.RkcheckError`)."""
     from rkcheck.api.tableaux import as_tableau
@@ -157,6 +188,9 @@ def verify(
 
     flags = check_flags(degree, order, dps, decimals, fail_fast, require, arithmetic)
     fail_on = _option(lambda: parse_choice(fail_on, FAIL_ON, "fail_on"))
+    jobs = _option(lambda: parse_int_in(jobs, JOBS_RANGE, "jobs"))
+    if scheduler is not None and not isinstance(scheduler, str):
+        raise OptionError(f"expected an address such as 'tcp://host:8786', got {scheduler!r}", "scheduler")
     if max_conditions is not None:
         max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
     project_check: dict[str, Any] = {}
@@ -168,7 +202,8 @@ def verify(
         if fail_on == "auto" and config.fail_on:
             fail_on = config.fail_on
     tab = as_tableau(tableau, continuous=True)
-    return run_check(tab, flags, project_check, fail_on, Budget(available_memory(), max_conditions, None))
+    return run_check(tab, flags, project_check, fail_on, Budget(available_memory(), max_conditions, None),
+                     scheduler=scheduler, jobs=jobs)
 
 
 __all__ = ["Condition", "Verification", "verify"]

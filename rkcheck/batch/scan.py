@@ -75,7 +75,7 @@ def _set_result(outcome: FileOutcome, value: Any) -> None:
 
 
 # the field's value lives in ``_result``: this property unpickles a packed one on first read
-FileOutcome.result = property(_result_of, _set_result, doc="The CheckResult, with its claims judged.")  # type: ignore[assignment,method-assign]
+FileOutcome.result = property(_result_of, _set_result, doc="The CheckResult, with its claims judged.")
 
 
 def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):

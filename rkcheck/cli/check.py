@@ -31,7 +31,7 @@ from rkcheck.cli.common import (
     stdout_console,
 )
 from rkcheck.errors import CheckInterrupted, OptionError, UserError
-from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS
+from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS, JOBS_RANGE
 
 
 def input_format_option(f):
@@ -56,10 +56,15 @@ def load_input(file: str, max_stages: int, input_format: str | None):
 @click.option("--draw", is_flag=True, help="Draw the free tree of each failing condition listed (text output).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--fail-fast", is_flag=True, help="Stop after the first order with a failing condition.")
+@click.option("--jobs", "-j", type=click.IntRange(*JOBS_RANGE), default=1, show_default=True,
+              help="Split an exact check's passes (groups of primes) over this many local processes.")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Split an exact check's passes over the workers of this Dask cluster (tcp://host:8786; "
+              "needs rkcheck[cluster]).")
 @fail_on_option
 @output_options
 def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
-           draw, fmt, fail_fast, fail_on) -> None:
+           draw, fmt, fail_fast, jobs, scheduler, fail_on) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table."""
     from rkcheck.api.families import is_family_file
@@ -76,7 +81,8 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     interrupted = False
     try:
         with progress_steps("checking", "orders") as update:  # the API's check: same options, same result
-            result = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update)
+            result = run_check(tab, flag_values(), config.check, fail_on, budget(max_conditions), update,
+                               scheduler=scheduler, jobs=jobs)
         failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
         result, failed, interrupted = stop.result, True, True

@@ -47,12 +47,15 @@ evaluated for that order, once, on first demand.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Callable, Iterator
 
 import numpy as np
 
+from rkcheck.evaluation.protocols import PassRunner
 from rkcheck.evaluation.scaled import ScaledTableau
 
 # ---------------------------------------------------------------------- results
@@ -233,16 +236,20 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
+    groups = pass_groups(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
+                         wanted[-1] if wanted else 0)
+    left = [len(roots) for _, roots in channels[:passes]]  # channels of each prime still to come
     done = 0
     try:
-        for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
-                                        wanted[-1] if wanted else 0):
+        for g, at in _run_passes(scaled, listing, groups):
+            group = groups[g][0]
             for n, sums in at.items():  # an order keeps the residues of its own primes, no more
                 for c, (i, j, _, _) in enumerate(group):
                     if i < count[n]:
                         residues[n][:, i, j] = sums[:, c]
-            i, j = group[-1][:2]
-            finished = i + 1 if j == len(channels[i][1]) - 1 else i  # primes with every root done
+            for i, *_ in group:
+                left[i] -= 1
+            finished = next((i for i, k in enumerate(left) if k), len(left))  # primes 0 … finished−1 complete
             if finished > done:
                 done = finished
                 if on_pass is not None:
@@ -252,16 +259,51 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     return {n: result(n) for n in wanted}
 
 
-def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
-                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
-    """The channels of the primes ``chosen`` (prime i, root j), evaluated in passes of as
-    many as :meth:`ScaledTableau.channels_per_pass` allows, in order: yields ``(group,
-    sums)`` with ``group`` the pass's ``(i, j, p, r)`` and ``sums[n]`` its residues
-    ``(conditions, len(group))`` for the orders ``orders_for(i)`` of its first prime."""
+#: where the passes of :func:`exact_condition_sums` run when not in this process
+#: (:func:`passes_run_by`)
+_RUNNER: ContextVar[PassRunner | None] = ContextVar("rkcheck_pass_runner", default=None)
+
+
+@contextmanager
+def passes_run_by(runner: PassRunner | None) -> Iterator[None]:
+    """Within the block, exact evaluations with several passes give them to ``runner``
+    (the workers of a cluster) instead of running them here, one after the other; the
+    residues, and so every verdict, are the same."""
+    token = _RUNNER.set(runner)
+    try:
+        yield
+    finally:
+        _RUNNER.reset(token)
+
+
+def _run_passes(scaled: ScaledTableau, listing,
+                groups: list[tuple[list, list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]:
+    """``(index, sums)`` of every pass: here in order, or by the runner in force."""
+    jobs = [([(p, r) for _, _, p, r in group], orders) for group, orders in groups]
+    runner = _RUNNER.get()
+    if runner is None or len(jobs) < 2:  # one pass gains nothing from being sent away
+        for g, (pairs, orders) in enumerate(jobs):
+            yield g, scaled.residues_at(listing, pairs, orders)
+        return
+    yield from runner(scaled, listing, jobs)
+
+
+def pass_groups(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
+                orders_for: Callable[[int], list[int]], top: int) -> list[tuple[list, list[int]]]:
+    """The channels of the primes ``chosen`` (prime i, root j) split into passes of as
+    many as :meth:`ScaledTableau.channels_per_pass` allows: ``(group, orders)`` with
+    ``group`` the pass's ``(i, j, p, r)`` and ``orders`` those of its first prime
+    (``orders_for(i)``)."""
     flat = [(i, j, p, r) for i, (p, roots) in enumerate(chosen) for j, r in enumerate(roots)]
     if not flat:
-        return
+        return []
     width = scaled.channels_per_pass(listing, top)
-    for g in range(0, len(flat), width):
-        group = flat[g:g + width]
-        yield group, scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders_for(group[0][0]))
+    return [(flat[g:g + width], orders_for(flat[g][0])) for g in range(0, len(flat), width)]
+
+
+def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
+                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
+    """The passes of :func:`pass_groups`, evaluated here in order: yields ``(group, sums)``
+    with ``sums[n]`` the residues ``(conditions, len(group))`` of the pass's orders."""
+    for group, orders in pass_groups(scaled, listing, chosen, orders_for, top):
+        yield group, scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders)

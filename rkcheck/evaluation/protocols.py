@@ -13,7 +13,7 @@ of floats): they are typed ``Any`` on purpose, the one thing a context may choos
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Iterator, Protocol
 
 if TYPE_CHECKING:
     import numpy as np
@@ -70,3 +70,14 @@ class ExactSums(Protocol):
     def __len__(self) -> int: ...
     def is_zero(self) -> np.ndarray: ...
     def value(self, k: int) -> Any: ...
+
+
+class PassRunner(Protocol):
+    """Runs the channel passes of an exact evaluation somewhere else (the workers of a
+    cluster): ``jobs`` are ``(channels, orders)`` — the ``(p, root)`` pairs of one pass
+    and the numbers of vertices it is for — and every job's
+    ``scaled.residues_at(listing, channels, orders)`` is yielded once as ``(index, sums)``,
+    in any order."""
+
+    def __call__(self, scaled: Any, listing: Any,
+                 jobs: list[tuple[list[tuple[int, int]], list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]: ...

@@ -45,6 +45,11 @@ def use_store(store: ListingStore | None) -> ListingStore | None:
     return previous
 
 
+def current_store() -> ListingStore | None:
+    """Where listings built from now on are kept (:func:`use_store`), if anywhere."""
+    return _default_store
+
+
 class _Orders(Mapping[int, OrderTerms]):
     """The listing's orders by vertices: every key is known at once, an order is built
     (or loaded) the first time it is looked up, with every order below it."""
