@@ -23,7 +23,7 @@ import uuid
 from typing import Any, Callable
 
 from rkcheck.batch.jobs import CLUSTER_EXTRA, Executor, Failure, internal_error, scheduler_timeout
-from rkcheck.errors import UserError
+from rkcheck.errors import OptionError
 
 #: One job at a time per worker process: the tables a check builds are shared, unlocked.
 _ONE_AT_A_TIME = threading.Lock()
@@ -77,13 +77,13 @@ def _import_distributed():
     try:
         import distributed
     except ImportError:
-        raise UserError(f"--scheduler needs Dask: pip install '{CLUSTER_EXTRA}'", "scheduler") from None
+        raise OptionError(f"--scheduler needs Dask: pip install '{CLUSTER_EXTRA}'", "scheduler") from None
     return distributed
 
 
 def _probe(address: str, timeout: float) -> None:
     """Reach the scheduler within ``timeout`` seconds (connect and handshake), or raise
-    UserError: a sync Client that fails to connect leaves a half-built client behind
+    OptionError: a sync Client that fails to connect leaves a half-built client behind
     whose clean-up blocks and prints at exit."""
     import asyncio
 
@@ -96,10 +96,10 @@ def _probe(address: str, timeout: float) -> None:
     try:
         asyncio.run(asyncio.wait_for(probe(), timeout))
     except (ValueError, TypeError) as err:  # not an address: "missing port number", unknown scheme
-        raise UserError(f"not a scheduler address: {err}", "scheduler") from None
+        raise OptionError(f"not a scheduler address: {err}", "scheduler") from None
     except Exception as err:  # refused, timed out, not a Dask scheduler
         why = "no answer" if isinstance(err, asyncio.TimeoutError) else f"{type(err).__name__}: {err}"
-        raise UserError(f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({why}); "
+        raise OptionError(f"cannot reach the Dask scheduler at {address} within {timeout:g} s ({why}); "
                         f"the limit SCHEDULER_CONNECT_TIMEOUT is set by RKCHECK_SCHEDULER_TIMEOUT", "scheduler") from None
 
 
@@ -121,7 +121,7 @@ class DaskExecutor(Executor):
             self.client = distributed.Client(address, timeout=timeout, set_as_default=False)
         except Exception as err:
             self.close()
-            raise UserError(f"cannot connect to the Dask scheduler at {address}: {type(err).__name__}: {err}",
+            raise OptionError(f"cannot connect to the Dask scheduler at {address}: {type(err).__name__}: {err}",
                             "scheduler") from None
         try:
             self._check_workers(address, timeout)
@@ -136,16 +136,16 @@ class DaskExecutor(Executor):
         try:
             self.client.wait_for_workers(1, timeout=timeout)
         except Exception:
-            raise UserError(f"the Dask scheduler at {address} has no worker (waited {timeout:g} s, the limit "
+            raise OptionError(f"the Dask scheduler at {address} has no worker (waited {timeout:g} s, the limit "
                             "SCHEDULER_CONNECT_TIMEOUT)", "scheduler") from None
         try:
             versions = self.client.run(_worker_version)
         except Exception as err:
-            raise UserError(f"the workers of {address} cannot run rkcheck ({type(err).__name__}: {err}); "
+            raise OptionError(f"the workers of {address} cannot run rkcheck ({type(err).__name__}: {err}); "
                             f"install rkcheck {__version__} on every worker", "scheduler") from None
         wrong = sorted({v for v in versions.values() if v != __version__})
         if wrong:
-            raise UserError(f"the workers of {address} run rkcheck {', '.join(wrong)}, this is {__version__}: "
+            raise OptionError(f"the workers of {address} run rkcheck {', '.join(wrong)}, this is {__version__}: "
                             "install the same version everywhere", "scheduler")
         self.workers = max(1, len(versions))
         self.threads = max(1, sum(self.client.nthreads().values()))

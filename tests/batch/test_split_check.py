@@ -101,3 +101,19 @@ def test_bad_split_options_are_one_line(tmp_path, capsys):
         rkcheck.verify(tableau_file(tmp_path), order=4, scheduler=8786)  # type: ignore[arg-type]
     r = run_cli(capsys, "verify", str(tableau_file(tmp_path)), "--order", "4", "--jobs", "0")
     assert r.code == 2 and "--jobs" in r.err
+
+
+def test_an_unreachable_scheduler_is_one_line_about_the_option(tmp_path, capsys, monkeypatch):
+    """Not the file's fault: the line names the scheduler, not the file."""
+    import socket
+
+    pytest.importorskip("distributed")
+    from rkcheck.batch.executors import SCHEDULER_TIMEOUT_ENV
+
+    with socket.socket() as s:  # bound and closed: nothing listens there
+        s.bind(("127.0.0.1", 0))
+        address = f"tcp://127.0.0.1:{s.getsockname()[1]}"
+    monkeypatch.setenv(SCHEDULER_TIMEOUT_ENV, "1")
+    r = run_cli(capsys, "verify", str(tableau_file(tmp_path)), "--order", "4", "--scheduler", address)
+    assert r.code == 2 and r.err.startswith(f"rkcheck: error: scheduler: cannot reach the Dask scheduler at {address}")
+    assert len(r.err.strip().splitlines()) == 1
