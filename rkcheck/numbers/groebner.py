@@ -36,42 +36,32 @@ def integer_dicts(polys: Sequence[Any]) -> list[dict[tuple[int, ...], int]]:
     return out
 
 
-def _groebner_child(conn: Any, names: tuple[str, ...], order: str, dicts: list[dict]) -> None:
+def _reduced_basis(names: tuple[str, ...], order: str, dicts: list[dict]) -> list[dict[tuple[int, ...], int]]:
     from flint import fmpz_mpoly_ctx, fmpz_mpoly_vec
 
     ctx = fmpz_mpoly_ctx.get(names, order)
     vec = fmpz_mpoly_vec([ctx.from_dict(d) for d in dicts], ctx)
     G: Any = vec.buchberger_naive().autoreduction()
-    conn.send([{tuple(int(e) for e in m): int(c) for m, c in G[i].to_dict().items()} for i in range(len(G))])
-    conn.close()
+    return [{tuple(int(e) for e in m): int(c) for m, c in G[i].to_dict().items()} for i in range(len(G))]
 
 
 def groebner(dicts: list[dict[tuple[int, ...], int]], names: tuple[str, ...], order: str,
              deadline: float) -> list[dict[tuple[int, ...], int]]:
-    """The reduced Gröbner basis (integer, primitive) of the polynomials, in a child
-    process stopped at ``deadline`` (time.monotonic) with a ResourceError."""
-    import multiprocessing as mp
+    """The reduced Gröbner basis (integer, primitive) of the polynomials, computed in a
+    child process stopped at ``deadline`` (time.monotonic) with a SolveLimitError: one
+    call into FLINT cannot be interrupted from Python."""
+    from rkcheck.numbers.deadline import Overrun, call_within
 
     if not dicts:
         return []
-    ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else None)
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_groebner_child, args=(child, names, order, dicts), daemon=True)
-    proc.start()
-    child.close()
     try:
-        if not parent.poll(max(0.0, deadline - time.monotonic())):
-            raise SolveLimitError("the Gröbner basis did not finish within the time limit (--max-seconds); "
-                                "fix more parameters, lower --order or --degree, or raise the limit")
-        return parent.recv()
-    except EOFError:
-        raise SolveLimitError(f"the Gröbner basis computation ended without a result (exit code "
-                            f"{proc.exitcode}); lower --order or --degree") from None
-    finally:
-        if proc.is_alive():
-            proc.kill()
-        proc.join()
-        parent.close()
+        return call_within(max(0.0, deadline - time.monotonic()), _reduced_basis, names, order, dicts)
+    except Overrun:
+        raise SolveLimitError("the Gröbner basis did not finish within the time limit (--max-seconds); "
+                              "fix more parameters, lower --order or --degree, or raise the limit") from None
+    except MemoryError:
+        raise SolveLimitError("the Gröbner basis computation ended without a result (out of memory?); "
+                              "lower --order or --degree") from None
 
 
 def dimension(leading: list[tuple[int, ...]], n: int) -> int:
