@@ -32,6 +32,9 @@ from rkcheck.trees.stored import ListingStore, from_record, record_key, to_recor
 from rkcheck.trees.table import TreeTable
 from rkcheck.trees.terms import OrderTerms
 
+#: conditions whose names a listing remembers (about 300 bytes each)
+NAMED_CONDITIONS = 1 << 16
+
 #: where listings are kept between runs when a listing is not given a store of its own
 #: (the CLI sets the user's cache: :func:`use_store`); None: nowhere
 _default_store: ListingStore | None = None
@@ -94,6 +97,9 @@ class ConditionListing:
         self.degree = degree
         self._store = store if store is not None else _default_store
         self._ls_cache: dict[int, tuple[int, ...]] = {0: (1,)}
+        # conditions already named (free tree and designated sign), shared by every
+        # tableau checked against this listing: a scan names the same ones file after file
+        self._named: dict[tuple[int, int], tuple[FreeTree, int]] = {}
         self._table: TreeTable | None = None
         self.cache_hits: list[int] = []  # vertices of the orders read from the store
         top = order + 1
@@ -233,16 +239,26 @@ class ConditionListing:
                 return other_seq, other, -1
         return seq, forest, 1
 
+    def _name(self, n: int, k: int) -> tuple[FreeTree, int]:
+        """The free tree of condition ``k`` and the sign of :meth:`flip`, remembered (up
+        to NAMED_CONDITIONS of them: a listing lives as long as the process)."""
+        named = self._named.get((n, k))
+        if named is None:
+            seq, forest, sign = self._designated(n, k)
+            o = self.orders[n]
+            named = (FreeTree(seq, bracket_of_forest(forest), int(o.max_degree[k]), int(o.counts[k])), sign)
+            if len(self._named) < NAMED_CONDITIONS:
+                self._named[(n, k)] = named
+        return named
+
     def record(self, n: int, k: int) -> FreeTree:
         """Condition ``k`` of the order with ``n`` vertices, for people."""
-        seq, forest, _ = self._designated(n, k)
-        o = self.orders[n]
-        return FreeTree(seq, bracket_of_forest(forest), int(o.max_degree[k]), int(o.counts[k]))
+        return self._name(n, k)[0]
 
     def flip(self, n: int, k: int) -> int:
         """``±1``: the residual of condition ``k`` for its designated rooting is this sign
         times the residual of the representative the evaluation computes."""
-        return self._designated(n, k)[2]
+        return self._name(n, k)[1]
 
     def records(self, n: int) -> list[FreeTree]:
         """The conditions with ``n`` vertices in listing order."""

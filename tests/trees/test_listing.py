@@ -236,3 +236,19 @@ def test_explain_finds_the_condition_of_any_rooting():
                 ex = explain(u)
                 assert ex.level_sequence == cid
                 assert {(t.level_sequence, t.sign, t.sigma) for t in ex.terms} == want
+
+
+def test_named_conditions_are_remembered_up_to_the_limit(monkeypatch):
+    """Names (free tree, designated sign) read twice, or past the limit of remembered
+    ones, are the reference's every time."""
+    import rkcheck.trees.listing as listing_module
+
+    monkeypatch.setattr(listing_module, "NAMED_CONDITIONS", 5)
+    L = ConditionListing(7, None)
+    for _ in range(2):
+        for n in range(3, 9):
+            want = {d["id"]: d for d in ref_conditions(n, None)}
+            got = [L.record(n, k) for k in range(len(L.orders[n]))]
+            assert {c.level_sequence for c in got} == set(want)
+            assert all(c.max_degree == want[c.level_sequence]["max_degree"] for c in got)
+    assert len(L._named) == 5
