@@ -141,8 +141,7 @@ class ConditionResults(Sequence[Condition]):
     def _presentation(self, o: OrderVerdicts) -> np.ndarray:
         if o._rank is None:
             o._records = self.listing.records(o.vertices)
-            seqs = [r.level_sequence for r in o._records]
-            o._rank = np.array(sorted(range(len(o)), key=seqs.__getitem__), dtype=np.int64)
+            o._rank = self.listing.presentation(o.vertices, o._records)
         return o._rank
 
     def _record(self, o: OrderVerdicts, k: int) -> FreeTree:

@@ -100,6 +100,7 @@ class ConditionListing:
         # conditions already named (free tree and designated sign), shared by every
         # tableau checked against this listing: a scan names the same ones file after file
         self._named: dict[tuple[int, int], tuple[FreeTree, int]] = {}
+        self._presentations: dict[int, np.ndarray] = {}
         self._table: TreeTable | None = None
         self.cache_hits: list[int] = []  # vertices of the orders read from the store
         top = order + 1
@@ -263,6 +264,19 @@ class ConditionListing:
     def records(self, n: int) -> list[FreeTree]:
         """The conditions with ``n`` vertices in listing order."""
         return [self.record(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
+
+    def presentation(self, n: int, records: list[FreeTree] | None = None) -> np.ndarray:
+        """The ``k`` of the conditions with ``n`` vertices by canonical id (level
+        sequence), as every report lists them; ``records``: :meth:`records` of ``n``, when
+        the caller has them.  Remembered for orders of at most NAMED_CONDITIONS."""
+        got = self._presentations.get(n)
+        if got is None:
+            recs = self.records(n) if records is None else records
+            got = np.array(sorted(range(len(recs)), key=lambda k: recs[k].level_sequence), dtype=np.int64)
+            got.flags.writeable = False  # shared by every result read against this listing
+            if len(got) <= NAMED_CONDITIONS:
+                self._presentations[n] = got
+        return got
 
     def sorted_conditions(self) -> Iterator[tuple[int, int, FreeTree]]:
         """``(vertices, k, free tree)`` of every condition, by vertices and then canonical
