@@ -22,7 +22,9 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
 from rkcheck.batch.executors import Executor, executor_for
-from rkcheck.batch.executors import default_jobs as default_jobs  # where callers found it before
+from rkcheck.batch.executors import (
+    default_jobs as default_jobs,  # where callers found it before
+)
 from rkcheck.errors import UserError
 from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
 
@@ -99,14 +101,13 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     when given, encodes the result's report here, in the worker (a failure leaves it to
     the report, which says so in the file's row)."""
     from rkcheck.energy.claims import judge_tableau
-    from rkcheck.io.loader import (
-        build_tableau,
+    from rkcheck.io.documents import (
         detect_format,
-        load_named,
         locate_lines,
         parse_document,
         read_text,
     )
+    from rkcheck.io.loader import build_tableau, load_named
     from rkcheck.methods.tableau import Tableau
 
     t0 = time.perf_counter()

@@ -1,0 +1,163 @@
+"""Reading a tableau file's text into a document: the file (``-``: standard input) read
+as UTF-8 within its size limit, its format told by suffix or content, TOML or JSON
+parsed into a dict, and the lines of its tables and keys located for annotations.
+
+Bare TOML/JSON floats are kept as their text (:class:`BareFloat`), digit for digit: the
+parser hands us the text, never a binary64 double.  What the document *means* is
+:mod:`rkcheck.io.loader`'s job.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import sys
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from rkcheck.errors import UserError
+from rkcheck.io.bounded import bounded_read, max_file_bytes
+from rkcheck.io.printable import printable
+from rkcheck.numbers.formatting import count_text
+
+#: the tables a tableau file may have
+KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
+
+
+class BareFloat(str):
+    """The text of a bare TOML/JSON float, kept digit for digit."""
+
+
+def _bare_float(text: str) -> BareFloat:
+    return BareFloat(text.replace("_", ""))
+
+
+def _reject_constant(text: str) -> Any:
+    raise ValueError(f"{text} is not a finite number")
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object, refusing a key given twice (json keeps the last one silently; TOML
+    refuses duplicates itself)."""
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise ValueError(f"key {printable(key)!r} is given twice")
+        out[key] = value
+    return out
+
+
+# ------------------------------------------------------------------ reading
+
+
+def read_text(path: str) -> str:
+    """Read a file (``-`` = standard input) as UTF-8, at most :func:`max_file_bytes`
+    bytes, as a UserError on failure."""
+    import stat
+
+    limit = max_file_bytes()
+    try:
+        if path == "-":
+            stdin = getattr(sys.stdin, "buffer", None)
+            if stdin is None:  # a text stream put in place by a caller (tests, an embedding program)
+                text = sys.stdin.read(limit + 1)
+                bounded_read(io.BytesIO(text.encode("utf-8", "surrogateescape")), limit, path)
+                return text
+            return bounded_read(stdin, limit, path).decode("utf-8-sig")  # -sig: a leading BOM is dropped
+        p = Path(path)
+        mode = p.stat().st_mode
+        if stat.S_ISDIR(mode):
+            raise UserError("is a directory, not a tableau file", source=path)
+        if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+            raise UserError("is a device, not a tableau file", source=path)
+        if stat.S_ISREG(mode) and p.stat().st_size > limit:
+            raise UserError(f"file too large ({count_text(p.stat().st_size)} bytes; the limit MAX_FILE_BYTES is {count_text(limit)}; "
+                            "set RKCHECK_MAX_FILE_BYTES to change it)", source=path)
+        with open(p, "rb") as fh:  # a FIFO (bash's <(…)) too: read with the limit
+            return bounded_read(fh, limit, path).decode("utf-8-sig")  # spreadsheets write a BOM
+    except FileNotFoundError:
+        raise UserError("no such file", source=path) from None
+    except PermissionError:
+        raise UserError("permission denied", source=path) from None
+    except UnicodeDecodeError as err:
+        raise UserError(f"not UTF-8 text (byte {err.start})", source=path) from None
+    except OSError as err:
+        raise UserError(f"cannot read: {err.strerror}", source=path) from None
+
+
+def detect_format(path: str, text: str) -> str:
+    """The input format of a file: by suffix, else by content (JSON object, nodepy
+    section headers, else TOML)."""
+    from rkcheck.io import delimited, nodepy_text
+
+    suffix = Path(path).suffix.lower()
+    if suffix in (".toml", ".json"):
+        return suffix[1:]
+    if suffix in delimited.SUFFIXES:
+        return "csv"
+    if suffix in nodepy_text.SUFFIXES and nodepy_text.looks_like_nodepy(text):
+        return "nodepy"
+    if text.lstrip().startswith("{"):
+        return "json"
+    return "nodepy" if nodepy_text.looks_like_nodepy(text) else "toml"
+
+
+def parse_document(text: str, fmt: str) -> dict[str, Any]:
+    """TOML or JSON text -> dict, syntax errors as UserError with their line."""
+    if fmt == "json":
+        import json  # TOML files (the usual input) do not need it: start-up
+    try:
+        if fmt == "json":
+            data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant,
+                              object_pairs_hook=_unique_keys)
+        else:
+            data = tomllib.loads(text, parse_float=_bare_float)
+    except tomllib.TOMLDecodeError as err:
+        msg = str(err)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        if m:
+            msg = msg[: m.start()].strip()
+            raise UserError(f"TOML syntax error: {msg}", f"line {m.group(1)}, column {m.group(2)}") from None
+        raise UserError(f"TOML syntax error: {msg}") from None
+    except ValueError as err:  # NaN/Infinity or a duplicate key in JSON, an integer too long in either
+        if fmt == "json" and isinstance(err, json.JSONDecodeError):
+            raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
+        raise UserError(f"{fmt.upper()}: {err}") from None
+    except RecursionError:
+        raise UserError("nesting too deep") from None
+    if not isinstance(data, dict):
+        raise UserError("the top level must be a table/object")
+    return data
+
+
+def locate_lines(text: str, fmt: str) -> dict[str, int]:
+    """Line numbers (1-based) of the tables and their keys, for annotations.
+
+    Keys are ``"tableau"``, ``"expect"``, ``"expect.energy_order"``, ...  A best effort
+    on the raw text; a missing key simply has no line.
+    """
+    lines: dict[str, int] = {}
+    if fmt == "toml":
+        table = ""
+        for no, line in enumerate(text.splitlines(), start=1):
+            m = re.match(r"\s*\[\s*([A-Za-z0-9_.\-]+)\s*\]", line)
+            if m:
+                table = m.group(1)
+                lines.setdefault(table, no)
+                continue
+            m = re.match(r"\s*([A-Za-z0-9_\-]+|\"[^\"]+\")\s*=", line)
+            if m:
+                key = m.group(1).strip('"')
+                lines.setdefault(f"{table}.{key}" if table else key, no)
+    else:
+        stack: list[str] = []
+        for no, line in enumerate(text.splitlines(), start=1):
+            for m in re.finditer(r"\"([^\"]+)\"\s*:", line):
+                key = m.group(1)
+                if key in KNOWN_TABLES:
+                    stack = [key]
+                    lines.setdefault(key, no)
+                elif stack:
+                    lines.setdefault(f"{stack[0]}.{key}", no)
+    return lines
