@@ -234,6 +234,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
     done = 0
+    left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     try:
         for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
                                         wanted[-1] if wanted else 0):
@@ -241,8 +242,11 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                 for c, (i, j, _, _) in enumerate(group):
                     if i < count[n]:
                         residues[n][:, i, j] = sums[:, c]
-            i, j = group[-1][:2]
-            finished = i + 1 if j == len(channels[i][1]) - 1 else i  # primes with every root done
+            for i, _, _, _ in group:
+                left[i] -= 1
+            finished = done
+            while finished < passes and not left[finished]:  # primes with every root done
+                finished += 1
             if finished > done:
                 done = finished
                 if on_pass is not None:
@@ -257,11 +261,28 @@ def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[
     """The channels of the primes ``chosen`` (prime i, root j), evaluated in passes of as
     many as :meth:`ScaledTableau.channels_per_pass` allows, in order: yields ``(group,
     sums)`` with ``group`` the pass's ``(i, j, p, r)`` and ``sums[n]`` its residues
-    ``(conditions, len(group))`` for the orders ``orders_for(i)`` of its first prime."""
-    flat = [(i, j, p, r) for i, (p, roots) in enumerate(chosen) for j, r in enumerate(roots)]
+    ``(conditions, len(group))`` for the orders ``orders_for(i)`` of its first prime.
+
+    A root whose images are a stage permutation of an earlier root's of the same prime
+    (:meth:`ScaledTableau.channel_sources`) is not evaluated: it comes in the pass of
+    that root, with the same residues."""
+    flat, copies = [], {}
+    for i, (p, roots) in enumerate(chosen):
+        sources = scaled.channel_sources(p)
+        for j, r in enumerate(roots):
+            if sources[j] == j:
+                flat.append((i, j, p, r))
+            else:
+                copies.setdefault((i, sources[j]), []).append((i, j, p, r))
     if not flat:
         return
     width = scaled.channels_per_pass(listing, top)
     for g in range(0, len(flat), width):
         group = flat[g:g + width]
-        yield group, scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders_for(group[0][0]))
+        sums = scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders_for(group[0][0]))
+        if copies:
+            column = {key[:2]: c for c, key in enumerate(group)}
+            group = sorted(group + [x for key in group for x in copies.get(key[:2], [])])
+            take = [column[(i, scaled.channel_sources(p)[j])] for i, j, p, _ in group]
+            sums = {n: x[:, take] for n, x in sums.items()}
+        yield group, sums

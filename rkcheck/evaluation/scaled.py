@@ -14,6 +14,7 @@ from typing import Any, Sequence, cast
 import numpy as np
 
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
+from rkcheck.evaluation.conjugates import repeated_channels
 
 #: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
 #: memory: channels run together while their weights fit, so that on small listings the
@@ -181,6 +182,21 @@ class ScaledTableau:
         index, A, b = cache[p]
         j = index[root]
         return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
+
+    def channel_sources(self, p: int) -> list[int]:
+        """Per root of ``p`` (in the order of its roots): the root whose channel gives the
+        same residues — itself, or an earlier root whose images are a stage permutation
+        of its own (:mod:`rkcheck.evaluation.conjugates`)."""
+        known = self.__dict__.setdefault("_source_cache", {})
+        if p not in known:
+            roots = self._roots_of(p)
+            if len(roots) == 1:
+                known[p] = [0]
+            else:
+                self._images(p, roots[0])  # fills the image cache with every root of p
+                _, A, b = self.__dict__["_image_cache"][p]
+                known[p] = repeated_channels(A, b)
+        return known[p]
 
     def _roots_of(self, p: int) -> list[int]:
         known = getattr(self, "_split_roots", {}).get(p)
