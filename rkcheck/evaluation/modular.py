@@ -266,7 +266,8 @@ def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[
     A root whose images are a stage permutation of an earlier root's of the same prime
     (:meth:`ScaledTableau.channel_sources`) is not evaluated: it comes in the pass of
     that root, with the same residues."""
-    flat, copies = [], {}
+    flat: list[tuple[int, int, int, int]] = []
+    copies: dict[tuple[int, int], list[tuple[int, int, int, int]]] = {}  # by source (i, j)
     for i, (p, roots) in enumerate(chosen):
         sources = scaled.channel_sources(p)
         for j, r in enumerate(roots):
