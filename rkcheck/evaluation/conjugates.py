@@ -24,10 +24,10 @@ from collections import Counter
 
 import numpy as np
 
-#: assignments tried per pair of roots before giving up (and evaluating the channel):
-#: stages with equal signatures (rows and columns as multisets) are few in practice,
-#: and the search is bounded for tableaux where they are not
-MAX_TRIES = 10_000
+#: assignments tried for all the roots of one prime before giving up (the roots left
+#: are evaluated): stages with equal signatures (rows and columns as multisets) are few
+#: in practice, and the search stays bounded for tableaux where they are not
+MAX_TRIES = 20_000
 
 
 def repeated_channels(A: np.ndarray, b: np.ndarray) -> list[int]:
@@ -38,11 +38,13 @@ def repeated_channels(A: np.ndarray, b: np.ndarray) -> list[int]:
     source = list(range(D))
     kept: list[int] = []  # roots evaluated so far (their own source)
     signatures = [_signatures(A[:, :, j], b[:, j]) for j in range(D)]
+    shapes = [Counter(sig) for sig in signatures]
+    budget = [MAX_TRIES]  # shared by every search of this prime
     for j in range(D):
         for k in kept:
-            if Counter(signatures[j]) != Counter(signatures[k]):
+            if shapes[j] != shapes[k] or budget[0] <= 0:
                 continue
-            perm = _permutation(A[:, :, k], b[:, k], A[:, :, j], b[:, j], signatures[k], signatures[j])
+            perm = _permutation(A[:, :, k], b[:, k], A[:, :, j], b[:, j], signatures[k], signatures[j], budget)
             if perm is not None:
                 source[j] = k
                 break
@@ -65,27 +67,26 @@ def is_stage_permutation(A: np.ndarray, b: np.ndarray, A2: np.ndarray, b2: np.nd
 
 
 def _permutation(A: np.ndarray, b: np.ndarray, A2: np.ndarray, b2: np.ndarray,
-                 sig: list[tuple], sig2: list[tuple]) -> list[int] | None:
+                 sig: list[tuple], sig2: list[tuple], budget: list[int]) -> list[int] | None:
     """A permutation π of the stages with ``(A2, b2)`` the images of ``(A, b)`` under it
     (:func:`is_stage_permutation`), or None: a depth-first search over the stages of equal
-    signature, each partial assignment checked on the entries it fixes."""
+    signature, each partial assignment checked on the entries it fixes, within
+    ``budget[0]`` assignments (spent)."""
     s = len(b)
     candidates = [[m for m in range(s) if sig2[m] == sig[i]] for i in range(s)]
     order = sorted(range(s), key=lambda i: len(candidates[i]))  # the most constrained first
     perm = [-1] * s
     used = [False] * s
-    tries = 0
 
     def extend(depth: int) -> bool:
-        nonlocal tries
         if depth == s:
             return True
         i = order[depth]
         for m in candidates[i]:
             if used[m]:
                 continue
-            tries += 1
-            if tries > MAX_TRIES:
+            budget[0] -= 1
+            if budget[0] < 0:
                 return False
             if all(A2[m, perm[l]] == A[i, l] and A2[perm[l], m] == A[l, i] for l in order[:depth]):
                 perm[i], used[m] = m, True

@@ -123,3 +123,19 @@ def test_progress_counts_a_prime_when_all_its_roots_are_done(monkeypatch):
     sums = exact_condition_sums(scaled, listing, on_pass=lambda done, total: seen.append((done, total)))
     total = max(len(o.primes) for o in sums.values())
     assert seen == [(k, total) for k in range(1, total + 1)]
+
+
+def test_the_search_is_bounded_and_then_evaluates(monkeypatch):
+    # a 12-cycle at both roots, every stage alike in its signature: found with the
+    # default budget; with no assignments allowed, the second root is evaluated
+    import rkcheck.evaluation.conjugates as conjugates
+
+    s = 12
+    cycle = np.zeros((s, s), dtype=np.int64)
+    for i in range(s):
+        cycle[i, (i + 1) % s] = 1
+    A = np.stack([cycle, cycle], axis=2)
+    b = np.ones((s, 2), dtype=np.int64)
+    assert repeated_channels(A, b) == [0, 0]
+    monkeypatch.setattr(conjugates, "MAX_TRIES", 0)
+    assert repeated_channels(A, b) == [0, 1]
