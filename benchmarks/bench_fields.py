@@ -60,10 +60,11 @@ def measure(order: int, s: int, field_tableau: Tableau, repeat: int) -> dict:
     t_field = time.perf_counter() - t0
     t_rat = best(lambda: exact_condition_sums(rat_scaled, listing), repeat)
     t_fld = best(lambda: exact_condition_sums(fld_scaled, listing), repeat)
+    top = listing.orders[order]
     return {"order": order, "conditions": sum(len(o) for o in listing.orders.values()), "listing": t_list,
             "field": t_field, "degree": values.field.degree, "rational": t_rat, "algebraic": t_fld,
-            "ratio": t_fld / t_rat, "primes_rat": len(rat_scaled.primes_for(rat_scaled.decision_bits(order, listing.orders[order].max_terms))),
-            "primes_fld": len(fld_scaled.primes_for(fld_scaled.decision_bits(order, listing.orders[order].max_terms)))}
+            "ratio": t_fld / t_rat, "primes_rat": len(rat_scaled.primes_for(rat_scaled.decision_bits(order, top.max_terms, top.coefficient_weight))),
+            "primes_fld": len(fld_scaled.primes_for(fld_scaled.decision_bits(order, top.max_terms, top.coefficient_weight)))}
 
 
 def main() -> None:

@@ -187,9 +187,10 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     timings["evaluation"] = t2 - t1
 
     warnings = list(tableau.info.warnings) + values.consistency_warnings() + ([note] if note else [])
-    scalars = sc.tableau_values(values)  # the tableau's own scalars, once
-    quad = quadrature_order(*scalars)
-    classical = classical_order(values, options.order)
+    facts = _facts(values)
+    scalars = facts["scalars"]
+    quad = facts["quadrature"]
+    classical = _memo(facts, ("classical", options.order), lambda: classical_order(values, options.order))
     # tableau-level algebra: the irreducible form, R(z), symplecticity, symmetry; the AVF
     # verdict and the certificate of every order (AVF, line integral, and for m = 2 the
     # stability function)
@@ -197,7 +198,7 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     if surrogate is not None:  # a continuous method: its kernel speaks for itself, not the surrogate
         quad, props, avf, cert = _continuous_facts(surrogate, quad, options, values)
     else:
-        props = properties_of_values(*scalars)
+        props = _memo(facts, "properties", lambda: properties_of_values(*scalars))
         avf, cert = props.certificates(options.degree) if options.degree is not None else (None, None)
     timings["orders_and_avf"] = time.perf_counter() - t2
     conditions = ConditionResults(listing, orders)
@@ -222,6 +223,24 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     if interrupted:
         raise CheckInterrupted(result)
     return result
+
+
+def _facts(values: TableauValues) -> dict[Any, Any]:
+    """What a check computes from the tableau alone, kept on its values: the runs a file's
+    claims add (other degrees and orders) share the scalars, quadrature order, classical
+    order to each order and the properties — in a field of degree 48 the stability
+    function and symplecticity alone take over a second."""
+    facts = values.__dict__.setdefault("_check_facts", {})  # a frozen dataclass: its own dict
+    if "scalars" not in facts:
+        facts["scalars"] = sc.tableau_values(values)  # the tableau's own scalars, once
+        facts["quadrature"] = quadrature_order(*facts["scalars"])
+    return facts
+
+
+def _memo(facts: dict[Any, Any], key: Any, compute: Callable[[], Any]) -> Any:
+    if key not in facts:
+        facts[key] = compute()
+    return facts[key]
 
 
 def _listing(values: TableauValues, options: CheckOptions, budget: Budget | None) -> ConditionListing:

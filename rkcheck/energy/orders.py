@@ -175,11 +175,15 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
             bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(e)) + 1
             primes = scaled.primes_for(bits)
             # one channel per (prime, root); the primes already open are the first ones
-            # (counted, not searched: thousands of primes for entries of thousands of digits)
+            # (counted, not searched: thousands of primes for entries of thousands of digits).
+            # A root whose images are a stage permutation of an earlier root's has the same
+            # a(t) = bᵀΦ(t) (ScaledTableau.channel_sources): it is not evaluated again
             for q, roots in primes[len(opened):]:
                 opened.append(q)
-                for r in roots:
-                    channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
+                sources = scaled.channel_sources(q)
+                for j, r in enumerate(roots):
+                    if sources[j] == j:
+                        channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
             failing = np.zeros(len(ids), dtype=bool)
             for q, r, weights in channels:
                 a = weights.extend(table, p)

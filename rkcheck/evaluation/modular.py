@@ -23,7 +23,10 @@ at every prime (``p ∤ d``): ``p^D`` divides the norm of ``N_e``.  Over a set o
 ``N_e ≠ 0`` would force ``|Norm N_e| ≥ (Π p)^D``, while ``|Norm N_e| = Π_j |σ_j(N_e)| ≤
 Π_j B_j`` over the ``D`` complex embeddings (bound below, with ``e`` in place of ``d``).
 So residues that are all zero with ``log₂ Π p > (1/D) Σ_j log₂ B_j`` prove ``N = 0``: the
-condition **holds**.  For Q (D = 1, e = d) this is the familiar ``|N| < Π p``.  The
+condition **holds**.  The same holds of ``N/g`` with ``g`` the gcd of the condition's
+coefficients ``(n−1)!/σ(u)``, whose bound has W (at most n) in place of ``(n−1)!·T``
+(:meth:`ScaledTableau.decision_bits`): the decision needs some 50 bits fewer at 19
+vertices.  For Q (D = 1, e = d) this is the familiar ``|N| < Π p``.  The
 geometric mean over embeddings, the smaller denominator and the absence of ``‖V⁻¹‖``
 make this far cheaper than bounding the coefficients (Gauss-5 to order 10 needs
 9 primes instead of 21).
@@ -211,7 +214,8 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
 
     wanted = sorted(listing.orders if orders is None else orders)
-    need = {n: scaled.decision_bits(n, listing.orders[n].max_terms) for n in wanted}
+    # zero residues are decided on N/g_k (ScaledTableau.decision_bits), values need N's bound
+    need = {n: scaled.decision_bits(n, listing.orders[n].max_terms, listing.orders[n].coefficient_weight) for n in wanted}
     value_need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
     dual = {}  # values from g'(θ)·N_e when its bound is the smaller (ScaledTableau.dual_value_bits)
     for n in wanted:
@@ -236,13 +240,13 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
-    groups = pass_groups(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
-                         wanted[-1] if wanted else 0)
-    left = [len(roots) for _, roots in channels[:passes]]  # channels of each prime still to come
+    groups, copies = pass_groups(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
+                                 wanted[-1] if wanted else 0)
+    left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
     try:
         for g, at in _run_passes(scaled, listing, groups):
-            group = groups[g][0]
+            group, at = _with_copies(scaled, groups[g][0], at, copies)
             for n, sums in at.items():  # an order keeps the residues of its own primes, no more
                 for c, (i, j, _, _) in enumerate(group):
                     if i < count[n]:
@@ -288,22 +292,51 @@ def _run_passes(scaled: ScaledTableau, listing,
     yield from runner(scaled, listing, jobs)
 
 
+Channel = tuple[int, int, int, int]  # (prime i, root j, p, r)
+
+
 def pass_groups(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
-                orders_for: Callable[[int], list[int]], top: int) -> list[tuple[list, list[int]]]:
-    """The channels of the primes ``chosen`` (prime i, root j) split into passes of as
-    many as :meth:`ScaledTableau.channels_per_pass` allows: ``(group, orders)`` with
-    ``group`` the pass's ``(i, j, p, r)`` and ``orders`` those of its first prime
-    (``orders_for(i)``)."""
-    flat = [(i, j, p, r) for i, (p, roots) in enumerate(chosen) for j, r in enumerate(roots)]
+                orders_for: Callable[[int], list[int]], top: int
+                ) -> tuple[list[tuple[list[Channel], list[int]]], dict[tuple[int, int], list[Channel]]]:
+    """The channels of the primes ``chosen`` (prime i, root j) to evaluate, split into
+    passes of as many as :meth:`ScaledTableau.channels_per_pass` allows: ``(group,
+    orders)`` with ``group`` the pass's ``(i, j, p, r)`` and ``orders`` those of its
+    first prime (``orders_for(i)``); and the copies: a root whose images are a stage
+    permutation of an earlier root's of the same prime
+    (:meth:`ScaledTableau.channel_sources`) is not evaluated, it has that root's
+    residues (by source ``(i, j)``, see :func:`_with_copies`)."""
+    flat: list[Channel] = []
+    copies: dict[tuple[int, int], list[Channel]] = {}
+    for i, (p, roots) in enumerate(chosen):
+        sources = scaled.channel_sources(p)
+        for j, r in enumerate(roots):
+            if sources[j] == j:
+                flat.append((i, j, p, r))
+            else:
+                copies.setdefault((i, sources[j]), []).append((i, j, p, r))
     if not flat:
-        return []
+        return [], copies
     width = scaled.channels_per_pass(listing, top)
-    return [(flat[g:g + width], orders_for(flat[g][0])) for g in range(0, len(flat), width)]
+    return [(flat[g:g + width], orders_for(flat[g][0])) for g in range(0, len(flat), width)], copies
+
+
+def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np.ndarray],
+                 copies: dict[tuple[int, int], list[Channel]]) -> tuple[list[Channel], dict[int, np.ndarray]]:
+    """A pass's channels and residues with those of the roots that copy its roots."""
+    if not copies:
+        return group, sums
+    column = {key[:2]: c for c, key in enumerate(group)}
+    group = sorted(group + [x for key in group for x in copies.get(key[:2], [])])
+    take = [column[(i, scaled.channel_sources(p)[j])] for i, j, p, _ in group]
+    return group, {n: x[:, take] for n, x in sums.items()}
 
 
 def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
                    orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
     """The passes of :func:`pass_groups`, evaluated here in order: yields ``(group, sums)``
-    with ``sums[n]`` the residues ``(conditions, len(group))`` of the pass's orders."""
-    for group, orders in pass_groups(scaled, listing, chosen, orders_for, top):
-        yield group, scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders)
+    with ``sums[n]`` the residues ``(conditions, len(group))`` of the pass's orders,
+    copied roots included."""
+    groups, copies = pass_groups(scaled, listing, chosen, orders_for, top)
+    for group, orders in groups:
+        sums = scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders)
+        yield _with_copies(scaled, group, sums, copies)

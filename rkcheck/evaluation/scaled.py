@@ -14,6 +14,7 @@ from typing import Any, Sequence, cast
 import numpy as np
 
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
+from rkcheck.evaluation.conjugates import repeated_channels
 
 #: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
 #: memory: channels run together while their weights fit, so that on small listings the
@@ -63,10 +64,12 @@ class ScaledTableau:
     def s(self) -> int:
         return len(self.b)
 
-    def coefficient_bits(self, n: int, terms: int) -> int:
+    def coefficient_bits(self, n: int, terms: int, weight: int | None = None) -> int:
         """Bits that bound ``|coefficient of N|`` for a condition with ``n`` vertices and
-        ``terms`` terms (rounded up, plus one for the sign)."""
-        bits = (n - 1) * self.log2_M + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1)) + self.log2_Vinv
+        ``terms`` terms (rounded up, plus one for the sign); with ``weight`` (the order's
+        :attr:`~rkcheck.trees.terms.OrderTerms.coefficient_weight` W), those of ``N/g_k``
+        instead, which decide zero residues as well (:meth:`decision_bits`)."""
+        bits = (n - 1) * self.log2_M + _log2_weight(n, terms, weight) + self.log2_Vinv
         return math.ceil(bits) + 2
 
     def _log2_M_integral(self) -> list[float] | None:
@@ -93,15 +96,24 @@ class ScaledTableau:
                 + self.log2_Vinv + self.log2_gprime)
         return math.ceil(bits) + 2
 
-    def decision_bits(self, n: int, terms: int) -> int:
+    def decision_bits(self, n: int, terms: int, weight: int | None = None) -> int:
         """Bits ``b`` such that all-zero residues over primes with ``Π p > 2^b`` prove a
         condition with ``n`` vertices and ``terms`` terms zero: ``(1/D) Σ_j log₂ B_j``
-        with the integrality denominator (the norm argument of the module docstring)."""
+        with the integrality denominator (the norm argument of the module docstring).
+
+        With ``weight`` W (:attr:`~rkcheck.trees.terms.OrderTerms.coefficient_weight`) the
+        bound is that of ``N/g_k``, ``g_k`` the gcd of the condition's coefficients
+        ``(n−1)!/σ(u)``: W times the largest weight instead of ``(n−1)!`` times the terms
+        (2^4 against 2^57 at 19 vertices).  ``N/g_k`` is an algebraic integer (the
+        coefficients divided by ``g_k`` are integers), and ``g_k`` divides ``(n−1)!``, so
+        it is a unit modulo every channel prime (``p > 2^28 > n``): the residues of
+        ``N`` are zero exactly when those of ``N/g_k`` are, and the argument applies to
+        ``N/g_k`` unchanged.  Values still need :meth:`coefficient_bits` of ``N``."""
         per_embedding = self._log2_M_integral()
         if per_embedding is None:
-            return self.coefficient_bits(n, terms)
+            return self.coefficient_bits(n, terms, weight)
         mean = sum(per_embedding) / len(per_embedding)
-        bits = (n - 1) * mean + math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+        bits = (n - 1) * mean + _log2_weight(n, terms, weight)
         return math.ceil(bits + 1e-6) + 1
 
     def primes_for(self, bits: int) -> list[tuple[int, list[int]]]:
@@ -182,6 +194,21 @@ class ScaledTableau:
         j = index[root]
         return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
 
+    def channel_sources(self, p: int) -> list[int]:
+        """Per root of ``p`` (in the order of its roots): the root whose channel gives the
+        same residues — itself, or an earlier root whose images are a stage permutation
+        of its own (:mod:`rkcheck.evaluation.conjugates`)."""
+        known = self.__dict__.setdefault("_source_cache", {})
+        if p not in known:
+            roots = self._roots_of(p)
+            if len(roots) == 1:
+                known[p] = [0]
+            else:
+                self._images(p, roots[0])  # fills the image cache with every root of p
+                _, A, b = self.__dict__["_image_cache"][p]
+                known[p] = repeated_channels(A, b)
+        return known[p]
+
     def _roots_of(self, p: int) -> list[int]:
         known = getattr(self, "_split_roots", {}).get(p)
         if known is not None:
@@ -214,6 +241,14 @@ class ScaledTableau:
         from rkcheck.evaluation.algorithm import condition_sums
 
         return condition_sums(listing, self.channels(pairs), self.s, orders)
+
+
+def _log2_weight(n: int, terms: int, weight: int | None) -> float:
+    """log₂ of the coefficients' share of a condition's bound: ``(n−1)!`` times the terms,
+    or the order's coefficient weight W when given (:meth:`ScaledTableau.decision_bits`)."""
+    if weight is None:
+        return math.log2(math.factorial(n - 1)) + math.log2(max(terms, 1))
+    return math.log2(max(weight, 1))
 
 
 def scaled_rational(A: Sequence[Sequence[Fraction]], b: Sequence[Fraction]) -> ScaledTableau:

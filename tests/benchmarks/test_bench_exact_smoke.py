@@ -23,8 +23,10 @@ def test_order_6_row_counts_the_trees_and_the_primes():
     cells = dict(zip(header, (c.strip().replace("\u202f", "") for c in lines[2].strip("|").split("|"))))
     assert int(cells["trees"]) == 1 + 1 + 2 + 4 + 9 + 20 + 48
     # RK4 scaled by d = 6: Â has row sums ≤ 6 and b̂ = (1, 2, 2, 1): M = 6, a 3-bit bound per
-    # vertex; the top order has 7 vertices and at most 7 terms per condition
-    bits = math.ceil(6 * 3 + math.log2(math.factorial(6)) + math.log2(7)) + 2
+    # vertex; the top order has 7 vertices, and a condition's coefficients 6!/σ(u), divided
+    # by their gcd, sum to at most 7 (the rootings of one free tree: 6!/|Aut| times the
+    # sizes of its vertex orbits, which sum to 7)
+    bits = math.ceil(6 * 3 + math.log2(7)) + 2
     primes, total = 0, 0.0
     while total <= bits:  # the primes are the largest below 2^29, each just under 29 bits
         primes += 1

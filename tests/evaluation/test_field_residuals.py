@@ -232,7 +232,7 @@ def test_values_complete_on_demand(monkeypatch):
 
     spec = {"A": [["1/4 + sqrt(3)/100", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4 - 2/7"]],
             "b": ["1/2 + sqrt(3)/11", "1/2"]}
-    monkeypatch.setattr(ScaledTableau, "decision_bits", lambda self, n, t: self.coefficient_bits(n, t) - 58)
+    monkeypatch.setattr(ScaledTableau, "decision_bits", lambda self, n, t, weight=None: self.coefficient_bits(n, t) - 58)
     listing, sums = engine_residuals(tableau(spec), 6)
     o = sums[7]
     decided = len(o.primes)
