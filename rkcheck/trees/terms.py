@@ -7,9 +7,7 @@ them (:mod:`rkcheck.evaluation.algorithm`).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from functools import cached_property
 from typing import Protocol
 
 import numpy as np
@@ -60,42 +58,22 @@ class OrderTerms:
     def max_terms(self) -> int:
         return int(self.counts.max(initial=1))
 
-    @cached_property
+    @property
     def coefficient_weight(self) -> int:
-        """``W = max_k Σ_u |c_u| / g_k`` over the conditions k, with ``c_u = ±(n−1)!/σ(u)``
-        the coefficients of condition k's terms and ``g_k`` their gcd: ``Σ_u c_u w(u) =
-        g_k · Σ_u (c_u/g_k) w(u)``, and ``g_k`` divides ``(n−1)!``, a unit modulo any prime
-        above n, so the integer after ``g_k`` decides a condition's zero residues and is at
-        most ``W`` times the largest weight (the terms of a condition are the rootings of
-        one free tree: ``c_u`` is ``(n−1)!/|Aut|`` times the size of the rooting's orbit,
-        so W is at most n, where ``(n−1)!`` times the terms is 2^57 at 19 vertices).
-        Beyond int64 (``(n−1)! ≥ 2^63``) it is ``(n−1)!`` times the most terms."""
-        if not len(self) or self.vertices - 1 > 20:
-            return math.factorial(self.vertices - 1) * self.max_terms
-        K, cond, index = len(self), self.condition, self.coefficient_index
-        table = np.abs(np.array(self.coefficients, dtype=np.int64))
-        g = np.ones(K + 1, dtype=np.int64)  # the bin K gathers the superfluous trees' terms
-        # in slices of terms, so that the temporaries stay small; g[k] is first one term's
-        # coefficient, then the gcd with every term that it does not divide (g only loses
-        # factors: the terms it divided stay divided)
-        for lo, hi in _slices(len(cond)):
-            g[cond[lo:hi]] = table[index[lo:hi]]
-        g[K] = 1
-        for lo, hi in _slices(len(cond)):
-            at, coef = cond[lo:hi], table[index[lo:hi]]
-            bad = np.flatnonzero(coef % g[at])
-            while len(bad):
-                g[at[bad]] = np.gcd(g[at[bad]], coef[bad])
-                bad = bad[(coef[bad] % g[at[bad]]) != 0]
-        sums = np.zeros(K + 1, dtype=np.float64)
-        for lo, hi in _slices(len(cond)):  # each quotient is below 2^63; sums below 2^52 are exact
-            at = cond[lo:hi]
-            sums += np.bincount(at, weights=(table[index[lo:hi]] // g[at]).astype(np.float64), minlength=K + 1)
-        sums = sums[:K]
-        top = float(sums.max(initial=1.0))
-        if top >= 2.0**52:
-            return math.factorial(self.vertices - 1) * self.max_terms
-        return int(top)
+        """``W``, a bound on ``Σ_u |c_u| / g_k`` for every condition k of this order, with
+        ``c_u = ±(n−1)!/σ(u)`` the coefficients of its terms and ``g_k`` their gcd:
+        ``Σ_u c_u w(u) = g_k · Σ_u (c_u/g_k) w(u)``, and ``g_k`` divides ``(n−1)!``, a
+        unit modulo any prime above n, so the integer after ``g_k`` decides a condition's
+        zero residues and is at most ``W`` times the largest weight.
+
+        ``W = n``: the terms of a condition are the rootings of one free tree, one per
+        orbit O of its automorphism group on the vertices, and ``σ(u)`` is the stabiliser
+        of the root, ``|Aut|/|O|``; so ``c_u = K·|O|`` with ``K = (n−1)!/|Aut|``, the gcd
+        is ``K·m`` (m the gcd of the orbit sizes: ``K·m`` is an integer combination of
+        the ``c_u``) and ``Σ_u |c_u|/g_k = n/m ≤ n``, where ``(n−1)!`` times the terms
+        is 2^57 at 19 vertices.  (A free tree with one centre has an orbit of size one,
+        so no order does better than n.)"""
+        return self.vertices
 
     def factors(self, i: int, tables: "_Factors") -> tuple[int, int]:
         """(u, v) of term ``i`` (``tables``: the listing whose trees it indexes)."""
@@ -112,7 +90,3 @@ class OrderTerms:
         """The term indices of condition ``k`` (a scan: for explanations, not bulk work)."""
         return np.flatnonzero(self.condition == k)
 
-
-def _slices(n: int, size: int = 1 << 20) -> list[tuple[int, int]]:
-    """``[lo, hi)`` ranges of at most ``size`` covering ``range(n)``."""
-    return [(lo, min(n, lo + size)) for lo in range(0, n, size)]
