@@ -12,12 +12,14 @@ from functools import lru_cache
 
 import numpy as np
 
-PRIME_BITS = 29  # products of two residues and sums of 32 of them stay below 2^63
+PRIME_BITS = 30  # residues fit int32; products of two are below 2^60, and sums of SLICE of them below 2^63
+#: stages summed at once in ``x Aᵀ`` and ``x b`` before a reduction (8 products below 2^60 each)
+SLICE = 8
 _PRIME_LIMIT = 1 << PRIME_BITS
 
 
 def is_prime(n: int) -> bool:
-    """Deterministic Miller–Rabin for n < 3.3·10^24 (bases 2 … 41), far beyond the 29-bit
+    """Deterministic Miller–Rabin for n < 3.3·10^24 (bases 2 … 41), far beyond the 30-bit
     primes used here; no library import on the start-up path."""
     if n < 2:
         return False
@@ -56,7 +58,7 @@ def _primes_below(limit: int, count: int) -> tuple[int, ...]:
 
 
 def primes(count: int, skip: int = 0) -> tuple[int, ...]:
-    """Primes below 2^29, largest first, in a fixed order (``skip`` them first)."""
+    """Primes below 2^30, largest first, in a fixed order (``skip`` them first)."""
     size = 64
     while size < count + skip:
         size *= 2
@@ -78,7 +80,7 @@ class ModularChannel:
         self.b = b % p
         self.s = len(b)
 
-    # Stored weights are residues below 2^29: int32 halves the memory; arithmetic
+    # Stored weights are residues below 2^30: int32 halves the memory; arithmetic
     # widens to int64 (a product of two residues needs 58 bits).
     def vectors(self, n: int, s: int) -> np.ndarray:
         return np.zeros((n, s), dtype=np.int32)
@@ -104,25 +106,25 @@ class ModularChannel:
         return z
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
-        if self.s <= 32:
+        if self.s <= SLICE:
             z = x @ self.A_t
             z %= self.p
             return z
         z = np.zeros((len(x), self.s), dtype=np.int64)
-        for k in range(0, self.s, 32):
-            z += (x[:, k:k + 32] @ self.A_t[k:k + 32]) % self.p
+        for k in range(0, self.s, SLICE):
+            z += (x[:, k:k + SLICE] @ self.A_t[k:k + SLICE]) % self.p
             z %= self.p
         return z
 
     def dot(self, x: np.ndarray) -> np.ndarray:
-        if self.s <= 32:
+        if self.s <= SLICE:
             z = x @ self.b
             z %= self.p
             return z
         return _chunked_dot(x, self.b, self.p)
 
     def sums(self, k: int, n: int) -> np.ndarray:
-        # float64 bins: a condition sums at most 21 residues below 2^29 (< 2^34), far
+        # float64 bins: a condition sums at most 21 residues below 2^30 (< 2^35), far
         # inside the 2^53 integers a double holds exactly, and bincount is fast
         return np.zeros(k, dtype=np.float64)
 
@@ -193,13 +195,13 @@ class PrimeChannels:
         return self._reduce(x * y)
 
     def _product(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
-        """``x[k] @ M[k]`` per channel modulo ``P[k]``, in slices of 32 stages (a sum of
-        32 products of residues stays below 2^63)."""
-        if self.s <= 32:
+        """``x[k] @ M[k]`` per channel modulo ``P[k]``, in slices of SLICE stages (a sum
+        of SLICE products of residues stays below 2^63)."""
+        if self.s <= SLICE:
             return self._reduce(np.matmul(x, M))
         z = np.zeros(x.shape[:2] + M.shape[2:], dtype=np.int64)
-        for k in range(0, self.s, 32):
-            z += self._reduce(np.matmul(x[:, :, k:k + 32], M[:, k:k + 32]))
+        for k in range(0, self.s, SLICE):
+            z += self._reduce(np.matmul(x[:, :, k:k + SLICE], M[:, k:k + SLICE]))
             self._reduce(z)
         return z
 
@@ -231,7 +233,7 @@ class PrimeChannels:
 
 class _Bins:
     """The condition sums of every channel, in float64 (a condition sums at most 21
-    residues below 2^29: exact).  The terms' residues are binned in runs of many blocks:
+    residues below 2^30: exact).  The terms' residues are binned in runs of many blocks:
     ``np.bincount`` costs the number of bins on every call, and at the top orders a
     block of terms is far smaller than the millions of conditions it lands in.  A run
     is gathered in a float64 buffer (the cast bincount would make anyway)."""
@@ -282,7 +284,7 @@ _MAX_RUN = 1 << 22
 
 def _chunked_dot(x: np.ndarray, b: np.ndarray, p: int) -> np.ndarray:
     z = np.zeros(len(x), dtype=np.int64)
-    for k in range(0, len(b), 32):
-        z += (x[:, k:k + 32] @ b[k:k + 32]) % p
+    for k in range(0, len(b), SLICE):
+        z += (x[:, k:k + SLICE] @ b[k:k + SLICE]) % p
         z %= p
     return z

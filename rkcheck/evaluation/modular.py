@@ -10,7 +10,7 @@ the element ``N = (n−1)!·d^(n−1)·R = Σ_u ±((n−1)!/σ(u))·ŵ(u)`` of `
 
 Channels.  For a prime ``p ∤ d`` over which ``g`` has ``D = deg g`` distinct roots ``r``,
 ``θ ↦ r`` is a ring homomorphism ``Z[θ] → Z/p``; every weight is computed in int64 numpy
-arrays modulo ``p`` (``p < 2^29``, so a row of ``s ≤ 32`` products sums without
+arrays modulo ``p`` (``p < 2^30``, so a row of ``s ≤ 8`` products sums without
 overflow).  A nonzero residue proves ``N ≠ 0``: the condition **fails**.
 
 Zero is proven through the norm.  Let ``e`` be the least positive integer with ``e·A`` and

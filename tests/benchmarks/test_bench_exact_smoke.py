@@ -28,8 +28,8 @@ def test_order_6_row_counts_the_trees_and_the_primes():
     # sizes of its vertex orbits, which sum to 7)
     bits = math.ceil(6 * 3 + math.log2(7)) + 2
     primes, total = 0, 0.0
-    while total <= bits:  # the primes are the largest below 2^29, each just under 29 bits
+    while total <= bits:  # the primes are the largest below 2^30, each just under 30 bits
         primes += 1
-        total += 29 - 1e-7
+        total += 30 - 1e-7
     assert int(cells["channels"]) == primes
     assert float(cells["eval CPU s"]) >= 0 and float(cells["ns/tree·ch"]) > 0

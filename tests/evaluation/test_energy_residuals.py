@@ -492,3 +492,34 @@ def test_avf_identity_for_c_bT(p, seed):
                 assert a != avf_weight(seq), seq
                 n_diff += 1
     assert n_equal > 0 and n_diff > 0
+
+
+@pytest.mark.parametrize("stages", [9, 17])
+def test_many_stages_sum_their_products_in_slices_and_match_the_reference(stages):
+    """Beyond SLICE stages ``x Aᵀ`` and ``x b`` are summed a slice at a time before each
+    reduction (products of residues below 2^60): dense tableaux with that many stages and
+    large denominators, exactly, in one channel per pass and several, against the
+    reference's Fraction residuals."""
+    from rkcheck.evaluation.channels import SLICE
+    from rkcheck.evaluation.modular import exact_condition_sums
+    from rkcheck.evaluation.scaled import ScaledTableau, scaled_rational
+    from rkcheck.trees.listing import ConditionListing
+
+    assert stages > SLICE
+    rng = random.Random(stages)
+    A = [[F(rng.randint(-10**6, 10**6), rng.randint(1, 10**5)) for _ in range(stages)] for _ in range(stages)]
+    b = [F(rng.randint(-10**6, 10**6), rng.randint(1, 10**5)) for _ in range(stages)]
+    listing = ConditionListing(4, None)
+    scaled = scaled_rational(A, b)
+    for width in (1, None):  # one channel per pass, or as many as fit
+        if width is not None:
+            scaled.channels_per_pass = lambda listing, top: 1  # type: ignore[method-assign]
+        else:
+            scaled = scaled_rational(A, b)
+        sums = exact_condition_sums(scaled, listing)
+        for n in listing.orders:
+            want = {c["id"]: ref.energy_residual(c, A, b) for c in ref.energy_conditions(n)}
+            for k in range(len(listing.orders[n])):
+                got = sums[n].value(k) * listing.flip(n, k)
+                assert got == want[listing.record(n, k).level_sequence], (n, k)
+    assert isinstance(scaled, ScaledTableau)
