@@ -195,8 +195,23 @@ class LimbBallContext:
     def mul(self, x, y):
         xm, xr, xg = x
         ym, yr, yg = y
+        xf, yf = xm.reshape(-1, self.L), ym.reshape(-1, self.L)
+        rows = _nonzero_rows(xf, yf)
+        if rows is None:
+            out = self._mul_digits(xf, yf)
+        else:  # a zero mid-point times anything is zero, exactly: only the others are multiplied
+            out = np.zeros(xf.shape, dtype=_STORE)
+            if len(rows):
+                out[rows] = self._mul_digits(xf[rows], yf[rows])
+        err = self.e_mul * self.unit
+        rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
+        g = xg * yg * _UP4 + err
+        self._check(g)
+        return out.reshape(xm.shape), rad, g
+
+    def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
+        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
         L, K0 = self.L, self.K0
-        xf, yf = xm.reshape(-1, L), ym.reshape(-1, L)
         out = np.empty(xf.shape, dtype=_STORE)
         for a0 in range(0, len(xf), _BLOCK):
             # digits first within the block: every numpy call runs over contiguous rows
@@ -207,11 +222,7 @@ class LimbBallContext:
                 jlo = max(0, K0 - i)
                 z[i + jlo - K0:i + L - K0] += xb[i] * yb[jlo:]
             out[a0:a0 + _BLOCK] = self._carry(z).T
-        err = self.e_mul * self.unit
-        rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
-        g = xg * yg * _UP4 + err
-        self._check(g)
-        return out.reshape(xm.shape), rad, g
+        return out
 
     def _product(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
         """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b: digit
@@ -219,6 +230,16 @@ class LimbBallContext:
         (positions from ``K0`` on), one pass per nonzero digit ``q`` of a column
         (:func:`_product_plan`: the zeros of a sparse tableau, and of entries such as 1/2
         with one nonzero digit, cost nothing).  Integer sums: exact in any order."""
+        rows = _nonzero_rows(xm.reshape(len(xm), xm.shape[1] * self.L))
+        if rows is None:
+            return self._product_digits(xm, Md, plan)
+        # rows of zero mid-points give zero, exactly: only the others are multiplied
+        out = np.zeros((len(xm), Md.shape[0], self.L), dtype=_STORE)
+        if len(rows):
+            out[rows] = self._product_digits(xm[rows], Md, plan)
+        return out
+
+    def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
         out = np.empty((n, outputs, L), dtype=_STORE)
@@ -284,28 +305,39 @@ class LimbBallContext:
         cdig, cabs = self._coefficient_digits(terms)
         C, L = cdig.shape[1], self.L
         k = len(acc[1])
-        if acc[0] is None:
-            acc[0] = np.zeros((L + C, k))
+        if acc[0] is None:  # a condition's digit sums side by side: one cache line per condition
+            acc[0] = np.zeros((k, L + C))
         if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
             raise ArithmeticError("certified digits: too many terms per condition for exact sums")
         idx = terms.coefficient_index[i0:i1]
         uniq, inv = block_bins(terms.condition[i0:i1])
-        u = len(uniq)
-        local = np.zeros((L + C, u))
-        for a0 in range(0, i1 - i0, _BLOCK):
-            a1 = min(i1 - i0, a0 + _BLOCK)
-            w_t = np.ascontiguousarray(w_terms[0][a0:a1].T, dtype=np.int64)  # (L, m)
-            cw_t = cdig[idx[a0:a1]].T.copy()  # (C, m)
-            V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
-            for j in range(C):
-                V[1 + j:1 + j + L] += w_t * cw_t[j]
-            digits = self._carry(V)  # exact: position 0 holds nothing
-            ib = inv[a0:a1]
-            for p in range(L + C):
-                local[p] += np.bincount(ib, weights=digits[p], minlength=u)
-        acc[0][:, uniq] += local
+        # a term whose mid-point is zero adds zero to every digit sum: only the others count
+        rows = _nonzero_rows(w_terms[0])
+        if rows is None:
+            wm, cidx, cols, cinv = w_terms[0], idx, uniq, inv
+        elif len(rows):
+            wm, cidx = w_terms[0][rows], idx[rows]
+            sub, cinv = block_bins(inv[rows])
+            cols = uniq[sub]
+        else:
+            wm = None
+        if wm is not None:
+            u = len(cols)
+            local = np.zeros((L + C, u))
+            for a0 in range(0, len(wm), _BLOCK):
+                a1 = min(len(wm), a0 + _BLOCK)
+                w_t = np.ascontiguousarray(wm[a0:a1].T, dtype=np.int64)  # (L, m)
+                cw_t = cdig[cidx[a0:a1]].T.copy()  # (C, m)
+                V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
+                for j in range(C):
+                    V[1 + j:1 + j + L] += w_t * cw_t[j]
+                digits = self._carry(V)  # exact: position 0 holds nothing
+                ib = cinv[a0:a1]
+                for p in range(L + C):
+                    local[p] += np.bincount(ib, weights=digits[p], minlength=u)
+            acc[0][cols] += local.T
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=u)
+        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=len(uniq))
 
     def finish_sums(self, acc, k: int, n: int) -> BallSums:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
@@ -315,7 +347,7 @@ class LimbBallContext:
         if acc[0] is None:
             mids = np.zeros(k, dtype=object)
         else:
-            d = acc[0][:, :k].astype(np.int64)  # exact: each sum is below 2^53
+            d = acc[0][:k].T.astype(np.int64)  # exact: each sum is below 2^53
             d = np.concatenate([np.zeros((1, k), dtype=np.int64), d])  # nothing to floor below
             mids = self.to_ints(np.ascontiguousarray(self._carry(d).T))
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
@@ -344,6 +376,31 @@ def _product_plan(Md: np.ndarray) -> list[_Pass]:
             else:
                 plan.append((j, q, None, col.copy()))
     return plan
+
+
+#: the share of rows with nonzero mid-points below which only those rows are multiplied
+#: (gathering them and scattering the products back costs less than the digits of the rest)
+_SPARSE = 0.75
+
+
+def _nonzero_rows(*digits: np.ndarray) -> np.ndarray | None:
+    """The rows (axis 0) where every one of ``digits`` (2-d digit arrays of one length)
+    has a nonzero mid-point, or None when they are more than :data:`_SPARSE` of all: the
+    arithmetic then runs over every row.  A zero mid-point has all its digits zero."""
+    nonzero = _any_digit(digits[0])
+    for d in digits[1:]:
+        nonzero &= _any_digit(d)
+    rows = np.flatnonzero(nonzero)
+    return None if len(rows) > _SPARSE * len(nonzero) else rows
+
+
+def _any_digit(digits: np.ndarray) -> np.ndarray:
+    """Whether each row of ``digits`` has a nonzero digit: the columns or-ed together
+    (numpy's ``any(axis=1)`` over a few digits per row took four times as long)."""
+    acc = digits[:, 0].copy()
+    for j in range(1, digits.shape[1]):
+        acc |= digits[:, j]
+    return acc != 0
 
 
 def _small_dot(x: np.ndarray, M: np.ndarray) -> np.ndarray:
