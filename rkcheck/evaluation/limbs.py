@@ -347,9 +347,12 @@ class LimbBallContext:
         if acc[0] is None:
             mids = np.zeros(k, dtype=object)
         else:
-            d = acc[0][:k].T.astype(np.int64)  # exact: each sum is below 2^53
-            d = np.concatenate([np.zeros((1, k), dtype=np.int64), d])  # nothing to floor below
-            mids = self.to_ints(np.ascontiguousarray(self._carry(d).T))
+            mids = np.empty(k, dtype=object)
+            for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
+                c1 = min(k, c0 + _BLOCK)
+                d = acc[0][c0:c1].T.astype(np.int64)  # exact: each sum is below 2^53
+                d = np.concatenate([np.zeros((1, c1 - c0), dtype=np.int64), d])  # nothing to floor below
+                mids[c0:c1] = self.to_ints(np.ascontiguousarray(self._carry(d).T))
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
 
 
