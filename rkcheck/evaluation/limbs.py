@@ -76,8 +76,11 @@ def _layout(bits: int, s: int) -> tuple[int, int] | None:
 
 
 class LimbBallContext:
-    """Certified balls with int64 digit mid-points (module docstring).  A value is a
-    triple (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``)."""
+    """Certified balls with int64 digit mid-points (module docstring).  A value is
+    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, flags): a flag is False
+    only where the mid-point is zero — a product with a zero factor, a matrix product
+    whose nonzero entries meet only zeros — so that the digit arithmetic of those rows is
+    skipped (most weights of an explicit tableau's tall trees are zero)."""
 
     exact = False
 
@@ -123,6 +126,11 @@ class LimbBallContext:
         balls_b = [_ball_at(x, self.bits, 0) for x in b]
         self.Ad = np.array([[self._digits(m) for m, _, _ in row] for row in balls_A], dtype=np.int64)  # (s, s, L)
         self.bd = np.array([[self._digits(m) for m, _, _ in balls_b]], dtype=np.int64)  # (1, s, L)
+        # the entries that are not zero (mid-point): (x Mᵀ)_i may be nonzero only where some
+        # x_j that may be is met by one of them
+        self._count: type[np.integer] = np.uint8 if s < 256 else np.int32  # sums of s zeros and ones
+        self.A_nz: np.ndarray = np.asarray(self.Ad.any(axis=2).T, dtype=self._count)  # (s, s): column j, output i
+        self.b_nz: np.ndarray = np.asarray(self.bd.any(axis=2).T, dtype=self._count)  # (s, 1)
         self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
         self.Ar_t = np.array([[r for _, r, _ in row] for row in balls_A]).T
         self.Ag_t = np.array([[g for _, _, g in row] for row in balls_A]).T
@@ -173,30 +181,40 @@ class LimbBallContext:
     # ------------------------------------------------------------- kernel
 
     def vectors(self, n: int, s: int):
-        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)))
+        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=bool))
 
     def scalars(self, n: int):
-        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n))
+        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool))
 
     def ones(self, k: int, s: int):
         mid = np.zeros((k, s, self.L), dtype=_STORE)
         mid[..., self.F] = 1
-        return (mid, np.zeros((k, s)), np.ones((k, s)))
+        return (mid, np.zeros((k, s)), np.ones((k, s)), np.ones((k, s), dtype=bool))
 
     def one(self, k: int):
         mid = np.zeros((k, self.L), dtype=_STORE)
         mid[:, self.F] = 1
-        return (mid, np.zeros(k), np.ones(k))
+        return (mid, np.zeros(k), np.ones(k), np.ones(k, dtype=bool))
 
-    # a ball is the same (mid, radius, magnitude) triple as BallContext's: the same moves
-    take = BallContext.take
+    def take(self, x, idx):
+        return tuple(part[idx] for part in x)
+
+    # the parts of a value, whatever their number, are stored alike
     put = BallContext.put
 
+    def _may_be_nonzero(self, x) -> np.ndarray:
+        """The value's flags (False: the mid-point is zero), or, for a bare (mid-point,
+        radius, magnitude) triple, whether its digits are."""
+        if len(x) > 3:
+            return x[3]
+        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape)
+
     def mul(self, x, y):
-        xm, xr, xg = x
-        ym, yr, yg = y
+        xm, xr, xg = x[:3]
+        ym, yr, yg = y[:3]
+        nz = self._may_be_nonzero(x) & self._may_be_nonzero(y)
         xf, yf = xm.reshape(-1, self.L), ym.reshape(-1, self.L)
-        rows = _nonzero_rows(xf, yf)
+        rows = _sparse_rows(nz.reshape(-1))
         if rows is None:
             out = self._mul_digits(xf, yf)
         else:  # a zero mid-point times anything is zero, exactly: only the others are multiplied
@@ -207,7 +225,7 @@ class LimbBallContext:
         rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
         g = xg * yg * _UP4 + err
         self._check(g)
-        return out.reshape(xm.shape), rad, g
+        return out.reshape(xm.shape), rad, g, nz
 
     def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
         """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
@@ -224,13 +242,14 @@ class LimbBallContext:
             out[a0:a0 + _BLOCK] = self._carry(z).T
         return out
 
-    def _product(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+    def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
         """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b: digit
         ``l`` of ``x_j`` times digit ``q`` of column ``j`` lands at position ``l + q``
         (positions from ``K0`` on), one pass per nonzero digit ``q`` of a column
         (:func:`_product_plan`: the zeros of a sparse tableau, and of entries such as 1/2
-        with one nonzero digit, cost nothing).  Integer sums: exact in any order."""
-        rows = _nonzero_rows(xm.reshape(len(xm), xm.shape[1] * self.L))
+        with one nonzero digit, cost nothing).  Integer sums: exact in any order.  The rows
+        where ``row_nz`` is False are zero (every nonzero entry meets a zero ``x_j``)."""
+        rows = _sparse_rows(row_nz)
         if rows is None:
             return self._product_digits(xm, Md, plan)
         # rows of zero mid-points give zero, exactly: only the others are multiplied
@@ -257,7 +276,7 @@ class LimbBallContext:
         return out
 
     def _rad(self, x, Mr, Mg):
-        _, xr, xg = x
+        _, xr, xg = x[:3]
         err = self.e_dot * self.unit
         rad = (_small_dot(xg, Mr) + _small_dot(xr, Mg) + _small_dot(xr, Mr)) * self._dot_up + err
         g = _small_dot(xg, Mg) * self._dot_up + err
@@ -266,11 +285,13 @@ class LimbBallContext:
 
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
-        return self._product(x[0], self.Ad, self._A_plan), rad, g
+        nz = (self._may_be_nonzero(x).astype(self._count) @ self.A_nz) > 0
+        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
-        return self._product(x[0], self.bd, self._b_plan)[:, 0, :], rad, g
+        nz = (self._may_be_nonzero(x).astype(self._count) @ self.b_nz)[:, 0] > 0
+        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz
 
     def enclosures(self, x) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
@@ -312,7 +333,7 @@ class LimbBallContext:
         idx = terms.coefficient_index[i0:i1]
         uniq, inv = block_bins(terms.condition[i0:i1])
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
-        rows = _nonzero_rows(w_terms[0])
+        rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:
             wm, cidx, cols, cinv = w_terms[0], idx, uniq, inv
         elif len(rows):
@@ -386,23 +407,20 @@ def _product_plan(Md: np.ndarray) -> list[_Pass]:
 _SPARSE = 0.75
 
 
-def _nonzero_rows(*digits: np.ndarray) -> np.ndarray | None:
-    """The rows (axis 0) where every one of ``digits`` (2-d digit arrays of one length)
-    has a nonzero mid-point, or None when they are more than :data:`_SPARSE` of all: the
-    arithmetic then runs over every row.  A zero mid-point has all its digits zero."""
-    nonzero = _any_digit(digits[0])
-    for d in digits[1:]:
-        nonzero &= _any_digit(d)
+def _sparse_rows(nonzero: np.ndarray) -> np.ndarray | None:
+    """The rows where ``nonzero`` holds, or None when they are more than :data:`_SPARSE`
+    of all: the arithmetic then runs over every row."""
     rows = np.flatnonzero(nonzero)
     return None if len(rows) > _SPARSE * len(nonzero) else rows
 
 
-def _any_digit(digits: np.ndarray) -> np.ndarray:
-    """Whether each row of ``digits`` has a nonzero digit: the columns or-ed together
-    (numpy's ``any(axis=1)`` over a few digits per row took four times as long)."""
-    acc = digits[:, 0].copy()
-    for j in range(1, digits.shape[1]):
-        acc |= digits[:, j]
+def _any_in_row(x: np.ndarray) -> np.ndarray:
+    """Whether each row of ``x`` (digits, or flags) has a nonzero entry: the columns
+    or-ed together (numpy's ``any(axis=1)`` over a few entries per row took four times
+    as long)."""
+    acc = x[:, 0].copy()
+    for j in range(1, x.shape[1]):
+        acc |= x[:, j]
     return acc != 0
 
 
