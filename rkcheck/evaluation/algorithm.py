@@ -55,9 +55,9 @@ def condition_sums(
     """``{vertices: class sums}`` for the conditions with the given numbers of vertices
     (default: all of the listing's), in increasing order.
 
-    Weights are kept only as far as later terms need them: ``Φ`` and ``ψ`` for trees
-    with at most ``top − 2`` vertices, ``a`` and ``w`` up to ``top − 1``, where ``top`` is
-    the largest number of vertices asked for.  ``on_order(n, sums)`` is called as soon as
+    Weights are stored only where later terms use them many times (``a`` and ``w`` for
+    trees with at most ``top − 2`` vertices, ``top`` the largest number of vertices asked
+    for; :class:`_Weights`); the others are computed where they are used.  ``on_order(n, sums)`` is called as soon as
     an order is done, so that callers can stream (report, stop early)."""
     wanted = sorted(listing.orders if orders is None else orders)
     out: dict[int, Any] = {}
@@ -71,55 +71,155 @@ def condition_sums(
     return out
 
 
+def store_weights(listing: ConditionListing, ctx: NumberContext, s: int, top: int) -> None:
+    """Compute and store the weights that the conditions with ``top`` vertices are made
+    of — ``Φ`` and ``ψ`` up to ``top − 2`` vertices, ``a`` and ``w`` up to ``top − 1`` —
+    every one of them once, for a context that inspects the weights rather than sums
+    them (the pattern of zeros of :mod:`~rkcheck.evaluation.box`)."""
+    listing.ensure(top)
+    weights = _Weights(listing, ctx, s, top - 2, top - 1)
+    chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)
+    for n in range(2, top):
+        weights.compute_order(n, listing.first[n], listing.first[n + 1], chunk)
+
+
 def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wanted: list[int],
                       out: dict[int, Any], on_order: Callable[[int, Any], None] | None) -> None:
     top = wanted[-1]
     first = listing.first
-    n_a = first[top]  # trees with <= top − 1 vertices
-    n_phi = first[max(top - 1, 2)]  # trees with <= top − 2 vertices
-    phi = ctx.vectors(n_phi, s)
-    psi = ctx.vectors(n_phi, s)
-    a = ctx.scalars(n_a)
-    w = ctx.scalars(n_a)
-    phi0 = ctx.ones(1, s)
-    ctx.put(phi, 0, phi0)
-    ctx.put(psi, 0, ctx.matvec(phi0))
-    ctx.put(a, 0, ctx.dot(phi0))
-    ctx.put(w, 0, ctx.one(1))
-    left, right = listing.left, listing.right
+    weights = _Weights(listing, ctx, s, _phi_vertices(listing, ctx, s, top), top - 2)
     chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)  # several channels per row: fewer rows
     for n in range(2, top + 1):
-        lo, hi = first[n], first[n + 1] if n + 1 < len(first) else first[n]
-        for a0 in range(lo, hi if n < top else lo, chunk):  # weights of the trees with n vertices
-            a1 = min(hi, a0 + chunk)
-            U, V = left[a0:a1], right[a0:a1]
-            ctx.put(w, a0, ctx.mul(ctx.take(w, U), ctx.take(a, V)))
-            phi_n = ctx.mul(ctx.take(phi, U), ctx.take(psi, V))
-            ctx.put(a, a0, ctx.dot(phi_n))
-            if n < top - 1:
-                ctx.put(phi, a0, phi_n)
-                ctx.put(psi, a0, ctx.matvec(phi_n))
-            del phi_n
-        if n == top - 1:  # the trees with top vertices need only w and a: free Φ and ψ first
-            phi = psi = None
+        if n <= top - 2:  # the weights of the trees with n vertices, stored as far as kept
+            weights.compute_order(n, first[n], first[n + 1], chunk)
         terms = listing.orders.get(n) if n in wanted else None
-        if terms is not None:
-            acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
-            for t0 in range(0, len(terms.condition), chunk):
-                t1 = min(len(terms.condition), t0 + chunk)
-                if terms.first_id is not None and n < top:  # their weights w are stored
-                    w_terms = ctx.take(w, np.arange(terms.first_id + t0, terms.first_id + t1))
-                else:  # w(u ∘ v) = w(u)·a(v), from the factors
-                    if terms.first_id is not None:
-                        U, V = left[terms.first_id + t0:terms.first_id + t1], right[terms.first_id + t0:terms.first_id + t1]
-                    else:
-                        assert terms.left is not None and terms.right is not None  # top order: factors kept
-                        U, V = terms.left[t0:t1], terms.right[t0:t1]
-                    w_terms = ctx.mul(ctx.take(w, U), ctx.take(a, V))
-                ctx.add_terms(acc, w_terms, terms, n, t0, t1)
-            out[n] = ctx.finish_sums(acc, len(terms), n)
-            if on_order is not None:
-                on_order(n, out[n])
+        if terms is None:
+            continue
+        acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
+        for t0 in range(0, len(terms.condition), chunk):
+            t1 = min(len(terms.condition), t0 + chunk)
+            if terms.first_id is not None:  # the trees themselves: w stored, or from their factors
+                w_terms = weights.get("w", slice(terms.first_id + t0, terms.first_id + t1))
+            else:  # the top order: w(u ∘ v) = w(u)·a(v), from the factors kept with the terms
+                assert terms.left is not None and terms.right is not None
+                w_terms = ctx.mul(weights.get("w", terms.left[t0:t1]), weights.get("a", terms.right[t0:t1]))
+            ctx.add_terms(acc, w_terms, terms, n, t0, t1)
+        out[n] = ctx.finish_sums(acc, len(terms), n)
+        if on_order is not None:
+            on_order(n, out[n])
+
+
+def _phi_vertices(listing: ConditionListing, ctx: NumberContext, s: int, top: int) -> int:
+    """Up to how many vertices ``Φ`` and ``ψ`` are stored for conditions up to ``top``
+    vertices: ``top − 2`` (each weight computed once), or ``top − 3`` when those of the
+    trees with ``top − 2`` vertices would take more than :data:`RECOMPUTE_BYTES` — they are
+    then computed a second time where the trees with ``top − 1`` vertices need them."""
+    first = listing.first
+    if top < 4 or top - 1 >= len(first):
+        return top - 2
+    trees = int(first[top - 1] - first[top - 2])
+    return top - 3 if 2 * trees * _nbytes(ctx.vectors(1, s)) > RECOMPUTE_BYTES else top - 2
+
+
+def _nbytes(value: Any) -> int:
+    """Bytes of a context's value (an array, or nested tuples of arrays)."""
+    if isinstance(value, (tuple, list)):
+        return sum(_nbytes(v) for v in value)
+    return int(getattr(value, "nbytes", 0))
+
+
+#: Φ and ψ of the trees with ``top − 2`` vertices are stored up to this many bytes, and
+#: computed twice above: recomputing them cost the exact evaluation of RK4 at order 18
+#: about 6 % of its time (they would take 40 MB there, one prime at a time), storing them
+#: took certified balls 220 MB of their 850 MB
+RECOMPUTE_BYTES = 128 << 20
+
+
+class _Weights:
+    """The elementary weights of the trees up to ``top`` vertices: those that later orders
+    use many times stored, the others computed from their factors when asked.
+
+    A tree with ``top − 1`` vertices enters the trees with ``top`` vertices only as
+    ``τ ∘ v`` (and the bush as ``u ∘ τ``: the right factor is the child with the largest
+    id), and one with ``top − 2`` vertices enters those with ``top − 1`` the same way.
+    So ``a`` and ``w`` are stored up to ``top − 2`` vertices, ``Φ`` and ``ψ`` up to
+    ``top − 2`` or ``top − 3`` (:func:`_phi_vertices`); a larger tree's weight is computed
+    from its factors where a term needs it, once per tree (twice for ``Φ`` and ``ψ`` of
+    the trees with ``top − 2`` vertices when they are not stored) — by the same operations
+    on the same values as when it was stored, so every value is the same, bit for bit.
+    (Storing them all took most of a certified check's memory: ``Φ`` and ``ψ`` of the
+    trees with ``top − 2`` vertices and ``a`` and ``w`` of those with ``top − 1`` are
+    nine tenths of what was stored.)"""
+
+    def __init__(self, listing: ConditionListing, ctx: NumberContext, s: int, phi_vertices: int,
+                 a_vertices: int):
+        """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices
+        and for ``a`` and ``w`` of those with at most ``a_vertices`` (τ at least)."""
+        first = listing.first
+        self.ctx, self.s = ctx, s
+        self.left, self.right = listing.left, listing.right
+        n_phi, n_a = first[max(phi_vertices + 1, 2)], first[max(a_vertices + 1, 2)]
+        self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_a}
+        self.store = {"phi": ctx.vectors(n_phi, s), "psi": ctx.vectors(n_phi, s),
+                      "a": ctx.scalars(n_a), "w": ctx.scalars(n_a)}
+        phi0 = ctx.ones(1, s)
+        ctx.put(self.store["phi"], 0, phi0)
+        ctx.put(self.store["psi"], 0, ctx.matvec(phi0))
+        ctx.put(self.store["a"], 0, ctx.dot(phi0))
+        ctx.put(self.store["w"], 0, ctx.one(1))
+
+    def compute_order(self, n: int, lo: int, hi: int, chunk: int) -> None:
+        """Compute and store the weights of the trees ``lo … hi − 1`` (those with ``n``
+        vertices): ``a`` and ``w`` always, ``Φ`` and ``ψ`` when they are kept."""
+        ctx, store = self.ctx, self.store
+        keep_phi = hi <= self.limit["phi"]
+        for a0 in range(lo, hi, chunk):
+            a1 = min(hi, a0 + chunk)
+            U, V = self.left[a0:a1], self.right[a0:a1]
+            ctx.put(store["w"], a0, ctx.mul(ctx.take(store["w"], U), ctx.take(store["a"], V)))
+            phi_n = ctx.mul(ctx.take(store["phi"], U), ctx.take(store["psi"], V))
+            ctx.put(store["a"], a0, ctx.dot(phi_n))
+            if keep_phi:
+                ctx.put(store["phi"], a0, phi_n)
+                ctx.put(store["psi"], a0, ctx.matvec(phi_n))
+            del phi_n
+
+    def get(self, kind: str, ids: np.ndarray | slice) -> Any:
+        """The weights ``kind`` (``"phi"``, ``"psi"``, ``"a"`` or ``"w"``) of the trees
+        ``ids`` (an array of ids, or a slice of consecutive ones): gathered where
+        stored, computed from the factors elsewhere."""
+        ctx, limit = self.ctx, self.limit[kind]
+        if isinstance(ids, slice):  # consecutive trees: their factors are slices, not gathers
+            if ids.stop <= limit:
+                return ctx.take(self.store[kind], np.arange(ids.start, ids.stop))
+            if ids.start >= limit:
+                return self._from_factors(kind, ids)
+            ids = np.arange(ids.start, ids.stop)
+        computed = ids >= limit
+        k = int(np.count_nonzero(computed))
+        if k == 0:
+            return ctx.take(self.store[kind], ids)
+        if k == len(ids):
+            return self._from_factors(kind, ids)
+        # both kinds in one block: stored ones first, then computed, then put in place
+        kept = ~computed
+        both = ctx.vectors(len(ids), self.s) if kind in ("phi", "psi") else ctx.scalars(len(ids))
+        ctx.put(both, 0, ctx.take(self.store[kind], ids[kept]))
+        ctx.put(both, len(ids) - k, self._from_factors(kind, ids[computed]))
+        place = np.empty(len(ids), dtype=np.intp)
+        place[kept] = np.arange(len(ids) - k)
+        place[computed] = np.arange(len(ids) - k, len(ids))
+        return ctx.take(both, place)
+
+    def _from_factors(self, kind: str, ids: np.ndarray | slice) -> Any:
+        ctx = self.ctx
+        if kind == "w":  # w(u ∘ v) = w(u)·a(v)
+            return ctx.mul(self.get("w", self.left[ids]), self.get("a", self.right[ids]))
+        if kind == "a":
+            return ctx.dot(self.get("phi", ids))
+        if kind == "psi":
+            return ctx.matvec(self.get("phi", ids))
+        return ctx.mul(self.get("phi", self.left[ids]), self.get("psi", self.right[ids]))
 
 
 #: rows per block of the kernel: small enough that a block's temporaries stay in the

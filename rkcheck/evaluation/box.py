@@ -325,13 +325,13 @@ def _centre_by_balls(listing, centre_A, centre_b, top: int, bits: int) -> bool:
     zeros: :class:`_SupportCounter`) and their memory fits in
     :data:`MAX_CENTRE_BALL_BYTES` (an explicit RK4 at order 18 stores 0.3 million nonzero
     weights of 13 million)."""
-    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.algorithm import store_weights
 
     if all(x != 0 for row in (*centre_A, centre_b) for x in row):
         return CENTRE_BALL_MAX_NONZERO >= 1 and _centre_balls_fit(listing, len(centre_b), top, bits, None)
     s = len(centre_b)
     counter = _SupportCounter(centre_A, centre_b)
-    condition_sums(listing, counter, s, [top])
+    store_weights(listing, counter, s, top)
     if counter.nonzero > CENTRE_BALL_MAX_NONZERO * counter.stored:
         return False
     return _centre_balls_fit(listing, s, top, bits, counter.nonzero)

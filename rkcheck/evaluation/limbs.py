@@ -76,8 +76,11 @@ def _layout(bits: int, s: int) -> tuple[int, int] | None:
 
 
 class LimbBallContext:
-    """Certified balls with int64 digit mid-points (module docstring).  A value is a
-    triple (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``)."""
+    """Certified balls with int64 digit mid-points (module docstring).  A value is
+    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, flags): a flag is False
+    only where the mid-point is zero — a product with a zero factor, a matrix product
+    whose nonzero entries meet only zeros — so that the digit arithmetic of those rows is
+    skipped (most weights of an explicit tableau's tall trees are zero)."""
 
     exact = False
 
@@ -123,6 +126,11 @@ class LimbBallContext:
         balls_b = [_ball_at(x, self.bits, 0) for x in b]
         self.Ad = np.array([[self._digits(m) for m, _, _ in row] for row in balls_A], dtype=np.int64)  # (s, s, L)
         self.bd = np.array([[self._digits(m) for m, _, _ in balls_b]], dtype=np.int64)  # (1, s, L)
+        # the entries that are not zero (mid-point): (x Mᵀ)_i may be nonzero only where some
+        # x_j that may be is met by one of them
+        self._count: type[np.integer] = np.uint8 if s < 256 else np.int32  # sums of s zeros and ones
+        self.A_nz: np.ndarray = np.asarray(self.Ad.any(axis=2).T, dtype=self._count)  # (s, s): column j, output i
+        self.b_nz: np.ndarray = np.asarray(self.bd.any(axis=2).T, dtype=self._count)  # (s, 1)
         self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
         self.Ar_t = np.array([[r for _, r, _ in row] for row in balls_A]).T
         self.Ag_t = np.array([[g for _, _, g in row] for row in balls_A]).T
@@ -173,30 +181,55 @@ class LimbBallContext:
     # ------------------------------------------------------------- kernel
 
     def vectors(self, n: int, s: int):
-        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)))
+        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=bool))
 
     def scalars(self, n: int):
-        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n))
+        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool))
 
     def ones(self, k: int, s: int):
         mid = np.zeros((k, s, self.L), dtype=_STORE)
         mid[..., self.F] = 1
-        return (mid, np.zeros((k, s)), np.ones((k, s)))
+        return (mid, np.zeros((k, s)), np.ones((k, s)), np.ones((k, s), dtype=bool))
 
     def one(self, k: int):
         mid = np.zeros((k, self.L), dtype=_STORE)
         mid[:, self.F] = 1
-        return (mid, np.zeros(k), np.ones(k))
+        return (mid, np.zeros(k), np.ones(k), np.ones(k, dtype=bool))
 
-    # a ball is the same (mid, radius, magnitude) triple as BallContext's: the same moves
-    take = BallContext.take
+    def take(self, x, idx):
+        return tuple(part[idx] for part in x)
+
+    # the parts of a value, whatever their number, are stored alike
     put = BallContext.put
 
+    def _may_be_nonzero(self, x) -> np.ndarray:
+        """The value's flags (False: the mid-point is zero), or, for a bare (mid-point,
+        radius, magnitude) triple, whether its digits are."""
+        if len(x) > 3:
+            return x[3]
+        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape)
+
     def mul(self, x, y):
-        xm, xr, xg = x
-        ym, yr, yg = y
+        xm, xr, xg = x[:3]
+        ym, yr, yg = y[:3]
+        nz = self._may_be_nonzero(x) & self._may_be_nonzero(y)
+        xf, yf = xm.reshape(-1, self.L), ym.reshape(-1, self.L)
+        rows = _sparse_rows(nz.reshape(-1))
+        if rows is None:
+            out = self._mul_digits(xf, yf)
+        else:  # a zero mid-point times anything is zero, exactly: only the others are multiplied
+            out = np.zeros(xf.shape, dtype=_STORE)
+            if len(rows):
+                out[rows] = self._mul_digits(xf[rows], yf[rows])
+        err = self.e_mul * self.unit
+        rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
+        g = xg * yg * _UP4 + err
+        self._check(g)
+        return out.reshape(xm.shape), rad, g, nz
+
+    def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
+        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
         L, K0 = self.L, self.K0
-        xf, yf = xm.reshape(-1, L), ym.reshape(-1, L)
         out = np.empty(xf.shape, dtype=_STORE)
         for a0 in range(0, len(xf), _BLOCK):
             # digits first within the block: every numpy call runs over contiguous rows
@@ -207,18 +240,25 @@ class LimbBallContext:
                 jlo = max(0, K0 - i)
                 z[i + jlo - K0:i + L - K0] += xb[i] * yb[jlo:]
             out[a0:a0 + _BLOCK] = self._carry(z).T
-        err = self.e_mul * self.unit
-        rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
-        g = xg * yg * _UP4 + err
-        self._check(g)
-        return out.reshape(xm.shape), rad, g
+        return out
 
-    def _product(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+    def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
         """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b: digit
         ``l`` of ``x_j`` times digit ``q`` of column ``j`` lands at position ``l + q``
         (positions from ``K0`` on), one pass per nonzero digit ``q`` of a column
         (:func:`_product_plan`: the zeros of a sparse tableau, and of entries such as 1/2
-        with one nonzero digit, cost nothing).  Integer sums: exact in any order."""
+        with one nonzero digit, cost nothing).  Integer sums: exact in any order.  The rows
+        where ``row_nz`` is False are zero (every nonzero entry meets a zero ``x_j``)."""
+        rows = _sparse_rows(row_nz)
+        if rows is None:
+            return self._product_digits(xm, Md, plan)
+        # rows of zero mid-points give zero, exactly: only the others are multiplied
+        out = np.zeros((len(xm), Md.shape[0], self.L), dtype=_STORE)
+        if len(rows):
+            out[rows] = self._product_digits(xm[rows], Md, plan)
+        return out
+
+    def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
         out = np.empty((n, outputs, L), dtype=_STORE)
@@ -236,7 +276,7 @@ class LimbBallContext:
         return out
 
     def _rad(self, x, Mr, Mg):
-        _, xr, xg = x
+        _, xr, xg = x[:3]
         err = self.e_dot * self.unit
         rad = (_small_dot(xg, Mr) + _small_dot(xr, Mg) + _small_dot(xr, Mr)) * self._dot_up + err
         g = _small_dot(xg, Mg) * self._dot_up + err
@@ -245,11 +285,13 @@ class LimbBallContext:
 
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
-        return self._product(x[0], self.Ad, self._A_plan), rad, g
+        nz = (self._may_be_nonzero(x).astype(self._count) @ self.A_nz) > 0
+        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
-        return self._product(x[0], self.bd, self._b_plan)[:, 0, :], rad, g
+        nz = (self._may_be_nonzero(x).astype(self._count) @ self.b_nz)[:, 0] > 0
+        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz
 
     def enclosures(self, x) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
@@ -284,28 +326,39 @@ class LimbBallContext:
         cdig, cabs = self._coefficient_digits(terms)
         C, L = cdig.shape[1], self.L
         k = len(acc[1])
-        if acc[0] is None:
-            acc[0] = np.zeros((L + C, k))
+        if acc[0] is None:  # a condition's digit sums side by side: one cache line per condition
+            acc[0] = np.zeros((k, L + C))
         if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
             raise ArithmeticError("certified digits: too many terms per condition for exact sums")
         idx = terms.coefficient_index[i0:i1]
         uniq, inv = block_bins(terms.condition[i0:i1])
-        u = len(uniq)
-        local = np.zeros((L + C, u))
-        for a0 in range(0, i1 - i0, _BLOCK):
-            a1 = min(i1 - i0, a0 + _BLOCK)
-            w_t = np.ascontiguousarray(w_terms[0][a0:a1].T, dtype=np.int64)  # (L, m)
-            cw_t = cdig[idx[a0:a1]].T.copy()  # (C, m)
-            V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
-            for j in range(C):
-                V[1 + j:1 + j + L] += w_t * cw_t[j]
-            digits = self._carry(V)  # exact: position 0 holds nothing
-            ib = inv[a0:a1]
-            for p in range(L + C):
-                local[p] += np.bincount(ib, weights=digits[p], minlength=u)
-        acc[0][:, uniq] += local
+        # a term whose mid-point is zero adds zero to every digit sum: only the others count
+        rows = _sparse_rows(self._may_be_nonzero(w_terms))
+        if rows is None:
+            wm, cidx, cols, cinv = w_terms[0], idx, uniq, inv
+        elif len(rows):
+            wm, cidx = w_terms[0][rows], idx[rows]
+            sub, cinv = block_bins(inv[rows])
+            cols = uniq[sub]
+        else:
+            wm = None
+        if wm is not None:
+            u = len(cols)
+            local = np.zeros((L + C, u))
+            for a0 in range(0, len(wm), _BLOCK):
+                a1 = min(len(wm), a0 + _BLOCK)
+                w_t = np.ascontiguousarray(wm[a0:a1].T, dtype=np.int64)  # (L, m)
+                cw_t = cdig[cidx[a0:a1]].T.copy()  # (C, m)
+                V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
+                for j in range(C):
+                    V[1 + j:1 + j + L] += w_t * cw_t[j]
+                digits = self._carry(V)  # exact: position 0 holds nothing
+                ib = cinv[a0:a1]
+                for p in range(L + C):
+                    local[p] += np.bincount(ib, weights=digits[p], minlength=u)
+            acc[0][cols] += local.T
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=u)
+        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=len(uniq))
 
     def finish_sums(self, acc, k: int, n: int) -> BallSums:
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
@@ -315,9 +368,12 @@ class LimbBallContext:
         if acc[0] is None:
             mids = np.zeros(k, dtype=object)
         else:
-            d = acc[0][:, :k].astype(np.int64)  # exact: each sum is below 2^53
-            d = np.concatenate([np.zeros((1, k), dtype=np.int64), d])  # nothing to floor below
-            mids = self.to_ints(np.ascontiguousarray(self._carry(d).T))
+            mids = np.empty(k, dtype=object)
+            for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
+                c1 = min(k, c0 + _BLOCK)
+                d = acc[0][c0:c1].T.astype(np.int64)  # exact: each sum is below 2^53
+                d = np.concatenate([np.zeros((1, c1 - c0), dtype=np.int64), d])  # nothing to floor below
+                mids[c0:c1] = self.to_ints(np.ascontiguousarray(self._carry(d).T))
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
 
 
@@ -344,6 +400,28 @@ def _product_plan(Md: np.ndarray) -> list[_Pass]:
             else:
                 plan.append((j, q, None, col.copy()))
     return plan
+
+
+#: the share of rows with nonzero mid-points below which only those rows are multiplied
+#: (gathering them and scattering the products back costs less than the digits of the rest)
+_SPARSE = 0.75
+
+
+def _sparse_rows(nonzero: np.ndarray) -> np.ndarray | None:
+    """The rows where ``nonzero`` holds, or None when they are more than :data:`_SPARSE`
+    of all: the arithmetic then runs over every row."""
+    rows = np.flatnonzero(nonzero)
+    return None if len(rows) > _SPARSE * len(nonzero) else rows
+
+
+def _any_in_row(x: np.ndarray) -> np.ndarray:
+    """Whether each row of ``x`` (digits, or flags) has a nonzero entry: the columns
+    or-ed together (numpy's ``any(axis=1)`` over a few entries per row took four times
+    as long)."""
+    acc = x[:, 0].copy()
+    for j in range(1, x.shape[1]):
+        acc |= x[:, j]
+    return acc != 0
 
 
 def _small_dot(x: np.ndarray, M: np.ndarray) -> np.ndarray:

@@ -217,13 +217,13 @@ def test_a_dense_tableau_takes_the_residues_and_a_sparse_one_the_balls(monkeypat
 def test_the_support_counter_counts_the_weights_that_are_not_zero():
     # RK4's weights by brute force (the reference's elementary weight vectors, exact):
     # a weight the counter calls zero is zero, and it counts every one that is not
-    from rkcheck.evaluation.algorithm import condition_sums
+    from rkcheck.evaluation.algorithm import store_weights
 
     A, b = _exact(*RK4_DECIMAL)
     listing = ConditionListing(7, None)
     top = max(listing.orders)
     counter = box._SupportCounter(A, b)
-    condition_sums(listing, counter, 4, [top])
+    store_weights(listing, counter, 4, top)
     seq_of = listing.tree_level_sequence
     nonzero = 0
     for t in range(listing.first[top]):  # the stored a and w: trees with <= top − 1 vertices

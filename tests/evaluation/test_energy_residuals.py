@@ -211,6 +211,27 @@ def test_ball_backend_encloses_exact_residual(seed, s):
                 assert enc.rad < F(1, 10 ** 50), (rec.id, float(enc.rad))
 
 
+@pytest.mark.parametrize("recompute_bytes", [0, 1 << 62])
+def test_weights_recomputed_or_stored_give_the_reference(monkeypatch, recompute_bytes):
+    # Φ and ψ of the trees with top − 2 vertices computed twice (a budget of 0 bytes) or
+    # stored: the exact residuals equal the reference's, and the balls enclose them
+    import rkcheck.evaluation.algorithm as algorithm
+
+    monkeypatch.setattr(algorithm, "RECOMPUTE_BYTES", recompute_bytes)
+    rng = random.Random(7)
+    A, b = random_tableau(rng, 3, sum_b_one=True)
+    refs = ref_by_id()
+    listing = cond_table(None)
+    for cid, value in exact_residuals(listing, A, b).items():
+        assert value == ref.energy_residual(refs[cid], A, b), cid
+    ctx = BallContext([[Interval.point(x) for x in row] for row in A], [Interval.point(x) for x in b], bits=200)
+    for n, sums in condition_sums(listing, ctx, 3).items():
+        for k in range(len(sums)):
+            enc, rec = sums.enclosure(k), listing.record(n, k)
+            exact = ref.energy_residual(refs[rec.level_sequence], A, b)
+            assert abs(enc.mid * listing.flip(n, k) - exact) <= enc.rad < F(1, 10 ** 50), rec.id
+
+
 def test_symmetry_factors_equal_reference_sigmas():
     # expected: σ(u) of every rooting from the reference (the engine folds (n−1)!/σ(u)
     # into each term's coefficient)

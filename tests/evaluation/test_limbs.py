@@ -118,6 +118,26 @@ def test_chunked_digit_balls_are_bit_identical(monkeypatch):
         assert list(chunked[n].mids) == list(whole[n].mids)
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_zero_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed):
+    # an explicit tableau (strictly lower triangular A): most weights of tall trees are
+    # exactly zero.  Skipping their digit products (every row sparse) or multiplying them
+    # (none) gives the same balls, bit for bit, and they enclose the exact values
+    rng = random.Random(seed)
+    s = 4
+    A = [[Fraction(rng.randint(1, 9), 9 * s) if j < i else Fraction(0) for j in range(s)] for i in range(s)]
+    b = [Fraction(rng.randint(1, 9), 9 * s) for _ in range(s)]
+    listing = ConditionListing(11, None)
+    runs = []
+    for share in (1.0, -1.0):  # rows computed: only the nonzero ones / all of them
+        monkeypatch.setattr("rkcheck.evaluation.limbs._SPARSE", share)
+        runs.append(assert_encloses(listing, A, b, LimbBallContext.create(*points(A, b), 200, vertices=12), 1e-50))
+    sparse, dense = runs
+    for n in dense:
+        assert list(sparse[n].mids) == list(dense[n].mids)
+        assert sparse[n].rads.tolist() == dense[n].rads.tolist()
+
+
 def test_large_listings_of_small_weights_use_digits():
     A = [[Fraction(1, 3), Fraction(1, 7)], [Fraction(-2, 9), Fraction(1, 3)]]
     b = [Fraction(1, 2), Fraction(1, 2)]
