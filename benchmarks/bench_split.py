@@ -4,14 +4,16 @@
     python benchmarks/bench_split.py --order 20 --cluster  # and a 2-worker LocalCluster
 
 Writes RK4 (rational, no claims) to a temporary file, fills a temporary listing cache
-with one untimed check, then times ``rkcheck verify FILE --order N --degree none
---format json`` as a fresh process from start to exit, three ways: ``--jobs 1``,
-``--jobs W`` (forked local processes) and, with ``--cluster``, ``--scheduler`` on a
-``LocalCluster`` of W one-thread workers started before the clock (they read the same
-listing cache; their CPU time is not the verify process's and is not counted).  The
-reports must agree (times aside).  Prints one Markdown table: wall seconds, speed-up
-against ``--jobs 1``, CPU seconds of the verify process and its children, and the
-largest peak resident memory among them.  Needs ``rkcheck[cluster]`` for ``--cluster``.
+with one untimed check, then runs ``rkcheck.verify(FILE, order=N, degree="none", jobs=,
+scheduler=)`` in a fresh process, three ways: ``jobs=1``, ``jobs=W`` (forked local
+processes) and, with ``--cluster``, ``scheduler=`` a ``LocalCluster`` of W one-thread
+workers started before the clock (they read the same listing cache; their CPU time is
+not the checking process's and is not counted).  Timed inside the process, after its
+imports: wall and CPU seconds of the check (its forked processes included) and the
+largest peak resident memory among them.  Every run must give the same verdict for
+every condition (compared through a digest of each order's verdict array: a JSON report
+of millions of failing conditions would take longer to write than the check).  Prints
+one Markdown table.  Needs ``rkcheck[cluster]`` for ``--cluster``.
 """
 
 from __future__ import annotations
@@ -19,11 +21,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -32,24 +32,33 @@ RK4 = ('[tableau]\nA = [["0", "0", "0", "0"], ["1/2", "0", "0", "0"], ["0", "1/2
        'b = ["1/6", "1/3", "1/3", "1/6"]\n')
 
 
-def timed_verify(path: Path, order: int, env: dict[str, str], *extra: str) -> tuple[float, float, float, dict]:
-    """Wall s, CPU s and largest peak MB of the verify process and its children, and its JSON."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "rkcheck", "verify", str(path), "--order", str(order), "--degree",
-                           "none", "--format", "json", *extra], capture_output=True, text=True, cwd=ROOT, env=env)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"verify {' '.join(extra)} failed: {proc.stderr.strip()}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu, after.ru_maxrss / 1024, json.loads(proc.stdout)
+CHILD = r"""
+import hashlib, json, resource, sys, time
+sys.path.insert(0, {root!r})
+import rkcheck
+from rkcheck.api.settings import use_listing_cache
+use_listing_cache()
+w0, c0 = time.perf_counter(), time.process_time()
+result = rkcheck.verify({path!r}, order={order}, degree="none", jobs={jobs}, scheduler={scheduler!r})
+wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+digest = hashlib.sha256()
+for n, o in sorted(result.conditions.orders.items()):
+    digest.update(bytes([n])); digest.update(o.state.tobytes())
+print(json.dumps({{"wall": wall, "cpu": cpu + kids.ru_utime + kids.ru_stime,
+                  "peak": max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, kids.ru_maxrss) / 1024,
+                  "digest": digest.hexdigest(), "order": result.energy_order}}))
+"""
 
 
-def comparable(doc: dict) -> tuple:
-    """The report without its times: summary and every condition's verdict and residual."""
-    summary = {k: v for k, v in doc["summary"].items() if "time" not in k}
-    return summary, [(c["id"], c["state"], c.get("residual_exact")) for c in doc.get("conditions", [])]
+def timed_verify(path: Path, order: int, jobs: int = 1, scheduler: str | None = None) -> dict:
+    """Wall s, CPU s and peak MB of one check in a fresh process, and its verdicts' digest."""
+    code = CHILD.format(root=str(ROOT), path=str(path), order=order, jobs=jobs, scheduler=scheduler)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                          env=dict(os.environ, NO_COLOR="1"))
+    if proc.returncode != 0:
+        raise SystemExit(f"verify (jobs={jobs}, scheduler={scheduler}) failed: {proc.stderr.strip()[-500:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -62,10 +71,9 @@ def main(argv: list[str] | None = None) -> None:
         path = Path(tmp) / "rk4.toml"
         path.write_text(RK4, encoding="utf-8")
         os.environ["RKCHECK_CACHE_DIR"] = str(Path(tmp) / "cache")  # the cluster's workers inherit it
-        env = dict(os.environ, NO_COLOR="1")
-        timed_verify(path, args.order, env)  # fills the listing cache
-        results = {"--jobs 1": timed_verify(path, args.order, env, "--jobs", "1"),
-                   f"--jobs {args.workers}": timed_verify(path, args.order, env, "--jobs", str(args.workers))}
+        timed_verify(path, args.order)  # fills the listing cache
+        results = {"--jobs 1": timed_verify(path, args.order),
+                   f"--jobs {args.workers}": timed_verify(path, args.order, jobs=args.workers)}
         if args.cluster:
             try:
                 from distributed import LocalCluster
@@ -77,18 +85,18 @@ def main(argv: list[str] | None = None) -> None:
             with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
                               dashboard_address=None) as cluster:
                 results[f"--scheduler (LocalCluster, {args.workers} workers)"] = timed_verify(
-                    path, args.order, env, "--scheduler", cluster.scheduler_address)
-    reference = comparable(results["--jobs 1"][3])
-    for name, (*_, doc) in results.items():
-        if comparable(doc) != reference:
-            raise SystemExit(f"{name}: the report differs from --jobs 1")
-    base = results["--jobs 1"][0]
+                    path, args.order, scheduler=cluster.scheduler_address)
+    reference = results["--jobs 1"]["digest"]
+    for name, got in results.items():
+        if got["digest"] != reference:
+            raise SystemExit(f"{name}: the verdicts differ from --jobs 1")
+    base = results["--jobs 1"]["wall"]
     print(f"`python benchmarks/bench_split.py {' '.join(argv if argv is not None else sys.argv[1:])}`: RK4, "
           f"order {args.order}, listing cached, {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}\n")
     print("| verify | wall s | speed-up | CPU s (process and children) | peak MB (largest process) |")
     print("|---|---|---|---|---|")
-    for name, (wall, cpu, peak, _) in results.items():
-        print(f"| {name} | {wall:.2f} | {base / wall:.2f}× | {cpu:.2f} | {peak:.0f} |")
+    for name, got in results.items():
+        print(f"| {name} | {got['wall']:.2f} | {base / got['wall']:.2f}× | {got['cpu']:.2f} | {got['peak']:.0f} |")
 
 
 if __name__ == "__main__":
