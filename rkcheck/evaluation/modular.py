@@ -240,13 +240,11 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
-    groups, copies = pass_groups(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
-                                 wanted[-1] if wanted else 0)
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
     try:
-        for g, at in _run_passes(scaled, listing, groups):
-            group, at = _with_copies(scaled, groups[g][0], at, copies)
+        for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
+                                        wanted[-1] if wanted else 0):
             for n, sums in at.items():  # an order keeps the residues of its own primes, no more
                 for c, (i, j, _, _) in enumerate(group):
                     if i < count[n]:
@@ -333,10 +331,9 @@ def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np
 
 def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
                    orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
-    """The passes of :func:`pass_groups`, evaluated here in order: yields ``(group, sums)``
-    with ``sums[n]`` the residues ``(conditions, len(group))`` of the pass's orders,
-    copied roots included."""
+    """The passes of :func:`pass_groups`, evaluated here or by the runner in force
+    (:func:`passes_run_by`), as they finish: yields ``(group, sums)`` with ``sums[n]``
+    the residues ``(conditions, len(group))`` of the pass's orders, copied roots included."""
     groups, copies = pass_groups(scaled, listing, chosen, orders_for, top)
-    for group, orders in groups:
-        sums = scaled.residues_at(listing, [(p, r) for _, _, p, r in group], orders)
-        yield _with_copies(scaled, group, sums, copies)
+    for g, sums in _run_passes(scaled, listing, groups):
+        yield _with_copies(scaled, groups[g][0], sums, copies)
