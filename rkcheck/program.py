@@ -7,9 +7,11 @@ the command line's modules (click, rich, numpy) are imported.
 
 from __future__ import annotations
 
+# the C module, not `signal`: `signal` imports `enum`, which a fresh interpreter may not
+# have loaded yet, and a Ctrl-C while it loads would be a traceback from this very line
+import _signal  # type: ignore[import-not-found]  # no stub: a C module of CPython
 import gc
 import os
-import signal
 
 
 def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-dependent by nature
@@ -20,8 +22,8 @@ def _early_interrupt(signum, frame) -> None:  # pragma: no cover - timing-depend
 
 
 def _quiet_start() -> None:
-    signal.signal(signal.SIGINT, _early_interrupt)
-    signal.signal(signal.SIGTERM, _early_interrupt)
+    _signal.signal(_signal.SIGINT, _early_interrupt)
+    _signal.signal(_signal.SIGTERM, _early_interrupt)
 
 
 # at once, not when main() is called: only the program imports this module, and every
