@@ -139,6 +139,15 @@ class _Builder:
             x = FieldElement(self.chain[j], acc)
         return x
 
+    def _current(self, table: dict, key: Any) -> FieldElement:
+        """``table[key]`` in the current field, stored back lifted: a named constant (a
+        node, a quadrature weight) is used in many entries, and lifting it again at each
+        use was most of the build of the Gauss-6 field (3 800 lifts for 48 entries)."""
+        x = table[key]
+        if x.field is not self.field:
+            x = table[key] = self.lift(x)
+        return x
+
     def _powers(self, j: int) -> list:
         """``1, θ_old, …, θ_old^(d−1)`` of step j (polynomials of ``chain[j]``)."""
         if j not in self._power_tables:
@@ -154,7 +163,7 @@ class _Builder:
     def adjoin(self, gamma: _Real) -> FieldElement:
         """γ in the current field, extending it when γ is new."""
         if gamma in self.generators:
-            return self.lift(self.generators[gamma])
+            return self._current(self.generators, gamma)
         lam = integral_scale(gamma.f)
         if lam != 1:
             # adjoin the algebraic integer λγ instead: sums of algebraic integers keep the
@@ -227,7 +236,7 @@ class _Builder:
         partner = _Real(gamma.f, r + 1 - gamma.index)
         if partner == gamma or partner not in self.generators:
             return None
-        return a - self.lift(self.generators[partner])
+        return a - self._current(self.generators, partner)
 
     def _push(self, L: NumberField, theta_old: FieldElement) -> None:
         self.chain.append(L)
@@ -244,7 +253,7 @@ class _Builder:
                 if node.name not in self.definitions:
                     raise NotAlgebraic(f"unknown name {node.name!r}")
                 self.constants[node.name] = self.value(self.definitions[node.name])
-            return self.lift(self.constants[node.name])
+            return self._current(self.constants, node.name)
         if isinstance(node, ex.Unary):
             return -self.value(node.operand)
         if isinstance(node, ex.Power):
@@ -298,7 +307,7 @@ class _Builder:
             s, m = squarefree_split(q.numerator * q.denominator, 10_000)
             if m not in self._sqrt_cache:
                 self._sqrt_cache[m] = self.adjoin(_Real((Fraction(-m), Fraction(0), Fraction(1)), 2))
-            return self.lift(self._sqrt_cache[m]) * Fraction(s, q.denominator)
+            return self._current(self._sqrt_cache, m) * Fraction(s, q.denominator)
         if alpha.sign() < 0:
             raise UserError(f"square root of a negative number at column {node.column}")
         # sqrt(α), α ∈ K irrational: a root of charpoly_α(x²), where charpoly_α (the
