@@ -8,8 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
-from typing import Any, Sequence, cast
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -277,7 +276,7 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
         return scaled_rational(exact_values.A, exact_values.b)
     g = [Fraction(c) for c in field.minpoly]  # monic
     D = len(g) - 1
-    from rkcheck.numbers.algebraic import integral_scale
+    from rkcheck.numbers.minimal import integral_scale
 
     lam = integral_scale(g)
     minpoly = [int(c * lam ** (D - k)) for k, c in enumerate(g)]
@@ -296,24 +295,23 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     Ai = [[[int(c * d) for c in v] for v in row] for row in At]
     bi = [[int(c * d) for c in v] for v in bt]
 
+    # first: the entries' minimal polynomials need the conjugates at the highest precision,
+    # which the bounds then reuse
+    e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
     log2_M, per_embedding = _embedding_bounds(minpoly, Ai, bi)
     vinv = _vandermonde_inverse_norm(minpoly)
     log2_gprime = _log2_derivative_bound(minpoly)
-    e = integrality_denominator([x for row in exact_values.A for x in row] + list(exact_values.b), field)
     assert d % e == 0  # d·x ∈ Z[θ̃] ⊂ O_K, so the least e divides d
     return ScaledTableau(Ai, bi, d, minpoly, log2_M + 1e-9, max(math.log2(vinv), 0.0) + 1e-9, field, lam,
                          per_embedding, e, log2_gprime)
 
 
-@lru_cache(maxsize=8)
 def _complex_roots(minpoly: tuple[int, ...], prec: int) -> list[Any]:
-    """The complex roots of ``minpoly`` as Acb balls at ``prec`` bits, computed once per
-    precision for the three bounds below (use them under the same working precision)."""
-    from flint import ctx, fmpz_poly
+    """The complex roots of ``minpoly`` as Acb balls of at least ``prec`` bits, shared
+    with the number field's own conjugates (the same polynomial when θ is integral)."""
+    from rkcheck.numbers.polynomials import complex_roots
 
-    with ctx.workprec(prec):
-        # python-flint's stubs type complex_roots() as acb; it is a list of (acb, multiplicity)
-        return [root for root, _ in cast(list, fmpz_poly(list(minpoly)).complex_roots())]
+    return complex_roots(minpoly, prec)
 
 
 def _log2_upper(x: Any) -> float:
@@ -333,25 +331,20 @@ def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, li
     while a bound exceeds its ball's lower end by more than one bit: in fields of high
     degree (48 for the six Gauss-6 nodes) the entries' coefficients are large and cancel,
     and 128 bits leave balls too wide to bound anything."""
-    from flint import acb, arb, ctx
+    from flint import acb_poly, arb, ctx
 
     prec = 128
     while True:
         with ctx.workprec(prec):
             roots = _complex_roots(tuple(minpoly), prec)
-
-            def conj(v: list[int], r) -> Any:
-                acc = acb(0)
-                for c in reversed(v):
-                    acc = acc * r + c
-                return acc
-
+            # each entry at every root at once (FLINT's multipoint evaluation)
+            rows = [[acb_poly(v).evaluate(roots) for v in row] for row in Ai]
+            rows.append([acb_poly(v).evaluate(roots) for v in bi])
             log2_M = 0.0
             per_embedding = []
             tight = True
-            for r in roots:
-                sums = [sum((abs(conj(v, r)) for v in row), arb(0)) for row in Ai]
-                sums.append(sum((abs(conj(v, r)) for v in bi), arb(0)))
+            for j in range(len(roots)):
+                sums = [sum((abs(values[j]) for values in row), arb(0)) for row in rows]
                 for x in sums:
                     if not x.is_finite() or (x.abs_upper() > 0 and not x.abs_upper() <= 2 * x.abs_lower()):
                         tight = False
@@ -407,9 +400,10 @@ def integrality_denominator(values: Sequence[Any], field: Any) -> int:
     """The least positive integer ``e`` with ``e·x`` an algebraic integer for every ``x``:
     the lcm over the entries of the least ``λ`` that makes ``λ^m P(X/λ)`` integral, with
     ``P`` the minimal polynomial of ``x`` (of degree m; by Gauss's lemma ``x`` is integral
-    exactly when P has integer coefficients)."""
-    from rkcheck.numbers.algebraic import integral_scale
+    exactly when P has integer coefficients).  Conjugate entries share P, found once."""
+    from rkcheck.numbers.minimal import MinimalPolynomials, integral_scale
 
+    known = MinimalPolynomials()
     e = 1
     seen = set()
     for x in values:
@@ -421,5 +415,5 @@ def integrality_denominator(values: Sequence[Any], field: Any) -> int:
         key = tuple(x.coeffs)
         if key not in seen:
             seen.add(key)
-            e = math.lcm(e, integral_scale(x.minimal_polynomial()))
+            e = math.lcm(e, integral_scale(known.of(x)))
     return e

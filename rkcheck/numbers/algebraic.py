@@ -20,13 +20,12 @@ The field of a tableau's entries is found by :mod:`rkcheck.numbers.field_builder
 
 from __future__ import annotations
 
-import math
 from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.polynomials import (
-    evaluate,
+    complex_roots,
     from_flint,
     poly_text,
     real_root_intervals,
@@ -62,7 +61,6 @@ class NumberField:
         self.name = name or (f"sqrt({self.sqrt_of})" if self.sqrt_of else f"root({poly_text(self.minpoly)}, {index})")
         self._theta: Interval | None = None
         self._theta_bits = 0
-        self._conjugates: dict[int, list] = {}
         self._products: dict[tuple, Any] = {}  # FieldElement._memo: products and inverses
 
     def __repr__(self) -> str:
@@ -104,15 +102,10 @@ class NumberField:
         return self._theta
 
     def conjugates(self, bits: int = 64):
-        """Certified complex enclosures (``acb``) of all conjugates of θ (FLINT), computed
-        once per precision: isolating the 48 roots of a Gauss-6 field takes 0.2–0.5 s."""
-        from flint import ctx
-
-        bits = max(bits, 64)
-        if bits not in self._conjugates:
-            with ctx.workprec(bits):
-                self._conjugates[bits] = [r for r, _ in self.g.numer().complex_roots()]
-        return self._conjugates[bits]
+        """Certified complex enclosures (``acb``) of all conjugates of θ, of at least
+        ``bits`` bits (:func:`rkcheck.numbers.polynomials.complex_roots`, shared with
+        every user of the same polynomial)."""
+        return complex_roots(self.g.numer().coeffs(), max(bits, 64))
 
 
 def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":
@@ -295,75 +288,11 @@ class FieldElement:
         return None
 
     def minimal_polynomial(self) -> list[Fraction]:
-        """The minimal polynomial of the element over Q: monic, ascending Fractions.
+        """The minimal polynomial of the element over Q: monic, ascending Fractions
+        (:func:`rkcheck.numbers.minimal.minimal_polynomial`)."""
+        from rkcheck.numbers.minimal import minimal_polynomial
 
-        Found numerically and proven exactly: the conjugates ``σ_j(x)`` (``x`` at the
-        complex roots of ``g``, Arb balls) fall into clusters of equal values; the product
-        of ``X − σ`` over one value per cluster has real rational coefficients, read off
-        their balls as the only fraction of small enough denominator inside (continued
-        fractions), and the candidate ``P`` is kept only if ``P(x) = 0`` in the field,
-        exactly.  A monic ``P`` with ``P(x) = 0`` and no more roots than ``x`` has distinct
-        conjugates is the minimal polynomial, so the numerics never decide the result;
-        they only find it.  Where they cannot (precision exhausted), the characteristic
-        polynomial of multiplication by ``x`` is factored exactly instead: in fields of
-        degree 48 its rational 48×48 characteristic polynomial costs 0.6 s per entry,
-        the numerical route 10 ms."""
-        r = self.rational()
-        if r is not None:
-            return [-r, Fraction(1)]
-        coeffs = self.coeffs
-        size = max(abs(c.numerator).bit_length() + c.denominator.bit_length() for c in coeffs)
-        # the coefficients cancel to a value of size 1, so the conjugates need ``size``
-        # bits more than the answer; powers of two share the field's root cache
-        prec = 1 << max(8, (size + 256).bit_length())
-        while prec <= 1 << 16:
-            candidate = self._minpoly_candidate(prec)
-            if candidate is not None and is_root(candidate, self):
-                return candidate
-            prec *= 2
-        P = charpoly_mul(self)
-        factor = next(from_flint(fac) for fac, _ in P.factor()[1] if is_root(from_flint(fac), self))
-        return [c / factor[-1] for c in factor]
-
-    def _minpoly_candidate(self, prec: int) -> list[Fraction] | None:
-        """The candidate of :meth:`minimal_polynomial` at ``prec`` bits, or None when the
-        conjugates or the coefficients are not yet resolved at that precision."""
-        from flint import acb_poly, ctx, fmpq
-
-        D = self.field.degree
-        with ctx.workprec(prec):
-            conj = acb_poly([fmpq(c.numerator, c.denominator) for c in self.coeffs]).evaluate(
-                self.field.conjugates(prec))
-            clusters: list[list[Any]] = []
-            for z in conj:
-                home = [c for c in clusters if any(z.overlaps(w) for w in c)]
-                if len(home) > 1:
-                    return None  # a ball touching two clusters: not resolved yet
-                if home:
-                    home[0].append(z)
-                else:
-                    clusters.append([z])
-            if D % len(clusters) or any(len(c) != D // len(clusters) for c in clusters):
-                return None  # charpoly = minpoly^(D/m): every value occurs D/m times
-            product = acb_poly.from_roots([c[0] for c in clusters])
-            out = []
-            for c in product.coeffs():
-                if not c.imag.contains(0):
-                    return None
-                mid, rad = to_fraction(c.real.mid()), to_fraction(c.real.rad())
-                if rad == 0:
-                    out.append(mid)
-                    continue
-                # the fraction nearest mid with denominator ≤ Q is the only one in the ball
-                # when the ball is narrower than 1/(2Q²); any other q' ≤ Q differs by ≥ 1/Q²
-                q_max = math.isqrt(int(1 / (4 * rad)))
-                if q_max < 1:
-                    return None
-                guess = mid.limit_denominator(q_max)
-                if abs(guess - mid) > rad:
-                    return None
-                out.append(guess)
-        return out
+        return minimal_polynomial(self)
 
     def enclosure(self, bits: int = 64) -> Interval:
         """A certified enclosure of width ``<= 2^-bits`` (a point when rational): Horner's
@@ -463,44 +392,3 @@ class FieldElement:
 
     def __repr__(self) -> str:
         return f"FieldElement({self.text()})"
-
-
-
-def integral_scale(monic: Sequence[Fraction]) -> int:
-    """The least positive integer λ with ``λ^n f(x/λ)`` integral, for the monic rational
-    ``f`` (ascending coefficients): λθ is then an algebraic integer."""
-    from flint import fmpz
-
-    n = len(monic) - 1
-    need: dict[int, int] = {}
-    for k, c in enumerate(monic[:-1]):
-        den = Fraction(c).denominator
-        if den > 1:
-            for fq, fe in fmpz(den).factor():
-                need[int(fq)] = max(need.get(int(fq), 0), -(-int(fe) // (n - k)))
-    lam = 1
-    for q, e in need.items():
-        lam *= q**e
-    return lam
-
-
-def charpoly_mul(alpha: FieldElement):
-    """The characteristic polynomial of multiplication by α on its field (its roots are the
-    conjugates of α)."""
-    from flint import fmpq_mat
-
-    K = alpha.field
-    D = K.degree
-    M = fmpq_mat(D, D)
-    x = alpha
-    theta = K.gen
-    for j in range(D):  # column j: α·θ^j
-        for i, c in enumerate(x.coeffs):
-            M[i, j] = to_fmpq(c)
-        x = x * theta
-    return M.charpoly()
-
-
-def is_root(P: Sequence[Fraction], x: FieldElement) -> bool:
-    """``P(x) = 0`` exactly (Horner's scheme in x's field)."""
-    return evaluate(P, x, x.field(0)).is_zero()

@@ -27,12 +27,10 @@ from rkcheck.numbers.algebraic import (
     FieldElement,
     NotAlgebraic,
     NumberField,
-    charpoly_mul,
-    integral_scale,
-    is_root,
 )
 from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.intervals import Interval, exact_sqrt
+from rkcheck.numbers.minimal import charpoly_mul, integral_scale, is_root
 from rkcheck.numbers.polynomials import (
     add,
     divide,

@@ -312,6 +312,33 @@ def real_root_intervals(coeffs: Sequence[Fraction], bits: int) -> list[Interval]
 # ------------------------------------------------------------ integers, text
 
 
+#: How many polynomials :func:`complex_roots` remembers roots of.
+_ROOTS_KEPT = 8
+_roots: dict[tuple[int, ...], tuple[int, list[Any]]] = {}
+
+
+def complex_roots(coeffs: Sequence[int], prec: int) -> list[Any]:
+    """The complex roots of the square-free integer polynomial ``coeffs`` (ascending) as
+    FLINT ``acb`` balls of at least ``prec`` bits, remembered per polynomial at the
+    highest precision asked so far: a ball of a higher precision encloses the same root,
+    and isolating the 48 roots of a degree-48 field costs 0.25 s at 2 048 bits and 1.4 s
+    at 8 192, which the bounds of the exact engine and the minimal polynomials of the
+    entries would otherwise pay again at each precision (call under ``prec`` bits)."""
+    from flint import ctx, fmpz_poly
+
+    key = tuple(int(c) for c in coeffs)
+    kept = _roots.get(key)
+    if kept is not None and kept[0] >= prec:
+        return kept[1]
+    with ctx.workprec(prec):
+        # python-flint types complex_roots() as acb; it is a list of (acb, multiplicity)
+        found = [root for root, _ in fmpz_poly(list(key)).complex_roots()]
+    if len(_roots) >= _ROOTS_KEPT and key not in _roots:
+        _roots.pop(next(iter(_roots)))
+    _roots[key] = (prec, found)
+    return found
+
+
 def squarefree_split(n: int, limit: int) -> tuple[int, int]:
     """``n = s²·m`` for ``n >= 1``, with m free of the squares of all integers below
     ``limit`` (so square-free when ``n < limit²``) and ``m = 1`` when n is a square: trial
