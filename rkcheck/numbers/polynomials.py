@@ -238,7 +238,7 @@ class RealRoots:
             raise ValueError("the zero polynomial has no isolated roots")
         self._cache: dict[int, list[Interval]] = {}
         self._rational = rational_roots(self.poly)
-        self._squarefree: Any = None  # fmpz_poly, on first isolation
+        self._squarefree: list[int] | None = None  # integer coefficients, on first isolation
 
     def __reduce__(self):
         # FLINT objects do not pickle; the roots are recomputed from the coefficients
@@ -263,17 +263,16 @@ class RealRoots:
         return self._cache[bits]
 
     def _isolate(self, bits: int) -> list[Interval]:
-        from flint import arb, ctx
+        from flint import arb
 
         if self._squarefree is None:
-            self._squarefree = to_flint(squarefree_part(self.poly)).numer()
+            self._squarefree = [int(c) for c in to_flint(squarefree_part(self.poly)).numer().coeffs()]
         width = Fraction(1, 2**bits)
         prec = max(64, bits + 32)
         while True:
-            with ctx.workprec(prec):
-                roots = self._squarefree.complex_roots()
+            roots = complex_roots(self._squarefree, prec)
             intervals = []
-            for r, _ in roots:
+            for r in roots:
                 # FLINT proves a root real by returning it with an exactly zero imaginary part
                 real = r if isinstance(r, arb) else (r.real if r.imag.is_zero() else None)
                 if real is not None:
