@@ -20,6 +20,7 @@ The field of a tableau's entries is found by :mod:`rkcheck.numbers.field_builder
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any, Sequence
 
@@ -307,7 +308,8 @@ class FieldElement:
             return Interval.point(r)
         coeffs = self.coeffs
         width = Fraction(1, 1 << bits)
-        extra = max(max(abs(c) for c in coeffs).numerator.bit_length(), 1) + 2 * self.field.degree
+        # θ's width times the derivative, at most D times the largest term over |θ|
+        extra = max(largest_term_bits(self), 1) + self.field.degree.bit_length() + 8
         tb = bits + extra
         while True:
             t = self.field.theta_enclosure(tb)
@@ -392,3 +394,20 @@ class FieldElement:
 
     def __repr__(self) -> str:
         return f"FieldElement({self.text()})"
+
+
+def _log2_upper(q: Fraction) -> int:
+    """An integer upper bound of ``log₂ |q|`` (q ≠ 0)."""
+    return abs(q.numerator).bit_length() - q.denominator.bit_length() + 1
+
+
+def largest_term_bits(x: "FieldElement") -> int:
+    """An upper bound of ``log₂ |c_k σ(θ)^k|`` over the terms of ``x = Σ c_k θ^k`` and
+    the conjugates σ(θ), by Fujiwara's bound ``|σ(θ)| ≤ 2 max_k |a_(D−k)|^(1/k)`` on the
+    roots of the monic ``g = Σ a_i y^i``: in the field of the six Gauss-6 nodes the
+    coefficients have 1 300-bit numerators over 1 236-bit denominators, and the terms
+    about 600 bits: that, not the coefficients' sizes, is what enclosing x costs."""
+    g = x.field.minpoly
+    D = len(g) - 1
+    log2_R = 1 + max((_log2_upper(a) / k for k, a in enumerate(reversed(g[:-1]), start=1) if a), default=0)
+    return max(math.ceil(_log2_upper(c) + k * max(log2_R, 0)) for k, c in enumerate(x.coeffs[:D]) if c)

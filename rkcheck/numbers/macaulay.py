@@ -15,7 +15,6 @@ import itertools
 from fractions import Fraction
 from typing import Any
 
-
 #: The Macaulay matrices of the kernel system go this many degrees past its largest one.
 MACAULAY_EXTRA_DEGREES = 3
 #: ... and stop at this many columns (monomials): the linear algebra is over K.

@@ -16,7 +16,7 @@ import math
 from fractions import Fraction
 from typing import Any, Sequence
 
-from rkcheck.numbers.algebraic import FieldElement
+from rkcheck.numbers.algebraic import FieldElement, largest_term_bits
 from rkcheck.numbers.polynomials import evaluate, from_flint, to_fmpq, to_fraction
 
 
@@ -39,7 +39,7 @@ def minimal_polynomial(x: FieldElement) -> list[Fraction]:
         return [-r, Fraction(1)]
     # the terms c_k·θ^k cancel to values of size about 1, so the conjugates need as many
     # bits more than the answer as the largest term has; powers of two share the root cache
-    prec = 1 << max(8, (_largest_term_bits(x) + 256).bit_length())
+    prec = 1 << max(8, (largest_term_bits(x) + 256).bit_length())
     while prec <= 1 << 16:
         found = candidate(x, prec)
         if found is not None and is_root(found, x):
@@ -48,23 +48,6 @@ def minimal_polynomial(x: FieldElement) -> list[Fraction]:
     P = charpoly_mul(x)
     factor = next(from_flint(fac) for fac, _ in P.factor()[1] if is_root(from_flint(fac), x))
     return [c / factor[-1] for c in factor]
-
-
-def _log2_upper(q: Fraction) -> int:
-    """An integer upper bound of ``log₂ |q|`` (q ≠ 0)."""
-    return abs(q.numerator).bit_length() - q.denominator.bit_length() + 1
-
-
-def _largest_term_bits(x: FieldElement) -> int:
-    """An upper bound of ``log₂ |c_k σ(θ)^k|`` over the terms of ``x = Σ c_k θ^k`` and
-    the conjugates σ(θ), by Fujiwara's bound ``|σ(θ)| ≤ 2 max_k |a_(D−k)|^(1/k)`` on the
-    roots of the monic ``g = Σ a_i y^i``: in the field of the six Gauss-6 nodes the
-    coefficients have 1 300-bit numerators over 1 236-bit denominators, and the terms
-    about 600 bits, where the sum of the two sizes asked for four times the precision."""
-    g = x.field.minpoly
-    D = len(g) - 1
-    log2_R = 1 + max((_log2_upper(a) / k for k, a in enumerate(reversed(g[:-1]), start=1) if a), default=0)
-    return max(math.ceil(_log2_upper(c) + k * max(log2_R, 0)) for k, c in enumerate(x.coeffs[:D]) if c)
 
 
 def candidate(x: FieldElement, prec: int) -> list[Fraction] | None:

@@ -268,7 +268,8 @@ class RealRoots:
         if self._squarefree is None:
             self._squarefree = [int(c) for c in to_flint(squarefree_part(self.poly)).numer().coeffs()]
         width = Fraction(1, 2**bits)
-        prec = max(64, bits + 32)
+        # a power of two, so that nearby widths share one isolation (complex_roots)
+        prec = 1 << max(6, (bits + 32 - 1).bit_length())
         while True:
             roots = complex_roots(self._squarefree, prec)
             intervals = []
