@@ -24,6 +24,7 @@ from typing import Any, Sequence
 
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval
 from rkcheck.evaluation.values import TableauValues
+from rkcheck.numbers.algebraic import dot as field_dot
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.intervals import Interval
 
@@ -183,10 +184,13 @@ def row_sums(A: Matrix, like: Scalar) -> Vector:
 
 
 def matvec(A: Matrix, v: Vector, like: Scalar) -> Vector:
-    return [total([a * x for a, x in zip(row, v)], like) for row in A]
+    return [dot(row, v, like) for row in A]
 
 
 def dot(u: Vector, v: Vector, like: Scalar) -> Scalar:
+    fast = field_dot(u, v)  # number-field entries: one reduction for the whole sum
+    if fast is not None:
+        return tidy(fast)
     return total([x * y for x, y in zip(u, v)], like)
 
 

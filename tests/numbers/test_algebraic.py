@@ -215,3 +215,20 @@ def test_enclosure_contains_the_value_in_a_larger_field(text, expr):
     assert iv.hi - iv.lo <= Fraction(1, 2**300)
     truth = sp.Rational(str(sp.N(expr, 150)))
     assert abs(iv.mid - Fraction(int(truth.p), int(truth.q))) < Fraction(1, 10**140)
+
+
+def test_a_dot_product_reduced_once_is_the_sum_of_the_products():
+    # one reduction modulo g for the whole sum against sympy's exact value of the sum
+    from rkcheck.numbers.algebraic import dot
+
+    texts = ["sqrt(2) + sqrt(3)", "1/3 - sqrt(6)", f"root({GAUSS4}, 2)", "7/5", "sqrt(3)/2", f"root({GAUSS4}, 2)^2 - 1"]
+    r = _values(*texts)
+    xs, ys = r.values[:3], r.values[3:]
+    xs = [v if hasattr(v, "field") else r.field(v) for v in xs]
+    ys = [v if hasattr(v, "field") else r.field(v) for v in ys]
+    node = sp.CRootOf(sp.Poly([int(c) for c in sp.Poly(sp.sympify(GAUSS4.replace("^", "**")), sp.Symbol("x")).all_coeffs()], sp.Symbol("x")), 1)
+    exact = (sp.sqrt(2) + sp.sqrt(3)) * sp.Rational(7, 5) + (sp.Rational(1, 3) - sp.sqrt(6)) * sp.sqrt(3) / 2 + node * (node**2 - 1)
+    assert _same(dot(xs, ys), exact)
+    assert dot(xs, ys) == xs[0] * ys[0] + xs[1] * ys[1] + xs[2] * ys[2]
+    # anything but elements of one field: no fast path
+    assert dot(xs, [Fraction(1)] * 3) is None and dot([], []) is None
