@@ -193,20 +193,39 @@ def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c
 def family_exact_values(spec: FamilySpec) -> Any:
     """The family's ``(field, A, b, c)`` exactly (a :class:`~rkcheck.numbers.algebraic.FieldValues`
     with ``field`` None over Q), or None with the reason when the nodes have no closed form
-    or their field exceeds the degree limit.  Kept per spec (the values are never mutated):
-    the field of the six Gauss-6 nodes, of degree 48, takes seconds to build, and a
-    catalogue or a scan meets the same family in several files and checks."""
+    or their field exceeds the degree limit.  Kept per spec (the values are never mutated),
+    and the field of the nodes and weights per set of nodes (:func:`_nodes_field`)."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.algebraic import NotAlgebraic
-    from rkcheck.numbers.field_builder import field_of
+    from rkcheck.numbers.expressions import walk
+    from rkcheck.numbers.field_builder import evaluate_in
 
     texts = expression_texts(spec)
     if texts is None:
         return None, f"the nodes have no closed form in roots, or there are more than {MAX_EXACT_NODES}"
     consts, A, b, c = texts
-    flat = [x for row in A for x in row] + list(b) + list(c)
+    entries = [ex.parse(x) for row in A for x in row] + [ex.parse(x) for x in list(b) + list(c)]
+    # the names in the order the entries first use them: the field's generators are then
+    # adjoined in the order evaluating the entries one by one would adjoin them, which
+    # fixes the primitive element θ that reports write irrational values in
+    order = dict.fromkeys(node.name for expr in entries for node in walk(expr)
+                          if isinstance(node, ex.Name) and node.name in consts)
+    names = list(order) + [name for name in consts if name not in order]
     try:
-        found = field_of([ex.parse(x) for x in flat], {k: ex.parse(v) for k, v in consts.items()})
+        base = _nodes_field(tuple((name, consts[name]) for name in names))
     except NotAlgebraic as err:
         return None, str(err)
-    return found, None
+    return evaluate_in(base, names, entries), None
+
+
+@lru_cache(maxsize=4)
+def _nodes_field(consts: tuple[tuple[str, str], ...]) -> Any:
+    """The number field of the nodes and weights (``consts``: their names and exact texts)
+    and their values in it (:func:`rkcheck.numbers.field_builder.field_of`): the field of
+    the six Gauss-6 nodes, of degree 48, takes about a second to build, and a catalogue
+    or a scan meets the same nodes in several families (HBVM(6, 2), HBVM(6, 3), Gauss-6)."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.field_builder import field_of
+
+    names = [name for name, _ in consts]
+    return field_of([ex.parse(name) for name in names], {name: ex.parse(text) for name, text in consts})

@@ -481,3 +481,23 @@ def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
     if builder.field.is_rational or all(v.rational() is not None for v in values):
         return FieldValues(None, [v.rational() for v in values])
     return FieldValues(builder.field, values)
+
+
+def evaluate_in(base: FieldValues, names: Sequence[str], nodes: Sequence[ex.Expr]) -> FieldValues:
+    """Expressions over named constants whose field is already built — ``base`` holds the
+    values of ``names`` (as :func:`field_of` returned them) — evaluated in that field:
+    rationals, the names, ``+ − × ÷`` and integer powers, no roots (ValueError), so the
+    field cannot grow.  The tableaux of the families over one set of nodes share the
+    nodes' field this way: HBVM(6, 2), HBVM(6, 3) and Gauss-6 need the degree-48 field of
+    the six Gauss-6 nodes once, not once each."""
+    if any(isinstance(node, ex.Call) for expr in nodes for node in xp.walk(expr)):
+        raise ValueError("evaluate_in: a root or square root would extend the field")
+    builder = _Builder()
+    if base.field is not None:
+        builder.field = base.field
+        builder.chain = [base.field]
+    builder.constants = {name: builder.field(v) for name, v in zip(names, base.values)}
+    values = [builder.value(n) for n in nodes]
+    if builder.field.is_rational or all(v.rational() is not None for v in values):
+        return FieldValues(None, [v.rational() for v in values])
+    return FieldValues(builder.field, values)
