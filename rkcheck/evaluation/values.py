@@ -140,9 +140,14 @@ class TableauValues:
     def consistency_warnings(self) -> list[str]:
         """definitions §1 warnings: a given ``c`` that differs from ``A·1``, and ``Σb ≠ 1``.
 
-        A difference is reported only when it is certain (its enclosure excludes 0);
-        differences within the rounding of decimal input are not warnings.  The values
-        shown are exact, from the entries as written, when they have exact values."""
+        Exact entries are compared exactly (without enclosing them: an exact check needs
+        no enclosures).  Otherwise a difference is reported only when it is certain (its
+        enclosure excludes 0); differences within the rounding of decimal input are not
+        warnings.  The values shown are exact, from the entries as written, when they have
+        exact values."""
+        exact = self.exact
+        if exact is not None:
+            return _exact_warnings(exact)
         out: list[str] = []
         tab, face = self.tableau, self.tableau.exact_values()
         if tab.c is not None:
@@ -161,6 +166,25 @@ class TableauValues:
         return out
 
 
+def _exact_warnings(exact: ExactValues) -> list[str]:
+    """:meth:`TableauValues.consistency_warnings` for exact values: differences decided
+    exactly, shown exactly."""
+    out: list[str] = []
+    if exact.c is not None:
+        diffs = [(i, ci - sum(row)) for i, (row, ci) in enumerate(zip(exact.A, exact.c), start=1)]
+        bad = [f"c[{i}] - (A·1)[{i}] = {_exact_text(d)}" for i, d in diffs if d != 0]
+        if bad:
+            out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
+    sb = sum(exact.b)
+    if sb != 1:
+        out.append(f"Σb = {_exact_text(sb)} ≠ 1: the method is inconsistent (not even order 1)")
+    return out
+
+
+def _exact_text(x: Any) -> str:
+    return exact_string(x) if isinstance(x, (Fraction, int)) else x.text()
+
+
 def _uses_root(tab: Tableau) -> bool:
     """Some entry (or a constant it names) takes a root of a polynomial, not only ``sqrt``."""
     nodes = [getattr(e, "node", None) for e in tab.entries()] + list(tab.info.constants.definitions.values())
@@ -171,7 +195,7 @@ def _value_text(x: Interval, exact: Any = None) -> str:
     """A value as the entries say it exactly (``0.99``, ``1/3``, a field element's
     text), else its enclosure's certified leading digits — never through a binary float."""
     if exact is not None:
-        return exact_string(exact) if isinstance(exact, (Fraction, int)) else exact.text()
+        return _exact_text(exact)
     if x.is_point:
         return exact_string(x.lo)
     rad = (x.hi - x.lo) / 2

@@ -4,6 +4,7 @@ b summing to 0.99, ``Σb = 1 ≠ 1`` for RK4 in floats)."""
 
 from __future__ import annotations
 
+import decimal
 import json
 import warnings
 from fractions import Fraction
@@ -53,3 +54,20 @@ def test_float_rk4_read_at_face_value_prints_the_decimals_sum(tmp_path, capsys):
     assert "warning: Σb = 0.99999999999999992 ≠ 1" in out
     # read as the doubles' rounding intervals (auto), Σb = 1 is possible: no warning
     assert "Σb" not in run_cli(capsys, "verify", str(path), "--order", "2").out.split("quadrature order")[0]
+
+
+def test_exact_entries_are_compared_exactly_however_small_the_difference(tmp_path, capsys):
+    # c₂ = 1/2 + 2^-300 against the row sum 1/2: below any working precision, yet certain
+    path = tmp_path / "tiny.toml"
+    path.write_text('[tableau]\nA = [["0", "0"], ["1/2", "0"]]\nb = ["0", "1"]\nc = ["0", "1/2 + 1/2^300"]\n')
+    r = run_cli(capsys, "verify", str(path), "--order", "2")
+    # a long fraction is shown by its 20 leading digits (by hand: 2^-300 = 4.90909346529772655309…e-91)
+    digits = decimal.Context(prec=20).divide(decimal.Decimal(1), decimal.Decimal(2**300))
+    assert f"c[2] - (A·1)[2] = ≈{str(digits).replace('E', 'e')}" in r.out + r.err
+    # equal exactly, written differently: no warning
+    path.write_text('[tableau]\nA = [["0", "0"], ["sqrt(2)/4", "sqrt(8)/8"]]\nb = ["0", "1"]\nc = ["0", "sqrt(2)/2"]\n')
+    r = run_cli(capsys, "verify", str(path), "--order", "2")
+    assert "differs from the row sums" not in r.out + r.err
+    path.write_text('[tableau]\nA = [["0", "0"], ["sqrt(2)/4", "sqrt(8)/8"]]\nb = ["0", "1"]\nc = ["0", "sqrt(2)/3"]\n')
+    r = run_cli(capsys, "verify", str(path), "--order", "2")
+    assert "c[2] - (A·1)[2] = -sqrt(2)/6" in r.out + r.err  # √2/3 − √2/2 = −√2/6
