@@ -105,6 +105,8 @@ def rebased(orbit: Orbit) -> Orbit:
     coefficients."""
     from flint import fmpq_mat, fmpq_poly
 
+    from rkcheck.numbers.minimal import minimal_polynomial
+
     D = orbit.phi.degree()
     if D <= 1:
         return orbit
@@ -113,7 +115,7 @@ def rebased(orbit: Orbit) -> Orbit:
     for p in list(orbit.nodes) + list(orbit.coords.values()):
         if p.degree() <= 0:
             continue
-        P = element(K, p).minimal_polynomial()
+        P = minimal_polynomial(element(K, p))
         if len(P) == D + 1 and (best is None or _size(P) < _size(best[1])):
             best = (p, P)
     if best is None or _size(best[1]) >= _size([Fraction(int(x.p), int(x.q)) for x in orbit.phi.coeffs()]):

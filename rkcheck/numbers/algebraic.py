@@ -288,13 +288,6 @@ class FieldElement:
             return to_fraction(self.poly.coeffs()[0]) if not self.poly.is_zero() else Fraction(0)
         return None
 
-    def minimal_polynomial(self) -> list[Fraction]:
-        """The minimal polynomial of the element over Q: monic, ascending Fractions
-        (:func:`rkcheck.numbers.minimal.minimal_polynomial`)."""
-        from rkcheck.numbers.minimal import minimal_polynomial
-
-        return minimal_polynomial(self)
-
     def enclosure(self, bits: int = 64) -> Interval:
         """A certified enclosure of width ``<= 2^-bits`` (a point when rational): Horner's
         scheme in Arb balls at θ's enclosure, with working precision and θ's width both

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Sequence, cast
 
 from rkcheck.numbers.intervals import Interval
 
@@ -332,7 +332,7 @@ def complex_roots(coeffs: Sequence[int], prec: int) -> list[Any]:
         return kept[1]
     with ctx.workprec(prec):
         # python-flint types complex_roots() as acb; it is a list of (acb, multiplicity)
-        found = [root for root, _ in fmpz_poly(list(key)).complex_roots()]
+        found = [root for root, _ in cast(list, fmpz_poly(list(key)).complex_roots())]
     if len(_roots) >= _ROOTS_KEPT and key not in _roots:
         _roots.pop(next(iter(_roots)))
     _roots[key] = (prec, found)

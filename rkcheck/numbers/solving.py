@@ -403,9 +403,10 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> Alg
         return _coordinate(p, psi, root, k)
     if name not in minimal:
         from rkcheck.numbers.algebraic import NumberField
+        from rkcheck.numbers.minimal import minimal_polynomial
 
         K = NumberField([Fraction(int(x.p), int(x.q)) for x in psi.coeffs()], 1, name="z")
-        minimal[name] = K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]).minimal_polynomial()
+        minimal[name] = minimal_polynomial(K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]))
     P = minimal[name]
     value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
     if len(P) <= 3:

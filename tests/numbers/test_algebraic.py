@@ -9,6 +9,7 @@ from rkcheck.errors import UserError
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import NotAlgebraic
 from rkcheck.numbers.field_builder import field_of
+from rkcheck.numbers.minimal import minimal_polynomial
 
 
 def _values(*texts, constants=None):
@@ -185,7 +186,7 @@ def test_minimal_polynomial_agrees_with_sympy(text, expr):
     # its minimal polynomial is a proper factor of its characteristic polynomial
     r = _values(text, "sqrt(11)", f"root({GAUSS4}, 1)")
     assert r.field.degree > len(_sympy_minpoly(expr)) - 1
-    assert r.values[0].minimal_polynomial() == _sympy_minpoly(expr)
+    assert minimal_polynomial(r.values[0]) == _sympy_minpoly(expr)
 
 
 def test_minimal_polynomial_without_the_numerics_is_the_same(monkeypatch):
@@ -194,9 +195,9 @@ def test_minimal_polynomial_without_the_numerics_is_the_same(monkeypatch):
     from rkcheck.numbers import minimal
 
     r = _values("sqrt(2) + sqrt(3)/5", f"root({GAUSS4}, 2)")
-    fast = r.values[0].minimal_polynomial()
+    fast = minimal_polynomial(r.values[0])
     monkeypatch.setattr(minimal, "candidate", lambda x, prec: None)
-    assert r.values[0].minimal_polynomial() == fast == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3) / 5)
+    assert minimal_polynomial(r.values[0]) == fast == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3) / 5)
 
 
 def test_a_wrong_numerical_candidate_is_never_returned(monkeypatch):
@@ -205,7 +206,7 @@ def test_a_wrong_numerical_candidate_is_never_returned(monkeypatch):
 
     r = _values("sqrt(2) + sqrt(3)")
     monkeypatch.setattr(minimal, "candidate", lambda x, prec: [Fraction(-1), Fraction(0), Fraction(1)])
-    assert r.values[0].minimal_polynomial() == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3))
+    assert minimal_polynomial(r.values[0]) == _sympy_minpoly(sp.sqrt(2) + sp.sqrt(3))
 
 
 @pytest.mark.parametrize("text, expr", MINPOLY_CASES, ids=[t for t, _ in MINPOLY_CASES])
