@@ -305,11 +305,13 @@ def _cancelled(P: list, Q: list, like) -> tuple[list, list]:
     minutes (inverses in a field of degree 40 with long coefficients), so it runs under
     :data:`STABILITY_SECONDS` in a child process; past it R = P/Q is kept as it is, correct
     but not cancelled (Q(0) = det(I) = 1 already)."""
+    if all(isinstance(x, (Fraction, int)) for x in P + Q):
+        return poly.lowest_terms(P, Q, sc.const(0, like), _is_zero)
     rational = [x if isinstance(x, (Fraction, int)) else x.rational() for x in P + Q]
     if all(r is not None for r in rational):
         # a number field's tableau whose Galois group permutes its stages (Gauss, HBVM,
-        # Lobatto, Radau) has a rational R(z): over Q the gcd is FLINT's, and needs no
-        # child process and no time limit
+        # Lobatto, Radau) has a rational R(z): over Q the gcd is FLINT's (loaded for the
+        # field already), with no child process and no time limit
         return poly.rational_lowest_terms(rational[:len(P)], rational[len(P):])
     try:
         return call_within(STABILITY_SECONDS, poly.lowest_terms, P, Q, sc.const(0, like), _is_zero)
