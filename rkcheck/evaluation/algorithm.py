@@ -129,9 +129,9 @@ def _a_vertices(listing: ConditionListing, ctx: NumberContext, top: int) -> int:
     ``top − 1`` in exact contexts when those of the trees with ``top − 1`` vertices take
     at most :data:`TOP_A_BYTES`, else ``top − 2``.  Each of those trees enters the
     terms with ``top`` vertices once, as ``τ ∘ v``: computed there, their ``a`` comes
-    in blocks that mix stored and computed ids, gathered, split and put back in place
-    (Gauss-3 at order 18: a quarter of the top order's time); computed in id order and
-    stored, it is one gather."""
+    in blocks that mix stored and computed ids, gathered, split and put back in place;
+    computed in id order and stored, it is one gather (Gauss-3 at order 18: about 3 %
+    of a pass)."""
     first = listing.first
     if not getattr(ctx, "exact", False) or top < 4 or top >= len(first):
         return top - 2
