@@ -87,11 +87,14 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                       out: dict[int, Any], on_order: Callable[[int, Any], None] | None) -> None:
     top = wanted[-1]
     first = listing.first
-    weights = _Weights(listing, ctx, s, _phi_vertices(listing, ctx, s, top), top - 2)
+    a_vertices = _a_vertices(listing, ctx, top)
+    weights = _Weights(listing, ctx, s, _phi_vertices(listing, ctx, s, top), top - 2, a_vertices)
     chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)  # several channels per row: fewer rows
     for n in range(2, top + 1):
         if n <= top - 2:  # the weights of the trees with n vertices, stored as far as kept
             weights.compute_order(n, first[n], first[n + 1], chunk)
+        elif n <= a_vertices:
+            weights.compute_a(first[n], first[n + 1], chunk)
         terms = listing.orders.get(n) if n in wanted else None
         if terms is None:
             continue
@@ -121,6 +124,26 @@ def _phi_vertices(listing: ConditionListing, ctx: NumberContext, s: int, top: in
     return top - 3 if 2 * trees * _nbytes(ctx.vectors(1, s)) > RECOMPUTE_BYTES else top - 2
 
 
+def _a_vertices(listing: ConditionListing, ctx: NumberContext, top: int) -> int:
+    """Up to how many vertices ``a`` is stored for conditions up to ``top`` vertices:
+    ``top − 1`` in exact contexts when those of the trees with ``top − 1`` vertices take
+    at most :data:`TOP_A_BYTES`, else ``top − 2``.  Each of those trees enters the
+    terms with ``top`` vertices once, as ``τ ∘ v``: computed there, their ``a`` comes
+    in blocks that mix stored and computed ids, gathered, split and put back in place;
+    computed in id order and stored, it is one gather (Gauss-3 at order 18: about 3 %
+    of a pass)."""
+    first = listing.first
+    if not getattr(ctx, "exact", False) or top < 4 or top >= len(first):
+        return top - 2
+    trees = int(first[top] - first[top - 1])
+    return top - 1 if trees * _nbytes(ctx.scalars(1)) <= TOP_A_BYTES else top - 2
+
+
+#: ``a`` of the trees with ``top − 1`` vertices is stored (exact residues only, 4 bytes a
+#: channel) up to this many bytes: 19 MB for one channel at 19 vertices
+TOP_A_BYTES = 32 << 20
+
+
 def _nbytes(value: Any) -> int:
     """Bytes of a context's value (an array, or nested tuples of arrays)."""
     if isinstance(value, (tuple, list)):
@@ -142,7 +165,8 @@ class _Weights:
     A tree with ``top − 1`` vertices enters the trees with ``top`` vertices only as
     ``τ ∘ v`` (and the bush as ``u ∘ τ``: the right factor is the child with the largest
     id), and one with ``top − 2`` vertices enters those with ``top − 1`` the same way.
-    So ``a`` and ``w`` are stored up to ``top − 2`` vertices, ``Φ`` and ``ψ`` up to
+    So ``a`` and ``w`` are stored up to ``top − 2`` vertices (``a`` up to ``top − 1`` in
+    exact contexts: :func:`_a_vertices`), ``Φ`` and ``ψ`` up to
     ``top − 2`` or ``top − 3`` (:func:`_phi_vertices`); a larger tree's weight is computed
     from its factors where a term needs it, once per tree (twice for ``Φ`` and ``ψ`` of
     the trees with ``top − 2`` vertices when they are not stored) — by the same operations
@@ -152,16 +176,18 @@ class _Weights:
     nine tenths of what was stored.)"""
 
     def __init__(self, listing: ConditionListing, ctx: NumberContext, s: int, phi_vertices: int,
-                 a_vertices: int):
-        """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices
-        and for ``a`` and ``w`` of those with at most ``a_vertices`` (τ at least)."""
+                 w_vertices: int, a_vertices: int | None = None):
+        """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices,
+        for ``w`` of those with at most ``w_vertices`` and for ``a`` of those with at most
+        ``a_vertices`` (default ``w_vertices``; τ at least)."""
         first = listing.first
         self.ctx, self.s = ctx, s
         self.left, self.right = listing.left, listing.right
-        n_phi, n_a = first[max(phi_vertices + 1, 2)], first[max(a_vertices + 1, 2)]
-        self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_a}
+        a_vertices = w_vertices if a_vertices is None else a_vertices
+        n_phi, n_w, n_a = (first[max(k + 1, 2)] for k in (phi_vertices, w_vertices, a_vertices))
+        self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_w}
         self.store = {"phi": ctx.vectors(n_phi, s), "psi": ctx.vectors(n_phi, s),
-                      "a": ctx.scalars(n_a), "w": ctx.scalars(n_a)}
+                      "a": ctx.scalars(n_a), "w": ctx.scalars(n_w)}
         phi0 = ctx.ones(1, s)
         ctx.put(self.store["phi"], 0, phi0)
         ctx.put(self.store["psi"], 0, ctx.matvec(phi0))
@@ -183,6 +209,13 @@ class _Weights:
                 ctx.put(store["phi"], a0, phi_n)
                 ctx.put(store["psi"], a0, ctx.matvec(phi_n))
             del phi_n
+
+    def compute_a(self, lo: int, hi: int, chunk: int) -> None:
+        """Compute and store ``a`` alone of the trees ``lo … hi − 1`` (beyond the other
+        weights' storage: see :func:`_a_vertices`), in id order."""
+        for a0 in range(lo, hi, chunk):
+            a1 = min(hi, a0 + chunk)
+            self.ctx.put(self.store["a"], a0, self._from_factors("a", slice(a0, a1)))
 
     def get(self, kind: str, ids: np.ndarray | slice) -> Any:
         """The weights ``kind`` (``"phi"``, ``"psi"``, ``"a"`` or ``"w"``) of the trees

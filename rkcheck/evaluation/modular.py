@@ -240,6 +240,16 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
                               listing if more else None, value_need[n] if more else 0, dual[n])
 
+    if orders is None:  # every order: perhaps evaluated already, as part of all free trees
+        try:
+            contained = _contained(scaled, listing, count, channels)
+        except KeyboardInterrupt:
+            raise EvaluationInterrupted({}) from None
+        if contained is not None:
+            residues = contained
+            if on_pass is not None and passes:
+                on_pass(passes, passes)
+            return {n: result(n) for n in wanted}
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
     try:
@@ -258,7 +268,31 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                     on_pass(done, passes)
     except KeyboardInterrupt:
         raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
-    return {n: result(n) for n in wanted}
+    out = {n: result(n) for n in wanted}
+    if orders is None:
+        _remember(scaled, listing, out)
+    return out
+
+
+def _remember(scaled: ScaledTableau, listing, sums: dict[int, ExactOrderSums]) -> None:
+    """Keep the evaluation of every condition of all free trees on ``scaled``, for the
+    listings of lower degrees that a file's claims check next (they share the tableau's
+    ScaledTableau; :mod:`rkcheck.evaluation.contained`).  The sums are the check result's
+    own: keeping them costs no memory while that result lives."""
+    if listing.degree is None:
+        scaled.__dict__["_all_trees"] = (listing, sums)
+
+
+def _contained(scaled: ScaledTableau, listing, count: dict[int, int],
+               channels: list[tuple[int, list[int]]]) -> dict[int, np.ndarray] | None:
+    """The residues of every order of ``listing`` read off a kept evaluation of all free
+    trees that contains it, or None."""
+    kept = scaled.__dict__.get("_all_trees")
+    if kept is None or kept[0] is listing:
+        return None
+    from rkcheck.evaluation.contained import contained_residues
+
+    return contained_residues(kept[0], kept[1], listing, count, channels)
 
 
 #: where the passes of :func:`exact_condition_sums` run when not in this process

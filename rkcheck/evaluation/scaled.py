@@ -50,6 +50,13 @@ class ScaledTableau:
     integral_d: int | None = None  # e: the integrality denominator (None: e = d)
     log2_gprime: float | None = None  # upper bound of log2 max_j |g'(σ_j θ)| (None: Q)
 
+    def __getstate__(self) -> dict[str, Any]:
+        # the evaluation kept for the claims' runs (modular._remember) stays here: a pass
+        # sent to a worker needs the tableau, not every residue of a finished check
+        state = dict(self.__dict__)
+        state.pop("_all_trees", None)
+        return state
+
     def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
         """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
         lam = self.theta_scale

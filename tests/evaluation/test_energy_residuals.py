@@ -41,6 +41,7 @@ from fractions import Fraction as F
 from functools import lru_cache
 
 import networkx as nx
+import numpy as np
 import pytest
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
@@ -230,6 +231,28 @@ def test_weights_recomputed_or_stored_give_the_reference(monkeypatch, recompute_
             enc, rec = sums.enclosure(k), listing.record(n, k)
             exact = ref.energy_residual(refs[rec.level_sequence], A, b)
             assert abs(enc.mid * listing.flip(n, k) - exact) <= enc.rad < F(1, 10 ** 50), rec.id
+
+
+@pytest.mark.parametrize("degree", [None, 3])
+@pytest.mark.parametrize("top_a_bytes", [0, 1 << 62])
+def test_top_a_stored_or_computed_give_the_reference(monkeypatch, degree, top_a_bytes):
+    # a of the trees with top − 1 vertices computed where the top order's terms need it
+    # (a budget of 0 bytes) or stored beforehand: the exact residuals equal the reference's
+    import rkcheck.evaluation.algorithm as algorithm
+    from rkcheck.evaluation.channels import ModularChannel
+
+    monkeypatch.setattr(algorithm, "TOP_A_BYTES", top_a_bytes)
+    listing = cond_table(degree)
+    top = listing.order + 1
+    ctx = ModularChannel(1073741789, np.zeros((3, 3), dtype=np.int64), np.zeros(3, dtype=np.int64))
+    assert algorithm._a_vertices(listing, ctx, top) == (top - 1 if top_a_bytes else top - 2)
+    rng = random.Random(11)
+    A, b = random_tableau(rng, 3, sum_b_one=True)
+    refs = ref_by_id()
+    got = exact_residuals(listing, A, b)
+    assert sum(value != 0 for value in got.values()) > 0  # random data: not 0 == 0
+    for cid, value in got.items():
+        assert value == ref.energy_residual(refs[cid], A, b), cid
 
 
 def test_symmetry_factors_equal_reference_sigmas():
