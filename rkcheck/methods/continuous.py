@@ -31,7 +31,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
@@ -366,7 +366,9 @@ def _monomial(name: str, power: int) -> str:
     return "" if power == 0 else (f"*{name}" if power == 1 else f"*{name}^{power}")
 
 
+@lru_cache(maxsize=4096)
 def _literal(q: Fraction) -> ex.Expr:
+    # the nodes are frozen: one per value, shared by the surrogate's n² entries
     return ex.parse(f"({q.numerator}/{q.denominator})")
 
 

@@ -58,14 +58,20 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
         raise UserError(f"the kernel needs {n_nodes} quadrature nodes, more than MAX_SURROGATE_NODES = "
                         f"{MAX_SURROGATE_NODES}", "continuous")
     x, w = rational_rule(n_nodes)
-    A_text = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
-    b_text = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
+    A_at = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
+    b_at = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
+    A_text = [[text for text, _ in row] for row in A_at]
+    b_text = [text for text, _ in b_at]
+    parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
     note = (f"a continuous-stage kernel: its exact surrogate on {n_nodes} rational nodes (elementary weights exact "
             f"for trees up to {vertices} vertices)")
     info = info.replace(warnings=info.warnings + (note,))
-    return build_family(name, parameters, A_text, b_text, constants, info)
+    return build_family(name, parameters, A_text, b_text, constants, info, parsed)
 
 
-def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> str:
+def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> tuple[str, ex.Expr]:
+    """The surrogate's entry ``weight·node(tau, sigma)``: its text (shown, written out)
+    and its expression (what the text parses to, built without parsing n² texts)."""
     value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
-    return f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
+    text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
+    return text, ex.Binary("*", _literal(weight), value, 1)

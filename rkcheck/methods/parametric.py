@@ -158,11 +158,17 @@ def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> 
 
 
 def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[str]], b: Sequence[str],
-                 constants: Mapping[str, ex.Expr], info: MethodInfo) -> Family:
-    """A family from its entry texts (validated shape), parameters and constants."""
+                 constants: Mapping[str, ex.Expr], info: MethodInfo,
+                 parsed: Sequence[ex.Expr] | None = None) -> Family:
+    """A family from its entry texts (validated shape), parameters and constants;
+    ``parsed``: the texts' expressions (A by rows, then b) when the caller built them,
+    names checked, so that generated entries are not parsed back."""
     s = len(b)
     texts = [x for row in A for x in row] + list(b)
     places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]
+    if parsed is not None:
+        entries = ParametricEntries(list(parsed), places, parameters, constants)
+        return Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info)
     nodes = []
     known = set(parameters) | set(constants)
     for text, place in zip(texts, places):
