@@ -176,15 +176,21 @@ class ConditionListing:
         if not self._stored(n):
             return None
         assert self._store is not None
-        got = self._store.load(record_key(n, self.degree))
+        lo, hi = self.first[n], self.first[n + 1]
+        # the factors are read straight into the listing's arrays (no second copy of the
+        # largest order's in memory); a record found invalid leaves them to the build
+        into = {"left": self.left[lo:hi], "right": self.right[lo:hi]}
+        got = self._store.load(record_key(n, self.degree), into)
         if got is None:
             return None
-        lo, hi = self.first[n], self.first[n + 1]
         record = from_record(n, lo, hi - lo, self._conditions[n], *got)
         if record is None:
             return None
         left, right, terms = record
-        self.left[lo:hi], self.right[lo:hi] = left, right
+        if left is not into["left"]:
+            self.left[lo:hi] = left
+        if right is not into["right"]:
+            self.right[lo:hi] = right
         return terms
 
     def _stored(self, n: int) -> bool:

@@ -34,7 +34,7 @@ class MemoryStore:
         self.min_terms = min_terms
         self.loads: list[int] = []
 
-    def load(self, key):
+    def load(self, key, into=None):
         self.loads.append(key["vertices"])
         got = self.records.get(tuple(sorted(key.items(), key=str)))
         return None if got is None else ({k: v.copy() for k, v in got[0].items()}, dict(got[1]))
