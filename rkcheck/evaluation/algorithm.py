@@ -87,11 +87,17 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                       out: dict[int, Any], on_order: Callable[[int, Any], None] | None) -> None:
     top = wanted[-1]
     first = listing.first
-    weights = _Weights(listing, ctx, s, _phi_vertices(listing, ctx, s, top), top - 2)
+    phi_vertices = _phi_vertices(listing, ctx, s, top)
+    late_a = _a_before_top(listing, ctx, s, top, phi_vertices)
+    # w of the trees with top − 2 vertices: used only as the bushes' left factors, then
+    weights = _Weights(listing, ctx, s, phi_vertices, *((top - 1, top - 3) if late_a else (top - 2, top - 2)))
     chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)  # several channels per row: fewer rows
     for n in range(2, top + 1):
         if n <= top - 2:  # the weights of the trees with n vertices, stored as far as kept
             weights.compute_order(n, first[n], first[n + 1], chunk)
+        if late_a and n == top:  # before the largest order's sums: a of the trees below, then no Φ, ψ
+            weights.compute_a(first[top - 1], first[top], chunk)
+            weights.release_phi()
         terms = listing.orders.get(n) if n in wanted else None
         if terms is None:
             continue
@@ -121,6 +127,20 @@ def _phi_vertices(listing: ConditionListing, ctx: NumberContext, s: int, top: in
     return top - 3 if 2 * trees * _nbytes(ctx.vectors(1, s)) > RECOMPUTE_BYTES else top - 2
 
 
+def _a_before_top(listing: ConditionListing, ctx: NumberContext, s: int, top: int, phi_vertices: int) -> bool:
+    """Whether ``a`` of the trees with ``top − 1`` vertices is computed and stored before
+    the sums of the trees with ``top`` vertices, so that ``Φ`` and ``ψ`` are released
+    first: those sums need nothing else of them (every tree with ``top − 1`` vertices is
+    a right factor once, in ``τ ∘ v``, and a left one only as the bush), and these
+    scalars take less memory than the vectors released, or the swap is not made."""
+    first = listing.first
+    if top < 4 or top >= len(first):
+        return False
+    scalars = int(first[top] - first[top - 1]) * _nbytes(ctx.scalars(1))
+    vectors = 2 * int(first[phi_vertices + 1]) * _nbytes(ctx.vectors(1, s))
+    return scalars < vectors
+
+
 def _nbytes(value: Any) -> int:
     """Bytes of a context's value (an array, or nested tuples of arrays)."""
     if isinstance(value, (tuple, list)):
@@ -145,23 +165,28 @@ class _Weights:
     So ``a`` and ``w`` are stored up to ``top − 2`` vertices, ``Φ`` and ``ψ`` up to
     ``top − 2`` or ``top − 3`` (:func:`_phi_vertices`); a larger tree's weight is computed
     from its factors where a term needs it, once per tree (twice for ``Φ`` and ``ψ`` of
-    the trees with ``top − 2`` vertices when they are not stored) — by the same operations
+    the trees with ``top − 2`` vertices when they are not stored; ``a`` of the trees with
+    ``top − 1`` vertices is stored before the last order when that lets ``Φ`` and ``ψ``
+    go, :func:`_a_before_top`) — by the same operations
     on the same values as when it was stored, so every value is the same, bit for bit.
     (Storing them all took most of a certified check's memory: ``Φ`` and ``ψ`` of the
     trees with ``top − 2`` vertices and ``a`` and ``w`` of those with ``top − 1`` are
     nine tenths of what was stored.)"""
 
     def __init__(self, listing: ConditionListing, ctx: NumberContext, s: int, phi_vertices: int,
-                 a_vertices: int):
-        """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices
-        and for ``a`` and ``w`` of those with at most ``a_vertices`` (τ at least)."""
+                 a_vertices: int, w_vertices: int | None = None):
+        """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices,
+        for ``a`` of those with at most ``a_vertices`` and for ``w`` of those with at most
+        ``w_vertices`` (default ``a_vertices``; τ at least).  :meth:`compute_order` fills
+        every order up to ``phi_vertices + 1``; ``a`` beyond it, :meth:`compute_a`."""
         first = listing.first
         self.ctx, self.s = ctx, s
         self.left, self.right = listing.left, listing.right
-        n_phi, n_a = first[max(phi_vertices + 1, 2)], first[max(a_vertices + 1, 2)]
-        self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_a}
+        w_vertices = a_vertices if w_vertices is None else w_vertices
+        n_phi, n_a, n_w = (first[max(k + 1, 2)] for k in (phi_vertices, a_vertices, w_vertices))
+        self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_w}
         self.store = {"phi": ctx.vectors(n_phi, s), "psi": ctx.vectors(n_phi, s),
-                      "a": ctx.scalars(n_a), "w": ctx.scalars(n_a)}
+                      "a": ctx.scalars(n_a), "w": ctx.scalars(n_w)}
         phi0 = ctx.ones(1, s)
         ctx.put(self.store["phi"], 0, phi0)
         ctx.put(self.store["psi"], 0, ctx.matvec(phi0))
@@ -170,19 +195,34 @@ class _Weights:
 
     def compute_order(self, n: int, lo: int, hi: int, chunk: int) -> None:
         """Compute and store the weights of the trees ``lo … hi − 1`` (those with ``n``
-        vertices): ``a`` and ``w`` always, ``Φ`` and ``ψ`` when they are kept."""
+        vertices): ``a`` always, ``w``, ``Φ`` and ``ψ`` when they are kept."""
         ctx, store = self.ctx, self.store
         keep_phi = hi <= self.limit["phi"]
+        keep_w = hi <= self.limit["w"]
         for a0 in range(lo, hi, chunk):
             a1 = min(hi, a0 + chunk)
             U, V = self.left[a0:a1], self.right[a0:a1]
-            ctx.put(store["w"], a0, ctx.mul(ctx.take(store["w"], U), ctx.take(store["a"], V)))
+            if keep_w:
+                ctx.put(store["w"], a0, ctx.mul(ctx.take(store["w"], U), ctx.take(store["a"], V)))
             phi_n = ctx.mul(ctx.take(store["phi"], U), ctx.take(store["psi"], V))
             ctx.put(store["a"], a0, ctx.dot(phi_n))
             if keep_phi:
                 ctx.put(store["phi"], a0, phi_n)
                 ctx.put(store["psi"], a0, ctx.matvec(phi_n))
             del phi_n
+
+    def compute_a(self, lo: int, hi: int, chunk: int) -> None:
+        """Compute and store ``a`` of the trees ``lo … hi − 1`` (within the stored ``a``),
+        their ``Φ`` from their factors, stored or computed."""
+        ctx = self.ctx
+        for a0 in range(lo, hi, chunk):
+            a1 = min(hi, a0 + chunk)
+            ctx.put(self.store["a"], a0, ctx.dot(self.get("phi", slice(a0, a1))))
+
+    def release_phi(self) -> None:
+        """Drop the stored ``Φ`` and ``ψ``: later orders need only ``a`` and ``w``, and
+        any use of them now fails rather than computing them from nothing."""
+        self.store["phi"] = self.store["psi"] = None
 
     def get(self, kind: str, ids: np.ndarray | slice) -> Any:
         """The weights ``kind`` (``"phi"``, ``"psi"``, ``"a"`` or ``"w"``) of the trees
