@@ -96,14 +96,15 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
         if n <= top - 2:  # the weights of the trees with n vertices, stored as far as kept
             weights.compute_order(n, first[n], first[n + 1], chunk)
         if late_a and n == top:  # before the largest order's sums: a of the trees below, then no Φ, ψ
+            weights.shrink_phi(first[phi_vertices], chunk)
             weights.compute_a(first[top - 1], first[top], chunk)
             weights.release_phi()
         terms = listing.orders.get(n) if n in wanted else None
         if terms is None:
             continue
         acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
-        for t0 in range(0, len(terms.condition), chunk):
-            t1 = min(len(terms.condition), t0 + chunk)
+        for t0 in range(0, terms.rows, chunk):
+            t1 = min(terms.rows, t0 + chunk)
             if terms.first_id is not None:  # the trees themselves: w stored, or from their factors
                 w_terms = weights.get("w", slice(terms.first_id + t0, terms.first_id + t1))
             else:  # the top order: w(u ∘ v) = w(u)·a(v), from the factors kept with the terms
@@ -218,6 +219,19 @@ class _Weights:
         for a0 in range(lo, hi, chunk):
             a1 = min(hi, a0 + chunk)
             ctx.put(self.store["a"], a0, ctx.dot(self.get("phi", slice(a0, a1))))
+
+    def shrink_phi(self, rows: int, chunk: int) -> None:
+        """Keep ``Φ`` of the first ``rows`` trees only (``ψ`` stays): for ``a`` of the
+        trees with ``top − 1`` vertices, a tree with ``top − 3`` vertices is a left factor
+        only when its children are the smallest trees (a handful, computed from their
+        factors), while its ψ enters every ``τ ∘ v``."""
+        if rows >= self.limit["phi"]:
+            return
+        ctx, old = self.ctx, self.store["phi"]
+        kept = ctx.vectors(rows, self.s)
+        for a0 in range(0, rows, chunk):
+            ctx.put(kept, a0, ctx.take(old, np.arange(a0, min(rows, a0 + chunk))))
+        self.store["phi"], self.limit["phi"] = kept, rows
 
     def release_phi(self) -> None:
         """Drop the stored ``Φ`` and ``ψ``: later orders need only ``a`` and ``w``, and

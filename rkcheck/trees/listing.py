@@ -149,6 +149,7 @@ class ConditionListing:
             if n > self.order:
                 self._table = None
             self.cache_hits.append(n)
+            terms.pack()
             return terms
         table = self._table
         if table is None:  # the first order built here: the table of the orders below, anew
@@ -169,6 +170,7 @@ class ConditionListing:
         if self._stored(n):
             assert self._store is not None
             self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], self.right[lo:hi], terms))
+        terms.pack()  # after the record: the file keeps the two arrays apart
         return terms
 
     def _load(self, n: int) -> OrderTerms | None:
@@ -306,7 +308,7 @@ class ConditionListing:
         out = []
         for i in o.terms_of(k):
             u, v = o.factors(int(i), self)
-            coef = o.coefficients[int(o.coefficient_index[i])]
+            coef = o.coefficient(int(i))
             sigma = math.factorial(n - 1) // abs(coef)
             out.append((o.sign(i) * flip, sigma, self._forest(self._children(u) + [v])))
         return out

@@ -57,7 +57,9 @@ def to_record(left: np.ndarray, right: np.ndarray,
               terms: OrderTerms) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """The arrays and metadata of one order (``left``/``right``: its trees' factors)."""
     arrays = {"left": left, "right": right}
-    arrays.update({name: getattr(terms, name) for name in (*TERM_ARRAYS, *CONDITION_ARRAYS) if name not in arrays})
+    condition, index = terms.block(0, terms.rows)  # the file keeps them apart
+    arrays["condition"], arrays["coefficient_index"] = condition, index.astype(np.int16, copy=False)
+    arrays.update({name: getattr(terms, name) for name in CONDITION_ARRAYS})
     # exact integers beyond int64 at high orders: kept as decimal strings
     meta = {"superfluous": int(terms.superfluous), "coefficients": [str(c) for c in terms.coefficients]}
     return arrays, meta
