@@ -218,7 +218,7 @@ class PrimeChannels:
 
     def add_terms(self, acc: "_Bins", w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` modulo each channel's prime to the conditions' bins."""
-        w_terms *= np.take(self._coefficients(terms, n), terms.block(i0, i1)[1], axis=1)
+        w_terms *= np.take(self._coefficients(terms, n), terms.coefficient_indices(i0, i1), axis=1)
         acc.add(self._reduce(w_terms), terms, i0, i1)
 
     def finish_sums(self, acc: "_Bins", k: int, n: int) -> np.ndarray:
@@ -255,7 +255,7 @@ class _Bins:
                            or self._used + rows > room):
             self._flush()
         if rows > room:
-            self._bin(w.astype(np.float64), terms.block(i0, i1)[0])
+            self._bin(w.astype(np.float64), terms.conditions(i0, i1))
             return
         if not self._used:
             self._lo, self._terms = i0, terms
@@ -265,7 +265,7 @@ class _Bins:
     def _flush(self) -> None:
         if self._used:
             assert self._terms is not None
-            self._bin(self._buffer[:, :self._used], self._terms.block(self._lo, self._lo + self._used)[0])
+            self._bin(self._buffer[:, :self._used], self._terms.conditions(self._lo, self._lo + self._used))
             self._used = 0
 
     def _bin(self, w: np.ndarray, condition: np.ndarray) -> None:

@@ -58,11 +58,21 @@ class OrderTerms:
 
     def block(self, i0: int, i1: int) -> tuple[np.ndarray, np.ndarray]:
         """``(condition, coefficient index)`` of the terms ``i0 … i1 − 1``."""
+        return self.conditions(i0, i1), self.coefficient_indices(i0, i1)
+
+    def conditions(self, i0: int, i1: int) -> np.ndarray:
+        """The condition of each of the terms ``i0 … i1 − 1``."""
         if self.packed is None:
-            assert self.condition is not None and self.coefficient_index is not None
-            return self.condition[i0:i1], self.coefficient_index[i0:i1]
-        x = self.packed[i0:i1]
-        return (x & np.uint32((1 << self.condition_bits) - 1)).view(np.int32), (x >> np.uint32(self.condition_bits)).view(np.int32)
+            assert self.condition is not None
+            return self.condition[i0:i1]
+        return (self.packed[i0:i1] & np.uint32((1 << self.condition_bits) - 1)).view(np.int32)
+
+    def coefficient_indices(self, i0: int, i1: int) -> np.ndarray:
+        """The index into :attr:`coefficients` of each of the terms ``i0 … i1 − 1``."""
+        if self.packed is None:
+            assert self.coefficient_index is not None
+            return self.coefficient_index[i0:i1]
+        return (self.packed[i0:i1] >> np.uint32(self.condition_bits)).view(np.int32)
 
     def pack(self) -> None:
         """Keep each term's condition and coefficient index in one 32-bit word, in place
@@ -118,14 +128,14 @@ class OrderTerms:
 
     def coefficient(self, i: int) -> int:
         """The signed coefficient ``±(n−1)!/σ`` of term ``i``."""
-        return self.coefficients[int(self.block(i, i + 1)[1][0])]
+        return self.coefficients[int(self.coefficient_indices(i, i + 1)[0])]
 
     def sign(self, i: int) -> int:
         return 1 if self.coefficient(i) > 0 else -1
 
     def terms_of(self, k: int) -> np.ndarray:
         """The term indices of condition ``k`` (a scan: for explanations, not bulk work)."""
-        found = [np.flatnonzero(self.block(i, i + _PACK_CHUNK)[0] == k) + i for i in range(0, self.rows, _PACK_CHUNK)]
+        found = [np.flatnonzero(self.conditions(i, i + _PACK_CHUNK) == k) + i for i in range(0, self.rows, _PACK_CHUNK)]
         return np.concatenate(found) if found else np.zeros(0, dtype=np.intp)
 
 
