@@ -65,7 +65,7 @@ values = TableauValues.of(tableau, options.reading)
 listing = _listing(values, options, None)
 for n in listing.orders:
     listing.orders[n].max_terms
-terms = sum(len(listing.orders[n].condition) for n in listing.orders)
+terms = sum(listing.orders[n].rows for n in listing.orders)
 gc.collect()
 w0, c0 = time.perf_counter(), os.times()
 orders, interrupted, note = _judged_orders(listing, values, options, None)

@@ -87,20 +87,24 @@ def _weights_and_sums(listing: ConditionListing, ctx: NumberContext, s: int, wan
                       out: dict[int, Any], on_order: Callable[[int, Any], None] | None) -> None:
     top = wanted[-1]
     first = listing.first
-    a_vertices = _a_vertices(listing, ctx, top)
-    weights = _Weights(listing, ctx, s, _phi_vertices(listing, ctx, s, top), top - 2, a_vertices)
+    phi_vertices = _phi_vertices(listing, ctx, s, top)
+    late_a = _a_before_top(listing, ctx, s, top, phi_vertices)
+    # w of the trees with top − 2 vertices: used only as the bushes' left factors, then
+    weights = _Weights(listing, ctx, s, phi_vertices, *((top - 1, top - 3) if late_a else (top - 2, top - 2)))
     chunk = max(_TERM_CHUNK // getattr(ctx, "width", 1), 1)  # several channels per row: fewer rows
     for n in range(2, top + 1):
         if n <= top - 2:  # the weights of the trees with n vertices, stored as far as kept
             weights.compute_order(n, first[n], first[n + 1], chunk)
-        elif n <= a_vertices:
-            weights.compute_a(first[n], first[n + 1], chunk)
+        if late_a and n == top:  # before the largest order's sums: a of the trees below, then no Φ, ψ
+            weights.shrink_phi(first[phi_vertices], chunk)
+            weights.compute_a(first[top - 1], first[top], chunk)
+            weights.release_phi()
         terms = listing.orders.get(n) if n in wanted else None
         if terms is None:
             continue
         acc = ctx.sums(len(terms) + 1, n)  # the extra bin collects superfluous trees
-        for t0 in range(0, len(terms.condition), chunk):
-            t1 = min(len(terms.condition), t0 + chunk)
+        for t0 in range(0, terms.rows, chunk):
+            t1 = min(terms.rows, t0 + chunk)
             if terms.first_id is not None:  # the trees themselves: w stored, or from their factors
                 w_terms = weights.get("w", slice(terms.first_id + t0, terms.first_id + t1))
             else:  # the top order: w(u ∘ v) = w(u)·a(v), from the factors kept with the terms
@@ -124,24 +128,18 @@ def _phi_vertices(listing: ConditionListing, ctx: NumberContext, s: int, top: in
     return top - 3 if 2 * trees * _nbytes(ctx.vectors(1, s)) > RECOMPUTE_BYTES else top - 2
 
 
-def _a_vertices(listing: ConditionListing, ctx: NumberContext, top: int) -> int:
-    """Up to how many vertices ``a`` is stored for conditions up to ``top`` vertices:
-    ``top − 1`` in exact contexts when those of the trees with ``top − 1`` vertices take
-    at most :data:`TOP_A_BYTES`, else ``top − 2``.  Each of those trees enters the
-    terms with ``top`` vertices once, as ``τ ∘ v``: computed there, their ``a`` comes
-    in blocks that mix stored and computed ids, gathered, split and put back in place;
-    computed in id order and stored, it is one gather (Gauss-3 at order 18: about 3 %
-    of a pass)."""
+def _a_before_top(listing: ConditionListing, ctx: NumberContext, s: int, top: int, phi_vertices: int) -> bool:
+    """Whether ``a`` of the trees with ``top − 1`` vertices is computed and stored before
+    the sums of the trees with ``top`` vertices, so that ``Φ`` and ``ψ`` are released
+    first: those sums need nothing else of them (every tree with ``top − 1`` vertices is
+    a right factor once, in ``τ ∘ v``, and a left one only as the bush), and these
+    scalars take less memory than the vectors released, or the swap is not made."""
     first = listing.first
-    if not getattr(ctx, "exact", False) or top < 4 or top >= len(first):
-        return top - 2
-    trees = int(first[top] - first[top - 1])
-    return top - 1 if trees * _nbytes(ctx.scalars(1)) <= TOP_A_BYTES else top - 2
-
-
-#: ``a`` of the trees with ``top − 1`` vertices is stored (exact residues only, 4 bytes a
-#: channel) up to this many bytes: 19 MB for one channel at 19 vertices
-TOP_A_BYTES = 32 << 20
+    if top < 4 or top >= len(first):
+        return False
+    scalars = int(first[top] - first[top - 1]) * _nbytes(ctx.scalars(1))
+    vectors = 2 * int(first[phi_vertices + 1]) * _nbytes(ctx.vectors(1, s))
+    return scalars < vectors
 
 
 def _nbytes(value: Any) -> int:
@@ -165,26 +163,28 @@ class _Weights:
     A tree with ``top − 1`` vertices enters the trees with ``top`` vertices only as
     ``τ ∘ v`` (and the bush as ``u ∘ τ``: the right factor is the child with the largest
     id), and one with ``top − 2`` vertices enters those with ``top − 1`` the same way.
-    So ``a`` and ``w`` are stored up to ``top − 2`` vertices (``a`` up to ``top − 1`` in
-    exact contexts: :func:`_a_vertices`), ``Φ`` and ``ψ`` up to
+    So ``a`` and ``w`` are stored up to ``top − 2`` vertices, ``Φ`` and ``ψ`` up to
     ``top − 2`` or ``top − 3`` (:func:`_phi_vertices`); a larger tree's weight is computed
     from its factors where a term needs it, once per tree (twice for ``Φ`` and ``ψ`` of
-    the trees with ``top − 2`` vertices when they are not stored) — by the same operations
+    the trees with ``top − 2`` vertices when they are not stored; ``a`` of the trees with
+    ``top − 1`` vertices is stored before the last order when that lets ``Φ`` and ``ψ``
+    go, :func:`_a_before_top`) — by the same operations
     on the same values as when it was stored, so every value is the same, bit for bit.
     (Storing them all took most of a certified check's memory: ``Φ`` and ``ψ`` of the
     trees with ``top − 2`` vertices and ``a`` and ``w`` of those with ``top − 1`` are
     nine tenths of what was stored.)"""
 
     def __init__(self, listing: ConditionListing, ctx: NumberContext, s: int, phi_vertices: int,
-                 w_vertices: int, a_vertices: int | None = None):
+                 a_vertices: int, w_vertices: int | None = None):
         """Storage for ``Φ`` and ``ψ`` of the trees with at most ``phi_vertices`` vertices,
-        for ``w`` of those with at most ``w_vertices`` and for ``a`` of those with at most
-        ``a_vertices`` (default ``w_vertices``; τ at least)."""
+        for ``a`` of those with at most ``a_vertices`` and for ``w`` of those with at most
+        ``w_vertices`` (default ``a_vertices``; τ at least).  :meth:`compute_order` fills
+        every order up to ``phi_vertices + 1``; ``a`` beyond it, :meth:`compute_a`."""
         first = listing.first
         self.ctx, self.s = ctx, s
         self.left, self.right = listing.left, listing.right
-        a_vertices = w_vertices if a_vertices is None else a_vertices
-        n_phi, n_w, n_a = (first[max(k + 1, 2)] for k in (phi_vertices, w_vertices, a_vertices))
+        w_vertices = a_vertices if w_vertices is None else w_vertices
+        n_phi, n_a, n_w = (first[max(k + 1, 2)] for k in (phi_vertices, a_vertices, w_vertices))
         self.limit = {"phi": n_phi, "psi": n_phi, "a": n_a, "w": n_w}
         self.store = {"phi": ctx.vectors(n_phi, s), "psi": ctx.vectors(n_phi, s),
                       "a": ctx.scalars(n_a), "w": ctx.scalars(n_w)}
@@ -196,13 +196,15 @@ class _Weights:
 
     def compute_order(self, n: int, lo: int, hi: int, chunk: int) -> None:
         """Compute and store the weights of the trees ``lo … hi − 1`` (those with ``n``
-        vertices): ``a`` and ``w`` always, ``Φ`` and ``ψ`` when they are kept."""
+        vertices): ``a`` always, ``w``, ``Φ`` and ``ψ`` when they are kept."""
         ctx, store = self.ctx, self.store
         keep_phi = hi <= self.limit["phi"]
+        keep_w = hi <= self.limit["w"]
         for a0 in range(lo, hi, chunk):
             a1 = min(hi, a0 + chunk)
             U, V = self.left[a0:a1], self.right[a0:a1]
-            ctx.put(store["w"], a0, ctx.mul(ctx.take(store["w"], U), ctx.take(store["a"], V)))
+            if keep_w:
+                ctx.put(store["w"], a0, ctx.mul(ctx.take(store["w"], U), ctx.take(store["a"], V)))
             phi_n = ctx.mul(ctx.take(store["phi"], U), ctx.take(store["psi"], V))
             ctx.put(store["a"], a0, ctx.dot(phi_n))
             if keep_phi:
@@ -211,11 +213,30 @@ class _Weights:
             del phi_n
 
     def compute_a(self, lo: int, hi: int, chunk: int) -> None:
-        """Compute and store ``a`` alone of the trees ``lo … hi − 1`` (beyond the other
-        weights' storage: see :func:`_a_vertices`), in id order."""
+        """Compute and store ``a`` of the trees ``lo … hi − 1`` (within the stored ``a``),
+        their ``Φ`` from their factors, stored or computed."""
+        ctx = self.ctx
         for a0 in range(lo, hi, chunk):
             a1 = min(hi, a0 + chunk)
-            self.ctx.put(self.store["a"], a0, self._from_factors("a", slice(a0, a1)))
+            ctx.put(self.store["a"], a0, ctx.dot(self.get("phi", slice(a0, a1))))
+
+    def shrink_phi(self, rows: int, chunk: int) -> None:
+        """Keep ``Φ`` of the first ``rows`` trees only (``ψ`` stays): for ``a`` of the
+        trees with ``top − 1`` vertices, a tree with ``top − 3`` vertices is a left factor
+        only when its children are the smallest trees (a handful, computed from their
+        factors), while its ψ enters every ``τ ∘ v``."""
+        if rows >= self.limit["phi"]:
+            return
+        ctx, old = self.ctx, self.store["phi"]
+        kept = ctx.vectors(rows, self.s)
+        for a0 in range(0, rows, chunk):
+            ctx.put(kept, a0, ctx.take(old, np.arange(a0, min(rows, a0 + chunk))))
+        self.store["phi"], self.limit["phi"] = kept, rows
+
+    def release_phi(self) -> None:
+        """Drop the stored ``Φ`` and ``ψ``: later orders need only ``a`` and ``w``, and
+        any use of them now fails rather than computing them from nothing."""
+        self.store["phi"] = self.store["psi"] = None
 
     def get(self, kind: str, ids: np.ndarray | slice) -> Any:
         """The weights ``kind`` (``"phi"``, ``"psi"``, ``"a"`` or ``"w"``) of the trees

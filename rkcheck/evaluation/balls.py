@@ -157,8 +157,7 @@ class BallContext:
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
         """Σ c·w with c = ±(n−1)!/σ exact: mid-points summed exactly, radii |c|·r."""
         coef = _coefficients(terms)
-        idx = terms.coefficient_index[i0:i1]
-        cond = terms.condition[i0:i1]
+        cond, idx = terms.block(i0, i1)
         np.add.at(acc[0], cond, w_terms[0] * coef[idx])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
@@ -333,8 +332,8 @@ class FloatContext:
         return [np.zeros(k), np.zeros(k), np.zeros(k), np.zeros(k)]  # mid, rad, Σ|term|, count
 
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
-        c = _float_coefficients(terms, n)[terms.coefficient_index[i0:i1]]
-        cond = terms.condition[i0:i1]
+        cond, idx = terms.block(i0, i1)
+        c = _float_coefficients(terms, n)[idx]
         tm = c * w_terms[0]
         # the coefficient is c(1 ± u) (a rounded quotient), the product rounds once more
         tr = (np.abs(c) * w_terms[1] + 2 * U * np.abs(tm)) * INFLATE + ETA

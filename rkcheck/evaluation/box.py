@@ -142,8 +142,8 @@ class GradientContext:
         E = self.E
         if not E:
             return
-        c = _float_coefficients(terms, n)[terms.coefficient_index[i0:i1]][:, None]
-        cond = terms.condition[i0:i1]
+        cond, idx = terms.block(i0, i1)
+        c = _float_coefficients(terms, n)[idx][:, None]
         tm = c * gm
         tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
         uniq, inv = block_bins(cond)

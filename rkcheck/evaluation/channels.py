@@ -9,6 +9,7 @@ the batched pass is tested against).  Why primes decide exactly:
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -131,9 +132,10 @@ class ModularChannel:
     def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` modulo p of terms i0 … i1−1 to their conditions' bins."""
         p = self.p
-        w_terms *= self._coefficients(terms, n)[terms.coefficient_index[i0:i1]]
+        cond, idx = terms.block(i0, i1)
+        w_terms *= self._coefficients(terms, n)[idx]
         w_terms %= p
-        acc += np.bincount(terms.condition[i0:i1], weights=w_terms, minlength=len(acc))
+        acc += np.bincount(cond, weights=w_terms, minlength=len(acc))
 
     def finish_sums(self, acc: np.ndarray, k: int, n: int) -> np.ndarray:
         """The residues of N per condition (the extra bin dropped)."""
@@ -216,8 +218,8 @@ class PrimeChannels:
 
     def add_terms(self, acc: "_Bins", w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` modulo each channel's prime to the conditions' bins."""
-        w_terms *= np.take(self._coefficients(terms, n), terms.coefficient_index[i0:i1], axis=1)
-        acc.add(self._reduce(w_terms), terms.condition, i0, i1)
+        w_terms *= np.take(self._coefficients(terms, n), terms.coefficient_indices(i0, i1), axis=1)
+        acc.add(self._reduce(w_terms), terms, i0, i1)
 
     def finish_sums(self, acc: "_Bins", k: int, n: int) -> np.ndarray:
         """The residues per condition and channel, ``(k, K)``."""
@@ -243,26 +245,27 @@ class _Bins:
         run = min(max(k, _MIN_RUN), max(_MAX_RUN // width, _MIN_RUN))
         self._buffer = np.empty((width, run), dtype=np.float64)
         self._used = self._lo = 0
-        self._condition: np.ndarray | None = None
+        self._terms: Any = None
 
-    def add(self, w: np.ndarray, condition: np.ndarray, i0: int, i1: int) -> None:
-        """The residues ``w`` (channels × terms) of the terms ``i0 … i1 − 1``."""
+    def add(self, w: np.ndarray, terms: Any, i0: int, i1: int) -> None:
+        """The residues ``w`` (channels × terms) of the terms ``i0 … i1 − 1`` of ``terms``
+        (an :class:`~rkcheck.trees.terms.OrderTerms`)."""
         rows, room = i1 - i0, self._buffer.shape[1]
-        if self._used and (i0 != self._lo + self._used or condition is not self._condition
+        if self._used and (i0 != self._lo + self._used or terms is not self._terms
                            or self._used + rows > room):
             self._flush()
         if rows > room:
-            self._bin(w.astype(np.float64), condition[i0:i1])
+            self._bin(w.astype(np.float64), terms.conditions(i0, i1))
             return
         if not self._used:
-            self._lo, self._condition = i0, condition
+            self._lo, self._terms = i0, terms
         self._buffer[:, self._used:self._used + rows] = w
         self._used += rows
 
     def _flush(self) -> None:
         if self._used:
-            assert self._condition is not None
-            self._bin(self._buffer[:, :self._used], self._condition[self._lo:self._lo + self._used])
+            assert self._terms is not None
+            self._bin(self._buffer[:, :self._used], self._terms.conditions(self._lo, self._lo + self._used))
             self._used = 0
 
     def _bin(self, w: np.ndarray, condition: np.ndarray) -> None:

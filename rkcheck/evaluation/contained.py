@@ -113,13 +113,14 @@ def condition_map(source: Any, listing: Any, n: int, ids: np.ndarray) -> tuple[n
     if not (np.array_equal(source.left[rep], u) and np.array_equal(source.right[rep], v)):
         return None
     term = rep - source.first[n]
-    where = theirs.condition[term].astype(np.int64)
+    where, index = theirs.at(term)
+    where = where.astype(np.int64)
     if np.any(where >= len(theirs)) or not np.array_equal(theirs.counts[where], mine.counts):
         return None  # a superfluous tree there, or not the same terms
     if len(where) and np.bincount(where).max() > 1:
         return None  # two conditions on one
     positive = np.array([c > 0 for c in theirs.coefficients], dtype=bool)
-    sign = np.where(positive[theirs.coefficient_index[term]], 1, -1).astype(np.int8)
+    sign = np.where(positive[index], 1, -1).astype(np.int8)
     return where, sign
 
 

@@ -330,8 +330,8 @@ class LimbBallContext:
             acc[0] = np.zeros((k, L + C))
         if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
             raise ArithmeticError("certified digits: too many terms per condition for exact sums")
-        idx = terms.coefficient_index[i0:i1]
-        uniq, inv = block_bins(terms.condition[i0:i1])
+        cond, idx = terms.block(i0, i1)
+        uniq, inv = block_bins(cond)
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:

@@ -259,6 +259,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                 for c, (i, j, _, _) in enumerate(group):
                     if i < count[n]:
                         residues[n][:, i, j] = sums[:, c]
+            del at, sums  # not alive while the next pass runs
             for i, *_ in group:
                 left[i] -= 1
             finished = next((i for i, k in enumerate(left) if k), len(left))  # primes 0 … finished−1 complete
@@ -371,3 +372,4 @@ def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[
     groups, copies = pass_groups(scaled, listing, chosen, orders_for, top)
     for g, sums in _run_passes(scaled, listing, groups):
         yield _with_copies(scaled, groups[g][0], sums, copies)
+        del sums  # a pass's residues are not kept while the next one runs

@@ -81,7 +81,7 @@ class PolynomialContext:
 
     def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, i0: int, i1: int) -> None:
         coefficients = [self.ring.constant(c) for c in terms.coefficients]
-        for cond, ci, w in zip(terms.condition[i0:i1], terms.coefficient_index[i0:i1], w_terms):
+        for cond, ci, w in zip(*terms.block(i0, i1), w_terms):
             acc[cond] = acc[cond] + coefficients[ci] * w
 
     def finish_sums(self, acc: np.ndarray, k: int, n: int) -> "PolynomialSums":

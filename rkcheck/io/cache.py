@@ -118,11 +118,14 @@ def encode(key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, A
     return [MAGIC, len(head).to_bytes(8, "little"), head, *payload]
 
 
-def decode(f: BufferedReader, size: int, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+def decode(f: BufferedReader, size: int, key: dict[str, Any],
+           into: dict[str, np.ndarray] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
     """The arrays and metadata of an open file of ``size`` bytes, or None unless it is
     intact and was written for exactly ``key``.  Each array is read into an array of its
-    own (a file's bytes are never held whole: the listing copies the factors and drops
-    them)."""
+    own (a file's bytes are never held whole), or into ``into[name]`` when that is a
+    contiguous array of the file's type and length (the listing's own factors: then
+    they are not copied there afterwards); that array is then the one returned, and
+    holds unspecified values when None is returned."""
     import hashlib
     import json
 
@@ -154,18 +157,30 @@ def decode(f: BufferedReader, size: int, key: dict[str, Any]) -> tuple[dict[str,
         padded = nbytes + (-nbytes % _ALIGN)
         if padded > left:
             return None
-        a = np.empty(entry[2], dtype=dtype)
+        a = _destination(into, entry[0], dtype, entry[2])
         view = a.view(np.uint8).data
         pad = bytearray(padded - nbytes)
         if f.readinto(view) != nbytes or f.readinto(pad) != len(pad):
             return None
         digest.update(view)
         digest.update(pad)
-        arrays[entry[0]] = a.astype(dtype.newbyteorder("="), copy=False)
+        if a.dtype != dtype:  # a native big-endian destination: its little-endian bytes turned
+            a.byteswap(inplace=True)
+        arrays[entry[0]] = a if a.dtype == dtype.newbyteorder("=") else a.astype(dtype.newbyteorder("="))
         left -= padded
     if left != 0 or not isinstance(claimed, str) or digest.hexdigest() != claimed:
         return None
     return arrays, header["meta"]
+
+
+def _destination(into: dict[str, np.ndarray] | None, name: str, dtype: np.dtype, length: int) -> np.ndarray:
+    """Where the array ``name`` of the file (``length`` values of the little-endian
+    ``dtype``) is read to: ``into[name]`` when it fits exactly, else a new array."""
+    out = None if into is None else into.get(name)
+    if (out is not None and out.shape == (length,) and out.dtype.kind == dtype.kind
+            and out.dtype.itemsize == dtype.itemsize and out.flags.c_contiguous and out.flags.writeable):
+        return out
+    return np.empty(length, dtype=dtype)
 
 
 @dataclass(frozen=True)
@@ -190,11 +205,12 @@ class ListingCache:
     def path(self, key: dict[str, Any]) -> Path:
         return self.directory / _name(key)
 
-    def load(self, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
+    def load(self, key: dict[str, Any],
+             into: dict[str, np.ndarray] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
         path = self.path(key)
         try:
             with open(path, "rb") as f:
-                got = decode(f, os.fstat(f.fileno()).st_size, key)
+                got = decode(f, os.fstat(f.fileno()).st_size, key, into)
             if got is not None:
                 os.utime(path)  # recently used: evicted last
         except OSError:

@@ -149,6 +149,7 @@ class ConditionListing:
             if n > self.order:
                 self._table = None
             self.cache_hits.append(n)
+            terms.pack()
             return terms
         table = self._table
         if table is None:  # the first order built here: the table of the orders below, anew
@@ -169,6 +170,7 @@ class ConditionListing:
         if self._stored(n):
             assert self._store is not None
             self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], self.right[lo:hi], terms))
+        terms.pack()  # after the record: the file keeps the two arrays apart
         return terms
 
     def _load(self, n: int) -> OrderTerms | None:
@@ -176,15 +178,21 @@ class ConditionListing:
         if not self._stored(n):
             return None
         assert self._store is not None
-        got = self._store.load(record_key(n, self.degree))
+        lo, hi = self.first[n], self.first[n + 1]
+        # the factors are read straight into the listing's arrays (no second copy of the
+        # largest order's in memory); a record found invalid leaves them to the build
+        into = {"left": self.left[lo:hi], "right": self.right[lo:hi]}
+        got = self._store.load(record_key(n, self.degree), into)
         if got is None:
             return None
-        lo, hi = self.first[n], self.first[n + 1]
         record = from_record(n, lo, hi - lo, self._conditions[n], *got)
         if record is None:
             return None
         left, right, terms = record
-        self.left[lo:hi], self.right[lo:hi] = left, right
+        if left is not into["left"]:
+            self.left[lo:hi] = left
+        if right is not into["right"]:
+            self.right[lo:hi] = right
         return terms
 
     def _stored(self, n: int) -> bool:
@@ -300,7 +308,7 @@ class ConditionListing:
         out = []
         for i in o.terms_of(k):
             u, v = o.factors(int(i), self)
-            coef = o.coefficients[int(o.coefficient_index[i])]
+            coef = o.coefficient(int(i))
             sigma = math.factorial(n - 1) // abs(coef)
             out.append((o.sign(i) * flip, sigma, self._forest(self._children(u) + [v])))
         return out

@@ -34,11 +34,16 @@ class ListingStore(Protocol):
     """Where listings are kept between runs: ``load`` returns the arrays and metadata
     saved under ``key`` (None when there are none, or they are damaged); ``save`` keeps
     them (a store may decline: a cache is only an optimisation).  Orders with fewer
-    than ``min_terms`` terms are neither loaded nor saved (cheaper to build)."""
+    than ``min_terms`` terms are neither loaded nor saved (cheaper to build).
+
+    ``into``: arrays that ``load`` may fill in place of allocating its own (by name, when
+    type and length match) and then return as those arrays; whatever is returned, their
+    contents are unspecified afterwards unless they are the ones returned."""
 
     min_terms: int
 
-    def load(self, key: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None: ...
+    def load(self, key: dict[str, Any],
+             into: dict[str, np.ndarray] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None: ...
 
     def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> None: ...
 
@@ -52,7 +57,9 @@ def to_record(left: np.ndarray, right: np.ndarray,
               terms: OrderTerms) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """The arrays and metadata of one order (``left``/``right``: its trees' factors)."""
     arrays = {"left": left, "right": right}
-    arrays.update({name: getattr(terms, name) for name in (*TERM_ARRAYS, *CONDITION_ARRAYS) if name not in arrays})
+    condition, index = terms.block(0, terms.rows)  # the file keeps them apart
+    arrays["condition"], arrays["coefficient_index"] = condition, index.astype(np.int16, copy=False)
+    arrays.update({name: getattr(terms, name) for name in CONDITION_ARRAYS})
     # exact integers beyond int64 at high orders: kept as decimal strings
     meta = {"superfluous": int(terms.superfluous), "coefficients": [str(c) for c in terms.coefficients]}
     return arrays, meta
@@ -87,7 +94,7 @@ def from_record(vertices: int, first_id: int, terms: int, conditions: int, array
           and int(a["counts"].sum(dtype=np.int64)) <= terms
           and all(math.factorial(vertices - 1) % c == 0 for c in coefficients[::2]))
     # every class has exactly the terms it claims
-    if not ok or not np.array_equal(np.bincount(a["condition"], minlength=conditions + 1)[:conditions], a["counts"]):
+    if not ok or not np.array_equal(_class_sizes(a["condition"], conditions + 1)[:conditions], a["counts"]):
         return None
     order = OrderTerms(
         vertices=vertices, first_id=first_id, left=None, right=None, condition=a["condition"],
@@ -96,6 +103,19 @@ def from_record(vertices: int, first_id: int, terms: int, conditions: int, array
         max_degree=a["max_degree"], superfluous=superfluous,
     )
     return a["left"], a["right"], order
+
+
+#: terms counted at once by :func:`_class_sizes`
+_COUNT_CHUNK = 1 << 22
+
+
+def _class_sizes(condition: np.ndarray, bins: int) -> np.ndarray:
+    """The terms per class, counted in chunks: ``np.bincount`` widens its input to intp,
+    which for the 35 million terms of a large order is a copy of 280 MB."""
+    sizes = np.zeros(bins, dtype=np.int64)
+    for i in range(0, len(condition), _COUNT_CHUNK):
+        sizes += np.bincount(condition[i:i + _COUNT_CHUNK], minlength=bins)
+    return sizes
 
 
 def _within(a: np.ndarray, lo: int, hi: int) -> bool:

@@ -32,8 +32,8 @@ class OrderTerms:
     first_id: int | None
     left: np.ndarray | None  # int32 factors u, v of each term u ∘ v (top order only)
     right: np.ndarray | None
-    condition: np.ndarray  # int32 condition of each term
-    coefficient_index: np.ndarray  # int16 into ``coefficients``
+    condition: np.ndarray | None  # int32 condition of each term (None once packed)
+    coefficient_index: np.ndarray | None  # int16 into ``coefficients`` (None once packed)
     coefficients: list[int]  # the distinct ±(n−1)!/σ(u) of this order (exact, signed)
     counts: np.ndarray  # int32 terms per condition
     rep_left: np.ndarray  # int32 factors of each condition's representative rooting
@@ -42,9 +42,61 @@ class OrderTerms:
     rest: np.ndarray  # int32: for two centres, the representative minus that branch
     max_degree: np.ndarray  # int16
     superfluous: int = 0  # free trees of this order left out (equal halves across an edge)
+    # condition | coefficient index << condition_bits per term, when :meth:`pack` fitted both
+    packed: np.ndarray | None = None
+    condition_bits: int = 0
 
     def __len__(self) -> int:
         return len(self.rep_left)
+
+    @property
+    def rows(self) -> int:
+        """The terms, superfluous trees included."""
+        rows = self.packed if self.packed is not None else self.condition
+        assert rows is not None
+        return len(rows)
+
+    def block(self, i0: int, i1: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(condition, coefficient index)`` of the terms ``i0 … i1 − 1``."""
+        return self.conditions(i0, i1), self.coefficient_indices(i0, i1)
+
+    def conditions(self, i0: int, i1: int) -> np.ndarray:
+        """The condition of each of the terms ``i0 … i1 − 1``."""
+        if self.packed is None:
+            assert self.condition is not None
+            return self.condition[i0:i1]
+        return (self.packed[i0:i1] & np.uint32((1 << self.condition_bits) - 1)).view(np.int32)
+
+    def coefficient_indices(self, i0: int, i1: int) -> np.ndarray:
+        """The index into :attr:`coefficients` of each of the terms ``i0 … i1 − 1``."""
+        if self.packed is None:
+            assert self.coefficient_index is not None
+            return self.coefficient_index[i0:i1]
+        return (self.packed[i0:i1] >> np.uint32(self.condition_bits)).view(np.int32)
+
+    def at(self, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(condition, coefficient index)`` of the terms at the positions ``index``."""
+        if self.packed is None:
+            assert self.condition is not None and self.coefficient_index is not None
+            return self.condition[index], self.coefficient_index[index]
+        words = self.packed[index]
+        return ((words & np.uint32((1 << self.condition_bits) - 1)).view(np.int32),
+                (words >> np.uint32(self.condition_bits)).view(np.int32))
+
+    def pack(self) -> None:
+        """Keep each term's condition and coefficient index in one 32-bit word, in place
+        of the condition's (the coefficient indices' int16 array goes: a sixth of a
+        large listing), when both fit; :meth:`block` reads them back."""
+        if self.packed is not None or self.condition is None or self.coefficient_index is None:
+            return
+        bits = len(self).bit_length()  # conditions 0 … len (the superfluous trees' bin)
+        if bits + max(len(self.coefficients) - 1, 0).bit_length() > 32 or self.condition.dtype != np.int32:
+            return
+        packed = self.condition.view(np.uint32)
+        for i in range(0, len(packed), _PACK_CHUNK):
+            packed[i:i + _PACK_CHUNK] |= self.coefficient_index[i:i + _PACK_CHUNK].astype(np.uint32) << np.uint32(bits)
+        self.packed, self.condition_bits = packed, bits
+        self.condition = self.coefficient_index = None
 
     @property
     def order(self) -> int:
@@ -83,10 +135,19 @@ class OrderTerms:
         assert self.left is not None and self.right is not None  # the top order keeps its factors
         return int(self.left[i]), int(self.right[i])
 
+    def coefficient(self, i: int) -> int:
+        """The signed coefficient ``±(n−1)!/σ`` of term ``i``."""
+        return self.coefficients[int(self.coefficient_indices(i, i + 1)[0])]
+
     def sign(self, i: int) -> int:
-        return 1 if self.coefficients[int(self.coefficient_index[i])] > 0 else -1
+        return 1 if self.coefficient(i) > 0 else -1
 
     def terms_of(self, k: int) -> np.ndarray:
         """The term indices of condition ``k`` (a scan: for explanations, not bulk work)."""
-        return np.flatnonzero(self.condition == k)
+        found = [np.flatnonzero(self.conditions(i, i + _PACK_CHUNK) == k) + i for i in range(0, self.rows, _PACK_CHUNK)]
+        return np.concatenate(found) if found else np.zeros(0, dtype=np.intp)
+
+
+#: terms packed or scanned at once: bounds the temporaries
+_PACK_CHUNK = 1 << 22
 

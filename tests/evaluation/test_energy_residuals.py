@@ -41,7 +41,6 @@ from fractions import Fraction as F
 from functools import lru_cache
 
 import networkx as nx
-import numpy as np
 import pytest
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
@@ -234,22 +233,26 @@ def test_weights_recomputed_or_stored_give_the_reference(monkeypatch, recompute_
 
 
 @pytest.mark.parametrize("degree", [None, 3])
-@pytest.mark.parametrize("top_a_bytes", [0, 1 << 62])
-def test_top_a_stored_or_computed_give_the_reference(monkeypatch, degree, top_a_bytes):
-    # a of the trees with top − 1 vertices computed where the top order's terms need it
-    # (a budget of 0 bytes) or stored beforehand: the exact residuals equal the reference's
+@pytest.mark.parametrize("a_before_top", [False, True])
+def test_top_a_stored_before_the_top_order_or_computed_in_it_give_the_reference(monkeypatch, degree, a_before_top):
+    # a of the trees with top − 1 vertices computed where the top order's terms need it,
+    # or stored before the top order with Φ and ψ released: the exact residuals equal the
+    # reference's either way
     import rkcheck.evaluation.algorithm as algorithm
-    from rkcheck.evaluation.channels import ModularChannel
 
-    monkeypatch.setattr(algorithm, "TOP_A_BYTES", top_a_bytes)
+    chosen = []
+
+    def decide(*args):
+        chosen.append(a_before_top)
+        return a_before_top
+
+    monkeypatch.setattr(algorithm, "_a_before_top", decide)
     listing = cond_table(degree)
-    top = listing.order + 1
-    ctx = ModularChannel(1073741789, np.zeros((3, 3), dtype=np.int64), np.zeros(3, dtype=np.int64))
-    assert algorithm._a_vertices(listing, ctx, top) == (top - 1 if top_a_bytes else top - 2)
     rng = random.Random(11)
     A, b = random_tableau(rng, 3, sum_b_one=True)
     refs = ref_by_id()
     got = exact_residuals(listing, A, b)
+    assert chosen  # the choice was made, not skipped
     assert sum(value != 0 for value in got.values()) > 0  # random data: not 0 == 0
     for cid, value in got.items():
         assert value == ref.energy_residual(refs[cid], A, b), cid

@@ -141,6 +141,31 @@ def test_a_damaged_file_is_rebuilt_never_trusted(store, damage):
     assert ConditionListing(8, None, store).complete().cache_hits == list(range(3, 10))
 
 
+@pytest.mark.parametrize("n", [5, 7])
+def test_factors_read_into_the_listing_and_found_damaged_are_rebuilt(store, n):
+    # the factors are read in place: a damaged record below the top leaves them to a
+    # table grown anew, which must rewrite them (and the orders read before it)
+    ConditionListing(8, None, store).complete()
+    data = bytearray(_file(store, n).read_bytes())
+    head = len(MAGIC) + 8 + int.from_bytes(data[len(MAGIC):len(MAGIC) + 8], "little")
+    data[head + 4] ^= 0x40  # the second left factor: the first array after the header
+    _file(store, n).write_bytes(bytes(data))
+    listing = ConditionListing(8, None, store).complete()
+    assert n not in listing.cache_hits
+    same_listing(fresh(), listing)
+
+
+def test_arrays_are_read_into_the_given_ones_when_they_fit(store):
+    built = ConditionListing(6, None, store).complete()
+    lo, hi = built.first[7], built.first[8]
+    into = {"left": np.full(hi - lo, -7, dtype=np.int32), "right": np.full(hi - lo + 1, -7, dtype=np.int32)}
+    arrays, _ = store.load(record_key(7, None), into)
+    assert arrays["left"] is into["left"]  # filled in place
+    assert arrays["right"] is not into["right"]  # another length: an array of its own
+    np.testing.assert_array_equal(into["left"], built.left[lo:hi])
+    np.testing.assert_array_equal(arrays["right"], built.right[lo:hi])
+
+
 def test_a_file_is_plain_integers_behind_a_magic_line(store):
     ConditionListing(5, None, store).complete()
     data = _file(store, 6).read_bytes()
