@@ -214,24 +214,8 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
 
     wanted = sorted(listing.orders if orders is None else orders)
-    # zero residues are decided on N/g_k (ScaledTableau.decision_bits), values need N's bound
-    need = {n: scaled.decision_bits(n, listing.orders[n].max_terms, listing.orders[n].coefficient_weight) for n in wanted}
-    value_need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
-    dual = {}  # values from g'(θ)·N_e when its bound is the smaller (ScaledTableau.dual_value_bits)
-    for n in wanted:
-        dual_bits = scaled.dual_value_bits(n, listing.orders[n].max_terms)
-        dual[n] = dual_bits is not None and dual_bits < value_need[n]
-        if dual_bits is not None and dual[n]:
-            value_need[n] = dual_bits
-    channels = scaled.primes_for(max(need.values(), default=1))
+    need, value_need, dual, channels, count = _plan(scaled, listing, wanted)
     D = scaled.degree
-    count = {n: 0 for n in wanted}
-    cum = 0.0
-    for p, _ in channels:
-        for n in wanted:
-            if cum < need[n]:
-                count[n] += 1
-        cum += math.log2(p)
     passes = max(count.values(), default=0)
     residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
 
@@ -273,6 +257,30 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     if orders is None:
         _remember(scaled, listing, out)
     return out
+
+
+def _plan(scaled: ScaledTableau, listing, wanted: list[int]) -> tuple[dict, dict, dict, list, dict[int, int]]:
+    """Per order: the bits that decide its zero residues (on N/g_k,
+    :meth:`ScaledTableau.decision_bits`), the bits its values need, whether those come
+    from ``g'(θ)·N_e`` (the smaller bound, :meth:`ScaledTableau.dual_value_bits`); then
+    the channel primes, and how many of them each order takes."""
+    need = {n: scaled.decision_bits(n, listing.orders[n].max_terms, listing.orders[n].coefficient_weight) for n in wanted}
+    value_need = {n: scaled.coefficient_bits(n, listing.orders[n].max_terms) for n in wanted}
+    dual = {}
+    for n in wanted:
+        dual_bits = scaled.dual_value_bits(n, listing.orders[n].max_terms)
+        dual[n] = dual_bits is not None and dual_bits < value_need[n]
+        if dual_bits is not None and dual[n]:
+            value_need[n] = dual_bits
+    channels = scaled.primes_for(max(need.values(), default=1))
+    count = {n: 0 for n in wanted}
+    cum = 0.0
+    for p, _ in channels:
+        for n in wanted:
+            if cum < need[n]:
+                count[n] += 1
+        cum += math.log2(p)
+    return need, value_need, dual, channels, count
 
 
 def _remember(scaled: ScaledTableau, listing, sums: dict[int, ExactOrderSums]) -> None:
