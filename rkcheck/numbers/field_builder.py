@@ -138,7 +138,7 @@ class _Builder:
     def _current(self, table: dict, key: Any) -> FieldElement:
         """``table[key]`` in the current field, stored back lifted: a named constant (a
         node, a quadrature weight) is used in many entries, and lifting it again at each
-        use was most of the build of the Gauss-6 field (3 800 lifts for 48 entries)."""
+        use would be most of the build of the Gauss-6 field (3 800 lifts for 48 entries)."""
         x = table[key]
         if x.field is not self.field:
             x = table[key] = self.lift(x)
