@@ -14,6 +14,7 @@ import numpy as np
 
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 from rkcheck.evaluation.conjugates import repeated_channels
+from rkcheck.numbers.polynomials import complex_roots
 
 #: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
 #: memory: channels run together while their weights fit, so that on small listings the
@@ -313,14 +314,6 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
                          per_embedding, e, log2_gprime)
 
 
-def _complex_roots(minpoly: tuple[int, ...], prec: int) -> list[Any]:
-    """The complex roots of ``minpoly`` as Acb balls of at least ``prec`` bits, shared
-    with the number field's own conjugates (the same polynomial when θ is integral)."""
-    from rkcheck.numbers.polynomials import complex_roots
-
-    return complex_roots(minpoly, prec)
-
-
 def _log2_upper(x: Any) -> float:
     """An upper bound of ``log₂ |x|`` for an arb (−1000 for 0): in the log domain, since
     the scaled entries of a field of high degree exceed a float (2^1236 for HBVM(6, 3))."""
@@ -343,7 +336,7 @@ def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, li
     prec = 128
     while True:
         with ctx.workprec(prec):
-            roots = _complex_roots(tuple(minpoly), prec)
+            roots = complex_roots(minpoly, prec)
             # each entry at every root at once (FLINT's multipoint evaluation)
             rows = [[acb_poly(v).evaluate(roots) for v in row] for row in Ai]
             rows.append([acb_poly(v).evaluate(roots) for v in bi])
@@ -371,7 +364,7 @@ def _log2_derivative_bound(minpoly: list[int]) -> float:
     prec = 128
     while True:
         with ctx.workprec(prec):
-            values = [abs(dg(acb(r))) for r in _complex_roots(tuple(minpoly), prec)]
+            values = [abs(dg(acb(r))) for r in complex_roots(minpoly, prec)]
             if all(v.is_finite() for v in values) or prec >= 1 << 14:
                 return max(_log2_upper(v) for v in values)
         prec *= 2
@@ -391,7 +384,7 @@ def _vandermonde_inverse_norm(minpoly: list[int]) -> float:
     prec = 128
     while True:
         with ctx.workprec(prec):
-            roots = _complex_roots(tuple(minpoly), prec)
+            roots = complex_roots(minpoly, prec)
             V = acb_mat([[r**k for k in range(D)] for r in roots])
             try:
                 W = V.inv()
