@@ -365,11 +365,15 @@ def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
         values = [builder.value(n) for n in nodes]
     except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
-    values = [builder.lift(v) for v in values]
-    # sqrt(2) - sqrt(2) needs no field: when every value is rational, Q is the field
-    if builder.field.is_rational or all(v.rational() is not None for v in values):
+    return _values_in(builder.field, [builder.lift(v) for v in values])
+
+
+def _values_in(field: NumberField, values: list[FieldElement]) -> FieldValues:
+    """The values in their field, or as Fractions: sqrt(2) - sqrt(2) needs no field, so
+    when every value is rational, Q is the field."""
+    if field.is_rational or all(v.rational() is not None for v in values):
         return FieldValues(None, [v.rational() for v in values])
-    return FieldValues(builder.field, values)
+    return FieldValues(field, values)
 
 
 def evaluate_in(base: FieldValues, names: Sequence[str], nodes: Sequence[ex.Expr]) -> FieldValues:
@@ -386,7 +390,4 @@ def evaluate_in(base: FieldValues, names: Sequence[str], nodes: Sequence[ex.Expr
         builder.field = base.field
         builder.chain = [base.field]
     builder.constants = {name: builder.field(v) for name, v in zip(names, base.values)}
-    values = [builder.value(n) for n in nodes]
-    if builder.field.is_rational or all(v.rational() is not None for v in values):
-        return FieldValues(None, [v.rational() for v in values])
-    return FieldValues(builder.field, values)
+    return _values_in(builder.field, [builder.value(n) for n in nodes])
