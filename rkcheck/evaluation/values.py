@@ -146,39 +146,41 @@ class TableauValues:
         warnings.  The values shown are exact, from the entries as written, when they have
         exact values."""
         exact = self.exact
-        if exact is not None:
-            return _exact_warnings(exact)
+        rows, total = _exact_differences(exact) if exact is not None else self._certain_differences()
         out: list[str] = []
+        if rows:
+            out.append("c differs from the row sums A·1 (the check uses A·1): "
+                       + "; ".join(f"c[{i}] - (A·1)[{i}] = {text}" for i, text in rows))
+        if total is not None:
+            out.append(f"Σb = {total} ≠ 1: the method is inconsistent (not even order 1)")
+        return out
+
+    def _certain_differences(self) -> tuple[list[tuple[int, str]], str | None]:
+        """The rows i with ``c_i ≠ (A·1)_i`` and the text of each difference, and that of
+        ``Σb`` when it is not 1, where the entries' enclosures prove it."""
         tab, face = self.tableau, self.tableau.exact_values()
+        rows = []
         if tab.c is not None:
-            bad = []
             for i, (row, ci) in enumerate(zip(self.A, tab.c), start=1):
                 diff = ci.enclosure(self.reading.entry_bits, self.reading.decimals) - interval_sum(row)
                 if not diff.contains_zero():
                     exact = None if face is None or face.c is None else face.c[i - 1] - sum(face.A[i - 1])
-                    bad.append(f"c[{i}] - (A·1)[{i}] = {_value_text(diff, exact)}")
-            if bad:
-                out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
+                    rows.append((i, _value_text(diff, exact)))
         sb = interval_sum(self.b)
-        if not (sb - Interval.point(1)).contains_zero():
-            exact = None if face is None else sum(face.b)
-            out.append(f"Σb = {_value_text(sb, exact)} ≠ 1: the method is inconsistent (not even order 1)")
-        return out
+        if (sb - Interval.point(1)).contains_zero():
+            return rows, None
+        return rows, _value_text(sb, None if face is None else sum(face.b))
 
 
-def _exact_warnings(exact: ExactValues) -> list[str]:
-    """:meth:`TableauValues.consistency_warnings` for exact values: differences decided
-    exactly, shown exactly."""
-    out: list[str] = []
+def _exact_differences(exact: ExactValues) -> tuple[list[tuple[int, str]], str | None]:
+    """:meth:`TableauValues._certain_differences` for exact values: decided exactly,
+    shown exactly."""
+    rows = []
     if exact.c is not None:
         diffs = [(i, ci - sum(row)) for i, (row, ci) in enumerate(zip(exact.A, exact.c), start=1)]
-        bad = [f"c[{i}] - (A·1)[{i}] = {_exact_text(d)}" for i, d in diffs if d != 0]
-        if bad:
-            out.append("c differs from the row sums A·1 (the check uses A·1): " + "; ".join(bad))
+        rows = [(i, _exact_text(d)) for i, d in diffs if d != 0]
     sb = sum(exact.b)
-    if sb != 1:
-        out.append(f"Σb = {_exact_text(sb)} ≠ 1: the method is inconsistent (not even order 1)")
-    return out
+    return rows, None if sb == 1 else _exact_text(sb)
 
 
 def _exact_text(x: Any) -> str:
