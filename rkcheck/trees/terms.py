@@ -62,26 +62,27 @@ class OrderTerms:
 
     def conditions(self, i0: int, i1: int) -> np.ndarray:
         """The condition of each of the terms ``i0 … i1 − 1``."""
-        if self.packed is None:
-            assert self.condition is not None
-            return self.condition[i0:i1]
-        return (self.packed[i0:i1] & np.uint32((1 << self.condition_bits) - 1)).view(np.int32)
+        return self._conditions(slice(i0, i1))
 
     def coefficient_indices(self, i0: int, i1: int) -> np.ndarray:
         """The index into :attr:`coefficients` of each of the terms ``i0 … i1 − 1``."""
-        if self.packed is None:
-            assert self.coefficient_index is not None
-            return self.coefficient_index[i0:i1]
-        return (self.packed[i0:i1] >> np.uint32(self.condition_bits)).view(np.int32)
+        return self._coefficient_indices(slice(i0, i1))
 
     def at(self, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(condition, coefficient index)`` of the terms at the positions ``index``."""
+        return self._conditions(index), self._coefficient_indices(index)
+
+    def _conditions(self, index: slice | np.ndarray) -> np.ndarray:
         if self.packed is None:
-            assert self.condition is not None and self.coefficient_index is not None
-            return self.condition[index], self.coefficient_index[index]
-        words = self.packed[index]
-        return ((words & np.uint32((1 << self.condition_bits) - 1)).view(np.int32),
-                (words >> np.uint32(self.condition_bits)).view(np.int32))
+            assert self.condition is not None
+            return self.condition[index]
+        return (self.packed[index] & np.uint32((1 << self.condition_bits) - 1)).view(np.int32)
+
+    def _coefficient_indices(self, index: slice | np.ndarray) -> np.ndarray:
+        if self.packed is None:
+            assert self.coefficient_index is not None
+            return self.coefficient_index[index]
+        return (self.packed[index] >> np.uint32(self.condition_bits)).view(np.int32)
 
     def pack(self) -> None:
         """Keep each term's condition and coefficient index in one 32-bit word, in place
