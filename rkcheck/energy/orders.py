@@ -154,46 +154,60 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     Exact data: residues of ``γ(t)·â(t) − d^|t|`` (``â = d^|t| a``) modulo primes — a
     nonzero one proves the failure; zero at enough primes (the size bound of
     :mod:`rkcheck.evaluation.modular`) proves the condition.  Otherwise certified balls."""
+    if values.backend is Backend.EXACT:
+        return _exact_classical_order(values, max_order)
+    return _ball_classical_order(values, max_order)
+
+
+def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult:
+    """Each order's conditions decided by their residues modulo the primes its size
+    bound needs; a channel opened for a lower order carries on to the higher ones."""
     table = unbounded_table()
     s = values.stages
     verdicts: list[Verdict] = []
-    if values.backend is Backend.EXACT:
-        scaled = values.scaled
-        channels: list[tuple[int, int, TreeWeights]] = []
-        opened: list[int] = []
-        for p in range(1, max_order + 1):
-            table.grow_to(p)
-            ids = np.arange(table.first[p], table.first[p + 1])
-            gamma = table.gamma(ids)
-            # γ(t)·e^p·a(t) − e^p is an algebraic integer (e the integrality denominator,
-            # = d over Q), in embedding j at most p!·M_j^p + e^p (M_j with e in place of
-            # d) <= 2^(log2 B_j + p·log2 e + 1) (B_j >= 1): zero residues over
-            # Π q > 2^bits prove it zero (the norm argument of rkcheck.evaluation.modular;
-            # over Q its one embedding).  With d instead of e the bound would grow with
-            # log2 d per vertex (1236 bits for HBVM(6, σ), against 19 for e)
-            e = scaled.integral_d or scaled.d
-            bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(e)) + 1
-            primes = scaled.primes_for(bits)
-            # one channel per (prime, root); the primes already open are the first ones
-            # (counted, not searched: thousands of primes for entries of thousands of digits).
-            # A root whose images are a stage permutation of an earlier root's has the same
-            # a(t) = bᵀΦ(t) (ScaledTableau.channel_sources): it is not evaluated again
-            for q, roots in primes[len(opened):]:
-                opened.append(q)
-                sources = scaled.channel_sources(q)
-                for j, r in enumerate(roots):
-                    if sources[j] == j:
-                        channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
-            failing = np.zeros(len(ids), dtype=bool)
-            for q, r, weights in channels:
-                a = weights.extend(table, p)
-                target = pow(scaled.d, p, q)
-                g = np.array([int(x) % q for x in gamma], dtype=np.int64)
-                failing |= (a * g % q) != target
-            if failing.any():
-                return _order_result(verdicts, p, _first_failure(table, ids[failing]))
-            verdicts.append(Verdict(HOLDS))
-        return _order_result(verdicts, max_order)
+    scaled = values.scaled
+    channels: list[tuple[int, int, TreeWeights]] = []
+    opened: list[int] = []
+    for p in range(1, max_order + 1):
+        table.grow_to(p)
+        ids = np.arange(table.first[p], table.first[p + 1])
+        gamma = table.gamma(ids)
+        # γ(t)·e^p·a(t) − e^p is an algebraic integer (e the integrality denominator,
+        # = d over Q), in embedding j at most p!·M_j^p + e^p (M_j with e in place of
+        # d) <= 2^(log2 B_j + p·log2 e + 1) (B_j >= 1): zero residues over
+        # Π q > 2^bits prove it zero (the norm argument of rkcheck.evaluation.modular;
+        # over Q its one embedding).  With d instead of e the bound would grow with
+        # log2 d per vertex (1236 bits for HBVM(6, σ), against 19 for e)
+        e = scaled.integral_d or scaled.d
+        bits = scaled.decision_bits(p + 1, 1) + math.ceil(p * math.log2(e)) + 1
+        primes = scaled.primes_for(bits)
+        # one channel per (prime, root); the primes already open are the first ones
+        # (counted, not searched: thousands of primes for entries of thousands of digits).
+        # A root whose images are a stage permutation of an earlier root's has the same
+        # a(t) = bᵀΦ(t) (ScaledTableau.channel_sources): it is not evaluated again
+        for q, roots in primes[len(opened):]:
+            opened.append(q)
+            sources = scaled.channel_sources(q)
+            for j, r in enumerate(roots):
+                if sources[j] == j:
+                    channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
+        failing = np.zeros(len(ids), dtype=bool)
+        for q, r, weights in channels:
+            a = weights.extend(table, p)
+            target = pow(scaled.d, p, q)
+            g = np.array([int(x) % q for x in gamma], dtype=np.int64)
+            failing |= (a * g % q) != target
+        if failing.any():
+            return _order_result(verdicts, p, _first_failure(table, ids[failing]))
+        verdicts.append(Verdict(HOLDS))
+    return _order_result(verdicts, max_order)
+
+
+def _ball_classical_order(values: TableauValues, max_order: int) -> OrderResult:
+    """Each order's conditions decided on certified balls: a ball without 1/γ(t) fails."""
+    table = unbounded_table()
+    s = values.stages
+    verdicts: list[Verdict] = []
     balls: EnclosingContext = ball_context(values)
     weights = TreeWeights(balls, s)
     for p in range(1, max_order + 1):
