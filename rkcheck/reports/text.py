@@ -168,39 +168,11 @@ def render_check(
         for w in res.warnings:
             console.print(Text(f"warning: {w}", style="yellow"))
         console.print()
-        kv = _kv_table()
-        kv.add_row(*plain("quadrature order", _order_text(res.quadrature, "quadrature",
-                                                          res.tableau.info.continuous is not None)))
-        kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
-        if res.avf is not None:
-            a = res.avf
-            if a.equals_avf:
-                label = Text("yes", style="green") if a.verdict.state == HOLDS else Text(f"yes, to {a.verdict.digits} digits", style="yellow")
-            else:
-                label = Text("no", style="red")
-            label.append(f" — {a.reason}", style="")
-            kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))
-            for note in a.notes:
-                kv.add_row(*plain("", note))
-        if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
-            kv.add_row(*plain("certificate", res.certificate.reason))
-        kv.add_row(*plain("energy order", _energy_text(res)))
-        if res.theorem1:
-            kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
-        for name, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
-            kv.add_row(*plain(name, value))
-        console.print(kv)
+        console.print(_facts_table(res))
         console.print()
         console.print(per_order_table(res))
         if verbose:
-            t = res.timings
-            console.print(
-                f"timings: tree and condition tables {t.get('trees', 0):.3f} s, evaluation "
-                f"{t.get('evaluation', 0):.3f} s, orders and certificates {t.get('orders_and_avf', 0):.3f} s; "
-                f"backend {res.backend}"
-                + (f" at {bits_for_dps(res.options.dps)} bits" if res.backend != "exact" else ""),
-                style="dim",
-            )
+            console.print(_timings_line(res), style="dim")
     if show_all:
         console.print(conditions_table(res.conditions, f"All conditions ({count_text(len(res.conditions))} checked)"))
     elif res.failures and (not quiet or judged_by_conditions(res, fail_on)):
@@ -216,6 +188,41 @@ def render_check(
     elif res.claims and any(not r.met for r in res.claims):  # --quiet: the broken claims only
         console.print(claims_table([r for r in res.claims if not r.met], "Broken claims ([expect])"))
     console.print(verdict_line(res, res.claims, fail_on))
+
+
+def _facts_table(res: CheckResult) -> Table:
+    """The check's facts, one per row: orders, AVF, certificate, energy order, properties."""
+    kv = _kv_table()
+    kv.add_row(*plain("quadrature order", _order_text(res.quadrature, "quadrature",
+                                                      res.tableau.info.continuous is not None)))
+    kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
+    if res.avf is not None:
+        a = res.avf
+        if a.equals_avf:
+            label = Text("yes", style="green") if a.verdict.state == HOLDS else Text(f"yes, to {a.verdict.digits} digits", style="yellow")
+        else:
+            label = Text("no", style="red")
+        label.append(f" — {a.reason}", style="")
+        kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))
+        for note in a.notes:
+            kv.add_row(*plain("", note))
+    if res.certificate is not None and res.certificate.certified and res.certificate.kind != "avf":
+        kv.add_row(*plain("certificate", res.certificate.reason))
+    kv.add_row(*plain("energy order", _energy_text(res)))
+    if res.theorem1:
+        kv.add_row(*plain("Theorem 1", res.theorem1.removeprefix("Theorem 1: ")))
+    for name, value in property_rows(res):  # error constant, symplectic, symmetric, R(z)
+        kv.add_row(*plain(name, value))
+    return kv
+
+
+def _timings_line(res: CheckResult) -> str:
+    """``--verbose``: where the check's time went, and in which arithmetic."""
+    t = res.timings
+    return (f"timings: tree and condition tables {t.get('trees', 0):.3f} s, evaluation "
+            f"{t.get('evaluation', 0):.3f} s, orders and certificates {t.get('orders_and_avf', 0):.3f} s; "
+            f"backend {res.backend}"
+            + (f" at {bits_for_dps(res.options.dps)} bits" if res.backend != "exact" else ""))
 
 
 def draw_conditions(conditions: Sequence[Condition], console: Console) -> None:
