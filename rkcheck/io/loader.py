@@ -150,31 +150,8 @@ def _build(
     source: str,
     max_stages: int,
 ) -> "Tableau | Family":
-    warnings: list[str] = []
-    for key in data:
-        if key not in KNOWN_TABLES:
-            warnings.append(f"unknown table [{printable(key)}] ignored (known: {', '.join(KNOWN_TABLES)})")
-    if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):
-        # the short form: A/b/c at the top level stand for the [tableau] table
-        data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
-            "tableau": {k: data[k] for k in SHORT_FORM_KEYS if k in data}}
-        warnings[:] = [w for w in warnings if not any(f"[{k}]" in w for k in SHORT_FORM_KEYS)]
-    method = _table(data, "method")
-    name = method.get("name", Path(source).stem if source != "-" else "stdin")
-    if not isinstance(name, str):
-        raise UserError("expected a string", "method.name")
-    description = method.get("description", "")
-    if not isinstance(description, str):
-        raise UserError("expected a string", "method.description")
-    references = tuple(parse_strings(method["references"], "method.references")) if "references" in method else ()
-    # shown on terminals: no control characters or lone surrogates from the file
-    name, description = printable(name), printable(description)
-    references = tuple(printable(r) for r in references)
-    check = validate_check_table(_table(data, "check"))
-    expect = _table(data, "expect")
-    claims = parse_claims(expect)
-    info = MethodInfo(description=description, references=references, source=source, check=check,
-                      expect=expect, claims=tuple(claims))
+    data, warnings = _tables(data)
+    name, info = _method_info(data, source)
 
     if "family" in data and "tableau" in data:
         raise UserError("give either [tableau] or [family], not both")
@@ -202,13 +179,50 @@ def _build(
         return _build_family(data, tab, name, info.replace(warnings=tuple(warnings)), max_stages)
     constants = _constants(_table(data, "constants"))
     A, b, c = _entries(tab, constants, max_stages)
-    bare = [e for e in (*(x for row in A for x in row), *b, *(c or ())) if e.bare_number and _is_float_text(e.text)]
-    if bare:
-        warnings.append(
-            f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
-            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"
-        )
+    warnings += _bare_floats((*(x for row in A for x in row), *b, *(c or ())))
     return Tableau(A=A, b=b, c=c, name=name, info=info.replace(constants=constants, warnings=tuple(warnings)))
+
+
+def _tables(data: dict[str, Any]) -> tuple[dict[str, Any], list[str]]:
+    """The document with its short form (A/b/c at the top level) read as its [tableau]
+    table, and a warning per unknown table."""
+    warnings = [f"unknown table [{printable(key)}] ignored (known: {', '.join(KNOWN_TABLES)})"
+                for key in data if key not in KNOWN_TABLES]
+    if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):
+        data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
+            "tableau": {k: data[k] for k in SHORT_FORM_KEYS if k in data}}
+        warnings = [w for w in warnings if not any(f"[{k}]" in w for k in SHORT_FORM_KEYS)]
+    return data, warnings
+
+
+def _method_info(data: dict[str, Any], source: str) -> tuple[str, MethodInfo]:
+    """The method's name (the file's stem unless given) and what the file says about it:
+    description, references, [check] options and [expect] claims."""
+    method = _table(data, "method")
+    name = method.get("name", Path(source).stem if source != "-" else "stdin")
+    if not isinstance(name, str):
+        raise UserError("expected a string", "method.name")
+    description = method.get("description", "")
+    if not isinstance(description, str):
+        raise UserError("expected a string", "method.description")
+    references = tuple(parse_strings(method["references"], "method.references")) if "references" in method else ()
+    # shown on terminals: no control characters or lone surrogates from the file
+    name, description = printable(name), printable(description)
+    references = tuple(printable(r) for r in references)
+    check = validate_check_table(_table(data, "check"))
+    expect = _table(data, "expect")
+    claims = parse_claims(expect)
+    return name, MethodInfo(description=description, references=references, source=source, check=check,
+                            expect=expect, claims=tuple(claims))
+
+
+def _bare_floats(entries) -> list[str]:
+    """A warning when entries are bare TOML/JSON floats, which other tools read as doubles."""
+    bare = [e for e in entries if e.bare_number and _is_float_text(e.text)]
+    if not bare:
+        return []
+    return [f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
+            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"]
 
 
 def _build_family(data: dict[str, Any], tab: dict[str, Any], name: str, info: MethodInfo,
