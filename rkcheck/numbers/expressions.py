@@ -127,22 +127,37 @@ def root_polynomial(call: Call) -> list[Fraction]:
     """The coefficients (ascending) of the polynomial of ``root(p, k)``: ``p`` may use the
     variable ``x``, numbers (taken exactly), ``+ - *``, division by a nonzero number and
     powers with integer exponents >= 0."""
-    def pmul(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
+    reader = _RootPolynomial(call.column)
+    coeffs = polynomials.trim(fold(call.args[0], reader.combine, reader.inside))
+    if len(coeffs) < 2:
+        raise UserError(f"root's polynomial must have degree >= 1 (column {call.column})")
+    return coeffs
+
+
+class _RootPolynomial:
+    """The polynomial in ``x`` of a ``root`` call's first argument, node by node, with the
+    limits on its degree and size (errors name the call's column)."""
+
+    def __init__(self, column: int):
+        self.column = column
+
+    def mul(self, a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
         out = polynomials.mul(a, b)
         if len(out) - 1 > MAX_ROOT_DEGREE:
-            raise UserError(f"root's polynomial has degree above {MAX_ROOT_DEGREE} at column {call.column}")
+            raise UserError(f"root's polynomial has degree above {MAX_ROOT_DEGREE} at column {self.column}")
         return out
 
-    def constant(poly: list[Fraction], what: str) -> Fraction:
+    def constant(self, poly: list[Fraction], what: str) -> Fraction:
         p = polynomials.trim(poly)
         if len(p) > 1:
-            raise UserError(f"{what} in root's polynomial must not depend on x (column {call.column})")
+            raise UserError(f"{what} in root's polynomial must not depend on x (column {self.column})")
         return p[0]
 
+    @staticmethod
     def inside(node: Expr) -> tuple[Expr, ...]:
         return () if isinstance(node, Call) else operands(node)  # a call is refused in combine
 
-    def combine(node: Expr, vals: list[list[Fraction]]) -> list[Fraction]:
+    def combine(self, node: Expr, vals: list[list[Fraction]]) -> list[Fraction]:
         if isinstance(node, Num):
             return [node.value]
         if isinstance(node, Name):
@@ -155,14 +170,7 @@ def root_polynomial(call: Call) -> list[Fraction]:
         if isinstance(node, Call):
             raise UserError(f"no function inside root's polynomial (column {node.column})")
         if isinstance(node, Power):
-            n = _check_exponent(constant(vals[1], "an exponent"), node.column)
-            if n < 0:
-                raise UserError(f"negative power in root's polynomial at column {node.column}")
-            base, out = vals[0], [Fraction(1)]
-            for _ in range(n):
-                out = pmul(out, base)
-                _check_value_bits(tuple(out), node.column)
-            return out
+            return self.power(node, vals[0], vals[1])
         assert isinstance(node, Binary)
         left, right = vals
         if node.op == "+":
@@ -170,21 +178,23 @@ def root_polynomial(call: Call) -> list[Fraction]:
         if node.op == "-":
             return polynomials.sub(left, right)
         if node.op == "*":
-            out = pmul(left, right)
+            out = self.mul(left, right)
             _check_value_bits(tuple(out), node.column)
             return out
-        divisor = constant(right, "a divisor")
+        divisor = self.constant(right, "a divisor")
         if divisor == 0:
             raise UserError(f"division by zero at column {node.column}")
         return [c / divisor for c in left]
 
-    def go(node: Expr) -> list[Fraction]:
-        return fold(node, combine, inside)
-
-    coeffs = polynomials.trim(go(call.args[0]))
-    if len(coeffs) < 2:
-        raise UserError(f"root's polynomial must have degree >= 1 (column {call.column})")
-    return coeffs
+    def power(self, node: Power, base: list[Fraction], exponent: list[Fraction]) -> list[Fraction]:
+        n = _check_exponent(self.constant(exponent, "an exponent"), node.column)
+        if n < 0:
+            raise UserError(f"negative power in root's polynomial at column {node.column}")
+        out = [Fraction(1)]
+        for _ in range(n):
+            out = self.mul(out, base)
+            _check_value_bits(tuple(out), node.column)
+        return out
 
 
 def root_enclosure(call: Call, k_value: Fraction | None, bits: int) -> Interval:
