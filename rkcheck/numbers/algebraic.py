@@ -221,14 +221,16 @@ class FieldElement:
         # FLINT's (multimodular) solve of  M_α x = e_0  (M_α: multiplication by α) does not
         from flint import fmpq_mat
 
-        D = self.field.degree
+        D, g = self.field.degree, self.field.g
         M = fmpq_mat(D, D)
-        x = self
-        theta = self.field.gen
-        for j in range(D):  # column j: α·θ^j
-            for i, c in enumerate(x.poly.coeffs()):
+        x = self.poly
+        theta = to_flint([0, 1])
+        for j in range(D):  # column j: α·θ^j, each from the last by a shift and one step of reduction
+            for i, c in enumerate(x.coeffs()):
                 M[i, j] = c
             x = x * theta
+            if x.degree() == D:
+                x -= g * (x[D] / g[D])
         e0 = fmpq_mat(D, 1)
         e0[0, 0] = 1
         sol = M.solve(e0)

@@ -233,3 +233,17 @@ def test_a_dot_product_reduced_once_is_the_sum_of_the_products():
     assert dot(xs, ys) == xs[0] * ys[0] + xs[1] * ys[1] + xs[2] * ys[2]
     # anything but elements of one field: no fast path
     assert dot(xs, [Fraction(1)] * 3) is None and dot([], []) is None
+
+
+def test_inverses_in_a_field_of_degree_16_are_those_of_the_extended_gcd():
+    # above degree 8 an inverse solves the system of multiplication by α; the slower
+    # extended gcd of α's polynomial with g gives the same element, and α·α⁻¹ = 1
+    r = _values("sqrt(sqrt(1e155) + sqrt(2))", "sqrt(7)", "sqrt(5)")
+    x, y, z = r.values
+    assert r.field.degree == 16
+    g = r.field.g
+    for alpha in (x, x + y * z, x * y - 3 * z + 1, (x + 1) * (y - 2) * (z + Fraction(1, 3))):
+        inv = alpha.inverse()
+        assert inv * alpha == 1
+        d, s, _ = alpha.poly.xgcd(g)
+        assert inv.poly == (s / d) % g
