@@ -194,38 +194,104 @@ def family_exact_values(spec: FamilySpec) -> Any:
     """The family's ``(field, A, b, c)`` exactly (a :class:`~rkcheck.numbers.algebraic.FieldValues`
     with ``field`` None over Q), or None with the reason when the nodes have no closed form
     or their field exceeds the degree limit.  Kept per spec (the values are never mutated),
-    and the field of the nodes and weights per set of nodes (:func:`_nodes_field`)."""
+    and the field of the nodes per set of nodes (:func:`_nodes_field`).
+
+    The entries are evaluated from :func:`_evaluation_texts`, polynomials in the nodes,
+    not from the Lagrange forms people read: the same values without a division in the
+    field (the Gauss-6 nodes' weights cost a third of a second as Lagrange forms)."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.algebraic import NotAlgebraic
-    from rkcheck.numbers.expressions import walk
     from rkcheck.numbers.field_builder import evaluate_in
 
     texts = expression_texts(spec)
     if texts is None:
         return None, f"the nodes have no closed form in roots, or there are more than {MAX_EXACT_NODES}"
     consts, A, b, c = texts
-    entries = [ex.parse(x) for row in A for x in row] + [ex.parse(x) for x in list(b) + list(c)]
-    # the names in the order the entries first use them: the field's generators are then
-    # adjoined in the order evaluating the entries one by one would adjoin them, which
-    # fixes the primitive element θ that reports write irrational values in
-    order = dict.fromkeys(node.name for expr in entries for node in walk(expr)
-                          if isinstance(node, ex.Name) and node.name in consts)
-    names = list(order) + [name for name in consts if name not in order]
+    nodes = [f"c{i + 1}" for i in range(len(b))]
+    order = _adjoining_order(consts, [x for row in A for x in row] + list(b) + list(c), set(nodes))
     try:
-        base = _nodes_field(tuple((name, consts[name]) for name in names))
+        base = _nodes_field(tuple((name, consts[name]) for name in order))
     except NotAlgebraic as err:
         return None, str(err)
-    return evaluate_in(base, names, entries), None
+    definitions, A_e, b_e = _evaluation_texts(spec, spec.base_rule().nodes[0].poly, A)
+    entries = [ex.parse(x) for row in A_e for x in row] + [ex.parse(x) for x in list(b_e) + list(c)]
+    return evaluate_in(base, order, entries, {k: ex.parse(v) for k, v in definitions.items()}), None
+
+
+def _adjoining_order(consts: dict[str, str], entries: list[str], nodes: set[str]) -> list[str]:
+    """The nodes in the order in which evaluating the Lagrange-form ``entries`` one by one
+    (every constant on its first use) first meets them: the order their generators are
+    adjoined in, which fixes the primitive element θ that reports write irrational values
+    in — the same θ whichever texts the values are then computed from."""
+    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.expressions import walk
+
+    order: dict[str, None] = {}
+    seen: set[str] = set()
+
+    def meet(text: str) -> None:
+        for node in walk(ex.parse(text)):
+            if isinstance(node, ex.Name) and node.name in consts and node.name not in seen:
+                seen.add(node.name)
+                if node.name in nodes:
+                    order[node.name] = None
+                else:
+                    meet(consts[node.name])
+
+    for text in entries:
+        meet(text)
+    return list(order) + [name for name in consts if name in nodes and name not in order]
 
 
 @lru_cache(maxsize=4)
 def _nodes_field(consts: tuple[tuple[str, str], ...]) -> Any:
-    """The number field of the nodes and weights (``consts``: their names and exact texts)
-    and their values in it (:func:`rkcheck.numbers.field_builder.field_of`): the field of
-    the six Gauss-6 nodes, of degree 48, takes about a second to build, and a catalogue
-    or a scan meets the same nodes in several families (HBVM(6, 2), HBVM(6, 3), Gauss-6)."""
+    """The number field of the nodes (``consts``: their names and exact texts, in the
+    order their generators are adjoined) and their values in it
+    (:func:`rkcheck.numbers.field_builder.field_of`): the field of the six Gauss-6 nodes,
+    of degree 48, takes about half a second to build, and a catalogue or a scan meets the
+    same nodes in several families (HBVM(6, 2), HBVM(6, 3), Gauss-6)."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.field_builder import field_of
 
     names = [name for name, _ in consts]
     return field_of([ex.parse(name) for name in names], {name: ex.parse(text) for name, text in consts})
+
+
+def _evaluation_texts(spec: FamilySpec, P: list[Fraction],
+                      A: list[list[str]]) -> tuple[dict[str, str], list[list[str]], list[str]]:
+    """``(definitions, A, b)``: the family's weights and coefficients as polynomials in the
+    nodes ``c1 … cn``, the roots of the node polynomial ``P`` (all of them, simple); ``A``
+    (the texts people read) is kept where it is written over the nodes and weights alone.
+
+    With ``P(x)/(x − c) = Σ_k q_k(c) x^k`` (``q_k(c) = Σ_(m>k) p_m c^(m−k−1)``) and ``V = 1/P'``
+    modulo P, the Lagrange basis polynomial of node j is ``ℓ_j(x) = Σ_k U_k(c_j) x^k`` with
+    ``U_k = q_k·V mod P``, so ``∫_lo^hi ℓ_j = Σ_k U_k(c_j)(hi^(k+1) − lo^(k+1))/(k + 1)``
+    and ``b_j = W(c_j)``, ``W = Σ_k U_k/(k + 1) mod P``; ``1/b_i = (W⁻¹ mod P)(c_i)``.
+    Every reduction is modulo P over Q, so each node's values are polynomials of degree
+    below n in it: no division in the nodes' field."""
+    from flint import fmpq_poly
+
+    from rkcheck.numbers.polynomials import from_flint, to_flint
+
+    n = len(P) - 1
+    c = [f"c{i + 1}" for i in range(n)]
+    f = to_flint(list(P))
+    d, s, _ = f.derivative().xgcd(f)
+    V = (s / d) % f
+    U = [(to_flint([P[m] for m in range(k + 1, n + 1)]) * V) % f for k in range(n)]
+    W = sum((u / (k + 1) for k, u in enumerate(U)), fmpq_poly([])) % f
+    definitions = {f"b{j + 1}": _poly_text(from_flint(W), c[j]) for j in range(n)}
+    bn = list(definitions)
+    name = spec.name
+    if name in ("gauss", "lobatto-iiia", "radau-iia", "lobatto-iiib", "radau-ia"):
+        definitions |= {f"u{k}_{j + 1}": _poly_text(from_flint(U[k]), c[j]) for k in range(n) for j in range(n)}
+    if name in ("gauss", "lobatto-iiia", "radau-iia"):  # ∫_0^(c_i) ℓ_j
+        A = [[" + ".join(f"{_par(_power(c[i], k + 1))}/{k + 1}*u{k}_{j + 1}" for k in range(n)) for j in range(n)]
+             for i in range(n)]
+    elif name in ("lobatto-iiib", "radau-ia"):  # b_j/b_i·∫_(c_j)^1 ℓ_i
+        d, s, _ = W.xgcd(f)
+        definitions |= {f"binv{i + 1}": _poly_text(from_flint((s / d) % f), c[i]) for i in range(n)}
+        A = [[(f"{bn[j]}*binv{i + 1}*" if i != j else "")
+              + "(" + " + ".join(f"(1 - {_power(c[j], k + 1)})/{k + 1}*u{k}_{i + 1}" for k in range(n)) + ")"
+              for j in range(n)] for i in range(n)]
+    return definitions, A, bn

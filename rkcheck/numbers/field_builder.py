@@ -376,16 +376,18 @@ def _values_in(field: NumberField, values: list[FieldElement]) -> FieldValues:
     return FieldValues(field, values)
 
 
-def evaluate_in(base: FieldValues, names: Sequence[str], nodes: Sequence[ex.Expr]) -> FieldValues:
+def evaluate_in(base: FieldValues, names: Sequence[str], nodes: Sequence[ex.Expr],
+                definitions: Mapping[str, ex.Expr] | None = None) -> FieldValues:
     """Expressions over named constants whose field is already built — ``base`` holds the
-    values of ``names`` (as :func:`field_of` returned them) — evaluated in that field:
-    rationals, the names, ``+ − × ÷`` and integer powers, no roots (ValueError), so the
-    field cannot grow.  The tableaux of the families over one set of nodes share the
-    nodes' field this way: HBVM(6, 2), HBVM(6, 3) and Gauss-6 need the degree-48 field of
-    the six Gauss-6 nodes once, not once each."""
-    if any(isinstance(node, ex.Call) for expr in nodes for node in xp.walk(expr)):
+    values of ``names`` (as :func:`field_of` returned them), ``definitions`` more names
+    defined over those — evaluated in that field: rationals, the names, ``+ − × ÷`` and
+    integer powers, no roots (ValueError), so the field cannot grow.  The tableaux of the
+    families over one set of nodes share the nodes' field this way: HBVM(6, 2), HBVM(6, 3)
+    and Gauss-6 need the degree-48 field of the six Gauss-6 nodes once, not once each."""
+    everything = list(nodes) + list((definitions or {}).values())
+    if any(isinstance(node, ex.Call) for expr in everything for node in xp.walk(expr)):
         raise ValueError("evaluate_in: a root or square root would extend the field")
-    builder = _Builder()
+    builder = _Builder(definitions)
     if base.field is not None:
         builder.field = base.field
         builder.chain = [base.field]

@@ -1,5 +1,6 @@
 """Family tableaux evaluated in the field of their nodes, built once per set of nodes,
-against the direct route: every entry text evaluated by field_of on its own."""
+from polynomials in the nodes, against the direct route: every Lagrange-form entry text
+evaluated by field_of on its own."""
 
 from fractions import Fraction
 
@@ -19,7 +20,9 @@ def _direct(spec):
 
 @pytest.mark.parametrize("table", [
     {"name": "hbvm", "k": 4, "s": 2}, {"name": "hbvm", "k": 4, "s": 3}, {"name": "gauss", "stages": 3},
-    {"name": "lobatto-iiib", "stages": 4}, {"name": "avf", "stages": 3},
+    {"name": "lobatto-iiib", "stages": 4}, {"name": "avf", "stages": 3}, {"name": "gauss", "stages": 5},
+    {"name": "radau-ia", "stages": 3}, {"name": "radau-iia", "stages": 3}, {"name": "lobatto-iiia", "stages": 5},
+    {"name": "gauss", "stages": 1},
 ])
 def test_the_shared_nodes_field_gives_the_direct_routes_values_and_field(table):
     spec = parse_spec(table)
