@@ -77,8 +77,8 @@ def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:
                     f"A − (A·1)bᵀ ≠ 0 at entry ({gi},{gj}) of the {where}: {_value_text(diff)}",
                 )
             checks.append(v)
-    for k in range(1, degree + 1):
-        v = sc.verdict(sc.quadrature_residual(rb, c, k))
+    for k, residual in zip(range(1, degree + 1), sc.quadrature_residuals(rb, c)):
+        v = sc.verdict(residual)
         if v.state == FAILS:
             return result(
                 Verdict(FAILS),

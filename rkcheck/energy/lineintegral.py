@@ -145,8 +145,8 @@ def certificate_of_reduction(red: Reduction, degree: int) -> LineIntegralCertifi
     c = sc.row_sums(rA, sc.sample(rA, rb))
     quad: list[Verdict] = []
     quad_order = 0
-    for k in range(1, 2 * n + 1):
-        v = sc.verdict(sc.quadrature_residual(rb, c, k))
+    for k, residual in zip(range(1, 2 * n + 1), sc.quadrature_residuals(rb, c)):
+        v = sc.verdict(residual)
         if v.state == FAILS:
             break
         quad.append(v)

@@ -78,8 +78,8 @@ def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
     c = sc.row_sums(A, sc.sample(A, b))
     top = 2 * len(b)
     verdicts: list[Verdict] = []
-    for k in range(1, top + 1):
-        v = sc.verdict(sc.quadrature_residual(b, c, k))
+    for k, residual in zip(range(1, top + 1), sc.quadrature_residuals(b, c)):
+        v = sc.verdict(residual)
         if v.state == FAILS:
             power = "" if k == 1 else ("_i" if k == 2 else f"_i^{k - 1}")
             label = "Σ b_i = 1" if k == 1 else f"Σ b_i c{power} = 1/{k}"

@@ -19,8 +19,9 @@ lifts a rational to the kind of its neighbour (intervals do not mix with Fractio
 
 from __future__ import annotations
 
+import itertools
 from fractions import Fraction
-from typing import Any, Sequence
+from typing import Any, Iterator, Sequence
 
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval
 from rkcheck.evaluation.values import TableauValues
@@ -220,3 +221,18 @@ def quadrature_residual(b: Vector, c: Vector, k: int) -> Scalar:
     """``Σ b_i c_i^(k−1) − 1/k`` (definitions §2)."""
     like = b[0]
     return total([bi * power(ci, k - 1) for bi, ci in zip(b, c)], like) - const(Fraction(1, k), like)
+
+
+def quadrature_residuals(b: Vector, c: Vector) -> Iterator[Scalar]:
+    """``Σ b_i c_i^(k−1) − 1/k`` for k = 1, 2, … (as far as the caller reads).  Exact
+    scalars keep ``b_i c_i^(k−1)`` from one k to the next, one product per node and k
+    where each power anew took k (a continuous method's surrogate has dozens of nodes);
+    intervals take each power on its own, the tighter enclosure."""
+    like = b[0]
+    if isinstance(like, Interval):
+        yield from (quadrature_residual(b, c, k) for k in itertools.count(1))
+        return
+    terms = list(b)
+    for k in itertools.count(1):
+        yield total(terms, like) - const(Fraction(1, k), like)
+        terms = [t * ci for t, ci in zip(terms, c)]
