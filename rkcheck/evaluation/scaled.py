@@ -56,6 +56,7 @@ class ScaledTableau:
         # sent to a worker needs the tableau, not every residue of a finished check
         state = dict(self.__dict__)
         state.pop("_all_trees", None)
+        state.pop("_flat", None)  # the coefficients again, in one list: rebuilt on use
         return state
 
     def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
@@ -183,23 +184,32 @@ class ScaledTableau:
         if p not in cache:
             cache.clear()  # primes are visited one after another: keep one
             roots = self._roots_of(p)
-            # all entries at all roots of p as one product (coefficients × powers of the
-            # roots) over Python integers: Horner's scheme per entry and root cost 3 s of
-            # a 48-degree field's check
+            # all entries at all roots of p as one sum of products (coefficients × powers
+            # of the roots), reduced after each of the D steps so that int64 holds it
+            # (p < 2^31): Horner's scheme per entry and root cost 3 s of a 48-degree
+            # field's check, and one list of residues per entry most of a rational one's
             D = self.degree
-            coeffs = np.array([[c % p for c in x] for x in [x for row in self.A for x in row] + self.b], dtype=object)
-            powers = np.empty((D, len(roots)), dtype=object)
-            for j, r in enumerate(roots):
-                acc = 1
-                for k in range(D):
-                    powers[k, j] = acc
-                    acc = acc * r % p
-            values = (coeffs[:, :D].dot(powers) % p).astype(np.int64)
+            flat = self._flat_coefficients()
+            coeffs = np.fromiter((c % p for c in flat), dtype=np.int64, count=len(flat)).reshape(-1, D)
+            values = np.zeros((len(coeffs), len(roots)), dtype=np.int64)
+            power = np.ones(len(roots), dtype=np.int64)
+            r = np.array(roots, dtype=np.int64) % p
+            for k in range(D):
+                values = (values + coeffs[:, k, None] * power[None, :]) % p
+                power = power * r % p
             s = self.s
             cache[p] = ({r: j for j, r in enumerate(roots)}, values[: s * s].reshape(s, s, -1), values[s * s:])
         index, A, b = cache[p]
         j = index[root]
         return np.ascontiguousarray(A[:, :, j]), np.ascontiguousarray(b[:, j])
+
+    def _flat_coefficients(self) -> list[int]:
+        """Every entry's D coefficients (A row by row, then b), in one list."""
+        flat = self.__dict__.get("_flat")
+        if flat is None:
+            flat = self.__dict__["_flat"] = [c for x in [x for row in self.A for x in row] + self.b
+                                             for c in list(x) + [0] * (self.degree - len(x))]
+        return flat
 
     def channel_sources(self, p: int) -> list[int]:
         """Per root of ``p`` (in the order of its roots): the root whose channel gives the
