@@ -301,7 +301,7 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
     assert minpoly[-1] == 1 and all(Fraction(c) * lam ** (D - k) == minpoly[k] for k, c in enumerate(g))
 
     def tilde(x: Any) -> list[Fraction]:
-        coeffs = x.coeffs if hasattr(x, "coeffs") else [Fraction(x)] + [Fraction(0)] * (D - 1)
+        coeffs = getattr(x, "coeffs", None) or [Fraction(x)] + [Fraction(0)] * (D - 1)
         return [Fraction(c) / lam**k for k, c in enumerate(coeffs)]
 
     At = [[tilde(x) for x in row] for row in exact_values.A]

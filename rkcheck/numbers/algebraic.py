@@ -139,12 +139,13 @@ class _PolyKey:
 class FieldElement:
     """An element of a :class:`NumberField`: a polynomial in θ reduced modulo g."""
 
-    __slots__ = ("field", "poly", "_key")
+    __slots__ = ("field", "poly", "_key", "_coeffs")
 
     def __init__(self, field: NumberField, poly):
         self.field = field
         self.poly = poly
         self._key: _PolyKey | None = None
+        self._coeffs: list[Fraction] | None = None
 
     def _memo(self, op: str, other: "FieldElement | None", compute) -> "FieldElement":
         """``compute()``, remembered per field of degree >= :data:`MEMO_MIN_DEGREE`: a
@@ -280,9 +281,12 @@ class FieldElement:
 
     @property
     def coeffs(self) -> list[Fraction]:
-        """Coefficients in the power basis ``1, θ, …, θ^(D−1)`` (length D)."""
-        out = from_flint(self.poly)
-        return out + [Fraction(0)] * (self.field.degree - len(out))
+        """Coefficients in the power basis ``1, θ, …, θ^(D−1)`` (length D; a new list,
+        converted once per element: an element is never changed in place)."""
+        if self._coeffs is None:
+            out = from_flint(self.poly)
+            self._coeffs = out + [Fraction(0)] * (self.field.degree - len(out))
+        return list(self._coeffs)
 
     def rational(self) -> Fraction | None:
         """The value as a Fraction when it is rational, else None."""
