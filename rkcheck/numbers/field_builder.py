@@ -351,7 +351,7 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     isolation too; purely rational ones need no field and stay here."""
     everything = list(nodes) + list((constants or {}).values())
     if not any(isinstance(node, ex.Call) for expr in everything for node in xp.walk(expr)):
-        return _field_of(nodes, constants, max_degree)
+        return FieldValues(None, _rational_values(nodes, constants))
     try:
         return call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)
     except Overrun:
@@ -366,6 +366,63 @@ def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
     except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
     return _values_in(builder.field, [builder.lift(v) for v in values])
+
+
+def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None) -> list[Fraction]:
+    """The values of expressions without roots, in plain rational arithmetic: the
+    operations and the errors of :meth:`_Builder.value` (a power's exponent evaluated
+    before its base, a constant on its first use), without a field of degree 1 whose
+    every number is a FLINT polynomial (a parametric family's thousands of rational
+    leaves took most of its load that way)."""
+    definitions = dict(constants or {})
+    known: dict[str, Fraction] = {}
+
+    def constant(name: str) -> Fraction:
+        if name not in known:
+            if name not in definitions:
+                raise NotAlgebraic(f"unknown name {name!r}")
+            known[name] = xp.fold(definitions[name], combine, _exponent_first)
+        return known[name]
+
+    def combine(node: ex.Expr, vals: list[Fraction]) -> Fraction:
+        if isinstance(node, ex.Num):
+            return node.value
+        if isinstance(node, ex.Name):
+            return constant(node.name)
+        if isinstance(node, ex.Unary):
+            return -vals[0]
+        if isinstance(node, ex.Power):  # the exponent first, then the base
+            r = vals[0]
+            if r.denominator != 1:
+                raise UserError(f"exponent at column {node.column} is not an integer")
+            base = xp.fold(node.base, combine, _exponent_first)
+            if base == 0 and r < 0:
+                raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
+            return base ** int(r)
+        assert isinstance(node, ex.Binary)
+        left, right = vals
+        if node.op == "+":
+            return left + right
+        if node.op == "-":
+            return left - right
+        if node.op == "*":
+            return left * right
+        if right == 0:
+            raise UserError(f"division by zero at column {node.column}")
+        return left / right
+
+    try:
+        return [Fraction(xp.fold(n, combine, _exponent_first)) for n in nodes]
+    except RecursionError:  # constants defined through thousands of others
+        raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
+
+
+def _exponent_first(node: ex.Expr) -> tuple[ex.Expr, ...]:
+    """The operands evaluated before a node: a power's exponent alone (its base follows,
+    once the exponent is known to be an integer, as in :meth:`_Builder.value`)."""
+    if isinstance(node, ex.Power):
+        return (node.exponent,)
+    return xp.operands(node)
 
 
 def _values_in(field: NumberField, values: list[FieldElement]) -> FieldValues:

@@ -247,3 +247,29 @@ def test_inverses_in_a_field_of_degree_16_are_those_of_the_extended_gcd():
         assert inv * alpha == 1
         d, s, _ = alpha.poly.xgcd(g)
         assert inv.poly == (s / d) % g
+
+
+@pytest.mark.parametrize("texts, constants", [
+    (["1/3 + 2/7*x", "x^3 - 1/x", "(-2)^-3", "-(x - y)^2/5"], {"x": "3/4", "y": "x^2 + 1/2"}),
+    (["0.125 * 8e-3", "2^(3 - 1)", "-x"], {"x": "-(1/9)"}),
+    (["x / (y - y)"], {"x": "1", "y": "2"}),
+    (["0^(-2)"], {}),
+    (["2^(1/2)"], {}),
+    (["(1/0)^(1/2)"], {}),
+    (["z + 1"], {}),
+])
+def test_rational_expressions_take_the_builders_values_and_errors(texts, constants):
+    # field_of evaluates root-free expressions in plain rationals; the builder, run
+    # directly, evaluates them in a field of degree 1: the same values, the same errors
+    from rkcheck.numbers import field_builder as fb
+
+    nodes = [ex.parse(t) for t in texts]
+    defs = {k: ex.parse(v) for k, v in constants.items()}
+
+    def outcome(run):
+        try:
+            return run().values
+        except (UserError, NotAlgebraic) as err:
+            return type(err).__name__, str(err)
+
+    assert outcome(lambda: field_of(nodes, defs)) == outcome(lambda: fb._field_of(nodes, defs, 48))
