@@ -37,6 +37,7 @@ from fractions import Fraction
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.numbers import polynomials as poly
+from rkcheck.numbers.algebraic import FieldElement
 from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
@@ -290,6 +291,10 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
         v = sc.matvec(A, v, like)
     numerator: list | None = None
     denominator: list | None = None
+    rational = _rational_series(series)
+    if rational is not None:
+        P, Q = _pade(rational, s)
+        return _from_parts(s, True, series, _trim(P), _trim(Q))
     charpoly = _det_I_minus_zA(A, like)
     if charpoly is not None:
         Q = charpoly
@@ -298,6 +303,34 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
             P, Q = _cancelled(P, Q, like)
         numerator, denominator = _trim(P), _trim(Q)
     return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
+
+
+def _rational_series(series: list) -> list[Fraction] | None:
+    """The series as Fractions when the tableau's entries lie in a number field and every
+    term r_k = bᵀA^(k−1)1 is rational anyway — as when the field's Galois group permutes
+    the stages (Gauss, Radau, Lobatto, HBVM), which leaves each r_k fixed; else None
+    (rational tableaux keep their own route, which never loads FLINT for a small one)."""
+    if not isinstance(series[-1], FieldElement):
+        return None
+    out = [x if isinstance(x, (Fraction, int)) else x.rational() for x in series]
+    return None if any(r is None for r in out) else [Fraction(r) for r in out]
+
+
+def _pade(series: list[Fraction], s: int) -> tuple[list[Fraction], list[Fraction]]:
+    """R = P/Q in lowest terms with Q(0) = 1 from its series r_0 … r_2s: R is a rational
+    function with numerator and denominator of degree ≤ s, so it is the one such P/Q with
+    ``P ≡ Q·Σ r_k z^k (mod z^(2s+1))`` — found by the extended Euclidean algorithm on
+    ``z^(2s+1)`` and the series, stopped at the first remainder of degree ≤ s (over Q,
+    where det(I − zA) by Hessenberg's reduction divides in a field of degree up to 48)."""
+    from flint import fmpq_poly
+
+    r0, r1 = fmpq_poly([0] * (2 * s + 1) + [1]), poly.to_flint(series[:2 * s + 1])
+    t0, t1 = fmpq_poly([0]), fmpq_poly([1])
+    while r1.degree() > s:
+        q, r = divmod(r0, r1)
+        r0, r1 = r1, r
+        t0, t1 = t1, t0 - q * t1
+    return poly.rational_lowest_terms(r1, t1)
 
 
 def _cancelled(P: list, Q: list, like) -> tuple[list, list]:

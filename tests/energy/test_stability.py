@@ -8,6 +8,7 @@ tableaux (tests/support/symbolic.py).
 
 from __future__ import annotations
 
+import math
 import random
 from fractions import Fraction as F
 from pathlib import Path
@@ -197,6 +198,33 @@ def test_gauss_is_a_diagonal_pade_approximant_exactly(s):
     A, b = gauss(s)
     st = stability_function(A, b)
     assert st.exact and st.identity.state == "holds"
+
+
+def _pade_exp(s: int) -> list[F]:
+    """The numerator of the (s, s) Padé approximant of e^z (its denominator is P(−z)):
+    p_k = (2s − k)! s! / ((2s)! k! (s − k)!)."""
+    from math import factorial as f
+
+    return [F(f(2 * s - k) * f(s), f(2 * s) * f(k) * f(s - k)) for k in range(s + 1)]
+
+
+@pytest.mark.parametrize("family", [{"name": "gauss", "stages": 2}, {"name": "gauss", "stages": 3},
+                                    {"name": "hbvm", "k": 4, "s": 3}, {"name": "hbvm", "k": 5, "s": 2}])
+def test_field_tableaux_have_the_pade_approximant_of_the_gauss_method(family):
+    # entries in Q(√3), Q(√15), the field of the Gauss-4 and Gauss-5 nodes; R(z) of
+    # Gauss-s, and of HBVM(k, s) (Brugnano–Iavernaro–Trigiante 2010), is the (s, s)
+    # Padé approximant of e^z, in lowest terms with Q(0) = 1
+    from rkcheck.methods.closed_forms import family_exact_values
+    from rkcheck.methods.family_spec import parse_spec
+
+    found, _ = family_exact_values(parse_spec(family))
+    n = math.isqrt(len(found.values) + 1) - 1  # the values are A, b and c: n² + 2n of them
+    A = [found.values[i * n:(i + 1) * n] for i in range(n)]
+    b = found.values[n * n:n * n + n]
+    st = stability_function(A, b)
+    s = family.get("s", family.get("stages"))
+    P = _pade_exp(s)
+    assert st.exact and st.numerator == P and st.denominator == [c * (-1) ** k for k, c in enumerate(P)]
 
 
 def test_enclosures_hold_to_digits():
