@@ -53,18 +53,19 @@ class Subset:
     @staticmethod
     def build(listing: Any, selected: dict[int, np.ndarray], s: int, share: int = 8) -> "Subset | None":
         first = listing.first
+        # the terms counted before any is gathered: when they are many, nothing is spent
+        picked = sum(int(listing.orders[n].counts[c].sum(dtype=np.int64)) for n, c in selected.items())
+        if picked * share > sum(listing.orders[n].rows for n in selected) and picked > _CHUNK:
+            return None
         mark = np.zeros(first[max(selected) if selected else 2], dtype=bool)
         mark[0] = True  # τ
-        chosen: dict[int, tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
-        total_terms = picked_terms = 0
+        chosen: dict[int, tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]] = {}
         for n, conditions in selected.items():
             terms = listing.orders[n]
-            total_terms += terms.rows
             where = np.full(len(terms) + 1, -1, dtype=np.int32)  # the superfluous bin stays out
             where[conditions] = np.arange(len(conditions), dtype=np.int32)
             index = np.concatenate([np.flatnonzero(where[terms.conditions(i, min(i + _SCAN, terms.rows))] >= 0) + i
                                     for i in range(0, terms.rows, _SCAN)] or [np.zeros(0, dtype=np.intp)])
-            picked_terms += len(index)
             condition, coefficient = terms.at(index)
             if terms.first_id is not None:  # the trees themselves: their factors in the listing
                 u, v = listing.left[terms.first_id + index], listing.right[terms.first_id + index]
@@ -73,8 +74,6 @@ class Subset:
                 u, v = terms.left[index], terms.right[index]
             mark[u] = mark[v] = True
             chosen[n] = (terms, u, v, coefficient, where[condition], len(conditions))
-        if picked_terms * share > total_terms and picked_terms > _CHUNK:
-            return None
         for k in range(len(first) - 2, 1, -1):  # every tree's factors, from the largest trees down
             lo, hi = first[k], min(first[k + 1], len(mark))
             if lo >= hi:
