@@ -270,35 +270,34 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
             return {n: result(n) for n in wanted}
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
-    groups, copies = pass_groups(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
-                                 wanted[-1] if wanted else 0)
-    # the passes that complete the first prime, then the others unless the zeros they
-    # leave are few (screening, module docstring)
-    lead = sum(1 for group, _ in groups if group[0][0] == 0)
-    batches = [groups[:lead], groups[lead:]] if 0 < lead < len(groups) else [groups]
+    screen = True  # tried once, when the first prime is complete and others remain
     try:
-        for later, batch in enumerate(batches):
-            if later and _screened(scaled, listing, channels[:passes], count, done, residues):
-                for n in wanted:
-                    full[n] = min(count[n], done)
-                while done < passes:
-                    done += 1
-                    if on_pass is not None:
-                        on_pass(done, passes)
-                break
-            for group, at in _evaluated(scaled, listing, batch, copies):
-                for n, sums in at.items():  # an order keeps the residues of its own primes, no more
-                    for c, (i, j, _, _) in enumerate(group):
-                        if i < count[n]:
-                            residues[n][:, i, j] = sums[:, c]
-                del at, sums  # not alive while the next pass runs
-                for i, *_ in group:
-                    left[i] -= 1
-                finished = next((i for i, k in enumerate(left) if k), len(left))  # primes 0 … finished−1 complete
-                if finished > done:
-                    done = finished
-                    if on_pass is not None:
-                        on_pass(done, passes)
+        for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
+                                        wanted[-1] if wanted else 0):
+            for n, sums in at.items():  # an order keeps the residues of its own primes, no more
+                for c, (i, j, _, _) in enumerate(group):
+                    if i < count[n]:
+                        residues[n][:, i, j] = sums[:, c]
+            del at, sums  # not alive while the next pass runs
+            for i, *_ in group:
+                left[i] -= 1
+            finished = next((i for i, k in enumerate(left) if k), len(left))  # primes 0 … finished−1 complete
+            if finished > done:
+                done = finished
+                if on_pass is not None:
+                    on_pass(done, passes)
+            if screen and 0 < done < passes:
+                # the passes still to come (in flight, with a runner) are then not needed:
+                # leaving the loop closes them
+                screen = False
+                if _screened(scaled, listing, channels[:passes], count, done, residues):
+                    for n in wanted:
+                        full[n] = min(count[n], done)
+                    while done < passes:
+                        done += 1
+                        if on_pass is not None:
+                            on_pass(done, passes)
+                    break
     except KeyboardInterrupt:
         raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
     out = {n: result(n) for n in wanted}
@@ -461,12 +460,6 @@ def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[
     (:func:`passes_run_by`), as they finish: yields ``(group, sums)`` with ``sums[n]``
     the residues ``(conditions, len(group))`` of the pass's orders, copied roots included."""
     groups, copies = pass_groups(scaled, listing, chosen, orders_for, top)
-    yield from _evaluated(scaled, listing, groups, copies)
-
-
-def _evaluated(scaled: ScaledTableau, listing, groups: list[tuple[list[Channel], list[int]]],
-               copies: dict[tuple[int, int], list[Channel]]) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
-    """:func:`channel_passes` of some of the groups of :func:`pass_groups`."""
     for g, sums in _run_passes(scaled, listing, groups):
         yield _with_copies(scaled, groups[g][0], sums, copies)
         del sums  # a pass's residues are not kept while the next one runs

@@ -155,24 +155,29 @@ def test_claims_read_screened_residues_of_the_main_run(monkeypatch):
             assert o.value(k) * listing.flip(n, k) == want, rec.id
 
 
-def test_a_runner_gets_only_the_passes_screening_leaves(monkeypatch):
-    # the primes after the first go to the few conditions zero there, here: no pass over
-    # the listing is left to send to the runner's workers
+def test_a_runner_s_passes_after_the_first_prime_are_left_when_screened(monkeypatch):
+    # a runner is given every pass; once the first prime is complete and its zeros are
+    # few, the others are not waited for (closing the runner: a cluster cancels them)
     from rkcheck.evaluation.modular import passes_run_by
 
     one_channel_per_pass(monkeypatch)
     A, b = lobatto_iiia_3()
-    sent = []
+    sent, ran, closed = [], [], []
 
     def runner(scaled, listing, jobs):
         sent.extend(jobs)
-        for g, (pairs, orders) in enumerate(jobs):
-            yield g, scaled.residues_at(listing, pairs, orders)
+        try:
+            for g, (pairs, orders) in enumerate(jobs):
+                ran.append(g)
+                yield g, scaled.residues_at(listing, pairs, orders)
+        finally:
+            closed.append(True)
 
     scaled = scaled_rational(A, b)
     with passes_run_by(runner):
         sums = exact_condition_sums(scaled, ConditionListing(ORDER, None))
     plain = not_screened(scaled_rational(A, b), ConditionListing(ORDER, None), monkeypatch)
-    assert not sent
+    assert len(sent) == max(len(o.primes) for o in sums.values()) > 1  # one pass per prime
+    assert ran == [0] and closed == [True]
     for n, o in sums.items():
         assert np.array_equal(o.is_zero(), plain[n].is_zero()), n
