@@ -40,8 +40,9 @@ class _OrderPart:
 class Subset:
     """The trees and terms of the conditions ``selected`` (``{vertices: sorted condition
     indices}``) of ``listing``: :meth:`build` returns None when they are not few (more
-    than ``1/share`` of the listing's trees or terms), where a pass over the listing costs
-    less than gathering them."""
+    than ``1/share`` of the orders' terms or of the trees below them), where a pass over
+    the listing costs less than gathering them and their arrays would add to its peak
+    memory (about 30 bytes a term)."""
 
     def __init__(self, trees: np.ndarray, levels: list[tuple[int, int, np.ndarray, np.ndarray]],
                  orders: dict[int, _OrderPart], s: int):
@@ -51,7 +52,7 @@ class Subset:
         self.s = s
 
     @staticmethod
-    def build(listing: Any, selected: dict[int, np.ndarray], s: int, share: int = 8) -> "Subset | None":
+    def build(listing: Any, selected: dict[int, np.ndarray], s: int, share: int = 32) -> "Subset | None":
         first = listing.first
         # the terms counted before any is gathered: when they are many, nothing is spent
         picked = sum(int(listing.orders[n].counts[c].sum(dtype=np.int64)) for n, c in selected.items())
@@ -83,13 +84,16 @@ class Subset:
         trees = np.flatnonzero(mark)
         if len(trees) * share > len(mark) and len(trees) > _CHUNK:
             return None
+        def position(ids: np.ndarray) -> np.ndarray:  # in ``trees`` (int32: a term's share of memory)
+            return np.searchsorted(trees, ids).astype(np.int32)
+
         levels = []
         for k in range(2, len(first) - 1):
             lo, hi = (int(x) for x in np.searchsorted(trees, [first[k], first[k + 1]]))
             if hi > lo:
                 ids = trees[lo:hi]
-                levels.append((lo, hi, np.searchsorted(trees, listing.left[ids]), np.searchsorted(trees, listing.right[ids])))
-        orders = {n: _OrderPart(terms, np.searchsorted(trees, u), np.searchsorted(trees, v), coefficient, condition, int(k))
+                levels.append((lo, hi, position(listing.left[ids]), position(listing.right[ids])))
+        orders = {n: _OrderPart(terms, position(u), position(v), coefficient, condition, k)
                   for n, (terms, u, v, coefficient, condition, k) in chosen.items()}
         return Subset(trees, levels, orders, s)
 
