@@ -66,7 +66,10 @@ def not_screened(scaled, listing, monkeypatch):
 @pytest.mark.parametrize("make", ["random", "lobatto", "gauss"])
 def test_subset_residues_equal_a_pass_over_the_listing(make):
     # any conditions (zero or not), every order, several primes and roots at once
-    scaled = gauss_3() if make == "gauss" else scaled_rational(*(lobatto_iiia_3() if make == "lobatto" else random_tableau(5)))
+    if make == "gauss":
+        scaled = gauss_3()
+    else:
+        scaled = scaled_rational(*(lobatto_iiia_3() if make == "lobatto" else random_tableau(5)))
     listing = ConditionListing(ORDER, None)
     rng = random.Random(7)
     selected = {n: np.array(sorted(rng.sample(range(len(listing.orders[n])), max(1, len(listing.orders[n]) // 3))))
