@@ -225,6 +225,25 @@ class PrimeChannels:
         """The residues per condition and channel, ``(k, K)``."""
         return (acc.total()[:, :k].astype(np.int64) % self._P2).T
 
+    def selected_sums(self, k: int) -> np.ndarray:
+        """Bins for ``k`` conditions whose terms come in any order
+        (:class:`~rkcheck.evaluation.subset.Subset`): float64, exact as in :class:`_Bins`."""
+        return np.zeros((self.width, k), dtype=np.float64)
+
+    def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, coefficient_index: np.ndarray,
+                     condition: np.ndarray) -> None:
+        """Add ``((n−1)!/σ)·(±ŵ)`` of some terms of ``terms`` (their coefficient indices
+        and conditions given) modulo each channel's prime to the bins ``acc``."""
+        w_terms *= np.take(self._coefficients(terms, n), coefficient_index, axis=1)
+        w = self._reduce(w_terms).astype(np.float64)
+        cond = condition.astype(np.intp)
+        for c in range(self.width):
+            acc[c] += np.bincount(cond, weights=w[c], minlength=acc.shape[1])
+
+    def finish_selected(self, acc: np.ndarray) -> np.ndarray:
+        """The residues per condition and channel, ``(k, K)``."""
+        return (acc.astype(np.int64) % self._P2).T
+
     def _coefficients(self, terms, n: int) -> np.ndarray:
         cached = self._coef_cache.get(n)
         if cached is None or cached[0] is not terms:

@@ -38,13 +38,15 @@ from typing import Any
 import numpy as np
 
 
-def contained_residues(source: Any, source_sums: dict[int, Any], listing: Any,
-                       count: dict[int, int], channels: list[tuple[int, list[int]]]) -> dict[int, np.ndarray] | None:
-    """``{n: (conditions, count[n], D) residues}`` of ``listing``'s orders, read off
-    ``source_sums`` (the :class:`~rkcheck.evaluation.modular.ExactOrderSums` of the
+def contained_residues(source: Any, source_sums: dict[int, Any], listing: Any, count: dict[int, int],
+                       channels: list[tuple[int, list[int]]]) -> dict[int, tuple[np.ndarray, int]] | None:
+    """``{n: ((conditions, count[n], D) residues, full)}`` of ``listing``'s orders, read
+    off ``source_sums`` (the :class:`~rkcheck.evaluation.modular.ExactOrderSums` of the
     orders of ``source``, a listing of all free trees at least as high), over the first
-    ``count[n]`` of ``channels``; None when ``source`` does not contain ``listing`` or
-    lacks the orders or primes it needs, or a check fails."""
+    ``count[n]`` of ``channels``, of which the first ``full`` are known for every
+    condition and the others for those zero there (screened as in the source); None
+    when ``source`` does not contain ``listing`` or lacks the orders or primes it needs,
+    or a check fails."""
     if not contains(source, listing) or any(n not in source_sums for n in count):
         return None
     for n, c in count.items():
@@ -64,7 +66,9 @@ def contained_residues(source: Any, source_sums: dict[int, Any], listing: Any,
         if matched is None:
             return None
         where, sign = matched
-        out[n] = _signed(source_sums[n].residues[where, :c, :], sign, [p for p, _ in channels[:c]])
+        known = source_sums[n]
+        full = c if known.full is None else min(c, known.full)
+        out[n] = (_signed(known.screened[where, :c, :], sign, [p for p, _ in channels[:c]]), full)
     return out
 
 

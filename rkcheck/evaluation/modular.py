@@ -40,6 +40,17 @@ conjugates (``V`` the Vandermonde matrix of the conjugates of ``θ``), so
 ``|coefficient| ≤ ‖V⁻¹‖_∞ (n−1)! T M^(n−1)`` with ``M = max_j M_j``; all of it is computed
 with exact integers or certified Arb balls, rounded up.
 
+Screening.  A nonzero residue at one prime decides a condition (it fails), and the
+conditions of a method that is not energy-preserving nearly all fail; the primes after
+the first are needed only for the others.  When the primes take several passes over the
+listing, the first pass's residues select the conditions that are zero there, and the
+further primes are evaluated for those alone, on the trees their terms need
+(:class:`~rkcheck.evaluation.subset.Subset`: Gauss-3 at 19 vertices, five passes over
+2.7 million trees become one over 18 thousand), unless they are many (then the passes
+go on over the listing).  Every verdict is the same: a zero residue is still proven by
+the whole bound below, and the residues left out belong to conditions already decided;
+those are evaluated when a value or every residue is asked for.
+
 Values.  Residues are kept; the exact residual is rebuilt only when asked for (Chinese
 remaindering, Garner's mixed-radix form), so that deciding ``holds``/``fails`` costs
 nothing more.  A residual proven zero is 0; a nonzero one in a number field needs its
@@ -70,26 +81,38 @@ class ExactOrderSums:
 
     ``residues[k, i, j]``: condition k, prime i, root j.  ``scale = (n−1)!·d^(n−1)``
     turns the integer element ``N`` back into the residual ``R`` (of the class
-    representative; the caller applies the designated sign)."""
+    representative; the caller applies the designated sign).
+
+    Screened evaluations (module docstring) hold in ``screened`` the residues of every
+    condition at the first ``full`` primes only, and beyond them those of the conditions
+    that are zero there (the others' are 0, unknown: such a condition is decided,
+    nonzero, already); ``residues`` evaluates the rest first, as values do."""
 
     vertices: int
-    residues: np.ndarray
+    screened: np.ndarray
     primes: list[tuple[int, list[int]]]
     scale: int
     tableau: ScaledTableau
     listing: Any = None  # to evaluate more primes when a value needs them
     value_bits: int = 0  # the coefficients' bound: primes beyond the decision's, on demand
     dual: bool = False  # values from g'(θ)·N_e (ScaledTableau.dual_value_bits), not from N
+    full: int | None = None  # primes known for every condition (None: all)
 
     def __len__(self) -> int:
-        return len(self.residues)
+        return len(self.screened)
+
+    @property
+    def residues(self) -> np.ndarray:
+        """Every condition's residues at every prime (evaluated now where screened)."""
+        self._evaluate(list(self.primes))
+        return self.screened
 
     def is_zero(self) -> np.ndarray:
-        return ~np.any(self.residues != 0, axis=(1, 2))
+        return ~np.any(self.screened != 0, axis=(1, 2))
 
     def value(self, k: int) -> Any:
         """The exact residual of condition k: a Fraction (rationals) or a field element."""
-        if self.tableau.number_field is not None and not np.any(self.residues[k]):
+        if self.tableau.number_field is not None and not np.any(self.screened[k]):
             return self.tableau.field_element([0], 1)  # proven zero (module docstring)
         self._complete()
         if self.dual:
@@ -116,7 +139,7 @@ class ExactOrderSums:
                 gp = 0
                 for c in reversed(dg):
                     gp = (gp * r + c) % p
-                vals.append(int(self.residues[k, i, j]) * gp % p * inv % p)
+                vals.append(int(self.screened[k, i, j]) * gp % p * inv % p)
             per_prime.append(_vandermonde_solve(roots, vals, p))
         mods = [p for p, _ in self.primes]
         X = [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
@@ -125,25 +148,32 @@ class ExactOrderSums:
 
     def _complete(self) -> None:
         """Evaluate the primes the coefficients' bound needs beyond the decision's."""
-        if self.listing is None or not self.value_bits:
-            return
-        chosen = self.tableau.primes_for(self.value_bits)
-        extra = chosen[len(self.primes):]
-        if extra:
-            n = self.vertices
-            more = np.zeros((len(self.residues), len(extra), self.tableau.degree), dtype=self.residues.dtype)
-            for group, at in channel_passes(self.tableau, self.listing, extra, lambda i: [n], n):
-                for c, (i, j, _, _) in enumerate(group):
-                    more[:, i, j] = at[n][:, c]
-            self.residues = np.concatenate([self.residues, more], axis=1)
-            self.primes = list(self.primes) + list(extra)
+        chosen = self.tableau.primes_for(self.value_bits) if self.value_bits else list(self.primes)
+        self._evaluate(chosen)
         self.value_bits = 0
+
+    def _evaluate(self, chosen: list[tuple[int, list[int]]]) -> None:
+        """Every condition's residues at the primes ``chosen`` (which start with
+        :attr:`primes`): those screened and those not evaluated yet, in passes over the
+        listing for this order."""
+        full = len(self.primes) if self.full is None else self.full
+        todo = chosen[full:]
+        if self.listing is None or not todo:
+            return
+        n = self.vertices
+        more = np.zeros((len(self.screened), len(todo), self.tableau.degree), dtype=self.screened.dtype)
+        for group, at in channel_passes(self.tableau, self.listing, todo, lambda i: [n], n):
+            for c, (i, j, _, _) in enumerate(group):
+                more[:, i, j] = at[n][:, c]
+        self.screened = np.concatenate([self.screened[:, :full], more], axis=1)
+        self.primes = list(self.primes) + list(chosen[len(self.primes):])
+        self.full = None
 
     def values(self) -> list[Any]:
         """Every condition's exact residual (Garner's algorithm vectorised over the
         conditions: the mixed-radix digits in int64, then one integer per condition)."""
         if self.tableau.degree != 1:
-            return [self.value(k) for k in range(len(self.residues))]
+            return [self.value(k) for k in range(len(self.screened))]
         return [Fraction(x, self.scale) for x in self.integers()]
 
     def integers(self) -> list[int]:
@@ -153,15 +183,15 @@ class ExactOrderSums:
         self._complete()
         mods = [p for p, _ in self.primes]
         total = math.prod(mods)
-        columns = [self.residues[:, i, 0].tolist() for i in range(len(mods))]
-        combined = _crt_columns(columns, mods) if mods else [0] * len(self.residues)
+        columns = [self.screened[:, i, 0].tolist() for i in range(len(mods))]
+        combined = _crt_columns(columns, mods) if mods else [0] * len(self.screened)
         return [x - total if x > total // 2 else x for x in combined]
 
     def _coefficients(self, k: int) -> list[int]:
         D = self.tableau.degree
         per_prime = []
         for i, (p, roots) in enumerate(self.primes):
-            vals = [int(v) for v in self.residues[k, i, :D]]
+            vals = [int(v) for v in self.screened[k, i, :D]]
             per_prime.append(_vandermonde_solve(roots, vals, p) if D > 1 else vals)
         mods = [p for p, _ in self.primes]
         return [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
@@ -218,11 +248,14 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     D = scaled.degree
     passes = max(count.values(), default=0)
     residues = {n: np.zeros((len(listing.orders[n]), count[n], D), dtype=np.int32) for n in wanted}
+    full = dict(count)  # primes evaluated for every condition, per order (fewer when screened)
 
     def result(n: int) -> ExactOrderSums:
         more = value_need[n] > need[n]
+        screened = full[n] < count[n]
         return ExactOrderSums(n, residues[n], channels[:count[n]], math.factorial(n - 1) * scaled.d ** (n - 1), scaled,
-                              listing if more else None, value_need[n] if more else 0, dual[n])
+                              listing if more or screened else None, value_need[n] if more else 0, dual[n],
+                              full[n] if screened else None)
 
     if orders is None:  # every order: perhaps evaluated already, as part of all free trees
         try:
@@ -230,12 +263,14 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
         except KeyboardInterrupt:
             raise EvaluationInterrupted({}) from None
         if contained is not None:
-            residues = contained
+            for n, (known, k) in contained.items():
+                residues[n], full[n] = known, k
             if on_pass is not None and passes:
                 on_pass(passes, passes)
             return {n: result(n) for n in wanted}
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
+    screen = True  # tried once, when the first prime is complete and others remain
     try:
         for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
                                         wanted[-1] if wanted else 0):
@@ -251,12 +286,51 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                 done = finished
                 if on_pass is not None:
                     on_pass(done, passes)
+            if screen and 0 < done < passes:
+                # the passes still to come (in flight, with a runner) are then not needed:
+                # leaving the loop closes them
+                screen = False
+                if _screened(scaled, listing, channels[:passes], count, done, residues):
+                    for n in wanted:
+                        full[n] = min(count[n], done)
+                    while done < passes:
+                        done += 1
+                        if on_pass is not None:
+                            on_pass(done, passes)
+                    break
     except KeyboardInterrupt:
         raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
     out = {n: result(n) for n in wanted}
     if orders is None:
         _remember(scaled, listing, out)
     return out
+
+
+def _screened(scaled: ScaledTableau, listing, channels: list[tuple[int, list[int]]], count: dict[int, int],
+              done: int, residues: dict[int, np.ndarray]) -> bool:
+    """The primes from ``done`` on, for the conditions whose residues at the first
+    ``done`` are all zero only (the others are decided: they fail), evaluated on the trees
+    their terms need (:class:`~rkcheck.evaluation.subset.Subset`) into ``residues``;
+    False, with nothing done, when those conditions are not few."""
+    from rkcheck.evaluation.scaled import PASS_BYTES
+    from rkcheck.evaluation.subset import Subset
+
+    later = [n for n in residues if count[n] > done]
+    selected = {n: np.flatnonzero(~np.any(residues[n][:, :done] != 0, axis=(1, 2))) for n in later}
+    subset = Subset.build(listing, selected, scaled.s)
+    if subset is None:
+        return False
+    flat, copies = _flat_channels(scaled, channels[done:])
+    width = max(1, PASS_BYTES // max(subset.channel_bytes(), 1))
+    for g in range(0, len(flat), width):
+        group = flat[g:g + width]
+        sums = subset.residues(scaled.channels([(p, r) for _, _, p, r in group]))
+        group, sums = _with_copies(scaled, group, sums, copies)
+        for n, x in sums.items():
+            for c, (i, j, _, _) in enumerate(group):
+                if done + i < count[n]:
+                    residues[n][selected[n], done + i, j] = x[:, c]
+    return True
 
 
 def _plan(scaled: ScaledTableau, listing, wanted: list[int]) -> tuple[dict, dict, dict, list, dict[int, int]]:
@@ -293,7 +367,7 @@ def _remember(scaled: ScaledTableau, listing, sums: dict[int, ExactOrderSums]) -
 
 
 def _contained(scaled: ScaledTableau, listing, count: dict[int, int],
-               channels: list[tuple[int, list[int]]]) -> dict[int, np.ndarray] | None:
+               channels: list[tuple[int, list[int]]]) -> dict[int, tuple[np.ndarray, int]] | None:
     """The residues of every order of ``listing`` read off a kept evaluation of all free
     trees that contains it, or None."""
     kept = scaled.__dict__.get("_all_trees")
@@ -346,6 +420,17 @@ def pass_groups(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int
     permutation of an earlier root's of the same prime
     (:meth:`ScaledTableau.channel_sources`) is not evaluated, it has that root's
     residues (by source ``(i, j)``, see :func:`_with_copies`)."""
+    flat, copies = _flat_channels(scaled, chosen)
+    if not flat:
+        return [], copies
+    width = scaled.channels_per_pass(listing, top)
+    return [(flat[g:g + width], orders_for(flat[g][0])) for g in range(0, len(flat), width)], copies
+
+
+def _flat_channels(scaled: ScaledTableau, chosen: list[tuple[int, list[int]]]
+                   ) -> tuple[list[Channel], dict[tuple[int, int], list[Channel]]]:
+    """The channels ``(i, j, p, r)`` of the primes ``chosen`` to evaluate, and the copies
+    of each by source ``(i, j)`` (:func:`pass_groups`)."""
     flat: list[Channel] = []
     copies: dict[tuple[int, int], list[Channel]] = {}
     for i, (p, roots) in enumerate(chosen):
@@ -355,10 +440,7 @@ def pass_groups(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int
                 flat.append((i, j, p, r))
             else:
                 copies.setdefault((i, sources[j]), []).append((i, j, p, r))
-    if not flat:
-        return [], copies
-    width = scaled.channels_per_pass(listing, top)
-    return [(flat[g:g + width], orders_for(flat[g][0])) for g in range(0, len(flat), width)], copies
+    return flat, copies
 
 
 def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np.ndarray],

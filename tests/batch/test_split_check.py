@@ -13,6 +13,7 @@ from support.clirun import run_cli
 
 import rkcheck
 import rkcheck.batch.passes as passes
+import rkcheck.evaluation.modular as modular
 from rkcheck.errors import OptionError
 from rkcheck.evaluation.scaled import ScaledTableau
 
@@ -32,8 +33,11 @@ def tableau_file(tmp_path: Path) -> Path:
 
 @pytest.fixture
 def one_channel_per_pass(monkeypatch):
-    """A small check has all its channels in one pass; one per pass makes several."""
+    """A small check has all its channels in one pass; one per pass makes several.  And
+    every pass goes over the listing: screened, the primes after the first would be
+    evaluated here for the few conditions zero at it (rkcheck.evaluation.modular)."""
     monkeypatch.setattr(ScaledTableau, "channels_per_pass", lambda self, listing, top: 1)
+    monkeypatch.setattr(modular, "_screened", lambda *args: False)
 
 
 @pytest.fixture
