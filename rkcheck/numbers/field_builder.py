@@ -266,16 +266,7 @@ class _Builder:
         assert isinstance(node, ex.Binary)
         left = self.value(node.left)
         right = self.value(node.right)
-        left, right = self.lift(left), self.lift(right)
-        if node.op == "+":
-            return left + right
-        if node.op == "-":
-            return left - right
-        if node.op == "*":
-            return left * right
-        if right.is_zero():
-            raise UserError(f"division by zero at column {node.column}")
-        return left / right
+        return _arithmetic(node, self.lift(left), self.lift(right))
 
     def _call(self, node: ex.Call) -> FieldElement:
         self.check_time()
@@ -400,21 +391,26 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
                 raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
             return base ** int(r)
         assert isinstance(node, ex.Binary)
-        left, right = vals
-        if node.op == "+":
-            return left + right
-        if node.op == "-":
-            return left - right
-        if node.op == "*":
-            return left * right
-        if right == 0:
-            raise UserError(f"division by zero at column {node.column}")
-        return left / right
+        return _arithmetic(node, *vals)
 
     try:
         return [Fraction(xp.fold(n, combine, _exponent_first)) for n in nodes]
     except RecursionError:  # constants defined through thousands of others
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
+
+
+def _arithmetic(node: ex.Binary, left: Any, right: Any) -> Any:
+    """``left op right`` (field elements or Fractions), a division by zero refused with
+    its column."""
+    if node.op == "+":
+        return left + right
+    if node.op == "-":
+        return left - right
+    if node.op == "*":
+        return left * right
+    if not right:
+        raise UserError(f"division by zero at column {node.column}")
+    return left / right
 
 
 def _exponent_first(node: ex.Expr) -> tuple[ex.Expr, ...]:
