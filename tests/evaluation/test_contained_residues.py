@@ -7,14 +7,13 @@ reference of SPEC §3 (tests/support/reference.py, its own free trees and rootin
 
 from __future__ import annotations
 
-import random
 from fractions import Fraction as F
-from functools import lru_cache
 
 import numpy as np
 import pytest
 from support import reference as ref
 from support.paths import TABLEAUX
+from support.residues import random_tableau, reference_conditions
 
 import rkcheck.evaluation.modular as modular
 from rkcheck.energy.claims import judge_tableau
@@ -26,19 +25,6 @@ from rkcheck.options import CheckOptions
 from rkcheck.trees.listing import ConditionListing
 
 ORDER = 8  # conditions with 3 … 9 vertices
-
-
-@lru_cache(maxsize=None)
-def reference_conditions():
-    return {d["id"]: d for n in range(3, ORDER + 2) for d in ref.energy_conditions(n)}
-
-
-def random_tableau(seed, s=3):
-    rng = random.Random(seed)
-    A = [[F(rng.randint(-4, 4), rng.randint(1, 4)) for _ in range(s)] for _ in range(s)]
-    b = [F(rng.randint(-4, 4), rng.randint(1, 4)) for _ in range(s)]
-    b[-1] = 1 - sum(b[:-1])
-    return A, b
 
 
 def no_passes(monkeypatch):
@@ -70,7 +56,7 @@ def test_rational_residues_equal_their_own_evaluation_and_the_reference(monkeypa
     with monkeypatch.context() as m:
         no_passes(m)
         read = exact_condition_sums(scaled, listing)
-    refs = reference_conditions()
+    refs = reference_conditions(ORDER)
     nonzero = 0
     for n, sums in read.items():
         assert sums.primes == alone[n].primes

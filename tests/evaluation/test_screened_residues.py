@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import random
 from fractions import Fraction as F
-from functools import lru_cache
 
 import numpy as np
 import pytest
 from support import reference as ref
 from support.paths import TABLEAUX
+from support.residues import random_tableau, reference_conditions
 
 import rkcheck.evaluation.modular as modular
 import rkcheck.evaluation.scaled as scaled_module
@@ -27,19 +27,6 @@ from rkcheck.io.loader import load
 from rkcheck.trees.listing import ConditionListing
 
 ORDER = 8  # conditions with 3 … 9 vertices
-
-
-@lru_cache(maxsize=None)
-def reference_conditions():
-    return {d["id"]: d for n in range(3, ORDER + 2) for d in ref.energy_conditions(n)}
-
-
-def random_tableau(seed, s=3):
-    rng = random.Random(seed)
-    A = [[F(rng.randint(-4, 4), rng.randint(1, 4)) for _ in range(s)] for _ in range(s)]
-    b = [F(rng.randint(-4, 4), rng.randint(1, 4)) for _ in range(s)]
-    b[-1] = 1 - sum(b[:-1])
-    return A, b
 
 
 def lobatto_iiia_3():
@@ -93,7 +80,7 @@ def test_screened_verdicts_and_values_equal_the_reference(monkeypatch, make):
     sums = exact_condition_sums(scaled, listing)
     assert any(o.full is not None for o in sums.values())  # screened
     plain = not_screened(scaled_rational(A, b), ConditionListing(ORDER, None), monkeypatch)
-    refs = reference_conditions()
+    refs = reference_conditions(ORDER)
     for n, o in sums.items():
         assert np.array_equal(o.is_zero(), plain[n].is_zero()), n
         assert np.array_equal(o.residues, plain[n].residues), n  # the rest evaluated on demand
@@ -149,7 +136,7 @@ def test_claims_read_screened_residues_of_the_main_run(monkeypatch):
         read = exact_condition_sums(scaled, listing)
         zeros = {n: o.is_zero() for n, o in read.items()}
     assert any(o.full is not None for o in read.values())
-    refs = reference_conditions()
+    refs = reference_conditions(ORDER)
     for n, o in read.items():
         for k in range(len(o)):
             rec = listing.record(n, k)
