@@ -167,6 +167,8 @@ class ScaledTableau:
             return [(-self.minpoly[0]) % p]
         from flint import nmod_poly
 
+        if not self._splits_generators(p):
+            return None
         f = nmod_poly([c % p for c in self.minpoly], p)
         # f splits into distinct linear factors exactly when it divides the squarefree
         # x^p − x, i.e. x^p ≡ x (mod f): a few dozen squarings modulo f, where finding the
@@ -177,6 +179,34 @@ class ScaledTableau:
             return None
         roots = [int(r) for r, mult in f.roots() if mult == 1]
         return roots if len(roots) == self.degree else None
+
+    def _splits_generators(self, p: int) -> bool:
+        """False when p certainly does not split the field completely: a generator's
+        minimal polynomial (of low degree: the Gauss-6 nodes' degree 6 against θ's 48)
+        does not split into distinct linear factors modulo p.  p splits completely in the
+        field only if it does in every subfield Q(γ), and for p prime to the discriminant
+        and leading coefficient of γ's integral polynomial that is its splitting into
+        distinct linear factors (Dedekind); at other primes the generator says nothing.
+        A filter only: the minimal polynomial's own test still decides."""
+        from flint import fmpz_poly, nmod_poly
+
+        tests = self.__dict__.get("_generator_tests")
+        if tests is None:
+            tests = self.__dict__["_generator_tests"] = []
+            for f in getattr(self.number_field, "generator_polynomials", ()):
+                if len(f) - 1 < 2 or len(f) - 1 >= self.degree:
+                    continue  # rational, or no cheaper than θ's own test
+                den = math.lcm(*(Fraction(c).denominator for c in f))
+                z = fmpz_poly([int(Fraction(c) * den) for c in f])
+                tests.append((list(map(int, z.coeffs())), int(z.discriminant()) * int(z.coeffs()[-1])))
+        for coeffs, bad in tests:
+            if bad % p == 0:
+                continue
+            w = nmod_poly([c % p for c in coeffs], p)
+            x = nmod_poly([0, 1], p)
+            if x.pow_mod(p, w) != x:
+                return False
+        return True
 
     def _images(self, p: int, root: int) -> tuple[np.ndarray, np.ndarray]:
         """The entries' images under θ ↦ root (mod p): int64 arrays shaped like A and b."""

@@ -63,6 +63,10 @@ class NumberField:
         self._theta: Interval | None = None
         self._theta_bits = 0
         self._products: dict[tuple, Any] = {}  # FieldElement._memo: products and inverses
+        #: minimal polynomials of elements that generate the field (its builder's
+        #: generators; empty when unknown): a prime splits completely in the field only if
+        #: it splits each of them, a test of low degree (ScaledTableau's channel primes)
+        self.generator_polynomials: tuple[tuple[Fraction, ...], ...] = ()
 
     def __repr__(self) -> str:
         return f"NumberField(θ = {self.name}, degree {self.degree})"
@@ -70,7 +74,7 @@ class NumberField:
     def __reduce__(self):
         # FLINT polynomials do not pickle; a field travels (to and from scan workers) as
         # its minimal polynomial, and pickle's memo keeps one field per message
-        return (NumberField, (self.minpoly, self.index, self.name))
+        return (_field, (self.minpoly, self.index, self.name, self.generator_polynomials))
 
     @property
     def is_rational(self) -> bool:
@@ -107,6 +111,12 @@ class NumberField:
         ``bits`` bits (:func:`rkcheck.numbers.polynomials.complex_roots`, shared with
         every user of the same polynomial)."""
         return complex_roots(self.g.numer().coeffs(), max(bits, 64))
+
+
+def _field(minpoly: list[Fraction], index: int, name: str, generators: tuple) -> NumberField:
+    K = NumberField(minpoly, index, name)
+    K.generator_polynomials = generators
+    return K
 
 
 def _element(field: NumberField, coeffs: list[Fraction]) -> "FieldElement":

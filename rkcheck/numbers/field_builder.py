@@ -356,6 +356,9 @@ def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
         values = [builder.value(n) for n in nodes]
     except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
+    # every generator is irreducible over Q (a factor of its polynomial, or x² − m with
+    # m square-free) and lies in the field
+    builder.field.generator_polynomials = tuple(gamma.f for gamma in builder.generators)
     return _values_in(builder.field, [builder.lift(v) for v in values])
 
 
