@@ -291,9 +291,9 @@ def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
         v = sc.matvec(A, v, like)
     numerator: list | None = None
     denominator: list | None = None
-    rational = _rational_series(series)
-    if rational is not None:
-        P, Q = _pade(rational, s)
+    rational_series = _rational_series(series)
+    if rational_series is not None:
+        P, Q = _pade(rational_series, s)
         return _from_parts(s, True, series, _trim(P), _trim(Q))
     charpoly = _det_I_minus_zA(A, like)
     if charpoly is not None:

@@ -47,7 +47,7 @@ def _power_sums(poly, count: int) -> list:
     n = poly.degree()
     lead = poly[n]
     a = [poly[i] / lead for i in range(n + 1)]  # monic: a[n] = 1
-    p = [None] * (count + 1)
+    p: list = [None] * (count + 1)  # p[0] unused
     for k in range(1, count + 1):
         total = -k * a[n - k] if k <= n else 0 * lead
         for i in range(1, min(k, n + 1)):
@@ -74,7 +74,7 @@ def charpoly_sum(g, f, t: int):
     for _ in range(N):
         tl.append(tl[-1] * t)
     TF = [tl[l] * F[l] for l in range(N + 1)]
-    P = [None] + [sum((math.comb(k, l) * G[k - l] * TF[l] for l in range(k + 1)), fmpq(0)) for k in range(1, N + 1)]
+    P = [sum((math.comb(k, l) * G[k - l] * TF[l] for l in range(k + 1)), fmpq(0)) for k in range(N + 1)]
     e = [fmpq(1)]  # elementary symmetric functions of the roots θ_i + t·γ_j
     for k in range(1, N + 1):
         total = fmpq(0)
