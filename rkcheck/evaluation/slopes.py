@@ -37,6 +37,39 @@ def _expand(x):
     return x[0][..., None], x[1][..., None]
 
 
+def _product_rule(x, dy, y, dx):
+    """``x·∂y + y·∂x`` as ``_add(mul(x, ∂y), mul(y, ∂x))`` on the screen — the same
+    float operations in the same order, so the same bits — with the values ``x``, ``y``
+    broadcast along the directions and the temporaries reused in place."""
+    (xm, xr), (ym, yr) = _expand(x), _expand(y)
+    (dym, dyr), (dxm, dxr) = dy, dx
+    out = []
+    for am, ar, dm, dr in ((xm, xr, dym, dyr), (ym, yr, dxm, dxr)):
+        # FloatContext.mul: ((|a|·r_d + |d|·r_a) + r_a·r_d + u·|p|)·INFLATE + ETA
+        pm = am * dm
+        pr = np.abs(am) * dr
+        tmp = np.abs(dm)
+        tmp *= ar
+        pr += tmp
+        np.multiply(ar, dr, out=tmp)
+        pr += tmp
+        np.abs(pm, out=tmp)
+        tmp *= U
+        pr += tmp
+        pr *= INFLATE
+        pr += ETA
+        out.append((pm, pr, tmp))
+    (m, r, tmp), (pm, pr, _) = out
+    m += pm  # _add: (p_r + q_r + u·|m|)·INFLATE + ETA
+    r += pr
+    np.abs(m, out=tmp)
+    tmp *= U
+    r += tmp
+    r *= INFLATE
+    r += ETA
+    return m, r
+
+
 class GradientContext:
     """Values and their partial derivatives with respect to the interval entries, over
     the whole box, on the float screen: a value is ``(value, gradient)``, each a
@@ -88,9 +121,7 @@ class GradientContext:
         self.f.put(store[1], lo, x[1])
 
     def mul(self, x, y):
-        value = self.f.mul(x[0], y[0])
-        grad = _add(self.f.mul(_expand(x[0]), y[1]), self.f.mul(_expand(y[0]), x[1]))
-        return value, grad
+        return self.f.mul(x[0], y[0]), _product_rule(x[0], y[1], y[0], x[1])
 
     def matvec(self, x):
         value = self.f.matvec(x[0])
@@ -124,25 +155,21 @@ class GradientContext:
         return self.f.sums(k, n), [np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros(k)]
 
     def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
-        """The values as on the screen, and :meth:`FloatContext.add_terms` for every
-        direction at once: the same elementwise operations, and one bincount over
+        """:meth:`FloatContext.add_terms` for the values and for every direction at once,
+        over one set of bins: the same elementwise operations, and one bincount over
         (condition, direction) pairs, which adds each bin's terms in the same order as a
         bincount per direction (the sums are the same, bit for bit)."""
-        self.f.add_terms(acc[0], w_terms[0], terms, n, i0, i1)
-        gm, gr = w_terms[1]
-        E, acc = self.E, acc[1]
-        if not E:
-            return
         cond, idx = terms.block(i0, i1)
-        c = _float_coefficients(terms, n)[idx][:, None]
-        tm = c * gm
-        tr = (np.abs(c) * gr + 2 * U * np.abs(tm)) * INFLATE + ETA
+        c = _float_coefficients(terms, n)[idx]
         uniq, inv = block_bins(cond)
         u = len(uniq)
-        bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
-        for a, x in zip(acc, (tm, tr, np.abs(tm))):
-            a[uniq] += np.bincount(bins, weights=x.ravel(), minlength=u * E).reshape(u, E)
-        acc[3][uniq] += np.bincount(inv, minlength=u)
+        _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
+        if self.E:
+            E = self.E
+            bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+            _bin_terms(acc[1], c[:, None], w_terms[1], uniq, bins, (u, E))
+            acc[1][3][uniq] += np.bincount(inv, minlength=u)
+        acc[0][3][uniq] += np.bincount(inv, minlength=u)
 
     def finish_sums(self, acc, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
         """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of
@@ -151,6 +178,22 @@ class GradientContext:
         cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
                 for e in range(self.E)]
         return values, (np.stack(cols, axis=1) if cols else np.zeros((k, 0)))
+
+
+def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
+    """Add the terms ``c·w`` (mid, radius — the coefficient rounded once, the product
+    once more —, magnitude) of one block into the accumulators' bins (``shape``: the
+    conditions × directions of a gradient, or None for values)."""
+    tm = c * w[0]
+    tr = np.abs(c) * w[1]
+    mag = np.abs(tm)
+    tr += 2 * U * mag
+    tr *= INFLATE
+    tr += ETA
+    size = len(uniq) if shape is None else shape[0] * shape[1]
+    for a, x in zip(acc, (tm, tr, mag)):
+        total = np.bincount(bins, weights=x.ravel(), minlength=size)
+        a[uniq] += total if shape is None else total.reshape(shape)
 
 
 def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
