@@ -316,10 +316,9 @@ def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], c
     try:
         raw = condition_sums(listing, first, s, wanted, done if len(groups) == 1 else None)
     except EvaluationInterrupted as stop:
-        if len(groups) > 1:
-            stop.finished = {}
-        else:
-            stop.finished = {n: _exact_where_needed(listing, centre_A, centre_b, {n: out[n]})[n] for n in out}
+        # the orders judged so far, around the balls' centre (sound; no exact pass after
+        # a Ctrl-C), or none while later passes of derivatives were still to come
+        stop.finished = dict(out) if len(groups) == 1 else {}
         raise
     if len(groups) > 1:
         try:

@@ -12,9 +12,10 @@ multiplies them all spends most of its time on zeros.
 :class:`SupportContext` wraps any context of :mod:`~rkcheck.evaluation.algorithm`'s
 kernel and hands it only the rows that may be nonzero.  A value is ``(flags, inner)``:
 the flags (one per row, or per row and stage for vectors) say where the weight may be
-nonzero, and the inner context's value holds the rows with a flag set, in order.  A
-store keeps the flags of every tree and, for the trees with one set, their row in a
-compact inner store.  The inner context computes every kept row exactly as it would in
+nonzero, and the inner context's value holds the rows with a flag set, in order (a
+gather only notes where they are stored: an operation reads the rows it keeps).  A store
+keeps the flags of every tree and, for the trees with one set, their row in a compact
+inner store.  The inner context computes every kept row exactly as it would in
 a full pass (same operations on the same values): only rows that are exactly zero are
 left out.
 """
@@ -75,6 +76,17 @@ def _rows(flags: np.ndarray) -> np.ndarray:
     return out
 
 
+class _Stored:
+    """The flagged rows of a gather, not yet read: their places in a store.  Only the rows
+    an operation keeps are read (:meth:`SupportContext._inner`) — a product ``w(u)·a(v)``
+    keeps the rows where both factors may be nonzero, often far fewer than either's."""
+
+    __slots__ = ("store", "places")
+
+    def __init__(self, store: _Store, places: np.ndarray):
+        self.store, self.places = store, places
+
+
 class _TermRows:
     """The terms ``i0 … i1 − 1`` of an order restricted to some of them (``rows``): what
     :meth:`block` gives an inner context's ``add_terms``; every other attribute (the
@@ -128,10 +140,19 @@ class SupportContext:
 
     def take(self, store: _Store, idx: np.ndarray):
         flags = store.flags[idx]
-        return flags, self.inner.take(store.inner, store.place[idx[_rows(flags)]])
+        return flags, _Stored(store, store.place[idx[_rows(flags)]])
+
+    def _inner(self, x, keep: np.ndarray | None = None):
+        """The inner value of ``x``'s flagged rows, or of those of them that ``keep`` (a
+        mask over them) keeps."""
+        inner = x[1]
+        if isinstance(inner, _Stored):
+            places = inner.places if keep is None else inner.places[keep]
+            return self.inner.take(inner.store.inner, places)
+        return inner if keep is None else self.inner.take(inner, np.flatnonzero(keep))
 
     def put(self, store: _Store, lo: int, x) -> None:
-        flags, inner = x
+        flags, inner = x[0], self._inner(x)
         rows = _rows(flags)
         k = int(np.count_nonzero(rows))
         if store.count + k > len(store.flags):
@@ -145,12 +166,9 @@ class SupportContext:
     # ------------------------------------------------------------- arithmetic
 
     def _kept(self, x, flags: np.ndarray):
-        """The rows of ``x``'s inner value that ``flags`` (a subset of x's) keeps."""
-        have = _rows(x[0])
-        keep = _rows(flags)[have]
-        if keep.all():
-            return x[1]
-        return self.inner.take(x[1], np.flatnonzero(keep))
+        """The inner value of the rows of ``x`` that ``flags`` (a subset of x's) keeps."""
+        keep = _rows(flags)[_rows(x[0])]
+        return self._inner(x, None if keep.all() else keep)
 
     def mul(self, x, y):
         flags = x[0] & y[0]
@@ -173,7 +191,7 @@ class SupportContext:
         """The terms that may be nonzero only: the others add exactly 0."""
         rows = np.flatnonzero(w_terms[0])
         if len(rows):
-            self.inner.add_terms(acc, w_terms[1], _TermRows(terms, i0, i1, rows), n, 0, len(rows))
+            self.inner.add_terms(acc, self._inner(w_terms), _TermRows(terms, i0, i1, rows), n, 0, len(rows))
 
     def finish_sums(self, acc, k: int, n: int):
         return self.inner.finish_sums(acc, k, n)

@@ -188,3 +188,25 @@ def test_centre_bits_lie_beyond_the_narrowest_entry():
     bits = box.centre_bits(A, b)
     assert Fraction(1, 2**bits) <= Fraction(2**-57) / 2**box.CENTRE_BITS_BEYOND_BOX
     assert Fraction(1, 2**bits) >= Fraction(5, 10**18) / 2**(box.CENTRE_BITS_BEYOND_BOX + 2)
+
+
+def test_ctrl_c_keeps_the_orders_already_judged():
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    listing = ConditionListing(8, None)
+    whole = _judged(RK4_DECIMAL, listing)
+    A, b = _box(*RK4_DECIMAL)
+    cA, cb = _exact(*RK4_DECIMAL)
+    stop_at = sorted(listing.orders)[3]
+
+    def on_order(n, _):
+        if n == stop_at:
+            raise KeyboardInterrupt
+
+    with pytest.raises(EvaluationInterrupted) as info:
+        box.judge_box(listing, A, b, cA, cb, sorted(listing.orders), on_order)
+    finished = info.value.finished
+    assert sorted(finished) == [n for n in sorted(listing.orders) if n <= stop_at]
+    for n, sums in finished.items():  # judged over the box, as the whole run judged them
+        assert sums.excludes_zero().tolist() == whole[n].excludes_zero().tolist()
+        assert sums.magnitude_bound().tolist() == whole[n].magnitude_bound().tolist()
