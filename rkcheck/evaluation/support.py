@@ -77,14 +77,14 @@ def _rows(flags: np.ndarray) -> np.ndarray:
 
 
 class _Stored:
-    """The flagged rows of a gather, not yet read: their places in a store.  Only the rows
+    """The flagged rows of a gather, not yet read: their trees' ids in a store.  Only the rows
     an operation keeps are read (:meth:`SupportContext._inner`) — a product ``w(u)·a(v)``
     keeps the rows where both factors may be nonzero, often far fewer than either's."""
 
-    __slots__ = ("store", "places")
+    __slots__ = ("store", "ids")
 
-    def __init__(self, store: _Store, places: np.ndarray):
-        self.store, self.places = store, places
+    def __init__(self, store: _Store, ids: np.ndarray):
+        self.store, self.ids = store, ids
 
 
 class _TermRows:
@@ -140,15 +140,15 @@ class SupportContext:
 
     def take(self, store: _Store, idx: np.ndarray):
         flags = store.flags[idx]
-        return flags, _Stored(store, store.place[idx[_rows(flags)]])
+        return flags, _Stored(store, idx[_rows(flags)])
 
     def _inner(self, x, keep: np.ndarray | None = None):
         """The inner value of ``x``'s flagged rows, or of those of them that ``keep`` (a
         mask over them) keeps."""
         inner = x[1]
         if isinstance(inner, _Stored):
-            places = inner.places if keep is None else inner.places[keep]
-            return self.inner.take(inner.store.inner, places)
+            ids = inner.ids if keep is None else inner.ids[keep]
+            return self.inner.take(inner.store.inner, inner.store.place[ids])
         return inner if keep is None else self.inner.take(inner, np.flatnonzero(keep))
 
     def put(self, store: _Store, lo: int, x) -> None:
