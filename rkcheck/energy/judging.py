@@ -8,6 +8,8 @@ box, point data at a higher precision.
 
 from __future__ import annotations
 
+from typing import Any, Mapping
+
 import numpy as np
 
 from rkcheck.energy.results import OrderVerdicts, order_verdicts
@@ -52,7 +54,7 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
 
 
 def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[int] | None,
-                progress=None) -> dict:
+                progress=None) -> Mapping[int, Any]:
     """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
