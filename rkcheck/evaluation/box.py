@@ -337,6 +337,7 @@ def _exact_where_needed(listing, centre_A, centre_b, judged: dict[int, BoxSums])
     """The orders where the centre's ball is not far narrower than the variation of some
     condition (:data:`CENTRE_SPREAD`: one that hardly varies on the box, or a box far
     narrower than the balls' precision), judged again around the exact ``R(x̃)``."""
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
     from rkcheck.evaluation.modular import exact_condition_sums
     from rkcheck.evaluation.scaled import scaled_rational
 
@@ -344,7 +345,11 @@ def _exact_where_needed(listing, centre_A, centre_b, judged: dict[int, BoxSums])
              if isinstance(j.centre, BallCentre) and np.any(~(j.centre.spread() <= CENTRE_SPREAD * j.variation))]
     if not loose:
         return judged
-    exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, loose)
+    try:
+        exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, loose)
+    except EvaluationInterrupted as stop:  # every order is judged already, around the balls
+        stop.finished = dict(judged)
+        raise
     out = dict(judged)
     for n in loose:
         out[n] = BoxSums(ExactCentre(exact[n].integers(), exact[n].scale), judged[n].screen, judged[n].variation)

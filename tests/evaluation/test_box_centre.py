@@ -210,3 +210,24 @@ def test_ctrl_c_keeps_the_orders_already_judged():
     for n, sums in finished.items():  # judged over the box, as the whole run judged them
         assert sums.excludes_zero().tolist() == whole[n].excludes_zero().tolist()
         assert sums.magnitude_bound().tolist() == whole[n].magnitude_bound().tolist()
+
+
+def test_ctrl_c_in_the_exact_centre_keeps_the_balls_verdicts(monkeypatch):
+    from rkcheck.evaluation import modular
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    listing = ConditionListing(7, None)
+    whole = _judged(RK4_DECIMAL, listing)
+    monkeypatch.setattr(box, "CENTRE_SPREAD", 0.0)  # every order wants the exact centre
+
+    def interrupted(*args, **kwargs):
+        raise EvaluationInterrupted({})
+
+    monkeypatch.setattr(modular, "exact_condition_sums", interrupted)
+    with pytest.raises(EvaluationInterrupted) as info:
+        _judged(RK4_DECIMAL, listing)
+    finished = info.value.finished
+    assert sorted(finished) == sorted(listing.orders)
+    for n, sums in finished.items():  # judged over the box around the balls, never exact sums
+        assert isinstance(sums, box.BoxSums) and isinstance(sums.centre, box.BallCentre)
+        assert sums.excludes_zero().tolist() == whole[n].excludes_zero().tolist()
