@@ -262,7 +262,8 @@ class _Pair:
 
 
 def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, centre_b, ctx: GradientContext) -> np.ndarray:
-    """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up."""
+    """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up (inf past float64's
+    range: no claim)."""
     out = []
     for i, j in ctx.a_vars:
         x, c = A[i][j], Fraction(centre_A[i][j])
@@ -270,7 +271,15 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, 
     for i in ctx.b_vars:
         x, c = b[i], Fraction(centre_b[i])
         out.append(max(c - x.lo, x.hi - c))
-    return np.array([math.nextafter(float(r), math.inf) for r in out], dtype=float)
+    return np.array([_float_above(r) for r in out], dtype=float)
+
+
+def _float_above(r: Fraction) -> float:
+    """One float above ``r`` (rounded to nearest, then up): inf past float64's range."""
+    try:
+        return math.nextafter(float(r), math.inf)
+    except OverflowError:
+        return math.inf
 
 
 def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, centre_b,
