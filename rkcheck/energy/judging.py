@@ -8,13 +8,15 @@ box, point data at a higher precision.
 
 from __future__ import annotations
 
+from typing import Any, Mapping
+
 import numpy as np
 
 from rkcheck.energy.results import OrderVerdicts, order_verdicts
 from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
-from rkcheck.evaluation.backends import Evaluation, evaluate
-from rkcheck.evaluation.box import RefinedSums, refine_box
+from rkcheck.evaluation.backends import evaluate
+from rkcheck.evaluation.box import judge_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
@@ -27,8 +29,8 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
     the first one that has a certainly failing condition."""
     wanted = sorted(listing.orders)
     if not (fail_fast and wanted):
-        whole = evaluate(listing, values, None, progress)
-        return {n: order_verdicts(n, v) for n, v in whole.orders.items()}
+        whole = _order_sums(listing, values, None, progress)
+        return {n: order_verdicts(n, v) for n, v in whole.items()}
     # orders are cheap at the bottom and costly at the top: look one order at a time
     # until a failure, doubling the batch, so that a low failure never pays for the top
     orders: dict[int, OrderVerdicts] = {}
@@ -36,12 +38,12 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
     while i < len(wanted):
         batch = wanted[i:i + step]
         try:
-            ev: Evaluation = evaluate(listing, values, batch)
+            sums = _order_sums(listing, values, batch)
         except EvaluationInterrupted as stop:
             stop.finished = {**{n: o.values for n, o in orders.items()}, **stop.finished}
             raise
         for n in batch:
-            orders[n] = order_verdicts(n, ev.orders[n])
+            orders[n] = order_verdicts(n, sums[n])
         if progress is not None:
             progress(wanted.index(batch[-1]) + 1, len(wanted))
         if any(orders[n].any(FAILS) for n in batch):
@@ -49,6 +51,26 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
         i += step
         step *= 2
     return orders
+
+
+def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[int] | None,
+                progress=None) -> Mapping[int, Any]:
+    """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
+    (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
+    evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
+    if not _judged_over_box(values):
+        return evaluate(listing, values, orders, progress).orders
+    tab = values.tableau
+    wanted = sorted(listing.orders if orders is None else orders)
+    on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
+    return judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), wanted, on_order)
+
+
+def _judged_over_box(values: TableauValues) -> bool:
+    """Decimal entries that stand for intervals, rational at face value: one box of
+    inputs judged jointly.  (A rounded decimal is never promoted to a number field: a box
+    with roots is judged by its balls alone.)"""
+    return values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
 
 
 def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVerdicts]:
@@ -59,35 +81,12 @@ def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVer
 
 def refine_undecided(listing: ConditionListing, values: TableauValues, fail_fast: bool,
                      orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
-    """What the balls left undecided, judged again: over the joint box of decimal inputs
-    (:func:`judge_box`), or on point data at a higher precision
-    (:func:`sharpen_weak_holds`).  Returns the orders and a note for the report."""
-    if values.backend is not Backend.BALL:
+    """What the balls left undecided on point data, judged again at a higher precision
+    (:func:`sharpen_weak_holds`).  A box of decimal inputs was judged over the whole box
+    already.  Returns the orders and a note for the report."""
+    if values.backend is not Backend.BALL or values.kind is NumberKind.BOX:
         return orders, None
-    if values.kind is NumberKind.BOX:
-        if not values.tableau.is_rational:
-            return orders, None
-        orders, note = judge_box(listing, values, orders)
-        return (_up_to_first_failure(orders) if fail_fast else orders), note
     return sharpen_weak_holds(listing, values, orders)
-
-
-def judge_box(listing: ConditionListing, values: TableauValues,
-              orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
-    """Decimal entries are one box of inputs (definitions §5.2): the conditions the balls
-    left undecided are judged again by the mean value form around the face values
-    (:mod:`rkcheck.evaluation.box`), which proves a failure on the whole box where the
-    balls' dependency problem hid it.  Returns the orders and no warning: the refinement
-    always runs (its derivatives are computed in passes that fit in memory)."""
-    undecided = [n for n, o in orders.items() if o.any(HOLDS_TO_DIGITS)]
-    if not undecided:
-        return orders, None
-    tab = values.tableau
-    refined = refine_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), undecided)
-    out = dict(orders)
-    for n, ref in refined.items():
-        out[n] = order_verdicts(n, RefinedSums(orders[n].values, ref))
-    return out, None
 
 
 def sharpen_weak_holds(listing: ConditionListing, values: TableauValues,

@@ -1,0 +1,220 @@
+"""The partial derivatives of every condition along the interval entries of a box of
+decimal inputs, enclosed over the whole box (definitions §5.2), on the float64 screen.
+
+A value carries, beside its float ball over the box, its gradient: one float ball per
+*direction* (an entry that is an interval).  Forward-mode differentiation through the
+kernel of :mod:`~rkcheck.evaluation.algorithm` — ``∂(xy) = x∂y + y∂x``, ``∂(Ax) = A∂x +
+(∂A)x``, ``∂(bᵀx) = bᵀ∂x + (∂b)ᵀx`` — with every operation's rounding bounded as on the
+screen (:class:`~rkcheck.evaluation.balls.FloatContext`), so each partial derivative of a
+condition is enclosed over the box: only a few of its digits are needed
+(:mod:`~rkcheck.evaluation.box` multiplies it by an entry's radius).
+
+Its cost is ``E`` (the number of directions) times the screen's; the directions are
+split into passes whose arrays fit in :data:`MAX_GRADIENT_BYTES`, one direction per pass
+at worst, so a box is never too large to judge.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext, FloatSums, _float_coefficients, block_bins
+from rkcheck.numbers.intervals import Interval
+
+#: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
+#: mid and radius each); above, the directions are split into several passes.
+MAX_GRADIENT_BYTES = 1 << 30
+
+
+def _add(p, q):
+    m = p[0] + q[0]
+    return m, (p[1] + q[1] + U * np.abs(m)) * INFLATE + ETA
+
+
+def _expand(x):
+    return x[0][..., None], x[1][..., None]
+
+
+def _product_rule(x, dy, y, dx):
+    """``x·∂y + y·∂x`` as ``_add(mul(x, ∂y), mul(y, ∂x))`` on the screen — the same
+    float operations in the same order, so the same bits — with the values ``x``, ``y``
+    broadcast along the directions and the temporaries reused in place."""
+    (xm, xr), (ym, yr) = _expand(x), _expand(y)
+    (dym, dyr), (dxm, dxr) = dy, dx
+    out = []
+    for am, ar, dm, dr in ((xm, xr, dym, dyr), (ym, yr, dxm, dxr)):
+        # FloatContext.mul: ((|a|·r_d + |d|·r_a) + r_a·r_d + u·|p|)·INFLATE + ETA
+        pm = am * dm
+        pr = np.abs(am) * dr
+        tmp = np.abs(dm)
+        tmp *= ar
+        pr += tmp
+        np.multiply(ar, dr, out=tmp)
+        pr += tmp
+        np.abs(pm, out=tmp)
+        tmp *= U
+        pr += tmp
+        pr *= INFLATE
+        pr += ETA
+        out.append((pm, pr, tmp))
+    (m, r, tmp), (pm, pr, _) = out
+    m += pm  # _add: (p_r + q_r + u·|m|)·INFLATE + ETA
+    r += pr
+    np.abs(m, out=tmp)
+    tmp *= U
+    r += tmp
+    r *= INFLATE
+    r += ETA
+    return m, r
+
+
+class GradientContext:
+    """Values and their partial derivatives with respect to the interval entries, over
+    the whole box, on the float screen: a value is ``(value, gradient)``, each a
+    ``(mid, rad)`` pair of arrays; the gradient has a trailing axis of one entry per
+    direction.
+
+    Φ and ψ = AΦ do not depend on b: their derivatives along b's entries are zero, exactly,
+    so a vector (Φ, ψ) carries only the ``EA`` directions of A's entries, and a scalar
+    (a = bᵀΦ, w) all ``E`` — A's, then b's.  Where the decimals are mostly in b (RK4 in
+    decimals: its 0.5 and 1 are exact, b's four entries are the box) Φ and ψ carry no
+    derivatives at all."""
+
+    exact = False
+
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None):
+        self.f = FloatContext(A, b)
+        s = len(b)
+        a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
+        b_vars = [i for i in range(s) if not b[i].is_point]
+        if directions is not None:  # only these of the interval entries (A's, then b's)
+            keep = set(range(len(a_vars) + len(b_vars))[directions])
+            a_vars, b_vars = ([v for e, v in enumerate(a_vars) if e in keep],
+                              [v for e, v in enumerate(b_vars, len(a_vars)) if e in keep])
+        self.a_vars = a_vars
+        self.b_vars = b_vars
+        self.EA = len(self.a_vars)
+        self.E = self.EA + len(self.b_vars)
+
+    def _zeros(self, shape, width: int):
+        return np.zeros(shape + (width,)), np.zeros(shape + (width,))
+
+    def vectors(self, n: int, s: int):
+        return self.f.vectors(n, s), self._zeros((n, s), self.EA)
+
+    def scalars(self, n: int):
+        return self.f.scalars(n), self._zeros((n,), self.E)
+
+    def ones(self, k: int, s: int):
+        return self.f.ones(k, s), self._zeros((k, s), self.EA)
+
+    def one(self, k: int):
+        return self.f.one(k), self._zeros((k,), self.E)
+
+    def take(self, x, idx):
+        return self.f.take(x[0], idx), self.f.take(x[1], idx)
+
+    def put(self, store, lo: int, x) -> None:
+        self.f.put(store[0], lo, x[0])
+        self.f.put(store[1], lo, x[1])
+
+    def mul(self, x, y):
+        return self.f.mul(x[0], y[0]), _product_rule(x[0], y[1], y[0], x[1])
+
+    def matvec(self, x):
+        value = self.f.matvec(x[0])
+        gm, gr = x[1]
+        dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
+        grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
+        # ∂(Ax)_i/∂a_ij = x_j
+        em, er = self._zeros(x[0][0].shape, self.EA)
+        for e, (i, j) in enumerate(self.a_vars):
+            em[..., i, e] = x[0][0][..., j]
+            er[..., i, e] = x[0][1][..., j]
+        return value, _add(grad, (em, er))
+
+    def dot(self, x):
+        value = self.f.dot(x[0])
+        gm, gr = x[1]
+        # along A's entries: bᵀ∂x (b holds no A entry)
+        grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
+                      self._zeros(x[0][0].shape[:-1], self.EA))
+        if not self.b_vars:
+            return value, grad_a
+        # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
+        zero = self._zeros(x[0][0].shape[:-1], len(self.b_vars))
+        grad_b = _add(zero, (x[0][0][..., self.b_vars], x[0][1][..., self.b_vars]))
+        return value, (np.concatenate([grad_a[0], grad_b[0]], axis=-1),
+                       np.concatenate([grad_a[1], grad_b[1]], axis=-1))
+
+    def sums(self, k: int, n: int):
+        # the screen's four accumulators (mid, rad, Σ|term|, count) for the values, and
+        # the same with one column per direction for the derivatives
+        return self.f.sums(k, n), [np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros(k)]
+
+    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """:meth:`FloatContext.add_terms` for the values and for every direction at once,
+        over one set of bins: the same elementwise operations, and one bincount over
+        (condition, direction) pairs, which adds each bin's terms in the same order as a
+        bincount per direction (the sums are the same, bit for bit)."""
+        cond, idx = terms.block(i0, i1)
+        c = _float_coefficients(terms, n)[idx]
+        uniq, inv = block_bins(cond)
+        u = len(uniq)
+        _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
+        if self.E:
+            E = self.E
+            bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
+            _bin_terms(acc[1], c[:, None], w_terms[1], uniq, bins, (u, E))
+            acc[1][3][uniq] += np.bincount(inv, minlength=u)
+        acc[0][3][uniq] += np.bincount(inv, minlength=u)
+
+    def finish_sums(self, acc, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
+        """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of
+        ``sup_X |∂R_k/∂x_e|``."""
+        values, acc = self.f.finish_sums(acc[0], k, n), acc[1]
+        cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
+                for e in range(self.E)]
+        return values, (np.stack(cols, axis=1) if cols else np.zeros((k, 0)))
+
+
+def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
+    """Add the terms ``c·w`` (mid, radius — the coefficient rounded once, the product
+    once more —, magnitude) of one block into the accumulators' bins (``shape``: the
+    conditions × directions of a gradient, or None for values)."""
+    tm = c * w[0]
+    tr = np.abs(c) * w[1]
+    mag = np.abs(tm)
+    tr += 2 * U * mag
+    tr *= INFLATE
+    tr += ETA
+    size = len(uniq) if shape is None else shape[0] * shape[1]
+    for a, x in zip(acc, (tm, tr, mag)):
+        total = np.bincount(bins, weights=x.ravel(), minlength=size)
+        a[uniq] += total if shape is None else total.reshape(shape)
+
+
+def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
+    """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext`
+    keeps) along ``E`` directions, ``EA`` of them A's entries (None: all): a direction of
+    A's is carried by Φ, ψ, a and w, one of b's by a and w only."""
+    top = max(listing.orders, default=1)
+    kept = listing.first[min(top, len(listing.first) - 1)]
+    EA = E if EA is None else EA
+    return int(kept) * (2 * s * EA + 2 * E) * 16
+
+
+def gradient_groups(listing, s: int, E: int, EA: int | None = None) -> list[slice]:
+    """The directions (interval entries: ``EA`` of A's — None: all —, then b's) split
+    into passes whose derivative arrays fit in :data:`MAX_GRADIENT_BYTES` — one direction
+    per pass at worst: the refinement is never skipped, a large box only takes more
+    passes."""
+    EA = E if EA is None else EA
+    groups, lo = [], 0
+    for e in range(1, E + 1):
+        if e - lo > 1 and gradient_bytes(listing, s, e - lo, max(0, min(e, EA) - lo)) > MAX_GRADIENT_BYTES:
+            groups.append(slice(lo, e - 1))
+            lo = e - 1
+    return groups + [slice(lo, E)] if E else [slice(0, 0)]
