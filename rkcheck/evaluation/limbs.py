@@ -50,8 +50,6 @@ from rkcheck.evaluation.balls import (
     BallContext,
     BallSums,
     _ball_at,
-    _coefficients,
-    block_bins,
     summed_radii,
 )
 from rkcheck.numbers.enclosure import Enclosure
@@ -197,7 +195,7 @@ class LimbBallContext:
         return (mid, np.zeros(k), np.ones(k), np.ones(k, dtype=bool))
 
     def take(self, x, idx):
-        return tuple(part[idx] for part in x)
+        return tuple(np.take(part, idx, axis=0) for part in x)
 
     # the parts of a value, whatever their number, are stored alike
     put = BallContext.put
@@ -301,80 +299,151 @@ class LimbBallContext:
 
     # ------------------------------------------------------------- condition sums
 
-    def _coefficient_digits(self, terms) -> tuple[np.ndarray, np.ndarray]:
-        """(signed digits ``(ncoef, C)`` of the integer coefficients, ``|c|`` as floats)."""
-        key = f"_coef_digits_{self.digit_bits}"
-        cached = getattr(terms, key, None)
-        if cached is None:
-            beta = self.digit_bits
-            C = max(1, -(-max((abs(c).bit_length() for c in terms.coefficients), default=1) // beta))
-            digits = np.array([[((abs(c) >> (beta * j)) & self.mask) * (1 if c >= 0 else -1) for j in range(C)]
-                               for c in terms.coefficients], dtype=np.int64).reshape(-1, C)
-            cached = (digits, np.abs(_coefficients(terms).astype(float)))
-            setattr(terms, key, cached)
-        return cached
+    def sums(self, k: int, n: int) -> _DigitSums:
+        return _DigitSums(self.L, k)
 
-    def sums(self, k: int, n: int):
-        return [None, np.zeros(k)]
-
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
-        """Σ c·w with c = ±(n−1)!/σ exact: each product ``c·w`` to digits (int64, carried:
-        every digit below 2^β but the last, which is below 2^(β−3)), then summed per
-        condition by digit in float64 — at most ``max_terms`` digits per condition, so
-        the sums stay below 2^53 and exact; radii ``|c|·r`` as in
-        :class:`~rkcheck.evaluation.balls.BallContext`."""
-        cdig, cabs = self._coefficient_digits(terms)
-        C, L = cdig.shape[1], self.L
-        k = len(acc[1])
-        if acc[0] is None:  # a condition's digit sums side by side: one cache line per condition
-            acc[0] = np.zeros((k, L + C))
-        if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
-            raise ArithmeticError("certified digits: too many terms per condition for exact sums")
+    def add_terms(self, acc: _DigitSums, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """Σ c·w with c = ±(n−1)!/σ exact, as ``g_k · Σ m·w``: the coefficients of a
+        condition k share the divisor ``g_k`` (their gcd, :func:`_multipliers`), so each
+        term's digits are multiplied by a small integer ``m = c/g_k`` and summed per
+        condition and digit in float64, uncarried — exact (:func:`_multipliers` checks
+        the bound).  Radii ``|c|·r`` as in :class:`~rkcheck.evaluation.balls.BallContext`."""
+        mult, cabs, _ = _multipliers(terms, self.digit_bits)
+        acc.terms = terms
         cond, idx = terms.block(i0, i1)
-        uniq, inv = block_bins(cond)
+        wm = w_terms[0]
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:
-            wm, cidx, cols, cinv = w_terms[0], idx, uniq, inv
+            np.multiply(wm.T, mult[i0:i1], out=acc.digit_room(cond), dtype=np.float64)
         elif len(rows):
-            wm, cidx = w_terms[0][rows], idx[rows]
-            sub, cinv = block_bins(inv[rows])
-            cols = uniq[sub]
-        else:
-            wm = None
-        if wm is not None:
-            u = len(cols)
-            local = np.zeros((L + C, u))
-            for a0 in range(0, len(wm), _BLOCK):
-                a1 = min(len(wm), a0 + _BLOCK)
-                w_t = np.ascontiguousarray(wm[a0:a1].T, dtype=np.int64)  # (L, m)
-                cw_t = cdig[cidx[a0:a1]].T.copy()  # (C, m)
-                V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
-                for j in range(C):
-                    V[1 + j:1 + j + L] += w_t * cw_t[j]
-                digits = self._carry(V)  # exact: position 0 holds nothing
-                ib = cinv[a0:a1]
-                for p in range(L + C):
-                    local[p] += np.bincount(ib, weights=digits[p], minlength=u)
-            acc[0][cols] += local.T
+            np.multiply(wm[rows].T, mult[i0 + rows], out=acc.digit_room(cond[rows]), dtype=np.float64)
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=len(uniq))
+        rad = acc.radius_room(cond)
+        np.multiply(w_terms[1], cabs[idx], out=rad)
+        rad *= _UP1
 
-    def finish_sums(self, acc, k: int, n: int) -> BallSums:
-        """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
-        rounded up (the float additions into each bin, at most a few hundred, covered by
-        γ_256)."""
-        rads = summed_radii(acc[1], k, self.bits)
-        if acc[0] is None:
-            mids = np.zeros(k, dtype=object)
-        else:
-            mids = np.empty(k, dtype=object)
-            for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
-                c1 = min(k, c0 + _BLOCK)
-                d = acc[0][c0:c1].T.astype(np.int64)  # exact: each sum is below 2^53
-                d = np.concatenate([np.zeros((1, c1 - c0), dtype=np.int64), d])  # nothing to floor below
-                mids[c0:c1] = self.to_ints(np.ascontiguousarray(self._carry(d).T))
+    def finish_sums(self, acc: _DigitSums, k: int, n: int) -> BallSums:
+        """R = Σ/(n−1)!: the exact mid-point sums (each condition's digit sums carried,
+        times its divisor) over (n−1)!·2^P, the radius bounds rounded up (the float
+        additions into each bin, at most a few hundred, covered by γ_256)."""
+        digits, radii = acc.totals()
+        rads = summed_radii(radii, k, self.bits)
+        divisor = None if acc.terms is None else _multipliers(acc.terms, self.digit_bits)[2]
+        mids = np.empty(k, dtype=object)
+        for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
+            c1 = min(k, c0 + _BLOCK)
+            d = np.zeros((self.L + 1, c1 - c0), dtype=np.int64)  # position 0: nothing to floor below
+            d[1:] = digits[:, c0:c1]  # exact: each sum is an integer below 2^53
+            ints = self.to_ints(np.ascontiguousarray(self._carry(d).T))
+            mids[c0:c1] = ints if divisor is None else ints * divisor[c0:c1].astype(object)
         return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
+
+
+class _DigitSums:
+    """The condition sums of one order: per condition and digit position the float64
+    sum of the terms' ``m·digit`` (exact integers), and the radius sums.  Terms are
+    gathered in runs of many blocks and binned at once: ``np.bincount`` costs the number
+    of conditions on every call, and at the top orders a block of terms is far smaller
+    than the conditions it lands in."""
+
+    def __init__(self, L: int, k: int):
+        self.digits, self.radii = np.zeros((L, k)), np.zeros(k)
+        run = min(max(k, _MIN_RUN), _MAX_RUN)
+        self._w, self._wc = np.empty((L, run)), np.empty(run, dtype=np.intp)
+        self._r, self._rc = np.empty(run), np.empty(run, dtype=np.intp)
+        self._nw = self._nr = 0
+        self.terms = None  # the order's terms (their divisors scale the sums)
+
+    def digit_room(self, cond: np.ndarray) -> np.ndarray:
+        """Room for the digits ``(L, len(cond))`` of terms of the conditions ``cond``."""
+        m = len(cond)
+        if self._nw + m > self._w.shape[1]:
+            self._flush_digits()
+        if m > self._w.shape[1]:
+            self._w, self._wc = np.empty((len(self._w), m)), np.empty(m, dtype=np.intp)
+        self._wc[self._nw:self._nw + m] = cond
+        self._nw += m
+        return self._w[:, self._nw - m:self._nw]
+
+    def radius_room(self, cond: np.ndarray) -> np.ndarray:
+        """Room for the radii of terms of the conditions ``cond``."""
+        m = len(cond)
+        if self._nr + m > len(self._r):
+            self._flush_radii()
+        if m > len(self._r):
+            self._r, self._rc = np.empty(m), np.empty(m, dtype=np.intp)
+        self._rc[self._nr:self._nr + m] = cond
+        self._nr += m
+        return self._r[self._nr - m:self._nr]
+
+    def _flush_digits(self) -> None:
+        n, k = self._nw, self.digits.shape[1]
+        if n:
+            cond = self._wc[:n]
+            for p in range(len(self.digits)):
+                self.digits[p] += np.bincount(cond, weights=self._w[p, :n], minlength=k)
+        self._nw = 0
+
+    def _flush_radii(self) -> None:
+        n = self._nr
+        if n:
+            self.radii += np.bincount(self._rc[:n], weights=self._r[:n], minlength=len(self.radii))
+        self._nr = 0
+
+    def totals(self) -> tuple[np.ndarray, np.ndarray]:
+        self._flush_digits()
+        self._flush_radii()
+        return self.digits, self.radii
+
+
+#: terms binned at once (at least, and at most): runs at least as long as the conditions
+#: are many keep bincount's cost per term bounded, and the run's buffer small
+_MIN_RUN = 1 << 14
+_MAX_RUN = 1 << 18
+
+
+def _multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(per term ``m = c/g_k`` as int8, per coefficient ``|c|`` as float64, per condition
+    ``g_k``), once per order's terms, with ``g_k`` the gcd of the coefficients of
+    condition ``k``.
+
+    The terms of a condition are the rootings of one free tree, one per orbit O of its
+    automorphisms, with ``c = ±K·|O|`` (:attr:`~rkcheck.trees.terms.OrderTerms.coefficient_weight`):
+    ``Σ|m|`` over a condition is at most its number of vertices.  Every partial sum of
+    ``m·digit`` (digits below 2^β in magnitude) is then below ``Σ|m|·2^β``; that bound
+    is checked against 2^53 (float64 integers) and against what :meth:`LimbBallContext.to_ints`
+    takes after the carries (``2^(62−β)``, the top digit below ``Σ|m|·2^(β−4) + Σ|m| + 1``)."""
+    cached = getattr(terms, "_digit_multipliers", None)
+    if cached is None:
+        coef = terms.coefficients
+        wide = max(map(abs, coef), default=0) >= 2**62  # beyond int64: Python integers
+        exact = np.array(coef, dtype=object).astype(object if wide else np.int64)
+        g = np.zeros(len(terms) + 1, dtype=exact.dtype)
+        for t0 in range(0, terms.rows, _PLAN_CHUNK):  # in chunks: small temporaries
+            cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
+            np.gcd.at(g, cond, np.abs(exact[idx]))
+        mult = np.zeros(terms.rows, dtype=np.int8)
+        weight = np.zeros(len(g))
+        for t0 in range(0, terms.rows, _PLAN_CHUNK):
+            t1 = min(terms.rows, t0 + _PLAN_CHUNK)
+            cond, idx = terms.block(t0, t1)
+            m = exact[idx] // g[cond]  # exact: g_k divides every coefficient of condition k
+            m[cond == len(terms)] = 0  # the superfluous trees' bin is dropped: nothing to sum
+            weight += np.bincount(cond, weights=np.abs(m).astype(np.float64), minlength=len(g))
+            if np.abs(m).max(initial=0) > 127:
+                raise ArithmeticError("certified digits: a coefficient is too large a multiple of its condition's gcd")
+            mult[t0:t1] = m
+        top = float(weight.max(initial=0))
+        if top * 2.0**beta > 2.0**53 or top * 2.0 ** (beta - 4) + top + 1 >= 2.0 ** (62 - beta):
+            raise ArithmeticError("certified digits: the coefficients of a condition are too large for exact sums")
+        cached = (mult, np.abs(np.array(coef, dtype=object).astype(float)), g)
+        terms._digit_multipliers = cached
+    return cached
+
+
+#: terms per chunk when the multipliers of an order are computed
+_PLAN_CHUNK = 1 << 20
 
 
 #: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
