@@ -27,6 +27,7 @@ import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
+import rkcheck.evaluation.limbs as limbs
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
@@ -245,3 +246,24 @@ def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
         for k in range(len(sums)):
             e, t = sums.enclosure(k), exact.orders[n].value(k)
             assert abs(e.mid - t) <= e.rad and e.rad < Fraction(1, 10**50), (n, k)
+
+
+def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
+    # the divisor of a condition's coefficients is Σ|c|/n (one term per orbit of the free
+    # tree's automorphisms), checked against every coefficient, else their gcd: both
+    # give the exact sums, and the quotients c/g_k of a condition add up to at most n
+    A, b = small_tableau(5)
+    S, P = points(A, b)
+    listing = ConditionListing(9, None)
+    orbits = assert_encloses(listing, A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
+    for n, terms in listing.orders.items():
+        mult, _, g = limbs._multipliers(terms, 28)
+        cond, idx = terms.block(0, terms.rows)
+        real = cond < len(terms)
+        coef = np.array(terms.coefficients, dtype=object)[idx[real]]
+        assert list(mult[real].astype(object) * g[cond[real]].astype(object)) == list(coef)
+        assert np.bincount(cond[real], weights=np.abs(mult[real])).max(initial=0) <= n
+    monkeypatch.setattr(limbs, "_orbit_divisors", lambda terms, exact: None)
+    gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
+    for n in orbits:
+        assert list(gcds[n].mids) == list(orbits[n].mids)
