@@ -75,10 +75,12 @@ def _layout(bits: int, s: int) -> tuple[int, int] | None:
 
 class LimbBallContext:
     """Certified balls with int64 digit mid-points (module docstring).  A value is
-    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, flags): a flag is False
-    only where the mid-point is zero — a product with a zero factor, a matrix product
-    whose nonzero entries meet only zeros — so that the digit arithmetic of those rows is
-    skipped (most weights of an explicit tableau's tall trees are zero)."""
+    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, codes): a code says
+    what is known of the mid-point — :data:`_ZERO` (a product with a zero factor, a
+    matrix product whose nonzero entries meet only zeros), :data:`_ONE` (exactly 1: the
+    weights of τ, and their products), else :data:`_ANY` — so that the digit arithmetic
+    of those rows is skipped: most weights of an explicit tableau's tall trees are zero,
+    and about a third of the products of any tableau have the factor τ."""
 
     exact = False
 
@@ -179,20 +181,20 @@ class LimbBallContext:
     # ------------------------------------------------------------- kernel
 
     def vectors(self, n: int, s: int):
-        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=bool))
+        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=np.uint8))
 
     def scalars(self, n: int):
-        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool))
+        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.uint8))
 
     def ones(self, k: int, s: int):
         mid = np.zeros((k, s, self.L), dtype=_STORE)
         mid[..., self.F] = 1
-        return (mid, np.zeros((k, s)), np.ones((k, s)), np.ones((k, s), dtype=bool))
+        return (mid, np.zeros((k, s)), np.ones((k, s)), np.full((k, s), _ONE, dtype=np.uint8))
 
     def one(self, k: int):
         mid = np.zeros((k, self.L), dtype=_STORE)
         mid[:, self.F] = 1
-        return (mid, np.zeros(k), np.ones(k), np.ones(k, dtype=bool))
+        return (mid, np.zeros(k), np.ones(k), np.full(k, _ONE, dtype=np.uint8))
 
     def take(self, x, idx):
         return tuple(np.take(part, idx, axis=0) for part in x)
@@ -200,30 +202,42 @@ class LimbBallContext:
     # the parts of a value, whatever their number, are stored alike
     put = BallContext.put
 
-    def _may_be_nonzero(self, x) -> np.ndarray:
-        """The value's flags (False: the mid-point is zero), or, for a bare (mid-point,
-        radius, magnitude) triple, whether its digits are."""
+    def _codes(self, x) -> np.ndarray:
+        """The value's codes, or, for a bare (mid-point, radius, magnitude) triple,
+        :data:`_ZERO` or :data:`_ANY` as its digits are."""
         if len(x) > 3:
             return x[3]
-        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape)
+        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape).astype(np.uint8)
+
+    def _may_be_nonzero(self, x) -> np.ndarray:
+        return self._codes(x) != _ZERO
 
     def mul(self, x, y):
         xm, xr, xg = x[:3]
         ym, yr, yg = y[:3]
-        nz = self._may_be_nonzero(x) & self._may_be_nonzero(y)
+        cx, cy = self._codes(x), self._codes(y)
+        code = np.minimum(cx, cy)  # zero if either is, one if both are, else any
         xf, yf = xm.reshape(-1, self.L), ym.reshape(-1, self.L)
-        rows = _sparse_rows(nz.reshape(-1))
+        cx, cy = cx.reshape(-1), cy.reshape(-1)
+        rows = _sparse_rows((cx == _ANY) & (cy == _ANY))
         if rows is None:
             out = self._mul_digits(xf, yf)
-        else:  # a zero mid-point times anything is zero, exactly: only the others are multiplied
+        else:
+            # a zero mid-point times anything is zero, exactly, and 1 times y is y: the
+            # digits of 1 are those of 2^P, so the digit products are y's digits in the
+            # kept positions (none dropped, no carry) — the same digits, bit for bit
             out = np.zeros(xf.shape, dtype=_STORE)
             if len(rows):
-                out[rows] = self._mul_digits(xf[rows], yf[rows])
+                out[rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
+            for rows, other in ((np.flatnonzero((cx == _ONE) & (cy != _ZERO)), yf),
+                                (np.flatnonzero((cy == _ONE) & (cx == _ANY)), xf)):
+                if len(rows):
+                    out[rows] = np.take(other, rows, axis=0)
         err = self.e_mul * self.unit
         rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
         g = xg * yg * _UP4 + err
         self._check(g)
-        return out.reshape(xm.shape), rad, g, nz
+        return out.reshape(xm.shape), rad, g, code
 
     def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
         """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
@@ -253,7 +267,7 @@ class LimbBallContext:
         # rows of zero mid-points give zero, exactly: only the others are multiplied
         out = np.zeros((len(xm), Md.shape[0], self.L), dtype=_STORE)
         if len(rows):
-            out[rows] = self._product_digits(xm[rows], Md, plan)
+            out[rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
         return out
 
     def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
@@ -284,12 +298,12 @@ class LimbBallContext:
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
         nz = (self._may_be_nonzero(x).astype(self._count) @ self.A_nz) > 0
-        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz
+        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz.astype(np.uint8)
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
         nz = (self._may_be_nonzero(x).astype(self._count) @ self.b_nz)[:, 0] > 0
-        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz
+        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz.astype(np.uint8)
 
     def enclosures(self, x) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
@@ -317,7 +331,8 @@ class LimbBallContext:
         if rows is None:
             np.multiply(wm.T, mult[i0:i1], out=acc.digit_room(cond), dtype=np.float64)
         elif len(rows):
-            np.multiply(wm[rows].T, mult[i0 + rows], out=acc.digit_room(cond[rows]), dtype=np.float64)
+            np.multiply(np.take(wm, rows, axis=0).T, mult[i0 + rows], out=acc.digit_room(cond[rows]),
+                        dtype=np.float64)
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         rad = acc.radius_room(cond)
         np.multiply(w_terms[1], cabs[idx], out=rad)
@@ -513,6 +528,9 @@ def _product_plan(Md: np.ndarray) -> list[_Pass]:
                 plan.append((j, q, None, col.copy()))
     return plan
 
+
+#: the codes of a value's mid-points: zero, exactly one, anything (:class:`LimbBallContext`)
+_ZERO, _ANY, _ONE = 0, 1, 2
 
 #: the share of rows with nonzero mid-points below which only those rows are multiplied
 #: (gathering them and scattering the products back costs less than the digits of the rest)

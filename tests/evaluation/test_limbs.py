@@ -120,13 +120,16 @@ def test_chunked_digit_balls_are_bit_identical(monkeypatch):
 
 
 @pytest.mark.parametrize("seed", range(3))
-def test_zero_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed):
+@pytest.mark.parametrize("explicit", [True, False])
+def test_zero_and_one_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed, explicit):
     # an explicit tableau (strictly lower triangular A): most weights of tall trees are
-    # exactly zero.  Skipping their digit products (every row sparse) or multiplying them
-    # (none) gives the same balls, bit for bit, and they enclose the exact values
+    # exactly zero; in any tableau the products with the factor τ are by exactly one.
+    # Skipping their digit products (every row sparse) or multiplying them (none) gives
+    # the same balls, bit for bit, and they enclose the exact values
     rng = random.Random(seed)
     s = 4
-    A = [[Fraction(rng.randint(1, 9), 9 * s) if j < i else Fraction(0) for j in range(s)] for i in range(s)]
+    A = [[Fraction(rng.randint(1, 9), 9 * s) if j < i or not explicit else Fraction(0) for j in range(s)]
+         for i in range(s)]
     b = [Fraction(rng.randint(1, 9), 9 * s) for _ in range(s)]
     listing = ConditionListing(11, None)
     runs = []
