@@ -425,38 +425,39 @@ def _multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
     The terms of a condition are the rootings of one free tree, one per orbit O of its
     automorphisms, with ``c = ±K·|O|`` (:attr:`~rkcheck.trees.terms.OrderTerms.coefficient_weight`):
-    ``g_k = K = Σ|c|/n`` (:func:`_orbit_divisors`), checked to divide every coefficient,
-    else their gcd; ``Σ|m|`` over a condition is then at most its number of vertices.
-    Every partial sum of ``m·digit`` (digits below 2^β in magnitude) is below
-    ``Σ|m|·2^β``; that bound is checked against 2^53 (float64 integers) and against what
-    :meth:`LimbBallContext.to_ints` takes after the carries (``2^(62−β)``, the top digit
-    below ``Σ|m|·2^(β−4) + Σ|m| + 1``)."""
+    ``g_k = K = Σ|c|/n`` (:func:`_orbit_divisors`) when it divides every coefficient —
+    then ``Σ|m| = n`` exactly — else their gcd (``Σ|m|`` counted).  Every partial sum of
+    ``m·digit`` (digits below 2^β in magnitude) is below ``Σ|m|·2^β``; that bound is
+    checked against 2^53 (float64 integers) and against what :meth:`LimbBallContext.to_ints`
+    takes after the carries (``2^(62−β)``, the top digit below ``Σ|m|·2^(β−4) + Σ|m| + 1``)."""
     cached = getattr(terms, "_digit_multipliers", None)
     if cached is None:
         coef = terms.coefficients
         wide = max(map(abs, coef), default=0) >= 2**62  # beyond int64: Python integers
         exact = np.array(coef, dtype=object).astype(object if wide else np.int64)
         g = None if wide else _orbit_divisors(terms, exact)
-        found = None if g is None else _quotients(terms, exact, g)
-        if found is None:  # not the orbit structure: the gcd of each condition's coefficients
+        mult = None if g is None else _quotients(terms, exact, g)
+        weight = float(terms.vertices)
+        if mult is None:  # not the orbit structure: the gcd of each condition's coefficients
             g = np.zeros(len(terms) + 1, dtype=exact.dtype)
             for t0 in range(0, terms.rows, _PLAN_CHUNK):  # in chunks: small temporaries
                 cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
                 np.gcd.at(g, cond, np.abs(exact[idx]))
-            found = _quotients(terms, exact, g)
-        if found is None or found[1] * 2.0**beta > 2.0**53 or \
-                found[1] * 2.0 ** (beta - 4) + found[1] + 1 >= 2.0 ** (62 - beta):
+            mult = _quotients(terms, exact, g)
+            weight = _largest_weight(terms, mult) if mult is not None else math.inf
+        if mult is None or weight * 2.0**beta > 2.0**53 or weight * 2.0 ** (beta - 4) + weight + 1 >= 2.0 ** (62 - beta):
             raise ArithmeticError("certified digits: the coefficients of a condition are too large for exact sums")
         assert g is not None
-        cached = (found[0], np.abs(np.array(coef, dtype=object).astype(float)), g)
+        cached = (mult, np.abs(np.array(coef, dtype=object).astype(float)), g)
         terms._digit_multipliers = cached
     return cached
 
 
 def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
-    """``Σ|c|/n`` per condition (``n`` vertices; 0 where it is not an integer), the
-    sums exact in float64 as two halves of 31 bits; None when a condition has so many
-    terms that they might not be."""
+    """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
+    where it is not an integer, and for the superfluous trees' bin), the sums exact in
+    float64 as two halves of 31 bits; None when a condition has so many terms that they
+    might not be."""
     k1, n = len(terms) + 1, terms.vertices
     if len(terms) and int(terms.counts.max()) > n:
         return None
@@ -471,33 +472,40 @@ def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
     # Σ|c| = 2^31·S_hi + S_lo is divided by n in two steps, within int64
     q1, r1 = np.divmod(sums_hi[:-1].astype(np.int64), n)
     q2, r2 = np.divmod((r1 << 31) + sums_lo[:-1].astype(np.int64), n)
-    divisors = np.ones(k1, dtype=np.int64)  # the superfluous trees' bin: dropped, any divisor
-    divisors[:-1] = np.where(r2 == 0, (q1 << 31) + q2, 0)
+    divisors = np.full(k1, 2**62, dtype=np.int64)
+    divisors[:-1] = np.where((r2 == 0) & (q1 + q2 > 0), (q1 << 31) + q2, 2**62)
     return divisors
 
 
-def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> tuple[np.ndarray, float] | None:
-    """(``c/g_k`` per term as int8, the largest ``Σ|c/g_k|`` of a condition), or None
-    when some ``g_k`` does not divide a coefficient of condition ``k`` or a quotient
+def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
+    """``c/g_k`` per term as int8 (0 for the superfluous trees, whose bin is dropped), or
+    None when some ``g_k`` does not divide a coefficient of condition ``k`` or a quotient
     exceeds int8."""
     k = len(terms)
     mult = np.zeros(terms.rows, dtype=np.int8)
-    weight = np.zeros(k + 1)
-    safe = np.where(g == 0, 1, g)
+    safe = np.where(g == 0, 2**62, g) if g.dtype != object else np.where(g == 0, 1, g)
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         t1 = min(terms.rows, t0 + _PLAN_CHUNK)
         cond, idx = terms.block(t0, t1)
         c, d = exact[idx], safe[cond]
         m = c // d
-        m[cond == k] = 0  # the superfluous trees' bin is dropped: nothing to sum
-        if np.any((m * d != c) & (cond < k)) or np.any((g[cond] == 0) & (cond < k)):
+        real = cond < k
+        if not np.all((m * d == c) | ~real):
             return None
-        am = np.abs(m)
-        if am.max(initial=0) > 127:
+        m *= real
+        if np.abs(m).max(initial=0) > 127:
             return None
-        weight += np.bincount(cond, weights=am.astype(np.float64), minlength=k + 1)
         mult[t0:t1] = m
-    return mult, float(weight.max(initial=0))
+    return mult
+
+
+def _largest_weight(terms, mult: np.ndarray) -> float:
+    """The largest ``Σ|m|`` over the terms of a condition."""
+    weight = np.zeros(len(terms) + 1)
+    for t0 in range(0, terms.rows, _PLAN_CHUNK):
+        cond = terms.conditions(t0, min(terms.rows, t0 + _PLAN_CHUNK))
+        weight += np.bincount(cond, weights=np.abs(mult[t0:t0 + len(cond)].astype(np.float64)), minlength=len(weight))
+    return float(weight.max(initial=0))
 
 
 #: terms per chunk when the multipliers of an order are computed
