@@ -22,10 +22,10 @@ Only for data whose values stay small: the integer digit holds ``|x| < 2^(β−4
 tree with ``n`` vertices is at most ``M^n``, ``M = max(1, α)·max(1, β_b)`` (induction on
 ``Φ(u∘v) = Φ(u)⊙AΦ(v)``, ``w(u∘v) = w(u)·bᵀΦ(v)``): :meth:`LimbBallContext.create` builds
 the context only when ``M^vertices`` fits, and every product checks its magnitude bounds
-anyway.  The condition sums ``Σ c·w`` are exact (each ``c·w`` carried to digits below
-``2^β``, summed per condition and digit in float64 — at most ``max_terms`` per condition
-— and carried again) and end as Python integers in the
-:class:`~rkcheck.evaluation.balls.BallSums` of the object context.
+anyway.  The condition sums ``Σ c·w`` are exact: each weight's digits times the small
+integer ``c/g_k`` (``g_k`` a divisor of the coefficients of condition k), summed per
+condition and digit in float64 and carried once per order
+(:mod:`rkcheck.evaluation.digit_sums`, which also judges them).
 
 Measured (dense 4-stage tableau, 50 digits, β = 28, L = 9, A/B in one session): about
 30 % less time than the Python-integer balls at orders 14, 16 and 18, and 26–30 % less
@@ -45,14 +45,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rkcheck.evaluation.balls import (
-    _UP1,
-    _UP4,
-    BallContext,
-    BallSums,
-    _ball_at,
-    summed_radii,
-)
+from rkcheck.evaluation.balls import _UP1, _UP4, BallContext, _ball_at, summed_radii
+from rkcheck.evaluation.digit_sums import DigitBallSums, DigitSums, digits_to_ints, multipliers
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -147,16 +141,7 @@ class LimbBallContext:
     def to_ints(self, digits: np.ndarray) -> np.ndarray:
         """The integers ``Σ_j d_j 2^(β·j)`` of int64 digits ``(n, K)`` (any K, each digit
         below 2^(62−β) in magnitude), as Python ints."""
-        beta = self.digit_bits
-        d = digits.astype(np.int64)
-        if d.shape[1] % 2:
-            d = np.concatenate([d, np.zeros((d.shape[0], 1), dtype=np.int64)], axis=1)
-        # pairs of digits first, in int64: |d_0 + d_1·2^β| < 2^(62−β)·(1 + 2^β) < 2^63
-        pairs = d[:, 0::2] + (d[:, 1::2] << beta)
-        out = pairs[:, -1].astype(object)
-        for q in range(pairs.shape[1] - 2, -1, -1):
-            out = (out << (2 * beta)) + pairs[:, q].astype(object)
-        return out
+        return digits_to_ints(digits, self.digit_bits)
 
     # ------------------------------------------------------------- digits
 
@@ -314,16 +299,16 @@ class LimbBallContext:
 
     # ------------------------------------------------------------- condition sums
 
-    def sums(self, k: int, n: int) -> _DigitSums:
-        return _DigitSums(self.L, k)
+    def sums(self, k: int, n: int) -> DigitSums:
+        return DigitSums(self.L, k)
 
-    def add_terms(self, acc: _DigitSums, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: DigitSums, w_terms, terms, n: int, i0: int, i1: int) -> None:
         """Σ c·w with c = ±(n−1)!/σ exact, as ``g_k · Σ m·w``: the coefficients of a
-        condition k share the divisor ``g_k`` (their gcd, :func:`_multipliers`), so each
-        term's digits are multiplied by a small integer ``m = c/g_k`` and summed per
-        condition and digit in float64, uncarried — exact (:func:`_multipliers` checks
-        the bound).  Radii ``|c|·r`` as in :class:`~rkcheck.evaluation.balls.BallContext`."""
-        mult, cabs, _ = _multipliers(terms, self.digit_bits)
+        condition k share a divisor ``g_k`` (:func:`~rkcheck.evaluation.digit_sums.multipliers`),
+        so each term's digits are multiplied by a small integer ``m = c/g_k`` and summed
+        per condition and digit in float64, uncarried — exact (``multipliers`` checks the
+        bound).  Radii ``|c|·r`` as in :class:`~rkcheck.evaluation.balls.BallContext`."""
+        mult, cabs, _ = multipliers(terms, self.digit_bits)
         acc.terms = terms
         cond, idx = terms.block(i0, i1)
         wm = w_terms[0]
@@ -339,178 +324,20 @@ class LimbBallContext:
         np.multiply(w_terms[1], cabs[idx], out=rad)
         rad *= _UP1
 
-    def finish_sums(self, acc: _DigitSums, k: int, n: int) -> BallSums:
-        """R = Σ/(n−1)!: the exact mid-point sums (each condition's digit sums carried,
+    def finish_sums(self, acc: DigitSums, k: int, n: int) -> DigitBallSums:
+        """R = Σ/(n−1)!: the exact mid-point sums (each condition's digit sums carried;
         times its divisor) over (n−1)!·2^P, the radius bounds rounded up (the float
         additions into each bin, at most a few hundred, covered by γ_256)."""
         digits, radii = acc.totals()
         rads = summed_radii(radii, k, self.bits)
-        divisor = None if acc.terms is None else _multipliers(acc.terms, self.digit_bits)[2]
-        mids = np.empty(k, dtype=object)
+        divisors = np.ones(k, dtype=np.int64) if acc.terms is None else multipliers(acc.terms, self.digit_bits)[2][:k]
+        carried = np.empty((self.L, k), dtype=np.int64)
         for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
             c1 = min(k, c0 + _BLOCK)
             d = np.zeros((self.L + 1, c1 - c0), dtype=np.int64)  # position 0: nothing to floor below
             d[1:] = digits[:, c0:c1]  # exact: each sum is an integer below 2^53
-            ints = self.to_ints(np.ascontiguousarray(self._carry(d).T))
-            mids[c0:c1] = ints if divisor is None else ints * divisor[c0:c1].astype(object)
-        return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
-
-
-class _DigitSums:
-    """The condition sums of one order: per condition and digit position the float64
-    sum of the terms' ``m·digit`` (exact integers), and the radius sums.  Terms are
-    gathered in runs of many blocks and binned at once: ``np.bincount`` costs the number
-    of conditions on every call, and at the top orders a block of terms is far smaller
-    than the conditions it lands in."""
-
-    def __init__(self, L: int, k: int):
-        self.digits, self.radii = np.zeros((L, k)), np.zeros(k)
-        run = min(max(k, _MIN_RUN), _MAX_RUN)
-        self._w, self._wc = np.empty((L, run)), np.empty(run, dtype=np.intp)
-        self._r, self._rc = np.empty(run), np.empty(run, dtype=np.intp)
-        self._nw = self._nr = 0
-        self.terms = None  # the order's terms (their divisors scale the sums)
-
-    def digit_room(self, cond: np.ndarray) -> np.ndarray:
-        """Room for the digits ``(L, len(cond))`` of terms of the conditions ``cond``."""
-        m = len(cond)
-        if self._nw + m > self._w.shape[1]:
-            self._flush_digits()
-        if m > self._w.shape[1]:
-            self._w, self._wc = np.empty((len(self._w), m)), np.empty(m, dtype=np.intp)
-        self._wc[self._nw:self._nw + m] = cond
-        self._nw += m
-        return self._w[:, self._nw - m:self._nw]
-
-    def radius_room(self, cond: np.ndarray) -> np.ndarray:
-        """Room for the radii of terms of the conditions ``cond``."""
-        m = len(cond)
-        if self._nr + m > len(self._r):
-            self._flush_radii()
-        if m > len(self._r):
-            self._r, self._rc = np.empty(m), np.empty(m, dtype=np.intp)
-        self._rc[self._nr:self._nr + m] = cond
-        self._nr += m
-        return self._r[self._nr - m:self._nr]
-
-    def _flush_digits(self) -> None:
-        n, k = self._nw, self.digits.shape[1]
-        if n:
-            cond = self._wc[:n]
-            for p in range(len(self.digits)):
-                self.digits[p] += np.bincount(cond, weights=self._w[p, :n], minlength=k)
-        self._nw = 0
-
-    def _flush_radii(self) -> None:
-        n = self._nr
-        if n:
-            self.radii += np.bincount(self._rc[:n], weights=self._r[:n], minlength=len(self.radii))
-        self._nr = 0
-
-    def totals(self) -> tuple[np.ndarray, np.ndarray]:
-        self._flush_digits()
-        self._flush_radii()
-        return self.digits, self.radii
-
-
-#: terms binned at once (at least, and at most): runs at least as long as the conditions
-#: are many keep bincount's cost per term bounded, and the run's buffer small
-_MIN_RUN = 1 << 14
-_MAX_RUN = 1 << 18
-
-
-def _multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(per term ``m = c/g_k`` as int8, per coefficient ``|c|`` as float64, per condition
-    ``g_k``), once per order's terms, ``g_k`` a common divisor of the coefficients of
-    condition ``k``.
-
-    The terms of a condition are the rootings of one free tree, one per orbit O of its
-    automorphisms, with ``c = ±K·|O|`` (:attr:`~rkcheck.trees.terms.OrderTerms.coefficient_weight`):
-    ``g_k = K = Σ|c|/n`` (:func:`_orbit_divisors`) when it divides every coefficient —
-    then ``Σ|m| = n`` exactly — else their gcd (``Σ|m|`` counted).  Every partial sum of
-    ``m·digit`` (digits below 2^β in magnitude) is below ``Σ|m|·2^β``; that bound is
-    checked against 2^53 (float64 integers) and against what :meth:`LimbBallContext.to_ints`
-    takes after the carries (``2^(62−β)``, the top digit below ``Σ|m|·2^(β−4) + Σ|m| + 1``)."""
-    cached = getattr(terms, "_digit_multipliers", None)
-    if cached is None:
-        coef = terms.coefficients
-        wide = max(map(abs, coef), default=0) >= 2**62  # beyond int64: Python integers
-        exact = np.array(coef, dtype=object).astype(object if wide else np.int64)
-        g = None if wide else _orbit_divisors(terms, exact)
-        mult = None if g is None else _quotients(terms, exact, g)
-        weight = float(terms.vertices)
-        if mult is None:  # not the orbit structure: the gcd of each condition's coefficients
-            g = np.zeros(len(terms) + 1, dtype=exact.dtype)
-            for t0 in range(0, terms.rows, _PLAN_CHUNK):  # in chunks: small temporaries
-                cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
-                np.gcd.at(g, cond, np.abs(exact[idx]))
-            mult = _quotients(terms, exact, g)
-            weight = _largest_weight(terms, mult) if mult is not None else math.inf
-        if mult is None or weight * 2.0**beta > 2.0**53 or weight * 2.0 ** (beta - 4) + weight + 1 >= 2.0 ** (62 - beta):
-            raise ArithmeticError("certified digits: the coefficients of a condition are too large for exact sums")
-        assert g is not None
-        cached = (mult, np.abs(np.array(coef, dtype=object).astype(float)), g)
-        terms._digit_multipliers = cached
-    return cached
-
-
-def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
-    """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
-    where it is not an integer, and for the superfluous trees' bin), the sums exact in
-    float64 as two halves of 31 bits; None when a condition has so many terms that they
-    might not be."""
-    k1, n = len(terms) + 1, terms.vertices
-    if len(terms) and int(terms.counts.max()) > n:
-        return None
-    cabs = np.abs(exact)
-    hi, lo = (cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)
-    sums_hi, sums_lo = np.zeros(k1), np.zeros(k1)
-    for t0 in range(0, terms.rows, _PLAN_CHUNK):
-        cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
-        sums_hi += np.bincount(cond, weights=hi[idx], minlength=k1)
-        sums_lo += np.bincount(cond, weights=lo[idx], minlength=k1)
-    # at most n terms per condition, halves below 2^31: both sums below n·2^31, exact;
-    # Σ|c| = 2^31·S_hi + S_lo is divided by n in two steps, within int64
-    q1, r1 = np.divmod(sums_hi[:-1].astype(np.int64), n)
-    q2, r2 = np.divmod((r1 << 31) + sums_lo[:-1].astype(np.int64), n)
-    divisors = np.full(k1, 2**62, dtype=np.int64)
-    divisors[:-1] = np.where((r2 == 0) & (q1 + q2 > 0), (q1 << 31) + q2, 2**62)
-    return divisors
-
-
-def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
-    """``c/g_k`` per term as int8 (0 for the superfluous trees, whose bin is dropped), or
-    None when some ``g_k`` does not divide a coefficient of condition ``k`` or a quotient
-    exceeds int8."""
-    k = len(terms)
-    mult = np.zeros(terms.rows, dtype=np.int8)
-    safe = np.where(g == 0, 2**62, g) if g.dtype != object else np.where(g == 0, 1, g)
-    for t0 in range(0, terms.rows, _PLAN_CHUNK):
-        t1 = min(terms.rows, t0 + _PLAN_CHUNK)
-        cond, idx = terms.block(t0, t1)
-        c, d = exact[idx], safe[cond]
-        m = c // d
-        real = cond < k
-        if not np.all((m * d == c) | ~real):
-            return None
-        m *= real
-        if np.abs(m).max(initial=0) > 127:
-            return None
-        mult[t0:t1] = m
-    return mult
-
-
-def _largest_weight(terms, mult: np.ndarray) -> float:
-    """The largest ``Σ|m|`` over the terms of a condition."""
-    weight = np.zeros(len(terms) + 1)
-    for t0 in range(0, terms.rows, _PLAN_CHUNK):
-        cond = terms.conditions(t0, min(terms.rows, t0 + _PLAN_CHUNK))
-        weight += np.bincount(cond, weights=np.abs(mult[t0:t0 + len(cond)].astype(np.float64)), minlength=len(weight))
-    return float(weight.max(initial=0))
-
-
-#: terms per chunk when the multipliers of an order are computed
-_PLAN_CHUNK = 1 << 18
+            carried[:, c0:c1] = self._carry(d)
+        return DigitBallSums(carried, divisors, rads, self.bits, self.digit_bits, math.factorial(n - 1))
 
 
 #: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)

@@ -27,7 +27,7 @@ import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
-import rkcheck.evaluation.limbs as limbs
+import rkcheck.evaluation.digit_sums as digit_sums
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
@@ -260,13 +260,13 @@ def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
     listing = ConditionListing(9, None)
     orbits = assert_encloses(listing, A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
     for n, terms in listing.orders.items():
-        mult, _, g = limbs._multipliers(terms, 28)
+        mult, _, g = digit_sums.multipliers(terms, 28)
         cond, idx = terms.block(0, terms.rows)
         real = cond < len(terms)
         coef = np.array(terms.coefficients, dtype=object)[idx[real]]
         assert list(mult[real].astype(object) * g[cond[real]].astype(object)) == list(coef)
         assert np.bincount(cond[real], weights=np.abs(mult[real])).max(initial=0) <= n
-    monkeypatch.setattr(limbs, "_orbit_divisors", lambda terms, exact: None)
+    monkeypatch.setattr(digit_sums, "_orbit_divisors", lambda terms, exact: None)
     gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
     for n in orbits:
         assert list(gcds[n].mids) == list(orbits[n].mids)
