@@ -212,23 +212,25 @@ class LimbBallContext:
             # a zero mid-point times anything is zero, exactly, and 1 times y is y: the
             # digits of 1 are those of 2^P, so the digit products are y's digits in the
             # kept positions (none dropped, no carry) — the same digits, bit for bit
-            out = np.zeros(xf.shape, dtype=_STORE)
+            out = np.zeros((self.L, len(xf)), dtype=np.int64)
             if len(rows):
-                out[rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
+                out[:, rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
             for rows, other in ((np.flatnonzero((cx == _ONE) & (cy != _ZERO)), yf),
                                 (np.flatnonzero((cy == _ONE) & (cx == _ANY)), xf)):
                 if len(rows):
-                    out[rows] = np.take(other, rows, axis=0)
+                    out[:, rows] = np.take(other, rows, axis=0).T
         err = self.e_mul * self.unit
         rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
         g = xg * yg * _UP4 + err
         self._check(g)
-        return out.reshape(xm.shape), rad, g, code
+        return out.T.reshape(xm.shape), rad, g, code
 
     def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
-        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
+        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits),
+        digit-major: ``(L, n)`` int64 (what the next operation reads: no transposition
+        back; a value's digits are a transposed view of it)."""
         L, K0 = self.L, self.K0
-        out = np.empty(xf.shape, dtype=_STORE)
+        out = np.empty((L, len(xf)), dtype=np.int64)
         for a0 in range(0, len(xf), _BLOCK):
             # digits first within the block: every numpy call runs over contiguous rows
             xb = np.ascontiguousarray(xf[a0:a0 + _BLOCK].T, dtype=np.int64)
@@ -237,7 +239,7 @@ class LimbBallContext:
             for i in range(L):
                 jlo = max(0, K0 - i)
                 z[i + jlo - K0:i + L - K0] += xb[i] * yb[jlo:]
-            out[a0:a0 + _BLOCK] = self._carry(z).T
+            out[:, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
     def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
@@ -249,17 +251,18 @@ class LimbBallContext:
         where ``row_nz`` is False are zero (every nonzero entry meets a zero ``x_j``)."""
         rows = _sparse_rows(row_nz)
         if rows is None:
-            return self._product_digits(xm, Md, plan)
+            return self._product_digits(xm, Md, plan).transpose(2, 1, 0)
         # rows of zero mid-points give zero, exactly: only the others are multiplied
-        out = np.zeros((len(xm), Md.shape[0], self.L), dtype=_STORE)
+        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=np.int64)
         if len(rows):
-            out[rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
-        return out
+            out[:, :, rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
+        return out.transpose(2, 1, 0)
 
     def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+        """The digits of ``x Mᵀ``, digit-major: ``(L, outputs, n)`` int64."""
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
-        out = np.empty((n, outputs, L), dtype=_STORE)
+        out = np.empty((L, outputs, n), dtype=np.int64)
         for a0 in range(0, n, _BLOCK):
             xb = np.ascontiguousarray(xm[a0:a0 + _BLOCK].transpose(1, 2, 0), dtype=np.int64)  # (s, L, m)
             z = np.zeros((self.K, outputs, xb.shape[2]), dtype=np.int64)
@@ -270,7 +273,7 @@ class LimbBallContext:
                 else:
                     for i, c in zip(rows, coef):
                         z[q + lo - K0:q + L - K0, i] += c * xb[j, lo:L]
-            out[a0:a0 + _BLOCK] = self._carry(z).transpose(2, 1, 0)
+            out[:, :, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
     def _rad(self, x, Mr, Mg):
