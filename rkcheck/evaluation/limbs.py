@@ -41,7 +41,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from fractions import Fraction
-from typing import NamedTuple
 
 import numpy as np
 
@@ -127,10 +126,10 @@ class LimbBallContext:
         self.A_nz: np.ndarray = np.asarray(self.Ad.any(axis=2).T, dtype=self._count)  # (s, s): column j, output i
         self.b_nz: np.ndarray = np.asarray(self.bd.any(axis=2).T, dtype=self._count)  # (s, 1)
         self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
-        self.Ar_t = _NonzeroRows.of(np.array([[r for _, r, _ in row] for row in balls_A]).T)
-        self.Ag_t = _NonzeroRows.of(np.array([[g for _, _, g in row] for row in balls_A]).T)
-        self.br = _NonzeroRows.of(np.array([r for _, r, _ in balls_b]))
-        self.bg = _NonzeroRows.of(np.array([g for _, _, g in balls_b]))
+        self.Ar_t = np.ascontiguousarray(np.array([[r for _, r, _ in row] for row in balls_A]).T)
+        self.Ag_t = np.ascontiguousarray(np.array([[g for _, _, g in row] for row in balls_A]).T)
+        self.br = np.array([r for _, r, _ in balls_b])
+        self.bg = np.array([g for _, _, g in balls_b])
         self._dot_up = 1.0 + (2 * s + 8) * 2.0**-52
 
     def _digits(self, m: int) -> list[int]:
@@ -279,8 +278,10 @@ class LimbBallContext:
     def _rad(self, x, Mr, Mg):
         _, xr, xg = x[:3]
         err = self.e_dot * self.unit
-        rad = (_small_dot(xg, Mr) + _small_dot(xr, Mg) + _small_dot(xr, Mr)) * self._dot_up + err
-        g = _small_dot(xg, Mg) * self._dot_up + err
+        # products of s terms (numpy's matmul: any order of summation, with or without
+        # fused multiply-adds, is within γ_s of the exact sums, which _dot_up covers)
+        rad = (xg @ Mr + xr @ Mg + xr @ Mr) * self._dot_up + err
+        g = (xg @ Mg) * self._dot_up + err
         self._check(g)
         return rad, g
 
@@ -391,30 +392,3 @@ def _any_in_row(x: np.ndarray) -> np.ndarray:
     for j in range(1, x.shape[1]):
         acc |= x[:, j]
     return acc != 0
-
-
-class _NonzeroRows(NamedTuple):
-    """A matrix (or vector) of radii or magnitudes and its rows that are not all zero."""
-
-    M: np.ndarray
-    rows: list[int]
-
-    @classmethod
-    def of(cls, M: np.ndarray) -> "_NonzeroRows":
-        return cls(M, [j for j in range(len(M)) if np.any(M[j] != 0)])
-
-
-def _small_dot(x: np.ndarray, matrix: _NonzeroRows) -> np.ndarray:
-    """``x @ M`` for rows x of s floats, as s elementwise passes (no BLAS threads for a
-    product this thin; the rounding is that of any order of summation: γ_s).  The rows
-    of M that are zero are left out: an entry's radius or magnitude that is exactly zero
-    adds exactly nothing to the bound, so the radii of exact entries (0, 1/2, 1) cost
-    nothing."""
-    M, rows = matrix
-    if not rows:
-        return np.zeros(x.shape[:1] + M.shape[1:])
-    j = rows[0]
-    out = x[:, j, None] * M[j] if M.ndim == 2 else x[:, j] * M[j]
-    for j in rows[1:]:
-        out += x[:, j, None] * M[j] if M.ndim == 2 else x[:, j] * M[j]
-    return out
