@@ -211,7 +211,7 @@ class LimbBallContext:
             # a zero mid-point times anything is zero, exactly, and 1 times y is y: the
             # digits of 1 are those of 2^P, so the digit products are y's digits in the
             # kept positions (none dropped, no carry) — the same digits, bit for bit
-            out = np.zeros((self.L, len(xf)), dtype=np.int64)
+            out = np.zeros((self.L, len(xf)), dtype=_STORE)  # mostly zeros: the smaller type
             if len(rows):
                 out[:, rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
             for rows, other in ((np.flatnonzero((cx == _ONE) & (cy != _ZERO)), yf),
@@ -252,7 +252,7 @@ class LimbBallContext:
         if rows is None:
             return self._product_digits(xm, Md, plan).transpose(2, 1, 0)
         # rows of zero mid-points give zero, exactly: only the others are multiplied
-        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=np.int64)
+        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=_STORE)  # mostly zeros: the smaller type
         if len(rows):
             out[:, :, rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
         return out.transpose(2, 1, 0)
