@@ -26,28 +26,32 @@ from rkcheck.numbers.enclosure import Enclosure
 class DigitSums:
     """The condition sums of one order: per condition and digit position the float64
     sum of the terms' ``m·digit`` (exact integers), and the radius sums.  Terms are
-    gathered in runs of many blocks and binned at once: ``np.bincount`` costs the number
-    of conditions on every call, and at the top orders a block of terms is far smaller
-    than the conditions it lands in."""
+    gathered in runs of many blocks (digits as int32, their multipliers as int8) and
+    binned at once: ``np.bincount`` costs the number of conditions on every call, and at
+    the top orders a block of terms is far smaller than the conditions it lands in."""
 
     def __init__(self, L: int, k: int):
         self.digits, self.radii = np.zeros((L, k)), np.zeros(k)
         run = min(max(k, _MIN_RUN), _MAX_RUN)
-        self._w, self._wc = np.empty((L, run)), np.empty(run, dtype=np.intp)
+        self._w, self._wm, self._wc = np.empty((L, run), dtype=np.int32), np.empty(run, dtype=np.int8), \
+            np.empty(run, dtype=np.intp)
         self._r, self._rc = np.empty(run), np.empty(run, dtype=np.intp)
         self._nw = self._nr = 0
         self.terms = None  # the order's terms (their divisors scale the sums)
 
-    def digit_room(self, cond: np.ndarray) -> np.ndarray:
-        """Room for the digits ``(L, len(cond))`` of terms of the conditions ``cond``."""
+    def add_digits(self, digits: np.ndarray, mult: np.ndarray, cond: np.ndarray) -> None:
+        """The digits ``(L, m)`` (each below 2^31 in magnitude) of terms with the
+        multipliers ``mult`` in the conditions ``cond``."""
         m = len(cond)
         if self._nw + m > self._w.shape[1]:
             self._flush_digits()
         if m > self._w.shape[1]:
-            self._w, self._wc = np.empty((len(self._w), m)), np.empty(m, dtype=np.intp)
-        self._wc[self._nw:self._nw + m] = cond
-        self._nw += m
-        return self._w[:, self._nw - m:self._nw]
+            self._w = np.empty((len(self._w), m), dtype=np.int32)
+            self._wm, self._wc = np.empty(m, dtype=np.int8), np.empty(m, dtype=np.intp)
+        lo, self._nw = self._nw, self._nw + m
+        self._w[:, lo:self._nw] = digits
+        self._wm[lo:self._nw] = mult
+        self._wc[lo:self._nw] = cond
 
     def radius_room(self, cond: np.ndarray) -> np.ndarray:
         """Room for the radii of terms of the conditions ``cond``."""
@@ -63,9 +67,10 @@ class DigitSums:
     def _flush_digits(self) -> None:
         n, k = self._nw, self.digits.shape[1]
         if n:
-            cond = self._wc[:n]
-            for p in range(len(self.digits)):
-                self.digits[p] += np.bincount(cond, weights=self._w[p, :n], minlength=k)
+            cond, mult = self._wc[:n], self._wm[:n]
+            for p in range(len(self.digits)):  # m·digit: exact in float64 (multipliers checks)
+                self.digits[p] += np.bincount(cond, weights=np.multiply(self._w[p, :n], mult, dtype=np.float64),
+                                              minlength=k)
         self._nw = 0
 
     def _flush_radii(self) -> None:
@@ -75,8 +80,12 @@ class DigitSums:
         self._nr = 0
 
     def totals(self) -> tuple[np.ndarray, np.ndarray]:
+        """The digit sums ``(L, k)`` and radius sums; the runs' buffers are released."""
         self._flush_digits()
         self._flush_radii()
+        self._w = np.empty((len(self._w), 0), dtype=np.int32)  # (a slice would keep them)
+        self._wm, self._wc = np.empty(0, dtype=np.int8), np.empty(0, dtype=np.intp)
+        self._r, self._rc = np.empty(0), np.empty(0, dtype=np.intp)
         return self.digits, self.radii
 
 

@@ -319,10 +319,9 @@ class LimbBallContext:
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:
-            np.multiply(wm.T, mult[i0:i1], out=acc.digit_room(cond), dtype=np.float64)
+            acc.add_digits(wm.T, mult[i0:i1], cond)
         elif len(rows):
-            np.multiply(np.take(wm, rows, axis=0).T, mult[i0 + rows], out=acc.digit_room(cond[rows]),
-                        dtype=np.float64)
+            acc.add_digits(np.take(wm, rows, axis=0).T, mult[i0 + rows], cond[rows])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         rad = acc.radius_room(cond)
         np.multiply(w_terms[1], cabs[idx], out=rad)
