@@ -22,10 +22,10 @@ Only for data whose values stay small: the integer digit holds ``|x| < 2^(β−4
 tree with ``n`` vertices is at most ``M^n``, ``M = max(1, α)·max(1, β_b)`` (induction on
 ``Φ(u∘v) = Φ(u)⊙AΦ(v)``, ``w(u∘v) = w(u)·bᵀΦ(v)``): :meth:`LimbBallContext.create` builds
 the context only when ``M^vertices`` fits, and every product checks its magnitude bounds
-anyway.  The condition sums ``Σ c·w`` are exact (each ``c·w`` carried to digits below
-``2^β``, summed per condition and digit in float64 — at most ``max_terms`` per condition
-— and carried again) and end as Python integers in the
-:class:`~rkcheck.evaluation.balls.BallSums` of the object context.
+anyway.  The condition sums ``Σ c·w`` are exact: each weight's digits times the small
+integer ``c/g_k`` (``g_k`` a divisor of the coefficients of condition k), summed per
+condition and digit in float64 and carried once per order
+(:mod:`rkcheck.evaluation.digit_sums`, which also judges them).
 
 Measured (dense 4-stage tableau, 50 digits, β = 28, L = 9, A/B in one session): about
 30 % less time than the Python-integer balls at orders 14, 16 and 18, and 26–30 % less
@@ -44,16 +44,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from rkcheck.evaluation.balls import (
-    _UP1,
-    _UP4,
-    BallContext,
-    BallSums,
-    _ball_at,
-    _coefficients,
-    block_bins,
-    summed_radii,
-)
+from rkcheck.evaluation.balls import _UP1, _UP4, BallContext, _ball_at, summed_radii
+from rkcheck.evaluation.digit_sums import DigitBallSums, DigitSums, digits_to_ints, multipliers
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -77,10 +69,12 @@ def _layout(bits: int, s: int) -> tuple[int, int] | None:
 
 class LimbBallContext:
     """Certified balls with int64 digit mid-points (module docstring).  A value is
-    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, flags): a flag is False
-    only where the mid-point is zero — a product with a zero factor, a matrix product
-    whose nonzero entries meet only zeros — so that the digit arithmetic of those rows is
-    skipped (most weights of an explicit tableau's tall trees are zero)."""
+    (digits ``(..., L)``, radii, magnitude bounds ``≥ |m·2^−P|``, codes): a code says
+    what is known of the mid-point — :data:`_ZERO` (a product with a zero factor, a
+    matrix product whose nonzero entries meet only zeros), :data:`_ONE` (exactly 1: the
+    weights of τ, and their products), else :data:`_ANY` — so that the digit arithmetic
+    of those rows is skipped: most weights of an explicit tableau's tall trees are zero,
+    and about a third of the products of any tableau have the factor τ."""
 
     exact = False
 
@@ -132,8 +126,8 @@ class LimbBallContext:
         self.A_nz: np.ndarray = np.asarray(self.Ad.any(axis=2).T, dtype=self._count)  # (s, s): column j, output i
         self.b_nz: np.ndarray = np.asarray(self.bd.any(axis=2).T, dtype=self._count)  # (s, 1)
         self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
-        self.Ar_t = np.array([[r for _, r, _ in row] for row in balls_A]).T
-        self.Ag_t = np.array([[g for _, _, g in row] for row in balls_A]).T
+        self.Ar_t = np.ascontiguousarray(np.array([[r for _, r, _ in row] for row in balls_A]).T)
+        self.Ag_t = np.ascontiguousarray(np.array([[g for _, _, g in row] for row in balls_A]).T)
         self.br = np.array([r for _, r, _ in balls_b])
         self.bg = np.array([g for _, _, g in balls_b])
         self._dot_up = 1.0 + (2 * s + 8) * 2.0**-52
@@ -146,16 +140,7 @@ class LimbBallContext:
     def to_ints(self, digits: np.ndarray) -> np.ndarray:
         """The integers ``Σ_j d_j 2^(β·j)`` of int64 digits ``(n, K)`` (any K, each digit
         below 2^(62−β) in magnitude), as Python ints."""
-        beta = self.digit_bits
-        d = digits.astype(np.int64)
-        if d.shape[1] % 2:
-            d = np.concatenate([d, np.zeros((d.shape[0], 1), dtype=np.int64)], axis=1)
-        # pairs of digits first, in int64: |d_0 + d_1·2^β| < 2^(62−β)·(1 + 2^β) < 2^63
-        pairs = d[:, 0::2] + (d[:, 1::2] << beta)
-        out = pairs[:, -1].astype(object)
-        for q in range(pairs.shape[1] - 2, -1, -1):
-            out = (out << (2 * beta)) + pairs[:, q].astype(object)
-        return out
+        return digits_to_ints(digits, self.digit_bits)
 
     # ------------------------------------------------------------- digits
 
@@ -181,56 +166,70 @@ class LimbBallContext:
     # ------------------------------------------------------------- kernel
 
     def vectors(self, n: int, s: int):
-        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=bool))
+        return (np.zeros((n, s, self.L), dtype=_STORE), np.zeros((n, s)), np.zeros((n, s)), np.zeros((n, s), dtype=np.uint8))
 
     def scalars(self, n: int):
-        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool))
+        return (np.zeros((n, self.L), dtype=_STORE), np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.uint8))
 
     def ones(self, k: int, s: int):
         mid = np.zeros((k, s, self.L), dtype=_STORE)
         mid[..., self.F] = 1
-        return (mid, np.zeros((k, s)), np.ones((k, s)), np.ones((k, s), dtype=bool))
+        return (mid, np.zeros((k, s)), np.ones((k, s)), np.full((k, s), _ONE, dtype=np.uint8))
 
     def one(self, k: int):
         mid = np.zeros((k, self.L), dtype=_STORE)
         mid[:, self.F] = 1
-        return (mid, np.zeros(k), np.ones(k), np.ones(k, dtype=bool))
+        return (mid, np.zeros(k), np.ones(k), np.full(k, _ONE, dtype=np.uint8))
 
     def take(self, x, idx):
-        return tuple(part[idx] for part in x)
+        return tuple(np.take(part, idx, axis=0) for part in x)
 
     # the parts of a value, whatever their number, are stored alike
     put = BallContext.put
 
-    def _may_be_nonzero(self, x) -> np.ndarray:
-        """The value's flags (False: the mid-point is zero), or, for a bare (mid-point,
-        radius, magnitude) triple, whether its digits are."""
+    def _codes(self, x) -> np.ndarray:
+        """The value's codes, or, for a bare (mid-point, radius, magnitude) triple,
+        :data:`_ZERO` or :data:`_ANY` as its digits are."""
         if len(x) > 3:
             return x[3]
-        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape)
+        return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape).astype(np.uint8)
+
+    def _may_be_nonzero(self, x) -> np.ndarray:
+        return self._codes(x) != _ZERO
 
     def mul(self, x, y):
         xm, xr, xg = x[:3]
         ym, yr, yg = y[:3]
-        nz = self._may_be_nonzero(x) & self._may_be_nonzero(y)
+        cx, cy = self._codes(x), self._codes(y)
+        code = np.minimum(cx, cy)  # zero if either is, one if both are, else any
         xf, yf = xm.reshape(-1, self.L), ym.reshape(-1, self.L)
-        rows = _sparse_rows(nz.reshape(-1))
+        cx, cy = cx.reshape(-1), cy.reshape(-1)
+        rows = _sparse_rows((cx == _ANY) & (cy == _ANY))
         if rows is None:
             out = self._mul_digits(xf, yf)
-        else:  # a zero mid-point times anything is zero, exactly: only the others are multiplied
-            out = np.zeros(xf.shape, dtype=_STORE)
+        else:
+            # a zero mid-point times anything is zero, exactly, and 1 times y is y: the
+            # digits of 1 are those of 2^P, so the digit products are y's digits in the
+            # kept positions (none dropped, no carry) — the same digits, bit for bit
+            out = np.zeros((self.L, len(xf)), dtype=_STORE)  # mostly zeros: the smaller type
             if len(rows):
-                out[rows] = self._mul_digits(xf[rows], yf[rows])
+                out[:, rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
+            for rows, other in ((np.flatnonzero((cx == _ONE) & (cy != _ZERO)), yf),
+                                (np.flatnonzero((cy == _ONE) & (cx == _ANY)), xf)):
+                if len(rows):
+                    out[:, rows] = np.take(other, rows, axis=0).T
         err = self.e_mul * self.unit
         rad = (xg * yr + yg * xr + xr * yr) * _UP4 + err
         g = xg * yg * _UP4 + err
         self._check(g)
-        return out.reshape(xm.shape), rad, g, nz
+        return out.T.reshape(xm.shape), rad, g, code
 
     def _mul_digits(self, xf: np.ndarray, yf: np.ndarray) -> np.ndarray:
-        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits)."""
+        """The digits of the products of the mid-points ``xf``, ``yf`` (rows of L digits),
+        digit-major: ``(L, n)`` int64 (what the next operation reads: no transposition
+        back; a value's digits are a transposed view of it)."""
         L, K0 = self.L, self.K0
-        out = np.empty(xf.shape, dtype=_STORE)
+        out = np.empty((L, len(xf)), dtype=np.int64)
         for a0 in range(0, len(xf), _BLOCK):
             # digits first within the block: every numpy call runs over contiguous rows
             xb = np.ascontiguousarray(xf[a0:a0 + _BLOCK].T, dtype=np.int64)
@@ -239,7 +238,7 @@ class LimbBallContext:
             for i in range(L):
                 jlo = max(0, K0 - i)
                 z[i + jlo - K0:i + L - K0] += xb[i] * yb[jlo:]
-            out[a0:a0 + _BLOCK] = self._carry(z).T
+            out[:, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
     def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
@@ -251,17 +250,18 @@ class LimbBallContext:
         where ``row_nz`` is False are zero (every nonzero entry meets a zero ``x_j``)."""
         rows = _sparse_rows(row_nz)
         if rows is None:
-            return self._product_digits(xm, Md, plan)
+            return self._product_digits(xm, Md, plan).transpose(2, 1, 0)
         # rows of zero mid-points give zero, exactly: only the others are multiplied
-        out = np.zeros((len(xm), Md.shape[0], self.L), dtype=_STORE)
+        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=_STORE)  # mostly zeros: the smaller type
         if len(rows):
-            out[rows] = self._product_digits(xm[rows], Md, plan)
-        return out
+            out[:, :, rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
+        return out.transpose(2, 1, 0)
 
     def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+        """The digits of ``x Mᵀ``, digit-major: ``(L, outputs, n)`` int64."""
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
-        out = np.empty((n, outputs, L), dtype=_STORE)
+        out = np.empty((L, outputs, n), dtype=np.int64)
         for a0 in range(0, n, _BLOCK):
             xb = np.ascontiguousarray(xm[a0:a0 + _BLOCK].transpose(1, 2, 0), dtype=np.int64)  # (s, L, m)
             z = np.zeros((self.K, outputs, xb.shape[2]), dtype=np.int64)
@@ -272,26 +272,28 @@ class LimbBallContext:
                 else:
                     for i, c in zip(rows, coef):
                         z[q + lo - K0:q + L - K0, i] += c * xb[j, lo:L]
-            out[a0:a0 + _BLOCK] = self._carry(z).transpose(2, 1, 0)
+            out[:, :, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
     def _rad(self, x, Mr, Mg):
         _, xr, xg = x[:3]
         err = self.e_dot * self.unit
-        rad = (_small_dot(xg, Mr) + _small_dot(xr, Mg) + _small_dot(xr, Mr)) * self._dot_up + err
-        g = _small_dot(xg, Mg) * self._dot_up + err
+        # products of s terms (numpy's matmul: any order of summation, with or without
+        # fused multiply-adds, is within γ_s of the exact sums, which _dot_up covers)
+        rad = (xg @ Mr + xr @ Mg + xr @ Mr) * self._dot_up + err
+        g = (xg @ Mg) * self._dot_up + err
         self._check(g)
         return rad, g
 
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
         nz = (self._may_be_nonzero(x).astype(self._count) @ self.A_nz) > 0
-        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz
+        return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz.astype(np.uint8)
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
         nz = (self._may_be_nonzero(x).astype(self._count) @ self.b_nz)[:, 0] > 0
-        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz
+        return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz.astype(np.uint8)
 
     def enclosures(self, x) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
@@ -301,80 +303,44 @@ class LimbBallContext:
 
     # ------------------------------------------------------------- condition sums
 
-    def _coefficient_digits(self, terms) -> tuple[np.ndarray, np.ndarray]:
-        """(signed digits ``(ncoef, C)`` of the integer coefficients, ``|c|`` as floats)."""
-        key = f"_coef_digits_{self.digit_bits}"
-        cached = getattr(terms, key, None)
-        if cached is None:
-            beta = self.digit_bits
-            C = max(1, -(-max((abs(c).bit_length() for c in terms.coefficients), default=1) // beta))
-            digits = np.array([[((abs(c) >> (beta * j)) & self.mask) * (1 if c >= 0 else -1) for j in range(C)]
-                               for c in terms.coefficients], dtype=np.int64).reshape(-1, C)
-            cached = (digits, np.abs(_coefficients(terms).astype(float)))
-            setattr(terms, key, cached)
-        return cached
+    def sums(self, k: int, n: int) -> DigitSums:
+        return DigitSums(self.L, k)
 
-    def sums(self, k: int, n: int):
-        return [None, np.zeros(k)]
-
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
-        """Σ c·w with c = ±(n−1)!/σ exact: each product ``c·w`` to digits (int64, carried:
-        every digit below 2^β but the last, which is below 2^(β−3)), then summed per
-        condition by digit in float64 — at most ``max_terms`` digits per condition, so
-        the sums stay below 2^53 and exact; radii ``|c|·r`` as in
-        :class:`~rkcheck.evaluation.balls.BallContext`."""
-        cdig, cabs = self._coefficient_digits(terms)
-        C, L = cdig.shape[1], self.L
-        k = len(acc[1])
-        if acc[0] is None:  # a condition's digit sums side by side: one cache line per condition
-            acc[0] = np.zeros((k, L + C))
-        if max(terms.max_terms, 1) * 2.0 ** (self.digit_bits + 1) > 2.0**53:
-            raise ArithmeticError("certified digits: too many terms per condition for exact sums")
+    def add_terms(self, acc: DigitSums, w_terms, terms, n: int, i0: int, i1: int) -> None:
+        """Σ c·w with c = ±(n−1)!/σ exact, as ``g_k · Σ m·w``: the coefficients of a
+        condition k share a divisor ``g_k`` (:func:`~rkcheck.evaluation.digit_sums.multipliers`),
+        so each term's digits are multiplied by a small integer ``m = c/g_k`` and summed
+        per condition and digit in float64, uncarried — exact (``multipliers`` checks the
+        bound).  Radii ``|c|·r`` as in :class:`~rkcheck.evaluation.balls.BallContext`."""
+        mult, cabs, _ = multipliers(terms, self.digit_bits)
+        acc.terms = terms
         cond, idx = terms.block(i0, i1)
-        uniq, inv = block_bins(cond)
+        wm = w_terms[0]
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:
-            wm, cidx, cols, cinv = w_terms[0], idx, uniq, inv
+            acc.add_digits(wm.T, mult[i0:i1], cond)
         elif len(rows):
-            wm, cidx = w_terms[0][rows], idx[rows]
-            sub, cinv = block_bins(inv[rows])
-            cols = uniq[sub]
-        else:
-            wm = None
-        if wm is not None:
-            u = len(cols)
-            local = np.zeros((L + C, u))
-            for a0 in range(0, len(wm), _BLOCK):
-                a1 = min(len(wm), a0 + _BLOCK)
-                w_t = np.ascontiguousarray(wm[a0:a1].T, dtype=np.int64)  # (L, m)
-                cw_t = cdig[cidx[a0:a1]].T.copy()  # (C, m)
-                V = np.zeros((L + C + 1, a1 - a0), dtype=np.int64)  # one position below: none to floor
-                for j in range(C):
-                    V[1 + j:1 + j + L] += w_t * cw_t[j]
-                digits = self._carry(V)  # exact: position 0 holds nothing
-                ib = cinv[a0:a1]
-                for p in range(L + C):
-                    local[p] += np.bincount(ib, weights=digits[p], minlength=u)
-            acc[0][cols] += local.T
+            acc.add_digits(np.take(wm, rows, axis=0).T, mult[i0 + rows], cond[rows])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1][uniq] += np.bincount(inv, weights=w_terms[1] * cabs[idx] * _UP1, minlength=len(uniq))
+        rad = acc.radius_room(cond)
+        np.multiply(w_terms[1], cabs[idx], out=rad)
+        rad *= _UP1
 
-    def finish_sums(self, acc, k: int, n: int) -> BallSums:
-        """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
-        rounded up (the float additions into each bin, at most a few hundred, covered by
-        γ_256)."""
-        rads = summed_radii(acc[1], k, self.bits)
-        if acc[0] is None:
-            mids = np.zeros(k, dtype=object)
-        else:
-            mids = np.empty(k, dtype=object)
-            for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
-                c1 = min(k, c0 + _BLOCK)
-                d = acc[0][c0:c1].T.astype(np.int64)  # exact: each sum is below 2^53
-                d = np.concatenate([np.zeros((1, c1 - c0), dtype=np.int64), d])  # nothing to floor below
-                mids[c0:c1] = self.to_ints(np.ascontiguousarray(self._carry(d).T))
-        return BallSums(mids, rads, self.bits, 0, math.factorial(n - 1))
+    def finish_sums(self, acc: DigitSums, k: int, n: int) -> DigitBallSums:
+        """R = Σ/(n−1)!: the exact mid-point sums (each condition's digit sums carried;
+        times its divisor) over (n−1)!·2^P, the radius bounds rounded up (the float
+        additions into each bin, at most a few hundred, covered by γ_256)."""
+        digits, radii = acc.totals()
+        rads = summed_radii(radii, k, self.bits)
+        divisors = np.ones(k, dtype=np.int64) if acc.terms is None else multipliers(acc.terms, self.digit_bits)[2][:k]
+        carried = np.empty((self.L, k), dtype=np.int64)
+        for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
+            c1 = min(k, c0 + _BLOCK)
+            d = np.zeros((self.L + 1, c1 - c0), dtype=np.int64)  # position 0: nothing to floor below
+            d[1:] = digits[:, c0:c1]  # exact: each sum is an integer below 2^53
+            carried[:, c0:c1] = self._carry(d)
+        return DigitBallSums(carried, divisors, rads, self.bits, self.digit_bits, math.factorial(n - 1))
 
 
 #: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
@@ -402,6 +368,9 @@ def _product_plan(Md: np.ndarray) -> list[_Pass]:
     return plan
 
 
+#: the codes of a value's mid-points: zero, exactly one, anything (:class:`LimbBallContext`)
+_ZERO, _ANY, _ONE = 0, 1, 2
+
 #: the share of rows with nonzero mid-points below which only those rows are multiplied
 #: (gathering them and scattering the products back costs less than the digits of the rest)
 _SPARSE = 0.75
@@ -422,12 +391,3 @@ def _any_in_row(x: np.ndarray) -> np.ndarray:
     for j in range(1, x.shape[1]):
         acc |= x[:, j]
     return acc != 0
-
-
-def _small_dot(x: np.ndarray, M: np.ndarray) -> np.ndarray:
-    """``x @ M`` for rows x of s floats, as s elementwise passes (no BLAS threads for a
-    product this thin; the rounding is that of any order of summation: γ_s)."""
-    out = x[:, 0, None] * M[0] if M.ndim == 2 else x[:, 0] * M[0]
-    for j in range(1, x.shape[1]):
-        out += x[:, j, None] * M[j] if M.ndim == 2 else x[:, j] * M[j]
-    return out

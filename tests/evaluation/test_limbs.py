@@ -27,6 +27,7 @@ import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
+import rkcheck.evaluation.digit_sums as digit_sums
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
@@ -119,13 +120,16 @@ def test_chunked_digit_balls_are_bit_identical(monkeypatch):
 
 
 @pytest.mark.parametrize("seed", range(3))
-def test_zero_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed):
+@pytest.mark.parametrize("explicit", [True, False])
+def test_zero_and_one_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed, explicit):
     # an explicit tableau (strictly lower triangular A): most weights of tall trees are
-    # exactly zero.  Skipping their digit products (every row sparse) or multiplying them
-    # (none) gives the same balls, bit for bit, and they enclose the exact values
+    # exactly zero; in any tableau the products with the factor τ are by exactly one.
+    # Skipping their digit products (every row sparse) or multiplying them (none) gives
+    # the same balls, bit for bit, and they enclose the exact values
     rng = random.Random(seed)
     s = 4
-    A = [[Fraction(rng.randint(1, 9), 9 * s) if j < i else Fraction(0) for j in range(s)] for i in range(s)]
+    A = [[Fraction(rng.randint(1, 9), 9 * s) if j < i or not explicit else Fraction(0) for j in range(s)]
+         for i in range(s)]
     b = [Fraction(rng.randint(1, 9), 9 * s) for _ in range(s)]
     listing = ConditionListing(11, None)
     runs = []
@@ -245,3 +249,24 @@ def test_evaluate_uses_digits_on_a_large_listing_and_encloses_every_value():
         for k in range(len(sums)):
             e, t = sums.enclosure(k), exact.orders[n].value(k)
             assert abs(e.mid - t) <= e.rad and e.rad < Fraction(1, 10**50), (n, k)
+
+
+def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
+    # the divisor of a condition's coefficients is Σ|c|/n (one term per orbit of the free
+    # tree's automorphisms), checked against every coefficient, else their gcd: both
+    # give the exact sums, and the quotients c/g_k of a condition add up to at most n
+    A, b = small_tableau(5)
+    S, P = points(A, b)
+    listing = ConditionListing(9, None)
+    orbits = assert_encloses(listing, A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
+    for n, terms in listing.orders.items():
+        mult, _, g = digit_sums.multipliers(terms, 28)
+        cond, idx = terms.block(0, terms.rows)
+        real = cond < len(terms)
+        coef = np.array(terms.coefficients, dtype=object)[idx[real]]
+        assert list(mult[real].astype(object) * g[cond[real]].astype(object)) == list(coef)
+        assert np.bincount(cond[real], weights=np.abs(mult[real])).max(initial=0) <= n
+    monkeypatch.setattr(digit_sums, "_orbit_divisors", lambda terms, exact: None)
+    gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
+    for n in orbits:
+        assert list(gcds[n].mids) == list(orbits[n].mids)

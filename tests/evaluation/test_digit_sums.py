@@ -1,0 +1,64 @@
+"""The judging of digit ball sums (``rkcheck.evaluation.digit_sums.DigitBallSums``)
+against the same sums as Python integers (``BallSums``, the reference of the object
+context): ``|mid| > rad`` decided exactly, the magnitude bound the same float wherever a
+verdict's digits come from it, and a bound on ``|mid| + rad`` (exact rationals) elsewhere.
+Mid-points of every size and sign, zeros, and radii just around ``|mid|``.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from rkcheck.evaluation.balls import BallSums
+from rkcheck.evaluation.digit_sums import DigitBallSums
+
+BETA, L, BITS, F = 28, 9, 224, 5040
+
+
+def carried_digits(n: int) -> list[int]:
+    mask = (1 << BETA) - 1
+    return [(n >> (BETA * j)) & mask for j in range(L - 1)] + [n >> (BETA * (L - 1))]
+
+
+def random_sums(seed: int, k: int = 600):
+    rng = np.random.default_rng(seed)
+    ns, rads = [], []
+    divisors = rng.integers(1, 2**40, k)
+    for i in range(k):
+        size = int(rng.integers(0, 245))
+        n = int(rng.integers(0, 2**62)) >> (62 - min(size, 62)) << max(size - 62, 0) if size else 0
+        n = -n if rng.random() < 0.5 else n
+        m = abs(n) * int(divisors[i])
+        kind = i % 5
+        if kind == 0:  # radius a hair below, at, or above |mid|: only exact integers decide
+            r = float(Fraction(m, 1 << BITS)) * (1 + float(rng.choice([-2.0**-52, 0.0, 2.0**-52])))
+        elif kind == 1:  # |mid| just past the radius by one unit of 2^−P
+            r = float(Fraction(max(m - 1, 0), 1 << BITS))
+        else:
+            r = float(rng.random()) * 2.0 ** float(rng.integers(-240, -150))
+        ns.append(n)
+        rads.append(r)
+    digits = np.array([carried_digits(n) for n in ns], dtype=np.int64).T.copy()
+    mids = np.array([n * int(g) for n, g in zip(ns, divisors)], dtype=object)
+    rads = np.array(rads)
+    return DigitBallSums(digits, divisors, rads, BITS, BETA, F), BallSums(mids, rads, BITS, 0, F)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_digit_sums_judge_as_the_integer_sums(seed):
+    digit, ref = random_sums(seed)
+    excludes = ref.excludes_zero()
+    assert digit.excludes_zero().tolist() == excludes.tolist()
+    assert 0 < excludes.sum() < len(excludes)
+    bound, ref_bound = digit.magnitude_bound(), ref.magnitude_bound()
+    small = np.array([abs(int(m)) < 2**59 for m in ref.mids])
+    same = ~excludes | small
+    assert bound[same].tolist() == ref_bound[same].tolist()
+    for k in np.flatnonzero(~same):  # a ball that excludes 0: any bound on |mid| + rad
+        assert Fraction(float(bound[k])) >= abs(Fraction(int(ref.mids[k]), F << BITS)) + Fraction(float(ref.rads[k])) / F
+    for k in range(0, len(ref), 37):
+        assert digit.enclosure(k) == ref.enclosure(k)
+    assert list(digit.mids) == list(ref.mids)
