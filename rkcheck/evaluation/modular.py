@@ -257,28 +257,19 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
                               listing if more or screened else None, value_need[n] if more else 0, dual[n],
                               full[n] if screened else None)
 
-    if orders is None:  # every order: perhaps evaluated already, as part of all free trees
-        try:
-            contained = _contained(scaled, listing, count, channels)
-        except KeyboardInterrupt:
-            raise EvaluationInterrupted({}) from None
-        if contained is not None:
-            for n, (known, k) in contained.items():
-                residues[n], full[n] = known, k
-            if on_pass is not None and passes:
-                on_pass(passes, passes)
-            return {n: result(n) for n in wanted}
+    # every order: perhaps evaluated already, as part of all free trees
+    if orders is None and _fill_contained(scaled, listing, count, channels, residues, full):
+        if on_pass is not None and passes:
+            on_pass(passes, passes)
+        return {n: result(n) for n in wanted}
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
     screen = True  # tried once, when the first prime is complete and others remain
     try:
         for group, at in channel_passes(scaled, listing, channels[:passes], lambda i: [n for n in wanted if i < count[n]],
                                         wanted[-1] if wanted else 0):
-            for n, sums in at.items():  # an order keeps the residues of its own primes, no more
-                for c, (i, j, _, _) in enumerate(group):
-                    if i < count[n]:
-                        residues[n][:, i, j] = sums[:, c]
-            del at, sums  # not alive while the next pass runs
+            _store(residues, count, group, at)
+            del at  # not alive while the next pass runs
             for i, *_ in group:
                 left[i] -= 1
             finished = next((i for i, k in enumerate(left) if k), len(left))  # primes 0 … finished−1 complete
@@ -304,6 +295,31 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     if orders is None:
         _remember(scaled, listing, out)
     return out
+
+
+def _fill_contained(scaled: ScaledTableau, listing, count: dict[int, int], channels: list[tuple[int, list[int]]],
+                    residues: dict[int, np.ndarray], full: dict[int, int]) -> bool:
+    """Whether every order's residues were read off an evaluation of all free trees
+    (:func:`_contained`), filling ``residues`` and ``full`` when they were."""
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    try:
+        contained = _contained(scaled, listing, count, channels)
+    except KeyboardInterrupt:
+        raise EvaluationInterrupted({}) from None
+    if contained is None:
+        return False
+    for n, (known, k) in contained.items():
+        residues[n], full[n] = known, k
+    return True
+
+
+def _store(residues: dict[int, np.ndarray], count: dict[int, int], group, at: dict[int, np.ndarray]) -> None:
+    """A pass's sums into the residues: an order keeps those of its own primes, no more."""
+    for n, sums in at.items():
+        for c, (i, j, _, _) in enumerate(group):
+            if i < count[n]:
+                residues[n][:, i, j] = sums[:, c]
 
 
 def _screened(scaled: ScaledTableau, listing, channels: list[tuple[int, list[int]]], count: dict[int, int],
