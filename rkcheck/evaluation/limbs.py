@@ -45,7 +45,12 @@ from fractions import Fraction
 import numpy as np
 
 from rkcheck.evaluation.balls import _UP1, _UP4, BallContext, _ball_at, summed_radii
-from rkcheck.evaluation.digit_sums import DigitBallSums, DigitSums, digits_to_ints, multipliers
+from rkcheck.evaluation.digit_sums import (
+    DigitBallSums,
+    DigitSums,
+    digits_to_ints,
+    multipliers,
+)
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -312,16 +317,18 @@ class LimbBallContext:
         so each term's digits are multiplied by a small integer ``m = c/g_k`` and summed
         per condition and digit in float64, uncarried — exact (``multipliers`` checks the
         bound).  Radii ``|c|·r`` as in :class:`~rkcheck.evaluation.balls.BallContext`."""
-        mult, cabs, _ = multipliers(terms, self.digit_bits)
-        acc.terms = terms
+        order = getattr(terms, "all_terms", terms)  # some rows of an order: its own terms
+        mult, cabs, _ = multipliers(order, self.digit_bits)
+        acc.terms = order
         cond, idx = terms.block(i0, i1)
+        mult = mult[terms.positions(i0, i1)] if order is not terms else mult[i0:i1]
         wm = w_terms[0]
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
         if rows is None:
-            acc.add_digits(wm.T, mult[i0:i1], cond)
+            acc.add_digits(wm.T, mult, cond)
         elif len(rows):
-            acc.add_digits(np.take(wm, rows, axis=0).T, mult[i0 + rows], cond[rows])
+            acc.add_digits(np.take(wm, rows, axis=0).T, mult[rows], cond[rows])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         rad = acc.radius_room(cond)
         np.multiply(w_terms[1], cabs[idx], out=rad)

@@ -100,6 +100,17 @@ class _TermRows:
         cond, idx = terms.block(i0, i1)
         return cond[rows[lo:hi]], idx[rows[lo:hi]]
 
+    @property
+    def all_terms(self) -> Any:
+        """The order's own terms, for what a context keeps per order (all its terms)."""
+        return self._parts[0]
+
+    def positions(self, lo: int, hi: int) -> np.ndarray:
+        """The places among the order's terms of the rows ``lo … hi − 1`` given here, for
+        a context's arrays of one entry per term of the order."""
+        _, i0, _, rows = self._parts
+        return i0 + rows[lo:hi]
+
     def __getattr__(self, name: str) -> Any:
         return getattr(self._parts[0], name)
 

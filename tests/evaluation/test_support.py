@@ -93,3 +93,27 @@ def test_zero_pattern_reads_exact_numbers_and_point_intervals():
                           [Fraction(0), Interval(Fraction(1), Fraction(1))])
     assert zA.tolist() == [[True, True], [False, False]]  # an interval around 0 may be nonzero
     assert zb.tolist() == [True, False]
+
+
+@pytest.mark.parametrize("data", [RK4, DIRK])
+def test_digit_ball_mid_points_are_those_of_every_row(data):
+    # the digit balls keep one multiplier per term of an order: the rows given to them
+    # must read the multipliers of their own terms (orders of 15 vertices and more)
+    from rkcheck.evaluation.limbs import LimbBallContext
+
+    A, b = data
+    listing = ConditionListing(15, None)
+    wanted = sorted(listing.orders)
+    pA, pb = _points(A, b)
+
+    def context():
+        ctx = LimbBallContext.create(pA, pb, 190, 16)
+        assert ctx is not None
+        return ctx
+
+    full = condition_sums(listing, context(), len(b), wanted)
+    some = condition_sums(listing, SupportContext(context(), *zero_pattern(A, b)), len(b), wanted)
+    for n in wanted:
+        assert list(some[n].mids) == list(full[n].mids)
+        # radius bounds summed in another grouping of runs: equal up to their last bits
+        assert np.all(some[n].rads <= full[n].rads * (1 + 2.0**-40))
