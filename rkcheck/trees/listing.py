@@ -12,7 +12,7 @@ nothing more:
 
 The trees with ``N + 1`` vertices, the largest set by far (35 million at order 20), are
 never stored as a table: they are generated in chunks, classified (:mod:`.classes`) and
-kept only as terms.  Building it is the "listing" cost of a check; it does not depend on
+kept only as terms, their right factors in 16 bits each (:mod:`.factors`).  Building it is the "listing" cost of a check; it does not depend on
 the tableau and is shared by every check of the same ``(N, m)``.
 """
 
