@@ -61,6 +61,31 @@ class _Stepped:
         return out
 
 
+    def searchsorted(self, values: np.ndarray) -> np.ndarray:
+        """``np.searchsorted`` (left) of ``values`` in the array, without decoding it: a
+        value's high bits give its segment, its low bits the place within."""
+        values = np.asarray(values, dtype=np.int64)
+        high = values >> _LOW_BITS
+        out = np.empty(len(values), dtype=np.intp)
+        order = np.argsort(high, kind="stable")
+        high_sorted = high[order]
+        cuts = [0, *(np.flatnonzero(high_sorted[1:] != high_sorted[:-1]) + 1).tolist(), len(values)]
+        for g0, g1 in zip(cuts[:-1], cuts[1:]):  # one segment per distinct high bits: a few hundred
+            if g0 == g1:
+                continue
+            h, at = int(high_sorted[g0]), order[g0:g1]
+            if h < 0:
+                out[at] = 0
+            elif h >= len(self.starts):
+                out[at] = len(self.low)
+            else:
+                a = int(self.starts[h])
+                b = int(self.starts[h + 1]) if h + 1 < len(self.starts) else len(self.low)
+                low = (values[at] & ((1 << _LOW_BITS) - 1)).astype(np.uint16)
+                out[at] = a + np.searchsorted(self.low[a:b], low, side="left")
+        return out
+
+
 def non_decreasing(values: np.ndarray) -> bool:
     """Whether ``values`` never decrease (checked in chunks)."""
     for i in range(0, max(len(values) - 1, 0), _CHECK_CHUNK):
@@ -149,6 +174,15 @@ class RightFactors:
         out[~high] = self.below[ids[~high]]
         out[high] = self._top_take(ids[high] - split)
         return out
+
+    def searchsorted(self, start: int, stop: int, values: np.ndarray) -> np.ndarray:
+        """``np.searchsorted(self[start:stop], values)`` (left) for a non-decreasing range
+        (the factors of one order), the top order's without decoding it."""
+        if start == self.split and stop == self._size and isinstance(self._top, _Stepped):
+            return self._top.searchsorted(values)
+        part = self[start:stop]
+        # the values in the factors' own dtype: searchsorted would otherwise convert them all
+        return np.searchsorted(part, np.asarray(values).astype(part.dtype), side="left")
 
     def __setitem__(self, key: Any, value: Any) -> None:
         """Writes go to the trees below the top order only (the top's are set whole)."""

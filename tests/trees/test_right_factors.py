@@ -63,3 +63,16 @@ def test_writes_reach_the_trees_below_the_top_order_only():
         right[3:5] = [1, 2]
     with pytest.raises(ValueError):
         right.set_top(np.array([0, 1], dtype=np.int32))
+
+
+@pytest.mark.parametrize("low_bits", [2, 5, 16])
+def test_searching_an_order_equals_searching_its_plain_ids(low_bits, monkeypatch):
+    monkeypatch.setattr(factors, "_LOW_BITS", low_bits)
+    listing = ConditionListing(9, None).complete()
+    want = plain_right(9, None)
+    rng = np.random.default_rng(low_bits)
+    for n in (8, 9, 10):  # below the top order, and the top order's
+        lo, hi = listing.first[n], listing.first[n + 1]
+        values = np.concatenate([rng.integers(-3, lo + 3, 500), want[lo:hi][::7], [0, lo - 1, lo, 1 << 20]])
+        got = listing.right.searchsorted(lo, hi, values)
+        np.testing.assert_array_equal(got, np.searchsorted(want[lo:hi], values, side="left"))
