@@ -227,7 +227,8 @@ class PrimeChannels:
 
     def selected_sums(self, k: int) -> np.ndarray:
         """Bins for ``k`` conditions whose terms come in any order
-        (:class:`~rkcheck.evaluation.subset.Subset`): float64, exact as in :class:`_Bins`."""
+        (:class:`~rkcheck.evaluation.subset.Subset`): float64, exact (at most 21 residues below
+        2^30 a condition)."""
         return np.zeros((self.width, k), dtype=np.float64)
 
     def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, coefficient_index: np.ndarray,
@@ -253,55 +254,29 @@ class PrimeChannels:
 
 
 class _Bins:
-    """The condition sums of every channel, in float64 (a condition sums at most 21
-    residues below 2^30: exact).  The terms' residues are binned in runs of many blocks:
-    ``np.bincount`` costs the number of bins on every call, and at the top orders a
-    block of terms is far smaller than the millions of conditions it lands in.  A run
-    is gathered in a float64 buffer (the cast bincount would make anyway)."""
+    """The condition sums of every channel, in int64 (a condition sums at most 21
+    residues below 2^30: exact).  Each block of terms is added where it lands
+    (``np.add.at``): no buffer of terms, no pass over every bin per call — at the top
+    orders a block is far smaller than the millions of conditions it lands in, and
+    binning runs of blocks with ``np.bincount`` held a run, its conditions widened to
+    intp and a full array of bins besides the sums (about 50 MB at 21 vertices)."""
 
     def __init__(self, width: int, k: int):
-        self.sums = np.zeros((width, k), dtype=np.float64)
-        run = min(max(k, _MIN_RUN), max(_MAX_RUN // width, _MIN_RUN))
-        self._buffer = np.empty((width, run), dtype=np.float64)
-        self._used = self._lo = 0
-        self._terms: Any = None
+        self.sums = np.zeros((width, k), dtype=np.int64)
+        # channel c's bins start at c·k in the flat sums: one call adds every channel
+        self._offsets = (np.arange(width, dtype=np.intp) * k)[:, None] if width > 1 else None
 
     def add(self, w: np.ndarray, terms: Any, i0: int, i1: int) -> None:
-        """The residues ``w`` (channels × terms) of the terms ``i0 … i1 − 1`` of ``terms``
-        (an :class:`~rkcheck.trees.terms.OrderTerms`)."""
-        rows, room = i1 - i0, self._buffer.shape[1]
-        if self._used and (i0 != self._lo + self._used or terms is not self._terms
-                           or self._used + rows > room):
-            self._flush()
-        if rows > room:
-            self._bin(w.astype(np.float64), terms.conditions(i0, i1))
-            return
-        if not self._used:
-            self._lo, self._terms = i0, terms
-        self._buffer[:, self._used:self._used + rows] = w
-        self._used += rows
-
-    def _flush(self) -> None:
-        if self._used:
-            assert self._terms is not None
-            self._bin(self._buffer[:, :self._used], self._terms.conditions(self._lo, self._lo + self._used))
-            self._used = 0
-
-    def _bin(self, w: np.ndarray, condition: np.ndarray) -> None:
-        cond = condition.astype(np.intp)  # once for all channels (bincount would, per call)
-        bins = self.sums.shape[1]
-        for k in range(len(self.sums)):
-            self.sums[k] += np.bincount(cond, weights=w[k], minlength=bins)
+        """The residues ``w`` (channels × terms, int64) of the terms ``i0 … i1 − 1`` of
+        ``terms`` (an :class:`~rkcheck.trees.terms.OrderTerms`)."""
+        cond = terms.conditions(i0, i1)
+        if self._offsets is None:
+            np.add.at(self.sums[0], cond, w[0])
+        else:
+            np.add.at(self.sums.reshape(-1), (cond + self._offsets).reshape(-1), w.reshape(-1))
 
     def total(self) -> np.ndarray:
-        self._flush()
         return self.sums
-
-
-#: rows of terms binned at once (at least, and at most in all channels together): runs
-#: at least as long as the conditions are many keep bincount's cost per term bounded
-_MIN_RUN = 1 << 14
-_MAX_RUN = 1 << 22
 
 
 def _chunked_dot(x: np.ndarray, b: np.ndarray, p: int) -> np.ndarray:

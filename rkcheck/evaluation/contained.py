@@ -85,9 +85,12 @@ def _ids_of_products(source: Any, n: int, u: np.ndarray, v: np.ndarray) -> np.nd
     docstring); an id that is not such a tree is caught by the caller's check."""
     first = np.asarray(source.first)
     size = np.searchsorted(first, u, side="right") - 1  # vertices of u
-    right = source.right[first[n]:first[n + 1]]
-    # v in the factors' own dtype: searchsorted would otherwise convert the whole order
-    block = np.searchsorted(right, v.astype(right.dtype), side="left")
+    if hasattr(source.right, "searchsorted"):  # a listing's RightFactors: the top order not decoded
+        block = source.right.searchsorted(int(first[n]), int(first[n + 1]), v)
+    else:
+        right = source.right[first[n]:first[n + 1]]
+        # v in the factors' own dtype: searchsorted would otherwise convert the whole order
+        block = np.searchsorted(right, v.astype(right.dtype), side="left")
     return np.minimum(first[n] + block + (u - first[size]), first[n + 1] - 1)
 
 

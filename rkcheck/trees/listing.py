@@ -12,7 +12,7 @@ nothing more:
 
 The trees with ``N + 1`` vertices, the largest set by far (35 million at order 20), are
 never stored as a table: they are generated in chunks, classified (:mod:`.classes`) and
-kept only as terms.  Building it is the "listing" cost of a check; it does not depend on
+kept only as terms, their right factors in 16 bits each (:mod:`.factors`).  Building it is the "listing" cost of a check; it does not depend on
 the tableau and is shared by every check of the same ``(N, m)``.
 """
 
@@ -26,6 +26,7 @@ import numpy as np
 
 from rkcheck.trees.classes import classify
 from rkcheck.trees.counting import condition_counts, term_counts
+from rkcheck.trees.factors import RightFactors
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
 from rkcheck.trees.stored import ListingStore, from_record, record_key, to_record
@@ -103,10 +104,12 @@ class ConditionListing:
         self._presentations: dict[int, np.ndarray] = {}
         self._table: TreeTable | None = None
         self.cache_hits: list[int] = []  # vertices of the orders read from the store
+        self.right: np.ndarray | RightFactors  # every tree's right factor, by id
         top = order + 1
         if degree is not None and degree < 2:  # no conditions: only the trees τ and [τ]
             table = TreeTable(order, degree, degree - 1)
             self.first, self.left, self.right = list(table.first), table.left, table.right
+            self._right_below = table.right
             self.orders = _Orders(self, range(0))
             self._built = top
             return
@@ -115,10 +118,14 @@ class ConditionListing:
         for n in range(1, top + 1):
             self.first.append(self.first[-1] + counts[n])
         self.left = np.empty(self.first[top + 1], dtype=np.int32)
-        self.right = np.empty(self.first[top + 1], dtype=np.int32)
-        self.left[0] = self.right[0] = -1  # τ
+        # the right factors below the top order in a plain array (a tree table grows in
+        # it), the top order's set when it is built or read (RightFactors: 16 bits a term)
+        self._right_below = np.empty(self.first[top] if top >= 3 else self.first[top + 1], dtype=np.int32)
+        self.right = (RightFactors(self._right_below, self.first[top + 1] - self.first[top])
+                      if top >= 3 else self._right_below)
+        self.left[0] = self._right_below[0] = -1  # τ
         if top >= 2:
-            self.left[1] = self.right[1] = 0  # [τ] = τ ∘ τ
+            self.left[1] = self._right_below[1] = 0  # [τ] = τ ∘ τ
         self._conditions = condition_counts(top, degree)
         self.orders = _Orders(self, range(3, top + 1))
         self._built = 2
@@ -155,23 +162,32 @@ class ConditionListing:
         if table is None:  # the first order built here: the table of the orders below, anew
             m = self.degree
             table = self._table = TreeTable(1, root_bound=m, inner_bound=None if m is None else m - 1,
-                                            capacity=self.first[self.order + 1], factors=(self.left, self.right))
+                                            capacity=self.first[self.order + 1], factors=(self.left, self._right_below))
         table.grow_to(min(n, self.order))
         if n <= self.order:
             if table.first[n:n + 2] != [lo, hi]:  # pragma: no cover - counted = generated
                 raise AssertionError(f"the tree table disagrees with the counts at {n} vertices")
             terms = classify(table, n)
+            right = self._right_below[lo:hi]
         else:  # the top order is never stored in the table: its factors go straight here
-            terms = classify(table, n, last=True, factors_out=(self.left[lo:hi], self.right[lo:hi]))
+            right = np.empty(hi - lo, dtype=np.int32)  # until the record is saved: then 16 bits
+            terms = classify(table, n, last=True, factors_out=(self.left[lo:hi], right))
             self._table = None
         if table.left is not self.left:  # pragma: no cover - the capacity is exact
             raise AssertionError("the tree table outgrew its capacity")
         terms.first_id, terms.left, terms.right = lo, None, None
         if self._stored(n):
             assert self._store is not None
-            self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], self.right[lo:hi], terms))
+            self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], right, terms))
         terms.pack()  # after the record: the file keeps the two arrays apart
+        if n > self.order:
+            self._set_top_right(right)
         return terms
+
+    def _set_top_right(self, right: np.ndarray) -> None:
+        """The right factors of the top order, into :attr:`right`."""
+        assert isinstance(self.right, RightFactors)
+        self.right.set_top(right)
 
     def _load(self, n: int) -> OrderTerms | None:
         """The order with ``n`` vertices from the store, when it holds a valid record."""
@@ -181,7 +197,8 @@ class ConditionListing:
         lo, hi = self.first[n], self.first[n + 1]
         # the factors are read straight into the listing's arrays (no second copy of the
         # largest order's in memory); a record found invalid leaves them to the build
-        into = {"left": self.left[lo:hi], "right": self.right[lo:hi]}
+        top = n > self.order  # its right factors are read apart, then kept in 16 bits
+        into = {"left": self.left[lo:hi]} if top else {"left": self.left[lo:hi], "right": self._right_below[lo:hi]}
         got = self._store.load(record_key(n, self.degree), into)
         if got is None:
             return None
@@ -189,10 +206,14 @@ class ConditionListing:
         if record is None:
             return None
         left, right, terms = record
+        del got, record
         if left is not into["left"]:
             self.left[lo:hi] = left
-        if right is not into["right"]:
-            self.right[lo:hi] = right
+        if top:
+            terms.pack()  # first: the coefficient indices go before the factors are copied
+            self._set_top_right(right)
+        elif right is not into["right"]:
+            self._right_below[lo:hi] = right
         return terms
 
     def _stored(self, n: int) -> bool:

@@ -8,7 +8,7 @@ them (:mod:`rkcheck.evaluation.algorithm`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -17,7 +17,7 @@ class _Factors(Protocol):
     """The Butcher factors of the stored trees (a listing or a tree table)."""
 
     left: np.ndarray
-    right: np.ndarray
+    right: Any  # int32 ids, or a listing's RightFactors (reads alike)
 
 
 @dataclass

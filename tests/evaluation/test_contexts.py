@@ -89,8 +89,6 @@ def test_chunked_evaluation_is_bit_identical(seed, monkeypatch):
     monkeypatch.setattr(algorithm, "_TERM_CHUNK", 5)
     monkeypatch.setattr(classes, "_CHUNK", 7)
     monkeypatch.setattr(table_module, "_CHUNK", 7)
-    monkeypatch.setattr(channels, "_MIN_RUN", 3)  # the exact bins flush many short runs
-    monkeypatch.setattr(channels, "_MAX_RUN", 7)
     listing = ConditionListing(9, None)  # built anew with the small chunks (not the cached one)
     assert exact_by_id(listing, A, b) == whole
     balls_chunked = condition_sums(listing, BallContext(S, P, 200), len(b))
