@@ -170,6 +170,16 @@ class BallContext:
         return BallSums(acc[0][:k], summed_radii(acc[1], k, self.bits), self.bits, self.shift, math.factorial(n - 1))
 
 
+def round_up(r: np.ndarray, m: np.ndarray, tmp: np.ndarray) -> None:
+    """``r ← (r + u·|m|)·INFLATE + ETA`` in place, the last steps of every radius of the
+    float screen (``tmp``: scratch of ``m``'s shape)."""
+    np.abs(m, out=tmp)
+    tmp *= U
+    r += tmp
+    r *= INFLATE
+    r += ETA
+
+
 def block_bins(cond: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(the distinct conditions of a block of terms, each term's index among them).
 
@@ -308,11 +318,7 @@ class FloatContext:
         pr += tmp
         np.multiply(xr, yr, out=tmp)
         pr += tmp
-        np.abs(pm, out=tmp)
-        tmp *= U
-        pr += tmp
-        pr *= INFLATE
-        pr += ETA
+        round_up(pr, pm, tmp)
         return (pm, pr)
 
     def _dot(self, x, Mm, Mr, Mabs):

@@ -20,7 +20,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext, FloatSums, _float_coefficients, block_bins
+from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext, FloatSums, _float_coefficients, block_bins, round_up
 from rkcheck.numbers.intervals import Interval
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
@@ -53,20 +53,12 @@ def _product_rule(x, dy, y, dx):
         pr += tmp
         np.multiply(ar, dr, out=tmp)
         pr += tmp
-        np.abs(pm, out=tmp)
-        tmp *= U
-        pr += tmp
-        pr *= INFLATE
-        pr += ETA
+        round_up(pr, pm, tmp)
         out.append((pm, pr, tmp))
     (m, r, tmp), (pm, pr, _) = out
     m += pm  # _add: (p_r + q_r + u·|m|)·INFLATE + ETA
     r += pr
-    np.abs(m, out=tmp)
-    tmp *= U
-    r += tmp
-    r *= INFLATE
-    r += ETA
+    round_up(r, m, tmp)
     return m, r
 
 
