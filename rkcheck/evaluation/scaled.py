@@ -216,7 +216,7 @@ class ScaledTableau:
             roots = self._roots_of(p)
             # all entries at all roots of p as one sum of products (coefficients × powers
             # of the roots), reduced after each of the D steps so that int64 holds it
-            # (p < 2^31): Horner's scheme per entry and root cost 3 s of a 48-degree
+            # (p < 2^31): Horner's scheme per entry and root would cost 3 s of a 48-degree
             # field's check, and one list of residues per entry most of a rational one's
             D = self.degree
             flat = self._flat_coefficients()

@@ -198,7 +198,7 @@ def family_exact_values(spec: FamilySpec) -> Any:
 
     The entries are evaluated from :func:`_evaluation_texts`, polynomials in the nodes,
     not from the Lagrange forms people read: the same values without a division in the
-    field (the Gauss-6 nodes' weights cost a third of a second as Lagrange forms)."""
+    field (as Lagrange forms the Gauss-6 nodes' weights would cost a third of a second)."""
     from rkcheck.numbers import grammar as ex
     from rkcheck.numbers.algebraic import NotAlgebraic
     from rkcheck.numbers.field_builder import evaluate_in

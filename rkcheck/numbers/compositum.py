@@ -63,7 +63,7 @@ def charpoly_sum(g, f, t: int):
     Its power sums are ``P_k = Σ_l C(k, l) tˡ G_(k−l) F_l`` from those of g and f (``G_0 =
     deg g``), and Newton's identities turn them into its coefficients: O(N²) products of
     rationals for degree N = deg g · deg f, where the characteristic polynomial of the
-    N×N Kronecker sum cost O(N³) and a quarter of a second at N = 144."""
+    N×N Kronecker sum would cost O(N³), a quarter of a second at N = 144."""
     from flint import fmpq, fmpq_poly
 
     m, n = g.degree(), f.degree()

@@ -367,7 +367,7 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
     operations and the errors of :meth:`_Builder.value` (a power's exponent evaluated
     before its base, a constant on its first use), without a field of degree 1 whose
     every number is a FLINT polynomial (a parametric family's thousands of rational
-    leaves took most of its load that way)."""
+    leaves would take most of its load that way)."""
     definitions = dict(constants or {})
     known: dict[str, Fraction] = {}
 
