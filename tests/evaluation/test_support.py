@@ -62,30 +62,30 @@ def test_weights_left_out_are_zero_by_brute_force():
     assert checked > 100  # most of RK4's weights are left out
 
 
-@pytest.mark.parametrize("data", [RK4, DIRK])
-def test_ball_mid_points_are_those_of_every_row(data):
+def _with_and_without_support(data, order: int, make):
+    """The condition sums of every order up to ``order`` in the context ``make(A, b)``
+    (point entries), over every row and over the rows the zeros leave."""
     A, b = data
-    listing = ConditionListing(9, None)
+    listing = ConditionListing(order, None)
     wanted = sorted(listing.orders)
     pA, pb = _points(A, b)
-    full = condition_sums(listing, BallContext(pA, pb, 120), len(b), wanted)
-    some = condition_sums(listing, SupportContext(BallContext(pA, pb, 120), *zero_pattern(A, b)), len(b), wanted)
-    for n in wanted:
-        assert list(some[n].mids) == list(full[n].mids)
-        assert np.all(some[n].rads <= full[n].rads)
+    full = condition_sums(listing, make(pA, pb), len(b), wanted)
+    some = condition_sums(listing, SupportContext(make(pA, pb), *zero_pattern(A, b)), len(b), wanted)
+    return [(full[n], some[n]) for n in wanted]
+
+
+@pytest.mark.parametrize("data", [RK4, DIRK])
+def test_ball_mid_points_are_those_of_every_row(data):
+    for full, some in _with_and_without_support(data, 9, lambda A, b: BallContext(A, b, 120)):
+        assert list(some.mids) == list(full.mids)
+        assert np.all(some.rads <= full.rads)
 
 
 @pytest.mark.parametrize("data", [RK4, DIRK])
 def test_screen_mid_points_are_those_of_every_row(data):
-    A, b = data
-    listing = ConditionListing(10, None)
-    wanted = sorted(listing.orders)
-    pA, pb = _points(A, b)
-    full = condition_sums(listing, FloatContext(pA, pb), len(b), wanted)
-    some = condition_sums(listing, SupportContext(FloatContext(pA, pb), *zero_pattern(A, b)), len(b), wanted)
-    for n in wanted:
-        assert some[n].mid.tobytes() == full[n].mid.tobytes()
-        assert np.all(some[n].rad <= full[n].rad)
+    for full, some in _with_and_without_support(data, 10, FloatContext):
+        assert some.mid.tobytes() == full.mid.tobytes()
+        assert np.all(some.rad <= full.rad)
 
 
 def test_zero_pattern_reads_exact_numbers_and_point_intervals():
@@ -101,19 +101,12 @@ def test_digit_ball_mid_points_are_those_of_every_row(data):
     # must read the multipliers of their own terms (orders of 15 vertices and more)
     from rkcheck.evaluation.limbs import LimbBallContext
 
-    A, b = data
-    listing = ConditionListing(15, None)
-    wanted = sorted(listing.orders)
-    pA, pb = _points(A, b)
-
-    def context():
-        ctx = LimbBallContext.create(pA, pb, 190, 16)
+    def context(A, b):
+        ctx = LimbBallContext.create(A, b, 190, 16)
         assert ctx is not None
         return ctx
 
-    full = condition_sums(listing, context(), len(b), wanted)
-    some = condition_sums(listing, SupportContext(context(), *zero_pattern(A, b)), len(b), wanted)
-    for n in wanted:
-        assert list(some[n].mids) == list(full[n].mids)
+    for full, some in _with_and_without_support(data, 15, context):
+        assert list(some.mids) == list(full.mids)
         # radius bounds summed in another grouping of runs: equal up to their last bits
-        assert np.all(some[n].rads <= full[n].rads * (1 + 2.0**-40))
+        assert np.all(some.rads <= full.rads * (1 + 2.0**-40))
