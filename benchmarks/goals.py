@@ -32,20 +32,11 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+# the tableaux the other benchmarks measure these rows with (a script's folder is on its path)
+from bench_arith import DENSE6, RK4_DECIMAL
+from bench_stream import EULER, RK4
 
-RK4 = ([["0", "0", "0", "0"], ["1/2", "0", "0", "0"], ["0", "1/2", "0", "0"], ["0", "0", "1", "0"]],
-       ["1/6", "1/3", "1/3", "1/6"])
-RK4_DECIMAL = ([["0", "0", "0", "0"], ["0.5", "0", "0", "0"], ["0", "0.5", "0", "0"], ["0", "0", "1", "0"]],
-               ["0.1666666666666667", "0.3333333333333333", "0.3333333333333333", "0.1666666666666667"])
-EULER = ([["0"]], ["1"])
-#: a dense rational 6-stage tableau, what HBVM(6, 3) (entries in a field of degree 48) is compared with
-DENSE6 = (
-    [["1/7", "-2/9", "3/11", "1/13", "1/6", "2/17"], ["2/5", "1/8", "-1/6", "3/10", "-1/9", "1/19"],
-     ["-1/12", "5/9", "1/4", "2/15", "1/11", "-3/23"], ["3/8", "1/3", "-2/7", "1/5", "2/13", "1/29"],
-     ["1/9", "-1/10", "3/14", "1/12", "1/4", "2/31"], ["1/21", "2/27", "-1/33", "1/14", "3/37", "1/8"]],
-    ["1/5", "3/10", "1/4", "1/8", "1/16", "1/16"],
-)
+ROOT = Path(__file__).resolve().parent.parent
 
 CHILD = r"""
 import json, sys, time
