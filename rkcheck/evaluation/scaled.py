@@ -354,7 +354,7 @@ def scaled_field(exact_values: Any) -> ScaledTableau:
                          per_embedding, e, log2_gprime)
 
 
-def _log2_upper(x: Any) -> float:
+def log2_upper(x: Any) -> float:
     """An upper bound of ``log₂ |x|`` for an arb (−1000 for 0): in the log domain, since
     the scaled entries of a field of high degree exceed a float (2^1236 for HBVM(6, 3))."""
     from flint import arb
@@ -388,7 +388,7 @@ def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, li
                 for x in sums:
                     if not x.is_finite() or (x.abs_upper() > 0 and not x.abs_upper() <= 2 * x.abs_lower()):
                         tight = False
-                top = max(_log2_upper(x) for x in sums)
+                top = max(log2_upper(x) for x in sums)
                 log2_M = max(log2_M, top)
                 per_embedding.append(top)
             if tight or prec >= 1 << 14:
@@ -406,7 +406,7 @@ def _log2_derivative_bound(minpoly: list[int]) -> float:
         with ctx.workprec(prec):
             values = [abs(dg(acb(r))) for r in complex_roots(minpoly, prec)]
             if all(v.is_finite() for v in values) or prec >= 1 << 14:
-                return max(_log2_upper(v) for v in values)
+                return max(log2_upper(v) for v in values)
         prec *= 2
 
 

@@ -19,6 +19,7 @@ from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.scaled import ScaledTableau, scaled_field, scaled_rational
+from rkcheck.evaluation.split_nodes import scaled_nodes
 from rkcheck.methods.tableau import ExactValues, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -117,6 +118,8 @@ class TableauValues:
         assert self.exact is not None, "the modular route needs exact values"
         if self.exact.field is None:
             return scaled_rational(self.exact.A, self.exact.b)
+        if self.exact.nodes is not None:  # rational conditions: no field arithmetic for them
+            return scaled_nodes(self.exact.nodes)
         return scaled_field(self.exact)
 
     # ------------------------------------------------------------------ reports

@@ -196,7 +196,7 @@ def family_exact_values(spec: FamilySpec) -> Any:
     or their field exceeds the degree limit.  Kept per spec (the values are never mutated),
     and the field of the nodes per set of nodes (:func:`_nodes_field`).
 
-    The entries are evaluated from :func:`_evaluation_texts`, polynomials in the nodes,
+    The entries are evaluated from :func:`evaluation_texts`, polynomials in the nodes,
     not from the Lagrange forms people read: the same values without a division in the
     field (as Lagrange forms the Gauss-6 nodes' weights would cost a third of a second)."""
     from rkcheck.numbers import grammar as ex
@@ -213,7 +213,7 @@ def family_exact_values(spec: FamilySpec) -> Any:
         base = _nodes_field(tuple((name, consts[name]) for name in order))
     except NotAlgebraic as err:
         return None, str(err)
-    definitions, A_e, b_e = _evaluation_texts(spec, spec.base_rule().nodes[0].poly, A)
+    definitions, A_e, b_e = evaluation_texts(spec, spec.base_rule().nodes[0].poly, A)
     entries = [ex.parse(x) for row in A_e for x in row] + [ex.parse(x) for x in list(b_e) + list(c)]
     return evaluate_in(base, order, entries, {k: ex.parse(v) for k, v in definitions.items()}), None
 
@@ -257,7 +257,7 @@ def _nodes_field(consts: tuple[tuple[str, str], ...]) -> Any:
     return field_of([ex.parse(name) for name in names], {name: ex.parse(text) for name, text in consts})
 
 
-def _evaluation_texts(spec: FamilySpec, P: list[Fraction],
+def evaluation_texts(spec: FamilySpec, P: list[Fraction],
                       A: list[list[str]]) -> tuple[dict[str, str], list[list[str]], list[str]]:
     """``(definitions, A, b)``: the family's weights and coefficients as polynomials in the
     nodes ``c1 … cn``, the roots of the node polynomial ``P`` (all of them, simple); ``A``

@@ -140,6 +140,7 @@ class _Shared:
         """``(ExactValues or None, reason)`` for the family's tableau (computed once)."""
         if self.exact is None:
             from rkcheck.methods.closed_forms import family_exact_values
+            from rkcheck.methods.node_form import node_form
 
             found, reason = family_exact_values(self.spec)
             if found is None:
@@ -148,7 +149,8 @@ class _Shared:
                 v = found.values
                 n = math.isqrt(len(v) + 1) - 1  # A, b and the nodes c: n² + 2n values
                 A = [v[i * n:(i + 1) * n] for i in range(n)]
-                self.exact = (ExactValues(found.field, A, v[n * n:n * n + n], None), None)
+                nodes = node_form(self.spec) if found.field is not None else None
+                self.exact = (ExactValues(found.field, A, v[n * n:n * n + n], None, nodes), None)
         return self.exact
 
     def __getstate__(self) -> dict[str, Any]:

@@ -63,6 +63,10 @@ class ExactValues:
     A: list[list[Any]]
     b: list[Any]
     c: list[Any] | None
+    #: the entries as polynomials in the nodes (a family's
+    #: :class:`~rkcheck.methods.node_form.NodeForm`), when they are: conditions are then
+    #: computed without the field (:mod:`rkcheck.evaluation.split_nodes`)
+    nodes: Any = None
 
 
 class FamilyCoefficient(Protocol):

@@ -1,0 +1,253 @@
+"""A family's tableau as two polynomials in its nodes: ``A_ij = F(c_i, c_j)`` and
+``b_j = W(c_j)``, with ``F`` and ``W`` over Q and the nodes ``c_1 … c_s`` all the roots of
+one square-free polynomial ``P`` over Q.
+
+Such a tableau is *equivariant*.  An automorphism σ of the nodes' field permutes the
+roots of P, ``σ(c_i) = c_π(i)``, so it maps ``A_ij`` to ``A_π(i)π(j)`` and ``b_j`` to
+``b_π(j)``: the same tableau with its stages numbered otherwise.  A quantity that does not
+depend on how the stages are numbered — an elementary weight, an energy condition, a
+coefficient of R(z) — is therefore fixed by every automorphism of the field, and so is
+rational, whatever the degree of the field (48 for the six Gauss-6 nodes).  Modulo a prime
+over which P splits into distinct linear factors, it is the same expression with the nodes
+replaced by those roots, in any order (:mod:`rkcheck.evaluation.split_nodes`).
+
+The form is read off the texts the family's entries are evaluated from
+(:func:`rkcheck.methods.closed_forms.evaluation_texts`), each entry as a polynomial in the
+nodes reduced modulo P in each of them; it is a :class:`NodeForm` only when every
+off-diagonal entry is the same ``F``, every diagonal one ``F(x, x)`` and every weight the
+same ``W`` — which is what the argument above needs, checked rather than assumed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import lru_cache
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from rkcheck.methods.family_spec import FamilySpec
+
+#: ``{(a, b): coefficient}`` of ``Σ f_ab x^a y^b`` (a, b below the number of nodes)
+Bivariate = tuple[tuple[tuple[int, int], Fraction], ...]
+
+
+@dataclass(frozen=True)
+class NodeForm:
+    """``A_ij = F(c_i, c_j)``, ``b_j = W(c_j)`` over the roots ``c`` of ``P`` (module
+    docstring); ``P`` monic and ascending, ``F`` and ``W`` reduced modulo P."""
+
+    P: tuple[Fraction, ...]
+    F: Bivariate
+    W: tuple[tuple[int, Fraction], ...]
+
+    @property
+    def stages(self) -> int:
+        return len(self.P) - 1
+
+    def integrality_scale(self) -> int:
+        """The least positive integer ``e`` with every ``e·A_ij`` and ``e·b_j`` an
+        algebraic integer.  The characteristic polynomial of multiplication by F on
+        ``Q[x, y]/(P(x), P(y))`` has the roots ``F(c_i, c_j)`` over all pairs, that of W on
+        ``Q[x]/(P)`` the ``W(c_j)``; by Gauss's lemma ``λ^m χ(X/λ)`` is integral exactly
+        when it is for each irreducible factor of χ, so the least λ that makes both
+        integral is the least common integrality denominator of the entries."""
+        from flint import fmpq_mat
+
+        from rkcheck.numbers.minimal import integral_scale
+        from rkcheck.numbers.polynomials import from_flint
+
+        n = self.stages
+        C = _companion(self.P)
+        powers = [fmpq_mat(n, n, [int(i == j) for i in range(n) for j in range(n)])]
+        for _ in range(1, n):
+            powers.append(powers[-1] * C)
+        mul_F = fmpq_mat(n * n, n * n)
+        for (a, b), coeff in self.F:
+            mul_F += _kron(powers[a], powers[b]) * _fmpq(coeff)
+        mul_W = fmpq_mat(n, n)
+        for b, coeff in self.W:
+            mul_W += powers[b] * _fmpq(coeff)
+        return int(max(1, _lcm(integral_scale(from_flint(mul_F.charpoly())),
+                               integral_scale(from_flint(mul_W.charpoly())))))
+
+
+def _fmpq(q: Fraction) -> Any:
+    from flint import fmpq
+
+    return fmpq(q.numerator, q.denominator)
+
+
+def _lcm(a: int, b: int) -> int:
+    import math
+
+    return math.lcm(int(a), int(b))
+
+
+def _companion(P: tuple[Fraction, ...]) -> Any:
+    """The matrix of multiplication by x on ``Q[x]/(P)`` in the basis ``1, x, …``
+    (columns: images of the basis)."""
+    from flint import fmpq_mat
+
+    n = len(P) - 1
+    C = fmpq_mat(n, n)
+    for k in range(n - 1):
+        C[k + 1, k] = 1
+    for k in range(n):
+        C[k, n - 1] = _fmpq(-P[k])
+    return C
+
+
+def _kron(X: Any, Y: Any) -> Any:
+    """``X ⊗ Y``: multiplication by ``x^a y^b`` on the basis ``x^i y^j`` (index i·n + j)."""
+    from flint import fmpq_mat
+
+    n = X.nrows()
+    K = fmpq_mat(n * n, n * n)
+    for i in range(n):
+        for k in range(n):
+            if X[i, k] == 0:
+                continue
+            for j in range(n):
+                for m in range(n):
+                    if Y[j, m] != 0:
+                        K[i * n + j, k * n + m] = X[i, k] * Y[j, m]
+    return K
+
+
+@lru_cache(maxsize=16)
+def node_form(spec: FamilySpec) -> NodeForm | None:
+    """The family's :class:`NodeForm`, or None when its entries are not polynomials of
+    their two nodes over the roots of the node polynomial (no closed-form nodes, an entry
+    that divides by a node, or entries that differ from one another)."""
+    from rkcheck.methods.closed_forms import evaluation_texts, expression_texts
+
+    texts = expression_texts(spec)
+    if texts is None:
+        return None
+    P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
+    P = [x / P[-1] for x in P]
+    definitions, A, b = evaluation_texts(spec, P, texts[1])
+    polys = _NodePolynomials(P, definitions)
+    try:
+        entries = [[polys.of(A[i][j], {i, j}) for j in range(len(b))] for i in range(len(b))]
+        weights = [polys.of(x, {j}) for j, x in enumerate(b)]
+    except _NotPolynomial:
+        return None
+    return _uniform(P, entries, weights)
+
+
+class _NotPolynomial(Exception):
+    pass
+
+
+class _NodePolynomials:
+    """Entry texts as FLINT polynomials in the nodes ``c1 … cn`` (every name defined in
+    ``definitions`` over them), reduced modulo P in each node."""
+
+    def __init__(self, P: list[Fraction], definitions: dict[str, str]):
+        from flint import fmpq_mpoly_ctx
+
+        from rkcheck.numbers import grammar as ex
+
+        n = len(P) - 1
+        self.ctx = fmpq_mpoly_ctx.get(tuple(f"c{i + 1}" for i in range(n)), "lex")
+        self.gens = dict(zip(self.ctx.names(), self.ctx.gens()))
+        self.moduli = [sum((g**k * _fmpq(x) for k, x in enumerate(P)), self.ctx.constant(0)) for g in self.ctx.gens()]
+        self.definitions = {name: ex.parse(text) for name, text in definitions.items()}
+        self.known: dict[str, Any] = {}
+
+    def of(self, text: str, nodes: set[int]) -> Any:
+        """The entry ``text`` reduced modulo P in each node; it must use only ``nodes``."""
+        from rkcheck.numbers import expressions as xp
+        from rkcheck.numbers import grammar as ex
+
+        value = xp.fold(ex.parse(text), self._combine)
+        used = {k for k, d in enumerate(value.degrees()) if d > 0}
+        if not used <= nodes:
+            raise _NotPolynomial
+        for k in sorted(nodes):
+            value = divmod(value, self.moduli[k])[1]
+        return value
+
+    def _name(self, name: str) -> Any:
+        from rkcheck.numbers import expressions as xp
+
+        if name in self.gens:
+            return self.gens[name]
+        if name not in self.definitions:
+            raise _NotPolynomial
+        if name not in self.known:
+            self.known[name] = xp.fold(self.definitions[name], self._combine)
+        return self.known[name]
+
+    def _combine(self, node: Any, vals: list[Any]) -> Any:
+        from rkcheck.numbers import grammar as ex
+
+        if isinstance(node, ex.Num):
+            return self.ctx.constant(_fmpq(Fraction(node.value)))
+        if isinstance(node, ex.Name):
+            return self._name(node.name)
+        if isinstance(node, ex.Unary):
+            return -vals[0]
+        if isinstance(node, ex.Power):
+            base, exponent = vals
+            if not exponent.is_constant() or exponent.leading_coefficient().denom() != 1:
+                raise _NotPolynomial
+            k = int(exponent.leading_coefficient().numer())
+            if k < 0:
+                raise _NotPolynomial
+            return base**k
+        if not isinstance(node, ex.Binary):
+            raise _NotPolynomial  # a root: not a polynomial in the nodes
+        left, right = vals
+        if node.op == "+":
+            return left + right
+        if node.op == "-":
+            return left - right
+        if node.op == "*":
+            return left * right
+        if not right.is_constant() or right.is_zero():
+            raise _NotPolynomial
+        return left / right.leading_coefficient()
+
+
+def _uniform(P: list[Fraction], entries: list[list[Any]], weights: list[Any]) -> NodeForm | None:
+    """The NodeForm when every entry is the same polynomial of its nodes, else None."""
+    from rkcheck.numbers.polynomials import to_fraction
+
+    n = len(P) - 1
+
+    def pairs(poly: Any, i: int, j: int) -> dict[tuple[int, int], Fraction]:
+        return {(int(m[i]), int(m[j])): to_fraction(c) for m, c in poly.to_dict().items()}
+
+    def single(poly: Any, j: int) -> dict[int, Fraction]:
+        return {int(m[j]): to_fraction(c) for m, c in poly.to_dict().items()}
+
+    F = pairs(entries[0][1], 0, 1) if n > 1 else None
+    W = single(weights[0], 0)
+    if any(single(w, j) != W for j, w in enumerate(weights)):
+        return None
+    for i in range(n):
+        for j in range(n):
+            if i != j and pairs(entries[i][j], i, j) != F:
+                return None
+    if F is None:  # one node: the entry is a constant polynomial in it
+        F = {(a, 0): c for a, c in single(entries[0][0], 0).items()}
+    diagonal = _diagonal(P, F)
+    if any(single(entries[i][i], i) != diagonal for i in range(n)):
+        return None
+    return NodeForm(tuple(P), tuple(sorted(F.items())), tuple(sorted(W.items())))
+
+
+def _diagonal(P: list[Fraction], F: dict[tuple[int, int], Fraction]) -> dict[int, Fraction]:
+    """``F(x, x)`` modulo P, as ``{power: coefficient}``."""
+    from flint import fmpq_poly
+
+    from rkcheck.numbers.polynomials import from_flint, to_flint
+
+    g = fmpq_poly([])
+    for (a, b), c in F.items():
+        g += fmpq_poly([0] * (a + b) + [1]) * _fmpq(c)
+    r = from_flint(g % to_flint(P))
+    return {k: c for k, c in enumerate(r) if c != 0}

@@ -1,0 +1,127 @@
+"""Family tableaux in node form (``A_ij = F(c_i, c_j)``, ``b_j = W(c_j)``) and their
+conditions computed over Q at primes that split the node polynomial, against the route
+over the nodes' number field.
+
+Independent routes: the field's own values of the entries (every entry evaluated in the
+field from its text), its integrality denominator (from each entry's minimal
+polynomial), and the field route's exact residuals, whose agreement with sympy and the
+reference's conditions ``tests/evaluation/test_field_residuals.py`` checks.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+
+from rkcheck.evaluation.modular import exact_condition_sums
+from rkcheck.evaluation.scaled import integrality_denominator, scaled_field
+from rkcheck.evaluation.split_nodes import scaled_nodes
+from rkcheck.methods.closed_forms import family_exact_values
+from rkcheck.methods.families import family_tableau
+from rkcheck.methods.family_spec import parse_spec
+from rkcheck.methods.node_form import (
+    NodeForm,
+    _NodePolynomials,
+    _NotPolynomial,
+    _uniform,
+    node_form,
+)
+from rkcheck.trees.listing import ConditionListing
+
+FAMILIES = [
+    {"name": "gauss", "s": 2}, {"name": "gauss", "s": 4}, {"name": "radau-ia", "s": 3},
+    {"name": "radau-iia", "s": 3}, {"name": "lobatto-iiia", "s": 4}, {"name": "lobatto-iiib", "s": 4},
+    {"name": "avf", "s": 3}, {"name": "hbvm", "k": 4, "s": 2}, {"name": "hbvm", "k": 5, "s": 3},
+    {"name": "kernel", "zeta": "1/3", "beta": "1/5"},
+]
+
+
+def _field(table):
+    found, reason = family_exact_values(parse_spec(table))
+    assert reason is None and found.field is not None
+    n = int(round((len(found.values) + 1) ** 0.5)) - 1  # A, b, c: n² + 2n values
+    v = found.values
+    return found.field, [v[i * n:(i + 1) * n] for i in range(n)], v[n * n:n * n + n], v[n * n + n:]
+
+
+def _at(K, terms, *points):
+    """``Σ c·Π point^power`` in the field K."""
+    total = K(0)
+    for powers, c in terms:
+        term = K(c)
+        for x, k in zip(points, powers if isinstance(powers, tuple) else (powers,)):
+            term = term * x**k
+        total = total + term
+    return total
+
+
+@pytest.mark.parametrize("table", FAMILIES)
+def test_the_node_form_is_the_tableau(table):
+    form = node_form(parse_spec(table))
+    assert form is not None
+    K, A, b, c = _field(table)
+    n = len(b)
+    assert form.stages == n
+    for i in range(n):
+        assert _at(K, form.W, c[i]) == K(b[i])
+        for j in range(n):
+            assert _at(K, form.F, c[i], c[j]) == K(A[i][j]), (i, j)
+
+
+@pytest.mark.parametrize("table", FAMILIES[:6] + [{"name": "hbvm", "k": 4, "s": 3}])
+def test_the_integrality_scale_is_the_fields_least_denominator(table):
+    K, A, b, _ = _field(table)
+    want = integrality_denominator([x for row in A for x in row] + list(b), K)
+    assert node_form(parse_spec(table)).integrality_scale() == want
+
+
+@pytest.mark.parametrize("table, top", [(FAMILIES[0], 9), (FAMILIES[2], 8), (FAMILIES[5], 8), (FAMILIES[6], 8),
+                                        (FAMILIES[7], 9), (FAMILIES[9], 8)])
+def test_conditions_over_split_primes_equal_the_fields(table, top):
+    spec = parse_spec(table)
+    exact = family_tableau(spec).exact_values()
+    assert exact.nodes is not None
+    listing = ConditionListing(top, None)
+    over_field = exact_condition_sums(scaled_field(exact), listing)
+    over_q = exact_condition_sums(scaled_nodes(exact.nodes), listing)
+    zeros = failures = 0
+    for n, sums in over_field.items():
+        assert (over_q[n].is_zero() == sums.is_zero()).all(), n
+        for k, value in enumerate(sums.values()):
+            rational = value.rational() if hasattr(value, "rational") else Fraction(value)
+            assert over_q[n].value(k) == rational, (n, k)
+            zeros += rational == 0
+            failures += rational != 0
+    assert zeros and failures  # both outcomes are compared
+
+
+def test_every_channel_prime_splits_the_node_polynomial():
+    form = node_form(parse_spec({"name": "hbvm", "k": 4, "s": 3}))
+    scaled = scaled_nodes(form)
+    chosen = scaled.primes_for(400)
+    assert sum(p.bit_length() - 1 for p, _ in chosen) >= 400 - len(chosen)
+    for p, roots in chosen:
+        assert roots == [0]  # one channel per prime
+        found = scaled.__dict__["_node_roots"][p]
+        assert len(set(found)) == form.stages
+        for r in found:
+            P = sum(Fraction(c) * r**k for k, c in enumerate(form.P))
+            assert P.numerator * pow(P.denominator, -1, p) % p == 0
+
+
+def test_entries_that_are_not_one_polynomial_of_their_nodes_have_no_form():
+    P = [Fraction(-1, 3), Fraction(0), Fraction(1)]  # c = ±1/√3
+    polys = _NodePolynomials(P, {})
+    with pytest.raises(_NotPolynomial):
+        polys.of("1/c1", {0})  # a division by a node
+    with pytest.raises(_NotPolynomial):
+        polys.of("c2", {0})  # an entry of stage 1 that reads node 2
+    weights = [polys.of("1/2", {0}), polys.of("1/2", {1})]
+    same = [[polys.of("c1/4", {0}), polys.of("c1/4", {0, 1})], [polys.of("c2/4", {0, 1}), polys.of("c2/4", {1})]]
+    assert isinstance(_uniform(P, same, weights), NodeForm)
+    # A_12 = c1/4 but A_21 = 0: renumbering the stages changes the tableau
+    skew = [same[0], [polys.of("0", {0, 1}), same[1][1]]]
+    assert _uniform(P, skew, weights) is None
+    uneven = [polys.of("1/2", {0}), polys.of("1/2 + c2", {1})]
+    assert _uniform(P, same, uneven) is None
