@@ -198,7 +198,7 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     if surrogate is not None:  # a continuous method: its kernel speaks for itself, not the surrogate
         quad, props, avf, cert = _continuous_facts(surrogate, quad, options, values)
     else:
-        props = _memo(facts, "properties", lambda: properties_of_values(*scalars))
+        props = _memo(facts, "properties", lambda: properties_of_values(scalars[0], scalars[1], _exact_series(values)))
         avf, cert = props.certificates(options.degree) if options.degree is not None else (None, None)
     timings["orders_and_avf"] = time.perf_counter() - t2
     conditions = ConditionResults(listing, orders)
@@ -223,6 +223,15 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     if interrupted:
         raise CheckInterrupted(result)
     return result
+
+
+def _exact_series(values: TableauValues) -> list | None:
+    """R(z)'s series over Q from a family's node form (None without one): the
+    properties then take no product in the nodes' field for it."""
+    exact = values.exact
+    if exact is None or exact.nodes is None:
+        return None
+    return exact.nodes.stability_series(2 * values.stages)
 
 
 def _facts(values: TableauValues) -> dict[Any, Any]:

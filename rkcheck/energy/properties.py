@@ -10,6 +10,7 @@ made (:mod:`rkcheck.energy.scalars`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
@@ -46,14 +47,16 @@ class TableauProperties:
         return avf, cert
 
 
-def properties_of_values(A: sc.Matrix, b: sc.Vector) -> TableauProperties:
+def properties_of_values(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None = None) -> TableauProperties:
     """The properties of the tableau with these scalars: exact ones, or the check's
-    enclosures (:func:`rkcheck.energy.scalars.tableau_values` chooses)."""
+    enclosures (:func:`rkcheck.energy.scalars.tableau_values` chooses); ``series``:
+    R(z)'s ``r_0 … r_2s`` over Q when the tableau's node form gives them."""
     red = reduce_tableau(A, b)
+    exact = sc.is_exact(sc.sample(A, b))
     return TableauProperties(
-        exact=sc.is_exact(sc.sample(A, b)),
+        exact=exact,
         reduction=red,
-        stability=stability_function(A, b),
+        stability=stability_function(A, b, series if exact else None),
         symplectic=symplecticity(red),
         symmetric=symmetry(red),
     )

@@ -270,9 +270,15 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
     return [sc.tidy(x) for x in series], [sc.tidy(x) for x in Q]
 
 
-def stability_function(A: sc.Matrix, b: sc.Vector) -> StabilityFunction:
-    """``R(z)`` of the tableau ``(A, b)`` over its own scalars (see the module docstring)."""
+def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None = None) -> StabilityFunction:
+    """``R(z)`` of the tableau ``(A, b)`` over its own scalars (see the module docstring);
+    ``series``: ``r_0 … r_2s`` when they are known over Q beforehand (a family in node
+    form, :meth:`~rkcheck.methods.node_form.NodeForm.stability_series`), so that no
+    product is taken in the entries' field."""
     s = len(b)
+    if series is not None:
+        P, Q = _pade(series, s)
+        return _from_parts(s, True, list(series), _trim(P), _trim(Q))
     like = sc.sample(A, b)
     rational = _rational_parts(A, b)
     if rational is not None:

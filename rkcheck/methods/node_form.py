@@ -72,6 +72,46 @@ class NodeForm:
                                integral_scale(from_flint(mul_W.charpoly())))))
 
 
+    def stability_series(self, count: int) -> list[Fraction]:
+        """``r_0 … r_count`` with ``r_k = bᵀA^(k−1)1`` (r_0 = 1), over Q.  A stage vector
+        ``v_i = V(c_i)`` (V modulo P) goes to ``(Av)_i = Σ_a c_i^a Tr(F_a·V)``, with
+        ``F(x, y) = Σ_a x^a F_a(y)`` and Tr the trace of ``Q[y]/(P)`` (the sum over the
+        roots), and ``bᵀv = Tr(W·V)``: the powers of A applied to 1 stay polynomials of
+        degree below s, and every term is rational (the module docstring)."""
+        from flint import fmpq_poly
+
+        from rkcheck.numbers.polynomials import from_flint, to_flint
+
+        n = self.stages
+        P = to_flint(list(self.P))
+        C = _companion(self.P)
+        traces, power = [], C  # Tr(y^m) = trace of C^m, m < n
+        for m in range(n):
+            traces.append(sum((power[i, i] for i in range(n)), _fmpq(Fraction(0))) if m else _fmpq(Fraction(n)))
+            if m:
+                power = power * C
+
+        def trace(U: Any) -> Fraction:
+            coeffs = from_flint(U % P)
+            return sum((c * _fraction(traces[m]) for m, c in enumerate(coeffs)), Fraction(0))
+
+        rows: dict[int, Any] = {}
+        for (a, b), coeff in self.F:
+            rows[a] = rows.get(a, fmpq_poly([])) + fmpq_poly([0] * b + [1]) * _fmpq(coeff)
+        W = fmpq_poly([])
+        for b, coeff in self.W:
+            W += fmpq_poly([0] * b + [1]) * _fmpq(coeff)
+        series, V = [Fraction(1)], fmpq_poly([1])
+        for _ in range(count):
+            series.append(trace(W * V))
+            V = sum((fmpq_poly([0] * a + [1]) * _fmpq(trace(Fa * V)) for a, Fa in rows.items()), fmpq_poly([]))
+        return series
+
+
+def _fraction(q: Any) -> Fraction:
+    return Fraction(int(q.numer()), int(q.denom()))
+
+
 def _fmpq(q: Fraction) -> Any:
     from flint import fmpq
 

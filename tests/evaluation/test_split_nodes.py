@@ -125,3 +125,15 @@ def test_entries_that_are_not_one_polynomial_of_their_nodes_have_no_form():
     assert _uniform(P, skew, weights) is None
     uneven = [polys.of("1/2", {0}), polys.of("1/2 + c2", {1})]
     assert _uniform(P, same, uneven) is None
+
+
+@pytest.mark.parametrize("table", FAMILIES)
+def test_the_stability_series_over_q_is_the_fields(table):
+    # r_k = bᵀA^(k−1)1 in the field, product by product, against the traces over Q
+    K, A, b, _ = _field(table)
+    n = len(b)
+    want, v = [Fraction(1)], [K(1)] * n
+    for _ in range(2 * n):
+        want.append(sum((K(b[i]) * v[i] for i in range(n)), K(0)).rational())
+        v = [sum((K(A[i][j]) * v[j] for j in range(n)), K(0)) for i in range(n)]
+    assert node_form(parse_spec(table)).stability_series(2 * n) == want
