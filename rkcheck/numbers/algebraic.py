@@ -30,6 +30,7 @@ from rkcheck.numbers.polynomials import (
     from_flint,
     poly_text,
     real_root_intervals,
+    refine_root,
     to_flint,
     to_fmpq,
     to_fraction,
@@ -102,8 +103,12 @@ class NumberField:
         if self.degree == 1:
             return Interval.point(-self.minpoly[0])
         if self._theta is None or self._theta_bits < bits:
-            roots = real_root_intervals(self.minpoly, bits)
-            self._theta, self._theta_bits = roots[self.index - 1], bits
+            # θ's root isolated coarsely with the others, then refined alone
+            start = real_root_intervals(self.minpoly, min(bits, 64))[self.index - 1]
+            refined = start if start.hi - start.lo <= Fraction(1, 1 << bits) else refine_root(self.minpoly, start, bits)
+            if refined is None:
+                refined = real_root_intervals(self.minpoly, bits)[self.index - 1]
+            self._theta, self._theta_bits = refined, bits
         return self._theta
 
     def conjugates(self, bits: int = 64):

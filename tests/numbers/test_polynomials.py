@@ -248,3 +248,24 @@ def test_isolating_intervals_bracket_a_sign_change_of_the_squarefree_part(p, bit
             lo = S.eval(sp.Rational(iv.lo.numerator, iv.lo.denominator))
             hi = S.eval(sp.Rational(iv.hi.numerator, iv.hi.denominator))
             assert lo * hi < 0
+
+
+@pytest.mark.parametrize("p", root_cases(11, 30))
+def test_a_refined_root_is_enclosed_and_narrow(p):
+    # Newton's candidate bracketed by a sign change, against sympy's roots to 700 digits
+    p = pl.squarefree_part(p)
+    truth = sorted(set(sp.real_roots(to_sympy(p))), key=lambda r: r.evalf(60))
+    refined = 0
+    for start, r in zip(pl.RealRoots(p).intervals(30), truth):
+        got = pl.refine_root(p, start, 2000)
+        if start.is_point:
+            assert got == start
+            continue
+        assert got is not None  # a simple root 2^-30 close: Newton converges
+        assert start.lo <= got.lo and got.hi <= start.hi and got.hi - got.lo <= F(1, 2**2000)
+        value = sp.Rational(str(r.evalf(700)))
+        margin = sp.Rational(1, 10**690)
+        assert sp.Rational(got.lo.numerator, got.lo.denominator) - margin <= value
+        assert value <= sp.Rational(got.hi.numerator, got.hi.denominator) + margin
+        refined += 1
+    assert refined or not truth or all(r.is_rational for r in truth)
