@@ -10,7 +10,9 @@ Every case is one ``rkcheck.verify`` (or one ``rkcheck scan`` process) in a fres
 process, as a user runs it: the listing cache on, in a private temporary
 ``RKCHECK_CACHE_DIR`` that one uncounted run per case fills, so "cached" is a check that
 reads its condition listing from the cache.  A ``verify`` child times itself after its
-imports, in CPU seconds (user + system: on a shared machine the steadier figure); the
+imports, in CPU seconds (user + system: on a shared machine the steadier figure), its
+own and that of the children it waits for (a number field is built in one, under its
+time limit); the
 parent reads each child's peak resident memory through ``os.wait4``.  The scan row is the
 whole ``rkcheck scan`` process, start-up and children included.  Each figure is the
 median of ``--repeat`` runs.
@@ -39,15 +41,18 @@ from bench_stream import EULER, RK4
 ROOT = Path(__file__).resolve().parent.parent
 
 CHILD = r"""
-import json, sys, time
+import json, resource, sys, time
 sys.path.insert(0, {root!r})
 import rkcheck
 from rkcheck.api.settings import use_listing_cache
 use_listing_cache()
 rkcheck.load({path!r})  # the modules a check needs, loaded before the clock
-c0 = time.process_time()
+def clock():  # this process and the children it waited for (a field is built in one)
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + r.ru_utime + r.ru_stime
+c0 = clock()
 v = rkcheck.verify({path!r}, **{kwargs!r})
-cpu = time.process_time() - c0
+cpu = clock() - c0
 # the per-order counts, not the conditions: those would compute every failing value
 counts = v.per_order
 weakest = min((p.min_digits for p in counts if p.min_digits is not None), default=None)
