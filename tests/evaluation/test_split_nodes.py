@@ -137,3 +137,17 @@ def test_the_stability_series_over_q_is_the_fields(table):
         want.append(sum((K(b[i]) * v[i] for i in range(n)), K(0)).rational())
         v = [sum((K(A[i][j]) * v[j] for j in range(n)), K(0)) for i in range(n)]
     assert node_form(parse_spec(table)).stability_series(2 * n) == want
+
+
+def test_a_tableau_written_out_keeps_the_fields_route():
+    # the same Gauss-3 entries as texts in a file: no family, so no node form is assumed
+    from support.paths import TABLEAUX
+
+    from rkcheck.evaluation.values import TableauValues
+    from rkcheck.io.loader import load
+    from rkcheck.numbers.reading import Reading
+
+    tab = load(str(TABLEAUX / "collocation" / "gauss-3.toml"))
+    assert tab.exact_values().field is not None and tab.exact_values().nodes is None
+    scaled = TableauValues.of(tab, Reading()).scaled
+    assert scaled.number_field is not None and scaled.degree == 2
