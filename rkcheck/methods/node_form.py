@@ -167,6 +167,8 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
         return None
     P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
     P = [x / P[-1] for x in P]
+    if len(P) - 1 != len(texts[2]) or not _square_free(P):
+        return None  # the argument needs the nodes to be exactly the roots of P, each once
     definitions, A, b = evaluation_texts(spec, P, texts[1])
     polys = _NodePolynomials(P, definitions)
     try:
@@ -175,6 +177,13 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
     except _NotPolynomial:
         return None
     return _uniform(P, entries, weights)
+
+
+def _square_free(P: list[Fraction]) -> bool:
+    from rkcheck.numbers.polynomials import to_flint
+
+    f = to_flint(P)
+    return f.gcd(f.derivative()).degree() == 0
 
 
 class _NotPolynomial(Exception):
