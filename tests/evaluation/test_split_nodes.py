@@ -151,3 +151,22 @@ def test_a_tableau_written_out_keeps_the_fields_route():
     assert tab.exact_values().field is not None and tab.exact_values().nodes is None
     scaled = TableauValues.of(tab, Reading()).scaled
     assert scaled.number_field is not None and scaled.degree == 2
+
+
+def test_a_familys_error_constant_is_exact(tmp_path):
+    # C² = Σ R² over the first failing order, R from the route over the nodes' field
+    # (checked against sympy and the reference in test_field_residuals)
+    import rkcheck
+
+    path = tmp_path / "gauss2.toml"
+    path.write_text('[family]\nname = "gauss"\ns = 2\n', encoding="utf-8")
+    exact = family_tableau(parse_spec({"name": "gauss", "s": 2})).exact_values()
+    sums = exact_condition_sums(scaled_field(exact), ConditionListing(8, None))
+    want = None
+    for n in sorted(sums):
+        values = [v.rational() if hasattr(v, "rational") else Fraction(v) for v in sums[n].values()]
+        if any(values):
+            want = sum(v * v for v in values)
+            break
+    constant = rkcheck.verify(str(path), order=8, degree="none").to_dict()["summary"]["error_constant"]
+    assert want is not None and Fraction(constant["squared"]) == want
