@@ -133,7 +133,8 @@ def _backend_text(res: CheckResult) -> str:
         if field is None:
             return "exact rational arithmetic"
         where = f"Q({field.name})" if field.sqrt_of else f"a number field of degree {field.degree}"
-        return f"exact arithmetic in {where}"
+        over_q = res.values.exact.nodes is not None  # a family: its conditions are rational
+        return f"exact arithmetic over Q (entries in {where})" if over_q else f"exact arithmetic in {where}"
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 
