@@ -134,7 +134,7 @@ EULER = Tableau.from_values([["0"]], ["1"])  # energy order 1: fails at 3 vertic
 
 
 def test_fail_fast_builds_only_the_orders_up_to_the_failing_one():
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     result = check(EULER, CheckOptions(order=14, degree=None, fail_fast=True))
     assert result.energy_order == 1 and sorted(result.conditions.orders) == [3]
     assert condition_listing(14, None, lazy=True)._built == 3  # nothing above 3 vertices
@@ -143,10 +143,10 @@ def test_fail_fast_builds_only_the_orders_up_to_the_failing_one():
 
 
 def test_a_complete_check_is_the_same_after_a_fail_fast_one():
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     fast = check(EULER, CheckOptions(order=8, degree=None, fail_fast=True))
     full = check(EULER, CheckOptions(order=8, degree=None))
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     fresh = check(EULER, CheckOptions(order=8, degree=None))
     assert [p.failed for p in full.per_order] == [p.failed for p in fresh.per_order]
     assert fast.per_order[0] == fresh.per_order[0]
