@@ -200,17 +200,18 @@ def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult
         for P, weights in groups:
             a = weights.extend(table, p)  # (channels, trees)
             target = np.array([pow(scaled.d, p, q) for q in P[:, 0].tolist()], dtype=np.int64)[:, None]
-            failing |= np.any(a * _residues(gamma, P) % P != target, axis=0)
+            failing |= np.any(a * _residues(gamma, P, math.factorial(p)) % P != target, axis=0)
         if failing.any():
             return _order_result(verdicts, p, _first_failure(table, ids[failing]))
         verdicts.append(Verdict(HOLDS))
     return _order_result(verdicts, max_order)
 
 
-def _residues(values: np.ndarray, P: np.ndarray) -> np.ndarray:
-    """``values`` (exact ints) modulo each prime of the column ``P``: (primes, values)."""
-    if len(values) and max(abs(int(x)) for x in values) < 1 << 62:  # γ up to 20 vertices
-        return np.asarray(values, dtype=np.int64)[None, :] % P
+def _residues(values: np.ndarray, P: np.ndarray, largest: int) -> np.ndarray:
+    """``values`` (exact ints, ``|value| <= largest``) modulo each prime of the column
+    ``P``: (primes, values)."""
+    if largest < 1 << 62:  # the densities γ(t) <= p! of trees with up to 20 vertices
+        return np.asarray(values, dtype=np.int64).reshape(1, -1) % P
     return np.array([[int(x) % q for x in values] for q in P[:, 0].tolist()], dtype=np.int64).reshape(len(P), -1)
 
 

@@ -52,6 +52,7 @@ def test_residues_of_small_and_large_ints():
     P = np.array([[1_000_003], [(1 << 30) - 35]], dtype=np.int64)
     for values in ([1, 2, 6, 24, 3_628_800], [2 ** 70 + 1, 7, 5 * 10 ** 30], []):
         arr = np.array(values, dtype=object)
-        got = _residues(arr, P)
-        assert got.shape == (2, len(values))
-        assert got.tolist() == [[v % int(q) for v in values] for q in P[:, 0]]
+        for largest in (max(values, default=0), 1 << 62):  # the int64 route when it may, else ints
+            got = _residues(arr, P, largest)
+            assert got.shape == (2, len(values))
+            assert got.tolist() == [[v % int(q) for v in values] for q in P[:, 0]]
