@@ -31,6 +31,7 @@ from rkcheck.energy.verdicts import (
     combine,
 )
 from rkcheck.evaluation.backends import ball_context
+from rkcheck.evaluation.channels import PrimeChannels
 from rkcheck.evaluation.protocols import EnclosingContext, NumberContext
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.enclosure import Enclosure
@@ -97,10 +98,12 @@ def unbounded_table() -> TreeTable:
 
 class TreeWeights:
     """Φ, ψ and a of every tree of a growing table, in one number context (for the
-    classical order conditions ``a(t) = 1/γ(t)``)."""
+    classical order conditions ``a(t) = 1/γ(t)``).  Trees run along the first axis of
+    the context's arrays, or the second of :class:`PrimeChannels` (channels first)."""
 
     def __init__(self, ctx: NumberContext, s: int):
         self.ctx, self.s, self.done = ctx, s, 1
+        self.axis = 1 if isinstance(ctx, PrimeChannels) else 0
         self.phi, self.psi, self.a = ctx.vectors(1, s), ctx.vectors(1, s), ctx.scalars(1)
         one = ctx.ones(1, s)
         ctx.put(self.phi, 0, one)
@@ -112,11 +115,11 @@ class TreeWeights:
         ctx = self.ctx
         for n in range(self.done + 1, p + 1):
             lo, hi = table.first[n], table.first[n + 1]
-            grow = hi - _rows(self.a)
+            grow = hi - self._rows(self.a)
             if grow > 0:
-                self.phi = _append(ctx, self.phi, ctx.vectors(grow, self.s))
-                self.psi = _append(ctx, self.psi, ctx.vectors(grow, self.s))
-                self.a = _append(ctx, self.a, ctx.scalars(grow))
+                self.phi = self._append(self.phi, ctx.vectors(grow, self.s))
+                self.psi = self._append(self.psi, ctx.vectors(grow, self.s))
+                self.a = self._append(self.a, ctx.scalars(grow))
             phi_n = ctx.mul(ctx.take(self.phi, table.left[lo:hi]), ctx.take(self.psi, table.right[lo:hi]))
             ctx.put(self.phi, lo, phi_n)
             ctx.put(self.psi, lo, ctx.matvec(phi_n))
@@ -125,15 +128,13 @@ class TreeWeights:
         lo, hi = table.first[p], table.first[p + 1]
         return ctx.take(self.a, np.arange(lo, hi))
 
+    def _rows(self, x: Any) -> int:
+        return len(x[0]) if isinstance(x, tuple) else x.shape[self.axis]
 
-def _rows(x: Any) -> int:
-    return len(x[0]) if isinstance(x, tuple) else len(x)
-
-
-def _append(ctx: NumberContext, x: Any, y: Any) -> Any:
-    if isinstance(x, tuple):
-        return tuple(np.concatenate([xa, ya]) for xa, ya in zip(x, y))
-    return np.concatenate([x, y])
+    def _append(self, x: Any, y: Any) -> Any:
+        if isinstance(x, tuple):
+            return tuple(np.concatenate([xa, ya]) for xa, ya in zip(x, y))
+        return np.concatenate([x, y], axis=self.axis)
 
 
 def _first_failure(table: TreeTable, ids: np.ndarray) -> str:
@@ -166,7 +167,9 @@ def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult
     s = values.stages
     verdicts: list[Verdict] = []
     scaled = values.scaled
-    channels: list[tuple[int, int, TreeWeights]] = []
+    # the channels opened for one order, run together (one array operation for all of
+    # them per step, not one per channel): their primes as a column, and their weights
+    groups: list[tuple[np.ndarray, TreeWeights]] = []
     opened: list[int] = []
     for p in range(1, max_order + 1):
         table.grow_to(p)
@@ -185,22 +188,31 @@ def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult
         # (counted, not searched: thousands of primes for entries of thousands of digits).
         # A root whose images are a stage permutation of an earlier root's has the same
         # a(t) = bᵀΦ(t) (ScaledTableau.channel_sources): it is not evaluated again
+        pairs: list[tuple[int, int]] = []
         for q, roots in primes[len(opened):]:
             opened.append(q)
             sources = scaled.channel_sources(q)
-            for j, r in enumerate(roots):
-                if sources[j] == j:
-                    channels.append((q, r, TreeWeights(scaled.channel(q, r), s)))
+            pairs.extend((q, r) for j, r in enumerate(roots) if sources[j] == j)
+        if pairs:
+            groups.append((np.array([q for q, _ in pairs], dtype=np.int64)[:, None],
+                           TreeWeights(scaled.channels(pairs), s)))
         failing = np.zeros(len(ids), dtype=bool)
-        for q, r, weights in channels:
-            a = weights.extend(table, p)
-            target = pow(scaled.d, p, q)
-            g = np.array([int(x) % q for x in gamma], dtype=np.int64)
-            failing |= (a * g % q) != target
+        for P, weights in groups:
+            a = weights.extend(table, p)  # (channels, trees)
+            target = np.array([pow(scaled.d, p, q) for q in P[:, 0].tolist()], dtype=np.int64)[:, None]
+            failing |= np.any(a * _residues(gamma, P, math.factorial(p)) % P != target, axis=0)
         if failing.any():
             return _order_result(verdicts, p, _first_failure(table, ids[failing]))
         verdicts.append(Verdict(HOLDS))
     return _order_result(verdicts, max_order)
+
+
+def _residues(values: np.ndarray, P: np.ndarray, largest: int) -> np.ndarray:
+    """``values`` (exact ints, ``|value| <= largest``) modulo each prime of the column
+    ``P``: (primes, values)."""
+    if largest < 1 << 62:  # the densities γ(t) <= p! of trees with up to 20 vertices
+        return np.asarray(values, dtype=np.int64).reshape(1, -1) % P
+    return np.array([[int(x) % q for x in values] for q in P[:, 0].tolist()], dtype=np.int64).reshape(len(P), -1)
 
 
 def _ball_classical_order(values: TableauValues, max_order: int) -> OrderResult:

@@ -25,7 +25,7 @@ from typing import Iterator
 import numpy as np
 
 from rkcheck.trees.classes import classify
-from rkcheck.trees.counting import condition_counts, term_counts
+from rkcheck.trees.counting import condition_counts, listing_size, term_counts
 from rkcheck.trees.factors import RightFactors
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
@@ -335,9 +335,39 @@ class ConditionListing:
         return out
 
 
+#: a listing with at most this many terms is kept for the process's life (a few MB at
+#: most), up to SMALL_LISTINGS_TERMS of them in all: a scan checks each file's claims
+#: at several degrees, and with only the last few listings kept it rebuilt the same
+#: small ones file after file (a third of a scan of the shipped tableaux)
+SMALL_LISTING_TERMS = 1 << 15
+SMALL_LISTINGS_TERMS = 1 << 18
+_small_listings: dict[tuple[int, int | None], ConditionListing] = {}
+
+
 @lru_cache(maxsize=4)
-def _shared_listing(order: int, degree: int | None) -> ConditionListing:
+def _large_listing(order: int, degree: int | None) -> ConditionListing:
     return ConditionListing(order, degree)
+
+
+def _shared_listing(order: int, degree: int | None) -> ConditionListing:
+    """The process's one listing for ``(order, degree)``: small ones are all kept (up to
+    the budget), the last few large ones (each can take gigabytes)."""
+    key = (order, degree)
+    listing = _small_listings.get(key)
+    if listing is not None:
+        return listing
+    terms = listing_size(order, degree)[1]
+    kept = sum(listing_size(*k)[1] for k in _small_listings)
+    if terms > SMALL_LISTING_TERMS or kept + terms > SMALL_LISTINGS_TERMS:
+        return _large_listing(order, degree)
+    listing = _small_listings[key] = ConditionListing(order, degree)
+    return listing
+
+
+def forget_listings() -> None:
+    """Drop the shared listings from memory (the next use builds, or loads, them anew)."""
+    _small_listings.clear()
+    _large_listing.cache_clear()
 
 
 def condition_listing(order: int, degree: int | None, *, lazy: bool = False) -> ConditionListing:

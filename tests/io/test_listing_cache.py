@@ -16,7 +16,7 @@ from support.clirun import run_cli
 
 from rkcheck.io import cache as cache_module
 from rkcheck.io.cache import MAGIC, ListingCache, cache_dir, encode, max_cache_bytes
-from rkcheck.trees.listing import ConditionListing, _shared_listing, use_store
+from rkcheck.trees.listing import ConditionListing, forget_listings, use_store
 from rkcheck.trees.stored import record_key, to_record
 
 from trees.test_listing_stream import same_listing
@@ -281,7 +281,7 @@ def cli_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("RKCHECK_CACHE_DIR", str(directory))
     monkeypatch.delenv("RKCHECK_NO_CACHE", raising=False)
     monkeypatch.delenv("RKCHECK_MAX_CACHE_BYTES", raising=False)
-    _shared_listing.cache_clear()  # listings built by earlier tests are in memory, not in this cache
+    forget_listings()  # listings built by earlier tests are in memory, not in this cache
     return directory
 
 
@@ -338,6 +338,6 @@ def test_scan_saves_the_listing_and_no_cache_does_not(capsys, cli_cache, tmp_pat
     (folder / "rk4.toml").write_text(Path(RK4).read_text(encoding="utf-8"), encoding="utf-8")
     assert run_cli(capsys, "scan", str(folder), "-N", "13", "--jobs", "1", "--no-cache").code == 0
     assert _listing_files(cli_cache) == []
-    _shared_listing.cache_clear()
+    forget_listings()
     assert run_cli(capsys, "scan", str(folder), "-N", "13", "--jobs", "1").code == 0
     assert _listing_files(cli_cache) == ["condition-listing-f1-n14-mnone.rkl"]

@@ -134,7 +134,7 @@ EULER = Tableau.from_values([["0"]], ["1"])  # energy order 1: fails at 3 vertic
 
 
 def test_fail_fast_builds_only_the_orders_up_to_the_failing_one():
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     result = check(EULER, CheckOptions(order=14, degree=None, fail_fast=True))
     assert result.energy_order == 1 and sorted(result.conditions.orders) == [3]
     assert condition_listing(14, None, lazy=True)._built == 3  # nothing above 3 vertices
@@ -143,11 +143,27 @@ def test_fail_fast_builds_only_the_orders_up_to_the_failing_one():
 
 
 def test_a_complete_check_is_the_same_after_a_fail_fast_one():
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     fast = check(EULER, CheckOptions(order=8, degree=None, fail_fast=True))
     full = check(EULER, CheckOptions(order=8, degree=None))
-    listing_module._shared_listing.cache_clear()
+    listing_module.forget_listings()
     fresh = check(EULER, CheckOptions(order=8, degree=None))
     assert [p.failed for p in full.per_order] == [p.failed for p in fresh.per_order]
     assert fast.per_order[0] == fresh.per_order[0]
     assert [c.tree.id for c in full.failures] == [c.tree.id for c in fresh.failures]
+
+
+def test_small_listings_stay_shared_past_the_last_four_and_large_ones_do_not_pile_up(monkeypatch):
+    listing_module.forget_listings()
+    small = [(8, d) for d in (2, 3, 4, 5, 6, None)]  # a scan's claims: one order, many degrees
+    first = {key: condition_listing(*key, lazy=True) for key in small}
+    assert all(condition_listing(*key, lazy=True) is first[key] for key in small)
+    # a listing above the per-listing size is one of the last few only
+    monkeypatch.setattr(listing_module, "SMALL_LISTING_TERMS", 100)
+    big = [(k, None) for k in (9, 10, 11, 12, 13)]  # not built: lazy
+    assert all(listing_module.listing_size(*key)[1] > 100 for key in big)
+    kept = [condition_listing(*key, lazy=True) for key in big]
+    assert condition_listing(9, None, lazy=True) is not kept[0]  # evicted by the four after it
+    assert all(condition_listing(*key, lazy=True) is first[key] for key in small)  # small ones are still there
+    listing_module.forget_listings()
+    assert condition_listing(8, 3, lazy=True) is not first[(8, 3)]

@@ -1,0 +1,45 @@
+"""The channel primes: the sieved window gives the largest primes below the limit, the
+same ones Miller–Rabin finds number by number, and sympy's primality agrees."""
+
+from __future__ import annotations
+
+import pytest
+import sympy
+
+from rkcheck.evaluation.channels import PRIME_BITS, _primes_below, _sieve_window, is_prime, primes
+
+
+def _largest_by_test(limit: int, count: int) -> list[int]:
+    """The ``count`` largest primes below ``limit``, each number tested on its own."""
+    out, q = [], limit - 1
+    while len(out) < count and q >= 2:
+        if is_prime(q):
+            out.append(q)
+        q -= 1
+    return out
+
+
+def test_the_largest_30_bit_primes_are_those_miller_rabin_finds():
+    limit = 1 << PRIME_BITS
+    got = _primes_below(limit, 2500)
+    assert list(got) == _largest_by_test(limit, 2500)
+    assert all(sympy.isprime(q) for q in got[:200]) and got[0] == limit - 35  # 2^30 − 35: the largest
+
+
+def test_a_window_holds_exactly_the_primes_in_it():
+    lo, hi = (1 << PRIME_BITS) - 60_000, (1 << PRIME_BITS) - 20_000
+    window = _sieve_window(lo, hi).tolist()
+    assert window == [q for q in range(lo, hi) if is_prime(q)]
+    assert window == list(sympy.primerange(lo, hi))
+
+
+@pytest.mark.parametrize("limit", [2, 3, 4, 30, 100, 1 << 16])
+def test_small_limits_list_every_prime(limit):
+    assert _sieve_window(0, limit).tolist() == list(sympy.primerange(0, limit))
+    assert list(_primes_below(limit, 10)) == sorted(sympy.primerange(0, limit), reverse=True)[:10]
+
+
+def test_primes_skip_and_count_slice_one_fixed_order():
+    first = primes(300)
+    assert primes(100, 150) == first[150:250]
+    assert list(first) == sorted(first, reverse=True) and len(set(first)) == 300
