@@ -226,6 +226,11 @@ class BallSums:
         limit = self.rads * 2.0 ** (self.bits - self.shift)  # rad in units of 2^−P (inf: no claim)
         return np.asarray(np.abs(self._ints()) > limit, dtype=bool)
 
+    def exceeds(self, t: np.ndarray) -> np.ndarray:
+        """``|mid| > t·2^P`` exactly, for floats ``t`` (an infinite or NaN ``t`` claims
+        nothing): what the mean value form of a box compares its centre's balls with."""
+        return exceeds_scaled(np.abs(np.asarray(self.mids, dtype=object)), t, self.bits)
+
     def magnitude_bound(self) -> np.ndarray:
         """Floats bounding |mid| + rad from above: ``|m|·2^−P`` rounded up through its 60
         leading bits (``((|m| >> e) + 1)·2^(e−P)``), the radius added, over ``f``, the
@@ -250,6 +255,24 @@ class BallSums:
 
 
 _bit_length = np.frompyfunc(int.bit_length, 1, 1)
+
+
+def exceeds_scaled(ints: np.ndarray, t: np.ndarray, bits: int) -> np.ndarray:
+    """``ints > t·2^bits`` exactly, for nonnegative Python integers and floats ``t`` (an
+    infinite or NaN ``t`` claims nothing): ``t = m·2^e`` with an integer ``m`` of 53
+    bits, compared by shifts — ``t·2^bits`` itself overflows a float past 1024 bits."""
+    ok = np.isfinite(t)
+    mant, exp = np.frexp(np.where(ok, t, 0.0))
+    m = (mant * 2.0**53).astype(np.int64).astype(object)
+    shift = exp.astype(np.int64) - 53 + bits
+    out = np.zeros(len(t), dtype=bool)
+    up = ok & (shift >= 0)
+    down = ok & (shift < 0)
+    if up.any():
+        out[up] = ints[up] > np.left_shift(m[up], shift[up].astype(object))
+    if down.any():  # ints·2^(−shift) > m
+        out[down] = np.left_shift(ints[down], (-shift[down]).astype(object)) > m[down]
+    return out
 
 
 def _coefficients(terms) -> np.ndarray:
