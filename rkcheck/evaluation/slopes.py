@@ -182,10 +182,14 @@ def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
     tr += 2 * U * mag
     tr *= INFLATE
     tr += ETA
-    size = len(uniq) if shape is None else shape[0] * shape[1]
+    if shape is None:
+        size, places = len(uniq), uniq
+    else:  # the bins' entries in the flattened accumulators (made by sums: contiguous, so
+        # reshape gives a view): numpy adds into rows of a 2-D array entry by entry, slowly
+        size = shape[0] * shape[1]
+        places = (uniq[:, None] * shape[1] + np.arange(shape[1])).ravel()
     for a, x in zip(acc, (tm, tr, mag)):
-        total = np.bincount(bins, weights=x.ravel(), minlength=size)
-        a[uniq] += total if shape is None else total.reshape(shape)
+        a.reshape(-1)[places] += np.bincount(bins, weights=x.ravel(), minlength=size)
 
 
 def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:

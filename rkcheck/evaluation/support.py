@@ -26,6 +26,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from rkcheck.evaluation.balls import take_rows
+
 
 def zero_pattern(A: Sequence[Sequence[Any]], b: Sequence[Any]) -> tuple[np.ndarray, np.ndarray]:
     """(A's, b's entries that are exactly zero) from entries that compare with 0 (exact
@@ -150,7 +152,7 @@ class SupportContext:
         return np.ones(k, dtype=bool), self.inner.one(k)
 
     def take(self, store: _Store, idx: np.ndarray):
-        flags = store.flags[idx]
+        flags = take_rows(store.flags, idx)
         return flags, _Stored(store, idx[_rows(flags)])
 
     def _inner(self, x, keep: np.ndarray | None = None):
