@@ -133,24 +133,30 @@ def multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
     """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
     where it is not an integer, and for the superfluous trees' bin), the sums exact in
-    float64 as two halves of 31 bits; None when a condition has so many terms that they
-    might not be."""
+    float64 — at once where every condition's sum is below 2^53 (``n`` times the largest
+    ``|c|``: up to 18 vertices), else as two halves of 31 bits; None when a condition has
+    so many terms that they might not be."""
     k1, n = len(terms) + 1, terms.vertices
     if len(terms) and int(terms.counts.max()) > n:
         return None
     cabs = np.abs(exact)
-    hi, lo = (cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)
-    sums_hi, sums_lo = np.zeros(k1), np.zeros(k1)
+    if n * int(cabs.max(initial=0)) < _FLOAT_INTEGERS:
+        halves = [cabs.astype(np.float64)]
+    else:
+        halves = [(cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)]
+    sums = [np.zeros(k1) for _ in halves]
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
-        sums_hi += np.bincount(cond, weights=hi[idx], minlength=k1)
-        sums_lo += np.bincount(cond, weights=lo[idx], minlength=k1)
+        for total, half in zip(sums, halves):
+            total += np.bincount(cond, weights=half[idx], minlength=k1)
     # at most n terms per condition, halves below 2^31: both sums below n·2^31, exact;
     # Σ|c| = 2^31·S_hi + S_lo is divided by n in two steps, within int64
-    q1, r1 = np.divmod(sums_hi[:-1].astype(np.int64), n)
-    q2, r2 = np.divmod((r1 << 31) + sums_lo[:-1].astype(np.int64), n)
+    q, r = np.divmod(sums[0][:-1].astype(np.int64), n)
+    if len(sums) == 2:
+        q2, r = np.divmod((r << 31) + sums[1][:-1].astype(np.int64), n)
+        q = (q << 31) + q2
     divisors = np.full(k1, 2**62, dtype=np.int64)
-    divisors[:-1] = np.where((r2 == 0) & (q1 + q2 > 0), (q1 << 31) + q2, 2**62)
+    divisors[:-1] = np.where((r == 0) & (q > 0), q, 2**62)
     return divisors
 
 
@@ -164,13 +170,12 @@ def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         t1 = min(terms.rows, t0 + _PLAN_CHUNK)
         cond, idx = terms.block(t0, t1)
-        c, d = exact[idx], safe[cond]
-        m = c // d
-        real = cond < k
-        if not np.all((m * d == c) | ~real):
-            return None
-        m *= real
-        if np.abs(m).max(initial=0) > 127:
+        m, rest = np.divmod(exact[idx], safe[cond])
+        if len(cond) and cond.max() >= k:  # the superfluous trees' terms: not divided, multiplier 0
+            real = cond < k
+            rest *= real
+            m *= real
+        if np.any(rest) or len(m) and max(-int(m.min()), int(m.max())) > 127:
             return None
         mult[t0:t1] = m
     return mult
@@ -187,6 +192,8 @@ def _largest_weight(terms, mult: np.ndarray) -> float:
 
 #: terms per chunk when the multipliers of an order are computed
 _PLAN_CHUNK = 1 << 18
+#: float64 holds every integer below this exactly
+_FLOAT_INTEGERS = 2**53
 
 
 def digits_to_ints(digits: np.ndarray, beta: int) -> np.ndarray:
