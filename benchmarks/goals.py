@@ -10,9 +10,10 @@ Every case is one ``rkcheck.verify`` (or one ``rkcheck scan`` process) in a fres
 process, as a user runs it: the listing cache on, in a private temporary
 ``RKCHECK_CACHE_DIR`` that one uncounted run per case fills, so "cached" is a check that
 reads its condition listing from the cache.  A ``verify`` child imports every module of
-rkcheck (``pkgutil.walk_packages``) and loads its file, then times the check alone, in
-CPU seconds (user + system: on a shared machine the steadier figure), so that no
-arithmetic pays for modules it imports lazily and another does not; the
+rkcheck (``pkgutil.walk_packages``) and python-flint (the one dependency rkcheck imports
+on first use) and loads its file, then times the check alone, in CPU seconds (user +
+system: on a shared machine the steadier figure), so that no arithmetic pays for modules
+it imports lazily and another does not; the
 parent reads each child's peak resident memory through ``os.wait4``.  The scan row is the
 whole ``rkcheck scan`` process, start-up and children included.  Each figure is the
 median of ``--repeat`` runs.
@@ -46,10 +47,13 @@ sys.path.insert(0, {root!r})
 import rkcheck
 from rkcheck.api.settings import use_listing_cache
 use_listing_cache()
-# every module of the package before the clock: a path that imports its modules lazily
-# (the decimal box) pays no import inside the timed check, the same as the exact path
+# every module of the package before the clock, and python-flint, the one dependency
+# rkcheck imports on first use: a path that imports lazily (the decimal box, whose
+# stability function is enclosed with FLINT's balls) pays no import inside the timed
+# check, the same as the exact path
 for module in pkgutil.walk_packages(rkcheck.__path__, "rkcheck."):
     importlib.import_module(module.name)
+import flint
 rkcheck.load({path!r})
 c0 = time.process_time()
 v = rkcheck.verify({path!r}, **{kwargs!r})
