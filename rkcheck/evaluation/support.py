@@ -69,13 +69,22 @@ def _nbytes(value: Any) -> int:
 
 
 def _rows(flags: np.ndarray) -> np.ndarray:
-    """Whether each row has a flag set (its stages or-ed together for vectors)."""
+    """Whether each row has a flag set (its stages or-ed together for vectors): a row of
+    2, 4 or 8 flags read as one unsigned integer (a bool is one byte, 0 or 1), which is
+    nonzero exactly when one of them is set; other widths column by column."""
     if flags.ndim == 1:
         return flags
+    word = _WORDS.get(flags.shape[1])
+    if word is not None and flags.dtype == np.bool_ and flags.flags.c_contiguous:
+        return flags.view(word).reshape(-1) != 0
     out = flags[:, 0].copy()
     for j in range(1, flags.shape[1]):
         out |= flags[:, j]
     return out
+
+
+#: unsigned integers as wide as a row of 2, 4 or 8 flags
+_WORDS = {2: np.uint16, 4: np.uint32, 8: np.uint64}
 
 
 class _Stored:
