@@ -245,7 +245,7 @@ class DigitBallSums(BallSums):
         return self._mids
 
     def _integers(self, cols: np.ndarray) -> np.ndarray:
-        ints = digits_to_ints(np.ascontiguousarray(self.digits[:, cols].T), self.beta)
+        ints = digits_to_ints(np.ascontiguousarray(np.take(self.digits, cols, axis=1).T), self.beta)
         return ints * self.divisors[cols].astype(object)
 
     def enclosure(self, k: int) -> Enclosure:
@@ -261,9 +261,9 @@ class DigitBallSums(BallSums):
         (each step ``f·2^β + d`` rounds once, every term nonnegative: γ_(L−1)), times
         ``g`` (rounded once, and the product once: γ_(L+1) in all)."""
         if self._mags is None:
-            d = self.digits.copy()
-            neg = d[-1] < 0
-            d[:, neg] *= -1
+            # −N where N < 0, as a product by each column's sign (indexing the negative columns
+            # goes entry by entry)
+            d = self.digits * np.where(self.digits[-1] < 0, -1, 1)
             mask = (1 << self.beta) - 1
             c = np.zeros(d.shape[1], dtype=np.int64)
             for j in range(len(d) - 1):  # floor carries: every digit but the last in [0, 2^β)
@@ -338,7 +338,7 @@ class DigitBallSums(BallSums):
         """``|m|`` of the given conditions, known to be below 2^59, in int64: Horner's
         partial values from the top digit are ``⌊N/2^(β·j)⌋``, no larger than |N|, and
         ``g·|N| = |m|``: nothing overflows."""
-        d = self.digits[:, cols]
+        d = np.take(self.digits, cols, axis=1)
         n = d[-1].copy()
         for j in range(len(d) - 2, -1, -1):
             n <<= self.beta
