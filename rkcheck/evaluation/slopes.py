@@ -156,12 +156,13 @@ class GradientContext:
         uniq, inv = block_bins(cond)
         u = len(uniq)
         _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
+        count = np.bincount(inv, minlength=u)
         if self.E:
             E = self.E
             bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
             _bin_terms(acc[1], c[:, None], w_terms[1], uniq, bins, (u, E))
-            acc[1][3][uniq] += np.bincount(inv, minlength=u)
-        acc[0][3][uniq] += np.bincount(inv, minlength=u)
+            acc[1][3][uniq] += count
+        acc[0][3][uniq] += count
 
     def finish_sums(self, acc, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
         """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of

@@ -105,11 +105,15 @@ class _TermRows:
 
     def __init__(self, terms: Any, i0: int, i1: int, rows: np.ndarray):
         object.__setattr__(self, "_parts", (terms, i0, i1, rows))
+        object.__setattr__(self, "_block", None)
 
     def block(self, lo: int, hi: int):
         terms, i0, i1, rows = self._parts
-        cond, idx = terms.block(i0, i1)
-        return cond[rows[lo:hi]], idx[rows[lo:hi]]
+        if self._block is None:  # read once for the contexts of a pair
+            cond, idx = terms.block(i0, i1)
+            object.__setattr__(self, "_block", (cond[rows], idx[rows]))
+        cond, idx = self._block
+        return (cond, idx) if (lo, hi) == (0, len(rows)) else (cond[lo:hi], idx[lo:hi])
 
     @property
     def all_terms(self) -> Any:
