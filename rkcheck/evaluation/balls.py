@@ -294,11 +294,13 @@ def _coefficients(terms) -> np.ndarray:
 
 
 def _float_coefficients(terms, n: int) -> np.ndarray:
-    """``c/(n−1)!`` as floats (correctly rounded), once per order's terms: the gradient
-    of a decimal box asks for them once per direction and block."""
+    """``c/(n−1)!`` as floats (correctly rounded: Python's true division of integers is,
+    as ``float(Fraction)``), once per order's terms: the gradient of a decimal box asks
+    for them once per direction and block."""
     cached = getattr(terms, "_coef_float", None)
     if cached is None:
-        cached = np.array([float(Fraction(c, math.factorial(n - 1))) for c in terms.coefficients])
+        f = math.factorial(n - 1)
+        cached = np.array([c / f for c in terms.coefficients], dtype=float)
         terms._coef_float = cached
     return cached
 
