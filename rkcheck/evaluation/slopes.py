@@ -113,10 +113,15 @@ class GradientContext:
         self.f.put(store[1], lo, x[1])
 
     def mul(self, x, y):
-        return self.f.mul(x[0], y[0]), _product_rule(x[0], y[1], y[0], x[1])
+        value = self.f.mul(x[0], y[0])
+        if x[1][0].shape[-1] == 0:  # vectors along no direction of A: nothing to differentiate
+            return value, self._zeros(value[0].shape, 0)
+        return value, _product_rule(x[0], y[1], y[0], x[1])
 
     def matvec(self, x):
         value = self.f.matvec(x[0])
+        if not self.EA:
+            return value, self._zeros(value[0].shape, 0)
         gm, gr = x[1]
         dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
         grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
@@ -132,7 +137,7 @@ class GradientContext:
         gm, gr = x[1]
         # along A's entries: bᵀ∂x (b holds no A entry)
         grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
-                      self._zeros(x[0][0].shape[:-1], self.EA))
+                      self._zeros(x[0][0].shape[:-1], self.EA)) if self.EA else self._zeros(x[0][0].shape[:-1], 0)
         if not self.b_vars:
             return value, grad_a
         # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
