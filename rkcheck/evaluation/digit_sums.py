@@ -149,8 +149,8 @@ def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
         cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
         for total, half in zip(sums, halves):
             total += np.bincount(cond, weights=half[idx], minlength=k1)
-    # at most n terms per condition, halves below 2^31: both sums below n·2^31, exact;
-    # Σ|c| = 2^31·S_hi + S_lo is divided by n in two steps, within int64
+    # Σ|c| divided by n; in halves (at most n terms per condition, halves below 2^31: both
+    # sums below n·2^31, exact) Σ|c| = 2^31·S_hi + S_lo is divided in two steps, within int64
     q, r = np.divmod(sums[0][:-1].astype(np.int64), n)
     if len(sums) == 2:
         q2, r = np.divmod((r << 31) + sums[1][:-1].astype(np.int64), n)

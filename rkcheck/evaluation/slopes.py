@@ -136,8 +136,10 @@ class GradientContext:
         value = self.f.dot(x[0])
         gm, gr = x[1]
         # along A's entries: bᵀ∂x (b holds no A entry)
-        grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
-                      self._zeros(x[0][0].shape[:-1], self.EA)) if self.EA else self._zeros(x[0][0].shape[:-1], 0)
+        grad_a = self._zeros(x[0][0].shape[:-1], 0)
+        if self.EA:
+            grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
+                          self._zeros(x[0][0].shape[:-1], self.EA))
         if not self.b_vars:
             return value, grad_a
         # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
