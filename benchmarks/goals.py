@@ -9,10 +9,12 @@
 Every case is one ``rkcheck.verify`` (or one ``rkcheck scan`` process) in a fresh Python
 process, as a user runs it: the listing cache on, in a private temporary
 ``RKCHECK_CACHE_DIR`` that one uncounted run per case fills, so "cached" is a check that
-reads its condition listing from the cache.  A ``verify`` child times itself after its
-imports, in CPU seconds (user + system: on a shared machine the steadier figure), its
-own and that of the children it waits for (a number field is built in one, under its
-time limit); the
+reads its condition listing from the cache.  A ``verify`` child imports every module of
+rkcheck (``pkgutil.walk_packages``) and python-flint (the one dependency rkcheck imports
+on first use) and loads its file, then times the check alone, in CPU seconds (user +
+system: on a shared machine the steadier figure), its own and that of the children it
+waits for (a number field is built in one, under its time limit), so that no arithmetic
+pays for modules it imports lazily and another does not; the
 parent reads each child's peak resident memory through ``os.wait4``.  The scan row is the
 whole ``rkcheck scan`` process, start-up and children included.  Each figure is the
 median of ``--repeat`` runs.
@@ -41,12 +43,19 @@ from bench_stream import EULER, RK4
 ROOT = Path(__file__).resolve().parent.parent
 
 CHILD = r"""
-import json, resource, sys, time
+import importlib, json, pkgutil, resource, sys, time
 sys.path.insert(0, {root!r})
 import rkcheck
 from rkcheck.api.settings import use_listing_cache
 use_listing_cache()
-rkcheck.load({path!r})  # the modules a check needs, loaded before the clock
+# every module of the package before the clock, and python-flint, the one dependency
+# rkcheck imports on first use: a path that imports lazily (the decimal box, whose
+# stability function is enclosed with FLINT's balls) pays no import inside the timed
+# check, the same as the exact path
+for module in pkgutil.walk_packages(rkcheck.__path__, "rkcheck."):
+    importlib.import_module(module.name)
+import flint
+rkcheck.load({path!r})
 def clock():  # this process and the children it waited for (a field is built in one)
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
     return time.process_time() + r.ru_utime + r.ru_stime

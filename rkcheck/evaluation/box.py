@@ -89,7 +89,7 @@ class BallCentre:
             f = math.nextafter(f, math.inf)
         with np.errstate(over="ignore", invalid="ignore"):
             t = (f * variation + np.ldexp(np.asarray(s.rads, dtype=float), -s.shift)) * (1 + 8 * U) + ETA
-        return _exceeds(np.abs(np.asarray(s.mids, dtype=object)), t, s.bits)
+        return s.exceeds(t)
 
     def bound(self, variation: np.ndarray) -> np.ndarray:
         """An upper bound of ``|R(x̃)| + ε + V`` (floats, rounded up)."""
@@ -99,24 +99,6 @@ class BallCentre:
     def enclosure(self, k: int, variation: float) -> Enclosure:
         e = self.sums.enclosure(k)
         return Enclosure(e.mid, e.rad + Fraction(variation), False)
-
-
-def _exceeds(ints: np.ndarray, t: np.ndarray, bits: int) -> np.ndarray:
-    """``ints > t·2^bits`` exactly, for nonnegative Python integers and floats ``t`` (an
-    infinite or NaN ``t`` claims nothing): ``t = m·2^e`` with an integer ``m`` of 53
-    bits, compared by shifts — ``t·2^bits`` itself overflows a float past 1024 bits."""
-    ok = np.isfinite(t)
-    mant, exp = np.frexp(np.where(ok, t, 0.0))
-    m = (mant * 2.0**53).astype(np.int64).astype(object)
-    shift = exp.astype(np.int64) - 53 + bits
-    out = np.zeros(len(t), dtype=bool)
-    up = ok & (shift >= 0)
-    down = ok & (shift < 0)
-    if up.any():
-        out[up] = ints[up] > np.left_shift(m[up], shift[up].astype(object))
-    if down.any():  # ints·2^(−shift) > m
-        out[down] = np.left_shift(ints[down], (-shift[down]).astype(object)) > m[down]
-    return out
 
 
 class ExactCentre:

@@ -19,7 +19,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from rkcheck.evaluation.balls import BallSums
+from rkcheck.evaluation.balls import BallSums, exceeds_scaled
 from rkcheck.numbers.enclosure import Enclosure
 
 
@@ -133,24 +133,30 @@ def multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
     """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
     where it is not an integer, and for the superfluous trees' bin), the sums exact in
-    float64 as two halves of 31 bits; None when a condition has so many terms that they
-    might not be."""
+    float64 — at once where every condition's sum is below 2^53 (``n`` times the largest
+    ``|c|``: up to 18 vertices), else as two halves of 31 bits; None when a condition has
+    so many terms that they might not be."""
     k1, n = len(terms) + 1, terms.vertices
     if len(terms) and int(terms.counts.max()) > n:
         return None
     cabs = np.abs(exact)
-    hi, lo = (cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)
-    sums_hi, sums_lo = np.zeros(k1), np.zeros(k1)
+    if n * int(cabs.max(initial=0)) < _FLOAT_INTEGERS:
+        halves = [cabs.astype(np.float64)]
+    else:
+        halves = [(cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)]
+    sums = [np.zeros(k1) for _ in halves]
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
-        sums_hi += np.bincount(cond, weights=hi[idx], minlength=k1)
-        sums_lo += np.bincount(cond, weights=lo[idx], minlength=k1)
-    # at most n terms per condition, halves below 2^31: both sums below n·2^31, exact;
-    # Σ|c| = 2^31·S_hi + S_lo is divided by n in two steps, within int64
-    q1, r1 = np.divmod(sums_hi[:-1].astype(np.int64), n)
-    q2, r2 = np.divmod((r1 << 31) + sums_lo[:-1].astype(np.int64), n)
+        for total, half in zip(sums, halves):
+            total += np.bincount(cond, weights=half[idx], minlength=k1)
+    # Σ|c| divided by n; in halves (at most n terms per condition, halves below 2^31: both
+    # sums below n·2^31, exact) Σ|c| = 2^31·S_hi + S_lo is divided in two steps, within int64
+    q, r = np.divmod(sums[0][:-1].astype(np.int64), n)
+    if len(sums) == 2:
+        q2, r = np.divmod((r << 31) + sums[1][:-1].astype(np.int64), n)
+        q = (q << 31) + q2
     divisors = np.full(k1, 2**62, dtype=np.int64)
-    divisors[:-1] = np.where((r2 == 0) & (q1 + q2 > 0), (q1 << 31) + q2, 2**62)
+    divisors[:-1] = np.where((r == 0) & (q > 0), q, 2**62)
     return divisors
 
 
@@ -164,13 +170,12 @@ def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         t1 = min(terms.rows, t0 + _PLAN_CHUNK)
         cond, idx = terms.block(t0, t1)
-        c, d = exact[idx], safe[cond]
-        m = c // d
-        real = cond < k
-        if not np.all((m * d == c) | ~real):
-            return None
-        m *= real
-        if np.abs(m).max(initial=0) > 127:
+        m, rest = np.divmod(exact[idx], safe[cond])
+        if len(cond) and cond.max() >= k:  # the superfluous trees' terms: not divided, multiplier 0
+            real = cond < k
+            rest *= real
+            m *= real
+        if np.any(rest) or len(m) and max(-int(m.min()), int(m.max())) > 127:
             return None
         mult[t0:t1] = m
     return mult
@@ -185,8 +190,12 @@ def _largest_weight(terms, mult: np.ndarray) -> float:
     return float(weight.max(initial=0))
 
 
-#: terms per chunk when the multipliers of an order are computed
-_PLAN_CHUNK = 1 << 18
+#: terms per chunk when the multipliers of an order are computed: the chunk's temporaries
+#: (a dozen arrays of its length) stay below a few MB — chunks of 2^18 terms cost a check
+#: of decimal RK4 at order 16 a sixth of its page faults and 15 MB of its peak memory
+_PLAN_CHUNK = 1 << 16
+#: float64 holds every integer below this exactly
+_FLOAT_INTEGERS = 2**53
 
 
 def digits_to_ints(digits: np.ndarray, beta: int) -> np.ndarray:
@@ -238,7 +247,7 @@ class DigitBallSums(BallSums):
         return self._mids
 
     def _integers(self, cols: np.ndarray) -> np.ndarray:
-        ints = digits_to_ints(np.ascontiguousarray(self.digits[:, cols].T), self.beta)
+        ints = digits_to_ints(np.ascontiguousarray(np.take(self.digits, cols, axis=1).T), self.beta)
         return ints * self.divisors[cols].astype(object)
 
     def enclosure(self, k: int) -> Enclosure:
@@ -254,9 +263,9 @@ class DigitBallSums(BallSums):
         (each step ``f·2^β + d`` rounds once, every term nonnegative: γ_(L−1)), times
         ``g`` (rounded once, and the product once: γ_(L+1) in all)."""
         if self._mags is None:
-            d = self.digits.copy()
-            neg = d[-1] < 0
-            d[:, neg] *= -1
+            # −N where N < 0, as a product by each column's sign (indexing the negative columns
+            # goes entry by entry)
+            d = self.digits * np.where(self.digits[-1] < 0, -1, 1)
             mask = (1 << self.beta) - 1
             c = np.zeros(d.shape[1], dtype=np.int64)
             for j in range(len(d) - 1):  # floor carries: every digit but the last in [0, 2^β)
@@ -288,6 +297,22 @@ class DigitBallSums(BallSums):
             self._excludes = out
         return self._excludes.copy()
 
+    def exceeds(self, t: np.ndarray) -> np.ndarray:
+        """:meth:`BallSums.exceeds`, ``|mid| > t·2^P`` exactly: from the estimate where it
+        is more than 2^−45 away from ``t·2^P`` (as :meth:`excludes_zero`), by Python
+        integers elsewhere — building every mid-point costs a check of decimal RK4 a tenth
+        of its time.  ``t·2^P`` is exact as a float (P ≥ 0), or infinite past float64's
+        range, where ``t·2^P`` exceeds every finite ``|mid|·(1 + 2^−45)``."""
+        ok = np.isfinite(t)
+        with np.errstate(over="ignore"):
+            limit = np.ldexp(np.where(ok, t, 0.0), self.bits)
+        mags = self._magnitudes()
+        out = ok & (mags * (1 - _REL) > limit)
+        unsure = np.flatnonzero(ok & ~out & ~(mags * (1 + _REL) < limit))
+        if len(unsure):
+            out[unsure] = exceeds_scaled(np.abs(self._integers(unsure)), t[unsure], self.bits)
+        return out
+
     def magnitude_bound(self) -> np.ndarray:
         """:meth:`BallSums.magnitude_bound`'s bound: ``((|m| >> e) + 1)·2^(e−P)`` with
         ``e = max(bitlen(|m|) − 60, 0)``, exactly, where ``|m| < 2^59`` (``e = 0``:
@@ -315,7 +340,7 @@ class DigitBallSums(BallSums):
         """``|m|`` of the given conditions, known to be below 2^59, in int64: Horner's
         partial values from the top digit are ``⌊N/2^(β·j)⌋``, no larger than |N|, and
         ``g·|N| = |m|``: nothing overflows."""
-        d = self.digits[:, cols]
+        d = np.take(self.digits, cols, axis=1)
         n = d[-1].copy()
         for j in range(len(d) - 2, -1, -1):
             n <<= self.beta

@@ -113,10 +113,15 @@ class GradientContext:
         self.f.put(store[1], lo, x[1])
 
     def mul(self, x, y):
-        return self.f.mul(x[0], y[0]), _product_rule(x[0], y[1], y[0], x[1])
+        value = self.f.mul(x[0], y[0])
+        if x[1][0].shape[-1] == 0:  # vectors along no direction of A: nothing to differentiate
+            return value, self._zeros(value[0].shape, 0)
+        return value, _product_rule(x[0], y[1], y[0], x[1])
 
     def matvec(self, x):
         value = self.f.matvec(x[0])
+        if not self.EA:
+            return value, self._zeros(value[0].shape, 0)
         gm, gr = x[1]
         dm, dr = self.f.matvec((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2)))
         grad = (np.swapaxes(dm, -1, -2), np.swapaxes(dr, -1, -2))
@@ -131,8 +136,10 @@ class GradientContext:
         value = self.f.dot(x[0])
         gm, gr = x[1]
         # along A's entries: bᵀ∂x (b holds no A entry)
-        grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
-                      self._zeros(x[0][0].shape[:-1], self.EA))
+        grad_a = self._zeros(x[0][0].shape[:-1], 0)
+        if self.EA:
+            grad_a = _add(self.f.dot((np.swapaxes(gm, -1, -2), np.swapaxes(gr, -1, -2))),
+                          self._zeros(x[0][0].shape[:-1], self.EA))
         if not self.b_vars:
             return value, grad_a
         # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
@@ -156,12 +163,13 @@ class GradientContext:
         uniq, inv = block_bins(cond)
         u = len(uniq)
         _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
+        count = np.bincount(inv, minlength=u)
         if self.E:
             E = self.E
             bins = (inv.astype(np.int64)[:, None] * E + np.arange(E)).ravel()
             _bin_terms(acc[1], c[:, None], w_terms[1], uniq, bins, (u, E))
-            acc[1][3][uniq] += np.bincount(inv, minlength=u)
-        acc[0][3][uniq] += np.bincount(inv, minlength=u)
+            acc[1][3][uniq] += count
+        acc[0][3][uniq] += count
 
     def finish_sums(self, acc, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
         """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of
@@ -182,10 +190,14 @@ def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
     tr += 2 * U * mag
     tr *= INFLATE
     tr += ETA
-    size = len(uniq) if shape is None else shape[0] * shape[1]
+    if shape is None:
+        size, places = len(uniq), uniq
+    else:  # the bins' entries in the flattened accumulators (made by sums: contiguous, so
+        # reshape gives a view): numpy adds into rows of a 2-D array entry by entry, slowly
+        size = shape[0] * shape[1]
+        places = (uniq[:, None] * shape[1] + np.arange(shape[1])).ravel()
     for a, x in zip(acc, (tm, tr, mag)):
-        total = np.bincount(bins, weights=x.ravel(), minlength=size)
-        a[uniq] += total if shape is None else total.reshape(shape)
+        a.reshape(-1)[places] += np.bincount(bins, weights=x.ravel(), minlength=size)
 
 
 def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:

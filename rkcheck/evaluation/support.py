@@ -26,6 +26,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from rkcheck.evaluation.balls import take_rows
+
 
 def zero_pattern(A: Sequence[Sequence[Any]], b: Sequence[Any]) -> tuple[np.ndarray, np.ndarray]:
     """(A's, b's entries that are exactly zero) from entries that compare with 0 (exact
@@ -67,13 +69,22 @@ def _nbytes(value: Any) -> int:
 
 
 def _rows(flags: np.ndarray) -> np.ndarray:
-    """Whether each row has a flag set (its stages or-ed together for vectors)."""
+    """Whether each row has a flag set (its stages or-ed together for vectors): a row of
+    2, 4 or 8 flags read as one unsigned integer (a bool is one byte, 0 or 1), which is
+    nonzero exactly when one of them is set; other widths column by column."""
     if flags.ndim == 1:
         return flags
+    word = _WORDS.get(flags.shape[1])
+    if word is not None and flags.dtype == np.bool_ and flags.flags.c_contiguous:
+        return flags.view(word).reshape(-1) != 0
     out = flags[:, 0].copy()
     for j in range(1, flags.shape[1]):
         out |= flags[:, j]
     return out
+
+
+#: unsigned integers as wide as a row of 2, 4 or 8 flags
+_WORDS = {2: np.uint16, 4: np.uint32, 8: np.uint64}
 
 
 class _Stored:
@@ -94,11 +105,15 @@ class _TermRows:
 
     def __init__(self, terms: Any, i0: int, i1: int, rows: np.ndarray):
         object.__setattr__(self, "_parts", (terms, i0, i1, rows))
+        object.__setattr__(self, "_block", None)
 
     def block(self, lo: int, hi: int):
         terms, i0, i1, rows = self._parts
-        cond, idx = terms.block(i0, i1)
-        return cond[rows[lo:hi]], idx[rows[lo:hi]]
+        if self._block is None:  # read once for the contexts of a pair
+            cond, idx = terms.block(i0, i1)
+            object.__setattr__(self, "_block", (cond[rows], idx[rows]))
+        cond, idx = self._block
+        return (cond, idx) if (lo, hi) == (0, len(rows)) else (cond[lo:hi], idx[lo:hi])
 
     @property
     def all_terms(self) -> Any:
@@ -150,7 +165,7 @@ class SupportContext:
         return np.ones(k, dtype=bool), self.inner.one(k)
 
     def take(self, store: _Store, idx: np.ndarray):
-        flags = store.flags[idx]
+        flags = take_rows(store.flags, idx)
         return flags, _Stored(store, idx[_rows(flags)])
 
     def _inner(self, x, keep: np.ndarray | None = None):

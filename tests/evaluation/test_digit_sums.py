@@ -62,3 +62,25 @@ def test_digit_sums_judge_as_the_integer_sums(seed):
     for k in range(0, len(ref), 37):
         assert digit.enclosure(k) == ref.enclosure(k)
     assert list(digit.mids) == list(ref.mids)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_digit_sums_exceed_as_the_fractions(seed):
+    # |mid| > t·2^P against exact rationals: t a hair below, at and above |mid|·2^−P (only
+    # the integers decide), far from it either way, zero, past float64's range once
+    # scaled, and infinite or NaN (no claim)
+    digit, ref = random_sums(seed)
+    rng = np.random.default_rng(100 + seed)
+    mids = [abs(int(m)) for m in ref.mids]
+    near = [float(Fraction(m, 1 << BITS)) for m in mids]
+    t = np.array([x * float(rng.choice([1 - 2.0**-52, 1.0, 1 + 2.0**-52, 0.5, 2.0])) for x in near])
+    t = np.concatenate([t, [0.0, 2.0**1000, 1.7e308, np.inf, np.nan, 2.0**-1074]])
+    mids += [mids[1]] * 6
+    digit = DigitBallSums(np.concatenate([digit.digits, digit.digits[:, [1] * 6]], axis=1),
+                          np.concatenate([digit.divisors, digit.divisors[[1] * 6]]),
+                          np.concatenate([digit.rads, digit.rads[[1] * 6]]), BITS, BETA, F)
+    expected = [np.isfinite(x) and m > Fraction(float(x)) * (1 << BITS) for m, x in zip(mids, t)]
+    assert digit.exceeds(t).tolist() == expected
+    assert 0 < sum(expected) < len(expected)
+    ref = BallSums(np.array([int(m) for m in digit.mids], dtype=object), digit.rads, BITS, 0, F)
+    assert ref.exceeds(t).tolist() == expected

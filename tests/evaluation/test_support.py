@@ -18,7 +18,7 @@ from support import reference as ref
 
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext, FloatContext
-from rkcheck.evaluation.support import SupportContext, zero_pattern
+from rkcheck.evaluation.support import SupportContext, _rows, zero_pattern
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.listing import ConditionListing
 
@@ -110,3 +110,15 @@ def test_digit_ball_mid_points_are_those_of_every_row(data):
         assert list(some.mids) == list(full.mids)
         # radius bounds summed in another grouping of runs: equal up to their last bits
         assert np.all(some.rads <= full.rads * (1 + 2.0**-40))
+
+
+@pytest.mark.parametrize("s", range(1, 10))
+def test_rows_with_a_flag_are_those_with_any_stage_set(s):
+    # rows of 2, 4 or 8 flags are read as one integer: the same rows as or-ing the stages
+    rng = np.random.default_rng(s)
+    flags = rng.random((200, s)) < 0.15
+    expected = [bool(row.any()) for row in flags]
+    assert _rows(flags).tolist() == expected
+    assert _rows(np.asfortranarray(flags)).tolist() == expected
+    assert _rows(flags[::2]).tolist() == expected[::2]
+    assert _rows(flags[:0]).tolist() == []
