@@ -129,12 +129,12 @@ def per_order_table(res: CheckResult) -> Table:
 
 def _backend_text(res: CheckResult) -> str:
     if res.backend is Backend.EXACT:
-        field = res.values.exact.field if res.values.exact is not None else None
-        if field is None:
+        exact = res.values.exact
+        if exact is None or exact.field is None:
             return "exact rational arithmetic"
-        where = f"Q({field.name})" if field.sqrt_of else f"a number field of degree {field.degree}"
-        over_q = res.values.exact.nodes is not None  # a family: its conditions are rational
-        return f"exact arithmetic over Q (entries in {where})" if over_q else f"exact arithmetic in {where}"
+        where = f"Q({exact.field.name})" if exact.field.sqrt_of else f"a number field of degree {exact.field.degree}"
+        # a family's conditions are rational: computed over Q (evaluation/split_nodes.py)
+        return f"exact arithmetic over Q (entries in {where})" if exact.nodes is not None else f"exact arithmetic in {where}"
     return f"certified ball arithmetic at {res.options.dps} digits"
 
 
