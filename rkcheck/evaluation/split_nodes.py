@@ -16,7 +16,8 @@ per prime, of ``s`` stages: the tableau is evaluated as a rational one is.
 
 Over the field the same conditions need its degree-48 arithmetic (for the six Gauss-6
 nodes) to scale the entries, bound them in every embedding and find their integrality
-denominator from their minimal polynomials; here the field is not built for them at all.
+denominator from their minimal polynomials; here the conditions need none of it (the
+field is still built for the properties that are computed in it).
 """
 
 from __future__ import annotations
