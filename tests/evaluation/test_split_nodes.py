@@ -170,3 +170,15 @@ def test_a_familys_error_constant_is_exact(tmp_path):
             break
     constant = rkcheck.verify(str(path), order=8, degree="none").to_dict()["summary"]["error_constant"]
     assert want is not None and Fraction(constant["squared"]) == want
+
+
+def test_a_split_node_tableau_travels_by_pickle():
+    # a pass sent to a worker (verify --jobs, --scheduler) carries the tableau
+    import pickle
+
+    scaled = scaled_nodes(node_form(parse_spec({"name": "gauss", "s": 3})))
+    listing = ConditionListing(7, None)
+    here = exact_condition_sums(scaled, listing)
+    there = exact_condition_sums(pickle.loads(pickle.dumps(scaled)), listing)
+    for n, sums in here.items():
+        assert [sums.value(k) for k in range(len(sums))] == [there[n].value(k) for k in range(len(sums))]

@@ -124,6 +124,26 @@ def test_enclosure_width_and_sign_of_tiny_differences():
     assert iv.lo - margin <= value <= iv.hi + margin
 
 
+@pytest.mark.parametrize("refined", [True, False])
+def test_theta_is_enclosed_refined_alone_or_by_the_isolation(refined, monkeypatch):
+    # √2 + √3 (θ of degree 4) against sympy to 700 digits, by Newton's bracket or, when
+    # that proves nothing, by isolating every root at the width asked
+    import rkcheck.numbers.algebraic as algebraic
+
+    found = []
+    refine = algebraic.refine_root if refined else (lambda coeffs, start, bits: None)
+    monkeypatch.setattr(algebraic, "refine_root", lambda *args: found.append(refine(*args)) or found[-1])
+    K = _values("sqrt(2) + sqrt(3)").values[0].field
+    theta = K.theta_enclosure(2000)
+    assert found and (found[-1] is not None) == refined  # the route the case names was taken
+    assert theta.hi - theta.lo <= Fraction(1, 2**2000)
+    root = sp.Poly([sp.Rational(c.numerator, c.denominator) for c in reversed(K.minpoly)], sp.Symbol("x"))
+    value = sorted(r for r in sp.real_roots(root))[K.index - 1]
+    truth = sp.Rational(str(sp.N(value, 700)))
+    margin = Fraction(1, 10**690)
+    assert theta.lo - margin <= Fraction(int(truth.p), int(truth.q)) <= theta.hi + margin
+
+
 def _galois_order(text):
     x = sp.Symbol("x")
     group, _ = sp.polys.numberfields.galois_group(sp.Poly(sp.sympify(text.replace("^", "**")), x))
