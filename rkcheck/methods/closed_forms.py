@@ -213,9 +213,28 @@ def family_exact_values(spec: FamilySpec) -> Any:
         base = _nodes_field(tuple((name, consts[name]) for name in order))
     except NotAlgebraic as err:
         return None, str(err)
-    definitions, A_e, b_e = evaluation_texts(spec, spec.base_rule().nodes[0].poly, A)
-    entries = [ex.parse(x) for row in A_e for x in row] + [ex.parse(x) for x in list(b_e) + list(c)]
-    return evaluate_in(base, order, entries, {k: ex.parse(v) for k, v in definitions.items()}), None
+    trees = evaluation_trees(spec)
+    assert trees is not None  # closed-form nodes, as expression_texts found
+    _, definitions, A_e, b_e = trees
+    entries = [x for row in A_e for x in row] + list(b_e) + [ex.parse(x) for x in c]
+    return evaluate_in(base, order, entries, definitions), None
+
+
+@lru_cache(maxsize=16)
+def evaluation_trees(spec: FamilySpec) -> tuple[list[Fraction], dict[str, Any], list[list[Any]], list[Any]] | None:
+    """``(P, definitions, A, b)``: the monic node polynomial and :func:`evaluation_texts`
+    parsed, once for both the field's values and the node form
+    (:mod:`rkcheck.methods.node_form`); None without closed-form nodes."""
+    from rkcheck.numbers import grammar as ex
+
+    texts = expression_texts(spec)
+    if texts is None:
+        return None
+    P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
+    P = [x / P[-1] for x in P]
+    definitions, A, b = evaluation_texts(spec, P, texts[1])
+    return (P, {name: ex.parse(text) for name, text in definitions.items()},
+            [[ex.parse(x) for x in row] for row in A], [ex.parse(x) for x in b])
 
 
 def _adjoining_order(consts: dict[str, str], entries: list[str], nodes: set[str]) -> list[str]:

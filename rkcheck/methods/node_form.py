@@ -20,10 +20,14 @@ same ``W`` — which is what the argument above needs, checked rather than assum
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING, Any
+
+from rkcheck.numbers.expressions import binary
+from rkcheck.numbers.polynomials import from_flint, to_flint, to_fmpq, to_fraction
 
 if TYPE_CHECKING:
     from rkcheck.methods.family_spec import FamilySpec
@@ -55,7 +59,6 @@ class NodeForm:
         from flint import fmpq_mat
 
         from rkcheck.numbers.minimal import integral_scale
-        from rkcheck.numbers.polynomials import from_flint
 
         n = self.stages
         C = _companion(self.P)
@@ -64,12 +67,12 @@ class NodeForm:
             powers.append(powers[-1] * C)
         mul_F = fmpq_mat(n * n, n * n)
         for (a, b), coeff in self.F:
-            mul_F += _kron(powers[a], powers[b]) * _fmpq(coeff)
+            mul_F += _kron(powers[a], powers[b]) * to_fmpq(coeff)
         mul_W = fmpq_mat(n, n)
         for b, coeff in self.W:
-            mul_W += powers[b] * _fmpq(coeff)
-        return int(max(1, _lcm(integral_scale(from_flint(mul_F.charpoly())),
-                               integral_scale(from_flint(mul_W.charpoly())))))
+            mul_W += powers[b] * to_fmpq(coeff)
+        return max(1, math.lcm(int(integral_scale(from_flint(mul_F.charpoly()))),
+                               int(integral_scale(from_flint(mul_W.charpoly())))))
 
 
     def stability_series(self, count: int) -> list[Fraction]:
@@ -80,48 +83,31 @@ class NodeForm:
         degree below s, and every term is rational (the module docstring)."""
         from flint import fmpq_poly
 
-        from rkcheck.numbers.polynomials import from_flint, to_flint
 
         n = self.stages
         P = to_flint(list(self.P))
         C = _companion(self.P)
         traces, power = [], C  # Tr(y^m) = trace of C^m, m < n
         for m in range(n):
-            traces.append(sum((power[i, i] for i in range(n)), _fmpq(Fraction(0))) if m else _fmpq(Fraction(n)))
+            traces.append(sum((power[i, i] for i in range(n)), to_fmpq(Fraction(0))) if m else to_fmpq(Fraction(n)))
             if m:
                 power = power * C
 
         def trace(U: Any) -> Fraction:
             coeffs = from_flint(U % P)
-            return sum((c * _fraction(traces[m]) for m, c in enumerate(coeffs)), Fraction(0))
+            return sum((c * to_fraction(traces[m]) for m, c in enumerate(coeffs)), Fraction(0))
 
         rows: dict[int, Any] = {}
         for (a, b), coeff in self.F:
-            rows[a] = rows.get(a, fmpq_poly([])) + fmpq_poly([0] * b + [1]) * _fmpq(coeff)
+            rows[a] = rows.get(a, fmpq_poly([])) + fmpq_poly([0] * b + [1]) * to_fmpq(coeff)
         W = fmpq_poly([])
         for b, coeff in self.W:
-            W += fmpq_poly([0] * b + [1]) * _fmpq(coeff)
+            W += fmpq_poly([0] * b + [1]) * to_fmpq(coeff)
         series, V = [Fraction(1)], fmpq_poly([1])
         for _ in range(count):
             series.append(trace(W * V))
-            V = sum((fmpq_poly([0] * a + [1]) * _fmpq(trace(Fa * V)) for a, Fa in rows.items()), fmpq_poly([]))
+            V = sum((fmpq_poly([0] * a + [1]) * to_fmpq(trace(Fa * V)) for a, Fa in rows.items()), fmpq_poly([]))
         return series
-
-
-def _fraction(q: Any) -> Fraction:
-    return Fraction(int(q.numer()), int(q.denom()))
-
-
-def _fmpq(q: Fraction) -> Any:
-    from flint import fmpq
-
-    return fmpq(q.numerator, q.denominator)
-
-
-def _lcm(a: int, b: int) -> int:
-    import math
-
-    return math.lcm(int(a), int(b))
 
 
 def _companion(P: tuple[Fraction, ...]) -> Any:
@@ -134,7 +120,7 @@ def _companion(P: tuple[Fraction, ...]) -> Any:
     for k in range(n - 1):
         C[k + 1, k] = 1
     for k in range(n):
-        C[k, n - 1] = _fmpq(-P[k])
+        C[k, n - 1] = to_fmpq(-P[k])
     return C
 
 
@@ -160,16 +146,14 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
     """The family's :class:`NodeForm`, or None when its entries are not polynomials of
     their two nodes over the roots of the node polynomial (no closed-form nodes, an entry
     that divides by a node, or entries that differ from one another)."""
-    from rkcheck.methods.closed_forms import evaluation_texts, expression_texts
+    from rkcheck.methods.closed_forms import evaluation_trees
 
-    texts = expression_texts(spec)
-    if texts is None:
+    trees = evaluation_trees(spec)
+    if trees is None:
         return None
-    P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
-    P = [x / P[-1] for x in P]
-    if len(P) - 1 != len(texts[2]) or not _square_free(P):
+    P, definitions, A, b = trees
+    if len(P) - 1 != len(b) or not _square_free(P):
         return None  # the argument needs the nodes to be exactly the roots of P, each once
-    definitions, A, b = evaluation_texts(spec, P, texts[1])
     polys = _NodePolynomials(P, definitions)
     try:
         entries = [[polys.of(A[i][j], {i, j}) for j in range(len(b))] for i in range(len(b))]
@@ -180,7 +164,6 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
 
 
 def _square_free(P: list[Fraction]) -> bool:
-    from rkcheck.numbers.polynomials import to_flint
 
     f = to_flint(P)
     return f.gcd(f.derivative()).degree() == 0
@@ -191,27 +174,24 @@ class _NotPolynomial(Exception):
 
 
 class _NodePolynomials:
-    """Entry texts as FLINT polynomials in the nodes ``c1 … cn`` (every name defined in
-    ``definitions`` over them), reduced modulo P in each node."""
+    """Parsed entries as FLINT polynomials in the nodes ``c1 … cn`` (every name defined
+    in ``definitions`` over them), reduced modulo P in each node."""
 
-    def __init__(self, P: list[Fraction], definitions: dict[str, str]):
+    def __init__(self, P: list[Fraction], definitions: dict[str, Any]):
         from flint import fmpq_mpoly_ctx
-
-        from rkcheck.numbers import grammar as ex
 
         n = len(P) - 1
         self.ctx = fmpq_mpoly_ctx.get(tuple(f"c{i + 1}" for i in range(n)), "lex")
         self.gens = dict(zip(self.ctx.names(), self.ctx.gens()))
-        self.moduli = [sum((g**k * _fmpq(x) for k, x in enumerate(P)), self.ctx.constant(0)) for g in self.ctx.gens()]
-        self.definitions = {name: ex.parse(text) for name, text in definitions.items()}
+        self.moduli = [sum((g**k * to_fmpq(x) for k, x in enumerate(P)), self.ctx.constant(0)) for g in self.ctx.gens()]
+        self.definitions = definitions
         self.known: dict[str, Any] = {}
 
-    def of(self, text: str, nodes: set[int]) -> Any:
-        """The entry ``text`` reduced modulo P in each node; it must use only ``nodes``."""
+    def of(self, node: Any, nodes: set[int]) -> Any:
+        """The parsed entry ``node`` reduced modulo P in each node; it must use only ``nodes``."""
         from rkcheck.numbers import expressions as xp
-        from rkcheck.numbers import grammar as ex
 
-        value = xp.fold(ex.parse(text), self._combine)
+        value = xp.fold(node, self._combine)
         used = {k for k, d in enumerate(value.degrees()) if d > 0}
         if not used <= nodes:
             raise _NotPolynomial
@@ -234,7 +214,7 @@ class _NodePolynomials:
         from rkcheck.numbers import grammar as ex
 
         if isinstance(node, ex.Num):
-            return self.ctx.constant(_fmpq(Fraction(node.value)))
+            return self.ctx.constant(to_fmpq(node.value))
         if isinstance(node, ex.Name):
             return self._name(node.name)
         if isinstance(node, ex.Unary):
@@ -250,20 +230,15 @@ class _NodePolynomials:
         if not isinstance(node, ex.Binary):
             raise _NotPolynomial  # a root: not a polynomial in the nodes
         left, right = vals
-        if node.op == "+":
-            return left + right
-        if node.op == "-":
-            return left - right
-        if node.op == "*":
-            return left * right
-        if not right.is_constant() or right.is_zero():
-            raise _NotPolynomial
-        return left / right.leading_coefficient()
+        if node.op == "/":  # by a nonzero rational only: a node's inverse is no polynomial
+            if not right.is_constant() or right.is_zero():
+                raise _NotPolynomial
+            right = right.leading_coefficient()
+        return binary(node.op, left, right)
 
 
 def _uniform(P: list[Fraction], entries: list[list[Any]], weights: list[Any]) -> NodeForm | None:
     """The NodeForm when every entry is the same polynomial of its nodes, else None."""
-    from rkcheck.numbers.polynomials import to_fraction
 
     n = len(P) - 1
 
@@ -293,10 +268,9 @@ def _diagonal(P: list[Fraction], F: dict[tuple[int, int], Fraction]) -> dict[int
     """``F(x, x)`` modulo P, as ``{power: coefficient}``."""
     from flint import fmpq_poly
 
-    from rkcheck.numbers.polynomials import from_flint, to_flint
 
     g = fmpq_poly([])
     for (a, b), c in F.items():
-        g += fmpq_poly([0] * (a + b) + [1]) * _fmpq(c)
+        g += fmpq_poly([0] * (a + b) + [1]) * to_fmpq(c)
     r = from_flint(g % to_flint(P))
     return {k: c for k, c in enumerate(r) if c != 0}

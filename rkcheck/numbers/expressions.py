@@ -282,15 +282,16 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
         if left is None or right is None:
             return None
         _check_operand_bits((left, right), n.column)
-        out = _arithmetic(n.op, left, right)
+        out = binary(n.op, left, right)
         _check_value_bits((out,), n.column)
         return out
 
     return fold(node, combine)
 
 
-def _arithmetic(op: str, left: Any, right: Any) -> Any:
-    """``left op right`` for Fractions and Intervals alike (the division checks are the caller's)."""
+def binary(op: str, left: Any, right: Any) -> Any:
+    """``left op right`` for any numbers (Fractions, Intervals, field elements, FLINT
+    polynomials); the division checks are the caller's."""
     if op == "+":
         return left + right
     if op == "-":
@@ -351,7 +352,7 @@ def enclose(
             if right.is_point:
                 raise UserError(f"division by zero at column {n.column}")
             raise UserError(f"division at column {n.column}: the divisor cannot be shown to be nonzero")
-        out = _arithmetic(n.op, left, right)
+        out = binary(n.op, left, right)
         _check_value_bits((out.lo, out.hi), n.column)
         return out
 

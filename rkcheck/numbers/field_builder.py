@@ -405,15 +405,9 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
 def _arithmetic(node: ex.Binary, left: Any, right: Any) -> Any:
     """``left op right`` (field elements or Fractions), a division by zero refused with
     its column."""
-    if node.op == "+":
-        return left + right
-    if node.op == "-":
-        return left - right
-    if node.op == "*":
-        return left * right
-    if not right:
+    if node.op == "/" and not right:
         raise UserError(f"division by zero at column {node.column}")
-    return left / right
+    return xp.binary(node.op, left, right)
 
 
 def _exponent_first(node: ex.Expr) -> tuple[ex.Expr, ...]:

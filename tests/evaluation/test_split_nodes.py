@@ -27,6 +27,7 @@ from rkcheck.methods.node_form import (
     _uniform,
     node_form,
 )
+from rkcheck.numbers import grammar as ex
 from rkcheck.trees.listing import ConditionListing
 
 FAMILIES = [
@@ -113,17 +114,18 @@ def test_every_channel_prime_splits_the_node_polynomial():
 def test_entries_that_are_not_one_polynomial_of_their_nodes_have_no_form():
     P = [Fraction(-1, 3), Fraction(0), Fraction(1)]  # c = ±1/√3
     polys = _NodePolynomials(P, {})
+    of = lambda text, nodes: polys.of(ex.parse(text), nodes)  # noqa: E731
     with pytest.raises(_NotPolynomial):
-        polys.of("1/c1", {0})  # a division by a node
+        of("1/c1", {0})  # a division by a node
     with pytest.raises(_NotPolynomial):
-        polys.of("c2", {0})  # an entry of stage 1 that reads node 2
-    weights = [polys.of("1/2", {0}), polys.of("1/2", {1})]
-    same = [[polys.of("c1/4", {0}), polys.of("c1/4", {0, 1})], [polys.of("c2/4", {0, 1}), polys.of("c2/4", {1})]]
+        of("c2", {0})  # an entry of stage 1 that reads node 2
+    weights = [of("1/2", {0}), of("1/2", {1})]
+    same = [[of("c1/4", {0}), of("c1/4", {0, 1})], [of("c2/4", {0, 1}), of("c2/4", {1})]]
     assert isinstance(_uniform(P, same, weights), NodeForm)
     # A_12 = c1/4 but A_21 = 0: renumbering the stages changes the tableau
-    skew = [same[0], [polys.of("0", {0, 1}), same[1][1]]]
+    skew = [same[0], [of("0", {0, 1}), same[1][1]]]
     assert _uniform(P, skew, weights) is None
-    uneven = [polys.of("1/2", {0}), polys.of("1/2 + c2", {1})]
+    uneven = [of("1/2", {0}), of("1/2 + c2", {1})]
     assert _uniform(P, same, uneven) is None
 
 
