@@ -333,7 +333,8 @@ def inconsistent(result: CheckResult) -> bool:
     """``Σb ≠ 1`` certainly: the method is not even of order 1, and fails whatever its
     energy conditions say (definitions §5.3)."""
     q = result.quadrature
-    return q.order == 0 and q.first_failure is not None
+    # Σb = 1 itself failed: not merely unproven (held to digits) with a later power failing
+    return q.to_digits == 0 and q.first_failure is not None
 
 
 def overall(result: CheckResult) -> Verdict:

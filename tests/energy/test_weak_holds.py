@@ -36,3 +36,17 @@ def test_nonzero_residuals_of_huge_entries_fail(tmp_path):
                                     "--format", "json").out)
     row = next(c for c in doc["conditions"] if c["id"] == "1,2,2")
     assert row["state"] == "fails"
+
+
+def test_sum_b_held_to_digits_is_not_inconsistent(tmp_path):
+    """Radau IIA with nine stages has no closed-form nodes: its rule is enclosed, so
+    Σb = 1 holds only to digits, and Σ b_i c_i^(2s−1) = 1/(2s) certainly fails (Radau
+    IIA has quadrature order 2s − 1, Hairer–Wanner II §IV.5).  The method is consistent:
+    the failure of a later power is not Σb ≠ 1."""
+    path = tmp_path / "radau9.toml"
+    path.write_text('[family]\nname = "radau-iia"\ns = 9\n')
+    run = run_subprocess("verify", str(path), "--degree", "4", "--order", "5", "--format", "json")
+    summary = json.loads(run.out)["summary"]
+    assert summary["quadrature_order_to_digits"] == 17 and summary["quadrature_first_failure"] == "Σ b_i c_i^17 = 1/18"
+    assert summary["inconsistent"] is False
+    assert summary["verdict"] == "holds_to_digits" and run.code == 0
