@@ -166,7 +166,9 @@ def magnitudes(tableau, result):
     prime budget (a minute for the failing conditions of HBVM(6, 2) to order 10)."""
     from rkcheck.energy.check import check
 
-    field = result.values.exact.field if result.values.exact is not None and result.backend == "exact" else None
+    exact = result.values.exact
+    # a family in node form has rational residuals, whatever its field
+    field = exact.field if exact is not None and exact.nodes is None and result.backend == "exact" else None
     if field is None or field.degree <= 2 or not len(result.failures):
         return result
     return check(tableau, dataclasses.replace(result.options, dps=30, arithmetic="ball"))

@@ -21,6 +21,7 @@ AVF.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Iterable, Iterator
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.reduction import Reduction
@@ -48,9 +49,21 @@ class AvfVerdict:
 
 def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:
     """The AVF verdict of definitions §4 on the irreducible form ``red``."""
-    s_min = (degree + 1) // 2 if degree >= 3 else None
-    rA, rb, kept = red.A, red.b, red.kept
+    rA, rb = red.A, red.b
     n = len(rb)
+    like = sc.sample(rA, rb)
+    c = sc.row_sums(rA, like) if n else []
+    entries = ((i, j, rA[i][j] - c[i] * rb[j]) for i in range(n) for j in range(n))
+    return avf_verdict(red, degree, entries, sc.quadrature_residuals(rb, c) if n else iter(()))
+
+
+def avf_verdict(red: Reduction, degree: int, entries: Iterable[tuple[int, int, sc.Scalar]],
+                residuals: Iterator[sc.Scalar]) -> AvfVerdict:
+    """The AVF verdict from the entries ``(i, j, (A − (A·1)bᵀ)_ij)`` of the reduced tableau
+    (row by row; those left out are zero exactly) and its rule's quadrature residuals
+    ``Σ b_i c_i^(k−1) − 1/k``, k = 1, 2, …"""
+    s_min = (degree + 1) // 2 if degree >= 3 else None
+    n, kept = red.reduced_stages, red.kept
     notes: list[str] = []
     described = red.describe()
     if described:
@@ -62,22 +75,18 @@ def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:
 
     if n == 0:
         return result(Verdict(FAILS), "every weight b_j is zero: the method does not move")
-    like = sc.sample(rA, rb)
-    c = sc.row_sums(rA, like)
     checks: list[Verdict] = list(red.decisions)
-    for i in range(n):
-        for j in range(n):
-            diff = rA[i][j] - c[i] * rb[j]
-            v = sc.verdict(diff)
-            if v.state == FAILS:
-                gi, gj = kept[i] + 1, kept[j] + 1
-                where = "reduced tableau" if red.reducible else "tableau"
-                return result(
-                    Verdict(FAILS),
-                    f"A − (A·1)bᵀ ≠ 0 at entry ({gi},{gj}) of the {where}: {_value_text(diff)}",
-                )
-            checks.append(v)
-    for k, residual in zip(range(1, degree + 1), sc.quadrature_residuals(rb, c)):
+    for i, j, diff in entries:
+        v = sc.verdict(diff)
+        if v.state == FAILS:
+            gi, gj = kept[i] + 1, kept[j] + 1
+            where = "reduced tableau" if red.reducible else "tableau"
+            return result(
+                Verdict(FAILS),
+                f"A − (A·1)bᵀ ≠ 0 at entry ({gi},{gj}) of the {where}: {_value_text(diff)}",
+            )
+        checks.append(v)
+    for k, residual in zip(range(1, degree + 1), residuals):
         v = sc.verdict(residual)
         if v.state == FAILS:
             return result(

@@ -19,6 +19,7 @@ from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.judging import evaluate_orders, refine_undecided
 from rkcheck.energy.lineintegral import Certificate
+from rkcheck.energy.node_properties import node_properties, node_quadrature_order
 from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.energy.properties import TableauProperties, properties_of_values
 from rkcheck.energy.results import (
@@ -188,7 +189,6 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
 
     warnings = list(tableau.info.warnings) + values.consistency_warnings() + ([note] if note else [])
     facts = _facts(values)
-    scalars = facts["scalars"]
     quad = facts["quadrature"]
     classical = _memo(facts, ("classical", options.order), lambda: classical_order(values, options.order))
     # tableau-level algebra: the irreducible form, R(z), symplecticity, symmetry; the AVF
@@ -198,7 +198,7 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     if surrogate is not None:  # a continuous method: its kernel speaks for itself, not the surrogate
         quad, props, avf, cert = _continuous_facts(surrogate, quad, options, values)
     else:
-        props = _memo(facts, "properties", lambda: properties_of_values(scalars[0], scalars[1], _exact_series(values)))
+        props = _memo(facts, "properties", lambda: _properties(values, facts))
         avf, cert = props.certificates(options.degree) if options.degree is not None else (None, None)
     timings["orders_and_avf"] = time.perf_counter() - t2
     conditions = ConditionResults(listing, orders)
@@ -234,16 +234,34 @@ def _exact_series(values: TableauValues) -> list | None:
     return exact.nodes.stability_series(2 * values.stages)
 
 
+def _algebra(values: TableauValues) -> Any:
+    """The family's node algebra, when its properties are decided there (no field)."""
+    exact = values.tableau.exact_values()
+    return exact.algebra if exact is not None else None
+
+
 def _facts(values: TableauValues) -> dict[Any, Any]:
     """What a check computes from the tableau alone, kept on its values: the runs a file's
     claims add (other degrees and orders) share the scalars, quadrature order, classical
     order to each order and the properties — in a field of degree 48 the stability
     function and symplecticity alone take over a second."""
     facts = values.__dict__.setdefault("_check_facts", {})  # a frozen dataclass: its own dict
-    if "scalars" not in facts:
-        facts["scalars"] = sc.tableau_values(values)  # the tableau's own scalars, once
-        facts["quadrature"] = quadrature_order(*facts["scalars"])
+    if "quadrature" not in facts:
+        algebra = _algebra(values)
+        if algebra is not None:
+            facts["quadrature"] = node_quadrature_order(algebra)
+        else:
+            facts["scalars"] = sc.tableau_values(values)  # the tableau's own scalars, once
+            facts["quadrature"] = quadrature_order(*facts["scalars"])
     return facts
+
+
+def _properties(values: TableauValues, facts: dict[Any, Any]) -> TableauProperties:
+    algebra = _algebra(values)
+    if algebra is not None:
+        return node_properties(algebra, _exact_series(values) or [])
+    A, b = facts["scalars"]
+    return properties_of_values(A, b, _exact_series(values))
 
 
 def _memo(facts: dict[Any, Any], key: Any, compute: Callable[[], Any]) -> Any:

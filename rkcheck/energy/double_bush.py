@@ -324,7 +324,7 @@ def tableau_rule(tableau, dps: int):
     from rkcheck.numbers.intervals import interval_sum
 
     exact = tableau.exact_values()  # at face value
-    if exact is not None:
+    if exact is not None and exact.entries() is not None:
         return exact.b, [sum(row, Fraction(0)) for row in exact.A], True
     A, b = tableau.enclosures(mpmath_bits(dps), DecimalsMode.EXACT)
     return b, [interval_sum(row) for row in A], False

@@ -211,7 +211,7 @@ def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> Energy
     weight = None
     if values is not None:
         one: Fraction | Interval
-        if values.exact is not None:
+        if values.exact is not None and values.exact.entries() is not None:
             A, b, one = values.exact.A, values.exact.b, Fraction(1)
         else:
             A, b = values.A, values.b

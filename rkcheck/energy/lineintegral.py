@@ -26,7 +26,7 @@ exactly for exact tableaux and certified for enclosures (:mod:`rkcheck.energy.sc
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Callable, Iterator, Protocol
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.reduction import Reduction
@@ -139,22 +139,34 @@ def _check_entries(A, rhs) -> list[Verdict] | None:
 def certificate_of_reduction(red: Reduction, degree: int) -> LineIntegralCertificate:
     """(LI) on the irreducible form ``red``."""
     rA, rb = red.A, red.b
-    n = len(rb)
+    if not rb:
+        return line_integral_certificate(red, degree, iter(()), lambda sigma: None)
+    c = sc.row_sums(rA, sc.sample(rA, rb))
+    matrices = line_integral_matrices(c, rb)
+    return line_integral_certificate(red, degree, sc.quadrature_residuals(rb, c),
+                                     lambda sigma: _check_entries(rA, next(matrices)))
+
+
+def line_integral_certificate(red: Reduction, degree: int, residuals: Iterator[sc.Scalar],
+                              matches: Callable[[int], list[Verdict] | None]) -> LineIntegralCertificate:
+    """(LI) from the rule's quadrature residuals ``Σ b_i c_i^(k−1) − 1/k`` (k = 1, 2, …)
+    and ``matches(σ)``: the verdicts of (LI)'s entries for σ, or None when one certainly
+    differs (asked for σ = 1, 2, … in turn)."""
+    n = red.reduced_stages
     if n == 0:
         return LineIntegralCertificate(degree, None, Verdict(FAILS), "every weight is zero")
-    c = sc.row_sums(rA, sc.sample(rA, rb))
     quad: list[Verdict] = []
     quad_order = 0
-    for k, residual in zip(range(1, 2 * n + 1), sc.quadrature_residuals(rb, c)):
+    for k, residual in zip(range(1, 2 * n + 1), residuals):
         v = sc.verdict(residual)
         if v.state == FAILS:
             break
         quad.append(v)
         quad_order = k
-    for sigma, rhs in enumerate(line_integral_matrices(c, rb), start=1):
+    for sigma in range(1, n + 1):
         if degree * sigma > quad_order:
             break
-        entries = _check_entries(rA, rhs)
+        entries = matches(sigma)
         if entries is not None:
             verdict = combine(list(red.decisions) + entries + quad[: degree * sigma])
             how = "exactly" if verdict.state == HOLDS else f"to {verdict.digits} digits"

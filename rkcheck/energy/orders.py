@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 
@@ -77,9 +77,15 @@ def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
     ``A``, ``b`` are scalars of :mod:`rkcheck.energy.scalars` (Fractions, field elements
     or intervals), so an algebraic rule such as Gauss's gets an exact order."""
     c = sc.row_sums(A, sc.sample(A, b))
-    top = 2 * len(b)
+    return quadrature_order_of(sc.quadrature_residuals(b, c), len(b))
+
+
+def quadrature_order_of(residuals: Iterator[Any], stages: int) -> OrderResult:
+    """The quadrature order from the residuals ``Σ b_i c_i^(k−1) − 1/k``, k = 1, 2, …,
+    of an s-stage rule (checked up to 2s)."""
+    top = 2 * stages
     verdicts: list[Verdict] = []
-    for k, residual in zip(range(1, top + 1), sc.quadrature_residuals(b, c)):
+    for k, residual in zip(range(1, top + 1), residuals):
         v = sc.verdict(residual)
         if v.state == FAILS:
             power = "" if k == 1 else ("_i" if k == 2 else f"_i^{k - 1}")

@@ -14,7 +14,11 @@ from fractions import Fraction
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
-from rkcheck.energy.lineintegral import Certificate, certificate_of_reduction
+from rkcheck.energy.lineintegral import (
+    Certificate,
+    LineIntegralCertificate,
+    certificate_of_reduction,
+)
 from rkcheck.energy.reduction import Reduction, reduce_tableau
 from rkcheck.energy.stability import (
     StabilityFunction,
@@ -40,11 +44,17 @@ class TableauProperties:
         line-integral one (σ = 1 is AVF), and for degree 2 the stability function's
         ``R(z)R(−z) ≡ 1`` when it proves more (exactly where the other holds only to digits,
         or at all)."""
-        avf = avf_of_reduction(self.reduction, degree)
-        cert: Certificate = certificate_of_reduction(self.reduction, degree)
+        avf = self.avf(degree)
+        cert: Certificate = self.line_integral(degree)
         if degree == 2:
             cert = prefer(cert, quadratic_certificate(self.stability, degree))
         return avf, cert
+
+    def avf(self, degree: int) -> AvfVerdict:
+        return avf_of_reduction(self.reduction, degree)
+
+    def line_integral(self, degree: int) -> LineIntegralCertificate:
+        return certificate_of_reduction(self.reduction, degree)
 
 
 def properties_of_values(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None = None) -> TableauProperties:

@@ -160,13 +160,15 @@ def exact_text(x: Scalar) -> str:
     return render() if render is not None else str(x)
 
 
-def magnitude_key(x: Scalar) -> Fraction:
-    """An upper bound of ``|x|`` for ranking entries (exact for rationals)."""
-    q = rational(x)
-    if q is not None:
-        return abs(q)
-    e = enclosure(x, 128)
-    return max(abs(e.lo), abs(e.hi))
+def certainly_larger(x: Scalar, y: Scalar) -> bool:
+    """``|x| > |y|`` for certain (exactly for rationals, else by enclosures at 128 bits):
+    of two entries equal in size, or too close to tell, neither is larger."""
+    qx, qy = rational(x), rational(y)
+    if qx is not None and qy is not None:
+        return abs(qx) > abs(qy)
+    ex, ey = enclosure(x, 128), enclosure(y, 128)
+    low = Fraction(0) if ex.contains_zero() else min(abs(ex.lo), abs(ex.hi))
+    return low > max(abs(ey.lo), abs(ey.hi))
 
 
 # ------------------------------------------------------------- vectors and matrices

@@ -23,6 +23,7 @@ digits``/``fails`` (:mod:`rkcheck.energy.scalars`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Iterable
 
 from rkcheck.energy import scalars as sc
 from rkcheck.energy.reduction import Reduction
@@ -62,17 +63,23 @@ def symplecticity(red: Reduction) -> PropertyVerdict:
     """``BA + AᵀB − bbᵀ = 0`` on the irreducible form ``red``."""
     A, b = red.A, red.b
     n = len(b)
-    if n == 0:
+    entries = ((b[i] * A[i][j] + b[j] * A[j][i] - b[i] * b[j], i, j) for i in range(n) for j in range(i, n))
+    return symplectic_verdict(red, entries)
+
+
+def symplectic_verdict(red: Reduction, entries: Iterable[tuple[sc.Scalar, int, int]]) -> PropertyVerdict:
+    """The verdict from the entries ``(M_ij, i, j)``, i ≤ j, of M on the reduced stages
+    (those left out are zero exactly).  Where M ≠ 0 the report names its largest entry:
+    the first one that no later entry certainly exceeds in size."""
+    if red.reduced_stages == 0:
         return PropertyVerdict("symplectic", Verdict(FAILS), "every weight is zero: the method does not move")
     verdicts = list(red.decisions)
     worst = None
-    for i in range(n):
-        for j in range(i, n):
-            m = b[i] * A[i][j] + b[j] * A[j][i] - b[i] * b[j]
-            v = sc.verdict(m)
-            verdicts.append(v)
-            if v.state == FAILS and (worst is None or sc.magnitude_key(m) > sc.magnitude_key(worst[0])):
-                worst = (m, i, j)
+    for m, i, j in entries:
+        v = sc.verdict(m)
+        verdicts.append(v)
+        if v.state == FAILS and (worst is None or sc.certainly_larger(m, worst[0])):
+            worst = (m, i, j)
     verdict = combine(verdicts)
     if worst is not None:
         m, i, j = worst
@@ -102,13 +109,24 @@ def symmetry(red: Reduction) -> PropertyVerdict:
     match = _StageMatch(A, adjoint, b)
     image = match.search()
     if image is None:
-        return PropertyVerdict(
-            "symmetric", Verdict(FAILS),
-            f"no stage permutation maps the adjoint method (1bᵀ − A, b){_after(red)} onto it"
-            + ("" if all(match.candidates) else ": the nodes Σb − c_i and weights do not match"),
-        )
+        return not_symmetric(red, all(match.candidates))
     verdict = combine(list(red.decisions) + match.decisions)
-    perm = tuple(red.kept[image[i]] + 1 for i in range(n))
+    return symmetric(red, [image[i] for i in range(n)], verdict)
+
+
+def not_symmetric(red: Reduction, candidates: bool) -> PropertyVerdict:
+    """No stage permutation matches; ``candidates``: every stage had one whose weight,
+    node and diagonal entry agree with its adjoint's."""
+    return PropertyVerdict(
+        "symmetric", Verdict(FAILS),
+        f"no stage permutation maps the adjoint method (1bᵀ − A, b){_after(red)} onto it"
+        + ("" if candidates else ": the nodes Σb − c_i and weights do not match"),
+    )
+
+
+def symmetric(red: Reduction, image: list[int], verdict: Verdict) -> PropertyVerdict:
+    """The adjoint's stage i is the reduced method's stage ``image[i]`` (0-based)."""
+    perm = tuple(red.kept[k] + 1 for k in image)
     return PropertyVerdict(
         "symmetric", verdict,
         f"the adjoint (1bᵀ − A, b) equals the method {_permutation_text(red, perm)}, {_how(verdict)}{_after(red)}",

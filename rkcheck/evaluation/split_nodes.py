@@ -52,13 +52,22 @@ class SplitNodeTableau(ScaledTableau):
 
         if self._bad % p == 0:
             return None
-        P = nmod_poly([_mod(c, p) for c in self._form.P], p)
+        P = nmod_poly(self._integer_P, p)  # p divides no denominator: the same roots as P
         x = nmod_poly([0, 1], p)
         if x.pow_mod(p, P) != x:  # P | x^p − x: distinct roots, all in F_p
             return None
         roots = [int(r) for r, _ in P.roots()]
         self.__dict__.setdefault("_node_roots", {})[p] = roots
         return [0]
+
+    @property
+    def _integer_P(self) -> list[int]:
+        """P times the lcm of its denominators."""
+        found = self.__dict__.get("_integer_P_value")
+        if found is None:
+            den = math.lcm(*(c.denominator for c in self._form.P))
+            found = self.__dict__["_integer_P_value"] = [int(c * den) for c in self._form.P]
+        return found
 
     @property
     def _form(self) -> NodeForm:

@@ -67,7 +67,7 @@ class TableauValues:
         exact = self.tableau.exact_values()
         if exact is None:
             return NumberKind.NUMERIC
-        return NumberKind.RATIONAL if exact.field is None else NumberKind.ALGEBRAIC
+        return NumberKind.RATIONAL if exact.is_rational else NumberKind.ALGEBRAIC
 
     @property
     def exact(self) -> ExactValues | None:
@@ -116,10 +116,10 @@ class TableauValues:
     def scaled(self) -> ScaledTableau:
         """The exact data of the modular route (an exact reading only)."""
         assert self.exact is not None, "the modular route needs exact values"
-        if self.exact.field is None:
-            return scaled_rational(self.exact.A, self.exact.b)
         if self.exact.nodes is not None:  # rational conditions: no field arithmetic for them
             return scaled_nodes(self.exact.nodes)
+        if self.exact.field is None:
+            return scaled_rational(self.exact.A, self.exact.b)
         return scaled_field(self.exact)
 
     # ------------------------------------------------------------------ reports
@@ -172,7 +172,7 @@ class TableauValues:
         sb = interval_sum(self.b)
         if (sb - Interval.point(1)).contains_zero():
             return rows, None
-        return rows, _value_text(sb, None if face is None else sum(face.b))
+        return rows, _value_text(sb, None if face is None else face.weight_sum())
 
 
 def _exact_differences(exact: ExactValues) -> tuple[list[tuple[int, str]], str | None]:
@@ -182,7 +182,7 @@ def _exact_differences(exact: ExactValues) -> tuple[list[tuple[int, str]], str |
     if exact.c is not None:
         diffs = [(i, ci - sum(row)) for i, (row, ci) in enumerate(zip(exact.A, exact.c), start=1)]
         rows = [(i, _exact_text(d)) for i, d in diffs if d != 0]
-    sb = sum(exact.b)
+    sb = exact.weight_sum()
     return rows, None if sb == 1 else _exact_text(sb)
 
 

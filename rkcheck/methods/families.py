@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 from rkcheck.methods.family_spec import FamilySpec, parse_spec
@@ -139,18 +140,22 @@ class _Shared:
     def exact_values(self) -> tuple[Any, str | None]:
         """``(ExactValues or None, reason)`` for the family's tableau (computed once)."""
         if self.exact is None:
-            from rkcheck.methods.closed_forms import family_exact_values
+            from rkcheck.methods.node_algebra import node_algebra
             from rkcheck.methods.node_form import node_form
+            from rkcheck.numbers.algebraic import NotAlgebraic
 
-            found, reason = family_exact_values(self.spec)
-            if found is None:
-                self.exact = (None, reason)
+            form = node_form(self.spec)
+            algebra = node_algebra(self.spec, form)
+            if algebra is not None:  # checked over Q: the field only if something reads an entry
+                self.exact = (ExactValues(None, None, None, None, form, algebra,
+                                          load=partial(_field_entries, self.spec)), None)
+                return self.exact
+            try:
+                field, A, b = _field_entries(self.spec)
+            except NotAlgebraic as err:
+                self.exact = (None, str(err))
             else:
-                v = found.values
-                n = math.isqrt(len(v) + 1) - 1  # A, b and the nodes c: n² + 2n values
-                A = [v[i * n:(i + 1) * n] for i in range(n)]
-                nodes = node_form(self.spec) if found.field is not None else None
-                self.exact = (ExactValues(found.field, A, v[n * n:n * n + n], None, nodes), None)
+                self.exact = (ExactValues(field, A, b, None, form if field is not None else None), None)
         return self.exact
 
     def __getstate__(self) -> dict[str, Any]:
@@ -159,16 +164,30 @@ class _Shared:
         return {"spec": self.spec, "cache": {}, "exact": self.exact}
 
 
+def _field_entries(spec: FamilySpec) -> tuple[Any, list[list[Any]], list[Any]]:
+    """The family's field and its A and b in it (:class:`ExactValues`' ``load``)."""
+    from rkcheck.methods.closed_forms import family_exact_values
+    from rkcheck.numbers.algebraic import NotAlgebraic
+
+    found, reason = family_exact_values(spec)
+    if found is None:
+        raise NotAlgebraic(reason or "the nodes have no closed form")
+    v = found.values
+    n = math.isqrt(len(v) + 1) - 1
+    return found.field, [v[i * n:(i + 1) * n] for i in range(n)], v[n * n:n * n + n]
+
+
 def family_tableau(spec: FamilySpec, name: str | None = None, info: MethodInfo | None = None) -> Tableau:
     """The family as a :class:`Tableau` whose entries are computed at the check's
     precision; ``name`` defaults to the family's title."""
     shared = _Shared(spec)
-    A0, b0 = shared.get(64)
-    rational = spec.base_rule().is_rational
-    n = len(b0)
+    rule = spec.base_rule()
+    n = rule.s
+    # a rational rule's entries are exact points; the others are enclosed when read
+    A0, b0 = shared.get(64) if rule.is_rational else ([[None] * n] * n, [None] * n)
 
-    def entry(where: tuple, value: Interval, label: str) -> ComputedEntry:
-        exact = value.lo if rational and value.is_point else None
+    def entry(where: tuple, value: Interval | None, label: str) -> ComputedEntry:
+        exact = value.lo if value is not None and value.is_point else None
         return ComputedEntry(shared, where, exact, label)
 
     A = tuple(tuple(entry(("A", i, j), A0[i][j], f"A[{i + 1}][{j + 1}]") for j in range(n)) for i in range(n))

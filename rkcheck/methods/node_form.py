@@ -65,13 +65,12 @@ class NodeForm:
         powers = [fmpq_mat(n, n, [int(i == j) for i in range(n) for j in range(n)])]
         for _ in range(1, n):
             powers.append(powers[-1] * C)
-        mul_F = fmpq_mat(n * n, n * n)
-        for (a, b), coeff in self.F:
-            mul_F += _kron(powers[a], powers[b]) * to_fmpq(coeff)
+        ctx, x, y = pair_ring()
+        F = sum((x**a * y**b * to_fmpq(c) for (a, b), c in self.F), ctx.constant(0))
         mul_W = fmpq_mat(n, n)
         for b, coeff in self.W:
             mul_W += powers[b] * to_fmpq(coeff)
-        return max(1, math.lcm(int(integral_scale(from_flint(mul_F.charpoly()))),
+        return max(1, math.lcm(int(integral_scale(from_flint(pair_charpoly(self.P, F)))),
                                int(integral_scale(from_flint(mul_W.charpoly())))))
 
 
@@ -124,21 +123,40 @@ def _companion(P: tuple[Fraction, ...]) -> Any:
     return C
 
 
-def _kron(X: Any, Y: Any) -> Any:
-    """``X ⊗ Y``: multiplication by ``x^a y^b`` on the basis ``x^i y^j`` (index i·n + j)."""
+def pair_ring() -> tuple[Any, Any, Any]:
+    """The polynomials in x and y over Q (FLINT's context, one per process) and x, y."""
+    from flint import fmpq_mpoly_ctx
+
+    ctx = fmpq_mpoly_ctx.get(("x", "y"), "lex")
+    x, y = ctx.gens()
+    return ctx, x, y
+
+
+def reduce_pair(P: tuple[Fraction, ...], g: Any) -> Any:
+    """g modulo P(x) and P(y): degree below s in each variable."""
+    Px, Py = _pair_moduli(P)
+    return divmod(divmod(g, Px)[1], Py)[1]
+
+
+@lru_cache(maxsize=16)
+def _pair_moduli(P: tuple[Fraction, ...]) -> tuple[Any, Any]:
+    ctx, x, y = pair_ring()
+    Px = sum((x**k * to_fmpq(c) for k, c in enumerate(P) if c), ctx.constant(0))
+    return Px, Px.compose(y, x)
+
+
+def pair_charpoly(P: tuple[Fraction, ...], g: Any) -> Any:
+    """χ of multiplication by g on ``Q[x, y]/(P(x), P(y))`` (basis ``x^a y^b``), an
+    fmpq_poly: ``∏_(k,l) (t − g(c_k, c_l))`` over the pairs of roots of P."""
     from flint import fmpq_mat
 
-    n = X.nrows()
-    K = fmpq_mat(n * n, n * n)
-    for i in range(n):
-        for k in range(n):
-            if X[i, k] == 0:
-                continue
-            for j in range(n):
-                for m in range(n):
-                    if Y[j, m] != 0:
-                        K[i * n + j, k * n + m] = X[i, k] * Y[j, m]
-    return K
+    _, x, y = pair_ring()
+    n = len(P) - 1
+    M = fmpq_mat(n * n, n * n)
+    for col, (a, b) in enumerate((a, b) for a in range(n) for b in range(n)):
+        for (p, q), c in reduce_pair(P, g * x**a * y**b).to_dict().items():
+            M[p * n + q, col] = c
+    return M.charpoly()
 
 
 @lru_cache(maxsize=16)

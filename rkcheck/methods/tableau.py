@@ -15,7 +15,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
-from typing import Any, Mapping, Protocol, Sequence
+from typing import Any, Callable, Mapping, Protocol, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.methods.arrays import FloatMode, entries_from_arrays
@@ -55,18 +55,62 @@ class MethodInfo:
         return dataclasses.replace(self, **changes)
 
 
-@dataclass(frozen=True)
 class ExactValues:
-    """A tableau's entries exactly, in one number field (``field`` None: rationals)."""
+    """A tableau's entries exactly, in one number field (``field`` None: rationals).
 
-    field: NumberField | None
-    A: list[list[Any]]
-    b: list[Any]
-    c: list[Any] | None
-    #: the entries as polynomials in the nodes (a family's
-    #: :class:`~rkcheck.methods.node_form.NodeForm`), when they are: conditions are then
-    #: computed without the field (:mod:`rkcheck.evaluation.split_nodes`)
-    nodes: Any = None
+    A family in node form (``nodes``, a :class:`~rkcheck.methods.node_form.NodeForm`)
+    has its conditions computed over Q (:mod:`rkcheck.evaluation.split_nodes`); with an
+    ``algebra`` (:class:`~rkcheck.methods.node_algebra.NodeAlgebra`) its properties too,
+    and then ``load`` builds the field and the entries in it only when something reads
+    them (:meth:`entries`)."""
+
+    def __init__(self, field: NumberField | None, A: list[list[Any]] | None, b: list[Any] | None,
+                 c: list[Any] | None, nodes: Any = None, algebra: Any = None,
+                 load: Callable[[], tuple[NumberField, list[list[Any]], list[Any]]] | None = None):
+        self.c, self.nodes, self.algebra = c, nodes, algebra
+        self._load = load
+        self._built: tuple[NumberField | None, list[list[Any]], list[Any]] | str | None = (
+            None if load is not None else (field, A or [], b or []))
+
+    def entries(self) -> tuple[NumberField | None, list[list[Any]], list[Any]] | None:
+        """``(field, A, b)``, built on first use; None when the field exceeds its limits
+        (possible only for a family in node form, which needs no field to be checked)."""
+        if self._built is None:
+            assert self._load is not None
+            try:
+                self._built = self._load()
+            except NotAlgebraic as err:
+                self._built = str(err)
+        return None if isinstance(self._built, str) else self._built
+
+    def _entries(self) -> tuple[NumberField | None, list[list[Any]], list[Any]]:
+        found = self.entries()
+        if found is None:
+            raise NotAlgebraic(str(self._built))
+        return found
+
+    @property
+    def field(self) -> NumberField | None:
+        return self._entries()[0]
+
+    @property
+    def A(self) -> list[list[Any]]:
+        return self._entries()[1]
+
+    @property
+    def b(self) -> list[Any]:
+        return self._entries()[2]
+
+    @property
+    def is_rational(self) -> bool:
+        """Every entry rational (never true of a family in node form)."""
+        return self.nodes is None and self.field is None
+
+    def weight_sum(self) -> Any:
+        """``Σ b_j`` exactly (over Q from the node form, without the field)."""
+        if self.algebra is not None:
+            return self.algebra.weight_sum()
+        return sum(self.b)
 
 
 class FamilyCoefficient(Protocol):

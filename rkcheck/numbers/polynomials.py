@@ -456,3 +456,17 @@ def poly_text(coeffs: Sequence[Fraction], variable: str = "x") -> str:
     for sign, text in parts[1:]:
         out += (" - " if sign < 0 else " + ") + text
     return out
+
+
+def to_arb(q: Fraction | int) -> Any:
+    """The rational ``q`` as an Arb ball at the current working precision."""
+    from flint import arb, fmpz
+
+    q = Fraction(q)
+    return arb(fmpz(q.numerator)) / fmpz(q.denominator)
+
+
+def arb_interval(ball: Any) -> Interval:
+    """The rational interval ``mid ± rad`` of a finite real Arb ball."""
+    mid, rad = to_fraction(ball.mid()), to_fraction(ball.rad())
+    return Interval(mid - rad, mid + rad)

@@ -177,4 +177,7 @@ def stability_line(stab: StabilityFunction) -> str:
 def tableau_stability(values: TableauValues) -> StabilityFunction:
     """R(z) of a tableau without running a check (for ``show``): exact when its values
     are, else from their enclosures."""
+    exact = values.exact
+    if exact is not None and exact.algebra is not None:  # over Q from the node form, no field
+        return stability_function([], list(values.b), exact.nodes.stability_series(2 * values.stages))
     return stability_function(*sc.tableau_values(values))

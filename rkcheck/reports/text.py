@@ -130,6 +130,8 @@ def per_order_table(res: CheckResult) -> Table:
 def _backend_text(res: CheckResult) -> str:
     if res.backend is Backend.EXACT:
         exact = res.values.exact
+        if exact is not None and exact.algebra is not None:  # no field built: its degree is not known
+            return f"exact arithmetic over Q (entries polynomials in the roots of a degree-{res.values.stages} node polynomial)"
         if exact is None or exact.field is None:
             return "exact rational arithmetic"
         where = f"Q({exact.field.name})" if exact.field.sqrt_of else f"a number field of degree {exact.field.degree}"
