@@ -341,12 +341,52 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     (:mod:`rkcheck.numbers.deadline`), so that the time limit holds inside FLINT's root
     isolation too; purely rational ones need no field and stay here."""
     everything = list(nodes) + list((constants or {}).values())
-    if not any(isinstance(node, ex.Call) for expr in everything for node in xp.walk(expr)):
+    calls = [node for expr in everything for node in xp.walk(expr) if isinstance(node, ex.Call)]
+    if not calls:
         return FieldValues(None, _rational_values(nodes, constants))
+    if _few_small_square_roots(calls, constants):  # nothing in it can run long
+        return _field_of(nodes, constants, max_degree)
     try:
         return call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)
     except Overrun:
         raise _too_slow() from None
+
+
+#: square roots of rationals whose numerator and denominator have at most this many bits,
+#: at most ``SMALL_ROOTS`` distinct ones, are built in this process: a field of degree at
+#: most 8 over small square roots takes milliseconds, less than the child process that
+#: bounds the time of every other field (a fork of this process alone takes about 10 ms)
+SMALL_ROOT_BITS, SMALL_ROOTS = 64, 3
+
+
+def _few_small_square_roots(calls: list[ex.Call], constants: Mapping[str, ex.Expr] | None) -> bool:
+    """Is every root a square root of a small rational (its argument without roots), and
+    are there few of them?"""
+    definitions = constants or {}
+
+    def root_free(expr: ex.Expr, seen: frozenset[str] = frozenset()) -> bool:
+        for n in xp.walk(expr):
+            if isinstance(n, ex.Call):
+                return False
+            if isinstance(n, ex.Name) and n.name in definitions and n.name not in seen:
+                if not root_free(definitions[n.name], seen | {n.name}):
+                    return False
+        return True
+
+    radicands: set[Fraction] = set()
+    for call in calls:
+        if call.func != "sqrt" or not root_free(call.args[0]):
+            return False
+        try:
+            (value,) = _rational_values([call.args[0]], constants)
+        except (NotAlgebraic, UserError, ArithmeticError, RecursionError):
+            return False
+        if max(abs(value.numerator), value.denominator).bit_length() > SMALL_ROOT_BITS:
+            return False
+        radicands.add(value)
+        if len(radicands) > SMALL_ROOTS:
+            return False
+    return True
 
 
 def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,

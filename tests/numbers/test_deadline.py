@@ -58,3 +58,41 @@ def test_an_exception_comes_back_without_its_chain():
     pickling_support.install()
     with pytest.raises(UserError, match="nested too deeply"):
         call_within(30, _fails_after_a_recursion)
+
+
+def _fields(entries, constants=None):
+    """``field_of`` in this process and in a child, with the calls to the child counted."""
+    from rkcheck.numbers import field_builder
+    from rkcheck.numbers import grammar as ex
+
+    nodes = [ex.parse(e) for e in entries]
+    defs = {k: ex.parse(v) for k, v in (constants or {}).items()}
+    forks = []
+    original = field_builder.call_within
+
+    def counted(*args):
+        forks.append(args)
+        return original(*args)
+
+    field_builder.call_within = counted
+    try:
+        found = field_builder.field_of(nodes, defs)
+    finally:
+        field_builder.call_within = original
+    alone = field_builder._field_of(nodes, defs, field_builder.MAX_FIELD_DEGREE)  # the child's work, here
+    assert found.field.degree == alone.field.degree
+    assert [v.enclosure(100) for v in found.values] == [v.enclosure(100) for v in alone.values]
+    return len(forks)
+
+
+def test_small_square_roots_need_no_child():
+    """A few square roots of small rationals are built here (the same field and values
+    as the child's); nested roots, ``root(p, k)``, large radicands and many roots keep
+    their time limit in a child."""
+    assert _fields(["sqrt(3)/6", "1/2 + sqrt(3)", "sqrt(12)"]) == 0
+    assert _fields(["sqrt(a) + sqrt(5)"], {"a": "2/3"}) == 0
+    assert _fields(["sqrt(2) + sqrt(3) + sqrt(5) + sqrt(7)"]) == 1
+    assert _fields(["sqrt(sqrt(2))"]) == 1
+    assert _fields(["sqrt(a)"], {"a": "sqrt(2)"}) == 1
+    assert _fields(["sqrt(3 + 2^70)"]) == 1
+    assert _fields(["root(x^3 - 2, 1)"]) == 1
