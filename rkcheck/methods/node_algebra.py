@@ -47,9 +47,9 @@ class NodeAlgebra:
     # ----------------------------------------------------------- the algebra
 
     @cached_property
-    def _ring(self) -> tuple[Any, Any, Any]:
+    def _ring(self) -> tuple[Any, Any]:
         _, x, y = pair_ring()
-        return x, y, self.poly(self.form.P, x)
+        return x, y
 
     def __getstate__(self) -> dict[str, Any]:
         return {"form": self.form, "nodes": self.nodes, "n": self.n}  # FLINT objects are rebuilt
