@@ -130,10 +130,10 @@ def per_order_table(res: CheckResult) -> Table:
 def _backend_text(res: CheckResult) -> str:
     if res.backend is Backend.EXACT:
         exact = res.values.exact
-        if exact is None or exact.is_rational:
-            return "exact rational arithmetic"
-        if exact.algebra is not None:  # a family's conditions over Q, and no field built: its degree is unknown
+        if exact is not None and exact.algebra is not None:  # a family's conditions over Q, and no field built
             return f"exact arithmetic over Q (entries polynomials in the roots of a degree-{res.values.stages} node polynomial)"
+        if exact is None or exact.field is None:
+            return "exact rational arithmetic"
         where = f"Q({exact.field.name})" if exact.field.sqrt_of else f"a number field of degree {exact.field.degree}"
         return f"exact arithmetic over Q (entries in {where})" if exact.nodes is not None else f"exact arithmetic in {where}"
     return f"certified ball arithmetic at {res.options.dps} digits"
