@@ -266,12 +266,12 @@ def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
         coef = np.array(terms.coefficients, dtype=object)[idx[real]]
         assert list(mult[real].astype(object) * g[cond[real]].astype(object)) == list(coef)
         assert np.bincount(cond[real], weights=np.abs(mult[real])).max(initial=0) <= n
-    # the sums of |c| in two halves of 31 bits (the orders past 18 vertices) give the same divisors
+    # the sums of |c| in two halves of 31 bits (the orders past 20 vertices) give the same divisors
     for terms in listing.orders.values():
         exact = np.array(terms.coefficients, dtype=np.int64)
         at_once = digit_sums._orbit_divisors(terms, exact)
         with monkeypatch.context() as m:
-            m.setattr(digit_sums, "_FLOAT_INTEGERS", 0)
+            m.setattr(digit_sums, "_INT64_SUMS", 0)
             assert digit_sums._orbit_divisors(terms, exact).tolist() == at_once.tolist()
     monkeypatch.setattr(digit_sums, "_orbit_divisors", lambda terms, exact: None)
     gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
