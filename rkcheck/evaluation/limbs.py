@@ -215,7 +215,7 @@ class LimbBallContext:
         if store.count + k > len(store.digits):
             raise AssertionError("certified digits: a store was written twice")
         if rows is None:
-            store.digits[store.count:store.count + n] = x[0]
+            _copy_digits(store.digits[store.count:store.count + n], x[0])
             if store.place is not None or lo != store.count - 1:  # not the rows in order
                 store.placed()[lo:lo + n] = np.arange(store.count, store.count + n)
         else:
@@ -448,6 +448,17 @@ class _Store:
 
 #: stores keep the digits of the rows with a nonzero code only (False: of every row)
 _COMPACT = True
+
+
+def _copy_digits(dst: np.ndarray, src: np.ndarray) -> None:
+    """``dst[...] = src``, digit by digit when ``src`` is digit-major (a transposed view,
+    as the products give it): each digit's plane is then read in order, where a copy row
+    by row jumps between the planes (1.2 to 1.6 times faster)."""
+    if src.flags.c_contiguous:
+        dst[...] = src
+        return
+    for j in range(src.shape[-1]):
+        dst[..., j] = src[..., j]
 
 
 #: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
