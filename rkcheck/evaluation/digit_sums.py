@@ -133,17 +133,23 @@ def multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
     """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
     where it is not an integer, and for the superfluous trees' bin), the sums exact in
-    float64 — at once where every condition's sum is below 2^53 (``n`` times the largest
-    ``|c|``: up to 18 vertices), else as two halves of 31 bits; None when a condition has
+    int64 where every condition's sum is below 2^63 (``n`` times the largest ``|c|``: up
+    to 20 vertices), else in float64 as two halves of 31 bits; None when a condition has
     so many terms that they might not be."""
     k1, n = len(terms) + 1, terms.vertices
     if len(terms) and int(terms.counts.max()) > n:
         return None
     cabs = np.abs(exact)
-    if n * int(cabs.max(initial=0)) < _FLOAT_INTEGERS:
-        halves = [cabs.astype(np.float64)]
-    else:
-        halves = [(cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)]
+    if n * int(cabs.max(initial=0)) < _INT64_SUMS:
+        # exact in int64, and numpy's unbuffered add.at costs the terms alone, where a
+        # bincount per chunk costs every condition of the order (nine tenths of the time)
+        whole = np.zeros(k1, dtype=np.int64)
+        for t0 in range(0, terms.rows, _PLAN_CHUNK):
+            cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
+            np.add.at(whole, cond, cabs[idx])
+        q, r = np.divmod(whole[:-1], n)
+        return _divisors(q, r, k1)
+    halves = [(cabs >> 31).astype(np.float64), (cabs & (2**31 - 1)).astype(np.float64)]
     sums = [np.zeros(k1) for _ in halves]
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
         cond, idx = terms.block(t0, min(terms.rows, t0 + _PLAN_CHUNK))
@@ -152,9 +158,13 @@ def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
     # Σ|c| divided by n; in halves (at most n terms per condition, halves below 2^31: both
     # sums below n·2^31, exact) Σ|c| = 2^31·S_hi + S_lo is divided in two steps, within int64
     q, r = np.divmod(sums[0][:-1].astype(np.int64), n)
-    if len(sums) == 2:
-        q2, r = np.divmod((r << 31) + sums[1][:-1].astype(np.int64), n)
-        q = (q << 31) + q2
+    q2, r = np.divmod((r << 31) + sums[1][:-1].astype(np.int64), n)
+    return _divisors((q << 31) + q2, r, k1)
+
+
+def _divisors(q: np.ndarray, r: np.ndarray, k1: int) -> np.ndarray:
+    """The divisors ``q = Σ|c|/n`` where the division left no remainder ``r`` (2^62
+    elsewhere, and for the superfluous trees' bin)."""
     divisors = np.full(k1, 2**62, dtype=np.int64)
     divisors[:-1] = np.where((r == 0) & (q > 0), q, 2**62)
     return divisors
@@ -194,8 +204,8 @@ def _largest_weight(terms, mult: np.ndarray) -> float:
 #: (a dozen arrays of its length) stay below a few MB — chunks of 2^18 terms cost a check
 #: of decimal RK4 at order 16 a sixth of its page faults and 15 MB of its peak memory
 _PLAN_CHUNK = 1 << 16
-#: float64 holds every integer below this exactly
-_FLOAT_INTEGERS = 2**53
+#: int64 sums of nonnegative terms stay exact below this
+_INT64_SUMS = 2**63
 
 
 def digits_to_ints(digits: np.ndarray, beta: int) -> np.ndarray:

@@ -84,3 +84,32 @@ def test_digit_sums_exceed_as_the_fractions(seed):
     assert 0 < sum(expected) < len(expected)
     ref = BallSums(np.array([int(m) for m in digit.mids], dtype=object), digit.rads, BITS, 0, F)
     assert ref.exceeds(t).tolist() == expected
+
+
+@pytest.mark.parametrize("vertices", [5, 8, 10])
+def test_multiplier_divisors_are_the_integer_sums(vertices, monkeypatch):
+    """Each condition's divisor, by either route (int64 sums, or float64 halves), is
+    Σ|c|/n computed with Python integers where that is an integer, and each term's
+    multiplier times it gives back the term's coefficient."""
+    from rkcheck.evaluation import digit_sums
+    from rkcheck.trees.listing import ConditionListing
+
+    terms = ConditionListing(vertices - 1, None).orders[vertices]
+    coef = terms.coefficients
+    cond, idx = terms.block(0, terms.rows)
+    totals = [0] * (len(terms) + 1)
+    for k, i in zip(cond.tolist(), idx.tolist()):
+        totals[k] += abs(coef[i])
+    expected = [t // vertices if t % vertices == 0 and t else 2**62 for t in totals[:-1]]
+    exact = np.array(coef, dtype=np.int64)
+    routes = [digit_sums._orbit_divisors(terms, exact)]
+    monkeypatch.setattr(digit_sums, "_INT64_SUMS", 0)  # the halves, as past 20 vertices
+    routes.append(digit_sums._orbit_divisors(terms, exact))
+    for g in routes:
+        assert g is not None
+        assert g[:-1].tolist() == expected
+        mult = digit_sums._quotients(terms, exact, g)
+        assert mult is not None
+        real = cond < len(terms)
+        assert all(int(m) * int(g[k]) == coef[i]
+                   for m, k, i in zip(mult[real].tolist(), cond[real].tolist(), idx[real].tolist()))

@@ -22,12 +22,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import rkcheck.evaluation.algorithm as algorithm
+import rkcheck.evaluation.digit_sums as digit_sums
 import rkcheck.trees.classes as classes
 import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import LIMB_MIN_VERTICES, BallContext
-import rkcheck.evaluation.digit_sums as digit_sums
 from rkcheck.evaluation.limbs import LimbBallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
@@ -124,7 +124,8 @@ def test_chunked_digit_balls_are_bit_identical(monkeypatch):
 def test_zero_and_one_mid_points_skipped_or_multiplied_give_the_same_balls(monkeypatch, seed, explicit):
     # an explicit tableau (strictly lower triangular A): most weights of tall trees are
     # exactly zero; in any tableau the products with the factor τ are by exactly one.
-    # Skipping their digit products (every row sparse) or multiplying them (none) gives
+    # Skipping their digit products (every row sparse) or multiplying them (none), and
+    # storing and gathering the digits of the nonzero rows only or of every row, gives
     # the same balls, bit for bit, and they enclose the exact values
     rng = random.Random(seed)
     s = 4
@@ -133,13 +134,19 @@ def test_zero_and_one_mid_points_skipped_or_multiplied_give_the_same_balls(monke
     b = [Fraction(rng.randint(1, 9), 9 * s) for _ in range(s)]
     listing = ConditionListing(11, None)
     runs = []
-    for share in (1.0, -1.0):  # rows computed: only the nonzero ones / all of them
+    # rows multiplied, rows whose digits a gather copies (only the nonzero ones: 1.0, all
+    # of them: -1.0), digits stored for the nonzero rows only
+    for share, gather, compact in ((-1.0, -1.0, False), (1.0, 1.0, True), (1.0, -1.0, True), (-1.0, 1.0, False),
+                                   (-1.0, -1.0, True)):
         monkeypatch.setattr("rkcheck.evaluation.limbs._SPARSE", share)
+        monkeypatch.setattr("rkcheck.evaluation.limbs._SPARSE_COPY", gather)
+        monkeypatch.setattr("rkcheck.evaluation.limbs._COMPACT", compact)
         runs.append(assert_encloses(listing, A, b, LimbBallContext.create(*points(A, b), 200, vertices=12), 1e-50))
-    sparse, dense = runs
-    for n in dense:
-        assert list(sparse[n].mids) == list(dense[n].mids)
-        assert sparse[n].rads.tolist() == dense[n].rads.tolist()
+    dense = runs[0]
+    for other in runs[1:]:
+        for n in dense:
+            assert list(other[n].mids) == list(dense[n].mids)
+            assert other[n].rads.tolist() == dense[n].rads.tolist()
 
 
 def test_large_listings_of_small_weights_use_digits():
@@ -266,12 +273,12 @@ def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
         coef = np.array(terms.coefficients, dtype=object)[idx[real]]
         assert list(mult[real].astype(object) * g[cond[real]].astype(object)) == list(coef)
         assert np.bincount(cond[real], weights=np.abs(mult[real])).max(initial=0) <= n
-    # the sums of |c| in two halves of 31 bits (the orders past 18 vertices) give the same divisors
+    # the sums of |c| in two halves of 31 bits (the orders past 20 vertices) give the same divisors
     for terms in listing.orders.values():
         exact = np.array(terms.coefficients, dtype=np.int64)
         at_once = digit_sums._orbit_divisors(terms, exact)
         with monkeypatch.context() as m:
-            m.setattr(digit_sums, "_FLOAT_INTEGERS", 0)
+            m.setattr(digit_sums, "_INT64_SUMS", 0)
             assert digit_sums._orbit_divisors(terms, exact).tolist() == at_once.tolist()
     monkeypatch.setattr(digit_sums, "_orbit_divisors", lambda terms, exact: None)
     gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
