@@ -51,6 +51,7 @@ from rkcheck.evaluation.digit_sums import (
     digits_to_ints,
     multipliers,
 )
+from rkcheck.evaluation.limb_store import STORE, LimbStore, copy_digits
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -59,7 +60,7 @@ _EXACT = 2.0**62
 #: rows per block of the digit arithmetic (its temporaries stay in the cache)
 _BLOCK = 8192
 #: stored digits: below 2^30 (β <= 30), so int32 holds them; the arithmetic is int64
-_STORE = np.int32
+_STORE = STORE
 
 
 def _layout(bits: int, s: int) -> tuple[int, int] | None:
@@ -170,11 +171,11 @@ class LimbBallContext:
 
     # ------------------------------------------------------------- kernel
 
-    def vectors(self, n: int, s: int) -> _Store:
-        return _Store((n, s), self.L)
+    def vectors(self, n: int, s: int) -> LimbStore:
+        return LimbStore((n, s), self.L)
 
-    def scalars(self, n: int) -> _Store:
-        return _Store((n,), self.L)
+    def scalars(self, n: int) -> LimbStore:
+        return LimbStore((n,), self.L)
 
     def ones(self, k: int, s: int):
         mid = np.zeros((k, s, self.L), dtype=_STORE)
@@ -189,7 +190,7 @@ class LimbBallContext:
     def take(self, x, idx):
         """The rows ``idx`` of a value or a store; from a store, the digits only of the
         rows whose code is not :data:`_ZERO` when those are few (the others are zeros)."""
-        if not isinstance(x, _Store):
+        if not isinstance(x, LimbStore):
             return tuple(np.take(part, idx, axis=0) for part in x)
         codes = np.take(x.codes, idx, axis=0)
         rows = self._nonzero_rows((None, None, None, codes), _SPARSE_COPY)
@@ -200,7 +201,7 @@ class LimbBallContext:
             digits[rows] = np.take(x.digits, x.places(idx[rows]), axis=0)
         return digits, np.take(x.rad, idx, axis=0), np.take(x.g, idx, axis=0), codes
 
-    def put(self, store: _Store, lo: int, x) -> None:
+    def put(self, store: LimbStore, lo: int, x) -> None:
         """Store the rows of ``x`` from row ``lo`` on: the digits of those whose code
         is not :data:`_ZERO` at the store's next free places."""
         n = len(x[1])
@@ -215,7 +216,7 @@ class LimbBallContext:
         if store.count + k > len(store.digits):
             raise AssertionError("certified digits: a store was written twice")
         if rows is None:
-            _copy_digits(store.digits[store.count:store.count + n], x[0])
+            copy_digits(store.digits[store.count:store.count + n], x[0])
             if store.place is not None or lo != store.count - 1:  # not the rows in order
                 store.placed()[lo:lo + n] = np.arange(store.count, store.count + n)
         else:
@@ -408,57 +409,8 @@ class LimbBallContext:
         return DigitBallSums(carried, divisors, rads, self.bits, self.digit_bits, math.factorial(n - 1))
 
 
-class _Store:
-    """Stored values of :class:`LimbBallContext`: the radii, magnitude bounds and codes of
-    every row, and the digits of the rows whose code is not :data:`_ZERO` only, in the
-    order they were stored (``place``: each row's; row 0 of ``digits`` is zeros, the
-    place of every other row).  Most weights of an explicit tableau's tall trees are
-    zero (RK4: 96 % of those with 17 vertices), and their digits were two thirds of what
-    the weights took.  ``nbytes`` is that of a store of every row's digits, which the
-    kernel sizes its choices by (:func:`~rkcheck.evaluation.algorithm._phi_vertices`):
-    the same choices, the same batches of every product, the same bits."""
-
-    __slots__ = ("digits", "rad", "g", "codes", "place", "count", "nbytes")
-
-    def __init__(self, shape: tuple[int, ...], L: int):
-        n = shape[0]
-        # zeros: pages that are never written take no memory (the digits past the last
-        # place used)
-        self.digits = np.zeros((n + 1,) + shape[1:] + (L,), dtype=_STORE)
-        self.rad, self.g = np.zeros(shape), np.zeros(shape)
-        self.codes = np.zeros(shape, dtype=np.uint8)
-        # None while every row stored so far is nonzero and came in order (row i at place
-        # i + 1): a tableau without zero weights needs no places
-        self.place: np.ndarray | None = None
-        self.count = 1
-        self.nbytes = int(np.prod(shape)) * (L * np.dtype(_STORE).itemsize + 8 + 8 + 1)
-
-    def placed(self) -> np.ndarray:
-        """The places of the rows, made explicit when first needed."""
-        if self.place is None:
-            n = len(self.codes)
-            self.place = np.zeros(n, dtype=np.int32 if n < 2**31 else np.int64)
-            self.place[:self.count - 1] = np.arange(1, self.count)
-        return self.place
-
-    def places(self, idx: np.ndarray) -> np.ndarray:
-        """The places of the digits of the rows ``idx``."""
-        return idx + 1 if self.place is None else np.take(self.place, idx)
-
-
 #: stores keep the digits of the rows with a nonzero code only (False: of every row)
 _COMPACT = True
-
-
-def _copy_digits(dst: np.ndarray, src: np.ndarray) -> None:
-    """``dst[...] = src``, digit by digit when ``src`` is digit-major (a transposed view,
-    as the products give it): each digit's plane is then read in order, where a copy row
-    by row jumps between the planes (1.2 to 1.6 times faster)."""
-    if src.flags.c_contiguous:
-        dst[...] = src
-        return
-    for j in range(src.shape[-1]):
-        dst[..., j] = src[..., j]
 
 
 #: one pass of a matrix product: (column j, digit q, the outputs where it is nonzero or None: all, their digits)
