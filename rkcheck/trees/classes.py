@@ -26,6 +26,7 @@ a condition is shown (:meth:`ConditionListing.record
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 import numpy as np
 
@@ -67,7 +68,7 @@ def classify(table: TreeTable, n: int, last: bool = False,
         right=V_all,
         condition=cls,
         coefficient_index=coefficient_index,
-        coefficients=_signed_coefficients(walk.sigma_of, n),
+        coefficients=_signed_coefficients(walk.sigma_of, n, table.sigma_value),
         counts=counts.astype(np.int32),
         superfluous=walk.superfluous,
         rep_left=rep["left"].astype(np.int32),
@@ -198,11 +199,13 @@ def _term_factors(table: TreeTable, n: int, size: int,
     return U_all, V_all
 
 
-def _signed_coefficients(sigma_of: dict[int, int], n: int) -> list[int]:
-    """``±(n−1)!/σ`` for every distinct σ: index 2i positive, 2i + 1 negative."""
+def _signed_coefficients(sigma_of: dict[int, int], n: int, value_of: Callable[[int], int] = int) -> list[int]:
+    """``±(n−1)!/σ`` for every distinct σ: index 2i positive, 2i + 1 negative
+    (``value_of``: the exact σ of a key of the table's :attr:`~TreeTable.sigma`)."""
     factorial = math.factorial(n - 1)
     coefficients = [0] * (2 * len(sigma_of))
-    for value, i in sigma_of.items():
+    for key, i in sigma_of.items():
+        value = value_of(key)
         coefficients[2 * i] = factorial // value
         coefficients[2 * i + 1] = -(factorial // value)
     return coefficients

@@ -47,6 +47,9 @@ _FIELDS = {  # per-tree arrays and their dtypes
     "rank": np.int32, "inner_max": np.int8,
 }
 _CHUNK = 1 << 20  # rows per vectorised step: bounds the temporaries
+#: σ from here on is kept in :attr:`TreeTable.sigma` as a key of its exact value
+#: (:meth:`TreeTable.sigma_value`): 21!, σ of the bush with 22 vertices, exceeds int64
+SIGMA_LIMIT = 1 << 62
 
 
 class TreeTable:
@@ -103,6 +106,9 @@ class TreeTable:
         self._lefts_sorted: dict[int, np.ndarray] = {}  # order -> left-factor ids sorted by largest child
         self._block_cache: dict[int, list] = {}
         self._count: dict[int, int] = {}
+        # the exact σ of at least SIGMA_LIMIT, by key (sigma_value), and the keys by value
+        self._big_sigma: list[int] = []
+        self._big_sigma_keys: dict[int, int] = {}
         self._prepare_lefts(1)
         self.max_order = 1
         self.grow_to(max_order)
@@ -325,10 +331,39 @@ class TreeTable:
             rest[via_u] = self.product(self.rest[U[via_u]], V[via_u])
         return {
             "left": U, "right": V, "nchild": self.nchild[U] + 1, "h1": h1, "h2": h2, "tall": tall,
-            "rest": rest, "mult": mult, "sigma": self.sigma[U] * self.sigma[V] * mult, "order": n,
+            "rest": rest, "mult": mult, "sigma": self._sigma_product(U, V, mult), "order": n,
             "rank": _NONE,
             "inner_max": np.maximum(self.inner_max[U], np.maximum(self.inner_max[V], self.nchild[V] + 1)),
         }
+
+    def _sigma_product(self, U: np.ndarray, V: np.ndarray, mult: np.ndarray) -> np.ndarray:
+        """``σ(u ∘ v) = σ(u)·σ(v)·mult`` as :attr:`sigma` keeps it: the value itself below
+        :data:`SIGMA_LIMIT`, else a key of the exact value (:meth:`sigma_value`).  21!, the
+        bush with 22 vertices, exceeds int64: multiplied there, it wrapped around."""
+        su, sv = self.sigma[U], self.sigma[V]
+        out = su * sv * mult
+        # a float estimate flags the products that may reach the limit (its error is far
+        # below the factor 2 between the limit and int64's range)
+        big = np.flatnonzero((su < 0) | (sv < 0) | (su.astype(np.float64) * sv * mult >= SIGMA_LIMIT))
+        if len(big):
+            out[big] = [self._sigma_key(self.sigma_value(a) * self.sigma_value(b) * m)
+                        for a, b, m in zip(su[big].tolist(), sv[big].tolist(), mult[big].tolist())]
+        return out
+
+    def _sigma_key(self, value: int) -> int:
+        """What :attr:`sigma` keeps for the exact σ ``value``: itself when below the
+        limit, else ``−1 − i`` for the i-th such value (the same key for the same value)."""
+        if value < SIGMA_LIMIT:
+            return value
+        key = self._big_sigma_keys.get(value)
+        if key is None:
+            key = self._big_sigma_keys[value] = -1 - len(self._big_sigma)
+            self._big_sigma.append(value)
+        return key
+
+    def sigma_value(self, key: int) -> int:
+        """The exact σ of an entry of :attr:`sigma`."""
+        return key if key >= 0 else self._big_sigma[-1 - key]
 
     # ----------------------------------------------------------------- lookups
 
