@@ -26,6 +26,7 @@ a condition is shown (:meth:`ConditionListing.record
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 import numpy as np
 
@@ -54,7 +55,7 @@ def classify(table: TreeTable, n: int, last: bool = False,
     U_all, V_all = (None, None) if stored else _term_factors(table, n, size, factors_out)
     rep = walk.representatives()
     cls, parity = walk.classes(rep["local"])
-    counts = np.bincount(cls, minlength=len(rep["local"]) + 1)[:len(rep["local"])]
+    counts = _class_sizes(cls, len(rep["local"]) + 1)[:len(rep["local"])]
     # the sign folds into the coefficient: index 2i is +(n−1)!/σ_i, 2i + 1 is its negative
     coefficient_index = walk.sigma_index
     coefficient_index *= 2
@@ -67,7 +68,7 @@ def classify(table: TreeTable, n: int, last: bool = False,
         right=V_all,
         condition=cls,
         coefficient_index=coefficient_index,
-        coefficients=_signed_coefficients(walk.sigma_of, n),
+        coefficients=_signed_coefficients(walk.sigma_of, n, table.sigma_value),
         counts=counts.astype(np.int32),
         superfluous=walk.superfluous,
         rep_left=rep["left"].astype(np.int32),
@@ -166,20 +167,41 @@ class _CentreWalk:
 
     def classes(self, reps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Every rooting's class (superfluous trees: one extra bin, ``len(reps)``) and the
-        parity of its path to the representative, by pointer jumping."""
+        parity of its path to the representative, by pointer jumping.
+
+        In place, a chunk at a time: a chunk reads the (next, parity) pairs of the others
+        as they stand, jumped already or not — each is the pair of one step along the
+        path, written together — so every pass only shortens paths, until one changes
+        nothing: every rooting then points at the end of its path.  No array of the
+        order's size is allocated beside the walk's own."""
         nxt, parity = self.nxt, self.parity
         del self.nxt, self.parity  # the walk's arrays are the largest of the order: free early
         nxt -= self.lo
-        while True:
-            jumped = nxt[nxt]
-            if np.array_equal(jumped, nxt):
-                break
-            parity ^= parity[nxt]
-            nxt = jumped
-        del jumped
+        moved = True
+        while moved:
+            moved = False
+            for a in range(0, len(nxt), _CHUNK):
+                here = nxt[a:a + _CHUNK]
+                ahead = nxt[here]
+                if np.array_equal(ahead, here):
+                    continue
+                parity[a:a + _CHUNK] ^= parity[here]
+                nxt[a:a + _CHUNK] = ahead
+                moved = True
         class_of = np.full(len(nxt), len(reps), dtype=np.int32)
         class_of[reps] = np.arange(len(reps), dtype=np.int32)
-        return class_of[nxt], parity
+        for a in range(0, len(nxt), _CHUNK):  # the classes overwrite the pointers
+            nxt[a:a + _CHUNK] = class_of[nxt[a:a + _CHUNK]]
+        return nxt, parity
+
+
+def _class_sizes(cls: np.ndarray, bins: int) -> np.ndarray:
+    """The rootings per class, counted in chunks (``np.bincount`` widens its input to
+    intp: a copy of twice the classes' size at once)."""
+    sizes = np.zeros(bins, dtype=np.int64)
+    for a in range(0, len(cls), _CHUNK):
+        sizes += np.bincount(cls[a:a + _CHUNK], minlength=bins)
+    return sizes
 
 
 def _term_factors(table: TreeTable, n: int, size: int,
@@ -198,11 +220,13 @@ def _term_factors(table: TreeTable, n: int, size: int,
     return U_all, V_all
 
 
-def _signed_coefficients(sigma_of: dict[int, int], n: int) -> list[int]:
-    """``±(n−1)!/σ`` for every distinct σ: index 2i positive, 2i + 1 negative."""
+def _signed_coefficients(sigma_of: dict[int, int], n: int, value_of: Callable[[int], int] = int) -> list[int]:
+    """``±(n−1)!/σ`` for every distinct σ: index 2i positive, 2i + 1 negative
+    (``value_of``: the exact σ of a key of the table's :attr:`~TreeTable.sigma`)."""
     factorial = math.factorial(n - 1)
     coefficients = [0] * (2 * len(sigma_of))
-    for value, i in sigma_of.items():
+    for key, i in sigma_of.items():
+        value = value_of(key)
         coefficients[2 * i] = factorial // value
         coefficients[2 * i + 1] = -(factorial // value)
     return coefficients

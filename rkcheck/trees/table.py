@@ -47,6 +47,9 @@ _FIELDS = {  # per-tree arrays and their dtypes
     "rank": np.int32, "inner_max": np.int8,
 }
 _CHUNK = 1 << 20  # rows per vectorised step: bounds the temporaries
+#: σ from here on is kept in :attr:`TreeTable.sigma` as a key of its exact value
+#: (:meth:`TreeTable.sigma_value`): 21!, σ of the bush with 22 vertices, exceeds int64
+SIGMA_LIMIT = 1 << 62
 
 
 class TreeTable:
@@ -82,14 +85,18 @@ class TreeTable:
         self.inner_bound = inner_bound
         self.first = [0, 0, 1]  # first[n] for n = 0, 1, 2 (order 1 is τ alone)
         self._capacity = max(capacity, 1)
-        for name, dtype in _FIELDS.items():
+        # without a root bound a tree's rank among the left factors follows from its id
+        # (:meth:`_prepare_lefts`): no array of them (4 bytes a tree)
+        self._fields = {k: t for k, t in _FIELDS.items() if k != "rank" or root_bound is not None}
+        self.rank = np.empty(0, dtype=np.int32)
+        for name, dtype in self._fields.items():
             # np.empty: pages are only touched (and counted as resident) once written
             setattr(self, name, np.empty(self._capacity, dtype=dtype))
         if factors is not None:
             if min(len(factors[0]), len(factors[1])) < self._capacity:
                 raise ValueError("the factor arrays are shorter than the capacity")
             self.left, self.right = factors
-        for name in _FIELDS:
+        for name in self._fields:
             getattr(self, name)[0] = 0
         self.left[0] = self.right[0] = self.tall[0] = self.rest[0] = _NONE
         self.sigma[0] = self.order[0] = 1
@@ -99,6 +106,9 @@ class TreeTable:
         self._lefts_sorted: dict[int, np.ndarray] = {}  # order -> left-factor ids sorted by largest child
         self._block_cache: dict[int, list] = {}
         self._count: dict[int, int] = {}
+        # the exact σ of at least SIGMA_LIMIT, by key (sigma_value), and the keys by value
+        self._big_sigma: list[int] = []
+        self._big_sigma_keys: dict[int, int] = {}
         self._prepare_lefts(1)
         self.max_order = 1
         self.grow_to(max_order)
@@ -130,7 +140,7 @@ class TreeTable:
         if size <= self._capacity:
             return
         cap = size
-        for name, dtype in _FIELDS.items():
+        for name, dtype in self._fields.items():
             arr = np.empty(cap, dtype=dtype)
             arr[:used] = getattr(self, name)[:used]
             setattr(self, name, arr)
@@ -150,27 +160,82 @@ class TreeTable:
 
     def _prepare_lefts(self, k: int) -> None:
         """The trees of order k that can be left factors (room for one more child at the
-        root), sorted by their largest child (τ's is −1), and each one's rank there."""
+        root), sorted by their largest child (τ's is −1), and each one's rank there.
+
+        The right factors of an order never decrease in id order (generation order), so
+        the sort keeps the id order; without a root bound every tree of the order is a
+        left factor and its rank is ``id − first[k]``: neither the list nor the ranks
+        are stored then (:meth:`_lefts_of`, :meth:`_ranks`)."""
+        if self.root_bound is None:
+            return
         ids = np.arange(self.first[k], self.first[k + 1], dtype=np.int32)
-        if self.root_bound is not None:
-            ids = ids[self.nchild[ids] < self.root_bound]
+        ids = ids[self.nchild[ids] < self.root_bound]
         order = np.argsort(self.right[ids], kind="stable")
         lefts = ids[order]
         self._lefts_sorted[k] = lefts
         self.rank[self.first[k]:self.first[k + 1]] = _NONE
         self.rank[lefts] = np.arange(len(lefts), dtype=np.int32)
 
+    def _left_count(self, k: int) -> int:
+        """How many trees of order k are left factors."""
+        if self.root_bound is None:
+            return self.first[k + 1] - self.first[k]
+        return len(self._lefts_sorted[k])
+
+    def _left_rights(self, k: int) -> np.ndarray:
+        """The largest child of each left factor of order k, in rank order (never
+        decreasing)."""
+        if self.root_bound is None:
+            return self.right[self.first[k]:self.first[k + 1]]
+        return self.right[self._lefts_sorted[k]]
+
+    def _lefts_of(self, k: int, local: np.ndarray) -> np.ndarray:
+        """The left factors of order k with the ranks ``local``."""
+        if self.root_bound is None:
+            return (local + self.first[k]).astype(np.int32)
+        return self._lefts_sorted[k][local]
+
+    def _ranks(self, u: np.ndarray) -> np.ndarray:
+        """The rank of each left factor ``u`` among those of its order."""
+        if self.root_bound is None:
+            return u - np.asarray(self.first, dtype=np.int64)[self.order[u]]
+        return self.rank[u]
+
     def _blocks(self, n: int):
-        """For each order r of the right factor: (r, inner-valid right factors v of order
-        r, how many left factors each one takes)."""
+        """For each order r of the right factor: ``(r, v_ids, ends)`` with ``v_ids`` the
+        inner-valid right factors v of order r (None: all of them, ``first[r] …
+        first[r+1] − 1``) and ``ends`` the running total (int32) of how many left factors
+        each one takes, counted in chunks (no int64 array of a whole order's factors)."""
         for r in range(1, n):
-            v_ids = np.arange(self.first[r], self.first[r + 1], dtype=np.int32)
-            v_ids = v_ids[self._inner_ok(v_ids)]
-            lefts = self._lefts_sorted[n - r]
-            if len(v_ids) == 0 or len(lefts) == 0:
-                yield r, v_ids[:0], np.zeros(0, dtype=np.int64)
+            v_ids = None
+            if self.inner_bound is not None:
+                v_ids = np.arange(self.first[r], self.first[r + 1], dtype=np.int32)
+                v_ids = v_ids[self._inner_ok(v_ids)]
+            size = self.first[r + 1] - self.first[r] if v_ids is None else len(v_ids)
+            if size == 0 or self._left_count(n - r) == 0:
+                yield r, np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.int32)
                 continue
-            yield r, v_ids, np.searchsorted(self.right[lefts], v_ids, side="right").astype(np.int64)
+            rights = self._left_rights(n - r)
+            ends = np.empty(size, dtype=np.int32)
+            total = 0
+            for a in range(0, size, _CHUNK):
+                b = min(size, a + _CHUNK)
+                v = np.arange(self.first[r] + a, self.first[r] + b, dtype=np.int32) if v_ids is None else v_ids[a:b]
+                part = np.cumsum(np.searchsorted(rights, v, side="right"))
+                part += total
+                if int(part[-1]) >= 2**31:  # pragma: no cover - far beyond 24 vertices
+                    raise OverflowError("too many trees in one block for int32 positions")
+                ends[a:b] = part
+                total = int(part[-1])
+            yield r, v_ids, ends
+
+    @staticmethod
+    def _block_ids(r_first: int, v_ids: np.ndarray | None, i: int, j: int) -> np.ndarray:
+        """The right factors ``i … j − 1`` of a block (``v_ids`` None: consecutive ids
+        from ``r_first``)."""
+        if v_ids is None:
+            return np.arange(r_first + i, r_first + j, dtype=np.int32)
+        return v_ids[i:j]
 
     def prepare_order(self, n: int) -> int:
         """Build the lookup tables of order ``n`` (``base``, ``offset``) and return how
@@ -182,12 +247,19 @@ class TreeTable:
         offset = np.full(self.first[n], _NONE, dtype=np.int32)
         total = 0
         blocks = []
-        for r, v_ids, counts in self._blocks(n):
+        for r, v_ids, ends in self._blocks(n):
             bases[r] = total
-            starts = np.cumsum(counts) - counts
-            offset[v_ids] = starts
-            blocks.append((r, v_ids, counts))
-            total += int(counts.sum())
+            for a in range(0, len(ends), _CHUNK):  # starts = ends − counts, a chunk at a time
+                b = min(len(ends), a + _CHUNK)
+                starts = np.empty(b - a, dtype=np.int32)
+                starts[1:] = ends[a:b - 1]
+                starts[0] = ends[a - 1] if a else 0
+                if v_ids is None:
+                    offset[self.first[r] + a:self.first[r] + b] = starts
+                else:
+                    offset[v_ids[a:b]] = starts
+            blocks.append((r, v_ids, ends))
+            total += int(ends[-1]) if len(ends) else 0
         self._base[n] = bases
         self._offset[n] = offset
         self._block_cache[n] = blocks
@@ -198,37 +270,29 @@ class TreeTable:
         """The factors ``(U, V)`` of the trees of order ``n`` in id order, in chunks of
         about ``_CHUNK`` rows (generation order, see the module docstring)."""
         self.prepare_order(n)
-        for r, v_ids, counts in self._block_cache[n]:
-            lefts = self._lefts_sorted[n - r]
-            if len(v_ids) == 0:
+        for r, v_ids, ends in self._block_cache[n]:
+            size = len(ends)
+            if size == 0 or int(ends[-1]) == 0:  # no left factor takes these right ones
                 continue
             # chunk boundaries on the right factors: about _CHUNK pairs each (one factor
             # with more partners than that is a chunk of its own)
-            ends = np.cumsum(counts)
-            cuts = np.searchsorted(ends, np.arange(_CHUNK, int(ends[-1]) + _CHUNK, _CHUNK), side="right")
+            marks = np.arange(_CHUNK, int(ends[-1]) + _CHUNK, _CHUNK)
+            cuts = np.searchsorted(ends, marks.astype(ends.dtype) if int(marks[-1]) < 2**31 else marks, side="right")
             i = 0
             # sorted already: dict.fromkeys drops the repeats (np.unique would also import
             # numpy.ma, 15 ms of start-up)
-            for j in dict.fromkeys(cuts.tolist()):
-                j = max(j, i + 1)
-                if j > len(v_ids):
-                    j = len(v_ids)
+            for j in [*dict.fromkeys(cuts.tolist()), size]:
+                j = min(max(j, i + 1), size)
                 if j <= i:
                     continue
-                c = counts[i:j]
-                m = int(c.sum())
+                before = int(ends[i - 1]) if i else 0
+                c = np.diff(ends[i:j], prepend=np.int32(before)).astype(np.int64)
+                m = int(ends[j - 1]) - before
                 if m:
-                    V = np.repeat(v_ids[i:j], c)
+                    V = np.repeat(self._block_ids(self.first[r], v_ids, i, j), c)
                     local = np.arange(m, dtype=np.int64) - np.repeat(np.cumsum(c) - c, c)
-                    yield lefts[local], V
+                    yield self._lefts_of(n - r, local), V
                 i = j
-            if i < len(v_ids):
-                c = counts[i:]
-                m = int(c.sum())
-                if m:
-                    V = np.repeat(v_ids[i:], c)
-                    local = np.arange(m, dtype=np.int64) - np.repeat(np.cumsum(c) - c, c)
-                    yield lefts[local], V
 
     def _grow(self, n: int) -> None:
         total = self.prepare_order(n)
@@ -239,7 +303,8 @@ class TreeTable:
         for U, V in self.pairs(n):
             hi = pos + len(U)
             for name, values in self.attributes(n, U, V).items():
-                getattr(self, name)[pos:hi] = values
+                if name in self._fields:
+                    getattr(self, name)[pos:hi] = values
             pos = hi
         del self._block_cache[n]
         self._prepare_lefts(n)
@@ -266,10 +331,39 @@ class TreeTable:
             rest[via_u] = self.product(self.rest[U[via_u]], V[via_u])
         return {
             "left": U, "right": V, "nchild": self.nchild[U] + 1, "h1": h1, "h2": h2, "tall": tall,
-            "rest": rest, "mult": mult, "sigma": self.sigma[U] * self.sigma[V] * mult, "order": n,
+            "rest": rest, "mult": mult, "sigma": self._sigma_product(U, V, mult), "order": n,
             "rank": _NONE,
             "inner_max": np.maximum(self.inner_max[U], np.maximum(self.inner_max[V], self.nchild[V] + 1)),
         }
+
+    def _sigma_product(self, U: np.ndarray, V: np.ndarray, mult: np.ndarray) -> np.ndarray:
+        """``σ(u ∘ v) = σ(u)·σ(v)·mult`` as :attr:`sigma` keeps it: the value itself below
+        :data:`SIGMA_LIMIT`, else a key of the exact value (:meth:`sigma_value`).  21!, the
+        bush with 22 vertices, exceeds int64: multiplied there, it wrapped around."""
+        su, sv = self.sigma[U], self.sigma[V]
+        out = su * sv * mult
+        # a float estimate flags the products that may reach the limit (its error is far
+        # below the factor 2 between the limit and int64's range)
+        big = np.flatnonzero((su < 0) | (sv < 0) | (su.astype(np.float64) * sv * mult >= SIGMA_LIMIT))
+        if len(big):
+            out[big] = [self._sigma_key(self.sigma_value(a) * self.sigma_value(b) * m)
+                        for a, b, m in zip(su[big].tolist(), sv[big].tolist(), mult[big].tolist())]
+        return out
+
+    def _sigma_key(self, value: int) -> int:
+        """What :attr:`sigma` keeps for the exact σ ``value``: itself when below the
+        limit, else ``−1 − i`` for the i-th such value (the same key for the same value)."""
+        if value < SIGMA_LIMIT:
+            return value
+        key = self._big_sigma_keys.get(value)
+        if key is None:
+            key = self._big_sigma_keys[value] = -1 - len(self._big_sigma)
+            self._big_sigma.append(value)
+        return key
+
+    def sigma_value(self, key: int) -> int:
+        """The exact σ of an entry of :attr:`sigma`."""
+        return key if key >= 0 else self._big_sigma[-1 - key]
 
     # ----------------------------------------------------------------- lookups
 
@@ -287,7 +381,7 @@ class TreeTable:
         for nn in range(lo_n, hi_n + 1):
             sel = np.flatnonzero(n == nn) if lo_n != hi_n else slice(None)
             vs = v[sel]
-            out[sel] = self._base[nn][r[sel]] + self._offset[nn][vs] + self.rank[u[sel]] + self.first[nn]
+            out[sel] = self._base[nn][r[sel]] + self._offset[nn][vs] + self._ranks(u[sel]) + self.first[nn]
         return out
 
     def insert(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
