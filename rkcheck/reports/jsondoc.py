@@ -235,8 +235,10 @@ def claims_doc(claim_results) -> list[dict[str, Any]] | None:
     ]
 
 
-def check_doc(res: CheckResult) -> dict[str, Any]:
-    """The per-file object of ``verify --format json`` (also used by ``scan``)."""
+def check_doc(res: CheckResult, failing_only: bool = False) -> dict[str, Any]:
+    """The per-file object of ``verify --format json`` (also used by ``scan``);
+    ``failing_only``: its ``conditions`` the failing ones only (what a scan's text
+    report reads of them)."""
     o = res.options
     claim_results = res.claims
     summary = summary_doc(res)
@@ -259,7 +261,7 @@ def check_doc(res: CheckResult) -> dict[str, Any]:
         },
         "summary": summary,
         "claims": claims_doc(claim_results),
-        "conditions": [condition_doc(r, o.dps) for r in res.conditions],
+        "conditions": [condition_doc(r, o.dps) for r in (res.failures if failing_only else res.conditions)],
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},
     }

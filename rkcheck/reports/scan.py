@@ -29,10 +29,11 @@ CSV_COLUMNS = [
 
 
 def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = None,
-                 encoded: bool = False) -> list[dict[str, Any]]:
+                 encoded: bool = False, failing_only: bool = False) -> list[dict[str, Any]]:
     """Plain documents of the outcomes: path, status, error, time, lines, and under
     ``result`` the ``verify --format json`` object of each checked file — or, with
-    ``encoded``, the :class:`Encoded` text a worker made of it, where there is one.
+    ``encoded``, the :class:`Encoded` text a worker made of it, where there is one
+    (``failing_only``: the failing conditions only, :func:`check_doc`).
 
     A file whose document (or, given ``row_check``, its row of the report) cannot be
     built becomes an ``error`` row with the reason, like a file that could not be read:
@@ -49,7 +50,7 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
             if encoded and done is not None:  # the result itself is not read (not even unpickled)
                 doc["result"] = Encoded(done)
             elif o.result is not None:
-                doc["result"] = check_doc(o.result)
+                doc["result"] = check_doc(o.result, failing_only)
             if row_check is not None:
                 row_check(doc)
         except Exception as err:  # a bug (or a value no format can say): this row says so
@@ -364,7 +365,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     """The scan table; ``constants``: with a column C (the energy error constant), as
     ``scan --sort energy`` shows it; ``quiet``: problems only (the rows of files that
     fail or cannot be checked, no table when there are none), then the totals."""
-    outcomes = outcome_docs(outcomes, _row_renderer("text"))
+    outcomes = outcome_docs(outcomes, _row_renderer("text"), failing_only=True)  # a row reads no holding one
     root, shown = _common_root([o["path"] for o in outcomes])
     rows = [o for o in outcomes if not quiet or o["status"] in ("failed", "error")]
     if rows or not quiet:

@@ -414,3 +414,18 @@ def test_a_worker_that_cannot_encode_leaves_the_result_to_the_report(folder):
 
     out = scan_file(str(folder / "a-good.toml"), {}, {}, "claims", document=broken)
     assert out.status == "ok" and out.result is not None and out.document is None
+
+
+def test_a_text_report_reads_the_failing_conditions_of_the_full_document():
+    """The text report builds each file's document with its failing conditions only: the
+    full document's conditions, filtered to those that fail, in the same order."""
+    from rkcheck import Tableau, verify
+    from rkcheck.reports.jsondoc import check_doc
+
+    rk4 = [["0", "0", "0", "0"], ["1/2", "0", "0", "0"], ["0", "1/2", "0", "0"], ["0", "0", "1", "0"]]
+    res = verify(Tableau.from_values(rk4, ["1/6", "1/3", "1/3", "1/6"]), degree=3, order=7)
+    full, failing = check_doc(res), check_doc(res, failing_only=True)
+    assert [c for c in full["conditions"] if c["state"] == "fails"] == failing["conditions"]
+    assert len(failing["conditions"]) < len(full["conditions"]) and failing["conditions"]
+    assert {k: v for k, v in full.items() if k != "conditions"} == {k: v for k, v in failing.items()
+                                                                    if k != "conditions"}
