@@ -53,15 +53,16 @@ def _entry(value: Any, place: str) -> str:
 
 def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str],
                   parameters: dict[str, Any] | None = None, raw_constants: dict[str, Any] | None = None,
-                  definitions: dict[str, Any] | None = None) -> Any:
+                  definitions: dict[str, Any] | None = None, skim: bool = False) -> Any:
     """The method of a document with ``[continuous]`` (``info`` carries its constants), or
     with ``parameters`` (the ``[parameters]`` table, the raw ``[constants]`` and their
-    parsed definitions) the family of kernels."""
+    parsed definitions) the family of kernels (``skim``: on the surrogate of the smallest
+    trees, :func:`rkcheck.io.loader.build_tableau`)."""
     if "tableau" in data:
         raise UserError("give either [tableau] or [continuous], not both")
     if parameters is not None:
         return build_kernel_family(data["continuous"], name, info.replace(warnings=tuple(warnings)), parameters,
-                                   raw_constants or {}, definitions or {})
+                                   raw_constants or {}, definitions or {}, skim)
     return build_continuous(data["continuous"], name, info, warnings)
 
 
@@ -83,10 +84,14 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
 
 
 def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_table: dict[str, Any],
-                        raw_constants: dict[str, Any], definitions: dict[str, Any]) -> Any:
+                        raw_constants: dict[str, Any], definitions: dict[str, Any], skim: bool = False) -> Any:
     """A ``[continuous]`` kernel with free ``[parameters]``: a family
     (:func:`~rkcheck.methods.continuous_family.kernel_family`)."""
-    from rkcheck.methods.continuous_family import kernel_family
+    from rkcheck.methods.continuous_family import (
+        FAMILY_VERTICES,
+        SKIM_VERTICES,
+        kernel_family,
+    )
     from rkcheck.methods.parametric import parse_parameters
 
     if not isinstance(table, dict):
@@ -97,4 +102,4 @@ def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_tabl
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau")', "continuous")
     parameters = parse_parameters(parameters_table, raw_constants)
     return kernel_family(name, parameters, _text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"),
-                         definitions, info)
+                         definitions, info, SKIM_VERTICES if skim else FAMILY_VERTICES)

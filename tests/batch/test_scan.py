@@ -429,3 +429,30 @@ def test_a_text_report_reads_the_failing_conditions_of_the_full_document():
     assert len(failing["conditions"]) < len(full["conditions"]) and failing["conditions"]
     assert {k: v for k, v in full.items() if k != "conditions"} == {k: v for k, v in failing.items()
                                                                     if k != "conditions"}
+
+
+KAPPA = '''[parameters]
+kappa = "free"
+
+[continuous]
+A = "tau + kappa*(tau^2 - tau)*(2*sigma - 1)"
+'''
+
+
+def test_a_kernel_family_is_validated_then_skipped(capsys, tmp_path):
+    """A scan skips a family of kernels on the surrogate of its smallest trees, with the
+    same validation: an unknown name is still an error row, as loading the whole family
+    (``load_family``) says."""
+    from rkcheck.api import load_family
+    from rkcheck.errors import RkcheckError
+
+    (tmp_path / "good.toml").write_text(KAPPA)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(KAPPA.replace("kappa*", "zeta*"))
+    rows = {Path(f["file"]).name: f for f in
+            json.loads(run_cli(capsys, "scan", str(tmp_path), "--format", "json", "--jobs", "1").out)["files"]}
+    assert rows["good.toml"]["status"] == "skipped"
+    with pytest.raises(RkcheckError) as whole:
+        load_family(str(bad))
+    assert rows["bad.toml"]["status"] == "error" and "unknown name 'zeta'" in rows["bad.toml"]["error"]
+    assert "unknown name 'zeta'" in str(whole.value)
