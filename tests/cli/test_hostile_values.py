@@ -134,10 +134,10 @@ def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, cap
         (folder / f"{name}.toml").write_text(one_stage("1/2"), encoding="utf-8")
     real = scan_report.check_doc
 
-    def broken(result):
+    def broken(result, *how):
         if result.tableau.name == "bad":
             raise ZeroDivisionError("injected")
-        return real(result)
+        return real(result, *how)
 
     monkeypatch.setattr(scan_report, "check_doc", broken)
     # a JSON scan has its workers encode the documents first: there the failure leaves
