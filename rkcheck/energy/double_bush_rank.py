@@ -24,6 +24,7 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.polynomials import interval_arb
 
 
 def pairs(m: int) -> list[tuple[int, int]]:
@@ -127,12 +128,7 @@ def matrices_from_h(basis: list[list[Fraction]], b: Sequence[Any], c: Sequence[A
 # ------------------------------------------------------------------ certified
 
 
-def ball(x: Interval) -> Any:
-    """The arb enclosing an interval with rational end points (at the current precision)."""
-    from flint import arb, fmpq
-
-    lo = arb(fmpq(x.lo.numerator, x.lo.denominator))
-    return lo if x.is_point else lo.union(arb(fmpq(x.hi.numerator, x.hi.denominator)))
+ball = interval_arb  # the arb enclosing an interval with rational end points
 
 
 def certified_rank_lower(rows: list[list[Any]]) -> int:

@@ -239,19 +239,13 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
     if not all(isinstance(x, Interval) for row in A for x in row) or not all(isinstance(x, Interval) for x in b):
         return None
     import flint
-    from flint import arb, arb_mat, fmpq
+    from flint import arb, arb_mat
 
     widths = [x.hi - x.lo for row in A for x in row if not x.is_point] + [x.hi - x.lo for x in b if not x.is_point]
     need = max((w.denominator.bit_length() - w.numerator.bit_length() for w in widths), default=64)
     bits = max(128, need + 64)
 
-    def ball(x: Interval):
-        lo, hi = arb(fmpq(x.lo.numerator, x.lo.denominator)), arb(fmpq(x.hi.numerator, x.hi.denominator))
-        return lo.union(hi)
-
-    def interval(x) -> Interval:
-        mid, rad = poly.to_fraction(x.mid()), poly.to_fraction(x.rad())
-        return Interval(mid - rad, mid + rad)
+    ball, interval = poly.interval_arb, poly.arb_interval
 
     saved = flint.ctx.prec
     flint.ctx.prec = bits

@@ -14,7 +14,7 @@ import numpy as np
 
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 from rkcheck.evaluation.conjugates import repeated_channels
-from rkcheck.numbers.polynomials import complex_roots
+from rkcheck.numbers.polynomials import complex_roots, integer_coefficients
 
 #: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
 #: memory: channels run together while their weights fit, so that on small listings the
@@ -196,8 +196,7 @@ class ScaledTableau:
             for f in getattr(self.number_field, "generator_polynomials", ()):
                 if len(f) - 1 < 2 or len(f) - 1 >= self.degree:
                     continue  # rational, or no cheaper than θ's own test
-                den = math.lcm(*(Fraction(c).denominator for c in f))
-                z = fmpz_poly([int(Fraction(c) * den) for c in f])
+                z = fmpz_poly(integer_coefficients(f))
                 tests.append((list(map(int, z.coeffs())), int(z.discriminant()) * int(z.coeffs()[-1])))
         for coeffs, bad in tests:
             if bad % p == 0:

@@ -31,6 +31,7 @@ import numpy as np
 
 from rkcheck.evaluation.scaled import ScaledTableau
 from rkcheck.methods.node_form import NodeForm
+from rkcheck.numbers.polynomials import integer_coefficients
 
 
 @dataclass
@@ -62,11 +63,9 @@ class SplitNodeTableau(ScaledTableau):
 
     @property
     def _integer_P(self) -> list[int]:
-        """P times the lcm of its denominators."""
         found = self.__dict__.get("_integer_P_value")
         if found is None:
-            den = math.lcm(*(c.denominator for c in self._form.P))
-            found = self.__dict__["_integer_P_value"] = [int(c * den) for c in self._form.P]
+            found = self.__dict__["_integer_P_value"] = integer_coefficients(self._form.P)
         return found
 
     @property
@@ -134,8 +133,7 @@ def _log2_bound(form: NodeForm, e: int) -> float:
     from rkcheck.evaluation.scaled import log2_upper
     from rkcheck.numbers.polynomials import complex_roots
 
-    den = math.lcm(*(c.denominator for c in form.P))
-    integer = [int(c * den) for c in form.P]
+    integer = integer_coefficients(form.P)
     prec = 128
     while True:
         with ctx.workprec(prec):

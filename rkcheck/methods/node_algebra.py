@@ -181,11 +181,13 @@ class NodeAlgebra:
         """``c_i^a`` (a < s) as balls from the nodes' enclosures at ``prec`` bits, kept."""
         from flint import arb, ctx
 
+        from rkcheck.numbers.polynomials import interval_arb
+
         if prec not in self._kept_powers:
             with ctx.workprec(prec + 32):
                 rows = []
                 for node in self.nodes(prec):
-                    ball = _arb(node)
+                    ball = interval_arb(node)
                     row = [arb(1)]
                     for _ in range(1, self.n):
                         row.append(row[-1] * ball)
@@ -237,15 +239,6 @@ def _square_root_field(P: Sequence[Fraction]) -> bool:
             if not square(d * first):
                 return False
     return True
-
-
-def _arb(x: Interval) -> Any:
-    from flint import arb
-
-    from rkcheck.numbers.polynomials import to_arb
-
-    lo = to_arb(x.lo)
-    return lo if x.is_point else arb.union(lo, to_arb(x.hi))
 
 
 def _monic(f: list[Fraction]) -> list[Fraction]:

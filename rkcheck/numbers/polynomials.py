@@ -277,8 +277,7 @@ class RealRoots:
                 # FLINT proves a root real by returning it with an exactly zero imaginary part
                 real = r if isinstance(r, arb) else (r.real if r.imag.is_zero() else None)
                 if real is not None:
-                    mid, rad = to_fraction(real.mid()), to_fraction(real.rad())
-                    intervals.append(Interval(mid - rad, mid + rad))
+                    intervals.append(arb_interval(real))
             if all(iv.hi - iv.lo <= width for iv in intervals):
                 break
             prec *= 2
@@ -321,8 +320,7 @@ def refine_root(coeffs: Sequence[Fraction], start: Interval, bits: int) -> Inter
     enclosure asks for costs 0.15 s; this costs about a millisecond."""
     if start.is_point:
         return start
-    den = math.lcm(*(Fraction(c).denominator for c in coeffs))
-    integers = [int(Fraction(c) * den) for c in coeffs]
+    integers = integer_coefficients(coeffs)
     # the terms (coefficients times powers of the root) cancel down to the value: the
     # precision covers their size, and doubles when a ball still cannot tell a sign
     reach = math.ceil(max(abs(start.lo), abs(start.hi), Fraction(1))).bit_length()
@@ -342,17 +340,14 @@ def _newton_bracket(integers: list[int], start: Interval, h: Fraction, bits: int
     """:func:`refine_root` at one working precision: ``(True, bracket)``, ``(True, None)``
     when the candidate leaves ``start`` or the signs do not differ, ``(False, None)``
     when the balls are too wide to tell."""
-    from flint import arb, arb_poly, ctx, fmpz
-
-    def ball(q: Fraction) -> Any:  # the exact dyadic point q
-        return arb(fmpz(q.numerator)) / fmpz(q.denominator)
+    from flint import arb_poly, ctx
 
     with ctx.workprec(prec):
         f = arb_poly(integers)  # the coefficients exact: made at this precision
         df = f.derivative()
         x = (start.lo + start.hi) / 2
         for _ in range(4 * prec.bit_length()):
-            value, slope = f(ball(x)), df(ball(x))
+            value, slope = f(to_arb(x)), df(to_arb(x))
             if not (value.is_finite() and slope.is_finite()) or slope.contains(0):
                 return False, None
             step = to_fraction((value / slope).mid())
@@ -362,7 +357,7 @@ def _newton_bracket(integers: list[int], start: Interval, h: Fraction, bits: int
         lo, hi = x - h, x + h
         if not (start.lo <= lo and hi <= start.hi):
             return True, None
-        left, right = f(ball(lo)), f(ball(hi))
+        left, right = f(to_arb(lo)), f(to_arb(hi))
         if left.contains(0) or right.contains(0):
             return False, None
         if (left > 0) == (right > 0):
@@ -470,3 +465,18 @@ def arb_interval(ball: Any) -> Interval:
     """The rational interval ``mid ± rad`` of a finite real Arb ball."""
     mid, rad = to_fraction(ball.mid()), to_fraction(ball.rad())
     return Interval(mid - rad, mid + rad)
+
+
+def interval_arb(x: Interval) -> Any:
+    """The Arb ball enclosing an interval with rational end points (at the current
+    working precision)."""
+    from flint import arb, fmpq
+
+    lo = arb(fmpq(x.lo.numerator, x.lo.denominator))
+    return lo if x.is_point else lo.union(arb(fmpq(x.hi.numerator, x.hi.denominator)))
+
+
+def integer_coefficients(coeffs: Sequence[Fraction | int]) -> list[int]:
+    """The rational polynomial ``coeffs`` times the lcm of its denominators (the same roots)."""
+    den = math.lcm(*(Fraction(c).denominator for c in coeffs))
+    return [int(Fraction(c) * den) for c in coeffs]
