@@ -108,27 +108,16 @@ class NodeAlgebra:
         """``g(about − x, about − y)``."""
         return g.compose(self.constant(about) - self.x, self.constant(about) - self.y)
 
-    @cached_property
-    def _power_traces(self) -> list[Fraction]:
-        """``Tr(x^m) = Σ_k c_k^m`` for m < s (Newton's identities, from P)."""
-        P, n = self.form.P, self.n
-        e = [(-1) ** k * P[n - k] for k in range(n + 1)]  # elementary symmetric functions
-        p = [Fraction(n)]
-        for m in range(1, n):
-            p.append((-1) ** (m - 1) * m * e[m] + sum(((-1) ** (i - 1) * e[i] * p[m - i] for i in range(1, m)),
-                                                      Fraction(0)))
-        return p
-
     def trace_y(self, g: Any) -> Any:
         """``Σ_j g(x, c_j)`` as a polynomial in x."""
         out = self.constant(0)
         for (a, b), c in self.reduce(g).to_dict().items():
-            out += self.x**a * (to_fmpq(self._power_traces[b]) * c)
+            out += self.x**a * (to_fmpq(self.form.power_traces[b]) * c)
         return out
 
     def trace(self, g: Any) -> Fraction:
         """``Σ_i g(c_i)`` of a polynomial in x alone."""
-        return sum((to_fraction(c) * self._power_traces[a] for (a, _), c in self.reduce(g).to_dict().items()),
+        return sum((to_fraction(c) * self.form.power_traces[a] for (a, _), c in self.reduce(g).to_dict().items()),
                    Fraction(0))
 
     def weight_sum(self) -> Fraction:

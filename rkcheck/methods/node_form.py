@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any
 
 from rkcheck.numbers.expressions import binary
@@ -73,6 +73,17 @@ class NodeForm:
         return max(1, math.lcm(int(integral_scale(from_flint(pair_charpoly(self.P, F)))),
                                int(integral_scale(from_flint(mul_W.charpoly())))))
 
+    @cached_property
+    def power_traces(self) -> list[Fraction]:
+        """``Tr(x^m) = Σ_k c_k^m`` for m < s, the trace of ``Q[x]/(P)`` on its basis
+        (Newton's identities, from P's coefficients)."""
+        P, n = self.P, self.stages
+        e = [(-1) ** k * P[n - k] for k in range(n + 1)]  # elementary symmetric functions
+        p = [Fraction(n)]
+        for m in range(1, n):
+            p.append((-1) ** (m - 1) * m * e[m] + sum(((-1) ** (i - 1) * e[i] * p[m - i] for i in range(1, m)),
+                                                      Fraction(0)))
+        return p
 
     def stability_series(self, count: int) -> list[Fraction]:
         """``r_0 … r_count`` with ``r_k = bᵀA^(k−1)1`` (r_0 = 1), over Q.  A stage vector
@@ -82,19 +93,10 @@ class NodeForm:
         degree below s, and every term is rational (the module docstring)."""
         from flint import fmpq_poly
 
-
-        n = self.stages
-        P = to_flint(list(self.P))
-        C = _companion(self.P)
-        traces, power = [], C  # Tr(y^m) = trace of C^m, m < n
-        for m in range(n):
-            traces.append(sum((power[i, i] for i in range(n)), to_fmpq(Fraction(0))) if m else to_fmpq(Fraction(n)))
-            if m:
-                power = power * C
+        P, traces = to_flint(list(self.P)), self.power_traces
 
         def trace(U: Any) -> Fraction:
-            coeffs = from_flint(U % P)
-            return sum((c * to_fraction(traces[m]) for m, c in enumerate(coeffs)), Fraction(0))
+            return sum((c * traces[m] for m, c in enumerate(from_flint(U % P))), Fraction(0))
 
         rows: dict[int, Any] = {}
         for (a, b), coeff in self.F:
@@ -182,7 +184,6 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
 
 
 def _square_free(P: list[Fraction]) -> bool:
-
     f = to_flint(P)
     return f.gcd(f.derivative()).degree() == 0
 
@@ -285,7 +286,6 @@ def _uniform(P: list[Fraction], entries: list[list[Any]], weights: list[Any]) ->
 def _diagonal(P: list[Fraction], F: dict[tuple[int, int], Fraction]) -> dict[int, Fraction]:
     """``F(x, x)`` modulo P, as ``{power: coefficient}``."""
     from flint import fmpq_poly
-
 
     g = fmpq_poly([])
     for (a, b), c in F.items():
