@@ -25,7 +25,13 @@ from fractions import Fraction
 from functools import cached_property, partial
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
-from rkcheck.methods.node_form import NodeForm, pair_charpoly, pair_ring, reduce_pair
+from rkcheck.methods.node_form import (
+    NodeForm,
+    pair_charpoly,
+    pair_polynomial,
+    pair_ring,
+    reduce_pair,
+)
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.polynomials import from_flint, to_flint, to_fmpq, to_fraction
 
@@ -66,12 +72,9 @@ class NodeAlgebra:
         return pair_ring()[0].constant(to_fmpq(Fraction(q)))
 
     def poly(self, coeffs: Sequence[Fraction | int], var: Any) -> Any:
-        """The univariate polynomial ``coeffs`` (ascending) in ``var``."""
-        out = var - var
-        for k, c in enumerate(coeffs):
-            if c:
-                out += var**k * to_fmpq(Fraction(c))
-        return out
+        """The univariate polynomial ``coeffs`` (ascending) in ``var`` (x or y)."""
+        power = (lambda k: (k, 0)) if var == self.x else (lambda k: (0, k))
+        return pair_polynomial((power(k), Fraction(c)) for k, c in enumerate(coeffs))
 
     def reduce(self, g: Any) -> Any:
         """g modulo P(x) and P(y): the remainder has degree below s in each variable."""
@@ -83,7 +86,7 @@ class NodeAlgebra:
 
     @cached_property
     def F(self) -> Any:
-        return sum((self.x**a * self.y**b * to_fmpq(c) for (a, b), c in self.form.F), self.constant(0))
+        return pair_polynomial(self.form.F)
 
     @cached_property
     def W_x(self) -> Any:
@@ -260,8 +263,7 @@ class NodeFunction:
 
     @cached_property
     def polynomial(self) -> Any:
-        alg = self.algebra
-        return sum((alg.x**a * alg.y**b * to_fmpq(c) for a, b, c in self.terms), alg.constant(0))
+        return pair_polynomial(((a, b), c) for a, b, c in self.terms)
 
     @cached_property
     def factors(self) -> list[list[Fraction]]:

@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property, lru_cache
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Iterable
 
 from rkcheck.numbers.expressions import binary
 from rkcheck.numbers.polynomials import from_flint, to_flint, to_fmpq, to_fraction
@@ -65,8 +65,7 @@ class NodeForm:
         powers = [fmpq_mat(n, n, [int(i == j) for i in range(n) for j in range(n)])]
         for _ in range(1, n):
             powers.append(powers[-1] * C)
-        ctx, x, y = pair_ring()
-        F = sum((x**a * y**b * to_fmpq(c) for (a, b), c in self.F), ctx.constant(0))
+        F = pair_polynomial(self.F)
         mul_W = fmpq_mat(n, n)
         for b, coeff in self.W:
             mul_W += powers[b] * to_fmpq(coeff)
@@ -134,6 +133,11 @@ def pair_ring() -> tuple[Any, Any, Any]:
     return ctx, x, y
 
 
+def pair_polynomial(terms: Iterable[tuple[tuple[int, int], Fraction]]) -> Any:
+    """``Σ c·x^a·y^b`` over the terms ``((a, b), c)``."""
+    return pair_ring()[0].from_dict({ab: to_fmpq(c) for ab, c in terms})
+
+
 def reduce_pair(P: tuple[Fraction, ...], g: Any) -> Any:
     """g modulo P(x) and P(y): degree below s in each variable."""
     Px, Py = _pair_moduli(P)
@@ -142,9 +146,7 @@ def reduce_pair(P: tuple[Fraction, ...], g: Any) -> Any:
 
 @lru_cache(maxsize=16)
 def _pair_moduli(P: tuple[Fraction, ...]) -> tuple[Any, Any]:
-    ctx, x, y = pair_ring()
-    Px = sum((x**k * to_fmpq(c) for k, c in enumerate(P) if c), ctx.constant(0))
-    return Px, Px.compose(y, x)
+    return pair_polynomial(((k, 0), c) for k, c in enumerate(P)), pair_polynomial(((0, k), c) for k, c in enumerate(P))
 
 
 def pair_charpoly(P: tuple[Fraction, ...], g: Any) -> Any:
