@@ -259,7 +259,7 @@ def _facts(values: TableauValues) -> dict[Any, Any]:
 def _properties(values: TableauValues, facts: dict[Any, Any]) -> TableauProperties:
     algebra = _algebra(values)
     if algebra is not None:
-        return node_properties(algebra, _exact_series(values) or [])
+        return node_properties(algebra)
     A, b = facts["scalars"]
     return properties_of_values(A, b, _exact_series(values))
 

@@ -28,7 +28,7 @@ from rkcheck.energy.lineintegral import (
 from rkcheck.energy.orders import OrderResult, quadrature_order_of
 from rkcheck.energy.properties import TableauProperties
 from rkcheck.energy.reduction import Reduction
-from rkcheck.energy.stability import stability_function
+from rkcheck.energy.stability import stability_of_series
 from rkcheck.energy.symplectic import (
     PropertyVerdict,
     not_symmetric,
@@ -80,13 +80,13 @@ def node_quadrature_order(alg: NodeAlgebra) -> OrderResult:
     return quadrature_order_of(quadrature_residuals(alg), alg.n)
 
 
-def node_properties(alg: NodeAlgebra, series: list[Fraction]) -> NodeProperties:
-    """The properties of the tableau (``series``: R(z)'s ``r_0 … r_2s``, over Q)."""
+def node_properties(alg: NodeAlgebra) -> NodeProperties:
+    """The properties of the tableau; R(z) from its series over Q."""
     n = alg.n
     red = Reduction(A=[[alg.value(alg.F, i, j) for j in range(n)] for i in range(n)],
                     b=[alg.value(alg.W_x, j) for j in range(n)], classes=[(i,) for i in range(n)], stages=n)
     return NodeProperties(
-        exact=True, reduction=red, stability=stability_function([], red.b, series),
+        exact=True, reduction=red, stability=stability_of_series(alg.form.stability_series(2 * n), n),
         symplectic=_symplecticity(alg, red), symmetric=_symmetry(alg, red), algebra=alg,
     )
 

@@ -267,12 +267,10 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
 def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None = None) -> StabilityFunction:
     """``R(z)`` of the tableau ``(A, b)`` over its own scalars (see the module docstring);
     ``series``: ``r_0 … r_2s`` when they are known over Q beforehand (a family in node
-    form, :meth:`~rkcheck.methods.node_form.NodeForm.stability_series`), so that no
-    product is taken in the entries' field."""
+    form), so that no product is taken in the entries' field."""
     s = len(b)
     if series is not None:
-        P, Q = _pade(series, s)
-        return _from_parts(s, True, list(series), _trim(P), _trim(Q))
+        return stability_of_series(series, s)
     like = sc.sample(A, b)
     rational = _rational_parts(A, b)
     if rational is not None:
@@ -350,6 +348,14 @@ def _cancelled(P: list, Q: list, like) -> tuple[list, list]:
         return call_within(STABILITY_SECONDS, poly.lowest_terms, P, Q, sc.const(0, like), _is_zero)
     except Overrun:
         return P, Q
+
+
+def stability_of_series(series: list[Fraction], s: int) -> StabilityFunction:
+    """``R(z)`` of an s-stage method from its series ``r_0 … r_2s`` over Q
+    (:meth:`~rkcheck.methods.node_form.NodeForm.stability_series` for a family in node
+    form), by Padé over Q."""
+    P, Q = _pade(series, s)
+    return _from_parts(s, True, list(series), _trim(P), _trim(Q))
 
 
 def _from_parts(s: int, exact: bool, series: list, numerator, denominator) -> StabilityFunction:

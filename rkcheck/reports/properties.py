@@ -31,6 +31,7 @@ from rkcheck.energy.error_constants import ErrorConstant, error_constant
 from rkcheck.energy.stability import (
     StabilityFunction,
     stability_function,
+    stability_of_series,
 )
 from rkcheck.energy.verdicts import FAILS, HOLDS
 from rkcheck.evaluation.values import TableauValues
@@ -179,5 +180,5 @@ def tableau_stability(values: TableauValues) -> StabilityFunction:
     are, else from their enclosures."""
     exact = values.exact
     if exact is not None and exact.algebra is not None:  # over Q from the node form, no field
-        return stability_function([], list(values.b), exact.nodes.stability_series(2 * values.stages))
+        return stability_of_series(exact.nodes.stability_series(2 * values.stages), values.stages)
     return stability_function(*sc.tableau_values(values))
