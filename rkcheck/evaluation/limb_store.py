@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: the type of a stored digit
+#: stored digits: below 2^30 (β <= 30), so int32 holds them; the arithmetic is int64
 STORE = np.int32
 
 

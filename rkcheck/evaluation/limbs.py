@@ -59,8 +59,6 @@ from rkcheck.numbers.intervals import Interval
 _EXACT = 2.0**62
 #: rows per block of the digit arithmetic (its temporaries stay in the cache)
 _BLOCK = 8192
-#: stored digits: below 2^30 (β <= 30), so int32 holds them; the arithmetic is int64
-_STORE = STORE
 
 
 def _layout(bits: int, s: int) -> tuple[int, int] | None:
@@ -178,12 +176,12 @@ class LimbBallContext:
         return LimbStore((n,), self.L)
 
     def ones(self, k: int, s: int):
-        mid = np.zeros((k, s, self.L), dtype=_STORE)
+        mid = np.zeros((k, s, self.L), dtype=STORE)
         mid[..., self.F] = 1
         return (mid, np.zeros((k, s)), np.ones((k, s)), np.full((k, s), _ONE, dtype=np.uint8))
 
     def one(self, k: int):
-        mid = np.zeros((k, self.L), dtype=_STORE)
+        mid = np.zeros((k, self.L), dtype=STORE)
         mid[:, self.F] = 1
         return (mid, np.zeros(k), np.ones(k), np.full(k, _ONE, dtype=np.uint8))
 
@@ -257,7 +255,7 @@ class LimbBallContext:
             # a zero mid-point times anything is zero, exactly, and 1 times y is y: the
             # digits of 1 are those of 2^P, so the digit products are y's digits in the
             # kept positions (none dropped, no carry) — the same digits, bit for bit
-            out = np.zeros((self.L, len(xf)), dtype=_STORE)  # mostly zeros: the smaller type
+            out = np.zeros((self.L, len(xf)), dtype=STORE)  # mostly zeros: the smaller type
             if len(rows):
                 out[:, rows] = self._mul_digits(np.take(xf, rows, axis=0), np.take(yf, rows, axis=0))
             for rows, other in ((np.flatnonzero((cx == _ONE) & (cy != _ZERO)), yf),
@@ -316,7 +314,7 @@ class LimbBallContext:
         if rows is None:
             return self._product_digits(xm, Md, plan).transpose(2, 1, 0)
         # rows of zero mid-points give zero, exactly: only the others are multiplied
-        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=_STORE)  # mostly zeros: the smaller type
+        out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=STORE)  # mostly zeros: the smaller type
         if len(rows):
             out[:, :, rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
         return out.transpose(2, 1, 0)
