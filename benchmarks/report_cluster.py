@@ -12,6 +12,11 @@ three reports must agree row for row (times aside).  Prints one Markdown table: 
 time, the speed-up against ``--jobs 1``, and the CPU time of the scan process and its
 children (the cluster's workers are not its children: their CPU time is not counted).
 Needs ``rkcheck[cluster]``.
+
+Just before each parallel scan, the table's last column gives the machine's own
+ceiling: W copies of a fixed pure-Python loop run side by side against one alone.  On a
+shared or virtual machine the cores do not always give W times one core's work (a
+neighbour's load, cores that share a physical one), and no scan can beat that ratio.
 """
 
 from __future__ import annotations
@@ -60,6 +65,24 @@ def timed_scan(folder: Path, order: int, *extra: str) -> tuple[float, float, dic
     return wall, cpu, json.loads(proc.stdout)
 
 
+#: The ceiling's loop: about a second of pure Python on one core.
+SPIN = "s = 0\nfor i in range(12_000_000):\n    s += i * i % 7\n"
+
+
+def ceiling(workers: int) -> float:
+    """How many times one process's work ``workers`` processes do side by side here:
+    ``workers`` × (one copy's wall time) / (the wall time of ``workers`` copies at once)."""
+
+    def wall(copies: int) -> float:
+        t0 = time.perf_counter()
+        procs = [subprocess.Popen([sys.executable, "-c", SPIN]) for _ in range(copies)]
+        if any(p.wait() for p in procs):
+            raise SystemExit("the ceiling's loop failed")
+        return time.perf_counter() - t0
+
+    return workers * wall(1) / wall(workers)
+
+
 def rows(doc: dict) -> list[tuple]:
     return [(f["file"], f["status"], f["error"], None if f["result"] is None else f["result"]["summary"])
             for f in doc["files"]]
@@ -81,12 +104,14 @@ def main(argv: list[str] | None = None) -> None:
     with tempfile.TemporaryDirectory(prefix="rkcheck-cluster-") as tmp:
         folder = Path(tmp)
         write_tableaux(folder, args.files)
-        results = {"--jobs 1": timed_scan(folder, args.order, "--jobs", "1"),
-                   f"--jobs {args.workers}": timed_scan(folder, args.order, "--jobs", str(args.workers))}
+        results = {"--jobs 1": timed_scan(folder, args.order, "--jobs", "1")}
+        ceilings = {"--jobs 1": None, f"--jobs {args.workers}": ceiling(args.workers)}
+        results[f"--jobs {args.workers}"] = timed_scan(folder, args.order, "--jobs", str(args.workers))
         with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
                           dashboard_address=None) as cluster:
-            results[f"--scheduler (LocalCluster, {args.workers} workers)"] = timed_scan(
-                folder, args.order, "--scheduler", cluster.scheduler_address)
+            name = f"--scheduler (LocalCluster, {args.workers} workers)"
+            ceilings[name] = ceiling(args.workers)
+            results[name] = timed_scan(folder, args.order, "--scheduler", cluster.scheduler_address)
     reference = rows(results["--jobs 1"][2])
     for name, (_, _, doc) in results.items():
         if rows(doc) != reference:
@@ -94,9 +119,11 @@ def main(argv: list[str] | None = None) -> None:
     base = results["--jobs 1"][0]
     print(f"`python benchmarks/report_cluster.py {' '.join(argv if argv is not None else sys.argv[1:])}`: "
           f"{args.files} files, order {args.order}, {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}\n")
-    print("| scan | wall s | speed-up | CPU s (scan process and children) |\n|---|---|---|---|")
+    print(f"| scan | wall s | speed-up | CPU s (scan process and children) | the machine's ceiling just before "
+          f"({args.workers} processes) |\n|---|---|---|---|---|")
     for name, (wall, cpu, _) in results.items():
-        print(f"| {name} | {wall:.2f} | {base / wall:.2f}× | {cpu:.2f} |")
+        top = "" if ceilings[name] is None else f"{ceilings[name]:.2f}×"
+        print(f"| {name} | {wall:.2f} | {base / wall:.2f}× | {cpu:.2f} | {top} |")
 
 
 if __name__ == "__main__":
