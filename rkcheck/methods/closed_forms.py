@@ -114,10 +114,7 @@ MAX_EXACT_NODES = 8
 def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]], list[str], list[str]] | None:
     """(constants, A, b, c) as exact entry texts, or None without closed-form nodes or
     with more than :data:`MAX_EXACT_NODES` of them."""
-    r = spec.base_rule()
-    if r.s > MAX_EXACT_NODES:
-        return None
-    forms = r.node_closed_forms()
+    forms = _closed_forms(spec)
     if forms is None:
         return None
     n = len(forms)
@@ -160,6 +157,38 @@ def expression_texts(spec: FamilySpec) -> tuple[dict[str, str], list[list[str]],
             for i in range(n)
         ]
     return consts, A, bn, c
+
+
+def _closed_forms(spec: FamilySpec) -> list[str] | None:
+    """The texts of the rule's nodes, or None without closed forms or with more than
+    :data:`MAX_EXACT_NODES` nodes: the families whose entries are written exactly."""
+    r = spec.base_rule()
+    return None if r.s > MAX_EXACT_NODES else r.node_closed_forms()
+
+
+def exact_node_polynomial(spec: FamilySpec) -> list[Fraction] | None:
+    """The monic node polynomial (ascending) of a family written exactly, else None."""
+    if _closed_forms(spec) is None:
+        return None
+    P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
+    return [x / P[-1] for x in P]
+
+
+def lagrange_parts(P: list[Fraction]) -> tuple[list[Any], Any]:
+    """``(U, W)`` over the roots c of the monic square-free ``P`` (fmpq_polys reduced
+    modulo P): the Lagrange basis polynomial of node j is ``ℓ_j(x) = Σ_k U_k(c_j) x^k`` and
+    its integral over [0, 1] is ``W(c_j)`` (see :func:`evaluation_texts`)."""
+    from flint import fmpq_poly
+
+    from rkcheck.numbers.polynomials import to_flint
+
+    n = len(P) - 1
+    f = to_flint(list(P))
+    d, s, _ = f.derivative().xgcd(f)
+    V = (s / d) % f
+    U = [(to_flint([P[m] for m in range(k + 1, n + 1)]) * V) % f for k in range(n)]
+    W = sum((u / (k + 1) for k, u in enumerate(U)), fmpq_poly([])) % f
+    return U, W
 
 
 def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c: list[str]):
@@ -228,10 +257,9 @@ def evaluation_trees(spec: FamilySpec) -> tuple[list[Fraction], dict[str, Any], 
     from rkcheck.numbers import grammar as ex
 
     texts = expression_texts(spec)
-    if texts is None:
+    P = exact_node_polynomial(spec)
+    if texts is None or P is None:
         return None
-    P = [Fraction(x) for x in spec.base_rule().nodes[0].poly]
-    P = [x / P[-1] for x in P]
     definitions, A, b = evaluation_texts(spec, P, texts[1])
     return (P, {name: ex.parse(text) for name, text in definitions.items()},
             [[ex.parse(x) for x in row] for row in A], [ex.parse(x) for x in b])
@@ -288,17 +316,12 @@ def evaluation_texts(spec: FamilySpec, P: list[Fraction],
     and ``b_j = W(c_j)``, ``W = Σ_k U_k/(k + 1) mod P``; ``1/b_i = (W⁻¹ mod P)(c_i)``.
     Every reduction is modulo P over Q, so each node's values are polynomials of degree
     below n in it: no division in the nodes' field."""
-    from flint import fmpq_poly
-
     from rkcheck.numbers.polynomials import from_flint, to_flint
 
     n = len(P) - 1
     c = [f"c{i + 1}" for i in range(n)]
     f = to_flint(list(P))
-    d, s, _ = f.derivative().xgcd(f)
-    V = (s / d) % f
-    U = [(to_flint([P[m] for m in range(k + 1, n + 1)]) * V) % f for k in range(n)]
-    W = sum((u / (k + 1) for k, u in enumerate(U)), fmpq_poly([])) % f
+    U, W = lagrange_parts(P)
     definitions = {f"b{j + 1}": _poly_text(from_flint(W), c[j]) for j in range(n)}
     bn = list(definitions)
     name = spec.name

@@ -11,11 +11,11 @@ rational, whatever the degree of the field (48 for the six Gauss-6 nodes).  Modu
 over which P splits into distinct linear factors, it is the same expression with the nodes
 replaced by those roots, in any order (:mod:`rkcheck.evaluation.split_nodes`).
 
-The form is read off the texts the family's entries are evaluated from
-(:func:`rkcheck.methods.closed_forms.evaluation_texts`), each entry as a polynomial in the
-nodes reduced modulo P in each of them; it is a :class:`NodeForm` only when every
-off-diagonal entry is the same ``F``, every diagonal one ``F(x, x)`` and every weight the
-same ``W`` — which is what the argument above needs, checked rather than assumed.
+The form is built from the polynomials the family's entry texts are written with
+(:func:`rkcheck.methods.closed_forms.evaluation_texts`: the Lagrange basis over the roots
+of P, the Legendre polynomials of HBVM), in ``Q[x, y]`` and reduced modulo P in each
+variable, not by parsing those texts back; the tests evaluate ``F`` and ``W`` at the
+nodes in the field the texts are evaluated in and compare them with every entry.
 """
 
 from __future__ import annotations
@@ -26,7 +26,6 @@ from fractions import Fraction
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Iterable
 
-from rkcheck.numbers.expressions import binary
 from rkcheck.numbers.polynomials import from_flint, to_flint, to_fmpq, to_fraction
 
 if TYPE_CHECKING:
@@ -165,24 +164,16 @@ def pair_charpoly(P: tuple[Fraction, ...], g: Any) -> Any:
 
 @lru_cache(maxsize=16)
 def node_form(spec: FamilySpec) -> NodeForm | None:
-    """The family's :class:`NodeForm`, or None when its entries are not polynomials of
-    their two nodes over the roots of the node polynomial (no closed-form nodes, an entry
-    that divides by a node, or entries that differ from one another)."""
-    from rkcheck.methods.closed_forms import evaluation_trees
+    """The family's :class:`NodeForm`, or None when its entries are not written exactly
+    (:func:`rkcheck.methods.closed_forms.exact_node_polynomial`)."""
+    from rkcheck.methods.closed_forms import exact_node_polynomial
 
-    trees = evaluation_trees(spec)
-    if trees is None:
-        return None
-    P, definitions, A, b = trees
-    if len(P) - 1 != len(b) or not _square_free(P):
+    P = exact_node_polynomial(spec)
+    if P is None or len(P) - 1 != spec.base_rule().s or not _square_free(P):
         return None  # the argument needs the nodes to be exactly the roots of P, each once
-    polys = _NodePolynomials(P, definitions)
-    try:
-        entries = [[polys.of(A[i][j], {i, j}) for j in range(len(b))] for i in range(len(b))]
-        weights = [polys.of(x, {j}) for j, x in enumerate(b)]
-    except _NotPolynomial:
-        return None
-    return _uniform(P, entries, weights)
+    F, W = _family_polynomials(spec, P)
+    return NodeForm(tuple(P), tuple(sorted(((int(a), int(b)), to_fraction(c)) for (a, b), c in reduce_pair(tuple(P), F).to_dict().items())),
+                    tuple((k, c) for k, c in enumerate(from_flint(W)) if c != 0))
 
 
 def _square_free(P: list[Fraction]) -> bool:
@@ -190,107 +181,37 @@ def _square_free(P: list[Fraction]) -> bool:
     return f.gcd(f.derivative()).degree() == 0
 
 
-class _NotPolynomial(Exception):
-    pass
+def _family_polynomials(spec: FamilySpec, P: list[Fraction]) -> tuple[Any, Any]:
+    """``(F, W)``, F in x and y (not yet reduced), W an fmpq_poly reduced modulo P: the
+    polynomials :func:`rkcheck.methods.closed_forms.evaluation_texts` writes each family's
+    entries with, ``ℓ_j(x) = Σ_k U_k(c_j) x^k`` the Lagrange basis polynomial of node j."""
+    from rkcheck.methods.closed_forms import lagrange_parts
+    from rkcheck.methods.quadrature import shifted_legendre
+    from rkcheck.numbers.polynomials import integral
 
-
-class _NodePolynomials:
-    """Parsed entries as FLINT polynomials in the nodes ``c1 … cn`` (every name defined
-    in ``definitions`` over them), reduced modulo P in each node."""
-
-    def __init__(self, P: list[Fraction], definitions: dict[str, Any]):
-        from flint import fmpq_mpoly_ctx
-
-        n = len(P) - 1
-        self.ctx = fmpq_mpoly_ctx.get(tuple(f"c{i + 1}" for i in range(n)), "lex")
-        self.gens = dict(zip(self.ctx.names(), self.ctx.gens()))
-        self.moduli = [sum((g**k * to_fmpq(x) for k, x in enumerate(P)), self.ctx.constant(0)) for g in self.ctx.gens()]
-        self.definitions = definitions
-        self.known: dict[str, Any] = {}
-
-    def of(self, node: Any, nodes: set[int]) -> Any:
-        """The parsed entry ``node`` reduced modulo P in each node; it must use only ``nodes``."""
-        from rkcheck.numbers import expressions as xp
-
-        value = xp.fold(node, self._combine)
-        used = {k for k, d in enumerate(value.degrees()) if d > 0}
-        if not used <= nodes:
-            raise _NotPolynomial
-        for k in sorted(nodes):
-            value = divmod(value, self.moduli[k])[1]
-        return value
-
-    def _name(self, name: str) -> Any:
-        from rkcheck.numbers import expressions as xp
-
-        if name in self.gens:
-            return self.gens[name]
-        if name not in self.definitions:
-            raise _NotPolynomial
-        if name not in self.known:
-            self.known[name] = xp.fold(self.definitions[name], self._combine)
-        return self.known[name]
-
-    def _combine(self, node: Any, vals: list[Any]) -> Any:
-        from rkcheck.numbers import grammar as ex
-
-        if isinstance(node, ex.Num):
-            return self.ctx.constant(to_fmpq(node.value))
-        if isinstance(node, ex.Name):
-            return self._name(node.name)
-        if isinstance(node, ex.Unary):
-            return -vals[0]
-        if isinstance(node, ex.Power):
-            base, exponent = vals
-            if not exponent.is_constant() or exponent.leading_coefficient().denom() != 1:
-                raise _NotPolynomial
-            k = int(exponent.leading_coefficient().numer())
-            if k < 0:
-                raise _NotPolynomial
-            return base**k
-        if not isinstance(node, ex.Binary):
-            raise _NotPolynomial  # a root: not a polynomial in the nodes
-        left, right = vals
-        if node.op == "/":  # by a nonzero rational only: a node's inverse is no polynomial
-            if not right.is_constant() or right.is_zero():
-                raise _NotPolynomial
-            right = right.leading_coefficient()
-        return binary(node.op, left, right)
-
-
-def _uniform(P: list[Fraction], entries: list[list[Any]], weights: list[Any]) -> NodeForm | None:
-    """The NodeForm when every entry is the same polynomial of its nodes, else None."""
-
+    ctx, x, y = pair_ring()
+    U, W = lagrange_parts(P)
     n = len(P) - 1
 
-    def pairs(poly: Any, i: int, j: int) -> dict[tuple[int, int], Fraction]:
-        return {(int(m[i]), int(m[j])): to_fraction(c) for m, c in poly.to_dict().items()}
+    def of(p: Any, var: int) -> Any:  # a univariate polynomial as one in x (0) or y (1)
+        coefficients = p if isinstance(p, list) else from_flint(p)
+        return pair_polynomial((((k, 0) if var == 0 else (0, k)), c) for k, c in enumerate(coefficients) if c != 0)
 
-    def single(poly: Any, j: int) -> dict[int, Fraction]:
-        return {int(m[j]): to_fraction(c) for m, c in poly.to_dict().items()}
-
-    F = pairs(entries[0][1], 0, 1) if n > 1 else None
-    W = single(weights[0], 0)
-    if any(single(w, j) != W for j, w in enumerate(weights)):
-        return None
-    for i in range(n):
-        for j in range(n):
-            if i != j and pairs(entries[i][j], i, j) != F:
-                return None
-    if F is None:  # one node: the entry is a constant polynomial in it
-        F = {(a, 0): c for a, c in single(entries[0][0], 0).items()}
-    diagonal = _diagonal(P, F)
-    if any(single(entries[i][i], i) != diagonal for i in range(n)):
-        return None
-    return NodeForm(tuple(P), tuple(sorted(F.items())), tuple(sorted(W.items())))
-
-
-def _diagonal(P: list[Fraction], F: dict[tuple[int, int], Fraction]) -> dict[int, Fraction]:
-    """``F(x, x)`` modulo P, as ``{power: coefficient}``."""
-    from flint import fmpq_poly
-
-    g = fmpq_poly([])
-    for (a, b), c in F.items():
-        g += fmpq_poly([0] * (a + b) + [1]) * to_fmpq(c)
-    r = from_flint(g % to_flint(P))
-    return {k: c for k, c in enumerate(r) if c != 0}
+    name, Wy = spec.name, of(W, 1)
+    if name == "avf":  # A = c bᵀ
+        F = x * Wy
+    elif name in ("gauss", "lobatto-iiia", "radau-iia"):  # ∫_0^(c_i) ℓ_j
+        F = sum((x ** (k + 1) * of(U[k], 1) / (k + 1) for k in range(n)), ctx.constant(0))
+    elif name in ("lobatto-iiib", "radau-ia"):  # b_j/b_i·∫_(c_j)^1 ℓ_i
+        f = to_flint(list(P))
+        d, inverse, _ = W.xgcd(f)
+        F = Wy * of((inverse / d) % f, 0) * sum(((1 - y ** (k + 1)) * of(U[k], 0) / (k + 1) for k in range(n)),
+                                                ctx.constant(0))
+    elif name == "hbvm":  # b_j·Σ_(l<s) (2l + 1)·∫_0^(c_i) P_l·P_l(c_j), P_l the shifted Legendre polynomials
+        F = Wy * sum((of(integral(shifted_legendre(l)), 0) * of(shifted_legendre(l), 1) * (2 * l + 1)
+                      for l in range(spec.s)), ctx.constant(0))
+    else:  # the seed's kernel family: c_i b_j + β((ζ − 1) − 2ζ c_i) b_j (1 − 2 c_j)
+        assert spec.zeta is not None and spec.beta is not None  # the kernel family is given both (parse_spec)
+        z, beta = to_fmpq(spec.zeta), to_fmpq(spec.beta)
+        F = x * Wy + beta * ((z - 1) - 2 * z * x) * Wy * (1 - 2 * y)
+    return F, W
