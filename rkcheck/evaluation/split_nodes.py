@@ -138,18 +138,25 @@ def _log2_bound(form: NodeForm, e: int) -> float:
     while True:
         with ctx.workprec(prec):
             roots = complex_roots(integer, prec)
+            powers = [[r**k for k in range(len(form.P))] for r in roots]
 
-            def value(terms: Any, *at: Any) -> Any:
+            def scaled(terms: Any) -> list[tuple[Any, Any]]:  # e·coefficient as a ball, once per precision
+                return [(k if isinstance(k, tuple) else (k,), acb((e * c).numerator) / (e * c).denominator)
+                        for k, c in terms]
+
+            F, W = scaled(form.F), scaled(form.W)
+
+            def value(terms: list[tuple[Any, Any]], *at: int) -> Any:
                 total = acb(0)
-                for powers, c in terms:
-                    term = acb(Fraction(e * c).numerator) / Fraction(e * c).denominator
-                    for r, k in zip(at, powers if isinstance(powers, tuple) else (powers,)):
-                        term *= r**k
-                    total += term
+                for ks, c in terms:
+                    for i, k in zip(at, ks):
+                        c = c * powers[i][k]
+                    total += c
                 return total
 
-            rows = [sum((abs(value(form.F, ri, rj)) for rj in roots), arb(0)) for ri in roots]
-            rows.append(sum((abs(value(form.W, rj)) for rj in roots), arb(0)))
+            n = len(roots)
+            rows = [sum((abs(value(F, i, j)) for j in range(n)), arb(0)) for i in range(n)]
+            rows.append(sum((abs(value(W, j)) for j in range(n)), arb(0)))
             if all(x.is_finite() for x in rows) or prec >= 1 << 12:
                 return max(0.0, max(log2_upper(x) for x in rows))
         prec *= 2
