@@ -9,7 +9,6 @@ the batched pass is tested against).  Why primes decide exactly:
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -52,10 +51,16 @@ def is_prime(n: int) -> bool:
     return True
 
 
-@lru_cache(maxsize=4)
+#: the primes found below each limit so far, largest first: a smaller count is a prefix
+_FOUND: dict[int, tuple[int, ...]] = {}
+
+
 def _primes_below(limit: int, count: int) -> tuple[int, ...]:
     """The ``count`` largest primes below ``limit`` (deterministic), largest first (all of
     them when there are fewer)."""
+    known = _FOUND.get(limit, ())
+    if len(known) >= count:
+        return known[:count]
     # a window sieved at once: a Miller–Rabin test per odd number cost ~10 µs each,
     # 0.2 s for the thousands of primes of a field of high degree.  Primes near 2^30 are
     # ~21 apart: the first window nearly always suffices, a short one is doubled
@@ -64,7 +69,8 @@ def _primes_below(limit: int, count: int) -> tuple[int, ...]:
         lo = max(limit - span, 0)
         found = _sieve_window(lo, limit)[::-1]
         if len(found) >= count or lo == 0:
-            return tuple(int(q) for q in found[:count])
+            _FOUND[limit] = tuple(int(q) for q in found)
+            return _FOUND[limit][:count]
         span *= 2
 
 
