@@ -204,7 +204,7 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
 
         click.echo(dumps(conditions_list_doc(listing, with_conditions=not count)))
         return
-    from rkcheck.reports.text import render_condition_list
+    from rkcheck.reports.trees import render_condition_list
 
     render_condition_list(listing, stdout_console(), count)
 
@@ -226,7 +226,7 @@ def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
     the id column of verify and conditions).
     """
     from rkcheck.api.trees import energy_condition
-    from rkcheck.reports.text import render_explanation
+    from rkcheck.reports.trees import render_explanation
 
     try:
         cond = energy_condition(tree_id, tableau_file or None, dps=dps, decimals=decimals, max_stages=max_stages)
@@ -236,7 +236,7 @@ def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
         raise UserError(err.message, "ID") from None  # the API's argument is this command's ID
     if picture:
         from rkcheck.reports.charts import tree_picture
-        from rkcheck.reports.text import tree_drawing
+        from rkcheck.reports.trees import tree_drawing
 
         given = ",".join(map(str, cond.given))
         title = (f"{given}: superfluous, no energy condition" if cond.tree is None

@@ -412,7 +412,7 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
     """One file's cells: an error or skipped row, or its verdicts."""
     from rich.text import Text
 
-    from rkcheck.reports.text import plain
+    from rkcheck.reports.cells import plain
 
     r = o.get("result") or {}
     s = r.get("summary", {})

@@ -8,7 +8,7 @@ from rich.table import Table
 from rich.text import Text
 
 from rkcheck.numbers.formatting import count_text, counted
-from rkcheck.reports.text import plain
+from rkcheck.reports.cells import plain
 
 
 def _e(x) -> str:

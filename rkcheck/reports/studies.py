@@ -11,7 +11,7 @@ from rich.text import Text
 
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import count_text, decimal_string
-from rkcheck.reports.text import plain
+from rkcheck.reports.cells import plain
 
 
 def _eps(x: Fraction | None) -> str:

@@ -11,57 +11,24 @@ from rich.table import Table
 from rich.text import Text
 
 from rkcheck.energy.check import CheckResult, inconsistent, overall
-from rkcheck.energy.explain import EnergyCondition
 from rkcheck.energy.gate import requirement_shortfall
 from rkcheck.energy.results import Condition
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
-from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import (
-    ball_strings,
     count_text,
     counted,
     decimal_string,
-    radius_string,
 )
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
+from rkcheck.reports.cells import enclosure_text, plain, state_text
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
+from rkcheck.reports.trees import tree_text
 
-STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 MAX_FAILURES_SHOWN = 20
-
-
-def state_text(v: Verdict) -> Text:
-    return Text(v.label(), style=STYLE[v.state])
-
-
-def enclosure_text(enc: Enclosure, verdict: Verdict, sig: int = 12, value=None) -> str:
-    """A residual for people: exact value, or mid ± radius, or a certified bound.  An
-    exact algebraic ``value`` (number-field element) is shown exactly and numerically."""
-    if value is not None and hasattr(value, "rational"):
-        r = value.rational()
-        if r is None:
-            return f"{value.text()} ≈ {decimal_string(enc.mid, sig)}"
-        enc = Enclosure.of(r)
-    if enc.exact:
-        if enc.mid == 0:
-            return "0"
-        frac = str(enc.mid)
-        approx = decimal_string(enc.mid, sig)
-        if frac == approx:
-            return frac
-        return f"{frac} = {approx}" if Fraction(approx) == enc.mid else f"{frac} ≈ {approx}"
-    if verdict.state == FAILS:
-        return "{} ± {}".format(*ball_strings(enc.mid, enc.rad, sig))
-    return f"|R| ≤ {radius_string(enc.magnitude() + enc.rad)}"
-
-
-def plain(*values) -> list:
-    """Table cells as plain Text: user strings and brackets like [τ] are not rich markup."""
-    return [v if isinstance(v, Text) else Text(str(v)) for v in values]
 
 
 def _kv_table() -> Table:
@@ -409,93 +376,3 @@ def _row_sum_text(tab: Tableau, i: int) -> str:
         return str(sum(exact, Fraction(0)))
     enc = sum((e.enclosure(80, DecimalsMode.EXACT) for e in row[1:]), row[0].enclosure(80, DecimalsMode.EXACT))
     return "≈ " + decimal_string(enc.mid, 12)
-
-
-def render_condition_list(listing, console: Console, count_only: bool) -> None:
-    """``conditions``: counts per order, and the list of condition trees."""
-    deg = "no degree bound" if listing.degree is None else f"max degree ≤ {listing.degree}"
-    console.print(f"Energy conditions up to order {listing.order} ({deg}): {count_text(len(listing))}")
-    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
-    t.add_column("order", justify="right")
-    t.add_column("vertices", justify="right")
-    t.add_column("conditions", justify="right")
-    for k, v in listing.counts_by_order().items():
-        t.add_row(*plain(k, k + 1, count_text(v)))
-    console.print(t)
-    if count_only:
-        return
-    lst = Table(box=box.SIMPLE_HEAD, pad_edge=False)
-    lst.add_column("id", no_wrap=True)
-    lst.add_column("bracket", no_wrap=True)
-    lst.add_column("vertices", justify="right")
-    lst.add_column("max deg", justify="right")
-    lst.add_column("rootings", justify="right")
-    for c in listing.sorted_records():
-        lst.add_row(*plain(c.id, c.bracket, c.vertices, c.max_degree, c.rootings))
-    console.print(lst)
-
-
-def tree_drawing(seq: Sequence[int]):
-    """The :class:`~rkcheck.trees.drawing.TreeDrawing` of a level sequence (for pictures)."""
-    from rkcheck.trees.drawing import draw
-
-    return draw(tuple(seq))
-
-
-def tree_text(seq: Sequence[int], mark_root: bool = True) -> Text:
-    """The free tree of a level sequence drawn in Unicode (:mod:`rkcheck.trees.drawing`):
-    one ``●`` per vertex, centres and the root of the rooting given labelled."""
-    from rkcheck.trees.drawing import draw
-
-    out = Text()
-    for k, line in enumerate(draw(tuple(seq)).lines(mark_root)):
-        dot = line.index("●")
-        out.append(line[:dot], style="dim")
-        out.append(line[dot:dot + 1], style="bold magenta" if "centre" in line[dot:] else "bold")
-        out.append(line[dot + 1:], style="cyan")
-        if k < len(seq) - 1:
-            out.append("\n")
-    return out
-
-
-def render_explanation(ex: EnergyCondition, console: Console) -> None:
-    """``explain``: the free tree (drawn), its rootings with signs and σ, and the weights."""
-    given = ",".join(map(str, ex.given))
-    tableau = ex.tableau
-    drawn = f"The free tree of {given}, drawn from its centre (root: the root of {given}):"
-    if ex.tree is None:
-        why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
-        console.print(f"{given}: {counted(ex.vertices, 'vertex', 'vertices')} — superfluous free tree, no energy "
-                      f"condition ({why})")
-        console.print(drawn)
-        console.print(tree_text(ex.given))
-        return
-    c = ex.tree
-    console.print(Text(f"Energy condition {c.id}  {c.bracket}", style="bold"))
-    if c.id != given:
-        console.print(f"(given as {given}: canonical id = level sequence of the rooting at the centre)")
-    console.print(
-        f"{ex.vertices} vertices (order {c.order}), max degree {ex.max_degree}: "
-        f"a condition for every degree m ≥ {ex.max_degree}"
-    )
-    console.print(drawn)
-    console.print(tree_text(ex.given))
-    console.print("R = Σ_u (−1)^κ / σ(u) · a(B₋(u)) over the distinct rootings u:")
-    t = Table(box=box.SIMPLE_HEAD, pad_edge=False)
-    t.add_column("rooting u", no_wrap=True)
-    t.add_column("sign", justify="center")
-    t.add_column("σ(u)", justify="right")
-    t.add_column("a(B₋(u)) = product of")
-    if tableau is not None:
-        t.add_column("term value")
-    for term in ex.terms:
-        forest = " · ".join(f"({w})" for w in term.weights) or "1"
-        row = [f"{term.bracket}  {','.join(map(str, term.level_sequence))}", "+" if term.sign > 0 else "−", str(term.sigma), forest]
-        if tableau is not None and term.value is not None:
-            row.append(enclosure_text(term.value, Verdict(FAILS) if not term.value.exact else Verdict(HOLDS)))
-        t.add_row(*plain(*row))
-    console.print(t)
-    if tableau is not None and ex.enclosure is not None and ex.verdict is not None:
-        line = Text(f"R = {enclosure_text(ex.enclosure, ex.verdict, 20)}   ")
-        line.append_text(state_text(ex.verdict))
-        console.print(line)
