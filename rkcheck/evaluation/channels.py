@@ -51,6 +51,9 @@ def is_prime(n: int) -> bool:
     return True
 
 
+#: primes the first window below a limit holds at least
+_FIRST_WINDOW = 4096
+
 #: the primes found below each limit so far, largest first: a smaller count is a prefix
 _FOUND: dict[int, tuple[int, ...]] = {}
 
@@ -63,8 +66,11 @@ def _primes_below(limit: int, count: int) -> tuple[int, ...]:
         return known[:count]
     # a window sieved at once: a Miller–Rabin test per odd number cost ~10 µs each,
     # 0.2 s for the thousands of primes of a field of high degree.  Primes near 2^30 are
-    # ~21 apart: the first window nearly always suffices, a short one is doubled
-    span = 32 * count + 1024
+    # ~21 apart: the first window nearly always suffices, a short one is doubled.  A
+    # window costs about the same whatever its width (the loop over the primes below
+    # √limit), so the first is wide enough for the counts that follow (checks ask for
+    # 64, then 128, 256 … primes)
+    span = 32 * max(count, _FIRST_WINDOW) + 1024
     while True:
         lo = max(limit - span, 0)
         found = _sieve_window(lo, limit)[::-1]
