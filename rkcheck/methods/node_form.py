@@ -149,17 +149,20 @@ def _pair_moduli(P: tuple[Fraction, ...]) -> tuple[Any, Any]:
 
 
 def pair_charpoly(P: tuple[Fraction, ...], g: Any) -> Any:
-    """χ of multiplication by g on ``Q[x, y]/(P(x), P(y))`` (basis ``x^a y^b``), an
-    fmpq_poly: ``∏_(k,l) (t − g(c_k, c_l))`` over the pairs of roots of P."""
-    from flint import fmpq_mat
+    """χ of multiplication by g on ``Q[x, y]/(P(x), P(y))``, an fmpq_poly:
+    ``∏_(k,l) (t − g(c_k, c_l))`` over the pairs of roots of P, which for a monic P is
+    ``Res_x(P(x), Res_y(P(y), t − g(x, y)))`` up to its sign (FLINT's resultants: a
+    third of the time of the s² × s² matrix's characteristic polynomial at s = 6)."""
+    from flint import fmpq_mpoly_ctx, fmpq_poly
 
-    _, x, y = pair_ring()
-    n = len(P) - 1
-    M = fmpq_mat(n * n, n * n)
-    for col, (a, b) in enumerate((a, b) for a in range(n) for b in range(n)):
-        for (p, q), c in reduce_pair(P, g * x**a * y**b).to_dict().items():
-            M[p * n + q, col] = c
-    return M.charpoly()
+    ctx = fmpq_mpoly_ctx.get(("x", "y", "t"), "lex")
+    G = ctx.from_dict({(int(a), int(b), 0): c for (a, b), c in g.to_dict().items()})
+    moduli = [ctx.from_dict({(k, 0, 0) if var == "x" else (0, k, 0): to_fmpq(c) for k, c in enumerate(P)})
+              for var in ("x", "y")]
+    found = (ctx.gens()[2] - G).resultant(moduli[1], "y").resultant(moduli[0], "x").to_dict()
+    degree = (len(P) - 1) ** 2
+    lead = found[(0, 0, degree)]
+    return fmpq_poly([found.get((0, 0, k), 0) / lead for k in range(degree + 1)])
 
 
 @lru_cache(maxsize=16)

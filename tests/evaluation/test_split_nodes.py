@@ -166,3 +166,23 @@ def test_a_split_node_tableau_travels_by_pickle():
     there = exact_condition_sums(pickle.loads(pickle.dumps(scaled)), listing)
     for n, sums in here.items():
         assert [sums.value(k) for k in range(len(sums))] == [there[n].value(k) for k in range(len(sums))]
+
+
+@pytest.mark.parametrize("table", FAMILIES[:4] + MORE[:2] + MORE[7:])
+def test_the_pair_characteristic_polynomial_is_the_multiplication_matrixs(table):
+    # the s² × s² matrix of multiplication by g on Q[x, y]/(P(x), P(y)), column by
+    # column from the remainders of g·x^a·y^b, and its characteristic polynomial
+    from flint import fmpq_mat
+
+    from rkcheck.methods.node_form import pair_charpoly, pair_polynomial, pair_ring, reduce_pair
+
+    form = node_form(parse_spec(table))
+    _, x, y = pair_ring()
+    n = form.stages
+    F = pair_polynomial(form.F)
+    for g in (F, F * x - y + 3, F * F - x * y, pair_polynomial([]), pair_polynomial([((0, 0), Fraction(5, 7))])):
+        M = fmpq_mat(n * n, n * n)
+        for col, (a, b) in enumerate((a, b) for a in range(n) for b in range(n)):
+            for (p, q), c in reduce_pair(form.P, g * x**a * y**b).to_dict().items():
+                M[int(p) * n + int(q), col] = c
+        assert pair_charpoly(form.P, g) == M.charpoly()
