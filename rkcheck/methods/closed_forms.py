@@ -252,8 +252,7 @@ def family_exact_values(spec: FamilySpec) -> Any:
 @lru_cache(maxsize=16)
 def evaluation_trees(spec: FamilySpec) -> tuple[list[Fraction], dict[str, Any], list[list[Any]], list[Any]] | None:
     """``(P, definitions, A, b)``: the monic node polynomial and :func:`evaluation_texts`
-    parsed, once for both the field's values and the node form
-    (:mod:`rkcheck.methods.node_form`); None without closed-form nodes."""
+    parsed, for the field's values; None without closed-form nodes."""
     from rkcheck.numbers import grammar as ex
 
     texts = expression_texts(spec)

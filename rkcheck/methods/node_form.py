@@ -175,7 +175,8 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
     if P is None or len(P) - 1 != spec.base_rule().s or not _square_free(P):
         return None  # the argument needs the nodes to be exactly the roots of P, each once
     F, W = _family_polynomials(spec, P)
-    return NodeForm(tuple(P), tuple(sorted(((int(a), int(b)), to_fraction(c)) for (a, b), c in reduce_pair(tuple(P), F).to_dict().items())),
+    terms = reduce_pair(tuple(P), F).to_dict().items()
+    return NodeForm(tuple(P), tuple(sorted(((int(a), int(b)), to_fraction(c)) for (a, b), c in terms)),
                     tuple((k, c) for k, c in enumerate(from_flint(W)) if c != 0))
 
 
