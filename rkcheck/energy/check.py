@@ -187,7 +187,8 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     t2 = time.perf_counter()
     timings["evaluation"] = t2 - t1
 
-    warnings = list(tableau.info.warnings) + values.consistency_warnings() + ([note] if note else [])
+    warnings = (list(tableau.info.warnings) + values.consistency_warnings() + ([note] if note else [])
+                + list(listing.store_notes))
     facts = _facts(values)
     quad = facts["quadrature"]
     classical = _memo(facts, ("classical", options.order), lambda: classical_order(values, options.order))

@@ -70,6 +70,13 @@ def cache_disabled() -> bool:
     return os.environ.get("RKCHECK_NO_CACHE", "").strip() not in ("", "0")
 
 
+def _amount(n: int) -> str:
+    """A size in bytes for people, in decimal units."""
+    if n < 10**6:
+        return f"{n:,} bytes"
+    return f"{n / 10**6:.1f} MB" if n < 10**9 else f"{n / 10**9:.2f} GB"
+
+
 def max_cache_bytes() -> int:
     """:data:`MAX_CACHE_BYTES`, or the environment's ``RKCHECK_MAX_CACHE_BYTES`` (a
     non-negative number of bytes; 0 keeps nothing)."""
@@ -217,11 +224,13 @@ class ListingCache:
             return None
         return got
 
-    def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
+    def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> str | None:
         pieces = encode(key, arrays, meta)
         size = sum(len(p) if isinstance(p, bytes) else p.nbytes for p in pieces)
-        if size > self.limit:
-            return
+        if size > self.limit:  # kept, it would evict everything else and still not fit
+            return (f"the listing of the conditions with {key.get('vertices')} vertices takes {_amount(size)}, "
+                    f"more than the listing cache may hold ({_amount(self.limit)}, RKCHECK_MAX_CACHE_BYTES): "
+                    "it is built again on every run")
         import tempfile
 
         tmp = None
@@ -239,6 +248,7 @@ class ListingCache:
         finally:
             if tmp is not None:
                 _unlink(Path(tmp))
+        return None
 
     def files(self) -> list[tuple[Path, int, float]]:
         """(path, size, last use) of the listing files, oldest first."""

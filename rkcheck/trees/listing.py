@@ -104,6 +104,7 @@ class ConditionListing:
         self._presentations: dict[int, np.ndarray] = {}
         self._table: TreeTable | None = None
         self.cache_hits: list[int] = []  # vertices of the orders read from the store
+        self.store_notes: list[str] = []  # why the store declined an order (ListingStore.save)
         self.right: np.ndarray | RightFactors  # every tree's right factor, by id
         top = order + 1
         if degree is not None and degree < 2:  # no conditions: only the trees τ and [τ]
@@ -178,7 +179,9 @@ class ConditionListing:
         terms.first_id, terms.left, terms.right = lo, None, None
         if self._stored(n):
             assert self._store is not None
-            self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], right, terms))
+            note = self._store.save(record_key(n, self.degree), *to_record(self.left[lo:hi], right, terms))
+            if note and note not in self.store_notes:
+                self.store_notes.append(note)
         terms.pack()  # after the record: the file keeps the two arrays apart
         if n > self.order:
             self._set_top_right(right)

@@ -33,8 +33,10 @@ CONDITION_ARRAYS = {"counts": np.int32, "rep_left": np.int32, "rep_right": np.in
 class ListingStore(Protocol):
     """Where listings are kept between runs: ``load`` returns the arrays and metadata
     saved under ``key`` (None when there are none, or they are damaged); ``save`` keeps
-    them (a store may decline: a cache is only an optimisation).  Orders with fewer
-    than ``min_terms`` terms are neither loaded nor saved (cheaper to build).
+    them (a store may decline: a cache is only an optimisation) and returns None, or,
+    when it declines for a reason the user can change, one line saying so, which the
+    check passes on as a warning.  Orders with fewer than ``min_terms`` terms are neither
+    loaded nor saved (cheaper to build).
 
     ``into``: arrays that ``load`` may fill in place of allocating its own (by name, when
     type and length match) and then return as those arrays; whatever is returned, their
@@ -45,7 +47,7 @@ class ListingStore(Protocol):
     def load(self, key: dict[str, Any],
              into: dict[str, np.ndarray] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None: ...
 
-    def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> None: ...
+    def save(self, key: dict[str, Any], arrays: dict[str, np.ndarray], meta: dict[str, Any]) -> str | None: ...
 
 
 def record_key(vertices: int, degree: int | None) -> dict[str, Any]:

@@ -7,6 +7,7 @@ expose a partial file; the directory follows the platform's convention; and the 
 from __future__ import annotations
 
 import os
+import re
 import threading
 from pathlib import Path
 
@@ -201,6 +202,31 @@ def test_a_record_larger_than_the_limit_is_not_saved(tmp_path):
     store = ListingCache(tmp_path / "c", limit=100, min_terms=0)
     listing = ConditionListing(8, None, store).complete()
     assert store.files() == [] and len(listing.orders[9]) > 0
+
+
+def test_an_order_over_the_limit_is_named_and_the_check_says_so(tmp_path):
+    # the orders' sizes as the files on disk have them, kept under a limit that holds all
+    everything = ListingCache(tmp_path / "all", limit=1 << 30, min_terms=0)
+    ConditionListing(7, None, everything).complete()
+    sizes = {n: _file(everything, n).stat().st_size for n in range(3, 9)}
+    limit = sorted(sizes.values())[3]  # some orders fit, the larger ones do not
+    over = sorted(n for n, size in sizes.items() if size > limit)
+    assert 0 < len(over) < len(sizes)
+    store = ListingCache(tmp_path / "c", limit=limit, min_terms=0)
+    listing = ConditionListing(7, None, store).complete()
+    assert [int(re.search(r"with (\d+) vertices", note).group(1)) for note in listing.store_notes] == over
+    assert all("RKCHECK_MAX_CACHE_BYTES" in note and f"{limit:,} bytes" in note for note in listing.store_notes)
+    assert {n for n in sizes if _file(store, n).exists()} <= set(sizes) - set(over)  # the rest may be evicted
+    # a check built on such a listing passes the notes on as warnings
+    import rkcheck
+
+    use_store(ListingCache(tmp_path / "d", limit=limit, min_terms=0))
+    forget_listings()
+    try:
+        result = rkcheck.verify(RK4, order=7, degree=None)
+    finally:
+        forget_listings()
+    assert [w for w in result.warnings if "listing cache" in w] == listing.store_notes
 
 
 def test_concurrent_writers_never_expose_a_partial_file(tmp_path):
