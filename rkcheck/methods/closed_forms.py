@@ -180,12 +180,11 @@ def lagrange_parts(P: list[Fraction]) -> tuple[list[Any], Any]:
     its integral over [0, 1] is ``W(c_j)`` (see :func:`evaluation_texts`)."""
     from flint import fmpq_poly
 
-    from rkcheck.numbers.polynomials import to_flint
+    from rkcheck.numbers.polynomials import inverse_mod, to_flint
 
     n = len(P) - 1
     f = to_flint(list(P))
-    d, s, _ = f.derivative().xgcd(f)
-    V = (s / d) % f
+    V = inverse_mod(f.derivative(), f)
     U = [(to_flint([P[m] for m in range(k + 1, n + 1)]) * V) % f for k in range(n)]
     W = sum((u / (k + 1) for k, u in enumerate(U)), fmpq_poly([])) % f
     return U, W
@@ -315,11 +314,10 @@ def evaluation_texts(spec: FamilySpec, P: list[Fraction],
     and ``b_j = W(c_j)``, ``W = Σ_k U_k/(k + 1) mod P``; ``1/b_i = (W⁻¹ mod P)(c_i)``.
     Every reduction is modulo P over Q, so each node's values are polynomials of degree
     below n in it: no division in the nodes' field."""
-    from rkcheck.numbers.polynomials import from_flint, to_flint
+    from rkcheck.numbers.polynomials import from_flint, inverse_mod, to_flint
 
     n = len(P) - 1
     c = [f"c{i + 1}" for i in range(n)]
-    f = to_flint(list(P))
     U, W = lagrange_parts(P)
     definitions = {f"b{j + 1}": _poly_text(from_flint(W), c[j]) for j in range(n)}
     bn = list(definitions)
@@ -330,8 +328,8 @@ def evaluation_texts(spec: FamilySpec, P: list[Fraction],
         A = [[" + ".join(f"{_par(_power(c[i], k + 1))}/{k + 1}*u{k}_{j + 1}" for k in range(n)) for j in range(n)]
              for i in range(n)]
     elif name in ("lobatto-iiib", "radau-ia"):  # b_j/b_i·∫_(c_j)^1 ℓ_i
-        d, s, _ = W.xgcd(f)
-        definitions |= {f"binv{i + 1}": _poly_text(from_flint((s / d) % f), c[i]) for i in range(n)}
+        inverse = from_flint(inverse_mod(W, to_flint(list(P))))
+        definitions |= {f"binv{i + 1}": _poly_text(inverse, c[i]) for i in range(n)}
         A = [[(f"{bn[j]}*binv{i + 1}*" if i != j else "")
               + "(" + " + ".join(f"(1 - {_power(c[j], k + 1)})/{k + 1}*u{k}_{i + 1}" for k in range(n)) + ")"
               for j in range(n)] for i in range(n)]

@@ -191,7 +191,7 @@ def _family_polynomials(spec: FamilySpec, P: list[Fraction]) -> tuple[Any, Any]:
     entries with, ``ℓ_j(x) = Σ_k U_k(c_j) x^k`` the Lagrange basis polynomial of node j."""
     from rkcheck.methods.closed_forms import lagrange_parts
     from rkcheck.methods.quadrature import shifted_legendre
-    from rkcheck.numbers.polynomials import integral
+    from rkcheck.numbers.polynomials import integral, inverse_mod
 
     ctx, x, y = pair_ring()
     U, W = lagrange_parts(P)
@@ -207,10 +207,8 @@ def _family_polynomials(spec: FamilySpec, P: list[Fraction]) -> tuple[Any, Any]:
     elif name in ("gauss", "lobatto-iiia", "radau-iia"):  # ∫_0^(c_i) ℓ_j
         F = sum((x ** (k + 1) * of(U[k], 1) / (k + 1) for k in range(n)), ctx.constant(0))
     elif name in ("lobatto-iiib", "radau-ia"):  # b_j/b_i·∫_(c_j)^1 ℓ_i
-        f = to_flint(list(P))
-        d, inverse, _ = W.xgcd(f)
-        F = Wy * of((inverse / d) % f, 0) * sum(((1 - y ** (k + 1)) * of(U[k], 0) / (k + 1) for k in range(n)),
-                                                ctx.constant(0))
+        integrals = sum(((1 - y ** (k + 1)) * of(U[k], 0) / (k + 1) for k in range(n)), ctx.constant(0))
+        F = Wy * of(inverse_mod(W, to_flint(list(P))), 0) * integrals
     elif name == "hbvm":  # b_j·Σ_(l<s) (2l + 1)·∫_0^(c_i) P_l·P_l(c_j), P_l the shifted Legendre polynomials
         F = Wy * sum((of(integral(shifted_legendre(l)), 0) * of(shifted_legendre(l), 1) * (2 * l + 1)
                       for l in range(spec.s)), ctx.constant(0))

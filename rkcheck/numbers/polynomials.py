@@ -192,6 +192,12 @@ def from_flint(p: Any) -> list[Fraction]:
     return [to_fraction(c) for c in p.coeffs()] or [Fraction(0)]
 
 
+def inverse_mod(g: Any, f: Any) -> Any:
+    """``g⁻¹ mod f`` for fmpq_polys g prime to f (Bézout: ``s·g + t·f = d``, d constant)."""
+    d, s, _ = g.xgcd(f)
+    return (s / d) % f
+
+
 def rational_lowest_terms(P: Any, Q: Any) -> tuple[list[Fraction], list[Fraction]]:
     """:func:`lowest_terms` over Q, by FLINT (Euclid on Fractions swells beyond degree
     ~15); ``P`` and ``Q`` are coefficient lists or ``fmpq_poly``."""
