@@ -25,6 +25,7 @@ from typing import Callable
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.formatting import count_text as count
+from rkcheck.numbers.formatting import human_bytes
 from rkcheck.trees.counting import listing_size
 
 LISTING_SECONDS_PER_TREE = 0.6e-6
@@ -67,14 +68,6 @@ class Budget:
     available_bytes: int | None = None
     max_conditions: int | None = None
     announce: Callable[[str], None] | None = None
-
-
-def human_bytes(n: float) -> str:
-    for unit in ("B", "KB", "MB", "GB", "TB", "PB"):
-        if n < 1000 or unit == "PB":
-            return f"{n:.0f} {unit}" if unit in ("B", "KB", "MB") else f"{n:.1f} {unit}"
-        n /= 1000
-    return f"{n:.1f} PB"  # pragma: no cover
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,

@@ -32,6 +32,7 @@ import numpy as np
 
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
+from rkcheck.numbers.formatting import human_bytes
 
 #: the default bound on the cache directory's listing files (RKCHECK_MAX_CACHE_BYTES)
 MAX_CACHE_BYTES = 2 * 1024**3
@@ -68,13 +69,6 @@ def cache_dir() -> Path:
 def cache_disabled() -> bool:
     """``RKCHECK_NO_CACHE`` set to anything but ``""``/``0``: no listing is read or saved."""
     return os.environ.get("RKCHECK_NO_CACHE", "").strip() not in ("", "0")
-
-
-def _amount(n: int) -> str:
-    """A size in bytes for people, in decimal units."""
-    if n < 10**6:
-        return f"{n:,} bytes"
-    return f"{n / 10**6:.1f} MB" if n < 10**9 else f"{n / 10**9:.2f} GB"
 
 
 def max_cache_bytes() -> int:
@@ -228,8 +222,8 @@ class ListingCache:
         pieces = encode(key, arrays, meta)
         size = sum(len(p) if isinstance(p, bytes) else p.nbytes for p in pieces)
         if size > self.limit:  # kept, it would evict everything else and still not fit
-            return (f"the listing of the conditions with {key.get('vertices')} vertices takes {_amount(size)}, "
-                    f"more than the listing cache may hold ({_amount(self.limit)}, RKCHECK_MAX_CACHE_BYTES): "
+            return (f"the listing of the conditions with {key.get('vertices')} vertices takes {human_bytes(size)}, "
+                    f"more than the listing cache may hold ({human_bytes(self.limit)}, RKCHECK_MAX_CACHE_BYTES): "
                     "it is built again on every run")
         import tempfile
 

@@ -135,3 +135,12 @@ def counted(n: int, noun: str, plural: str | None = None) -> str:
     """A count and its noun in agreement: ``1 error``, ``2 errors``, ``0 files``,
     ``80,936 conditions`` (the count as :func:`count_text` writes it)."""
     return f"{count_text(n)} {noun if n == 1 else (plural or noun + 's')}"
+
+
+def human_bytes(n: float) -> str:
+    """A size in bytes for people, in decimal units (1 KB = 1000 B)."""
+    for unit in ("B", "KB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return f"{n:.0f} {unit}" if unit in ("B", "KB", "MB") else f"{n:.1f} {unit}"
+        n /= 1000
+    return f"{n:.1f} PB"  # pragma: no cover

@@ -17,6 +17,7 @@ from support.clirun import run_cli
 
 from rkcheck.io import cache as cache_module
 from rkcheck.io.cache import MAGIC, ListingCache, cache_dir, encode, max_cache_bytes
+from rkcheck.numbers.formatting import human_bytes
 from rkcheck.trees.listing import ConditionListing, forget_listings, use_store
 from rkcheck.trees.stored import record_key, to_record
 
@@ -215,7 +216,7 @@ def test_an_order_over_the_limit_is_named_and_the_check_says_so(tmp_path):
     store = ListingCache(tmp_path / "c", limit=limit, min_terms=0)
     listing = ConditionListing(7, None, store).complete()
     assert [int(re.search(r"with (\d+) vertices", note).group(1)) for note in listing.store_notes] == over
-    assert all("RKCHECK_MAX_CACHE_BYTES" in note and f"{limit:,} bytes" in note for note in listing.store_notes)
+    assert all("RKCHECK_MAX_CACHE_BYTES" in note and human_bytes(limit) in note for note in listing.store_notes)
     assert {n for n in sizes if _file(store, n).exists()} <= set(sizes) - set(over)  # the rest may be evicted
     # a check built on such a listing passes the notes on as warnings
     import rkcheck
