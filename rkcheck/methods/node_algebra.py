@@ -33,7 +33,14 @@ from rkcheck.methods.node_form import (
     reduce_pair,
 )
 from rkcheck.numbers.intervals import Interval
-from rkcheck.numbers.polynomials import from_flint, to_flint, to_fmpq, to_fraction
+from rkcheck.numbers.polynomials import (
+    evaluate,
+    from_flint,
+    to_arb,
+    to_flint,
+    to_fmpq,
+    to_fraction,
+)
 
 if TYPE_CHECKING:
     from rkcheck.methods.family_spec import FamilySpec
@@ -237,15 +244,6 @@ def _monic(f: list[Fraction]) -> list[Fraction]:
     return [c / f[-1] for c in f]
 
 
-def _horner(f: list[Fraction], v: Any) -> Any:
-    from rkcheck.numbers.polynomials import to_arb
-
-    acc = to_arb(f[-1])
-    for c in reversed(f[:-1]):
-        acc = acc * v + to_arb(c)
-    return acc
-
-
 class NodeFunction:
     """A polynomial g of the algebra as a function of two stages: its values
     ``g(c_i, c_j)`` in balls, and what χ says of all of them at once."""
@@ -285,8 +283,6 @@ class NodeFunction:
         """An Arb ball around ``g(c_i, c_j)`` from the nodes' enclosures at ``prec`` bits."""
         from flint import arb, ctx
 
-        from rkcheck.numbers.polynomials import to_arb
-
         powers = self.algebra.powers(prec)
         with ctx.workprec(prec + 32):
             if prec not in self._coefficients:
@@ -319,7 +315,7 @@ class NodeValue:
         while prec <= MAX_BITS:
             v = self.function.ball(self.i, self.j, prec)
             with ctx.workprec(prec + 32):
-                hits = [f for f in self.function.factors if _horner(f, v).contains(0)]
+                hits = [f for f in self.function.factors if evaluate([to_arb(c) for c in f], v, to_arb(0)).contains(0)]
             if len(hits) == 1:
                 return hits[0]
             prec *= 2
