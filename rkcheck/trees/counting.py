@@ -55,14 +55,24 @@ def _multisets(t: list[int], k: int, size: int) -> list[list[int]]:
 @lru_cache(maxsize=64)
 def rooted_counts(max_vertices: int, children: int | None = None) -> tuple[int, ...]:
     """Rooted trees with n = 0 … max_vertices vertices whose vertices have at most
-    ``children`` children (None: any)."""
+    ``children`` children (None: any).
+
+    Coefficient by coefficient: ``T[n] = Σ_j h_j[n − 1]``, and then ``h_j[n]`` from
+    ``j·h_j = Σ_i T(x^i)·h_{j−i}``, which needs T up to n only (the series of all
+    multisets recomputed for every n cost 40 ms at 17 vertices, in every check)."""
     size = max_vertices + 1
     k = max_vertices if children is None else children
     t = [0] * size
-    for n in range(1, size):  # coefficient n of T depends only on coefficients below n
-        h = _multisets(t, min(k, n - 1), n)
-        total = [sum(col) for col in zip(*h)] if h else [0] * n
-        t[n] = total[n - 1]
+    h = [[1] + [0] * (size - 1)] + [[0] * size for _ in range(k)]
+    for n in range(1, size):
+        t[n] = sum(h[j][n - 1] for j in range(min(k, n - 1) + 1))
+        for j in range(1, min(k, n) + 1):
+            acc = 0
+            for i in range(1, j + 1):
+                below = h[j - i]
+                # T(x^i) has the coefficient t[q] at x^(i·q)
+                acc += sum(t[q] * below[n - i * q] for q in range(1, n // i + 1))
+            h[j][n] = acc // j  # exact: j·h_j has integer coefficients divisible by j
     return tuple(t)
 
 
