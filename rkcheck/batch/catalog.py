@@ -12,10 +12,10 @@ from typing import Any
 
 from rkcheck.energy.check import CheckOptions
 from rkcheck.energy.error_constants import error_constant
-from rkcheck.energy.verdicts import State
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
 from rkcheck.numbers.formatting import decimal_string
+from rkcheck.verdicts import State
 
 
 @dataclass

@@ -14,14 +14,8 @@ import time
 from dataclasses import dataclass, field, fields
 from typing import Any, Callable, Self
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.avf import AvfVerdict, theorem1_remark
 from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.judging import evaluate_orders, refine_undecided
-from rkcheck.energy.lineintegral import Certificate
-from rkcheck.energy.node_properties import node_properties, node_quadrature_order
-from rkcheck.energy.orders import OrderResult, classical_order, quadrature_order
-from rkcheck.energy.properties import TableauProperties, properties_of_values
 from rkcheck.energy.results import (
     ConditionResults,
     Failures,
@@ -31,7 +25,6 @@ from rkcheck.energy.results import (
     order_verdicts,
     per_order_counts,
 )
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, State, Verdict
 from rkcheck.errors import CheckInterrupted
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import channels_for
@@ -39,8 +32,15 @@ from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
 from rkcheck.options import CheckOptions
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.avf import AvfVerdict, theorem1_remark
+from rkcheck.properties.from_nodes import node_properties, node_quadrature_order
+from rkcheck.properties.lineintegral import Certificate
+from rkcheck.properties.orders import OrderResult, classical_order, quadrature_order
+from rkcheck.properties.tableau import TableauProperties, properties_of_values
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.listing import ConditionListing, condition_listing
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, State, Verdict
 
 
 @dataclass

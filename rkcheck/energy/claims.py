@@ -14,10 +14,10 @@ Meanings (definitions §3–§4):
 An order claim met only because conditions hold to D digits is met "to D digits", like a
 property claim: the found column says so and the note gives the proven order.
 * ``symplectic`` / ``symmetric = true|false`` — the verdicts of
-  :mod:`rkcheck.energy.symplectic` on the irreducible form (``holds to D digits`` counts
+  :mod:`rkcheck.properties.symplectic` on the irreducible form (``holds to D digits`` counts
   as true, with the digits in the note).
 * ``stability_defect = 0`` — ``R(z)R(−z) ≡ 1``; ``{power = 2k, coefficient = "c"}`` — the
-  leading term of ``R(z)R(−z) − 1`` is ``c z^2k`` (:mod:`rkcheck.energy.stability`).
+  leading term of ``R(z)R(−z) − 1`` is ``c z^2k`` (:mod:`rkcheck.properties.stability`).
 """
 
 from __future__ import annotations
@@ -74,7 +74,7 @@ def judge(claim: Claim, result) -> ClaimResult:
     if claim.kind == "quadrature_order" or claim.kind == "classical_order":
         r = result.quadrature if claim.kind == "quadrature_order" else result.classical
         if claim.kind == "classical_order" and r.first_failure is None and r.checked < int(claim.value) + 1:
-            from rkcheck.energy.orders import (
+            from rkcheck.properties.orders import (
                 classical_order,  # one order beyond the claim decides it
             )
 
@@ -136,7 +136,7 @@ def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: 
 
 def judge_property(claim: Claim, result) -> ClaimResult:
     """A claim on the tableau's own algebra (symplectic, symmetric, stability_defect)."""
-    from rkcheck.energy import scalars as sc
+    from rkcheck.properties import scalars as sc
 
     props = result.properties
     if claim.kind in ("symplectic", "symmetric"):

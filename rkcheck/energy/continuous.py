@@ -26,15 +26,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from rkcheck.energy.symplectic import PropertyVerdict
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.methods.continuous import ContinuousMethod
+from rkcheck.properties.symplectic import PropertyVerdict
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 
 
 @dataclass(frozen=True)
 class ContinuousCertificate:
     """The kernel certificate of every order (module docstring); the check's
-    :class:`~rkcheck.energy.lineintegral.Certificate` protocol."""
+    :class:`~rkcheck.properties.lineintegral.Certificate` protocol."""
 
     degree: int | None
     verdict: Verdict
@@ -64,7 +64,7 @@ class ContinuousCertificate:
 
 @dataclass(frozen=True)
 class ContinuousAvf:
-    """Equals-AVF of a kernel; read like :class:`~rkcheck.energy.avf.AvfVerdict`."""
+    """Equals-AVF of a kernel; read like :class:`~rkcheck.properties.avf.AvfVerdict`."""
 
     degree: int | None
     verdict: Verdict

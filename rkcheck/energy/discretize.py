@@ -81,10 +81,10 @@ def _rule_texts(spec: Any) -> tuple[list[str], list[str], dict[str, str], int, s
 
 def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, str]:
     """The rule (b, c) of a tableau (c = A·1 when it gives none)."""
-    from rkcheck.energy import scalars as sc
-    from rkcheck.energy.orders import quadrature_order
     from rkcheck.evaluation.values import TableauValues
     from rkcheck.numbers.reading import DecimalsMode, Reading
+    from rkcheck.properties import scalars as sc
+    from rkcheck.properties.orders import quadrature_order
 
     consts = {f"r_{k}": xp.to_text(v) for k, v in tab.info.constants.definitions.items()}
     rename: dict[str, ex.Expr] = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}

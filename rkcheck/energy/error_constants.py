@@ -30,9 +30,9 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from rkcheck.energy.verdicts import FAILS
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
+from rkcheck.verdicts import FAILS
 
 
 @dataclass(frozen=True)

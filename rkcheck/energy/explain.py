@@ -21,7 +21,6 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.energy.verdicts import Verdict, classify
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
@@ -32,6 +31,7 @@ from rkcheck.trees.rooted import (
     bracket_of_forest,
     children_of_level_sequence,
 )
+from rkcheck.verdicts import Verdict, classify
 
 _INDICES = "ijklmnpqrsuvwxyz"
 _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -20,10 +20,10 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from rkcheck.energy.orders import TreeWeights
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.polynomial import PolynomialContext
 from rkcheck.numbers.parametric import ParameterRing
+from rkcheck.properties.orders import TreeWeights
 from rkcheck.trees.listing import condition_listing
 from rkcheck.trees.rooted import bracket_of_forest
 from rkcheck.trees.table import TreeTable

@@ -8,8 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rkcheck.energy.check import CheckResult, inconsistent
-from rkcheck.energy.verdicts import HOLDS_TO_DIGITS
 from rkcheck.numbers.formatting import count_text
+from rkcheck.verdicts import HOLDS_TO_DIGITS
 
 
 @dataclass(frozen=True)

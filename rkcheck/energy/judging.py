@@ -13,7 +13,6 @@ from typing import Any, Mapping
 import numpy as np
 
 from rkcheck.energy.results import OrderVerdicts, order_verdicts
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
 from rkcheck.evaluation.box import judge_box
@@ -21,6 +20,7 @@ from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
 from rkcheck.trees.listing import ConditionListing
+from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
 
 def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast: bool = False,

@@ -15,17 +15,17 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.energy.verdicts import (
+from rkcheck.numbers import expressions as xp
+from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.verdicts import (
     FAILS,
     HOLDS,
     HOLDS_TO_DIGITS,
     Verdict,
     certified_digits,
 )
-from rkcheck.numbers import expressions as xp
-from rkcheck.numbers import grammar as ex
-from rkcheck.numbers.intervals import Interval
-from rkcheck.numbers.reading import DecimalsMode
 
 Poly = dict[tuple[int, int], Interval]
 ONE = Interval.point(1)

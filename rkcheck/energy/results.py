@@ -14,7 +14,10 @@ from typing import Any, Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from rkcheck.energy.verdicts import (
+from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.trees.free import FreeTree
+from rkcheck.trees.listing import ConditionListing
+from rkcheck.verdicts import (
     FAILS,
     HOLDS_TO_DIGITS,
     State,
@@ -22,9 +25,6 @@ from rkcheck.energy.verdicts import (
     classify_bounds,
     classify_many,
 )
-from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.trees.free import FreeTree
-from rkcheck.trees.listing import ConditionListing
 
 
 class Condition(NamedTuple):

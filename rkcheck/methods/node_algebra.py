@@ -294,7 +294,7 @@ class NodeFunction:
 
 
 class NodeValue:
-    """``g(c_i, c_j)`` exactly: a scalar of :mod:`rkcheck.energy.scalars` (zero test,
+    """``g(c_i, c_j)`` exactly: a scalar of :mod:`rkcheck.properties.scalars` (zero test,
     rational value, enclosure, exact text) known by its minimal polynomial over Q."""
 
     def __init__(self, function: NodeFunction, i: int, j: int):

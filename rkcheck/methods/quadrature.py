@@ -244,7 +244,7 @@ def quadrature_residual(b: list[Interval], c: list[Interval], k: int) -> Interva
 def line_integral_matrix(c: list[Interval], b: list[Interval], sigma: int) -> list[list[Interval]]:
     """``Σ_(j<σ) (2j+1) G_j(c)(P_j(c) ⊙ b)ᵀ`` (``P_j`` shifted Legendre, ``G_j = ∫₀^x P_j``):
     the coefficients of HBVM(k, σ) over the rule (b, c), and the right-hand side of the
-    line-integral identity (LI) of :mod:`rkcheck.energy.lineintegral`."""
+    line-integral identity (LI) of :mod:`rkcheck.properties.lineintegral`."""
     P = [shifted_legendre(j) for j in range(sigma)]
     G = [integral(p) for p in P]
     Gc = [[evaluate_at_interval(G[j], ci) for j in range(sigma)] for ci in c]

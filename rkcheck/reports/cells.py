@@ -7,9 +7,9 @@ from fractions import Fraction
 
 from rich.text import Text
 
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.formatting import ball_strings, decimal_string, radius_string
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
 
 STYLE = {HOLDS: "green", HOLDS_TO_DIGITS: "yellow", FAILS: "bold red"}
 

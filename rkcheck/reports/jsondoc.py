@@ -9,7 +9,6 @@ from typing import Any
 from rkcheck.energy.check import CheckResult, inconsistent
 from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.energy.results import Condition
-from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
@@ -17,6 +16,7 @@ from rkcheck.numbers.expressions import to_text
 from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
+from rkcheck.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.version import __version__
 
 SCHEMA = 1

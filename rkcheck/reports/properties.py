@@ -26,16 +26,16 @@ from typing import Any
 
 from rich.text import Text
 
-from rkcheck.energy import scalars as sc
 from rkcheck.energy.error_constants import ErrorConstant, error_constant
-from rkcheck.energy.stability import (
+from rkcheck.evaluation.values import TableauValues
+from rkcheck.numbers.formatting import decimal_string
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.stability import (
     StabilityFunction,
     stability_function,
     stability_of_series,
 )
-from rkcheck.energy.verdicts import FAILS, HOLDS
-from rkcheck.evaluation.values import TableauValues
-from rkcheck.numbers.formatting import decimal_string
+from rkcheck.verdicts import FAILS, HOLDS
 
 _SUP = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 STYLE = {HOLDS: "green", "holds_to_digits": "yellow", FAILS: "red"}

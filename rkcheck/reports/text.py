@@ -13,7 +13,6 @@ from rich.text import Text
 from rkcheck.energy.check import CheckResult, inconsistent, overall
 from rkcheck.energy.gate import requirement_shortfall
 from rkcheck.energy.results import Condition
-from rkcheck.energy.verdicts import HOLDS, HOLDS_TO_DIGITS
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.io.printable import printable
 from rkcheck.methods.tableau import Tableau
@@ -27,6 +26,7 @@ from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.cells import enclosure_text, plain, state_text
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
 from rkcheck.reports.trees import tree_text
+from rkcheck.verdicts import HOLDS, HOLDS_TO_DIGITS
 
 MAX_FAILURES_SHOWN = 20
 

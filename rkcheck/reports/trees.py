@@ -11,9 +11,9 @@ from rich.table import Table
 from rich.text import Text
 
 from rkcheck.energy.explain import EnergyCondition
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict
 from rkcheck.numbers.formatting import count_text, counted
 from rkcheck.reports.cells import enclosure_text, plain, state_text
+from rkcheck.verdicts import FAILS, HOLDS, Verdict
 
 
 def render_condition_list(listing, console: Console, count_only: bool) -> None:

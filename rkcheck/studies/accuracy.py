@@ -20,13 +20,6 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.energy.verdicts import (
-    FAILS,
-    HOLDS,
-    HOLDS_TO_DIGITS,
-    Verdict,
-    classify_bounds,
-)
 from rkcheck.errors import UserError
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import ball_context, float_context
@@ -37,6 +30,13 @@ from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.entries import Entry
 from rkcheck.numbers.reading import DEFAULT_READING, Reading
 from rkcheck.trees.listing import condition_listing
+from rkcheck.verdicts import (
+    FAILS,
+    HOLDS,
+    HOLDS_TO_DIGITS,
+    Verdict,
+    classify_bounds,
+)
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
 

@@ -10,9 +10,9 @@ from support.clirun import run_cli
 from support.paths import TABLEAUX  # noqa: E402
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.io.loader import load
 from rkcheck.methods.tableau import Tableau
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 
 
 def avf(nodes: list[str], weights: list[str]) -> Tableau:

@@ -21,9 +21,9 @@ import pytest
 from support import reference as ref
 
 from rkcheck.energy.check import check
-from rkcheck.energy.verdicts import HOLDS
 from rkcheck.io.loader import loads as load_text
 from rkcheck.options import CheckOptions
+from rkcheck.verdicts import HOLDS
 
 TABLEAUX = Path(__file__).resolve().parents[2] / "tableaux"
 

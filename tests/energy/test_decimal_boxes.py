@@ -26,10 +26,10 @@ from support import reference as ref
 from support.clirun import run_subprocess
 
 from rkcheck.energy.check import check
-from rkcheck.energy.verdicts import FAILS, HOLDS_TO_DIGITS
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.grammar import double_interval, parse
 from rkcheck.options import CheckOptions
+from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
 
 def _write(tmp_path, name: str, doc: dict) -> str:

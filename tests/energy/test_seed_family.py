@@ -26,8 +26,8 @@ from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.verdicts import FAILS, HOLDS
 from rkcheck.methods.tableau import Tableau
+from rkcheck.verdicts import FAILS, HOLDS
 
 beta = sp.Symbol("beta")
 ZETAS = {"0": 3, "1/3": 7}  # ζ -> squarefree k with √(3+ζ²) ∈ Q(√k)

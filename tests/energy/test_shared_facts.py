@@ -13,10 +13,10 @@ from support.paths import TABLEAUX
 import rkcheck
 import rkcheck.energy.check as check_module
 import rkcheck.evaluation.scaled as scaled_module
-from rkcheck.energy.orders import classical_order
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.loader import load
 from rkcheck.numbers.reading import Reading
+from rkcheck.properties.orders import classical_order
 
 
 def test_claim_runs_share_the_properties_of_the_main_run(monkeypatch):

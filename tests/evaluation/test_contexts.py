@@ -23,7 +23,6 @@ import rkcheck.evaluation.algorithm as algorithm
 import rkcheck.evaluation.channels as channels
 import rkcheck.trees.classes as classes
 import rkcheck.trees.table as table_module
-from rkcheck.energy.verdicts import FAILS, HOLDS, classify
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext, FloatContext
 from rkcheck.evaluation.modular import exact_condition_sums
@@ -35,6 +34,7 @@ from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.studies.accuracy import evaluate_backend
 from rkcheck.trees.listing import ConditionListing
+from rkcheck.verdicts import FAILS, HOLDS, classify
 
 
 def random_tableau(seed: int, big: bool = False):

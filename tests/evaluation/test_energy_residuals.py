@@ -45,12 +45,12 @@ import pytest
 from support import reference as ref
 from support.shapes import asymbush, double_bush, triple_bush
 
-from rkcheck.energy.orders import TreeWeights
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.balls import BallContext
 from rkcheck.evaluation.modular import exact_condition_sums
 from rkcheck.evaluation.scaled import scaled_rational
 from rkcheck.numbers.intervals import Interval
+from rkcheck.properties.orders import TreeWeights
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.trees.table import TreeTable
 

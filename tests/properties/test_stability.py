@@ -22,8 +22,8 @@ from support.paths import TABLEAUX, tableau_files
 from support.symbolic import gauss
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.stability import stability_function
 from rkcheck.io.loader import load
+from rkcheck.properties.stability import stability_function
 
 z = sympy.Symbol("z")
 
@@ -264,7 +264,7 @@ def test_fraction_and_flint_routes_agree(seed, monkeypatch):
     # small rational tableaux use the generic Fraction path (Hessenberg + Euclid), large
     # ones FLINT's fmpq_mat charpoly and fmpq_poly gcd: two independent routes, forced
     # here on the same tableaux (up to 11 stages) and compared exactly
-    import rkcheck.energy.stability as stab
+    import rkcheck.properties.stability as stab
 
     rng = random.Random(1000 + seed)
     A, b = random_tableau(rng, rng.randint(1, 11), explicit=seed % 3 == 0)

@@ -1,13 +1,13 @@
 """The properties of a family's tableau from its node form, without the field of its nodes.
 
-What :mod:`rkcheck.energy.properties` computes entry by entry over the tableau's scalars
+What :mod:`rkcheck.properties.tableau` computes entry by entry over the tableau's scalars
 is here one polynomial identity each in ``Q[x, y]/(P(x), P(y))``
 (:class:`~rkcheck.methods.node_algebra.NodeAlgebra`): ``c = A·1`` is x, a sum over the
 stages a trace, and an entry a report names an exact :class:`NodeValue`.  The verdicts
 and the texts are those of the generic route — the same functions make them from what
-this module computes (:func:`~rkcheck.energy.avf.avf_verdict`,
-:func:`~rkcheck.energy.lineintegral.line_integral_certificate`,
-:func:`~rkcheck.energy.symplectic.symplectic_verdict`).
+this module computes (:func:`~rkcheck.properties.avf.avf_verdict`,
+:func:`~rkcheck.properties.lineintegral.line_integral_certificate`,
+:func:`~rkcheck.properties.symplectic.symplectic_verdict`).
 
 The route applies to a consistent tableau (``Σ_j F(x, c_j) = x``) whose weights are all
 nonzero (:meth:`NodeAlgebra.irreducible`): its nodes are distinct, so it is its own
@@ -20,25 +20,25 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Iterator
 
-from rkcheck.energy.avf import AvfVerdict, avf_verdict
-from rkcheck.energy.lineintegral import (
+from rkcheck.methods.node_algebra import NodeAlgebra
+from rkcheck.methods.quadrature import shifted_legendre
+from rkcheck.numbers.polynomials import integral
+from rkcheck.properties.avf import AvfVerdict, avf_verdict
+from rkcheck.properties.lineintegral import (
     LineIntegralCertificate,
     line_integral_certificate,
 )
-from rkcheck.energy.orders import OrderResult, quadrature_order_of
-from rkcheck.energy.properties import TableauProperties
-from rkcheck.energy.reduction import Reduction
-from rkcheck.energy.stability import stability_of_series
-from rkcheck.energy.symplectic import (
+from rkcheck.properties.orders import OrderResult, quadrature_order_of
+from rkcheck.properties.reduction import Reduction
+from rkcheck.properties.stability import stability_of_series
+from rkcheck.properties.symplectic import (
     PropertyVerdict,
     not_symmetric,
     symmetric,
     symplectic_verdict,
 )
-from rkcheck.energy.verdicts import HOLDS, Verdict
-from rkcheck.methods.node_algebra import NodeAlgebra
-from rkcheck.methods.quadrature import shifted_legendre
-from rkcheck.numbers.polynomials import integral
+from rkcheck.properties.tableau import TableauProperties
+from rkcheck.verdicts import HOLDS, Verdict
 
 
 @dataclass(frozen=True)

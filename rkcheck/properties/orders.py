@@ -22,21 +22,21 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.verdicts import (
+from rkcheck.evaluation.backends import ball_context
+from rkcheck.evaluation.channels import PrimeChannels
+from rkcheck.evaluation.protocols import EnclosingContext, NumberContext
+from rkcheck.evaluation.values import Backend, TableauValues
+from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.properties import scalars as sc
+from rkcheck.trees.rooted import bracket_of_forest
+from rkcheck.trees.table import TreeTable
+from rkcheck.verdicts import (
     FAILS,
     HOLDS,
     Verdict,
     classify,
     combine,
 )
-from rkcheck.evaluation.backends import ball_context
-from rkcheck.evaluation.channels import PrimeChannels
-from rkcheck.evaluation.protocols import EnclosingContext, NumberContext
-from rkcheck.evaluation.values import Backend, TableauValues
-from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.trees.rooted import bracket_of_forest
-from rkcheck.trees.table import TreeTable
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ def _order_result(per_order: list[Verdict], checked: int, first_failure: str | N
 def quadrature_order(A: list[list[Any]], b: list[Any]) -> OrderResult:
     """Quadrature order of the rule ``(b, A·1)`` (checked up to ``2s``, its maximum).
 
-    ``A``, ``b`` are scalars of :mod:`rkcheck.energy.scalars` (Fractions, field elements
+    ``A``, ``b`` are scalars of :mod:`rkcheck.properties.scalars` (Fractions, field elements
     or intervals), so an algebraic rule such as Gauss's gets an exact order."""
     c = sc.row_sums(A, sc.sample(A, b))
     return quadrature_order_of(sc.quadrature_residuals(b, c), len(b))

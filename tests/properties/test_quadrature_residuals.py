@@ -6,10 +6,10 @@ from __future__ import annotations
 import itertools
 from fractions import Fraction
 
-from rkcheck.energy import scalars as sc
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.field_builder import field_of
 from rkcheck.numbers.intervals import Interval
+from rkcheck.properties import scalars as sc
 
 
 def _first(b, c, n):

@@ -3,7 +3,7 @@
 AVF, ``y₁ = y₀ + h ∫₀¹ f((1−ξ)y₀ + ξy₁) dξ``, preserves every H.  For polynomial H of
 degree ≤ m it *is* the Runge–Kutta method ``A = c bᵀ`` over any rule with
 ``Σ b_i c_i^(k−1) = 1/k``, k = 1..m.  A tableau is recognised on its irreducible form
-(:mod:`rkcheck.energy.reduction`: dead stages and dead chains dropped, stages whose
+(:mod:`rkcheck.properties.reduction`: dead stages and dead chains dropped, stages whose
 values coincide merged, repeated to a fixpoint), since that form is unique up to a
 permutation of the stages and defines the same method.
 
@@ -11,7 +11,7 @@ Then it equals AVF iff ``A = (A·1) bᵀ`` and the quadrature conditions hold fo
 k = 1..m.  This is a certificate: energy is preserved for every degree-≤m Hamiltonian
 to every order, not only to the order checked.  The algebra is exact for exact
 (rational or algebraic) tableaux and certified for enclosures
-(:mod:`rkcheck.energy.scalars`).
+(:mod:`rkcheck.properties.scalars`).
 
 Theorem 1 of the seed (m ≥ 3): a method with ``c = A·1`` preserving all degree-≤m
 Hamiltonians has at least ``s_min = ⌊(m+1)/2⌋`` stages, and with exactly ``s_min`` it is
@@ -23,9 +23,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Iterator
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.reduction import Reduction
-from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.reduction import Reduction
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
 
 
 @dataclass(frozen=True)

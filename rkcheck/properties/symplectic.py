@@ -1,7 +1,7 @@
 """Symplecticity and symmetry of a Runge–Kutta method, certified.
 
 Both are properties of the *method*, so both are decided on its irreducible form
-(:mod:`rkcheck.energy.reduction`), which is unique up to a permutation of the stages:
+(:mod:`rkcheck.properties.reduction`), which is unique up to a permutation of the stages:
 
 * **symplectic** — ``M = BA + AᵀB − bbᵀ = 0`` with ``B = diag(b)``
   (Lasagni, Sanz-Serna, Suris 1988; Hairer–Lubich–Wanner, *Geometric Numerical
@@ -17,7 +17,7 @@ Both are properties of the *method*, so both are decided on its irreducible form
   reversal.
 
 Over exact scalars both verdicts are ``holds``/``fails``; over enclosures ``holds to D
-digits``/``fails`` (:mod:`rkcheck.energy.scalars`).
+digits``/``fails`` (:mod:`rkcheck.properties.scalars`).
 """
 
 from __future__ import annotations
@@ -25,9 +25,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterable
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.reduction import Reduction
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.reduction import Reduction
+from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
 
 
 @dataclass(frozen=True)

@@ -20,9 +20,9 @@ from support.paths import TABLEAUX
 from support.symbolic import Sym, gauss
 
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.reduction import reduce_tableau
-from rkcheck.energy.symplectic import symmetry, symplecticity
 from rkcheck.io.loader import load
+from rkcheck.properties.reduction import reduce_tableau
+from rkcheck.properties.symplectic import symmetry, symplecticity
 
 
 def props(path: str):

@@ -15,10 +15,10 @@ import pytest
 from support import reference as ref
 from support.disguise import RATIONAL_RULES, avf_tableau, disguise
 
-from rkcheck.energy.avf import avf_of_reduction, theorem1_remark
 from rkcheck.energy.check import CheckOptions, check
-from rkcheck.energy.reduction import reduce_tableau
 from rkcheck.methods.tableau import Tableau
+from rkcheck.properties.avf import avf_of_reduction, theorem1_remark
+from rkcheck.properties.reduction import reduce_tableau
 
 # AVF over Radau IIA-2 in disguise. Stages 1 and 3 have identical
 # rows; stage 2's row is 3× theirs once columns 1 and 3 are merged; stages 4 and 5 have
@@ -172,8 +172,8 @@ def test_theorem1_concludes_beyond_order_n_from_exact_holds():
 
 
 def test_theorem1_remark_without_exact_holds_names_the_digits():
-    from rkcheck.energy.avf import AvfVerdict
-    from rkcheck.energy.verdicts import Verdict
+    from rkcheck.properties.avf import AvfVerdict
+    from rkcheck.verdicts import Verdict
 
     v = AvfVerdict(3, Verdict("fails"), "x", 2, 2, (1, 2), 2)
     assert "must fail beyond order 6" in theorem1_remark(v, None, 6, True)

@@ -23,11 +23,11 @@ import itertools
 from fractions import Fraction
 from typing import Any, Iterator, Sequence
 
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, classify_interval
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.algebraic import dot as field_dot
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.intervals import Interval
+from rkcheck.verdicts import FAILS, HOLDS, Verdict, classify_interval
 
 #: A tableau value: an exact ``Fraction``, an exact number-field element or a certified
 #: ``Interval``.  Typed ``Any``: the kinds mix in arithmetic (``Fraction * Interval``),

@@ -19,7 +19,7 @@ Merging can leave a class whose weights cancel (``b̂_m = 0``) and which nothing
 and dropping stages can make classes mergeable: both are repeated to a **fixpoint**.
 The result is irreducible, unique up to a permutation of its stages.
 
-Every zero test is a :func:`~rkcheck.energy.scalars.verdict`: exact for exact scalars;
+Every zero test is a :func:`~rkcheck.properties.scalars.verdict`: exact for exact scalars;
 for intervals a test that cannot be decided counts as zero/equal and its verdict
 (``holds to D digits``) is recorded, so that every conclusion drawn from the reduced
 tableau carries those digits.
@@ -29,8 +29,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict
+from rkcheck.properties import scalars as sc
+from rkcheck.verdicts import FAILS, HOLDS, Verdict
 
 
 @dataclass

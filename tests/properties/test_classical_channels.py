@@ -11,11 +11,11 @@ import pytest
 import support.reference as ref
 from support.paths import TABLEAUX
 
-from rkcheck.energy.orders import _residues, classical_order
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.io.loader import load
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import Reading
+from rkcheck.properties.orders import _residues, classical_order
 
 
 def _tableau(A, b) -> Tableau:

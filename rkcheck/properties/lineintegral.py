@@ -19,8 +19,8 @@ proves energy preservation for all degree-≤m Hamiltonians to every order.  σ 
 ``A = c bᵀ`` (AVF); HBVM(k, s) satisfies (LI) with σ = s over k Gauss nodes (order 2k), so
 it is certified for m ≤ 2k/s; s-stage Gauss collocation (HBVM(s, s)) for m ≤ 2.
 
-The test is made on the irreducible form of the tableau (:mod:`rkcheck.energy.reduction`),
-exactly for exact tableaux and certified for enclosures (:mod:`rkcheck.energy.scalars`).
+The test is made on the irreducible form of the tableau (:mod:`rkcheck.properties.reduction`),
+exactly for exact tableaux and certified for enclosures (:mod:`rkcheck.properties.scalars`).
 """
 
 from __future__ import annotations
@@ -28,17 +28,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Iterator, Protocol
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.reduction import Reduction
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.methods.quadrature import shifted_legendre
 from rkcheck.numbers.polynomials import integral
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.reduction import Reduction
+from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
 
 
 class Certificate(Protocol):
     """What the check and the reports read of a certificate of every order: a
     :class:`LineIntegralCertificate` or a
-    :class:`~rkcheck.energy.stability.StabilityCertificate`."""
+    :class:`~rkcheck.properties.stability.StabilityCertificate`."""
 
     @property
     def degree(self) -> int: ...

@@ -23,7 +23,7 @@ whose numerator has degree ≤ 2s and whose denominator is 1 at z = 0.  Hence
 preservation for every quadratic H at every order (a certificate, like AVF).  Otherwise
 the first nonzero ``e_2k z^2k`` is the leading term, and the m = 2 energy order is 2k − 1.
 
-Everything is computed over the tableau's own scalars (:mod:`rkcheck.energy.scalars`):
+Everything is computed over the tableau's own scalars (:mod:`rkcheck.properties.scalars`):
 exact over Q or the tableau's number field, certified for enclosures.  ``det(I − zA)``
 comes from a Hessenberg reduction for exact scalars and from the Faddeev–LeVerrier
 recursion (divisions by integers only) for enclosures; ``P = Q·R`` truncated to degree s.
@@ -34,13 +34,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.verdicts import FAILS, HOLDS, Verdict, combine
 from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
 from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
+from rkcheck.properties import scalars as sc
+from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
 
 #: enclosures: above this many stages det(I − zA) is not expanded (the certificate,
 #: which needs only the series, is still decided)

@@ -1,4 +1,6 @@
-"""The three states of a condition (definitions §5), and nothing else.
+"""The three states of a condition (definitions §5), and nothing else: the vocabulary
+every stage that judges (:mod:`rkcheck.properties`, :mod:`rkcheck.energy`) and every
+report shares.  May import: :mod:`rkcheck.numbers`.
 
 =================== =====================================================================
 ``holds``           the residual is exactly zero (exact arithmetic on exact data)

@@ -4,7 +4,7 @@ stability function, symplecticity, symmetry, and the certificates of every order
 This is what :func:`rkcheck.energy.check.check` calls (one call) and the
 reports read.  The scalars are exact whenever the tableau is (rational, or algebraic
 through the tableau's ``exact_values()``), otherwise the enclosures the check already
-made (:mod:`rkcheck.energy.scalars`).
+made (:mod:`rkcheck.properties.scalars`).
 """
 
 from __future__ import annotations
@@ -12,21 +12,21 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 
-from rkcheck.energy import scalars as sc
-from rkcheck.energy.avf import AvfVerdict, avf_of_reduction
-from rkcheck.energy.lineintegral import (
+from rkcheck.properties import scalars as sc
+from rkcheck.properties.avf import AvfVerdict, avf_of_reduction
+from rkcheck.properties.lineintegral import (
     Certificate,
     LineIntegralCertificate,
     certificate_of_reduction,
 )
-from rkcheck.energy.reduction import Reduction, reduce_tableau
-from rkcheck.energy.stability import (
+from rkcheck.properties.reduction import Reduction, reduce_tableau
+from rkcheck.properties.stability import (
     StabilityFunction,
     prefer,
     quadratic_certificate,
     stability_function,
 )
-from rkcheck.energy.symplectic import PropertyVerdict, symmetry, symplecticity
+from rkcheck.properties.symplectic import PropertyVerdict, symmetry, symplecticity
 
 
 @dataclass(frozen=True)
@@ -59,7 +59,7 @@ class TableauProperties:
 
 def properties_of_values(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None = None) -> TableauProperties:
     """The properties of the tableau with these scalars: exact ones, or the check's
-    enclosures (:func:`rkcheck.energy.scalars.tableau_values` chooses); ``series``:
+    enclosures (:func:`rkcheck.properties.scalars.tableau_values` chooses); ``series``:
     R(z)'s ``r_0 … r_2s`` over Q when the tableau's node form gives them."""
     red = reduce_tableau(A, b)
     exact = sc.is_exact(sc.sample(A, b))

@@ -3,7 +3,7 @@ same properties computed entry by entry over the nodes' number field.
 
 Independent routes: the field's own values of the entries (each evaluated in the field
 from its text, :func:`rkcheck.methods.closed_forms.family_exact_values`) run through the
-generic functions of :mod:`rkcheck.energy.properties`; an entry the node route names is
+generic functions of :mod:`rkcheck.properties.tableau`; an entry the node route names is
 checked by evaluating its minimal polynomial at the field's value of it, exactly, and by
 reading its ``root(f, k)`` text back with the entry parser.
 """
@@ -16,10 +16,6 @@ from fractions import Fraction
 
 import pytest
 
-from rkcheck.energy.node_properties import node_properties, node_quadrature_order
-from rkcheck.energy.orders import quadrature_order
-from rkcheck.energy.properties import properties_of_values
-from rkcheck.energy.scalars import certainly_larger, values_from_enclosures
 from rkcheck.methods.closed_forms import family_exact_values
 from rkcheck.methods.family_spec import parse_spec
 from rkcheck.methods.node_algebra import _square_root_field, node_algebra
@@ -27,6 +23,10 @@ from rkcheck.methods.node_form import node_form
 from rkcheck.numbers.entries import Entry
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.properties.from_nodes import node_properties, node_quadrature_order
+from rkcheck.properties.orders import quadrature_order
+from rkcheck.properties.scalars import certainly_larger, values_from_enclosures
+from rkcheck.properties.tableau import properties_of_values
 
 FAMILIES = [
     {"name": "gauss", "s": 4}, {"name": "gauss", "s": 5}, {"name": "radau-iia", "s": 4},
@@ -156,9 +156,9 @@ def test_a_family_beyond_the_field_limit_is_exact_and_agrees_with_balls():
     conditions and properties are now exact over Q.  Every exact residual lies in the
     enclosure certified balls give it, and every verdict agrees with theirs."""
     from rkcheck.energy.check import check
-    from rkcheck.energy.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
     from rkcheck.methods.families import family_tableau
     from rkcheck.options import CheckOptions
+    from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 
     spec = parse_spec({"name": "radau-iia", "s": 6})
     reason = family_exact_values(spec)[1]
