@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass
 from enum import StrEnum
 from fractions import Fraction
+from typing import Any
 
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
@@ -74,7 +75,7 @@ def certified_digits(bound: Fraction | float) -> int:
     p, q = bound.as_integer_ratio()
 
     def within(d: int) -> bool:  # bound <= 10^-d, in integers
-        return p * 10**d <= q if d >= 0 else p <= q * 10 ** (-d)
+        return bool(p * 10**d <= q) if d >= 0 else bool(p <= q * 10 ** (-d))
 
     d = math.floor(math.log10(q) - math.log10(p))  # math.log10 takes big ints
     while within(d + 1):
@@ -131,7 +132,7 @@ def classify_many(encs: list[Enclosure]) -> list[Verdict]:
     return verdicts
 
 
-def classify_bounds(excludes_zero, bound):
+def classify_bounds(excludes_zero: Any, bound: Any) -> tuple[Any, Any]:
     """The states of many certified values at once, given for each whether its
     enclosure excludes 0 (exactly) and a float upper bound of its magnitude (|mid| + rad):
     ``fails`` where 0 is excluded, else ``holds to D digits`` with

@@ -190,7 +190,8 @@ def lagrange_parts(P: list[Fraction]) -> tuple[list[Any], Any]:
     return U, W
 
 
-def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str], c: list[str]):
+def simplified_texts(consts: dict[str, str], A: list[list[str]], b: list[str],
+                     c: list[str]) -> tuple[dict[str, str], list[list[str]], list[str], list[str]]:
     """The same entries as exact values in their number field
     (:mod:`rkcheck.numbers.algebraic`): ``5/36 - sqrt(15)/30`` when the entries are
     rational or one square root suffices; otherwise (nested roots, ``root(p, k)``) the

@@ -261,7 +261,7 @@ class Kernel:
     # ---------------------------------------------------------------- structure
 
     def _index(self, name: str) -> int:
-        return self.ring.variables.index(name)
+        return int(self.ring.variables.index(name))
 
     def degree(self, p: Any, name: str) -> int:
         if p.is_zero():
@@ -301,7 +301,7 @@ class Kernel:
         return out
 
     def is_zero(self, p: Any) -> bool:
-        return self.ring.is_zero(p)
+        return bool(self.ring.is_zero(p))
 
     def number(self, p: Any) -> Any:
         """A constant polynomial as a Fraction or an element of the field."""
@@ -315,7 +315,8 @@ class Kernel:
 
     # ---------------------------------------------------------------- surrogate
 
-    def surrogate_entries(self, x: list[Fraction], w: list[Fraction], constants: Constants):
+    def surrogate_entries(self, x: list[Fraction], w: list[Fraction],
+                          constants: Constants) -> tuple[tuple[tuple[Entry, ...], ...], tuple[Entry, ...]]:
         """``a_ij = w_j A(x_i, x_j)``, ``b_i = w_i B(x_i)`` as tableau entries: exact
         fractions for a rational kernel without decimals, otherwise the kernel's own
         expression at the nodes (its decimals and roots then read as in any entry)."""
@@ -390,7 +391,8 @@ def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
             return ex.Call(n.func, tuple(vals), n.column)
         return n
 
-    return xp.fold(node, combine, xp.children)
+    out: ex.Expr = xp.fold(node, combine, xp.children)
+    return out
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:

@@ -52,7 +52,10 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
         nodes[1] = _substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
     poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
     ring = poly.ring
-    deg = lambda p, v: max((int(m[ring.variables.index(v)]) for m in p.monoms()), default=0)  # noqa: E731
+
+    def deg(p: Any, v: str) -> int:
+        return max((int(m[ring.variables.index(v)]) for m in p.monoms()), default=0)
+
     A_poly, B_poly = poly.values
     p, q, dB = deg(A_poly, "tau"), deg(A_poly, "sigma"), deg(B_poly, "tau")
     n_nodes = max(q + (vertices - 2) * p, dB + (vertices - 1) * p) + 1

@@ -87,7 +87,7 @@ class ComputedEntry:
     computed = True
     is_rounded = False
 
-    def __init__(self, shared: "_Shared", where: tuple, exact: Fraction | None, label: str):
+    def __init__(self, shared: "_Shared", where: tuple[Any, ...], exact: Fraction | None, label: str):
         self._shared = shared
         self._where = where
         self.exact = exact
@@ -96,7 +96,8 @@ class ComputedEntry:
 
     def _value(self, bits: int) -> Interval:
         A, b = self._shared.get(bits)
-        return A[self._where[1]][self._where[2]] if self._where[0] == "A" else b[self._where[1]]
+        value: Interval = A[self._where[1]][self._where[2]] if self._where[0] == "A" else b[self._where[1]]
+        return value
 
     @property
     def text(self) -> str:
@@ -186,7 +187,7 @@ def family_tableau(spec: FamilySpec, name: str | None = None, info: MethodInfo |
     # a rational rule's entries are exact points; the others are enclosed when read
     A0, b0 = shared.get(64) if rule.is_rational else ([[None] * n] * n, [None] * n)
 
-    def entry(where: tuple, value: Interval | None, label: str) -> ComputedEntry:
+    def entry(where: tuple[Any, ...], value: Interval | None, label: str) -> ComputedEntry:
         exact = value.lo if value is not None and value.is_point else None
         return ComputedEntry(shared, where, exact, label)
 

@@ -89,7 +89,7 @@ class NodeAlgebra:
 
     def is_zero(self, g: Any) -> bool:
         """Does g vanish at every pair of nodes?"""
-        return self.reduce(g).is_zero()
+        return bool(self.reduce(g).is_zero())
 
     @cached_property
     def F(self) -> Any:

@@ -182,7 +182,7 @@ def node_form(spec: FamilySpec) -> NodeForm | None:
 
 def _square_free(P: list[Fraction]) -> bool:
     f = to_flint(P)
-    return f.gcd(f.derivative()).degree() == 0
+    return bool(f.gcd(f.derivative()).degree() == 0)
 
 
 def _family_polynomials(spec: FamilySpec, P: list[Fraction]) -> tuple[Any, Any]:

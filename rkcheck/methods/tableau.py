@@ -235,7 +235,7 @@ class Tableau:
         A = [v[i * s:(i + 1) * s] for i in range(s)]
         return ExactValues(found.field, A, v[s * s:s * s + s], v[s * s + s:] if self.c is not None else None)
 
-    def _place_of_error(self, entries: list) -> str | None:
+    def _place_of_error(self, entries: list[Any]) -> str | None:
         """The first entry (``A[i][j]``, ``b[i]``, ``c[i]``) that fails on its own."""
         s = self.stages
         places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]

@@ -148,6 +148,6 @@ def theorem1_remark(
 
 
 
-def _value_text(x) -> str:
+def _value_text(x: sc.Scalar) -> str:
     """A certainly nonzero entry: exact when exact, else its mid-point to 6 digits."""
     return sc.text(x, 6) if sc.is_exact(x) else sc.approx_text(x, 6)

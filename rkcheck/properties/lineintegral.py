@@ -108,7 +108,7 @@ def line_integral_matrix(c: sc.Vector, b: sc.Vector, sigma: int) -> sc.Matrix:
     return next(matrices)
 
 
-def line_integral_matrices(c: sc.Vector, b: sc.Vector):
+def line_integral_matrices(c: sc.Vector, b: sc.Vector) -> Iterator[sc.Matrix]:
     """The right-hand sides of (LI) for σ = 1, 2, …, len(c), each from the previous one by
     its new term ``(2σ−1) G_(σ−1)(c)(P_(σ−1)(c) ⊙ b)ᵀ``: O(s²) per σ, not O(s²σ)."""
     n = len(c)
@@ -123,7 +123,7 @@ def line_integral_matrices(c: sc.Vector, b: sc.Vector):
         yield acc
 
 
-def _check_entries(A, rhs) -> list[Verdict] | None:
+def _check_entries(A: sc.Matrix, rhs: sc.Matrix) -> list[Verdict] | None:
     """Verdicts of the entries of (LI) against the right-hand side ``rhs``, or None at the
     first certain mismatch."""
     out = []

@@ -217,7 +217,8 @@ def _residues(values: np.ndarray, P: np.ndarray, largest: int) -> np.ndarray:
     """``values`` (exact ints, ``|value| <= largest``) modulo each prime of the column
     ``P``: (primes, values)."""
     if largest < 1 << 62:  # the densities γ(t) <= p! of trees with up to 20 vertices
-        return np.asarray(values, dtype=np.int64).reshape(1, -1) % P
+        out: np.ndarray = np.asarray(values, dtype=np.int64).reshape(1, -1) % P
+        return out
     return np.array([[int(x) % q for x in values] for q in P[:, 0].tolist()], dtype=np.int64).reshape(len(P), -1)
 
 

@@ -28,6 +28,7 @@ tableau carries those digits.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 from rkcheck.properties import scalars as sc
 from rkcheck.verdicts import FAILS, HOLDS, Verdict
@@ -83,7 +84,7 @@ def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:
     s = len(b)
     decisions: list[Verdict] = []
 
-    def is_zero(x) -> bool:
+    def is_zero(x: sc.Scalar) -> bool:
         v = sc.verdict(x)
         if v.state == FAILS:
             return False
@@ -132,7 +133,7 @@ def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:
     return Reduction(A, b, classes, s, decisions, dropped, cancelled)
 
 
-def _coarsest_partition(A: sc.Matrix, is_zero) -> list[list[int]]:
+def _coarsest_partition(A: sc.Matrix, is_zero: Callable[[sc.Scalar], bool]) -> list[list[int]]:
     """The coarsest partition of the stages with equal class sums inside each class
     (refinement from one class; blocks ordered by their smallest stage)."""
     n = len(A)

@@ -106,7 +106,8 @@ def enclosure(x: Scalar, bits: int = 128) -> Interval:
         return x
     if isinstance(x, (Fraction, int)):
         return Interval.point(Fraction(x))
-    return x.enclosure(bits)
+    out: Interval = x.enclosure(bits)
+    return out
 
 
 def approx_text(x: Scalar, sig: int) -> str:

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Protocol, TypeVar
 
 from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
@@ -64,15 +65,15 @@ _SUP = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 # lists of scalars, ascending powers (rkcheck.numbers.polynomials over the tableau's scalars)
 
 
-def _is_zero(a) -> bool:
+def _is_zero(a: sc.Scalar) -> bool:
     return sc.verdict(a).state == HOLDS
 
 
-def _trim(p: list) -> list:
+def _trim(p: sc.Vector) -> sc.Vector:
     return poly.trim(p, _is_zero)
 
 
-def _det_I_minus_zA(A: sc.Matrix, like) -> list | None:
+def _det_I_minus_zA(A: sc.Matrix, like: sc.Scalar) -> sc.Vector | None:
     """Coefficients of ``det(I − zA)`` (ascending), or None when not expanded."""
     n = len(A)
     exact = sc.is_exact(like)
@@ -84,7 +85,7 @@ def _det_I_minus_zA(A: sc.Matrix, like) -> list | None:
     return list(reversed(charpoly))
 
 
-def _charpoly_faddeev(A: sc.Matrix, like) -> list:
+def _charpoly_faddeev(A: sc.Matrix, like: sc.Scalar) -> sc.Vector:
     """``det(xI − A)`` by Faddeev–LeVerrier: only divisions by integers."""
     n = len(A)
     zero, one = sc.const(0, like), sc.const(1, like)
@@ -99,7 +100,7 @@ def _charpoly_faddeev(A: sc.Matrix, like) -> list:
     return coeffs
 
 
-def _charpoly_hessenberg(A: sc.Matrix, like) -> list:
+def _charpoly_hessenberg(A: sc.Matrix, like: sc.Scalar) -> sc.Vector:
     """``det(xI − A)`` of an exact matrix: similarity to upper Hessenberg form, then the
     recurrence on leading principal minors (H. Cohen, A Course in Computational Algebraic
     Number Theory, Algorithm 2.2.9)."""
@@ -152,13 +153,13 @@ class StabilityFunction:
 
     stages: int
     exact: bool
-    series: list
-    defect: list
+    series: sc.Vector
+    defect: sc.Vector
     identity: Verdict
     leading_power: int | None
     leading_coefficient: object | None
-    numerator: list | None
-    denominator: list | None
+    numerator: sc.Vector | None
+    denominator: sc.Vector | None
 
     @property
     def quadratic_energy_order(self) -> int | None:
@@ -166,7 +167,7 @@ class StabilityFunction:
         return None if self.leading_power is None else self.leading_power - 1
 
     @property
-    def defect_numerator(self) -> list | None:
+    def defect_numerator(self) -> sc.Vector | None:
         """``P(z)P(−z) − Q(z)Q(−z)`` (so ``R(z)R(−z) − 1`` = it over ``Q(z)Q(−z)``)."""
         if self.numerator is None or self.denominator is None:
             return None
@@ -200,7 +201,7 @@ class StabilityFunction:
         return f"R(z)R(−z) − 1 = {lead} + O(z{str(self.leading_power + 2).translate(_SUP)})"
 
 
-def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list, list] | None:
+def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[sc.Vector, sc.Vector, sc.Vector] | None:
     """For a rational tableau of more than :data:`MAX_FRACTION_STAGES` stages or with an
     entry longer than :data:`MAX_FRACTION_BITS`: the series r_0 … r_2s, and P, Q in lowest
     terms with Q(0) = 1, computed with FLINT (exact rational matrices and polynomials:
@@ -231,7 +232,7 @@ def _bits(x: Fraction | int) -> int:
     return max(x.numerator.bit_length(), x.denominator.bit_length())
 
 
-def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[list, list] | None:
+def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[sc.Vector, sc.Vector] | None:
     """For enclosures: the series r_0 … r_2s and det(I − zA), enclosed with FLINT's ball
     matrices (rigorous: every input interval is enclosed by a ball, every result ball is
     returned as the interval it certifies); O(s³) instead of interval Faddeev–LeVerrier's
@@ -287,8 +288,8 @@ def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None
     for _ in range(2 * s):
         series.append(sc.dot(b, v, like))
         v = sc.matvec(A, v, like)
-    numerator: list | None = None
-    denominator: list | None = None
+    numerator: sc.Vector | None = None
+    denominator: sc.Vector | None = None
     rational_series = _rational_series(series)
     if rational_series is not None:
         P, Q = _pade(rational_series, s)
@@ -303,7 +304,7 @@ def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None
     return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
 
 
-def _rational_series(series: list) -> list[Fraction] | None:
+def _rational_series(series: sc.Vector) -> list[Fraction] | None:
     """The series as Fractions when the tableau's entries lie in a number field and every
     term r_k = bᵀA^(k−1)1 is rational anyway — as when the field's Galois group permutes
     the stages (Gauss, Radau, Lobatto, HBVM), which leaves each r_k fixed; else None
@@ -331,7 +332,7 @@ def _pade(series: list[Fraction], s: int) -> tuple[list[Fraction], list[Fraction
     return poly.rational_lowest_terms(r1, t1)
 
 
-def _cancelled(P: list, Q: list, like) -> tuple[list, list]:
+def _cancelled(P: sc.Vector, Q: sc.Vector, like: sc.Scalar) -> tuple[sc.Vector, sc.Vector]:
     """P/Q in lowest terms with Q(0) = 1.  Over a number field Euclid's algorithm can take
     minutes (inverses in a field of degree 40 with long coefficients), so it runs under
     :data:`STABILITY_SECONDS` in a child process; past it R = P/Q is kept as it is, correct
@@ -345,7 +346,9 @@ def _cancelled(P: list, Q: list, like) -> tuple[list, list]:
         # field already), with no child process and no time limit
         return poly.rational_lowest_terms(rational[:len(P)], rational[len(P):])
     try:
-        return call_within(STABILITY_SECONDS, poly.lowest_terms, P, Q, sc.const(0, like), _is_zero)
+        parts: tuple[sc.Vector, sc.Vector] = call_within(STABILITY_SECONDS, poly.lowest_terms, P, Q,
+                                                         sc.const(0, like), _is_zero)
+        return parts
     except Overrun:
         return P, Q
 
@@ -358,7 +361,8 @@ def stability_of_series(series: list[Fraction], s: int) -> StabilityFunction:
     return _from_parts(s, True, list(series), _trim(P), _trim(Q))
 
 
-def _from_parts(s: int, exact: bool, series: list, numerator, denominator) -> StabilityFunction:
+def _from_parts(s: int, exact: bool, series: sc.Vector, numerator: sc.Vector | None,
+                denominator: sc.Vector | None) -> StabilityFunction:
     """The defect coefficients e_n and the identity verdict from the series."""
     like = series[0]
     defect = [sc.const(0, like)]
@@ -428,21 +432,33 @@ def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCert
     )
 
 
-def prefer(first, second):
+class _Ranked(Protocol):
+    """What :func:`prefer` reads of a certificate."""
+
+    @property
+    def certified(self) -> bool: ...
+    @property
+    def verdict(self) -> Verdict: ...
+
+
+_C = TypeVar("_C", bound=_Ranked)
+
+
+def prefer(first: _C, second: _C | None) -> _C:
     """The better of two certificates for the same degree: an exact proof over one that
     holds to digits, a certified one over none; ``first`` on ties."""
-    def rank(cert) -> int:
+    def rank(cert: _C | None) -> int:
         if cert is None or not cert.certified:
             return 0
         return 2 if cert.verdict.state == HOLDS else 1
 
-    return second if rank(second) > rank(first) else first
+    return second if second is not None and rank(second) > rank(first) else first
 
 
 # ------------------------------------------------------------------------ text
 
 
-def monomial_text(coef, k: int) -> str:
+def monomial_text(coef: sc.Scalar, k: int) -> str:
     """``c z^k`` for people: ``z⁶/72``, ``−3z²/4``, ``(1/2 + √3/6) z``, ``0.0833 z²``."""
     z = "" if k == 0 else ("z" if k == 1 else "z" + str(k).translate(_SUP))
     q = sc.rational(coef)
@@ -464,7 +480,7 @@ def monomial_text(coef, k: int) -> str:
     return f"({sc.exact_text(coef)}){' ' + z if z else ''}"
 
 
-def poly_text(p: list) -> str:
+def poly_text(p: sc.Vector) -> str:
     """A polynomial (ascending coefficients) for people, zero terms left out."""
     # zero terms are left out; for an enclosure, one that may be zero (it is shown with ≈)
     terms = [(k, a) for k, a in enumerate(p) if sc.verdict(a).state == FAILS]

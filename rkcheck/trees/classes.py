@@ -26,7 +26,7 @@ a condition is shown (:meth:`ConditionListing.record
 from __future__ import annotations
 
 import math
-from typing import Callable
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
@@ -79,7 +79,8 @@ def classify(table: TreeTable, n: int, last: bool = False,
     )
 
 
-def _chunks(table: TreeTable, n: int, stored: bool, lo: int, size: int):
+def _chunks(table: TreeTable, n: int, stored: bool, lo: int,
+            size: int) -> Iterator[tuple[int, np.ndarray, np.ndarray, dict[str, Any]]]:
     """``(offset, U, V, attributes)`` of the trees with n vertices, a chunk at a time:
     slices of the table when stored, else generated pairs."""
     if stored:

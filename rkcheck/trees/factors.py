@@ -12,9 +12,12 @@ equal to the plain ones.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
+
+Ids: TypeAlias = npt.NDArray[np.int32]
 
 #: low bits kept per term; the high bits are found by position
 _LOW_BITS = 16
@@ -44,13 +47,13 @@ class _Stepped:
     def nbytes(self) -> int:
         return self.low.nbytes + self.starts.nbytes
 
-    def take(self, positions: np.ndarray) -> np.ndarray:
+    def take(self, positions: npt.NDArray[np.integer[Any]]) -> Ids:
         high = np.searchsorted(self.starts, positions, side="right") - 1
-        out = self.low[positions].astype(np.int32)
+        out: Ids = self.low[positions].astype(np.int32)
         out |= (high << _LOW_BITS).astype(np.int32)
         return out
 
-    def range(self, i0: int, i1: int) -> np.ndarray:
+    def range(self, i0: int, i1: int) -> Ids:
         out = self.low[i0:i1].astype(np.int32)
         if i1 <= i0:
             return out
@@ -107,7 +110,7 @@ class RightFactors:
         self.below = below
         self.split = len(below)
         self._size = self.split + top_size
-        self._top: np.ndarray | _Stepped | None = None
+        self._top: Ids | _Stepped | None = None
 
     def set_top(self, values: np.ndarray) -> None:
         """The right factors of the top order (kept in 16 bits when they never
@@ -128,23 +131,24 @@ class RightFactors:
     def nbytes(self) -> int:
         return self.below.nbytes + (0 if self._top is None else self._top.nbytes)
 
-    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
-        out = self[0:self._size]
+    def __array__(self, dtype: Any = None, copy: Any = None) -> npt.NDArray[Any]:
+        out: npt.NDArray[Any] = self[0:self._size]
         return out if dtype is None else out.astype(dtype)
 
-    def _top_range(self, i0: int, i1: int) -> np.ndarray:
+    def _top_range(self, i0: int, i1: int) -> Ids:
         if self._top is None:
             raise ValueError("the top order's factors are not set")
         if isinstance(self._top, _Stepped):
             return self._top.range(i0, i1)
         return self._top[i0:i1]
 
-    def _top_take(self, positions: np.ndarray) -> np.ndarray:
+    def _top_take(self, positions: npt.NDArray[np.integer[Any]]) -> Ids:
         if self._top is None:
             raise ValueError("the top order's factors are not set")
         if isinstance(self._top, _Stepped):
             return self._top.take(positions)
-        return self._top[positions]
+        out: Ids = self._top[positions]
+        return out
 
     def __getitem__(self, key: Any) -> Any:
         split = self.split

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from functools import lru_cache
-from typing import Iterator
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -131,7 +131,7 @@ class ConditionListing:
         self.orders = _Orders(self, range(3, top + 1))
         self._built = 2
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[Callable[[int, int | None], ConditionListing], tuple[int, int | None]]:
         # a listing is determined by (order, degree): send the key, rebuild (cached) there
         return _shared_listing, (self.order, self.degree)
 

@@ -30,6 +30,7 @@ centre of every tree's free tree without building it (:mod:`rkcheck.trees.classe
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, TypeAlias
 
 import numpy as np
@@ -39,6 +40,10 @@ TAU = 0
 _NONE = -1
 
 IdArray: TypeAlias = npt.NDArray[np.int32]  # tree ids (and −1 for "none")
+IndexArray: TypeAlias = npt.NDArray[np.integer[Any]]  # positions or ids of any integer type
+#: one block of an order's generation: the order r of the right factors, those factors
+#: (None: every tree of order r) and the running total of the left factors each takes
+Block: TypeAlias = tuple[int, "IdArray | None", IdArray]
 
 
 _FIELDS = {  # per-tree arrays and their dtypes
@@ -103,8 +108,8 @@ class TreeTable:
         # lookup tables: base[n][r]; offset[n] covers the ids of orders < n
         self._base: dict[int, np.ndarray] = {}
         self._offset: dict[int, np.ndarray] = {}
-        self._lefts_sorted: dict[int, np.ndarray] = {}  # order -> left-factor ids sorted by largest child
-        self._block_cache: dict[int, list] = {}
+        self._lefts_sorted: dict[int, IdArray] = {}  # order -> left-factor ids sorted by largest child
+        self._block_cache: dict[int, list[Block]] = {}
         self._count: dict[int, int] = {}
         # the exact σ of at least SIGMA_LIMIT, by key (sigma_value), and the keys by value
         self._big_sigma: list[int] = []
@@ -130,7 +135,7 @@ class TreeTable:
     def count(self, n: int) -> int:
         return len(self.ids_of_order(n))
 
-    def _inner_ok(self, ids: np.ndarray) -> np.ndarray:
+    def _inner_ok(self, ids: IndexArray) -> npt.NDArray[np.bool_]:
         if self.inner_bound is None:
             return np.ones(len(ids), dtype=bool)
         return self.nchild[ids] <= self.inner_bound
@@ -182,26 +187,26 @@ class TreeTable:
             return self.first[k + 1] - self.first[k]
         return len(self._lefts_sorted[k])
 
-    def _left_rights(self, k: int) -> np.ndarray:
+    def _left_rights(self, k: int) -> IdArray:
         """The largest child of each left factor of order k, in rank order (never
         decreasing)."""
         if self.root_bound is None:
             return self.right[self.first[k]:self.first[k + 1]]
         return self.right[self._lefts_sorted[k]]
 
-    def _lefts_of(self, k: int, local: np.ndarray) -> np.ndarray:
+    def _lefts_of(self, k: int, local: IndexArray) -> IdArray:
         """The left factors of order k with the ranks ``local``."""
         if self.root_bound is None:
             return (local + self.first[k]).astype(np.int32)
         return self._lefts_sorted[k][local]
 
-    def _ranks(self, u: np.ndarray) -> np.ndarray:
+    def _ranks(self, u: IndexArray) -> npt.NDArray[np.integer[Any]]:
         """The rank of each left factor ``u`` among those of its order."""
         if self.root_bound is None:
             return u - np.asarray(self.first, dtype=np.int64)[self.order[u]]
         return self.rank[u]
 
-    def _blocks(self, n: int):
+    def _blocks(self, n: int) -> Iterator[Block]:
         """For each order r of the right factor: ``(r, v_ids, ends)`` with ``v_ids`` the
         inner-valid right factors v of order r (None: all of them, ``first[r] …
         first[r+1] − 1``) and ``ends`` the running total (int32) of how many left factors
@@ -266,7 +271,7 @@ class TreeTable:
         self._count[n] = total
         return total
 
-    def pairs(self, n: int):
+    def pairs(self, n: int) -> Iterator[tuple[IdArray, IdArray]]:
         """The factors ``(U, V)`` of the trees of order ``n`` in id order, in chunks of
         about ``_CHUNK`` rows (generation order, see the module docstring)."""
         self.prepare_order(n)
@@ -336,7 +341,7 @@ class TreeTable:
             "inner_max": np.maximum(self.inner_max[U], np.maximum(self.inner_max[V], self.nchild[V] + 1)),
         }
 
-    def _sigma_product(self, U: np.ndarray, V: np.ndarray, mult: np.ndarray) -> np.ndarray:
+    def _sigma_product(self, U: IndexArray, V: IndexArray, mult: npt.NDArray[np.integer[Any]]) -> npt.NDArray[np.int64]:
         """``σ(u ∘ v) = σ(u)·σ(v)·mult`` as :attr:`sigma` keeps it: the value itself below
         :data:`SIGMA_LIMIT`, else a key of the exact value (:meth:`sigma_value`).  21!, the
         bush with 22 vertices, exceeds int64: multiplied there, it wrapped around."""
@@ -424,7 +429,7 @@ class TreeTable:
             out.append(cache[t])
         return np.array(out, dtype=object)
 
-    def id_of_children(self, children) -> int:
+    def id_of_children(self, children: Iterable[int]) -> int:
         """The id of the tree whose root carries ``children`` (ids, any order); KeyError
         when that tree is not in the table (too many vertices, or outside the bounds)."""
         kids = sorted(int(c) for c in children)
@@ -438,7 +443,7 @@ class TreeTable:
             cur = int(self.product(np.array([cur]), np.array([c]))[0])
         return cur
 
-    def id_of_level_sequence(self, seq) -> int:
+    def id_of_level_sequence(self, seq: Sequence[int]) -> int:
         """The id of the tree with level sequence ``seq`` (any valid one)."""
         from rkcheck.trees.rooted import children_of_level_sequence
 
@@ -464,7 +469,7 @@ class TreeTable:
             t = int(left[t])
         return out
 
-    def level_sequence(self, t: int, _cache: dict | None = None) -> tuple[int, ...]:
+    def level_sequence(self, t: int, _cache: dict[int, tuple[int, ...]] | None = None) -> tuple[int, ...]:
         """Canonical (lexicographically largest) level sequence of ``t``, definitions §2."""
         cache = self.__dict__.setdefault("_ls_cache", {}) if _cache is None else _cache
         seq = cache.get(t)
