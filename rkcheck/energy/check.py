@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, fields
+from fractions import Fraction
 from typing import Any, Callable, Self
 
 from rkcheck.energy.budget import Budget, check_budget, estimate
-from rkcheck.energy.judging import evaluate_orders, refine_undecided
+from rkcheck.energy.judging import Progress, evaluate_orders, refine_undecided
 from rkcheck.energy.results import (
+    Condition,
     ConditionResults,
     Failures,
     OrderCounts,
@@ -29,6 +31,7 @@ from rkcheck.errors import CheckInterrupted
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import channels_for
 from rkcheck.evaluation.values import Backend, TableauValues
+from rkcheck.methods.continuous import Surrogate
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
 from rkcheck.options import CheckOptions
@@ -85,7 +88,7 @@ class CheckResult:
         return len(self.failures) == 0
 
     @property
-    def first_failure(self):
+    def first_failure(self) -> Condition | None:
         return self.failures[0] if len(self.failures) else None
 
     @property
@@ -196,6 +199,9 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     # verdict and the certificate of every order (AVF, line integral, and for m = 2 the
     # stability function)
     surrogate = tableau.info.continuous
+    # a tableau's AvfVerdict and Certificate, or a kernel's, read like them
+    avf: Any
+    cert: Any
     if surrogate is not None:  # a continuous method: its kernel speaks for itself, not the surrogate
         quad, props, avf, cert = _continuous_facts(surrogate, quad, options, values)
     else:
@@ -226,13 +232,14 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
     return result
 
 
-def _exact_series(values: TableauValues) -> list | None:
+def _exact_series(values: TableauValues) -> list[Fraction] | None:
     """R(z)'s series over Q from a family's node form (None without one): the
     properties then take no product in the nodes' field for it."""
     exact = values.exact
     if exact is None or exact.nodes is None:
         return None
-    return exact.nodes.stability_series(2 * values.stages)
+    series: list[Fraction] = exact.nodes.stability_series(2 * values.stages)
+    return series
 
 
 def _algebra(values: TableauValues) -> Any:
@@ -246,7 +253,7 @@ def _facts(values: TableauValues) -> dict[Any, Any]:
     claims add (other degrees and orders) share the scalars, quadrature order, classical
     order to each order and the properties — in a field of degree 48 the stability
     function and symplecticity alone take over a second."""
-    facts = values.__dict__.setdefault("_check_facts", {})  # a frozen dataclass: its own dict
+    facts: dict[Any, Any] = values.__dict__.setdefault("_check_facts", {})  # a frozen dataclass: its own dict
     if "quadrature" not in facts:
         algebra = _algebra(values)
         if algebra is not None:
@@ -281,7 +288,7 @@ def _listing(values: TableauValues, options: CheckOptions, budget: Budget | None
 
 
 def _judged_orders(listing: ConditionListing, values: TableauValues, options: CheckOptions,
-                   progress) -> tuple[dict[int, OrderVerdicts], bool, str | None]:
+                   progress: Progress | None) -> tuple[dict[int, OrderVerdicts], bool, str | None]:
     """Every condition judged — with what the balls left undecided judged again
     (:func:`~rkcheck.energy.judging.refine_undecided`) —, whether Ctrl-C cut the work
     short, and a note on that refinement."""
@@ -296,7 +303,8 @@ def _judged_orders(listing: ConditionListing, values: TableauValues, options: Ch
     return orders, False, note
 
 
-def _continuous_facts(surrogate, quad: OrderResult, options: CheckOptions, values: TableauValues):
+def _continuous_facts(surrogate: Surrogate, quad: OrderResult, options: CheckOptions,
+                      values: TableauValues) -> tuple[OrderResult, Any, Any, Any]:
     """A continuous method's quadrature order (the surrogate's, where its rule is exact),
     kernel properties, equals-AVF and certificate (:mod:`rkcheck.energy.continuous`)."""
     from rkcheck.energy.continuous import kernel_facts
@@ -380,7 +388,7 @@ class CheckRunner:
     its steps (a claim on another degree is a run of its own): a progress bar then shows
     one bar per run, named, with its unit, instead of one bar that starts over."""
 
-    def __init__(self, budget: Budget | None = None, progress=None) -> None:
+    def __init__(self, budget: Budget | None = None, progress: Any = None) -> None:
         self._memo: dict[tuple[int, CheckOptions], CheckResult] = {}
         self._values: dict[Any, TableauValues] = {}
         self.budget, self.progress = budget, progress

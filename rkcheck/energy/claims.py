@@ -23,7 +23,7 @@ property claim: the found column says so and the note gives the proven order.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Callable
 
 from rkcheck.energy.budget import Budget
 from rkcheck.energy.check import CheckResult, CheckRunner
@@ -52,7 +52,7 @@ class ClaimResult:
 # ------------------------------------------------------------------ checking
 
 
-def needed_options(claims: list[Claim], base):
+def needed_options(claims: list[Claim], base: CheckOptions) -> dict[int | None, CheckOptions]:
     """The distinct check runs the claims need: one per degree, each to the highest order
     any claim on that degree needs.  ``base`` is the run the user asked for.  A classical
     order claim needs no energy run of its own (:func:`judge` checks the rooted trees
@@ -67,7 +67,7 @@ def needed_options(claims: list[Claim], base):
     return {deg: replace(base, degree=deg, order=order, fail_fast=False) for deg, order in runs.items()}
 
 
-def judge(claim: Claim, result) -> ClaimResult:
+def judge(claim: Claim, result: CheckResult) -> ClaimResult:
     """One claim against the check run made for it (see :func:`needed_options`)."""
     if claim.kind in ("symplectic", "symmetric", "stability_defect"):
         return judge_property(claim, result)
@@ -90,7 +90,7 @@ def judge(claim: Claim, result) -> ClaimResult:
     return _judge_energy_order(claim, result)
 
 
-def _judge_energy_order(claim: Claim, result) -> ClaimResult:
+def _judge_energy_order(claim: Claim, result: CheckResult) -> ClaimResult:
     n_checked = result.options.order
     found = result.energy_order_label
     cert = result.certificate
@@ -116,7 +116,7 @@ def _judge_energy_order(claim: Claim, result) -> ClaimResult:
     return _to_digits(claim, reach == claim.value, str(reach), result.energy_order, result.energy_order_digits)
 
 
-def _reach(found: int | str, digits: int | None) -> str:
+def _reach(found: int | str | None, digits: int | None) -> str:
     return str(found) if digits is None else f"{found} to {digits} digits"
 
 
@@ -134,7 +134,7 @@ def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: 
     return ClaimResult(claim, met, _reach(found, digits), "; ".join(parts))
 
 
-def judge_property(claim: Claim, result) -> ClaimResult:
+def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
     """A claim on the tableau's own algebra (symplectic, symmetric, stability_defect)."""
     from rkcheck.properties import scalars as sc
 
@@ -161,7 +161,8 @@ def judge_property(claim: Claim, result) -> ClaimResult:
     return ClaimResult(claim, sc.verdict(diff).holds, found, note)
 
 
-def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimResult]:
+def check_claims(tableau: Tableau, claims: list[Claim], base: CheckOptions,
+                 run_check: Callable[[Tableau, CheckOptions], CheckResult]) -> list[ClaimResult]:
     """Judge every claim; ``run_check(tableau, options)`` is the check function (injected
     so that callers can share runs; normally :func:`rkcheck.energy.check.check`)."""
     runs = needed_options(claims, base)
@@ -173,7 +174,7 @@ def check_claims(tableau, claims: list[Claim], base, run_check) -> list[ClaimRes
 
 
 def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto", budget: Budget | None = None,
-                  progress=None, result_type: type[CheckResult] = CheckResult) -> CheckResult:
+                  progress: Any = None, result_type: type[CheckResult] = CheckResult) -> CheckResult:
     """Check a tableau and its claims: the main run's result (as ``result_type``, a
     subclass that adds methods) with ``claims`` (None when the tableau has none) and
     ``failed`` (the file's verdict under ``fail_on``).

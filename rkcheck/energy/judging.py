@@ -8,7 +8,7 @@ box, point data at a higher precision.
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
@@ -22,9 +22,12 @@ from rkcheck.options import DPS_RANGE
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
+#: ``progress(done, total)``: told as orders (or passes) finish
+Progress = Callable[[int, int], None]
+
 
 def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast: bool = False,
-                    progress=None) -> dict[int, OrderVerdicts]:
+                    progress: Progress | None = None) -> dict[int, OrderVerdicts]:
     """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
     the first one that has a certainly failing condition."""
     wanted = sorted(listing.orders)
@@ -54,7 +57,7 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
 
 
 def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[int] | None,
-                progress=None) -> Mapping[int, Any]:
+                progress: Progress | None = None) -> Mapping[int, Any]:
     """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Iterator, NamedTuple, Sequence
+from typing import Any, Iterator, NamedTuple, Sequence, overload
 
 import numpy as np
 
@@ -85,8 +85,8 @@ class OrderVerdicts:
     digits: np.ndarray  # int32 (meaningful where the state is holds_to_digits)
     values: Any  # ExactOrderSums, ball order sums, or list[Enclosure] (representative sign)
     _rank: np.ndarray | None = field(default=None, repr=False)  # presentation order
-    _records: list | None = field(default=None, repr=False)
-    _exact: list | None = field(default=None, repr=False)  # all exact values, rebuilt at once
+    _records: list[FreeTree] | None = field(default=None, repr=False)
+    _exact: list[Any] | None = field(default=None, repr=False)  # all exact values, rebuilt at once
 
     @property
     def order(self) -> int:
@@ -162,7 +162,12 @@ class ConditionResults(Sequence[Condition]):
         value = (o._exact[k] if o._exact is not None else o.values.value(k)) * flip
         return Condition(tree, verdict, _enclosure_of(value), value)
 
-    def __getitem__(self, i):
+    @overload
+    def __getitem__(self, i: int) -> Condition: ...
+    @overload
+    def __getitem__(self, i: slice) -> list[Condition]: ...
+
+    def __getitem__(self, i: int | slice) -> Condition | list[Condition]:
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
         if i < 0:
@@ -219,7 +224,12 @@ class Failures(Sequence[Condition]):
         while len(self._built) < min(upto, self._count):
             self._built.append(next(self._source))
 
-    def __getitem__(self, i):
+    @overload
+    def __getitem__(self, i: int) -> Condition: ...
+    @overload
+    def __getitem__(self, i: slice) -> list[Condition]: ...
+
+    def __getitem__(self, i: int | slice) -> Condition | list[Condition]:
         if isinstance(i, slice):
             start, stop, step = i.indices(self._count)
             self._build(stop)
