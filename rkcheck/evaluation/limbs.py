@@ -52,6 +52,7 @@ from rkcheck.evaluation.digit_sums import (
     multipliers,
 )
 from rkcheck.evaluation.limb_store import STORE, LimbStore, copy_digits
+from rkcheck.evaluation.support import may_be_nonzero, reach_pattern
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 
@@ -126,9 +127,7 @@ class LimbBallContext:
         self.bd = np.array([[self._digits(m) for m, _, _ in balls_b]], dtype=np.int64)  # (1, s, L)
         # the entries that are not zero (mid-point): (x Mᵀ)_i may be nonzero only where some
         # x_j that may be is met by one of them
-        self._count: type[np.integer] = np.uint8 if s < 256 else np.int32  # sums of s zeros and ones
-        self.A_nz: np.ndarray = np.asarray(self.Ad.any(axis=2).T, dtype=self._count)  # (s, s): column j, output i
-        self.b_nz: np.ndarray = np.asarray(self.bd.any(axis=2).T, dtype=self._count)  # (s, 1)
+        self.A_nz, self.b_nz = reach_pattern(self.Ad.any(axis=2)), reach_pattern(self.bd.any(axis=2))
         self._A_plan, self._b_plan = _product_plan(self.Ad), _product_plan(self.bd)
         self.Ar_t = np.ascontiguousarray(np.array([[r for _, r, _ in row] for row in balls_A]).T)
         self.Ag_t = np.ascontiguousarray(np.array([[g for _, _, g in row] for row in balls_A]).T)
@@ -186,18 +185,14 @@ class LimbBallContext:
         return (mid, np.zeros(k), np.ones(k), np.full(k, _ONE, dtype=np.uint8))
 
     def take(self, x, idx):
-        """The rows ``idx`` of a value or a store; from a store, the digits only of the
-        rows whose code is not :data:`_ZERO` when those are few (the others are zeros)."""
+        """The rows ``idx`` of a value or a store.  A store keeps the digits of the rows
+        whose code is not :data:`_ZERO` only, and places the others at its row 0, which is
+        zeros: one gather reads them all (zeros and a scatter of the others' digits cost
+        up to three times as much, at every share of zeros)."""
         if not isinstance(x, LimbStore):
             return tuple(np.take(part, idx, axis=0) for part in x)
-        codes = np.take(x.codes, idx, axis=0)
-        rows = self._nonzero_rows((None, None, None, codes), _SPARSE_COPY)
-        if rows is None:
-            digits = np.take(x.digits, x.places(idx), axis=0)
-        else:
-            digits = np.zeros((len(idx),) + x.digits.shape[1:], dtype=x.digits.dtype)
-            digits[rows] = np.take(x.digits, x.places(idx[rows]), axis=0)
-        return digits, np.take(x.rad, idx, axis=0), np.take(x.g, idx, axis=0), codes
+        digits = np.take(x.digits, x.places(idx), axis=0)
+        return digits, np.take(x.rad, idx, axis=0), np.take(x.g, idx, axis=0), np.take(x.codes, idx, axis=0)
 
     def put(self, store: LimbStore, lo: int, x) -> None:
         """Store the rows of ``x`` from row ``lo`` on: the digits of those whose code
@@ -349,12 +344,12 @@ class LimbBallContext:
 
     def matvec(self, x):
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
-        nz = (self._may_be_nonzero(x).astype(self._count) @ self.A_nz) > 0
+        nz = may_be_nonzero(self._may_be_nonzero(x), self.A_nz)
         return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz.astype(np.uint8)
 
     def dot(self, x):
         rad, g = self._rad(x, self.br, self.bg)
-        nz = (self._may_be_nonzero(x).astype(self._count) @ self.b_nz)[:, 0] > 0
+        nz = may_be_nonzero(self._may_be_nonzero(x), self.b_nz)[:, 0]
         return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz.astype(np.uint8)
 
     def enclosures(self, x) -> list[Enclosure]:
@@ -442,10 +437,6 @@ _ZERO, _ANY, _ONE = 0, 1, 2
 #: the share of rows with nonzero mid-points below which only those rows are multiplied
 #: (gathering them and scattering the products back costs less than the digits of the rest)
 _SPARSE = 0.75
-
-
-#: the share of rows with nonzero mid-points below which gathers and stores copy only their digits
-_SPARSE_COPY = 0.5
 
 
 def _sparse_rows(nonzero: np.ndarray, share: float = _SPARSE) -> np.ndarray | None:

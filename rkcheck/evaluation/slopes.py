@@ -143,8 +143,11 @@ class GradientContext:
         if not self.b_vars:
             return value, grad_a
         # along b_i: ∂(bᵀx)/∂b_i = x_i (x does not depend on b)
+        # (np.take along the last axis: fancy indexing there runs numpy's slow general path)
         zero = self._zeros(x[0][0].shape[:-1], len(self.b_vars))
-        grad_b = _add(zero, (x[0][0][..., self.b_vars], x[0][1][..., self.b_vars]))
+        grad_b = _add(zero, (np.take(x[0][0], self.b_vars, axis=-1), np.take(x[0][1], self.b_vars, axis=-1)))
+        if not self.EA:
+            return value, grad_b
         return value, (np.concatenate([grad_a[0], grad_b[0]], axis=-1),
                        np.concatenate([grad_a[1], grad_b[1]], axis=-1))
 
