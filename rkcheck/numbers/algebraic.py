@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Any, Sequence
+from typing import Any, Callable, Sequence
 
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.polynomials import (
@@ -63,7 +63,7 @@ class NumberField:
         self.name = name or (f"sqrt({self.sqrt_of})" if self.sqrt_of else f"root({poly_text(self.minpoly)}, {index})")
         self._theta: Interval | None = None
         self._theta_bits = 0
-        self._products: dict[tuple, Any] = {}  # FieldElement._memo: products and inverses
+        self._products: dict[tuple[Any, ...], Any] = {}  # FieldElement._memo: products and inverses
         #: minimal polynomials of elements that generate the field (its builder's
         #: generators; empty when unknown): a prime splits completely in the field only if
         #: it splits each of them, a test of low degree (ScaledTableau's channel primes)
@@ -72,14 +72,14 @@ class NumberField:
     def __repr__(self) -> str:
         return f"NumberField(θ = {self.name}, degree {self.degree})"
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[Callable[..., NumberField], tuple[Any, ...]]:
         # FLINT polynomials do not pickle; a field travels (to and from scan workers) as
         # its minimal polynomial, and pickle's memo keeps one field per message
         return (_field, (self.minpoly, self.index, self.name, self.generator_polynomials))
 
     @property
     def is_rational(self) -> bool:
-        return self.degree == 1
+        return bool(self.degree == 1)
 
     # ------------------------------------------------------------------ elements
 
@@ -111,14 +111,14 @@ class NumberField:
             self._theta, self._theta_bits = refined, bits
         return self._theta
 
-    def conjugates(self, bits: int = 64):
+    def conjugates(self, bits: int = 64) -> list[Any]:
         """Certified complex enclosures (``acb``) of all conjugates of θ, of at least
         ``bits`` bits (:func:`rkcheck.numbers.polynomials.complex_roots`, shared with
         every user of the same polynomial)."""
         return complex_roots(self.g.numer().coeffs(), max(bits, 64))
 
 
-def _field(minpoly: list[Fraction], index: int, name: str, generators: tuple) -> NumberField:
+def _field(minpoly: list[Fraction], index: int, name: str, generators: tuple[Any, ...]) -> NumberField:
     K = NumberField(minpoly, index, name)
     K.generator_polynomials = generators
     return K
@@ -140,7 +140,7 @@ class _PolyKey:
 
     __slots__ = ("poly", "h")
 
-    def __init__(self, poly):
+    def __init__(self, poly: Any):
         d = poly.degree()
         self.poly, self.h = poly, hash((d, poly[0], poly[d // 2], poly[max(d, 0)]))
 
@@ -156,13 +156,13 @@ class FieldElement:
 
     __slots__ = ("field", "poly", "_key", "_coeffs")
 
-    def __init__(self, field: NumberField, poly):
+    def __init__(self, field: NumberField, poly: Any):
         self.field = field
         self.poly = poly
         self._key: _PolyKey | None = None
         self._coeffs: list[Fraction] | None = None
 
-    def _memo(self, op: str, other: "FieldElement | None", compute) -> "FieldElement":
+    def _memo(self, op: str, other: "FieldElement | None", compute: Callable[[], "FieldElement"]) -> "FieldElement":
         """``compute()``, remembered per field of degree >= :data:`MEMO_MIN_DEGREE`: a
         product in a field of degree 48 costs about a millisecond (coefficients of
         1000–2000 bits), and the tableau's algebra asks for the same ones again (in
@@ -171,22 +171,22 @@ class FieldElement:
         if K.degree < MEMO_MIN_DEGREE:
             return compute()
         mine = self._key = self._key or _PolyKey(self.poly)
-        key: tuple = (op, mine)
+        key: tuple[Any, ...] = (op, mine)
         if other is not None:
             theirs = other._key = other._key or _PolyKey(other.poly)
             key = (op, mine, theirs) if mine.h <= theirs.h else (op, theirs, mine)
-        hit = K._products.get(key)
+        hit: FieldElement | None = K._products.get(key)
         if hit is None:
             if len(K._products) >= MEMO_SIZE:
                 K._products.clear()
             hit = K._products[key] = compute()
         return hit
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[Callable[..., FieldElement], tuple[NumberField, list[Fraction]]]:
         return (_element, (self.field, list(self.coeffs)))
 
     # ------------------------------------------------------------- arithmetic
-    def _other(self, y: Any):
+    def _other(self, y: Any) -> Any:
         if isinstance(y, FieldElement):
             if y.field is not self.field:
                 raise ValueError("elements of different fields")
@@ -263,7 +263,8 @@ class FieldElement:
         return FieldElement(self.field, self.poly / to_fmpq(y))
 
     def __rtruediv__(self, y: Any) -> "FieldElement":
-        return self.inverse() * y
+        quotient: FieldElement = self.inverse() * y
+        return quotient
 
     def __pow__(self, n: int) -> "FieldElement":
         if n < 0:
@@ -279,7 +280,7 @@ class FieldElement:
 
     # ------------------------------------------------------------- facts
     def is_zero(self) -> bool:
-        return self.poly.is_zero()
+        return bool(self.poly.is_zero())
 
     def __bool__(self) -> bool:
         return not self.is_zero()
@@ -288,7 +289,7 @@ class FieldElement:
         o = self._other(y)
         if o is None:
             return NotImplemented
-        return self.poly == o
+        return bool(self.poly == o)
 
     def __hash__(self) -> int:
         r = self.rational()
@@ -355,7 +356,8 @@ class FieldElement:
         """sign(self − y), exactly; a float is taken at its exact binary value."""
         if isinstance(y, float):
             y = Fraction(y)
-        return (self - y).sign()
+        diff: FieldElement = self - y
+        return diff.sign()
 
     def __lt__(self, y: Any) -> bool:
         return self._diff_sign(y) < 0

@@ -7,13 +7,16 @@ field's minimal polynomial), and the old generator θ in the new field.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
 
 from rkcheck.numbers.algebraic import FieldElement, NotAlgebraic, NumberField
 from rkcheck.numbers.minimal import is_root
 from rkcheck.numbers.polynomials import add, divide, from_flint, mul
 
 
-def separating_multipliers(g, f, candidates=(1, -1, 2, -2, 3, -3, 5, 7, 11, 13), check_time=lambda: None):
+def separating_multipliers(g: Any, f: Any, candidates: Sequence[int] = (1, -1, 2, -2, 3, -3, 5, 7, 11, 13),
+                           check_time: Callable[[], None] = lambda: None) -> Iterator[int]:
     """The integers t (from ``candidates``) for which the sums ``θ_i + t·γ_j`` over all
     conjugates are pairwise distinct — proven with certified complex balls (FLINT acb):
     two balls whose difference excludes 0 are distinct numbers.  Then the characteristic
@@ -41,13 +44,13 @@ def separating_multipliers(g, f, candidates=(1, -1, 2, -2, 3, -3, 5, 7, 11, 13),
                     yield t
 
 
-def _power_sums(poly, count: int) -> list:
+def _power_sums(poly: Any, count: int) -> list[Any]:
     """``p_1 … p_count``, the power sums of the roots of ``poly`` (fmpq_poly), by
     Newton's identities on its monic coefficients."""
     n = poly.degree()
     lead = poly[n]
     a = [poly[i] / lead for i in range(n + 1)]  # monic: a[n] = 1
-    p: list = [None] * (count + 1)  # p[0] unused
+    p: list[Any] = [None] * (count + 1)  # p[0] unused
     for k in range(1, count + 1):
         total = -k * a[n - k] if k <= n else 0 * lead
         for i in range(1, min(k, n + 1)):
@@ -56,7 +59,7 @@ def _power_sums(poly, count: int) -> list:
     return p
 
 
-def charpoly_sum(g, f, t: int):
+def charpoly_sum(g: Any, f: Any, t: int) -> Any:
     """The characteristic polynomial ``Π (x − θ_i − t·γ_j)`` of ``y + t·z`` on
     ``Q[y, z]/(g(y), f(z))``, over all conjugates θ_i of g and γ_j of f.
 
@@ -85,7 +88,7 @@ def charpoly_sum(g, f, t: int):
     return fmpq_poly([e[N - j] if (N - j) % 2 == 0 else -e[N - j] for j in range(N + 1)])
 
 
-def theta_in(L: NumberField, g, f, t: int, check_time=lambda: None) -> FieldElement:
+def theta_in(L: NumberField, g: Any, f: Any, t: int, check_time: Callable[[], None] = lambda: None) -> FieldElement:
     """θ (root of g) in L = Q(η), η = θ + tγ: ``η − tγ``, with γ the one common root of
     ``f(z)`` and ``r(z) = g(η − tz) mod f`` over L (t separates the conjugates).
 

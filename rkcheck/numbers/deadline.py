@@ -30,7 +30,7 @@ class Overrun(Exception):
     """The computation did not finish within its time."""
 
 
-def _child(write_fd: int, fn: Callable[..., Any], args: tuple) -> None:
+def _child(write_fd: int, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
     """In the forked child: compute, send ``(True, result)`` or ``(False, exception)``, exit."""
     try:
         try:

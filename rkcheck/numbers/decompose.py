@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from rkcheck.numbers.groebner import dimension, groebner, leading_monomial
+from rkcheck.numbers.groebner import Terms, dimension, groebner, leading_monomial
 
 #: At most this many pieces (splitting stops there; the pieces left are reported unsplit).
 MAX_PIECES = 32
@@ -28,11 +28,11 @@ class Piece:
     dimension: int
 
 
-def _key(basis: list[dict]) -> tuple:
+def _key(basis: list[Terms]) -> tuple[Any, ...]:
     return tuple(sorted(tuple(sorted(d.items())) for d in basis))
 
 
-def _factors(d: dict[tuple[int, ...], int], names: tuple[str, ...]) -> list[dict] | None:
+def _factors(d: dict[tuple[int, ...], int], names: tuple[str, ...]) -> list[Terms] | None:
     """The distinct irreducible factors of a polynomial when it has more than one (or
     a repeated one), else None."""
     from flint import fmpz_mpoly_ctx
@@ -44,10 +44,10 @@ def _factors(d: dict[tuple[int, ...], int], names: tuple[str, ...]) -> list[dict
     return [{tuple(int(e) for e in m): int(c) for m, c in f.to_dict().items()} for f, _ in factors]
 
 
-def split(basis: list[dict], names: tuple[str, ...], deadline: float) -> list[Piece]:
+def split(basis: list[Terms], names: tuple[str, ...], deadline: float) -> list[Piece]:
     """The pieces of V(basis) (a reduced degrevlex Gröbner basis), split along factors."""
     todo = [basis]
-    done: dict[tuple, Piece] = {}
+    done: dict[tuple[Any, ...], Piece] = {}
     while todo:
         G = todo.pop()
         if len(done) + len(todo) >= MAX_PIECES:
@@ -67,11 +67,11 @@ def split(basis: list[dict], names: tuple[str, ...], deadline: float) -> list[Pi
     return sorted(done.values(), key=lambda p: (-p.dimension, len(p.basis)))
 
 
-def _dimension(G: list[dict], names: tuple[str, ...]) -> int:
+def _dimension(G: list[Terms], names: tuple[str, ...]) -> int:
     return dimension([leading_monomial(d, "degrevlex") for d in G], len(names)) if G else len(names)
 
 
-def contains(piece: Piece, p: dict, names: tuple[str, ...], deadline: float) -> bool:
+def contains(piece: Piece, p: Terms, names: tuple[str, ...], deadline: float) -> bool:
     """Whether p lies in the piece's ideal (then it vanishes on the piece)."""
     if not p:
         return True

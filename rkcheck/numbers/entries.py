@@ -227,7 +227,7 @@ class Entry:
 # post-order, flat, and rebuilt with an explicit stack.
 
 
-def _record(node: ex.Expr) -> tuple:
+def _record(node: ex.Expr) -> tuple[Any, ...]:
     if isinstance(node, ex.Num):
         return ("N", node.value, node.text, node.digits, node.last_digit_exponent)
     if isinstance(node, ex.Name):
@@ -242,7 +242,7 @@ def _record(node: ex.Expr) -> tuple:
     return ("C", node.func, len(node.args), node.column)
 
 
-def _rebuild(flat: list[tuple]) -> ex.Expr:
+def _rebuild(flat: list[tuple[Any, ...]]) -> ex.Expr:
     stack: list[ex.Expr] = []
     for kind, *f in flat:
         if kind == "N":
@@ -265,8 +265,8 @@ def _rebuild(flat: list[tuple]) -> ex.Expr:
     return stack[0]
 
 
-def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple]]]:
-    flat: list[tuple] = []
+def _reduce_expr(node: Any) -> tuple[Any, tuple[list[tuple[Any, ...]]]]:
+    flat: list[tuple[Any, ...]] = []
     xp.fold(node, lambda n, _: flat.append(_record(n)), xp.children)
     return _rebuild, (flat,)
 

@@ -9,7 +9,7 @@ needs no recursion; every intermediate value is held to the size budget
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Iterator, Mapping
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import polynomials
@@ -32,7 +32,7 @@ from rkcheck.numbers.reading import DecimalsMode
 # ------------------------------------------------------------------- traversals
 
 
-def walk(node: Expr):
+def walk(node: Expr) -> Iterator[Expr]:
     """Every node of ``node`` in pre-order, left to right."""
     stack = [node]
     while stack:
@@ -151,7 +151,8 @@ class _RootPolynomial:
         p = polynomials.trim(poly)
         if len(p) > 1:
             raise UserError(f"{what} in root's polynomial must not depend on x (column {self.column})")
-        return p[0]
+        value: Fraction = p[0]
+        return value
 
     @staticmethod
     def inside(node: Expr) -> tuple[Expr, ...]:
@@ -282,11 +283,12 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
         if left is None or right is None:
             return None
         _check_operand_bits((left, right), n.column)
-        out = binary(n.op, left, right)
+        out: Fraction = binary(n.op, left, right)
         _check_value_bits((out,), n.column)
         return out
 
-    return fold(node, combine)
+    value: Fraction | None = fold(node, combine)
+    return value
 
 
 def binary(op: str, left: Any, right: Any) -> Any:
@@ -352,11 +354,12 @@ def enclose(
             if right.is_point:
                 raise UserError(f"division by zero at column {n.column}")
             raise UserError(f"division at column {n.column}: the divisor cannot be shown to be nonzero")
-        out = binary(n.op, left, right)
-        _check_value_bits((out.lo, out.hi), n.column)
-        return out
+        result: Interval = binary(n.op, left, right)
+        _check_value_bits((result.lo, result.hi), n.column)
+        return result
 
-    return fold(node, combine)
+    value: Interval = fold(node, combine)
+    return value
 
 
 def _short(q: Fraction) -> str:
@@ -400,4 +403,5 @@ def to_text(node: Expr) -> str:
         right = wrap(n.right, texts[1], p + 1 if n.op in "-/" else p)
         return f"{left} {n.op} {right}" if p == 1 else f"{left}{n.op}{right}"
 
-    return fold(node, combine, children)
+    text: str = fold(node, combine, children)
+    return text

@@ -17,7 +17,7 @@ import time
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import Any, Callable
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import expressions as xp
@@ -67,7 +67,7 @@ class _Real:
         return real_root_intervals(list(self.f), bits)[self.index - 1]
 
 
-def _identify(candidates: Iterable, value) -> Any:
+def _identify(candidates: Iterable[Any], value: Callable[[int], Interval]) -> Any:
     """The one irreducible factor (fmpq_poly) among ``candidates`` that vanishes at the
     real number whose enclosures ``value(bits)`` gives."""
     candidates = list(candidates)
@@ -85,7 +85,7 @@ def _identify(candidates: Iterable, value) -> Any:
             raise NotAlgebraic("could not separate the roots of a polynomial")
 
 
-def _real_of(f, value) -> _Real:
+def _real_of(f: Any, value: Callable[[int], Interval]) -> _Real:
     """``value`` (enclosures) as a root of the irreducible ``f``: which real root it is."""
     f = f / f.coeffs()[-1]
     coeffs = from_flint(f)
@@ -113,7 +113,7 @@ class _Builder:
         self.definitions = dict(constants or {})
         self.constants: dict[str, FieldElement] = {}
         self._sqrt_cache: dict[int, FieldElement] = {}  # keyed by the square-free m
-        self._power_tables: dict[int, list] = {}  # step j: powers of θ_old in chain[j]
+        self._power_tables: dict[int, list[Any]] = {}  # step j: powers of θ_old in chain[j]
         self.deadline = time.monotonic() + FIELD_SECONDS
 
     def check_time(self) -> None:
@@ -135,7 +135,7 @@ class _Builder:
             x = FieldElement(self.chain[j], acc)
         return x
 
-    def _current(self, table: dict, key: Any) -> FieldElement:
+    def _current(self, table: dict[Any, FieldElement], key: Any) -> FieldElement:
         """``table[key]`` in the current field, stored back lifted: a named constant (a
         node, a quadrature weight) is used in many entries, and lifting it again at each
         use would be most of the build of the Gauss-6 field (3 800 lifts for 48 entries)."""
@@ -144,7 +144,7 @@ class _Builder:
             x = table[key] = self.lift(x)
         return x
 
-    def _powers(self, j: int) -> list:
+    def _powers(self, j: int) -> list[Any]:
         """``1, θ_old, …, θ_old^(d−1)`` of step j (polynomials of ``chain[j]``)."""
         if j not in self._power_tables:
             theta = self.embeddings[j]
@@ -194,7 +194,7 @@ class _Builder:
         for t in separating_multipliers(K.g, f, check_time=self.check_time):
             R = charpoly_sum(K.g, f, t)
 
-            def eta_enc(bits: int, t=t) -> Interval:
+            def eta_enc(bits: int, t: int = t) -> Interval:
                 return K.theta_enclosure(bits + 4) + Interval.point(t) * gamma.enclosure(bits + 8)
 
             h = _identify([fac for fac, _ in R.factor()[1]], eta_enc)
@@ -204,7 +204,7 @@ class _Builder:
             eta = _real_of(h, eta_enc)
             L = NumberField(list(eta.f), eta.index)
             theta_old = theta_in(L, K.g, f, t, self.check_time)
-            gamma_new = (L.gen - theta_old) / t
+            gamma_new: FieldElement = (L.gen - theta_old) / t
             self._push(L, theta_old)
             self.generators[gamma] = gamma_new
             return gamma_new
@@ -266,7 +266,8 @@ class _Builder:
         assert isinstance(node, ex.Binary)
         left = self.value(node.left)
         right = self.value(node.right)
-        return _arithmetic(node, self.lift(left), self.lift(right))
+        out: FieldElement = _arithmetic(node, self.lift(left), self.lift(right))
+        return out
 
     def _call(self, node: ex.Call) -> FieldElement:
         self.check_time()
@@ -347,7 +348,8 @@ def field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None =
     if _few_small_square_roots(calls, constants):  # nothing in it can run long
         return _field_of(nodes, constants, max_degree)
     try:
-        return call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)
+        values: FieldValues = call_within(FIELD_SECONDS + 1, _field_of, nodes, constants, max_degree)
+        return values
     except Overrun:
         raise _too_slow() from None
 
@@ -432,9 +434,11 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
             base = xp.fold(node.base, combine, _exponent_first)
             if base == 0 and r < 0:
                 raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-            return base ** int(r)
+            power: Fraction = base ** int(r)
+            return power
         assert isinstance(node, ex.Binary)
-        return _arithmetic(node, *vals)
+        out: Fraction = _arithmetic(node, *vals)
+        return out
 
     try:
         return [Fraction(xp.fold(n, combine, _exponent_first)) for n in nodes]

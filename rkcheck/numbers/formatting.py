@@ -8,7 +8,7 @@ from fractions import Fraction
 
 def _at_least(p: int, q: int, e: int) -> bool:
     """p/q >= 10^e, in integers."""
-    return p >= q * 10**e if e >= 0 else p * 10**-e >= q
+    return bool(p >= q * 10**e) if e >= 0 else bool(p * 10**-e >= q)
 
 
 def decimal_exponent(x: Fraction) -> int:

@@ -421,7 +421,8 @@ def _int_of_digits(digits: str) -> int:
     if len(digits) <= _INT_CHUNK:
         return int(digits)
     low = len(digits) // 2
-    return _int_of_digits(digits[:-low]) * 10**low + _int_of_digits(digits[-low:])
+    value: int = _int_of_digits(digits[:-low]) * 10**low + _int_of_digits(digits[-low:])
+    return value
 
 
 def parse(text: str) -> Expr:

@@ -8,9 +8,12 @@ import itertools
 import random
 import time
 from fractions import Fraction
-from typing import Any, Sequence
+from typing import Any, Sequence, TypeAlias
 
 from rkcheck.errors import UserError
+
+#: a polynomial as {exponents: coefficient}
+Terms: TypeAlias = dict[tuple[int, ...], Any]
 
 MAX_SOLVE_SECONDS = 60
 
@@ -36,7 +39,7 @@ def integer_dicts(polys: Sequence[Any]) -> list[dict[tuple[int, ...], int]]:
     return out
 
 
-def _reduced_basis(names: tuple[str, ...], order: str, dicts: list[dict]) -> list[dict[tuple[int, ...], int]]:
+def _reduced_basis(names: tuple[str, ...], order: str, dicts: list[Terms]) -> list[dict[tuple[int, ...], int]]:
     from flint import fmpz_mpoly_ctx, fmpz_mpoly_vec
 
     ctx = fmpz_mpoly_ctx.get(names, order)
@@ -55,7 +58,8 @@ def groebner(dicts: list[dict[tuple[int, ...], int]], names: tuple[str, ...], or
     if not dicts:
         return []
     try:
-        return call_within(max(0.0, deadline - time.monotonic()), _reduced_basis, names, order, dicts)
+        basis: list[Terms] = call_within(max(0.0, deadline - time.monotonic()), _reduced_basis, names, order, dicts)
+        return basis
     except Overrun:
         raise SolveLimitError("the Gröbner basis did not finish within the time limit (--max-seconds); "
                               "fix more parameters, lower --order or --degree, or raise the limit") from None
@@ -117,7 +121,7 @@ def _monom(n: int, i: int, e: int) -> tuple[int, ...]:
     return tuple(e if k == i else 0 for k in range(n))
 
 
-def radical_additions(basis: list[dict], names: tuple[str, ...], deadline: float) -> list[dict]:
+def radical_additions(basis: list[Terms], names: tuple[str, ...], deadline: float) -> list[Terms]:
     """The square-free part of each variable's eliminant (Seidenberg's lemma: with these
     added, a zero-dimensional ideal becomes its radical)."""
     n = len(names)
@@ -142,7 +146,8 @@ def _integer_dict(d: dict[tuple[int, ...], Fraction]) -> dict[tuple[int, ...], i
     return {m: int(c * lcm) for m, c in d.items()}
 
 
-def shape_basis(basis: list[dict], names: tuple[str, ...], deadline: float, tries: int = 8):
+def shape_basis(basis: list[Terms], names: tuple[str, ...], deadline: float,
+                tries: int = 8) -> tuple[list[int], list[Fraction], list[list[Fraction]]]:
     """A separating form z = Σ rᵢxᵢ and the shape basis ``f(z)``, ``xᵢ = hᵢ(z)`` of a
     radical zero-dimensional ideal, as ``(r, f, [h_i])`` (ascending Fractions)."""
     n = len(names)
@@ -160,7 +165,7 @@ def shape_basis(basis: list[dict], names: tuple[str, ...], deadline: float, trie
     raise SolveLimitError("no separating linear form found for the solutions (not in shape position)")
 
 
-def _read_shape(lex: list[dict], n: int):
+def _read_shape(lex: list[Terms], n: int) -> tuple[list[Fraction], list[list[Fraction]]] | None:
     f = None
     h: list[list[Fraction] | None] = [None] * n
     for d in lex:
@@ -179,10 +184,10 @@ def _read_shape(lex: list[dict], n: int):
         h[i] = coeffs
     if f is None or any(x is None for x in h):
         return None
-    return f, h
+    return f, [x for x in h if x is not None]
 
 
-def solve_zero_dimensional(basis: list[dict], names: tuple[str, ...], deadline: float) -> tuple[list, list]:
+def solve_zero_dimensional(basis: list[Terms], names: tuple[str, ...], deadline: float) -> tuple[list[Fraction], list[list[Fraction]]]:
     """``(f, [h_i])`` in shape position.  A shape basis with a square-free f generates a
     radical ideal, so the radical is computed only when the first try is not one."""
     try:

@@ -14,6 +14,7 @@ the energy check never see this class (they run on the fixed-point balls of
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -115,7 +116,7 @@ class Interval:
         return Interval(Fraction(lo, 1 << bits), Fraction(hi, 1 << bits))
 
 
-def interval_sum(xs) -> Interval:
+def interval_sum(xs: Iterable[Interval]) -> Interval:
     """The sum of intervals (the point 0 for none)."""
     total = Interval.point(0)
     for x in xs:

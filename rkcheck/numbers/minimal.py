@@ -109,7 +109,7 @@ def integral_scale(monic: Sequence[Fraction]) -> int:
     return lam
 
 
-def charpoly_mul(alpha: FieldElement):
+def charpoly_mul(alpha: FieldElement) -> Any:
     """The characteristic polynomial of multiplication by α on its field (its roots are the
     conjugates of α)."""
     from flint import fmpq_mat
@@ -134,7 +134,7 @@ def is_root(P: Sequence[Fraction], x: FieldElement) -> bool:
     takes m (in a field of degree 48 a product costs about a millisecond)."""
     m = len(P) - 1
     if m < 4:
-        return evaluate(P, x, x.field(0)).is_zero()
+        return bool(evaluate(P, x, x.field(0)).is_zero())
     k = math.isqrt(m)
     powers = [x.field(1), x]
     while len(powers) <= k:

@@ -85,7 +85,7 @@ class ParameterRing:
         return p if self.minpoly is None else p % self.minpoly
 
     def is_zero(self, p: Any) -> bool:
-        return self.reduce(p).is_zero()
+        return bool(self.reduce(p).is_zero())
 
 
 def uses(node: ex.Expr, names: set[str]) -> bool:

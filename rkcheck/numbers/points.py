@@ -20,7 +20,7 @@ from typing import Any, Sequence
 MAX_POINTS = 400
 
 
-def _order_key(m: tuple[int, ...]) -> tuple:
+def _order_key(m: tuple[int, ...]) -> tuple[int, tuple[int, ...]]:
     """Graded reverse lexicographic: total degree, then the reversed exponents negated."""
     return (sum(m), tuple(-e for e in reversed(m)))
 
@@ -44,11 +44,11 @@ def points_basis(orbits: Sequence[tuple[Any, Sequence[Any]]], n: int) -> list[di
 
     one = tuple(0 for _ in range(n))
     evals = {one: [fmpq_poly([1]) for _ in orbits]}
-    echelon: list[tuple[int, list[Fraction], dict]] = []  # (pivot, row, combination of standard monomials)
-    basis: list[dict] = []
+    echelon: list[tuple[int, list[Fraction], dict[Any, Fraction]]] = []  # (pivot, row, combination of standard monomials)
+    basis: list[dict[Any, Any]] = []
     leads: list[tuple[int, ...]] = []
     todo = {one}
-    done: set = set()
+    done: set[tuple[int, ...]] = set()
     while todo:
         t = min(todo, key=_order_key)
         todo.discard(t)
@@ -71,7 +71,8 @@ def points_basis(orbits: Sequence[tuple[Any, Sequence[Any]]], n: int) -> list[di
     return basis
 
 
-def _reduce(row: list[Fraction], combo: dict, echelon: list) -> tuple[list[Fraction], dict]:
+def _reduce(row: list[Fraction], combo: dict[Any, Fraction],
+            echelon: list[tuple[int, list[Fraction], dict[Any, Fraction]]]) -> tuple[list[Fraction], dict[Any, Fraction]]:
     """Row minus multiples of the echelon rows (each with its pivot normalised to 1),
     tracking the combination of monomials."""
     row = list(row)
@@ -82,9 +83,9 @@ def _reduce(row: list[Fraction], combo: dict, echelon: list) -> tuple[list[Fract
             row = [x - f * y for x, y in zip(row, r)]
             for m, v in c.items():
                 combo[m] = combo.get(m, Fraction(0)) - f * v
-    pivot = next((i for i, x in enumerate(row) if x), None)
-    if pivot is not None:
-        inv = 1 / row[pivot]
+    lead = next((i for i, x in enumerate(row) if x), None)
+    if lead is not None:
+        inv = 1 / row[lead]
         row = [x * inv for x in row]
         combo = {m: v * inv for m, v in combo.items()}
     return row, {m: v for m, v in combo.items() if v}

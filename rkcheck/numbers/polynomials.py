@@ -29,7 +29,7 @@ from typing import Any, Callable, Sequence, cast
 
 from rkcheck.numbers.intervals import Interval
 
-Poly = list  # coefficients, lowest power first
+Poly = list[Any]  # coefficients, lowest power first
 ZeroTest = Callable[[Any], bool]
 
 _ZERO = Fraction(0)
@@ -43,7 +43,7 @@ def _equals_zero(c: Any) -> bool:
 # ------------------------------------------------------------ over any field
 
 
-def trim(p: Sequence, is_zero: ZeroTest = _equals_zero) -> Poly:
+def trim(p: Sequence[Any], is_zero: ZeroTest = _equals_zero) -> Poly:
     """Drop leading (highest-power) zero coefficients, keeping at least one."""
     out = list(p)
     while len(out) > 1 and is_zero(out[-1]):
@@ -51,26 +51,26 @@ def trim(p: Sequence, is_zero: ZeroTest = _equals_zero) -> Poly:
     return out
 
 
-def is_zero_poly(p: Sequence, is_zero: ZeroTest = _equals_zero) -> bool:
+def is_zero_poly(p: Sequence[Any], is_zero: ZeroTest = _equals_zero) -> bool:
     return all(is_zero(c) for c in p)
 
 
-def add(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+def add(p: Sequence[Any], q: Sequence[Any], zero: Any = _ZERO) -> Poly:
     n = max(len(p), len(q))
     return [(p[k] if k < len(p) else zero) + (q[k] if k < len(q) else zero) for k in range(n)]
 
 
-def sub(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+def sub(p: Sequence[Any], q: Sequence[Any], zero: Any = _ZERO) -> Poly:
     n = max(len(p), len(q))
     return [(p[k] if k < len(p) else zero) - (q[k] if k < len(q) else zero) for k in range(n)]
 
 
-def scale(p: Sequence, a: Any) -> Poly:
+def scale(p: Sequence[Any], a: Any) -> Poly:
     """``a·p``."""
     return [a * c for c in p]
 
 
-def mul(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
+def mul(p: Sequence[Any], q: Sequence[Any], zero: Any = _ZERO) -> Poly:
     """``p·q`` (schoolbook: the polynomials here are short, their coefficients not)."""
     if not p or not q:
         return [zero]
@@ -83,21 +83,21 @@ def mul(p: Sequence, q: Sequence, zero: Any = _ZERO) -> Poly:
     return out
 
 
-def reflect(p: Sequence) -> Poly:
+def reflect(p: Sequence[Any]) -> Poly:
     """``p(−x)``."""
     return [-c if k % 2 else c for k, c in enumerate(p)]
 
 
-def derivative(p: Sequence) -> Poly:
+def derivative(p: Sequence[Any]) -> Poly:
     return [k * p[k] for k in range(1, len(p))] or [_ZERO]
 
 
-def integral(p: Sequence) -> Poly:
+def integral(p: Sequence[Any]) -> Poly:
     """The antiderivative vanishing at 0."""
     return [_ZERO] + [c / (k + 1) for k, c in enumerate(p)]
 
 
-def evaluate(p: Sequence, x: Any, zero: Any = _ZERO) -> Any:
+def evaluate(p: Sequence[Any], x: Any, zero: Any = _ZERO) -> Any:
     """``p(x)`` by Horner's scheme."""
     acc = zero
     for c in reversed(p):
@@ -107,10 +107,11 @@ def evaluate(p: Sequence, x: Any, zero: Any = _ZERO) -> Any:
 
 def evaluate_at_interval(coeffs: Sequence[Fraction], x: Interval) -> Interval:
     """The polynomial with rational ``coeffs`` at the interval ``x`` (Horner's scheme)."""
-    return evaluate([Interval.point(c) for c in coeffs], x, Interval.point(0))
+    value: Interval = evaluate([Interval.point(c) for c in coeffs], x, Interval.point(0))
+    return value
 
 
-def shift(p: Sequence, h: Any, zero: Any = _ZERO, one: Any = Fraction(1)) -> Poly:
+def shift(p: Sequence[Any], h: Any, zero: Any = _ZERO, one: Any = Fraction(1)) -> Poly:
     """The coefficients of ``p(x + h)`` in x."""
     out = [zero]
     for c in reversed(p):
@@ -118,7 +119,7 @@ def shift(p: Sequence, h: Any, zero: Any = _ZERO, one: Any = Fraction(1)) -> Pol
     return out
 
 
-def divide(p: Sequence, d: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> tuple[Poly, Poly]:
+def divide(p: Sequence[Any], d: Sequence[Any], zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> tuple[Poly, Poly]:
     """``(quotient, remainder)`` of ``p`` by ``d`` (trimmed, leading coefficient nonzero);
     the remainder is trimmed.  A monic ``d`` costs no division, and its zero
     coefficients no products (reduction modulo a sparse minimal polynomial)."""
@@ -138,7 +139,7 @@ def divide(p: Sequence, d: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equ
     return quot, trim(p[:n] or [zero], is_zero)
 
 
-def gcd(p: Sequence, q: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> Poly:
+def gcd(p: Sequence[Any], q: Sequence[Any], zero: Any = _ZERO, is_zero: ZeroTest = _equals_zero) -> Poly:
     """A gcd of two polynomials over an exact field (Euclid; not normalised)."""
     a, b = trim(p, is_zero), trim(q, is_zero)
     while not is_zero_poly(b, is_zero):
@@ -146,7 +147,7 @@ def gcd(p: Sequence, q: Sequence, zero: Any = _ZERO, is_zero: ZeroTest = _equals
     return a
 
 
-def lowest_terms(P: Sequence, Q: Sequence, zero: Any = _ZERO,
+def lowest_terms(P: Sequence[Any], Q: Sequence[Any], zero: Any = _ZERO,
                  is_zero: ZeroTest = _equals_zero) -> tuple[Poly, Poly]:
     """``P/Q`` cancelled by their gcd and scaled to ``Q(0) = 1`` (``Q(0) ≠ 0``), trimmed."""
     g = gcd(P, Q, zero, is_zero)
@@ -159,7 +160,7 @@ def lowest_terms(P: Sequence, Q: Sequence, zero: Any = _ZERO,
 # ------------------------------------------------------------ over Q, with FLINT
 
 
-def to_fmpq(x: Fraction | int):
+def to_fmpq(x: Fraction | int) -> Any:
     from flint import fmpq
 
     x = Fraction(x)
@@ -178,7 +179,7 @@ def to_fraction(x: Any) -> Fraction:
     return Fraction(int(x))
 
 
-def to_flint(coeffs: Any):
+def to_flint(coeffs: Any) -> Any:
     """The ``fmpq_poly`` of rational coefficients (an ``fmpq_poly`` is returned as it is)."""
     from flint import fmpq_poly
 
@@ -246,7 +247,7 @@ class RealRoots:
         self._rational = rational_roots(self.poly)
         self._squarefree: list[int] | None = None  # integer coefficients, on first isolation
 
-    def __reduce__(self):
+    def __reduce__(self) -> tuple[type[RealRoots], tuple[list[Fraction]]]:
         # FLINT objects do not pickle; the roots are recomputed from the coefficients
         return (RealRoots, (self.poly,))
 
@@ -399,7 +400,7 @@ def complex_roots(coeffs: Sequence[int], prec: int) -> list[Any]:
         return kept[1]
     with ctx.workprec(prec):
         # python-flint types complex_roots() as acb; it is a list of (acb, multiplicity)
-        found = [root for root, _ in cast(list, fmpz_poly(list(key)).complex_roots())]
+        found = [root for root, _ in cast(list[Any], fmpz_poly(list(key)).complex_roots())]
     if len(_roots) >= _ROOTS_KEPT and key not in _roots:
         _roots.pop(next(iter(_roots)))
     _roots[key] = (prec, found)

@@ -395,7 +395,7 @@ def orbit_solutions(pieces: list[tuple[Any, dict[str, Any]]], parameters: Sequen
     return out
 
 
-def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict, name: str) -> AlgebraicValue:
+def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: str) -> AlgebraicValue:
     """A coordinate ``p(z)`` at a root of ψ, shown through its own minimal polynomial
     (rational, a square-root closed form, or a numbered root of it) rather than as a
     polynomial in z: in a field of degree 8 the coordinates of A = c bᵀ have degree 4."""
