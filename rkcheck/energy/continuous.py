@@ -93,7 +93,7 @@ class ContinuousProperties:
     stability: None = None
     continuous: bool = True
 
-    def certificates(self, degree):  # the tableau interface; the kernel's come from kernel_facts
+    def certificates(self, degree: int | None) -> Any:  # the tableau interface; the kernel's come from kernel_facts
         raise NotImplementedError
 
 

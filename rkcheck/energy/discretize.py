@@ -88,7 +88,10 @@ def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, 
 
     consts = {f"r_{k}": xp.to_text(v) for k, v in tab.info.constants.definitions.items()}
     rename: dict[str, ex.Expr] = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}
-    text = lambda e: xp.to_text(_substituted(e.node, rename))  # noqa: E731
+
+    def text(e: Any) -> str:
+        return xp.to_text(_substituted(e.node, rename))
+
     c = [text(e) for e in tab.c] if tab.c is not None else [
         " + ".join(f"({text(e)})" for e in row) for row in tab.A]
     b = [text(e) for e in tab.b]
@@ -112,7 +115,10 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     consts = own | consts
     A_node, B_node = method.nodes
     k = len(c)
-    node = lambda t: ex.parse(f"({t})")  # noqa: E731
+
+    def node(t: str) -> ex.Expr:
+        return ex.parse(f"({t})")
+
     A = [[f"{_par(w[j])}*({xp.to_text(_substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
           for j in range(k)] for i in range(k)]
     b = [f"{_par(w[i])}*({xp.to_text(_substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]

@@ -251,7 +251,7 @@ def node_polynomial_kernel(poly: Sequence[Fraction], b: Sequence[Any], c: Sequen
     return Kernel(s, degree, False, rank, len(rows), kernel, zero_row_sum)
 
 
-def rule_values(rule_name: str, s: int, dps: int):
+def rule_values(rule_name: str, s: int, dps: int) -> tuple[list[Any], list[Any], bool]:
     """(b, c, exact) of a named rule: Fractions or field elements when exact, else
     enclosures (Intervals) at the bits of ``dps`` digits."""
     from rkcheck.methods.quadrature import rule
@@ -285,7 +285,7 @@ def rule_kernel(rule_name: str, s: int, degree: int, dps: int) -> Kernel:
 ALGEBRAIC_RULE_MAX_DEGREE = 12
 
 
-def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
+def algebraic_rule(r: Any) -> tuple[list[Any], list[Any]] | None:
     """(b, c) of a quadrature rule exactly in the number field of its nodes (the weights
     from ``Σ b_i c_i^(k−1) = 1/k``, k = 1..s, solved in the field), or None when the field
     is beyond :data:`ALGEBRAIC_RULE_MAX_DEGREE`."""
@@ -318,7 +318,7 @@ def algebraic_rule(r) -> tuple[list[Any], list[Any]] | None:
     return [rows[i][s] for i in range(s)], list(c)
 
 
-def tableau_rule(tableau, dps: int):
+def tableau_rule(tableau: Any, dps: int) -> tuple[list[Any], list[Any], bool]:
     """(b, c = A·1, exact) of a tableau: exact values at face value, else enclosures
     (Intervals) at the bits of ``dps`` digits."""
     from rkcheck.numbers.intervals import interval_sum

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
@@ -92,7 +93,7 @@ def sqrt_fraction(x: Fraction, up: bool | None = None) -> Fraction:
     return Fraction(r, q << k)
 
 
-def error_constant(result) -> ErrorConstant | None:
+def error_constant(result: Any) -> ErrorConstant | None:
     """``C_m`` of a :class:`~rkcheck.energy.check.CheckResult` (None when no condition
     fails up to the checked order, or a certificate proves every order)."""
     if result.energy_order_all:

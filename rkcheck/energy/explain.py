@@ -19,7 +19,7 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import Any, Callable
 
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
@@ -147,7 +147,7 @@ def sigma_of(seq: tuple[int, ...]) -> int:
 # ------------------------------------------------------------------ weights
 
 
-def _weights(A: list[list[Any]], b: list[Any], one: Any):
+def _weights(A: list[list[Any]], b: list[Any], one: Any) -> Callable[[tuple[int, ...]], Any]:
     """a(t) for a level sequence, memoised (Φ(τ) = 1, Φ([t…]) = ⊙ AΦ(t_i))."""
     s = len(b)
     cache: dict[tuple[int, ...], list[Any]] = {}

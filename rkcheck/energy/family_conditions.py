@@ -48,7 +48,7 @@ class PolynomialCondition:
     @property
     def vanishes(self) -> bool:
         """Zero for every value of the parameters."""
-        return self.polynomial.is_zero()
+        return bool(self.polynomial.is_zero())
 
     @property
     def degree(self) -> int:

@@ -33,9 +33,10 @@ entries lie in a number field), the caller falls back to the plain route.
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import Any, Callable, Sequence
 
 from rkcheck.numbers.groebner import (
+    Terms,
     dimension,
     groebner,
     integer_dicts,
@@ -49,7 +50,7 @@ class RuleRing:
     """Polynomials in the weights and nodes modulo the quadrature ideal Q (its reduced
     degrevlex Gröbner basis ``basis`` over ``names``), with the divisors used so far."""
 
-    def __init__(self, basis: list[dict], names: tuple[str, ...]):
+    def __init__(self, basis: list[Terms], names: tuple[str, ...]):
         from flint import fmpq_mpoly_ctx, fmpz_mpoly_ctx, fmpz_mpoly_vec
 
         self.names = names
@@ -61,7 +62,7 @@ class RuleRing:
 
     def in_ideal(self, p: Any) -> bool:
         """Whether p (over Q, in this ring's variables) lies in Q."""
-        return p.is_zero() or integral(p, self.zctx).reduction_primitive_part(self.vec).is_zero()
+        return bool(p.is_zero() or integral(p, self.zctx).reduction_primitive_part(self.vec).is_zero())
 
     def fraction(self, p: Any) -> "RuleFraction":
         return RuleFraction(self, p, self.ctx.constant(1))
@@ -184,7 +185,8 @@ def solve_on_rules(family: Any, layout: Any, degree: int | None, order: int, cla
     return dim, components, exceptional
 
 
-def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], degree: int | None, order: int):
+def _linear_part(family: Any, layout: Any, rules: RuleRing, nodes: list[str], degree: int | None,
+                 order: int) -> tuple[ParameterRing, list[list[Any]], list[Any]] | None:
     """A over a ring in (x, k): ``c bᵀ + Σ k_f D_f N_f`` (module docstring, step 1), the
     kernel coordinates' names and the D_f; None when c bᵀ does not solve the linear
     conditions on the rules."""
@@ -225,7 +227,7 @@ def _weights(layout: Any, rules: RuleRing) -> list[Any]:
             for i, n in enumerate(layout.b)]
 
 
-def _embedding(rules: RuleRing, R: ParameterRing):
+def _embedding(rules: RuleRing, R: ParameterRing) -> Callable[[Any], Any]:
     n = len(R.ctx.names()) - len(rules.names)
 
     def up(p: Any) -> Any:
@@ -235,7 +237,7 @@ def _embedding(rules: RuleRing, R: ParameterRing):
 
 
 def _remaining(layout: Any, rules: RuleRing, R: ParameterRing, A: list[list[Any]], degree: int | None,
-               order: int, classical: int | None):
+               order: int, classical: int | None) -> tuple[list[Any], list[Terms]]:
     """The conditions on A reduced modulo Q (integer polynomials over (x, k), degrevlex),
     and those in x alone that are left at k = 0 (empty when c bᵀ solves every condition
     on every rule)."""
@@ -261,7 +263,7 @@ def _remaining(layout: Any, rules: RuleRing, R: ParameterRing, A: list[list[Any]
     return rest, at_avf
 
 
-def _rules_with_nonzero(rules: RuleRing, rest: list[Any], free: Sequence[str], f: int, deadline: float) -> list[dict]:
+def _rules_with_nonzero(rules: RuleRing, rest: list[Any], free: Sequence[str], f: int, deadline: float) -> list[Terms]:
     """Polynomials in x alone vanishing at every rule where the conditions have a zero
     whose first nonzero kernel coordinate is k_f: those of the Gröbner basis of
     ``Q + rest + (k_1, …, k_(f−1)) + (1 − w·k_f)`` (the earlier coordinates set to 0
@@ -280,9 +282,9 @@ def _rules_with_nonzero(rules: RuleRing, rest: list[Any], free: Sequence[str], f
     return [{m[:x]: c for m, c in d.items()} for d in basis if all(not any(m[x:]) for m in d)]
 
 
-def _irreducible_factors(polys: list[Any]) -> list[dict]:
+def _irreducible_factors(polys: list[Any]) -> list[Terms]:
     """The distinct irreducible factors of the divisors, as integer dicts."""
-    seen: dict[str, dict] = {}
+    seen: dict[str, Terms] = {}
     for p in polys:
         if p.is_constant():
             continue
@@ -292,7 +294,7 @@ def _irreducible_factors(polys: list[Any]) -> list[dict]:
     return list(seen.values())
 
 
-def _exceptional_orbits(polys: list[Any], qctx: Any, sets: list[list[dict]], deadline: float) -> list[Any] | None:
+def _exceptional_orbits(polys: list[Any], qctx: Any, sets: list[list[Terms]], deadline: float) -> list[Any] | None:
     """The Galois orbits of the rules in the union of the zero sets of ``Q + set`` for
     each set, each orbit once — told apart by the reduced Gröbner basis of its points,
     which is unique (None when one of the sets is infinite)."""
@@ -313,7 +315,7 @@ def _exceptional_orbits(polys: list[Any], qctx: Any, sets: list[list[dict]], dea
     return list(found.values())
 
 
-def _in_ctx(d: dict, ctx: Any) -> Any:
+def _in_ctx(d: Terms, ctx: Any) -> Any:
     return ctx.from_dict({m: int(c) for m, c in d.items()})
 
 

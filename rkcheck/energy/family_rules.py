@@ -38,7 +38,8 @@ class Orbit:
     nodes: list[Any]
 
 
-def quadrature_system(family: Any, layout: Any, degree: int | None, order: int, extra: Sequence[Any]):
+def quadrature_system(family: Any, layout: Any, degree: int | None, order: int,
+                      extra: Sequence[Any]) -> tuple[list[Any], Any, list[str]]:
     """The star conditions and the extra equations over a context in (θ, weights'
     parameters, c₁ … c_s): ``(polys, ctx, node names)``."""
     from flint import fmpq_mpoly_ctx

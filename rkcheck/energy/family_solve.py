@@ -45,6 +45,7 @@ from rkcheck.energy.family_rules import (
 )
 from rkcheck.numbers.groebner import (
     SolveLimitError,
+    Terms,
     dimension,
     fmpq_of,
     groebner,
@@ -251,7 +252,7 @@ def _as_z(p: Any) -> Any:
     return fmpq_poly([fmpq_of(x) for x in coeffs])
 
 
-def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat: list[Any], ctx: Any) -> dict:
+def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat: list[Any], ctx: Any) -> dict[str, Any]:
     """Every variable of the family's ring (θ and the parameters) over R."""
     from flint import fmpq_poly
 
@@ -271,7 +272,7 @@ def _values(family: Any, layout: Layout, orbit: Orbit, R: ParameterRing, A_flat:
     return out
 
 
-def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: list[Any],
+def _kernel_system(R: ParameterRing, rest: list[Any], values: dict[str, Any], avf_polys: list[Any],
                    deadline: float, phi: Any, named: dict[str, str]) -> OrbitResult:
     """The conditions left in the kernel directions (with φ(z)): their solutions.
     ``named``: each kernel coordinate's entry of A (its free column)."""
@@ -309,7 +310,7 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict, avf_polys: l
     return OrbitResult(Component(0, avf=avf), points)
 
 
-def _in_parameters(R: ParameterRing, values: dict, gens: list[Any], named: dict[str, str]) -> list[Any]:
+def _in_parameters(R: ParameterRing, values: dict[str, Any], gens: list[Any], named: dict[str, str]) -> list[Any]:
     """A positive-dimensional orbit piece as equations in z (a root of φ, the first
     equation) and the parameters: the kernel system's basis with each kernel coordinate
     written as its entry of A minus that entry's value at k = 0, and every other
@@ -327,7 +328,7 @@ def _in_parameters(R: ParameterRing, values: dict, gens: list[Any], named: dict[
     return out
 
 
-def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float) -> bool:
+def _in_ideal(p: Any, basis: list[Terms], names: tuple[str, ...], deadline: float) -> bool:
     """Whether p lies in the ideal of a reduced Gröbner basis: adding it leaves the
     (unique) reduced basis unchanged."""
     if p.is_zero():
@@ -336,7 +337,7 @@ def _in_ideal(p: Any, basis: list[dict], names: tuple[str, ...], deadline: float
     return sorted(map(sorted_items, more)) == sorted(map(sorted_items, basis))
 
 
-def sorted_items(d: dict) -> list:
+def sorted_items(d: dict[Any, Any]) -> list[tuple[Any, Any]]:
     return sorted(d.items())
 
 

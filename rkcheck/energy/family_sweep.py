@@ -116,7 +116,7 @@ def _order_at(ring: Any, live: list[Any], point: dict[str, Fraction], order: int
     for c in live:
         if ring.field is None:
             if c.polynomial(*(values[n] for n in ring.variables)) != 0:
-                return c.order - 1
+                return int(c.order) - 1
         elif not ring.is_zero(c.polynomial.subs(values)):
-            return c.order - 1
+            return int(c.order) - 1
     return order

@@ -80,7 +80,8 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
         (divisor,) = right.values()  # a number: checked when the kernel was read
         return {k: c / divisor for k, c in left.items()}
 
-    return xp.fold(node, combine, xp.polynomial_operands)
+    poly: Poly = xp.fold(node, combine, xp.polynomial_operands)
+    return poly
 
 
 def _affine(p: Poly, which: int) -> Poly:
@@ -117,7 +118,10 @@ def box_verdicts(method: Any, decimals: DecimalsMode, bits: int = 256) -> dict[s
     A = interval_poly(method.nodes[0], decimals, consts, bits)
     B = interval_poly(method.nodes[1], decimals, consts, bits)
     B_sigma = {(0, i): c for (i, _), c in B.items()}
-    swap = lambda p: {(j, i): c for (i, j), c in p.items()}  # noqa: E731
+
+    def swap(p: Poly) -> Poly:
+        return {(j, i): c for (i, j), c in p.items()}
+
     dA = {(i - 1, j): c * Interval.point(i) for (i, j), c in A.items() if i > 0}
     parts = [verdict_of(_at(A, 0)), verdict_of(_add(_at(A, 1), B_sigma, -1)), verdict_of(_add(dA, swap(dA), -1))]
     return {
