@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -108,53 +108,53 @@ class BallContext:
 
     # ------------------------------------------------------------- kernel
 
-    def vectors(self, n: int, s: int):
+    def vectors(self, n: int, s: int) -> Any:
         return (np.zeros((n, s), dtype=object), np.zeros((n, s)), np.zeros((n, s)))
 
-    def scalars(self, n: int):
+    def scalars(self, n: int) -> Any:
         return (np.zeros(n, dtype=object), np.zeros(n), np.zeros(n))
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         return (np.full((k, s), self.fixed_one, dtype=object), np.zeros((k, s)), np.ones((k, s)))
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         return (np.full(k, self.fixed_one, dtype=object), np.zeros(k), np.ones(k))
 
-    def take(self, x, idx):
+    def take(self, x: Any, idx: np.ndarray) -> Any:
         return (x[0][idx], x[1][idx], x[2][idx])
 
-    def put(self, store, lo: int, x) -> None:
+    def put(self, store: Any, lo: int, x: Any) -> None:
         for part, value in zip(store, x):
             part[lo:lo + len(value)] = value
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         xm, xr, xg = x
         ym, yr, yg = y
         rad = (xg * yr + yg * xr + xr * yr * self._r_down) * _UP4 + self.unit
         return ((xm * ym) >> self.bits, rad, xg * yg * _UP4 + self.unit_abs)
 
-    def _dot(self, x, Mm, Mr, Mg):
+    def _dot(self, x: Any, Mm: np.ndarray, Mr: np.ndarray, Mg: np.ndarray) -> Any:
         xm, xr, xg = x
         mid = xm.dot(Mm) >> self.bits
         rad = (xg.dot(Mr) + xr.dot(Mg) + xr.dot(Mr) * self._r_down) * self._dot_up + self.unit
         return mid, rad, xg.dot(Mg) * self._dot_up + self.unit_abs
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         return self._dot(x, self.Am_t, self.Ar_t, self.Ag_t)
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         return self._dot(x, self.bm, self.br, self.bg)
 
-    def enclosures(self, x) -> list[Enclosure]:
+    def enclosures(self, x: Any) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
         r_scale = 1 << self.shift
         return [Enclosure(Fraction(int(m), self.fixed_one), Fraction(r) / r_scale, False)
                 for m, r in zip(x[0].tolist(), x[1].tolist())]
 
-    def sums(self, k: int, n: int):
+    def sums(self, k: int, n: int) -> Any:
         return [np.zeros(k, dtype=object), np.zeros(k)]
 
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         """Σ c·w with c = ±(n−1)!/σ exact: mid-points summed exactly, radii |c|·r."""
         coef = _coefficients(terms)
         cond, idx = terms.block(i0, i1)
@@ -163,7 +163,7 @@ class BallContext:
         acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
                               minlength=len(acc[1]))
 
-    def finish_sums(self, acc, k: int, n: int) -> "BallSums":
+    def finish_sums(self, acc: Any, k: int, n: int) -> "BallSums":
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
         rounded up (the float additions into each bin, at most a few hundred, covered by
         γ_256)."""
@@ -177,7 +177,7 @@ def take_rows(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
     entry per row, faster for rows of none)."""
     if x.ndim > 1 and x.size and idx.dtype.kind in "iu":
         return np.take(x, idx, axis=0)
-    return x[idx]
+    return np.asarray(x[idx])
 
 
 def round_up(r: np.ndarray, m: np.ndarray, tmp: np.ndarray) -> None:
@@ -252,8 +252,9 @@ class BallSums:
         top = ((m >> e.astype(object)) + 1).astype(float)  # below 2^61: a float within 2^−52
         with np.errstate(over="ignore"):  # past float64: an infinite bound is still a bound
             mid_up = np.ldexp(top, e - self.bits)  # >= |m|·2^−P
-            return (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) / float(self.factorial) \
-                * (1 + 2.0**-50) + ETA
+            bound: np.ndarray = (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) \
+                / float(self.factorial) * (1 + 2.0**-50) + ETA
+        return bound
 
     def _ints(self) -> np.ndarray:
         """The mid-points as an object array of Python integers (what the contexts give:
@@ -285,7 +286,7 @@ def exceeds_scaled(ints: np.ndarray, t: np.ndarray, bits: int) -> np.ndarray:
     return out
 
 
-def _coefficients(terms) -> np.ndarray:
+def _coefficients(terms: Any) -> np.ndarray:
     cached = getattr(terms, "_coef_object", None)
     if cached is None:
         cached = np.array(terms.coefficients, dtype=object)
@@ -293,7 +294,7 @@ def _coefficients(terms) -> np.ndarray:
     return cached
 
 
-def _float_coefficients(terms, n: int) -> np.ndarray:
+def _float_coefficients(terms: Any, n: int) -> np.ndarray:
     """``c/(n−1)!`` as floats (correctly rounded: Python's true division of integers is,
     as ``float(Fraction)``), once per order's terms: the gradient of a decimal box asks
     for them once per direction and block."""
@@ -320,26 +321,26 @@ class FloatContext:
         self.bm, self.br, self.babs = bm, br, np.abs(bm)
         self._gamma = (self.s + 1) * U / (1 - (self.s + 1) * U)
 
-    def vectors(self, n: int, s: int):
+    def vectors(self, n: int, s: int) -> Any:
         return (np.zeros((n, s)), np.zeros((n, s)))
 
-    def scalars(self, n: int):
+    def scalars(self, n: int) -> Any:
         return (np.zeros(n), np.zeros(n))
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         return (np.ones((k, s)), np.zeros((k, s)))
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         return (np.ones(k), np.zeros(k))
 
-    def take(self, x, idx):
+    def take(self, x: Any, idx: np.ndarray) -> Any:
         return (take_rows(x[0], idx), take_rows(x[1], idx))
 
-    def put(self, store, lo: int, x) -> None:
+    def put(self, store: Any, lo: int, x: Any) -> None:
         store[0][lo:lo + len(x[0])] = x[0]
         store[1][lo:lo + len(x[1])] = x[1]
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         xm, xr = x
         ym, yr = y
         pm = xm * ym
@@ -356,23 +357,23 @@ class FloatContext:
         round_up(pr, pm, tmp)
         return (pm, pr)
 
-    def _dot(self, x, Mm, Mr, Mabs):
+    def _dot(self, x: Any, Mm: np.ndarray, Mr: np.ndarray, Mabs: np.ndarray) -> Any:
         xm, xr = x
         mid = xm @ Mm
         absx = np.abs(xm)
         rad = absx @ Mr + xr @ Mabs + xr @ Mr + self._gamma * (absx @ Mabs)
         return mid, rad * INFLATE + ETA
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         return self._dot(x, self.Am_t, self.Ar_t, self.Aabs_t)
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         return self._dot(x, self.bm, self.br, self.babs)
 
-    def sums(self, k: int, n: int):
+    def sums(self, k: int, n: int) -> Any:
         return [np.zeros(k), np.zeros(k), np.zeros(k), np.zeros(k)]  # mid, rad, Σ|term|, count
 
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         cond, idx = terms.block(i0, i1)
         c = _float_coefficients(terms, n)[idx]
         tm = c * w_terms[0]
@@ -385,12 +386,12 @@ class FloatContext:
         acc[2][uniq] += np.bincount(inv, weights=np.abs(tm), minlength=u)
         acc[3][uniq] += np.bincount(inv, minlength=u)
 
-    def finish_sums(self, acc, k: int, n: int) -> "FloatSums":
+    def finish_sums(self, acc: Any, k: int, n: int) -> "FloatSums":
         mid, rad, absum, count = (a[:k] for a in acc)
         g = (count + 64) * U / (1 - (count + 64) * U)  # the summation (and the chunked adds)
         return FloatSums(mid, (rad + g * absum) * INFLATE + ETA)
 
-    def enclosures(self, x) -> list[Enclosure]:
+    def enclosures(self, x: Any) -> list[Enclosure]:
         return [Enclosure(m, r, False) for m, r in zip(x[0].tolist(), x[1].tolist())]
 
 
@@ -407,7 +408,7 @@ class FloatSums:
         return Enclosure(float(self.mid[k]), float(self.rad[k]), False)
 
     def excludes_zero(self) -> np.ndarray:
-        return np.abs(self.mid) > self.rad
+        return np.asarray(np.abs(self.mid) > self.rad)
 
     def magnitude_bound(self) -> np.ndarray:
-        return (np.abs(self.mid) + self.rad) * (1 + 2.0**-51) + ETA
+        return np.asarray((np.abs(self.mid) + self.rad) * (1 + 2.0**-51) + ETA)

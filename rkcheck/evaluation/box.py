@@ -36,14 +36,17 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, U, BallSums, FloatSums
+from rkcheck.evaluation.balls import ETA, INFLATE, BallSums, FloatSums, U
 from rkcheck.evaluation.slopes import GradientContext, gradient_groups
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
+
+if TYPE_CHECKING:
+    from rkcheck.trees.listing import ConditionListing
 
 #: bits of the centre's balls below the narrowest entry radius: the ball's radius ε then
 #: lies near 2^−128 of the variation V (V is at least the radius times the rounding of
@@ -77,7 +80,7 @@ class BallCentre:
     def spread(self) -> np.ndarray:
         """The balls' radii (floats, about: only for choosing the exact route)."""
         s = self.sums
-        return np.ldexp(np.asarray(s.rads, dtype=float), -s.shift) / float(s.factorial)
+        return np.asarray(np.ldexp(np.asarray(s.rads, dtype=float), -s.shift) / float(s.factorial))
 
     def beyond(self, variation: np.ndarray) -> np.ndarray:
         """``|R(x̃)| > V`` for every value in the ball: ``|M| > 2^P·(f·V + ρ·2^−S)``, the
@@ -94,7 +97,7 @@ class BallCentre:
     def bound(self, variation: np.ndarray) -> np.ndarray:
         """An upper bound of ``|R(x̃)| + ε + V`` (floats, rounded up)."""
         with np.errstate(over="ignore"):
-            return (self.sums.magnitude_bound() + variation) * INFLATE + ETA
+            return np.asarray((self.sums.magnitude_bound() + variation) * INFLATE + ETA)
 
     def enclosure(self, k: int, variation: float) -> Enclosure:
         e = self.sums.enclosure(k)
@@ -124,7 +127,7 @@ class ExactCentre:
             out[tie] = self._beyond_exactly(variation, tie.tolist())[tie]
         return out
 
-    def _beyond_exactly(self, variation: np.ndarray, indices) -> np.ndarray:
+    def _beyond_exactly(self, variation: np.ndarray, indices: Iterable[int]) -> np.ndarray:
         out = np.zeros(len(self.integers), dtype=bool)
         for i in indices:
             x = self.integers[i]
@@ -149,7 +152,7 @@ class ExactCentre:
         c = self._magnitudes()
         if c is None:  # the integer division raises past float64's range, as float(Fraction) does
             c = np.array([_float_or_inf(abs(x), self.scale) for x in self.integers], dtype=float)
-        return (c * (1 + 4 * U) + variation) * INFLATE + ETA
+        return np.asarray((c * (1 + 4 * U) + variation) * INFLATE + ETA)
 
     def enclosure(self, k: int, variation: float) -> Enclosure:
         return Enclosure(Fraction(self.integers[k], self.scale), Fraction(variation), False)
@@ -179,10 +182,10 @@ class BoxSums:
         return len(self.variation)
 
     def excludes_zero(self) -> np.ndarray:
-        return self._fails | self._screen_fails
+        return np.asarray(self._fails | self._screen_fails)
 
     def magnitude_bound(self) -> np.ndarray:
-        return np.minimum(self._bound, self._screen_bound)
+        return np.asarray(np.minimum(self._bound, self._screen_bound))
 
     def enclosure(self, k: int) -> Enclosure:
         """The enclosure that decides: the mean value form's where it fails or bounds
@@ -197,53 +200,53 @@ class _Pair:
 
     exact = False
 
-    def __init__(self, first, second):
+    def __init__(self, first: Any, second: Any) -> None:
         self.parts = (first, second)
 
     @property
     def width(self) -> int:
         return max(getattr(c, "width", 1) for c in self.parts)
 
-    def vectors(self, n: int, s: int):
+    def vectors(self, n: int, s: int) -> Any:
         return tuple(c.vectors(n, s) for c in self.parts)
 
-    def scalars(self, n: int):
+    def scalars(self, n: int) -> Any:
         return tuple(c.scalars(n) for c in self.parts)
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         return tuple(c.ones(k, s) for c in self.parts)
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         return tuple(c.one(k) for c in self.parts)
 
-    def take(self, x, idx):
+    def take(self, x: Any, idx: np.ndarray) -> Any:
         return tuple(c.take(v, idx) for c, v in zip(self.parts, x))
 
-    def put(self, store, lo: int, x) -> None:
+    def put(self, store: Any, lo: int, x: Any) -> None:
         for c, part, v in zip(self.parts, store, x):
             c.put(part, lo, v)
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         return tuple(c.mul(u, v) for c, u, v in zip(self.parts, x, y))
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         return tuple(c.matvec(v) for c, v in zip(self.parts, x))
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         return tuple(c.dot(v) for c, v in zip(self.parts, x))
 
-    def sums(self, k: int, n: int):
+    def sums(self, k: int, n: int) -> Any:
         return tuple(c.sums(k, n) for c in self.parts)
 
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         for c, a, v in zip(self.parts, acc, w_terms):
             c.add_terms(a, v, terms, n, i0, i1)
 
-    def finish_sums(self, acc, k: int, n: int):
+    def finish_sums(self, acc: Any, k: int, n: int) -> Any:
         return tuple(c.finish_sums(a, k, n) for c, a in zip(self.parts, acc))
 
 
-def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, centre_b, ctx: GradientContext) -> np.ndarray:
+def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], ctx: GradientContext) -> np.ndarray:
     """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up (inf past float64's
     range: no claim)."""
     out = []
@@ -264,7 +267,7 @@ def _float_above(r: Fraction) -> float:
         return math.inf
 
 
-def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A, centre_b,
+def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
               orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None) -> dict[int, BoxSums]:
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
@@ -283,7 +286,7 @@ def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], c
     radii = box_radii(A, b, centre_A, centre_b, whole)
     zeros = zero_pattern(A, b)
 
-    def supported(ctx):
+    def supported(ctx: Any) -> Any:
         return SupportContext(ctx, *zeros) if zeros[0].any() or zeros[1].any() else ctx
 
     points_A = [[Interval(x, x) for x in row] for row in centre_A]
@@ -292,14 +295,14 @@ def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], c
     first = supported(_Pair(centre, GradientContext(A, b, groups[0])))
     out: dict[int, BoxSums] = {}
 
-    def judged(n: int, sums, more=()) -> BoxSums:
+    def judged(n: int, sums: Any, more: Sequence[Any] = ()) -> BoxSums:
         ball, (screen, G) = sums
         if more:  # each direction's column computed alone: the passes' columns side by side
             G = np.concatenate([G] + [m[n][1] for m in more], axis=1)
         V = (G @ radii) * (1 + (whole.E + 2) * U) * INFLATE + ETA
         return BoxSums(BallCentre(ball), screen, V)
 
-    def done(n: int, sums) -> None:
+    def done(n: int, sums: Any) -> None:
         out[n] = judged(n, sums)
         if on_order is not None:
             on_order(n, out[n])
@@ -324,7 +327,7 @@ def judge_box(listing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], c
     return _exact_where_needed(listing, centre_A, centre_b, out)
 
 
-def _exact_where_needed(listing, centre_A, centre_b, judged: dict[int, BoxSums]) -> dict[int, BoxSums]:
+def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], judged: dict[int, BoxSums]) -> dict[int, BoxSums]:
     """The orders where the centre's ball is not far narrower than the variation of some
     condition (:data:`CENTRE_SPREAD`: one that hardly varies on the box, or a box far
     narrower than the balls' precision), judged again around the exact ``R(x̃)``."""

@@ -115,7 +115,7 @@ class ModularChannel:
 
     def __init__(self, p: int, A: np.ndarray, b: np.ndarray):
         self.p = p
-        self._coef_cache: dict[int, tuple] = {}
+        self._coef_cache: dict[int, tuple[Any, ...]] = {}
         self.A_t = np.ascontiguousarray(A.T % p)
         self.b = b % p
         self.s = len(b)
@@ -135,7 +135,7 @@ class ModularChannel:
         return np.ones(k, dtype=np.int64)
 
     def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return x[idx].astype(np.int64)
+        return np.asarray(x[idx].astype(np.int64))
 
     def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
         store[lo:lo + len(x)] = x
@@ -143,13 +143,13 @@ class ModularChannel:
     def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         z = x * y
         z %= self.p
-        return z
+        return np.asarray(z)
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
         if self.s <= SLICE:
             z = x @ self.A_t
             z %= self.p
-            return z
+            return np.asarray(z)
         z = np.zeros((len(x), self.s), dtype=np.int64)
         for k in range(0, self.s, SLICE):
             z += (x[:, k:k + SLICE] @ self.A_t[k:k + SLICE]) % self.p
@@ -160,7 +160,7 @@ class ModularChannel:
         if self.s <= SLICE:
             z = x @ self.b
             z %= self.p
-            return z
+            return np.asarray(z)
         return _chunked_dot(x, self.b, self.p)
 
     def sums(self, k: int, n: int) -> np.ndarray:
@@ -168,7 +168,7 @@ class ModularChannel:
         # inside the 2^53 integers a double holds exactly, and bincount is fast
         return np.zeros(k, dtype=np.float64)
 
-    def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, i0: int, i1: int) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` modulo p of terms i0 … i1−1 to their conditions' bins."""
         p = self.p
         cond, idx = terms.block(i0, i1)
@@ -180,12 +180,12 @@ class ModularChannel:
         """The residues of N per condition (the extra bin dropped)."""
         return acc[:k].astype(np.int64) % self.p
 
-    def _coefficients(self, terms, n: int) -> np.ndarray:
+    def _coefficients(self, terms: Any, n: int) -> np.ndarray:
         cached = self._coef_cache.get(n)
         if cached is None or cached[0] is not terms:
             cached = (terms, np.array([c % self.p for c in terms.coefficients], dtype=np.int64))  # signs as residues
             self._coef_cache[n] = cached
-        return cached[1]
+        return np.asarray(cached[1])
 
 
 class PrimeChannels:
@@ -208,7 +208,7 @@ class PrimeChannels:
         self.A_t = np.ascontiguousarray(np.transpose(np.asarray(A, dtype=np.int64) % self.P[:, None, None], (0, 2, 1)))
         self.b = np.ascontiguousarray((np.asarray(b, dtype=np.int64) % self.P[:, None])[:, :, None])  # (K, s, 1)
         self._P2, self._P3 = self.P[:, None], self.P[:, None, None]
-        self._coef_cache: dict[int, tuple] = {}
+        self._coef_cache: dict[int, tuple[Any, ...]] = {}
 
     def vectors(self, n: int, s: int) -> np.ndarray:
         return np.zeros((self.width, n, s), dtype=np.int32)
@@ -277,7 +277,7 @@ class PrimeChannels:
     def sums(self, k: int, n: int) -> "_Bins":
         return _Bins(self.width, k)
 
-    def add_terms(self, acc: "_Bins", w_terms: np.ndarray, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: "_Bins", w_terms: np.ndarray, terms: Any, n: int, i0: int, i1: int) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` modulo each channel's prime to the conditions' bins."""
         w_terms *= np.take(self._coefficients(terms, n), terms.coefficient_indices(i0, i1), axis=1)
         acc.add(self._reduce(w_terms), terms, i0, i1)
@@ -292,7 +292,7 @@ class PrimeChannels:
         2^30 a condition)."""
         return np.zeros((self.width, k), dtype=np.float64)
 
-    def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, terms, n: int, coefficient_index: np.ndarray,
+    def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, coefficient_index: np.ndarray,
                      condition: np.ndarray) -> None:
         """Add ``((n−1)!/σ)·(±ŵ)`` of some terms of ``terms`` (their coefficient indices
         and conditions given) modulo each channel's prime to the bins ``acc``."""
@@ -306,12 +306,12 @@ class PrimeChannels:
         """The residues per condition and channel, ``(k, K)``."""
         return (acc.astype(np.int64) % self._P2).T
 
-    def _coefficients(self, terms, n: int) -> np.ndarray:
+    def _coefficients(self, terms: Any, n: int) -> np.ndarray:
         cached = self._coef_cache.get(n)
         if cached is None or cached[0] is not terms:
             table = np.array([[c % p for c in terms.coefficients] for p in self.P.tolist()], dtype=np.int64)
             cached = self._coef_cache[n] = (terms, table)  # signs as residues
-        return cached[1]
+        return np.asarray(cached[1])
 
 
 class _Bins:

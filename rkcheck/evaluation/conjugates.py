@@ -21,6 +21,7 @@ found is checked entry by entry on the images, and a root without one is evaluat
 from __future__ import annotations
 
 from collections import Counter
+from typing import Any
 
 import numpy as np
 
@@ -53,7 +54,7 @@ def repeated_channels(A: np.ndarray, b: np.ndarray) -> list[int]:
     return source
 
 
-def _signatures(A: np.ndarray, b: np.ndarray) -> list[tuple]:
+def _signatures(A: np.ndarray, b: np.ndarray) -> list[tuple[Any, ...]]:
     """Per stage, what a relabelling of the stages cannot change: its weight, its
     diagonal entry, and its row and column as multisets."""
     return [(int(b[i]), int(A[i, i]), tuple(sorted(A[i].tolist())), tuple(sorted(A[:, i].tolist())))
@@ -67,7 +68,7 @@ def is_stage_permutation(A: np.ndarray, b: np.ndarray, A2: np.ndarray, b2: np.nd
 
 
 def _permutation(A: np.ndarray, b: np.ndarray, A2: np.ndarray, b2: np.ndarray,
-                 sig: list[tuple], sig2: list[tuple], budget: list[int]) -> list[int] | None:
+                 sig: list[tuple[Any, ...]], sig2: list[tuple[Any, ...]], budget: list[int]) -> list[int] | None:
     """A permutation π of the stages with ``(A2, b2)`` the images of ``(A, b)`` under it
     (:func:`is_stage_permutation`), or None: a depth-first search over the stages of equal
     signature, each partial assignment checked on the entries it fixes, within

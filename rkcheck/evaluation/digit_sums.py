@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -95,7 +96,7 @@ _MIN_RUN = 1 << 14
 _MAX_RUN = 1 << 18
 
 
-def multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def multipliers(terms: Any, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(per term ``m = c/g_k`` as int8, per coefficient ``|c|`` as float64, per condition
     ``g_k``), once per order's terms, ``g_k`` a common divisor of the coefficients of
     condition ``k``.
@@ -130,7 +131,7 @@ def multipliers(terms, beta: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return cached
 
 
-def _orbit_divisors(terms, exact: np.ndarray) -> np.ndarray | None:
+def _orbit_divisors(terms: Any, exact: np.ndarray) -> np.ndarray | None:
     """``Σ|c|/n`` per condition (``n`` vertices; 2^62, which divides no coefficient,
     where it is not an integer, and for the superfluous trees' bin), the sums exact in
     int64 where every condition's sum is below 2^63 (``n`` times the largest ``|c|``: up
@@ -170,7 +171,7 @@ def _divisors(q: np.ndarray, r: np.ndarray, k1: int) -> np.ndarray:
     return divisors
 
 
-def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
+def _quotients(terms: Any, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
     """``c/g_k`` per term as int8 (0 for the superfluous trees, whose bin is dropped), or
     None when some ``g_k`` does not divide a coefficient of condition ``k`` or a quotient
     exceeds int8."""
@@ -191,7 +192,7 @@ def _quotients(terms, exact: np.ndarray, g: np.ndarray) -> np.ndarray | None:
     return mult
 
 
-def _largest_weight(terms, mult: np.ndarray) -> float:
+def _largest_weight(terms: Any, mult: np.ndarray) -> float:
     """The largest ``Σ|m|`` over the terms of a condition."""
     weight = np.zeros(len(terms) + 1)
     for t0 in range(0, terms.rows, _PLAN_CHUNK):
@@ -247,7 +248,7 @@ class DigitBallSums(BallSums):
         self._excludes: np.ndarray | None = None
 
     def __len__(self) -> int:
-        return self.digits.shape[1]
+        return int(self.digits.shape[1])
 
     @property
     def mids(self) -> np.ndarray:  # type: ignore[override]
@@ -258,7 +259,7 @@ class DigitBallSums(BallSums):
 
     def _integers(self, cols: np.ndarray) -> np.ndarray:
         ints = digits_to_ints(np.ascontiguousarray(np.take(self.digits, cols, axis=1).T), self.beta)
-        return ints * self.divisors[cols].astype(object)
+        return np.asarray(ints * self.divisors[cols].astype(object))
 
     def enclosure(self, k: int) -> Enclosure:
         if self._mids is not None:
@@ -321,7 +322,7 @@ class DigitBallSums(BallSums):
         unsure = np.flatnonzero(ok & ~out & ~(mags * (1 + _REL) < limit))
         if len(unsure):
             out[unsure] = exceeds_scaled(np.abs(self._integers(unsure)), t[unsure], self.bits)
-        return out
+        return np.asarray(out)
 
     def magnitude_bound(self) -> np.ndarray:
         """:meth:`BallSums.magnitude_bound`'s bound: ``((|m| >> e) + 1)·2^(e−P)`` with
@@ -343,8 +344,9 @@ class DigitBallSums(BallSums):
             mid_up[wide] = self._top_bits(self._integers(wide))
         with np.errstate(over="ignore"):  # past float64: an infinite bound is still a bound
             mid_up = np.ldexp(mid_up, -self.bits)  # the exponents e − P (e applied in _top_bits)
-            return (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) / float(self.factorial) \
-                * (1 + 2.0**-50) + _ETA
+            bound: np.ndarray = (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) \
+                / float(self.factorial) * (1 + 2.0**-50) + _ETA
+        return bound
 
     def _small_integers(self, cols: np.ndarray) -> np.ndarray:
         """``|m|`` of the given conditions, known to be below 2^59, in int64: Horner's
@@ -355,7 +357,7 @@ class DigitBallSums(BallSums):
         for j in range(len(d) - 2, -1, -1):
             n <<= self.beta
             n += d[j]
-        return np.abs(n) * self.divisors[cols]
+        return np.asarray(np.abs(n) * self.divisors[cols])
 
     def _top_bits(self, ints: np.ndarray) -> np.ndarray:
         """``((|m| >> e) + 1)·2^e`` as floats (e = max(bitlen − 60, 0)), as
@@ -364,7 +366,7 @@ class DigitBallSums(BallSums):
         e = np.maximum(_bit_length(m).astype(np.int64) - 60, 0)
         top = ((m >> e.astype(object)) + 1).astype(float)
         with np.errstate(over="ignore"):
-            return np.ldexp(top, e)
+            return np.asarray(np.ldexp(top, e))
 
 
 _bit_length = np.frompyfunc(int.bit_length, 1, 1)

@@ -41,6 +41,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -174,17 +175,17 @@ class LimbBallContext:
     def scalars(self, n: int) -> LimbStore:
         return LimbStore((n,), self.L)
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         mid = np.zeros((k, s, self.L), dtype=STORE)
         mid[..., self.F] = 1
         return (mid, np.zeros((k, s)), np.ones((k, s)), np.full((k, s), _ONE, dtype=np.uint8))
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         mid = np.zeros((k, self.L), dtype=STORE)
         mid[:, self.F] = 1
         return (mid, np.zeros(k), np.ones(k), np.full(k, _ONE, dtype=np.uint8))
 
-    def take(self, x, idx):
+    def take(self, x: Any, idx: np.ndarray) -> Any:
         """The rows ``idx`` of a value or a store.  A store keeps the digits of the rows
         whose code is not :data:`_ZERO` only, and places the others at its row 0, which is
         zeros: one gather reads them all (zeros and a scatter of the others' digits cost
@@ -194,7 +195,7 @@ class LimbBallContext:
         digits = np.take(x.digits, x.places(idx), axis=0)
         return digits, np.take(x.rad, idx, axis=0), np.take(x.g, idx, axis=0), np.take(x.codes, idx, axis=0)
 
-    def put(self, store: LimbStore, lo: int, x) -> None:
+    def put(self, store: LimbStore, lo: int, x: Any) -> None:
         """Store the rows of ``x`` from row ``lo`` on: the digits of those whose code
         is not :data:`_ZERO` at the store's next free places."""
         n = len(x[1])
@@ -220,23 +221,23 @@ class LimbBallContext:
                 place[lo + rows] = np.arange(store.count, store.count + k)
         store.count += k
 
-    def _nonzero_rows(self, x, share: float) -> np.ndarray | None:
+    def _nonzero_rows(self, x: Any, share: float) -> np.ndarray | None:
         """The rows of ``x`` with a code that is not :data:`_ZERO` (some stage's, for
         vectors), or None when they are more than ``share`` of all."""
         codes = self._codes(x)
         return _sparse_rows(codes != _ZERO if codes.ndim == 1 else _any_in_row(codes), share)
 
-    def _codes(self, x) -> np.ndarray:
+    def _codes(self, x: Any) -> np.ndarray:
         """The value's codes, or, for a bare (mid-point, radius, magnitude) triple,
         :data:`_ZERO` or :data:`_ANY` as its digits are."""
         if len(x) > 3:
-            return x[3]
+            return np.asarray(x[3])
         return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape).astype(np.uint8)
 
-    def _may_be_nonzero(self, x) -> np.ndarray:
-        return self._codes(x) != _ZERO
+    def _may_be_nonzero(self, x: Any) -> np.ndarray:
+        return np.asarray(self._codes(x) != _ZERO)
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         xm, xr, xg = x[:3]
         ym, yr, yg = y[:3]
         cx, cy = self._codes(x), self._codes(y)
@@ -260,7 +261,7 @@ class LimbBallContext:
         rad, g = self._mul_bounds(xr, xg, yr, yg)
         return out.T.reshape(xm.shape), rad, g, code
 
-    def _mul_bounds(self, xr, xg, yr, yg) -> tuple[np.ndarray, np.ndarray]:
+    def _mul_bounds(self, xr: np.ndarray, xg: np.ndarray, yr: np.ndarray, yg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The radius ``(|x|r_y + |y|r_x + r_x·r_y)·(1 + 12·2^−52) + e`` and the magnitude
         ``|x||y|·(1 + 12·2^−52) + e`` of products (``e = e_mul`` units), in place in two
         arrays: the same operations in the same order as the expressions, without their
@@ -298,7 +299,7 @@ class LimbBallContext:
             out[:, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
-    def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+    def _product(self, xm: np.ndarray, row_nz: np.ndarray, Md: np.ndarray, plan: list[_Pass]) -> np.ndarray:
         """Digits of ``x Mᵀ`` for the digit matrix ``Md`` (outputs, s, L) of A or b: digit
         ``l`` of ``x_j`` times digit ``q`` of column ``j`` lands at position ``l + q``
         (positions from ``K0`` on), one pass per nonzero digit ``q`` of a column
@@ -314,7 +315,7 @@ class LimbBallContext:
             out[:, :, rows] = self._product_digits(np.take(xm, rows, axis=0), Md, plan)
         return out.transpose(2, 1, 0)
 
-    def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan) -> np.ndarray:
+    def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan: list[_Pass]) -> np.ndarray:
         """The digits of ``x Mᵀ``, digit-major: ``(L, outputs, n)`` int64."""
         n, L, K0 = xm.shape[0], self.L, self.K0
         outputs = Md.shape[0]
@@ -332,7 +333,7 @@ class LimbBallContext:
             out[:, :, a0:a0 + _BLOCK] = self._carry(z)
         return out
 
-    def _rad(self, x, Mr, Mg):
+    def _rad(self, x: Any, Mr: np.ndarray, Mg: np.ndarray) -> Any:
         _, xr, xg = x[:3]
         err = self.e_dot * self.unit
         # products of s terms (numpy's matmul: any order of summation, with or without
@@ -342,17 +343,17 @@ class LimbBallContext:
         self._check(g)
         return rad, g
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         rad, g = self._rad(x, self.Ar_t, self.Ag_t)
         nz = may_be_nonzero(self._may_be_nonzero(x), self.A_nz)
         return self._product(x[0], _any_in_row(nz), self.Ad, self._A_plan), rad, g, nz.astype(np.uint8)
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         rad, g = self._rad(x, self.br, self.bg)
         nz = may_be_nonzero(self._may_be_nonzero(x), self.b_nz)[:, 0]
         return self._product(x[0], nz, self.bd, self._b_plan)[:, 0, :], rad, g, nz.astype(np.uint8)
 
-    def enclosures(self, x) -> list[Enclosure]:
+    def enclosures(self, x: Any) -> list[Enclosure]:
         """Scalars of this context as enclosures (exact rational end points)."""
         one = 1 << self.bits
         return [Enclosure(Fraction(int(m), one), Fraction(r), False)
@@ -363,7 +364,7 @@ class LimbBallContext:
     def sums(self, k: int, n: int) -> DigitSums:
         return DigitSums(self.L, k)
 
-    def add_terms(self, acc: DigitSums, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: DigitSums, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         """Σ c·w with c = ±(n−1)!/σ exact, as ``g_k · Σ m·w``: the coefficients of a
         condition k share a divisor ``g_k`` (:func:`~rkcheck.evaluation.digit_sums.multipliers`),
         so each term's digits are multiplied by a small integer ``m = c/g_k`` and summed
@@ -453,4 +454,4 @@ def _any_in_row(x: np.ndarray) -> np.ndarray:
     acc = x[:, 0].copy()
     for j in range(1, x.shape[1]):
         acc |= x[:, j]
-    return acc != 0
+    return np.asarray(acc != 0)

@@ -65,12 +65,15 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Callable, Iterator
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
 import numpy as np
 
 from rkcheck.evaluation.protocols import PassRunner
 from rkcheck.evaluation.scaled import ScaledTableau
+
+if TYPE_CHECKING:
+    from rkcheck.trees.listing import ConditionListing
 
 # ---------------------------------------------------------------------- results
 
@@ -108,7 +111,7 @@ class ExactOrderSums:
         return self.screened
 
     def is_zero(self) -> np.ndarray:
-        return ~np.any(self.screened != 0, axis=(1, 2))
+        return np.asarray(~np.any(self.screened != 0, axis=(1, 2)))
 
     def value(self, k: int) -> Any:
         """The exact residual of condition k: a Fraction (rationals) or a field element."""
@@ -234,7 +237,7 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
     return x - m if x > m // 2 else x
 
 
-def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=None) -> dict[int, ExactOrderSums]:
+def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None, on_pass: Callable[[int, int], None] | None = None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
     enough channels for each order's bound, as many channels per pass over the listing
     as fit (:func:`channel_passes`).  ``on_pass(done, total)`` after each pass that
@@ -297,7 +300,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing, orders=None, on_pass=No
     return out
 
 
-def _fill_contained(scaled: ScaledTableau, listing, count: dict[int, int], channels: list[tuple[int, list[int]]],
+def _fill_contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int], channels: list[tuple[int, list[int]]],
                     residues: dict[int, np.ndarray], full: dict[int, int]) -> bool:
     """Whether every order's residues were read off an evaluation of all free trees
     (:func:`_contained`), filling ``residues`` and ``full`` when they were."""
@@ -314,7 +317,7 @@ def _fill_contained(scaled: ScaledTableau, listing, count: dict[int, int], chann
     return True
 
 
-def _store(residues: dict[int, np.ndarray], count: dict[int, int], group, at: dict[int, np.ndarray]) -> None:
+def _store(residues: dict[int, np.ndarray], count: dict[int, int], group: list[Any], at: dict[int, np.ndarray]) -> None:
     """A pass's sums into the residues: an order keeps those of its own primes, no more."""
     for n, sums in at.items():
         for c, (i, j, _, _) in enumerate(group):
@@ -322,7 +325,7 @@ def _store(residues: dict[int, np.ndarray], count: dict[int, int], group, at: di
                 residues[n][:, i, j] = sums[:, c]
 
 
-def _screened(scaled: ScaledTableau, listing, channels: list[tuple[int, list[int]]], count: dict[int, int],
+def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[tuple[int, list[int]]], count: dict[int, int],
               done: int, residues: dict[int, np.ndarray]) -> bool:
     """The primes from ``done`` on, for the conditions whose residues at the first
     ``done`` are all zero only (the others are decided: they fail), evaluated on the trees
@@ -349,7 +352,7 @@ def _screened(scaled: ScaledTableau, listing, channels: list[tuple[int, list[int
     return True
 
 
-def _plan(scaled: ScaledTableau, listing, wanted: list[int]) -> tuple[dict, dict, dict, list, dict[int, int]]:
+def _plan(scaled: ScaledTableau, listing: ConditionListing, wanted: list[int]) -> tuple[dict[int, int], dict[int, int], dict[int, Any], list[Any], dict[int, int]]:
     """Per order: the bits that decide its zero residues (on N/g_k,
     :meth:`ScaledTableau.decision_bits`), the bits its values need, whether those come
     from ``g'(θ)·N_e`` (the smaller bound, :meth:`ScaledTableau.dual_value_bits`); then
@@ -373,7 +376,7 @@ def _plan(scaled: ScaledTableau, listing, wanted: list[int]) -> tuple[dict, dict
     return need, value_need, dual, channels, count
 
 
-def _remember(scaled: ScaledTableau, listing, sums: dict[int, ExactOrderSums]) -> None:
+def _remember(scaled: ScaledTableau, listing: ConditionListing, sums: dict[int, ExactOrderSums]) -> None:
     """Keep the evaluation of every condition of all free trees on ``scaled``, for the
     listings of lower degrees that a file's claims check next (they share the tableau's
     ScaledTableau; :mod:`rkcheck.evaluation.contained`).  The sums are the check result's
@@ -382,7 +385,7 @@ def _remember(scaled: ScaledTableau, listing, sums: dict[int, ExactOrderSums]) -
         scaled.__dict__["_all_trees"] = (listing, sums)
 
 
-def _contained(scaled: ScaledTableau, listing, count: dict[int, int],
+def _contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int],
                channels: list[tuple[int, list[int]]]) -> dict[int, tuple[np.ndarray, int]] | None:
     """The residues of every order of ``listing`` read off a kept evaluation of all free
     trees that contains it, or None."""
@@ -411,8 +414,8 @@ def passes_run_by(runner: PassRunner | None) -> Iterator[None]:
         _RUNNER.reset(token)
 
 
-def _run_passes(scaled: ScaledTableau, listing,
-                groups: list[tuple[list, list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]:
+def _run_passes(scaled: ScaledTableau, listing: ConditionListing,
+                groups: list[tuple[list[Any], list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]:
     """``(index, sums)`` of every pass: here in order, or by the runner in force."""
     jobs = [([(p, r) for _, _, p, r in group], orders) for group, orders in groups]
     runner = _RUNNER.get()
@@ -426,7 +429,7 @@ def _run_passes(scaled: ScaledTableau, listing,
 Channel = tuple[int, int, int, int]  # (prime i, root j, p, r)
 
 
-def pass_groups(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
+def pass_groups(scaled: ScaledTableau, listing: ConditionListing, chosen: list[tuple[int, list[int]]],
                 orders_for: Callable[[int], list[int]], top: int
                 ) -> tuple[list[tuple[list[Channel], list[int]]], dict[tuple[int, int], list[Channel]]]:
     """The channels of the primes ``chosen`` (prime i, root j) to evaluate, split into
@@ -470,8 +473,8 @@ def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np
     return group, {n: x[:, take] for n, x in sums.items()}
 
 
-def channel_passes(scaled: ScaledTableau, listing, chosen: list[tuple[int, list[int]]],
-                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list, dict[int, np.ndarray]]]:
+def channel_passes(scaled: ScaledTableau, listing: ConditionListing, chosen: list[tuple[int, list[int]]],
+                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list[Any], dict[int, np.ndarray]]]:
     """The passes of :func:`pass_groups`, evaluated here or by the runner in force
     (:func:`passes_run_by`), as they finish: yields ``(group, sums)`` with ``sums[n]``
     the residues ``(conditions, len(group))`` of the pass's orders, copied roots included."""

@@ -253,10 +253,11 @@ class ScaledTableau:
                 self._images(p, roots[0])  # fills the image cache with every root of p
                 _, A, b = self.__dict__["_image_cache"][p]
                 known[p] = repeated_channels(A, b)
-        return known[p]
+        found: list[int] = known[p]
+        return found
 
     def _roots_of(self, p: int) -> list[int]:
-        known = getattr(self, "_split_roots", {}).get(p)
+        known: list[int] | None = getattr(self, "_split_roots", {}).get(p)
         if known is not None:
             return known
         roots = self._roots_mod(p)
@@ -279,7 +280,7 @@ class ScaledTableau:
         trees_a = first[min(top, len(first) - 1)]
         trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
         per_channel = 4 * (2 * trees_phi * self.s + 2 * trees_a)
-        return max(1, PASS_BYTES // per_channel)
+        return int(max(1, PASS_BYTES // per_channel))
 
     def residues_at(self, listing: Any, pairs: Sequence[tuple[int, int]], orders: list[int]) -> dict[int, np.ndarray]:
         """``{n: (conditions, channels) residues}`` of the given orders in the channels
@@ -364,7 +365,7 @@ def log2_upper(x: Any) -> float:
     return float((u.log() / arb(2).log()).upper()) + 1e-9
 
 
-def _embedding_bounds(minpoly: list[int], Ai: list, bi: list) -> tuple[float, list[float]]:
+def _embedding_bounds(minpoly: list[int], Ai: list[Any], bi: list[Any]) -> tuple[float, list[float]]:
     """``log₂ M`` (``M = max_j M_j``) and ``log₂ max(α_j, β_j)`` per complex embedding
     (module docstring), certified.  The working precision starts at 128 bits and doubles
     while a bound exceeds its ball's lower end by more than one bit: in fields of high

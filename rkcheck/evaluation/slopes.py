@@ -16,28 +16,40 @@ at worst, so a box is never too large to judge.
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, U, FloatContext, FloatSums, _float_coefficients, block_bins, round_up
+from rkcheck.evaluation.balls import (
+    ETA,
+    INFLATE,
+    FloatContext,
+    FloatSums,
+    U,
+    _float_coefficients,
+    block_bins,
+    round_up,
+)
 from rkcheck.numbers.intervals import Interval
+
+if TYPE_CHECKING:
+    from rkcheck.trees.listing import ConditionListing
 
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
 #: mid and radius each); above, the directions are split into several passes.
 MAX_GRADIENT_BYTES = 1 << 30
 
 
-def _add(p, q):
+def _add(p: Any, q: Any) -> Any:
     m = p[0] + q[0]
     return m, (p[1] + q[1] + U * np.abs(m)) * INFLATE + ETA
 
 
-def _expand(x):
+def _expand(x: Any) -> Any:
     return x[0][..., None], x[1][..., None]
 
 
-def _product_rule(x, dy, y, dx):
+def _product_rule(x: Any, dy: Any, y: Any, dx: Any) -> Any:
     """``x·∂y + y·∂x`` as ``_add(mul(x, ∂y), mul(y, ∂x))`` on the screen — the same
     float operations in the same order, so the same bits — with the values ``x``, ``y``
     broadcast along the directions and the temporaries reused in place."""
@@ -90,35 +102,35 @@ class GradientContext:
         self.EA = len(self.a_vars)
         self.E = self.EA + len(self.b_vars)
 
-    def _zeros(self, shape, width: int):
+    def _zeros(self, shape: tuple[int, ...], width: int) -> Any:
         return np.zeros(shape + (width,)), np.zeros(shape + (width,))
 
-    def vectors(self, n: int, s: int):
+    def vectors(self, n: int, s: int) -> Any:
         return self.f.vectors(n, s), self._zeros((n, s), self.EA)
 
-    def scalars(self, n: int):
+    def scalars(self, n: int) -> Any:
         return self.f.scalars(n), self._zeros((n,), self.E)
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         return self.f.ones(k, s), self._zeros((k, s), self.EA)
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         return self.f.one(k), self._zeros((k,), self.E)
 
-    def take(self, x, idx):
+    def take(self, x: Any, idx: np.ndarray) -> Any:
         return self.f.take(x[0], idx), self.f.take(x[1], idx)
 
-    def put(self, store, lo: int, x) -> None:
+    def put(self, store: Any, lo: int, x: Any) -> None:
         self.f.put(store[0], lo, x[0])
         self.f.put(store[1], lo, x[1])
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         value = self.f.mul(x[0], y[0])
         if x[1][0].shape[-1] == 0:  # vectors along no direction of A: nothing to differentiate
             return value, self._zeros(value[0].shape, 0)
         return value, _product_rule(x[0], y[1], y[0], x[1])
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         value = self.f.matvec(x[0])
         if not self.EA:
             return value, self._zeros(value[0].shape, 0)
@@ -132,7 +144,7 @@ class GradientContext:
             er[..., i, e] = x[0][1][..., j]
         return value, _add(grad, (em, er))
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         value = self.f.dot(x[0])
         gm, gr = x[1]
         # along A's entries: bᵀ∂x (b holds no A entry)
@@ -151,12 +163,12 @@ class GradientContext:
         return value, (np.concatenate([grad_a[0], grad_b[0]], axis=-1),
                        np.concatenate([grad_a[1], grad_b[1]], axis=-1))
 
-    def sums(self, k: int, n: int):
+    def sums(self, k: int, n: int) -> Any:
         # the screen's four accumulators (mid, rad, Σ|term|, count) for the values, and
         # the same with one column per direction for the derivatives
         return self.f.sums(k, n), [np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros((k, self.E)), np.zeros(k)]
 
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         """:meth:`FloatContext.add_terms` for the values and for every direction at once,
         over one set of bins: the same elementwise operations, and one bincount over
         (condition, direction) pairs, which adds each bin's terms in the same order as a
@@ -174,7 +186,7 @@ class GradientContext:
             acc[1][3][uniq] += count
         acc[0][3][uniq] += count
 
-    def finish_sums(self, acc, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
+    def finish_sums(self, acc: Any, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
         """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of
         ``sup_X |∂R_k/∂x_e|``."""
         values, acc = self.f.finish_sums(acc[0], k, n), acc[1]
@@ -183,7 +195,7 @@ class GradientContext:
         return values, (np.stack(cols, axis=1) if cols else np.zeros((k, 0)))
 
 
-def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
+def _bin_terms(acc: Any, c: Any, w: Any, uniq: np.ndarray, bins: np.ndarray, shape: tuple[int, int] | None) -> None:
     """Add the terms ``c·w`` (mid, radius — the coefficient rounded once, the product
     once more —, magnitude) of one block into the accumulators' bins (``shape``: the
     conditions × directions of a gradient, or None for values)."""
@@ -203,7 +215,7 @@ def _bin_terms(acc, c, w, uniq, bins, shape) -> None:
         a.reshape(-1)[places] += np.bincount(bins, weights=x.ravel(), minlength=size)
 
 
-def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
+def gradient_bytes(listing: ConditionListing, s: int, E: int, EA: int | None = None) -> int:
     """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext`
     keeps) along ``E`` directions, ``EA`` of them A's entries (None: all): a direction of
     A's is carried by Φ, ψ, a and w, one of b's by a and w only."""
@@ -213,7 +225,7 @@ def gradient_bytes(listing, s: int, E: int, EA: int | None = None) -> int:
     return int(kept) * (2 * s * EA + 2 * E) * 16
 
 
-def gradient_groups(listing, s: int, E: int, EA: int | None = None) -> list[slice]:
+def gradient_groups(listing: ConditionListing, s: int, E: int, EA: int | None = None) -> list[slice]:
     """The directions (interval entries: ``EA`` of A's — None: all —, then b's) split
     into passes whose derivative arrays fit in :data:`MAX_GRADIENT_BYTES` — one direction
     per pass at worst: the refinement is never skipped, a large box only takes more

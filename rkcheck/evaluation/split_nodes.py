@@ -108,7 +108,8 @@ class SplitNodeTableau(ScaledTableau):
                          dtype=np.int64)
             b = np.array([sum(wk * pj[k] for k, wk in enumerate(w)) % p for pj in powers], dtype=np.int64)
             cache[p] = (A, b)
-        return cache[p]
+        found: tuple[np.ndarray, np.ndarray] = cache[p]
+        return found
 
     def channel_sources(self, p: int) -> list[int]:
         return [0]

@@ -41,7 +41,7 @@ def _is_zero(x: Any) -> bool:
     point = getattr(x, "is_point", None)
     if point is not None:  # an interval: zero only as the point 0
         return bool(point) and x.lo == 0
-    return x == 0
+    return bool(x == 0)
 
 
 def reach_pattern(nonzero: npt.ArrayLike) -> np.ndarray:
@@ -57,7 +57,7 @@ def may_be_nonzero(flags: np.ndarray, pattern: np.ndarray) -> np.ndarray:
     be (``pattern``: :func:`reach_pattern`).  A product of 0/1 floats, exact (each sum
     counts at most s ones, far below 2^24) — numpy's integer products run without BLAS,
     about five times slower."""
-    return (flags.astype(np.float32) @ pattern) > 0
+    return np.asarray((flags.astype(np.float32) @ pattern) > 0)
 
 
 class _Store:
@@ -93,7 +93,7 @@ def _rows(flags: np.ndarray) -> np.ndarray:
         return flags
     word = _WORDS.get(flags.shape[1])
     if word is not None and flags.dtype == np.bool_ and flags.flags.c_contiguous:
-        return flags.view(word).reshape(-1) != 0
+        return np.asarray(flags.view(word).reshape(-1) != 0)
     out = flags[:, 0].copy()
     for j in range(1, flags.shape[1]):
         out |= flags[:, j]
@@ -124,7 +124,7 @@ class _TermRows:
         object.__setattr__(self, "_parts", (terms, i0, i1, rows))
         object.__setattr__(self, "_block", None)
 
-    def block(self, lo: int, hi: int):
+    def block(self, lo: int, hi: int) -> Any:
         terms, i0, i1, rows = self._parts
         if self._block is None:  # read once for the contexts of a pair
             cond, idx = terms.block(i0, i1)
@@ -141,7 +141,7 @@ class _TermRows:
         """The places among the order's terms of the rows ``lo … hi − 1`` given here, for
         a context's arrays of one entry per term of the order."""
         _, i0, _, rows = self._parts
-        return i0 + rows[lo:hi]
+        return np.asarray(i0 + rows[lo:hi])
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._parts[0], name)
@@ -166,23 +166,23 @@ class SupportContext:
 
     # ------------------------------------------------------------- storage
 
-    def vectors(self, n: int, s: int):
+    def vectors(self, n: int, s: int) -> Any:
         return _Store(np.zeros((n, s), dtype=bool), self.inner.vectors(n, s))
 
-    def scalars(self, n: int):
+    def scalars(self, n: int) -> Any:
         return _Store(np.zeros(n, dtype=bool), self.inner.scalars(n))
 
-    def ones(self, k: int, s: int):
+    def ones(self, k: int, s: int) -> Any:
         return np.ones((k, s), dtype=bool), self.inner.ones(k, s)
 
-    def one(self, k: int):
+    def one(self, k: int) -> Any:
         return np.ones(k, dtype=bool), self.inner.one(k)
 
-    def take(self, store: _Store, idx: np.ndarray):
+    def take(self, store: _Store, idx: np.ndarray) -> Any:
         flags = take_rows(store.flags, idx)
         return flags, _Stored(store, idx[_rows(flags)])
 
-    def _inner(self, x, keep: np.ndarray | None = None):
+    def _inner(self, x: Any, keep: np.ndarray | None = None) -> Any:
         """The inner value of ``x``'s flagged rows, or of those of them that ``keep`` (a
         mask over them) keeps."""
         inner = x[1]
@@ -191,7 +191,7 @@ class SupportContext:
             return self.inner.take(inner.store.inner, inner.store.place[ids])
         return inner if keep is None else self.inner.take(inner, np.flatnonzero(keep))
 
-    def put(self, store: _Store, lo: int, x) -> None:
+    def put(self, store: _Store, lo: int, x: Any) -> None:
         flags, inner = x[0], self._inner(x)
         rows = _rows(flags)
         k = int(np.count_nonzero(rows))
@@ -205,33 +205,33 @@ class SupportContext:
 
     # ------------------------------------------------------------- arithmetic
 
-    def _kept(self, x, flags: np.ndarray):
+    def _kept(self, x: Any, flags: np.ndarray) -> Any:
         """The inner value of the rows of ``x`` that ``flags`` (a subset of x's) keeps."""
         keep = _rows(flags)[_rows(x[0])]
         return self._inner(x, None if keep.all() else keep)
 
-    def mul(self, x, y):
+    def mul(self, x: Any, y: Any) -> Any:
         flags = x[0] & y[0]
         return flags, self.inner.mul(self._kept(x, flags), self._kept(y, flags))
 
-    def matvec(self, x):
+    def matvec(self, x: Any) -> Any:
         flags = may_be_nonzero(x[0], self._A_t)
         return flags, self.inner.matvec(self._kept(x, flags))
 
-    def dot(self, x):
+    def dot(self, x: Any) -> Any:
         flags = may_be_nonzero(x[0], self._b)
         return flags, self.inner.dot(self._kept(x, flags))
 
     # ------------------------------------------------------------- condition sums
 
-    def sums(self, k: int, n: int):
+    def sums(self, k: int, n: int) -> Any:
         return self.inner.sums(k, n)
 
-    def add_terms(self, acc, w_terms, terms, n: int, i0: int, i1: int) -> None:
+    def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         """The terms that may be nonzero only: the others add exactly 0."""
         rows = np.flatnonzero(w_terms[0])
         if len(rows):
             self.inner.add_terms(acc, self._inner(w_terms), _TermRows(terms, i0, i1, rows), n, 0, len(rows))
 
-    def finish_sums(self, acc, k: int, n: int):
+    def finish_sums(self, acc: Any, k: int, n: int) -> Any:
         return self.inner.finish_sums(acc, k, n)
