@@ -178,7 +178,10 @@ def test_vandermonde_bound_is_an_upper_bound():
     scaled = scaled_field(tab.exact_values())
     with mpmath.workdps(50):  # never the global precision: other tests rely on its default
         g = [mpmath.mpf(c) for c in reversed(scaled.minpoly)]
-        roots = mpmath.polyroots(g, maxsteps=200, extraprec=200)
+        try:  # the order said: mpmath 1.4 deprecates descending coefficients by default
+            roots = mpmath.polyroots(g, maxsteps=200, extraprec=200, asc=False)
+        except TypeError:  # before 1.4 they were always descending
+            roots = mpmath.polyroots(g, maxsteps=200, extraprec=200)
         V = mpmath.matrix([[r**k for k in range(len(roots))] for r in roots])
         W = V**-1
         norm = max(sum(abs(W[i, j]) for j in range(W.cols)) for i in range(W.rows))
