@@ -282,3 +282,27 @@ def test_condition_divisors_from_orbits_or_gcds_give_the_same_sums(monkeypatch):
     gcds = assert_encloses(ConditionListing(9, None), A, b, LimbBallContext.create(S, P, 200, vertices=10), 1e-50)
     for n in orbits:
         assert list(gcds[n].mids) == list(orbits[n].mids)
+
+
+@pytest.mark.parametrize("layout", ["rows", "digit-major", "vectors", "vectors by trees", "vectors by stages", "strided"])
+def test_rows_are_read_from_every_layout_of_digits(layout):
+    # every layout the kernel hands the digit gathers (a stored or gathered value is
+    # C-contiguous, a product's digits digit-major, a matrix product's vectors with the
+    # stages before the trees) against plain reshaping and fancy indexing
+    from rkcheck.evaluation.limbs import _flat_rows, _rows_of
+
+    rng = np.random.default_rng(7)
+    n, s, L = 37, 3, 5
+    base = {
+        "rows": lambda: rng.integers(-9, 9, (n, L)),
+        "digit-major": lambda: rng.integers(-9, 9, (L, n)).T,
+        "vectors": lambda: rng.integers(-9, 9, (n, s, L)),
+        "vectors by trees": lambda: rng.integers(-9, 9, (L, n * s)).T.reshape(n, s, L),
+        "vectors by stages": lambda: rng.integers(-9, 9, (L, s, n)).transpose(2, 1, 0),
+        "strided": lambda: rng.integers(-9, 9, (n, 2 * s, L))[:, ::2, :],
+    }[layout]()
+    flat = np.array(base).reshape(-1, L)  # a copy, C-ordered: the reference
+    rows = rng.choice(len(flat), size=11, replace=False)
+    assert np.array_equal(_flat_rows(base, rows), flat[rows])
+    trees = rng.choice(n, size=7, replace=False)
+    assert np.array_equal(_rows_of(base, trees), np.array(base)[trees])
