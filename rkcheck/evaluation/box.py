@@ -246,7 +246,8 @@ class _Pair:
         return tuple(c.finish_sums(a, k, n) for c, a in zip(self.parts, acc))
 
 
-def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], ctx: GradientContext) -> np.ndarray:
+def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]],
+              centre_b: Sequence[Any], ctx: GradientContext) -> np.ndarray:
     """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up (inf past float64's
     range: no claim)."""
     out = []
@@ -267,7 +268,8 @@ def _float_above(r: Fraction) -> float:
         return math.inf
 
 
-def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
+def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
+              centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
               orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None) -> dict[int, BoxSums]:
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
@@ -327,7 +329,8 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     return _exact_where_needed(listing, centre_A, centre_b, out)
 
 
-def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], judged: dict[int, BoxSums]) -> dict[int, BoxSums]:
+def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
+                        judged: dict[int, BoxSums]) -> dict[int, BoxSums]:
     """The orders where the centre's ball is not far narrower than the variation of some
     condition (:data:`CENTRE_SPREAD`: one that hardly varies on the box, or a box far
     narrower than the balls' precision), judged again around the exact ``R(x̃)``."""

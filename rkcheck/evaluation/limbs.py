@@ -260,7 +260,8 @@ class LimbBallContext:
         rad, g = self._mul_bounds(xr, xg, yr, yg)
         return out.T.reshape(xm.shape), rad, g, code
 
-    def _mul_bounds(self, xr: np.ndarray, xg: np.ndarray, yr: np.ndarray, yg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _mul_bounds(self, xr: np.ndarray, xg: np.ndarray, yr: np.ndarray,
+                    yg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The radius ``(|x|r_y + |y|r_x + r_x·r_y)·(1 + 12·2^−52) + e`` and the magnitude
         ``|x||y|·(1 + 12·2^−52) + e`` of products (``e = e_mul`` units), in place in two
         arrays: the same operations in the same order as the expressions, without their

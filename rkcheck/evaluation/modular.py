@@ -237,7 +237,8 @@ def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
     return x - m if x > m // 2 else x
 
 
-def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None, on_pass: Callable[[int, int], None] | None = None) -> dict[int, ExactOrderSums]:
+def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,
+                         on_pass: Callable[[int, int], None] | None = None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
     enough channels for each order's bound, as many channels per pass over the listing
     as fit (:func:`channel_passes`).  ``on_pass(done, total)`` after each pass that
@@ -300,8 +301,9 @@ def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, order
     return out
 
 
-def _fill_contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int], channels: list[tuple[int, list[int]]],
-                    residues: dict[int, np.ndarray], full: dict[int, int]) -> bool:
+def _fill_contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int],
+                    channels: list[tuple[int, list[int]]], residues: dict[int, np.ndarray],
+                    full: dict[int, int]) -> bool:
     """Whether every order's residues were read off an evaluation of all free trees
     (:func:`_contained`), filling ``residues`` and ``full`` when they were."""
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
@@ -325,8 +327,8 @@ def _store(residues: dict[int, np.ndarray], count: dict[int, int], group: list[A
                 residues[n][:, i, j] = sums[:, c]
 
 
-def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[tuple[int, list[int]]], count: dict[int, int],
-              done: int, residues: dict[int, np.ndarray]) -> bool:
+def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[tuple[int, list[int]]],
+              count: dict[int, int], done: int, residues: dict[int, np.ndarray]) -> bool:
     """The primes from ``done`` on, for the conditions whose residues at the first
     ``done`` are all zero only (the others are decided: they fail), evaluated on the trees
     their terms need (:class:`~rkcheck.evaluation.subset.Subset`) into ``residues``;
@@ -352,7 +354,8 @@ def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[t
     return True
 
 
-def _plan(scaled: ScaledTableau, listing: ConditionListing, wanted: list[int]) -> tuple[dict[int, int], dict[int, int], dict[int, Any], list[Any], dict[int, int]]:
+def _plan(scaled: ScaledTableau, listing: ConditionListing,
+          wanted: list[int]) -> tuple[dict[int, int], dict[int, int], dict[int, Any], list[Any], dict[int, int]]:
     """Per order: the bits that decide its zero residues (on N/g_k,
     :meth:`ScaledTableau.decision_bits`), the bits its values need, whether those come
     from ``g'(θ)·N_e`` (the smaller bound, :meth:`ScaledTableau.dual_value_bits`); then
@@ -474,7 +477,8 @@ def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np
 
 
 def channel_passes(scaled: ScaledTableau, listing: ConditionListing, chosen: list[tuple[int, list[int]]],
-                   orders_for: Callable[[int], list[int]], top: int) -> Iterator[tuple[list[Any], dict[int, np.ndarray]]]:
+                   orders_for: Callable[[int], list[int]],
+                   top: int) -> Iterator[tuple[list[Any], dict[int, np.ndarray]]]:
     """The passes of :func:`pass_groups`, evaluated here or by the runner in force
     (:func:`passes_run_by`), as they finish: yields ``(group, sums)`` with ``sums[n]``
     the residues ``(conditions, len(group))`` of the pass's orders, copied roots included."""

@@ -187,7 +187,8 @@ def _read_shape(lex: list[Terms], n: int) -> tuple[list[Fraction], list[list[Fra
     return f, [x for x in h if x is not None]
 
 
-def solve_zero_dimensional(basis: list[Terms], names: tuple[str, ...], deadline: float) -> tuple[list[Fraction], list[list[Fraction]]]:
+def solve_zero_dimensional(basis: list[Terms], names: tuple[str, ...],
+                           deadline: float) -> tuple[list[Fraction], list[list[Fraction]]]:
     """``(f, [h_i])`` in shape position.  A shape basis with a square-free f generates a
     radical ideal, so the radical is computed only when the first try is not one."""
     try:
