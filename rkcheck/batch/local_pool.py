@@ -16,8 +16,8 @@ def _worker_main(conn, fn: Callable[[Any], Any]) -> None:
     """One worker: run ``fn`` on the items the parent sends, one at a time, until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C ...
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ... and stops us with SIGTERM
-    if hasattr(signal, "pthread_sigmask"):  # held back since the fork (_sigint_held), now ignored
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    if hasattr(signal, "pthread_sigmask"):  # held back since the fork (_signals_held), now our own
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _HELD)
     while True:
         try:
             task = conn.recv()
@@ -93,7 +93,7 @@ class LocalExecutor(Executor):
         proc = self.ctx.Process(target=_worker_main, args=(child_end, fn), daemon=True)
         # known before it exists: a Ctrl-C during the fork must not leave an unknown worker
         workers.append(_Worker(proc, parent_end))
-        with _sigint_held():
+        with _signals_held():
             proc.start()
             child_end.close()
 
@@ -138,17 +138,23 @@ class LocalExecutor(Executor):
         return done
 
 
+#: the signals a worker holds back from its fork until it has its own dispositions
+_HELD = {signal.SIGINT, signal.SIGTERM}
+
+
 @contextmanager
-def _sigint_held():
-    """Hold Ctrl-C back while a worker starts.  It reaches the whole process group: a
-    worker still inside multiprocessing's start-up, before it ignores SIGINT, would die
-    there with a traceback.  Forked with SIGINT blocked, the worker unblocks it once it
-    ignores it; the parent receives a Ctrl-C that came meanwhile when the new worker is
-    on the list that :func:`_stop` stops."""
+def _signals_held():
+    """Hold Ctrl-C and SIGTERM back while a worker starts.  Ctrl-C reaches the whole
+    process group, and :func:`_stop` terminates a busy worker with SIGTERM: a worker
+    still inside multiprocessing's start-up has the parent's handlers, which raise
+    KeyboardInterrupt, and would die there with a traceback.  Forked with both blocked,
+    the worker unblocks them once it ignores SIGINT and dies quietly by SIGTERM; the
+    parent receives a signal that came meanwhile when the new worker is on the list that
+    :func:`_stop` stops."""
     if not hasattr(signal, "pthread_sigmask"):  # no POSIX signal masks (Windows)
         yield
         return
-    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
     try:
         yield
     finally:

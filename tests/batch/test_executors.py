@@ -81,3 +81,33 @@ def test_a_dask_chunk_whose_result_cannot_be_sent_back_loses_only_that_item():
 
 def _unpicklable_for_two(x):
     return (lambda: x) if x == 2 else x * x
+
+
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask"), reason="POSIX signal masks")
+def test_a_worker_stopped_while_it_starts_dies_quietly(monkeypatch, capfd):
+    # A scan stops a busy worker with SIGTERM, and the CLI's own SIGTERM and Ctrl-C
+    # handlers raise KeyboardInterrupt. A worker that is still inside multiprocessing's
+    # start-up (held there by a slow stdin close) has inherited those handlers: stopped
+    # then, it must die by SIGTERM, without a traceback, not by KeyboardInterrupt.
+    import multiprocessing.util
+    import time
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    def slow_close_stdin():
+        time.sleep(0.5)
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        monkeypatch.setattr(multiprocessing.util, "_close_stdin", slow_close_stdin)
+        pool = LocalExecutor(1)
+        workers: list = []
+        pool._start(workers, math.factorial)
+        time.sleep(0.1)  # forked, still starting
+        workers[0].process.terminate()
+        workers[0].process.join(5)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert workers[0].process.exitcode == -signal.SIGTERM
+    assert "Traceback" not in capfd.readouterr().err
