@@ -177,7 +177,8 @@ def take_rows(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
     entry per row, faster for rows of none)."""
     if x.ndim > 1 and x.size and idx.dtype.kind in "iu":
         return np.take(x, idx, axis=0)
-    return np.asarray(x[idx])
+    result: np.ndarray = x[idx]
+    return result
 
 
 def round_up(r: np.ndarray, m: np.ndarray, tmp: np.ndarray) -> None:
@@ -408,7 +409,9 @@ class FloatSums:
         return Enclosure(float(self.mid[k]), float(self.rad[k]), False)
 
     def excludes_zero(self) -> np.ndarray:
-        return np.asarray(np.abs(self.mid) > self.rad)
+        result: np.ndarray = np.abs(self.mid) > self.rad
+        return result
 
     def magnitude_bound(self) -> np.ndarray:
-        return np.asarray((np.abs(self.mid) + self.rad) * (1 + 2.0**-51) + ETA)
+        result: np.ndarray = (np.abs(self.mid) + self.rad) * (1 + 2.0**-51) + ETA
+        return result

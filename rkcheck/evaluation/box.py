@@ -80,7 +80,8 @@ class BallCentre:
     def spread(self) -> np.ndarray:
         """The balls' radii (floats, about: only for choosing the exact route)."""
         s = self.sums
-        return np.asarray(np.ldexp(np.asarray(s.rads, dtype=float), -s.shift) / float(s.factorial))
+        result: np.ndarray = np.ldexp(np.asarray(s.rads, dtype=float), -s.shift) / float(s.factorial)
+        return result
 
     def beyond(self, variation: np.ndarray) -> np.ndarray:
         """``|R(x̃)| > V`` for every value in the ball: ``|M| > 2^P·(f·V + ρ·2^−S)``, the
@@ -97,7 +98,8 @@ class BallCentre:
     def bound(self, variation: np.ndarray) -> np.ndarray:
         """An upper bound of ``|R(x̃)| + ε + V`` (floats, rounded up)."""
         with np.errstate(over="ignore"):
-            return np.asarray((self.sums.magnitude_bound() + variation) * INFLATE + ETA)
+            result: np.ndarray = (self.sums.magnitude_bound() + variation) * INFLATE + ETA
+            return result
 
     def enclosure(self, k: int, variation: float) -> Enclosure:
         e = self.sums.enclosure(k)
@@ -152,7 +154,8 @@ class ExactCentre:
         c = self._magnitudes()
         if c is None:  # the integer division raises past float64's range, as float(Fraction) does
             c = np.array([_float_or_inf(abs(x), self.scale) for x in self.integers], dtype=float)
-        return np.asarray((c * (1 + 4 * U) + variation) * INFLATE + ETA)
+        result: np.ndarray = (c * (1 + 4 * U) + variation) * INFLATE + ETA
+        return result
 
     def enclosure(self, k: int, variation: float) -> Enclosure:
         return Enclosure(Fraction(self.integers[k], self.scale), Fraction(variation), False)
@@ -182,10 +185,12 @@ class BoxSums:
         return len(self.variation)
 
     def excludes_zero(self) -> np.ndarray:
-        return np.asarray(self._fails | self._screen_fails)
+        result: np.ndarray = self._fails | self._screen_fails
+        return result
 
     def magnitude_bound(self) -> np.ndarray:
-        return np.asarray(np.minimum(self._bound, self._screen_bound))
+        result: np.ndarray = np.minimum(self._bound, self._screen_bound)
+        return result
 
     def enclosure(self, k: int) -> Enclosure:
         """The enclosure that decides: the mean value form's where it fails or bounds

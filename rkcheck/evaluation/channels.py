@@ -135,7 +135,8 @@ class ModularChannel:
         return np.ones(k, dtype=np.int64)
 
     def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return np.asarray(x[idx].astype(np.int64))
+        result: np.ndarray = x[idx].astype(np.int64)
+        return result
 
     def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
         store[lo:lo + len(x)] = x
@@ -143,13 +144,15 @@ class ModularChannel:
     def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         z = x * y
         z %= self.p
-        return np.asarray(z)
+        result: np.ndarray = z
+        return result
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
         if self.s <= SLICE:
             z = x @ self.A_t
             z %= self.p
-            return np.asarray(z)
+            result: np.ndarray = z
+            return result
         z = np.zeros((len(x), self.s), dtype=np.int64)
         for k in range(0, self.s, SLICE):
             z += (x[:, k:k + SLICE] @ self.A_t[k:k + SLICE]) % self.p
@@ -160,7 +163,8 @@ class ModularChannel:
         if self.s <= SLICE:
             z = x @ self.b
             z %= self.p
-            return np.asarray(z)
+            result: np.ndarray = z
+            return result
         return _chunked_dot(x, self.b, self.p)
 
     def sums(self, k: int, n: int) -> np.ndarray:
@@ -185,7 +189,8 @@ class ModularChannel:
         if cached is None or cached[0] is not terms:
             cached = (terms, np.array([c % self.p for c in terms.coefficients], dtype=np.int64))  # signs as residues
             self._coef_cache[n] = cached
-        return np.asarray(cached[1])
+        result: np.ndarray = cached[1]
+        return result
 
 
 class PrimeChannels:
@@ -311,7 +316,8 @@ class PrimeChannels:
         if cached is None or cached[0] is not terms:
             table = np.array([[c % p for c in terms.coefficients] for p in self.P.tolist()], dtype=np.int64)
             cached = self._coef_cache[n] = (terms, table)  # signs as residues
-        return np.asarray(cached[1])
+        result: np.ndarray = cached[1]
+        return result
 
 
 class _Bins:

@@ -91,7 +91,8 @@ def _ids_of_products(source: Any, n: int, u: np.ndarray, v: np.ndarray) -> np.nd
         right = source.right[first[n]:first[n + 1]]
         # v in the factors' own dtype: searchsorted would otherwise convert the whole order
         block = np.searchsorted(right, v.astype(right.dtype), side="left")
-    return np.asarray(np.minimum(first[n] + block + (u - first[size]), first[n + 1] - 1))
+    result: np.ndarray = np.minimum(first[n] + block + (u - first[size]), first[n + 1] - 1)
+    return result
 
 
 def tree_map(source: Any, listing: Any, top: int) -> np.ndarray | None:

@@ -259,7 +259,8 @@ class DigitBallSums(BallSums):
 
     def _integers(self, cols: np.ndarray) -> np.ndarray:
         ints = digits_to_ints(np.ascontiguousarray(np.take(self.digits, cols, axis=1).T), self.beta)
-        return np.asarray(ints * self.divisors[cols].astype(object))
+        result: np.ndarray = ints * self.divisors[cols].astype(object)
+        return result
 
     def enclosure(self, k: int) -> Enclosure:
         if self._mids is not None:
@@ -322,7 +323,8 @@ class DigitBallSums(BallSums):
         unsure = np.flatnonzero(ok & ~out & ~(mags * (1 + _REL) < limit))
         if len(unsure):
             out[unsure] = exceeds_scaled(np.abs(self._integers(unsure)), t[unsure], self.bits)
-        return np.asarray(out)
+        result: np.ndarray = out
+        return result
 
     def magnitude_bound(self) -> np.ndarray:
         """:meth:`BallSums.magnitude_bound`'s bound: ``((|m| >> e) + 1)·2^(e−P)`` with
@@ -357,7 +359,8 @@ class DigitBallSums(BallSums):
         for j in range(len(d) - 2, -1, -1):
             n <<= self.beta
             n += d[j]
-        return np.asarray(np.abs(n) * self.divisors[cols])
+        result: np.ndarray = np.abs(n) * self.divisors[cols]
+        return result
 
     def _top_bits(self, ints: np.ndarray) -> np.ndarray:
         """``((|m| >> e) + 1)·2^e`` as floats (e = max(bitlen − 60, 0)), as
@@ -366,7 +369,8 @@ class DigitBallSums(BallSums):
         e = np.maximum(_bit_length(m).astype(np.int64) - 60, 0)
         top = ((m >> e.astype(object)) + 1).astype(float)
         with np.errstate(over="ignore"):
-            return np.asarray(np.ldexp(top, e))
+            result: np.ndarray = np.ldexp(top, e)
+            return result
 
 
 _bit_length = np.frompyfunc(int.bit_length, 1, 1)

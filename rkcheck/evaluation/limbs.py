@@ -231,11 +231,13 @@ class LimbBallContext:
         """The value's codes, or, for a bare (mid-point, radius, magnitude) triple,
         :data:`_ZERO` or :data:`_ANY` as its digits are."""
         if len(x) > 3:
-            return np.asarray(x[3])
+            result: np.ndarray = x[3]
+            return result
         return _any_in_row(x[0].reshape(-1, self.L)).reshape(x[1].shape).astype(np.uint8)
 
     def _may_be_nonzero(self, x: Any) -> np.ndarray:
-        return np.asarray(self._codes(x) != _ZERO)
+        result: np.ndarray = self._codes(x) != _ZERO
+        return result
 
     def mul(self, x: Any, y: Any) -> Any:
         xm, xr, xg = x[:3]
@@ -488,4 +490,5 @@ def _any_in_row(x: np.ndarray) -> np.ndarray:
     acc = x[:, 0].copy()
     for j in range(1, x.shape[1]):
         acc |= x[:, j]
-    return np.asarray(acc != 0)
+    result: np.ndarray = acc != 0
+    return result

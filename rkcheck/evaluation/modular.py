@@ -111,7 +111,8 @@ class ExactOrderSums:
         return self.screened
 
     def is_zero(self) -> np.ndarray:
-        return np.asarray(~np.any(self.screened != 0, axis=(1, 2)))
+        result: np.ndarray = ~np.any(self.screened != 0, axis=(1, 2))
+        return result
 
     def value(self, k: int) -> Any:
         """The exact residual of condition k: a Fraction (rationals) or a field element."""

@@ -62,7 +62,8 @@ class PolynomialContext:
         return self._filled((k,), self.unit)
 
     def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        return np.asarray(x[idx])
+        result: np.ndarray = x[idx]
+        return result
 
     def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
         store[lo:lo + len(x)] = x

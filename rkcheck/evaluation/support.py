@@ -57,7 +57,8 @@ def may_be_nonzero(flags: np.ndarray, pattern: np.ndarray) -> np.ndarray:
     be (``pattern``: :func:`reach_pattern`).  A product of 0/1 floats, exact (each sum
     counts at most s ones, far below 2^24) — numpy's integer products run without BLAS,
     about five times slower."""
-    return np.asarray((flags.astype(np.float32) @ pattern) > 0)
+    result: np.ndarray = (flags.astype(np.float32) @ pattern) > 0
+    return result
 
 
 class _Store:
@@ -93,7 +94,8 @@ def _rows(flags: np.ndarray) -> np.ndarray:
         return flags
     word = _WORDS.get(flags.shape[1])
     if word is not None and flags.dtype == np.bool_ and flags.flags.c_contiguous:
-        return np.asarray(flags.view(word).reshape(-1) != 0)
+        result: np.ndarray = flags.view(word).reshape(-1) != 0
+        return result
     out = flags[:, 0].copy()
     for j in range(1, flags.shape[1]):
         out |= flags[:, j]
@@ -141,7 +143,8 @@ class _TermRows:
         """The places among the order's terms of the rows ``lo … hi − 1`` given here, for
         a context's arrays of one entry per term of the order."""
         _, i0, _, rows = self._parts
-        return np.asarray(i0 + rows[lo:hi])
+        result: np.ndarray = i0 + rows[lo:hi]
+        return result
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._parts[0], name)
