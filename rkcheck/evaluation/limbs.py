@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from rkcheck.evaluation.balls import _UP1, _UP4, _ball_at, summed_radii
+from rkcheck.evaluation.balls import _UP1, _UP4, _ball_at, summed_radii, take_rows
 from rkcheck.evaluation.digit_sums import (
     DigitBallSums,
     DigitSums,
@@ -191,7 +191,7 @@ class LimbBallContext:
         zeros: one gather reads them all (zeros and a scatter of the others' digits cost
         up to three times as much, at every share of zeros)."""
         if not isinstance(x, LimbStore):
-            return tuple(_rows_of(part, idx) for part in x)
+            return tuple(take_rows(part, idx) for part in x)
         digits = np.take(x.digits, x.places(idx), axis=0)
         return digits, np.take(x.rad, idx, axis=0), np.take(x.g, idx, axis=0), np.take(x.codes, idx, axis=0)
 
@@ -217,7 +217,7 @@ class LimbBallContext:
             place = store.placed()
             place[lo:lo + n] = 0  # row 0 of the digits: zeros
             if k:
-                copy_digits(store.digits[store.count:store.count + k], _rows_of(x[0], rows))
+                copy_digits(store.digits[store.count:store.count + k], take_rows(x[0], rows))
                 place[lo + rows] = np.arange(store.count, store.count + k)
         store.count += k
 
@@ -314,7 +314,7 @@ class LimbBallContext:
         # rows of zero mid-points give zero, exactly: only the others are multiplied
         out = np.zeros((self.L, Md.shape[0], len(xm)), dtype=STORE)  # mostly zeros: the smaller type
         if len(rows):
-            out[:, :, rows] = self._product_digits(_rows_of(xm, rows), Md, plan)
+            out[:, :, rows] = self._product_digits(take_rows(xm, rows), Md, plan)
         return out.transpose(2, 1, 0)
 
     def _product_digits(self, xm: np.ndarray, Md: np.ndarray, plan: list[_Pass]) -> np.ndarray:
@@ -383,7 +383,7 @@ class LimbBallContext:
         if rows is None:
             acc.add_digits(wm.T, mult, cond)
         elif len(rows):
-            acc.add_digits(_rows_of(wm, rows).T, mult[rows], cond[rows])
+            acc.add_digits(take_rows(wm, rows).T, mult[rows], cond[rows])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         rad = acc.radius_room(cond)
         np.multiply(w_terms[1], cabs[idx], out=rad)
@@ -442,28 +442,13 @@ _ZERO, _ANY, _ONE = 0, 1, 2
 _SPARSE = 0.75
 
 
-def _rows_of(x: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """The rows ``rows`` of ``x`` (along its first axis).  ``np.take`` copies an array
-    that is not C-contiguous whole before it gathers: a product's digits are digit-major
-    (a transposed view), and those copies of every row were 14 % of the instructions of
-    RK4's ball check at order 16; they are gathered from the digit-major array instead,
-    only the rows asked for."""
-    if x.flags.c_contiguous:
-        return np.take(x, rows, axis=0)
-    major = np.moveaxis(x, 0, -1)
-    if major.flags.c_contiguous:
-        return np.moveaxis(np.take(major, rows, axis=-1), -1, 0)
-    out: np.ndarray = x[rows]
-    return out
-
-
 def _flat_rows(x: np.ndarray, rows: np.ndarray) -> np.ndarray:
     """``x.reshape(-1, L)[rows]`` for the digits ``(n, L)`` or ``(n, s, L)`` of a value,
     reading only those rows: the digits of a matrix product's vectors are digit-major
     with the stages before the trees, which no reshape can view without copying every
     row (2 % of RK4's ball check at order 18)."""
     if x.ndim == 2:
-        return _rows_of(x, rows)
+        return take_rows(x, rows)
     n, s, L = x.shape
     if x.flags.c_contiguous:
         return np.take(x.reshape(n * s, L), rows, axis=0)

@@ -289,7 +289,8 @@ def test_rows_are_read_from_every_layout_of_digits(layout):
     # every layout the kernel hands the digit gathers (a stored or gathered value is
     # C-contiguous, a product's digits digit-major, a matrix product's vectors with the
     # stages before the trees) against plain reshaping and fancy indexing
-    from rkcheck.evaluation.limbs import _flat_rows, _rows_of
+    from rkcheck.evaluation.balls import take_rows
+    from rkcheck.evaluation.limbs import _flat_rows
 
     rng = np.random.default_rng(7)
     n, s, L = 37, 3, 5
@@ -305,4 +306,4 @@ def test_rows_are_read_from_every_layout_of_digits(layout):
     rows = rng.choice(len(flat), size=11, replace=False)
     assert np.array_equal(_flat_rows(base, rows), flat[rows])
     trees = rng.choice(n, size=7, replace=False)
-    assert np.array_equal(_rows_of(base, trees), np.array(base)[trees])
+    assert np.array_equal(take_rows(base, trees), np.array(base)[trees])
