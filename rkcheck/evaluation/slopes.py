@@ -27,7 +27,6 @@ from rkcheck.evaluation.balls import (
     FloatSums,
     U,
     _float_coefficients,
-    block_bins,
     round_up,
 )
 from rkcheck.numbers.intervals import Interval
@@ -175,7 +174,7 @@ class GradientContext:
         bincount per direction (the sums are the same, bit for bit)."""
         cond, idx = terms.block(i0, i1)
         c = _float_coefficients(terms, n)[idx]
-        uniq, inv = block_bins(cond)
+        uniq, inv = acc[0][4](cond)
         u = len(uniq)
         _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
         count = np.bincount(inv, minlength=u)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import random
 from fractions import Fraction
 
+import numpy as np
 import pytest
 from support import reference as ref
 from support.heavy import shipped_params
@@ -20,7 +21,6 @@ from support.numbers import exact_under
 from support.paths import tableau_files
 
 import rkcheck.evaluation.algorithm as algorithm
-import rkcheck.evaluation.channels as channels
 import rkcheck.trees.classes as classes
 import rkcheck.trees.table as table_module
 from rkcheck.evaluation.algorithm import condition_sums
@@ -183,3 +183,26 @@ def test_shipped_tableaux_balls_agree_with_exact_and_screen_is_safe(path):
                 assert screen[key][1].state != FAILS and balls[key][1].state != FAILS
             else:
                 assert balls[key][1].state == FAILS
+
+
+def test_block_bins_add_each_conditions_terms_in_their_order():
+    # the float screen sums a block's terms per condition through these bins; summed
+    # here term by term in Python floats, block after block, the sums must be the same bits
+    from rkcheck.evaluation.balls import BlockBins
+
+    rng = np.random.default_rng(7)
+    k = 50
+    bins, acc = BlockBins(k), [0.0] * k
+    sums = np.zeros(k)
+    for size in (0, 1, 30, 400, 5):  # the table is reused from block to block
+        cond = rng.integers(0, k, size=size).astype(np.int32)
+        x = rng.standard_normal(size) * 10.0 ** rng.integers(-8, 8, size=size)
+        uniq, inv = bins(cond)
+        assert len(set(uniq.tolist())) == len(uniq) and np.array_equal(uniq[inv], cond)
+        sums[uniq] += np.bincount(inv, weights=x, minlength=len(uniq))
+        block = {}
+        for c, v in zip(cond.tolist(), x.tolist()):
+            block[c] = block.get(c, 0.0) + v
+        for c, v in block.items():
+            acc[c] += v
+    assert sums.tolist() == acc
