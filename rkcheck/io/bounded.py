@@ -10,6 +10,9 @@ from rkcheck.io.printable import printable
 #: RKCHECK_MAX_FILE_BYTES changes it.  Shipped tableaux are under 10 kB.
 MAX_FILE_BYTES = 16 * 1024 * 1024
 
+#: bytes asked for by one read of :func:`bounded_read`
+_READ_PART = 1 << 20
+
 
 def max_file_bytes() -> int:
     """The size limit of one tableau file or of standard input: MAX_FILE_BYTES, or the
@@ -19,7 +22,7 @@ def max_file_bytes() -> int:
     value = os.environ.get("RKCHECK_MAX_FILE_BYTES", "").strip().replace("_", "")
     if not value:
         return MAX_FILE_BYTES
-    if not value.isdigit() or int(value) < 1:
+    if not (value.isascii() and value.isdigit()) or int(value) < 1:
         raise OptionError(f"RKCHECK_MAX_FILE_BYTES: expected a positive number of bytes, got {printable(value)!r}")
     return int(value)
 
@@ -27,7 +30,15 @@ def max_file_bytes() -> int:
 def bounded_read(stream, limit: int, source: str) -> bytes:
     """At most ``limit`` bytes of a binary stream, or a UserError naming the limit (a
     device such as /dev/zero, or a pipe, has no size to ask for beforehand)."""
-    data = stream.read(limit + 1)
+    # in parts: a read asks for its whole size up front, which a large limit cannot
+    parts, size = [], 0
+    while size <= limit:
+        part = stream.read(min(_READ_PART, limit + 1 - size))
+        if not part:
+            break
+        parts.append(part)
+        size += len(part)
+    data = b"".join(parts)
     if len(data) > limit:
         raise UserError(f"file too large: more than {limit:,} bytes (the limit MAX_FILE_BYTES; set "
                         "RKCHECK_MAX_FILE_BYTES to change it)", source=source)

@@ -77,7 +77,7 @@ def max_cache_bytes() -> int:
     raw = os.environ.get("RKCHECK_MAX_CACHE_BYTES", "").strip().replace("_", "")
     if not raw:
         return MAX_CACHE_BYTES
-    if not raw.isdigit() or len(raw) > 20:
+    if not (raw.isascii() and raw.isdigit()) or len(raw) > 20:
         raise UserError(f"RKCHECK_MAX_CACHE_BYTES: expected a non-negative number of bytes, got {printable(raw)!r}")
     return int(raw)
 

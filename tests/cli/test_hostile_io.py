@@ -46,8 +46,13 @@ def test_the_limit_is_settable_and_holds_for_files_and_stdin(tmp_path, monkeypat
     code, out, err = run("verify", "-", "--order", "2", stdin=ONE_STAGE.encode(),
                          env={"RKCHECK_MAX_FILE_BYTES": str(size)})
     assert code == 0 and "1 stage" in out, err  # the implicit midpoint rule: order 2 holds
-    code, _, err = run("verify", str(path), env={"RKCHECK_MAX_FILE_BYTES": "lots"})
-    assert code == 2 and err.count("\n") == 1 and "RKCHECK_MAX_FILE_BYTES: expected a positive" in err, err
+    for bad in ("lots", "²"):  # '²' is a digit to str.isdigit, not to int()
+        code, _, err = run("verify", str(path), env={"RKCHECK_MAX_FILE_BYTES": bad})
+        assert code == 2 and err.count("\n") == 1 and "RKCHECK_MAX_FILE_BYTES: expected a positive" in err, err
+    # a limit beyond what one read can ask for (Py_ssize_t) is no limit, for files and stdin
+    for source, stdin in ((str(path), None), ("-", ONE_STAGE.encode())):
+        code, out, err = run("verify", source, "--order", "2", stdin=stdin, env={"RKCHECK_MAX_FILE_BYTES": "9" * 30})
+        assert code == 0 and "1 stage" in out, err
 
 
 @pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="needs /dev/zero")
