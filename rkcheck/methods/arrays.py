@@ -131,9 +131,11 @@ def _sympy_root_text(x: Any, place: str) -> str:
     import sympy
 
     X = sympy.Symbol("x")
+    from sympy.polys.polyerrors import BasePolynomialError
+
     try:
         poly = sympy.Poly(sympy.minimal_polynomial(x, X), X)
-    except (NotImplementedError, ValueError, TypeError, AttributeError):
+    except (BasePolynomialError, NotImplementedError, ValueError, TypeError, AttributeError):  # pi, oo, zoo, nan
         raise TableauError(f"{x} is not an algebraic number rkcheck can take exactly", place) from None
     if poly.degree() > 100 or not x.is_real:
         raise TableauError(f"{x}: its minimal polynomial is out of reach (degree {poly.degree()})", place)

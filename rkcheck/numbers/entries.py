@@ -184,8 +184,14 @@ class Entry:
     def of(value: Fraction | int) -> "Entry":
         """An exact entry from a rational number (used by generators and tests)."""
         value = Fraction(value)
-        text = str(value)
-        return Entry.parse(text)
+        if max(value.numerator.bit_length(), value.denominator.bit_length()) < 10_000:
+            return Entry.parse(str(value))
+        # str() refuses integers of more than 4300 digits, gmpy2 writes any; the entry's
+        # own length limit then applies, as to the text of a file
+        import gmpy2
+
+        n, d = gmpy2.mpz(value.numerator), gmpy2.mpz(value.denominator)
+        return Entry.parse(f"{n}" if d == 1 else f"{n}/{d}")
 
     @property
     def is_rational(self) -> bool:

@@ -350,3 +350,15 @@ def test_bad_require_is_an_option_error():
     with pytest.raises(rkcheck.OptionError) as err:
         rkcheck.verify("@heun", require="maybe")
     assert err.value.place == "require"
+
+
+def test_values_out_of_reach_are_tableau_errors_naming_the_entry():
+    # an integer past the entry length limit (str() alone would refuse it past 4 300
+    # digits), and sympy numbers that are not algebraic: TableauError at their place
+    with pytest.raises(rkcheck.TableauError, match=r"A\[1\]\[1\]: entry too long"):
+        rkcheck.from_arrays([[10**100_000]], [1])
+    for x in (sp.pi, sp.E, sp.oo, sp.zoo, sp.nan, sp.sqrt(2) * sp.pi):
+        with pytest.raises(rkcheck.TableauError, match=r"A\[1\]\[2\]: .* is not an algebraic number"):
+            rkcheck.from_arrays([[0, x], [0, 0]], [1, 0])
+    # below the limit, a long integer is the exact value it is
+    assert rkcheck.from_arrays([[10**5000]], [1]).A[0][0].exact == 10**5000
