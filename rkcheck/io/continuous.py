@@ -58,8 +58,6 @@ def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: l
     with ``parameters`` (the ``[parameters]`` table, the raw ``[constants]`` and their
     parsed definitions) the family of kernels (``skim``: on the surrogate of the smallest
     trees, :func:`rkcheck.io.loader.build_tableau`)."""
-    if "tableau" in data:
-        raise UserError("give either [tableau] or [continuous], not both")
     if parameters is not None:
         return build_kernel_family(data["continuous"], name, info.replace(warnings=tuple(warnings)), parameters,
                                    raw_constants or {}, definitions or {}, skim)

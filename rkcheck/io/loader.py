@@ -54,6 +54,9 @@ from rkcheck.options import (
 SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")
 
+#: the tables that each define a whole method: a file gives one of them
+_METHOD_TABLES = ("tableau", "family", "continuous")
+
 
 # ------------------------------------------------------------------ validation
 
@@ -158,8 +161,12 @@ def _build(
     data, warnings = _tables(data)
     name, info = _method_info(data, source)
 
-    if "family" in data and "tableau" in data:
-        raise UserError("give either [tableau] or [family], not both")
+    given = [key for key in _METHOD_TABLES if key in data]
+    if len(given) > 1:  # each defines the whole method: which one was meant is not for us to guess
+        raise UserError(f"give one of [{'], ['.join(_METHOD_TABLES)}], not {' and '.join(f'[{k}]' for k in given)}")
+    if "family" in data and "parameters" in data:
+        raise UserError("a named [family] is one method: it takes no free [parameters] (give those with a "
+                        "[tableau] or [continuous] table)")
     if "family" in data:
         from rkcheck.methods.families import build_family  # when needed: start-up time
 
@@ -198,6 +205,12 @@ def _tables(data: dict[str, Any]) -> tuple[dict[str, Any], list[str]]:
         data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
             "tableau": {k: data[k] for k in SHORT_FORM_KEYS if k in data}}
         warnings = [w for w in warnings if not any(f"[{k}]" in w for k in SHORT_FORM_KEYS)]
+    else:  # A, b or c beside a table that defines the method: not tables of their own
+        given = [k for k in SHORT_FORM_KEYS if k in data]
+        warnings = [w for w in warnings if not any(f"[{k}]" in w for k in given)]
+        if given:
+            where = next((f"[{k}]" for k in _METHOD_TABLES if k in data), "the file's method")
+            warnings.append(f"{', '.join(given)} at the top level ignored: the method is given by {where}")
     return data, warnings
 
 

@@ -140,6 +140,15 @@ ERRORS = {
     "bad check": (VALID_ROWS + '[check]\ndegree = -1\n', "t.toml", "check.degree: expected a positive integer or 'none'"),
     "unknown check key": (VALID_ROWS + '[check]\nordr = 3\n', "t.toml", "check.ordr: unknown key"),
     "constant cycle": ('[constants]\na = "b"\nb = "a"\n' + VALID_ROWS, "t.toml", "constants.a: constants refer to each other in a cycle"),
+    # each of [tableau], [family], [continuous] defines the whole method: two are refused
+    "tableau and family": (VALID_ROWS + '[family]\nname = "gauss"\ns = 2\n', "t.toml",
+                           "give one of [tableau], [family], [continuous], not [tableau] and [family]"),
+    "family and continuous": ('[family]\nname = "gauss"\ns = 2\n[continuous]\nA = "tau"\n', "t.toml",
+                              "give one of [tableau], [family], [continuous], not [family] and [continuous]"),
+    "tableau and continuous": (VALID_ROWS + '[continuous]\nA = "tau"\n', "t.toml",
+                               "give one of [tableau], [family], [continuous], not [tableau] and [continuous]"),
+    "family with parameters": ('[parameters]\nx = "free"\n[family]\nname = "gauss"\ns = 2\n', "t.toml",
+                               "a named [family] is one method: it takes no free [parameters]"),
 }
 
 
@@ -234,3 +243,10 @@ def test_memory_error_is_a_limit_not_a_bug(capsys, monkeypatch):
     assert r.code == 2
     assert "out of memory" in r.err and "internal error" not in r.err
     assert "Traceback" not in r.err and len(r.err.strip().splitlines()) == 1
+
+
+def test_a_short_form_beside_a_tableau_table_is_named_as_ignored(tmp_path):
+    tab = load(write(tmp_path, "t.toml", 'A = [["1"]]\nb = ["1"]\n' + VALID_ROWS))
+    assert tab.A[0][0].exact == Fraction(1, 4)  # the [tableau] table's
+    assert [w for w in tab.info.warnings if "ignored" in w] == [
+        "A, b at the top level ignored: the method is given by [tableau]"]
