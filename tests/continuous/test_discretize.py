@@ -95,3 +95,15 @@ def test_no_degree_without_the_certificate():
     tab = rkcheck.loads(text)
     c1 = 0.5 - 3 ** 0.5 / 6
     assert abs(float(tab.A[0][0].enclosure(64).mid) - 0.5 * 2 * c1 * c1) < 1e-15
+
+
+@pytest.mark.parametrize("rule", ["radau-i-1", "radau-ii-1"])
+def test_no_degree_below_the_kernels_degree(rule):
+    """A rule of quadrature order q = 1 on the s = 2 kernel (degree p = 2 in τ): ⌊q/p⌋ = 0
+    guarantees nothing, so no [check] degree or claim is written, and the file it writes
+    is one rkcheck reads (it refused `degree = 0`)."""
+    text, note = rkcheck.discretize(str(EPCM2), rule)
+    assert "⌊q/p⌋ = 0" in note and "no degree is guaranteed" in note
+    doc = tomllib.loads(text)
+    assert "check" not in doc and "expect" not in doc
+    assert rkcheck.verify(rkcheck.loads(text), order=4).per_order  # loads and checks
