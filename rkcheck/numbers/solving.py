@@ -409,16 +409,18 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
         minimal[name] = minimal_polynomial(K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]))
     P = minimal[name]
     value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
-    if len(P) <= 3:
-        from flint import fmpq_poly
-
-        return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), value, 0) if len(P) == 3 \
-            else _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
     from flint import fmpq_poly
 
+    if len(P) < 3:
+        return _coordinate(fmpq_poly([fmpq_of(-P[0])]), psi, root, k)
+    # which root of P the coordinate is, by enclosures: its value at a complex root of ψ
+    # is a ball whose imaginary part straddles 0 even when it is real, so P's own root
+    # (real exactly where it is real) is what the closed form is read from
     found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
     roots = [r for r, _ in found]
     j = next(i for i, r in enumerate(roots) if r.overlaps(value))
+    if len(P) == 3:
+        return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), roots[j], j)
     real = roots[j].imag == 0
     approx = complex(float(value.real.mid()), float(value.imag.mid()))
     kind = "" if real else "complex "

@@ -97,3 +97,24 @@ def test_split_along_factors_gives_each_line_of_a_cross():
         [(((0, 0, 1), 1),), (((0, 1, 0), 1),)], [(((0, 0, 1), 1),), (((1, 0, 0), 1),)]]
     assert all(p.dimension == 1 for p in pieces)
     assert contains(pieces[0], {(1, 1, 0): 1}, names, time.monotonic() + 30)
+
+
+def test_a_real_quadratic_coordinate_at_complex_roots_takes_its_own_conjugate():
+    # ψ = z⁴ − 8z² + 36 has the roots ±√5 ± i; the coordinate p(z) = (z² + 6)/(2z) (mod ψ)
+    # is Re z = ±√5, real at every root: its closed form must carry the sign of that
+    # root's real part (it was −√5 at all four: the ball's imaginary part straddles 0)
+    from flint import fmpq, fmpq_poly
+
+    from rkcheck.numbers.solving import _value
+
+    psi = fmpq_poly([36, 0, -8, 0, 1])
+    z = fmpq_poly([0, 1])
+    inverse = -(z**3 - 8 * z) * fmpq(1, 36)  # 1/z mod ψ
+    p = ((z**2 + 6) * inverse * fmpq(1, 2)) % psi
+    assert (p * p - 5) % psi == 0  # p is a square root of 5 in Q[z]/ψ
+    minimal: dict = {}
+    for k, (root, _) in enumerate(psi.complex_roots()):
+        v = _value(p, psi, root, k, minimal, "a")
+        sign = 1 if float(root.real.mid()) > 0 else -1
+        assert v.real and v.text == ("sqrt(5)" if sign > 0 else "-sqrt(5)"), (k, v.text)
+        assert abs(v.approx - sign * 5 ** 0.5) < 1e-12
