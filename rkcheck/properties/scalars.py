@@ -25,6 +25,7 @@ from typing import Any, Iterator, Sequence
 
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.algebraic import dot as field_dot
+from rkcheck.numbers.centred import Centred
 from rkcheck.numbers.formatting import decimal_string, radius_string
 from rkcheck.numbers.intervals import Interval
 from rkcheck.verdicts import FAILS, HOLDS, Verdict, classify_interval
@@ -40,11 +41,25 @@ Vector = list[Scalar]
 # ------------------------------------------------------------------ the tableau's values
 
 
+#: a box with at most this many entries that are not points (decimal entries, say) is
+#: carried in mean value form (:mod:`rkcheck.numbers.centred`), so that a quantity nonzero
+#: on the whole box is found so; above, in plain intervals (sound, but a product such as
+#: b(1 − b) near 0 may then only "hold to digits").  Each product costs a float interval
+#: product per entry: a dense 5-stage tableau (30 entries) stays within a tenth of a
+#: second, the 42 entries of HBVM(6, 2) in 60 digits took 0.3 s more than plain intervals
+MAX_CENTRED_INPUTS = 32
+
+
 def values_from_enclosures(A: list[list[Interval]], b: list[Interval], exact: bool) -> tuple[Matrix, Vector]:
-    """Exact Fractions when the enclosures are exact points, else the intervals."""
+    """Exact Fractions when the enclosures are exact points, else the intervals: in mean
+    value form around their mid-points, up to :data:`MAX_CENTRED_INPUTS` of them."""
     if exact and all(x.is_point for row in A for x in row) and all(x.is_point for x in b):
         return [[x.lo for x in row] for row in A], [x.lo for x in b]
-    return [[tidy(x) for x in row] for row in A], [tidy(x) for x in b]
+    s = len(b)
+    flat = [tidy(x) for row in A for x in row] + [tidy(x) for x in b]
+    if sum(not x.is_point for x in flat) <= MAX_CENTRED_INPUTS:
+        flat = Centred.inputs(flat)
+    return [flat[i * s:(i + 1) * s] for i in range(s)], flat[s * s:]
 
 
 #: bits kept below the width of an interval when its end points are rounded outwards
@@ -229,10 +244,11 @@ def quadrature_residual(b: Vector, c: Vector, k: int) -> Scalar:
 def quadrature_residuals(b: Vector, c: Vector) -> Iterator[Scalar]:
     """``Σ b_i c_i^(k−1) − 1/k`` for k = 1, 2, … (as far as the caller reads).  Exact
     scalars keep ``b_i c_i^(k−1)`` from one k to the next, one product per node and k
-    where each power anew took k (a continuous method's surrogate has dozens of nodes);
+    where each power anew took k (a continuous method's surrogate has dozens of nodes),
+    and so do values in mean value form, whose products keep the dependency; plain
     intervals take each power on its own, the tighter enclosure."""
     like = b[0]
-    if isinstance(like, Interval):
+    if any(isinstance(x, Interval) and not isinstance(x, Centred) and not x.is_point for x in (*b, *c)):
         yield from (quadrature_residual(b, c, k) for k in itertools.count(1))
         return
     terms = list(b)

@@ -37,6 +37,7 @@ from typing import Protocol, TypeVar
 
 from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
+from rkcheck.numbers.centred import Centred
 from rkcheck.numbers.deadline import Overrun, call_within
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
@@ -280,14 +281,13 @@ def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None
     enclosed = _interval_parts(A, b)
     if enclosed is not None:
         series, Q = enclosed
+        if any(isinstance(x, Centred) for x in b):
+            # the identity R(z)R(−z) = 1 is decided on the series: in mean value form
+            # (FLINT's balls take every entry as independent), det(I − zA) in balls
+            series = _series(A, b, like)
         P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
         return _from_parts(s, False, series, _trim(P), _trim(Q))
-    one = sc.const(1, like)
-    series = [one]
-    v = [sc.const(1, like) for _ in range(s)]  # A^(k−1) 1
-    for _ in range(2 * s):
-        series.append(sc.dot(b, v, like))
-        v = sc.matvec(A, v, like)
+    series = _series(A, b, like)
     numerator: sc.Vector | None = None
     denominator: sc.Vector | None = None
     rational_series = _rational_series(series)
@@ -302,6 +302,16 @@ def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None
             P, Q = _cancelled(P, Q, like)
         numerator, denominator = _trim(P), _trim(Q)
     return _from_parts(s, sc.is_exact(like), series, numerator, denominator)
+
+
+def _series(A: sc.Matrix, b: sc.Vector, like: sc.Scalar) -> sc.Vector:
+    """``r_0 … r_2s``, ``r_k = bᵀA^(k−1)1``, over the tableau's scalars."""
+    series = [sc.const(1, like)]
+    v = [sc.const(1, like) for _ in b]  # A^(k−1) 1
+    for _ in range(2 * len(b)):
+        series.append(sc.dot(b, v, like))
+        v = sc.matvec(A, v, like)
+    return series
 
 
 def _rational_series(series: sc.Vector) -> list[Fraction] | None:

@@ -139,3 +139,36 @@ def test_symmetry_finds_a_permutation_other_than_the_reversal():
     adj = [[b2[j] - A2[i][j] for j in range(3)] for i in range(3)]
     perm = [k - 1 for k in sym.permutation]
     assert all(adj[i][j] == A2[perm[i]][perm[j]] for i in range(3) for j in range(3))
+
+
+def _decimal_properties(text: str):
+    from rkcheck.evaluation.values import TableauValues
+    from rkcheck.io.loader import loads
+    from rkcheck.numbers.reading import Reading
+    from rkcheck.properties.scalars import tableau_values
+    from rkcheck.properties.tableau import properties_of_values
+
+    values = TableauValues(loads(text, "t.toml"), Reading("auto"))
+    return properties_of_values(*tableau_values(values))
+
+
+def test_a_decimal_box_nonzero_throughout_is_not_symplectic_and_keeps_no_quadratic_invariant():
+    # (1/2; 1.000001): M = b(1 − b) and e₂ of R(z)R(−z) − 1 (also b(1 − b)) lie in
+    # [−1.5·10⁻⁶, −5·10⁻⁷] on the whole box b ∈ 1.000001 ± 5·10⁻⁷ (by hand), so both
+    # certainly fail; a claim `symplectic = true` on such a file must not pass
+    props = _decimal_properties('[tableau]\nA = [["1/2"]]\nb = ["1.000001"]\n')
+    assert props.symplectic.verdict.state == "fails"
+    assert props.stability.identity.state == "fails"
+
+
+@pytest.mark.parametrize("digits", [8, 16])
+def test_gauss_in_rounded_decimals_is_never_refuted(digits):
+    # the box of a rounded Gauss tableau contains Gauss itself (M = 0, R(z)R(−z) = 1), so
+    # neither may be "fails", whatever the mean value form sharpens
+    r3 = sympy.sqrt(3)
+    A = [[sympy.Rational(1, 4), sympy.Rational(1, 4) - r3 / 6], [sympy.Rational(1, 4) + r3 / 6, sympy.Rational(1, 4)]]
+    rows = [", ".join(f'"{sympy.N(x, digits)}"' for x in row) for row in A]
+    props = _decimal_properties(f'[tableau]\nA = [[{rows[0]}], [{rows[1]}]]\nb = ["0.5", "0.5"]\n')
+    assert not props.exact
+    assert props.symplectic.verdict.state == "holds_to_digits"
+    assert props.stability.identity.state == "holds_to_digits"
