@@ -123,7 +123,7 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
     if getattr(tab, "is_continuous", False):
         from rkcheck.reports.continuous import show_continuous
 
-        show_continuous(tab, fmt, file)
+        show_continuous(tab, fmt, file, decimals)
         return
     if fmt not in ("text", "json"):
         click.echo(write(tab, "json" if fmt == "tableau-json" else fmt), nl=False)

@@ -323,8 +323,8 @@ def final_line(res: CheckResult) -> Text:
         digits = _numeric_certificate(res)
         if digits is not None:
             return Text(
-                f"OK to {digits} digits (not a proof): energy preserved to all orders for degree ≤ "
-                f"{res.options.degree} ({_certificate_name(res)}); {n} checked",
+                f"OK to {digits} digits (not a proof): energy preserved to all orders for "
+                f"{_degree_words(res.options.degree)} ({_certificate_name(res)}); {n} checked",
                 style="bold yellow",
             )
         return Text(

@@ -226,3 +226,23 @@ def test_non_symmetric_miyatake_butcher_matrix_has_no_certificate_and_fails():
     res = rkcheck.verify(ContinuousMethod.from_matrix([["1", "2"], ["0", "-4"]]), order=4)
     assert not res.certificate.certified and "not symmetric" in res.certificate.reason
     assert res.first_failure.id == "1,2,2" and abs(res.first_failure.residual) == Fraction(1, 6)
+
+
+def test_a_decimal_kernel_is_shown_and_verified_over_its_box(tmp_path):
+    # "1.000000" (7 digits) stands for [0.9999995, 1.0000005]: the kernel certificate and
+    # AVF hold to 6 digits over that box, never exactly; show must say what verify says
+    f = tmp_path / "k.toml"
+    f.write_text('[continuous]\nA = "1.000000*tau"\n', encoding="utf-8")
+    out = run("show", str(f))
+    assert out.returncode == 0, out.stderr
+    assert "decimal (a box of kernels)" in out.stdout
+    assert "certificate  yes, to 6 digits" in out.stdout and "AVF          yes, to 6 digits" in out.stdout
+    doc = json.loads(run("show", str(f), "--format", "json").stdout)
+    assert doc["certificate"]["state"] == "holds_to_digits" and doc["certificate"]["digits"] == 6
+    assert doc["avf"]["state"] == "holds_to_digits"
+    exact = json.loads(run("show", str(f), "--format", "json", "--decimals", "exact").stdout)
+    assert exact["certificate"]["state"] == "holds" and exact["tableau"]["numbers"] == "rational"
+    out = run("--no-color", "verify", str(f))
+    last = out.stdout.strip().splitlines()[-1]
+    assert out.returncode == 0 and "not a proof" in out.stdout and "None" not in out.stdout
+    assert "for every Hamiltonian" in out.stdout.replace("\n", " "), last
