@@ -16,7 +16,7 @@ from rkcheck.numbers.expressions import to_text
 from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
-from rkcheck.verdicts import HOLDS, HOLDS_TO_DIGITS
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.version import __version__
 
 SCHEMA = 1
@@ -155,7 +155,9 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "conditions_held": sum(p.held for p in res.per_order),
         "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
-        "proven": res.verdict == HOLDS and res.energy_order_all_digits is None,
+        # every condition exact, or an exact certificate of every order (and none failing)
+        "proven": (res.verdict == HOLDS and res.energy_order_all_digits is None)
+        or (res.energy_order_all and res.verdict != FAILS),
         "inconsistent": inconsistent(res),
         "require": _require_doc(res),
         "passed": conditions_ok(res),

@@ -362,3 +362,19 @@ def test_values_out_of_reach_are_tableau_errors_naming_the_entry():
             rkcheck.from_arrays([[0, x], [0, 0]], [1, 0])
     # below the limit, a long integer is the exact value it is
     assert rkcheck.from_arrays([[10**5000]], [1]).A[0][0].exact == 10**5000
+
+
+@pytest.mark.parametrize("require", ["proof", "digits:60"])
+def test_an_exact_certificate_is_a_proof_whatever_evaluated_the_conditions(require):
+    # Gauss-3 (exact, in Q(√15)) with its conditions forced into balls: they hold only to
+    # digits, but its line-integral certificate for degree ≤ 2 is exact algebra on the
+    # tableau, which proves every one of them (definitions §5)
+    result = rkcheck.verify(TABLEAUX / "collocation" / "gauss-3.toml", degree=2, order=8, arithmetic="ball",
+                            require=require)
+    assert result.verdict == "holds_to_digits" and result.energy_order_all
+    assert result.ok and result.to_dict()["summary"]["proven"] is True
+    # without the certificate (degree 4: none holds), the same conditions are no proof
+    result = rkcheck.verify(TABLEAUX / "collocation" / "gauss-3.toml", degree=4, order=6, arithmetic="ball",
+                            require=require, fail_on="conditions")
+    assert not result.energy_order_all and result.verdict == "holds_to_digits"
+    assert not result.ok and result.to_dict()["summary"]["proven"] is False
