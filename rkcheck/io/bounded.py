@@ -13,6 +13,10 @@ MAX_FILE_BYTES = 16 * 1024 * 1024
 #: bytes asked for by one read of :func:`bounded_read`
 _READ_PART = 1 << 20
 
+#: how long a named pipe (a FIFO, or bash's ``<(…)``) may stay without a writer or data
+#: before it is refused: opening one that no process writes to would wait for ever
+FIFO_WAIT_SECONDS = 10
+
 
 def max_file_bytes() -> int:
     """The size limit of one tableau file or of standard input: MAX_FILE_BYTES, or the
@@ -43,3 +47,29 @@ def bounded_read(stream, limit: int, source: str) -> bytes:
         raise UserError(f"file too large: more than {limit:,} bytes (the limit MAX_FILE_BYTES; set "
                         "RKCHECK_MAX_FILE_BYTES to change it)", source=source)
     return data
+
+
+def read_fifo(path: str, limit: int) -> bytes:
+    """The bytes of a named pipe, up to ``limit``: opened without waiting for a writer,
+    then refused (a UserError naming :data:`FIFO_WAIT_SECONDS`) when nothing arrives in
+    that time; once a writer has written, read to its end like a file."""
+    import os
+    import select
+
+    if not hasattr(select, "poll"):  # no poll (Windows has no FIFOs either): a plain read
+        with open(path, "rb") as fh:
+            return bounded_read(fh, limit, path)
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        waiting = select.poll()
+        waiting.register(fd, select.POLLIN)
+        if not waiting.poll(FIFO_WAIT_SECONDS * 1000):
+            raise UserError(f"a named pipe that nothing was written to within {FIFO_WAIT_SECONDS} s "
+                            "(FIFO_WAIT_SECONDS)", source=path)
+        os.set_blocking(fd, True)
+        fh = os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+    with fh:
+        return bounded_read(fh, limit, path)

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.io.bounded import bounded_read, max_file_bytes
+from rkcheck.io.bounded import bounded_read, max_file_bytes, read_fifo
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import count_text
 
@@ -74,7 +74,9 @@ def read_text(path: str) -> str:
         if stat.S_ISREG(mode) and p.stat().st_size > limit:
             raise UserError(f"file too large ({count_text(p.stat().st_size)} bytes; the limit MAX_FILE_BYTES is {count_text(limit)}; "
                             "set RKCHECK_MAX_FILE_BYTES to change it)", source=path)
-        with open(p, "rb") as fh:  # a FIFO (bash's <(…)) too: read with the limit
+        if stat.S_ISFIFO(mode):  # bash's <(…) too
+            return read_fifo(path, limit).decode("utf-8-sig")
+        with open(p, "rb") as fh:
             return bounded_read(fh, limit, path).decode("utf-8-sig")  # spreadsheets write a BOM
     except FileNotFoundError:
         raise UserError("no such file", source=path) from None

@@ -372,10 +372,20 @@ def load_family(path: str, max_stages: int = DEFAULT_MAX_STAGES) -> "Family":
     return family
 
 
+def _is_pipe(path: str) -> bool:
+    import stat
+
+    try:
+        return not path.startswith("@") and stat.S_ISFIFO(Path(path).stat().st_mode)
+    except OSError:
+        return False
+
+
 def is_family_file(path: str) -> bool:
     """Whether a file (or ``@name``) declares free parameters; False when unreadable (the
-    caller's own load reports why) and for standard input (read once, as a tableau)."""
-    if path == "-":
+    caller's own load reports why) and for standard input and named pipes (bash's
+    ``<(…)``): those can be read once only, as a tableau."""
+    if path == "-" or _is_pipe(path):
         return False
     try:
         if path.startswith("@"):

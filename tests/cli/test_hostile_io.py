@@ -115,3 +115,29 @@ def test_json_documents_name_a_file_that_is_not_utf8_escaped(tmp_path, command):
                           capture_output=True, timeout=120, cwd=tmp_path, env=dict(os.environ, NO_COLOR="1"))
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout.decode("utf-8"))["file"] == "bad\\xff.toml"
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
+def test_a_named_pipe_is_read_once_and_never_waited_on_for_ever(tmp_path, capsys, monkeypatch):
+    import threading
+    import time
+
+    from support.clirun import run_cli
+
+    from rkcheck.io import bounded
+
+    monkeypatch.setattr(bounded, "FIFO_WAIT_SECONDS", 0.3)
+    fifo = tmp_path / "pipe.toml"
+    os.mkfifo(fifo)
+    # nobody writes: refused after FIFO_WAIT_SECONDS, one line, exit 2 (it waited for ever)
+    start = time.monotonic()
+    r = run_cli(capsys, "verify", str(fifo))
+    assert r.code == 2 and "FIFO_WAIT_SECONDS" in r.err and r.err.count("\n") == 1, r.err
+    assert time.monotonic() - start < 5
+    # a writer that comes later, as bash's <(…) does: the tableau is read once, and
+    # checked (the family test read it first and left the check an empty pipe)
+    writer = threading.Thread(target=lambda: (time.sleep(0.1), fifo.write_text(ONE_STAGE, encoding="utf-8")))
+    writer.start()
+    r = run_cli(capsys, "verify", str(fifo), "--order", "2")
+    writer.join()
+    assert r.code == 0 and "1 stage" in r.out, r.err
