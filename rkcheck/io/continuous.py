@@ -17,38 +17,10 @@ from rkcheck.methods.continuous import ContinuousMethod, _unalias
 from rkcheck.methods.tableau import MethodInfo
 
 KEYS = ("A", "b", "M")
-#: the Miyatake–Butcher matrix has at most this many rows and columns
-MAX_KERNEL_MATRIX = 40
-
-
 def _text(value: Any, place: str) -> str:
     if isinstance(value, bool) or not isinstance(value, (int, str)):
         raise UserError(f"expected a polynomial in tau and sigma (a string), got {type(value).__name__}", place)
     return _unalias(str(value))
-
-
-def _matrix(value: Any) -> list[list[str]]:
-    if not isinstance(value, list) or not value:
-        raise UserError("expected a non-empty list of rows", "continuous.M")
-    if len(value) > MAX_KERNEL_MATRIX:
-        raise UserError(f"{len(value)} rows exceed the limit MAX_KERNEL_MATRIX = {MAX_KERNEL_MATRIX}", "continuous.M")
-    width = None
-    rows = []
-    for i, row in enumerate(value, start=1):
-        if not isinstance(row, list) or not row:
-            raise UserError("expected a non-empty row (a list)", f"M[{i}]")
-        if width is None:
-            width = len(row)
-        if len(row) != width or width > MAX_KERNEL_MATRIX:
-            raise UserError(f"row has {len(row)} entries, expected {width} (every row of M has the same length)", f"M[{i}]")
-        rows.append([_entry(x, f"M[{i}][{j}]") for j, x in enumerate(row, start=1)])
-    return rows
-
-
-def _entry(value: Any, place: str) -> str:
-    if isinstance(value, bool) or not isinstance(value, (int, str)):
-        raise UserError("expected a number or a string", place)
-    return str(value)
 
 
 def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str],
@@ -75,7 +47,7 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
     if "M" in table:
         if "A" in table or "b" in table:
             raise UserError("give either A (and b) or M, not both: M defines A and B itself", "continuous")
-        return ContinuousMethod.from_matrix(_matrix(table["M"]), name=name, info=info)
+        return ContinuousMethod.from_matrix(table["M"], name=name, info=info)
     if "A" not in table:
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau") or M', "continuous")
     return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)

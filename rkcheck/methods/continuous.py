@@ -55,6 +55,40 @@ def _unalias(text: str) -> str:
     return text
 
 
+#: the Miyatake–Butcher matrix has at most this many rows and columns
+MAX_KERNEL_MATRIX = 40
+
+
+def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
+    """The entry texts of a Miyatake–Butcher matrix, checked: a non-empty list of rows of
+    one length, at most :data:`MAX_KERNEL_MATRIX` of each, entries numbers or strings."""
+    if hasattr(M, "tolist"):  # numpy arrays, sympy matrices
+        M = M.tolist()
+    if isinstance(M, (str, bytes)) or not isinstance(M, Sequence) or not M:
+        raise UserError("expected a non-empty list of rows", where)
+    if len(M) > MAX_KERNEL_MATRIX:
+        raise UserError(f"{len(M)} rows exceed the limit MAX_KERNEL_MATRIX = {MAX_KERNEL_MATRIX}", where)
+    width = None
+    rows = []
+    for i, row in enumerate(M, start=1):
+        if isinstance(row, (str, bytes)) or not isinstance(row, Sequence) or not row:
+            raise UserError("expected a non-empty row (a list)", f"M[{i}]")
+        if len(row) > MAX_KERNEL_MATRIX:
+            raise UserError(f"{len(row)} columns exceed the limit MAX_KERNEL_MATRIX = {MAX_KERNEL_MATRIX}", f"M[{i}]")
+        width = len(row) if width is None else width
+        if len(row) != width:
+            raise UserError(f"row has {len(row)} entries, expected {width} (every row of M has the same length)",
+                            f"M[{i}]")
+        rows.append([_matrix_entry(x, f"M[{i}][{j}]") for j, x in enumerate(row, start=1)])
+    return rows
+
+
+def _matrix_entry(value: Any, place: str) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, str, Fraction)):
+        raise UserError("expected a number or a string", place)
+    return str(value)
+
+
 @dataclass(frozen=True)
 class ContinuousMethod:
     """A continuous-stage method: ``A(τ, σ)`` and ``B(τ)`` as written (``A``, ``b``:
@@ -97,7 +131,7 @@ class ContinuousMethod:
         """The Miyatake–Butcher method of the matrix ``M`` (indices from 1):
         ``A(τ,σ) = Σ M_ij τ^i/i σ^(j−1)``, ``B(σ) = A(1, σ)``."""
         info = info or MethodInfo(source=name)
-        rows = [[str(x) for x in row] for row in M]
+        rows = matrix_rows(M)
         values: dict[tuple[int, int], Fraction | None] = {}
         for i, row in enumerate(rows, start=1):
             for j, text in enumerate(row, start=1):

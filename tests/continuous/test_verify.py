@@ -246,3 +246,22 @@ def test_a_decimal_kernel_is_shown_and_verified_over_its_box(tmp_path):
     last = out.stdout.strip().splitlines()[-1]
     assert out.returncode == 0 and "not a proof" in out.stdout and "None" not in out.stdout
     assert "for every Hamiltonian" in out.stdout.replace("\n", " "), last
+
+
+@pytest.mark.parametrize("M, message", [
+    ([["4", "-6"], ["-6"]], "M[2]: row has 1 entries, expected 2"),
+    ([[]], "M[1]: expected a non-empty row"),
+    ("1", "continuous.M: expected a non-empty list of rows"),
+    ([["1", "2"]] * 41, "41 rows exceed the limit MAX_KERNEL_MATRIX = 40"),
+    ([["1"] * 41] * 2, "M[1]: 41 columns exceed the limit MAX_KERNEL_MATRIX = 40"),
+    ([["1", True]], "M[1][2]: expected a number or a string"),
+])
+def test_a_matrix_from_python_is_checked_as_a_file_s(M, message, tmp_path):
+    # the API and a file's [continuous] M go through the same checks, with the same words
+    with pytest.raises(RkcheckError) as err:
+        ContinuousMethod.from_matrix(M)
+    assert message in str(err.value)
+    f = tmp_path / "m.json"
+    f.write_text(json.dumps({"continuous": {"M": M}}), encoding="utf-8")
+    out = run("verify", str(f))
+    assert out.returncode == 2 and message in out.stderr and out.stderr.count("\n") == 1, out.stderr
