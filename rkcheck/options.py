@@ -20,6 +20,9 @@ from rkcheck.errors import UserError
 from rkcheck.numbers.reading import DEFAULT_DPS, Arithmetic, DecimalsMode, Reading
 
 DEFAULT_ORDER = 8
+#: the energy order of a family's conditions as polynomials when neither the command
+#: line nor the file's [check] gives one (they grow quickly with the order)
+DEFAULT_FAMILY_ORDER = 6
 DEFAULT_DECIMALS = DecimalsMode.AUTO
 DEFAULT_MAX_STAGES = 64
 #: What --max-stages (and the API's max_stages) accepts: an importer allocates the s×s

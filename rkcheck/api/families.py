@@ -7,12 +7,13 @@ from __future__ import annotations
 import os
 from typing import Any, Sequence
 
-from rkcheck.api.verification import _option
+from rkcheck.api.verification import UNSET, _option
 from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
 from rkcheck.errors import OptionError
 from rkcheck.methods.parametric import Family, family_from_arrays
 from rkcheck.numbers.solving import AlgebraicValue, Solution, SolutionSet
 from rkcheck.options import (
+    DEFAULT_FAMILY_ORDER,
     DEFAULT_MAX_STAGES,
     MAX_ORDER,
     parse_degree,
@@ -62,15 +63,25 @@ def _orders(degree: Any, order: Any, classical_order: Any) -> tuple[int | None, 
     return deg, N, q
 
 
-def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = None,
-                      order: int = 6, classical_order: int | None = None) -> FamilyConditions:
+def _from_file(fam: Family, degree: Any, order: Any) -> tuple[Any, Any]:
+    """``degree`` and ``order``, each left out (:data:`UNSET`) taken from the family
+    file's ``[check]`` table, as the CLI does (order 6 where that has none)."""
+    check = fam.info.check
+    return (check.get("degree") if degree is UNSET else degree,
+            check.get("order", DEFAULT_FAMILY_ORDER) if order is UNSET else order)
+
+
+def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET,
+                      order: int = UNSET, classical_order: int | None = None) -> FamilyConditions:
     """Every energy condition up to ``order`` for Hamiltonians of degree ≤ ``degree`` (and
     the classical conditions up to ``classical_order``) as exact polynomials in the
     family's parameters, with the generic orders and the conditions that carve out
-    exceptional parameter values."""
+    exceptional parameter values.  ``degree`` and ``order`` left out: the file's
+    ``[check]`` (no degree bound and order 6 without one)."""
     from rkcheck.energy.family_conditions import family_conditions as compute
 
     fam = _family(family)
+    degree, order = _from_file(fam, degree, order)
     deg, N, q = _orders(degree, order, classical_order)
     return compute(fam, deg, N, q)
 
@@ -152,16 +163,17 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
         comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
 
 
-def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degree: int | str | None = None,
-          order: int = 6) -> Any:
+def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degree: int | str | None = UNSET,
+          order: int = UNSET) -> Any:
     """The energy order of the family at every point of a grid of rational parameter
     values (``"beta=-1:1:41"``: 41 equally spaced rationals from −1 to 1; ``"gamma=1/2"``:
     one value; every parameter needs one), each evaluated exactly from the conditions as
     polynomials: a :class:`~rkcheck.energy.family_sweep.Sweep` (``points()``,
-    ``orders``, ``generic``)."""
+    ``orders``, ``generic``); ``degree`` and ``order`` left out: the file's ``[check]``."""
     from rkcheck.energy.family_sweep import sweep as run
 
     fam = _family(family)
+    degree, order = _from_file(fam, degree, order)
     deg, N, _ = _orders(degree, order, None)
     if isinstance(grids, str):
         grids = [grids]

@@ -182,7 +182,8 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
                             "every condition with its exact residual", source=file)
         from rkcheck.cli.families import family_report
 
-        family_report(file, {"degree": degree, "order": order}, order if classical else None, fmt, True,
+        # --degree left at its default: the family file's [check] degree, as verify reads it
+        family_report(file, {"order": order} | flag_values("degree"), order if classical else None, fmt, True,
                       emit=emit, output=output)
         return
     if emit is None and (classical or stages or explicit or output):

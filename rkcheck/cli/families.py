@@ -13,10 +13,7 @@ from rkcheck.cli.common import (
     stdout_console,
     write_text,
 )
-
-#: The energy order of a family's report when neither the command line nor the file's
-#: [check] gives one.
-DEFAULT_FAMILY_ORDER = 6
+from rkcheck.options import DEFAULT_FAMILY_ORDER
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,

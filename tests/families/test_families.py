@@ -4,7 +4,10 @@ points (an independent route: modular exact evaluation of one tableau)."""
 
 from __future__ import annotations
 
+import json
 import random
+import subprocess
+import sys
 from fractions import Fraction
 
 import pytest
@@ -165,3 +168,20 @@ def test_verify_json_on_a_family_gives_each_condition_as_a_polynomial(capsys):
     assert (first["polynomial"], first["degree"], first["vanishes"]) == ("1/72*beta^2", 2, False)
     # the conditions below order 5 hold for every β (the seed's kernel direction)
     assert all(c["vanishes"] for c in doc["conditions"] if c["kind"] == "energy" and c["order"] <= 4)
+
+
+def test_the_api_reads_a_family_files_check_table_as_the_cli_does():
+    # seed-kernel-zeta-0.toml has [check] degree = 3, order = 6: left out, they apply
+    # (api.md); at β = 0 the family is energy-preserving to order ≥ 6 for cubic
+    # Hamiltonians (the seed's Theorem 1), while without a degree bound β = 0 reaches 4
+    path = TABLEAUX / "families" / "seed-kernel-zeta-0.toml"
+    conds = rkcheck.family_conditions(path)
+    assert (conds.degree, conds.order) == (3, 6)
+    unbounded = rkcheck.family_conditions(path, degree=None)
+    assert unbounded.degree is None and len(unbounded.energy) > len(conds.energy)
+    orders = dict(zip((p["beta"] for p in rkcheck.sweep(path, ["beta=0:1:2"]).points()),
+                      rkcheck.sweep(path, ["beta=0:1:2"]).orders))
+    assert orders[0] == 6
+    cli = subprocess.run([sys.executable, "-m", "rkcheck", "conditions", str(path), "--order", "6", "--format",
+                          "json"], capture_output=True, text=True)
+    assert cli.returncode == 0 and json.loads(cli.stdout)["degree"] == 3, cli.stderr
