@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Mapping, Sequence
 
-from rkcheck.errors import UserError
+from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -61,15 +61,19 @@ class Family:
         """``"lhs = rhs"`` (or an expression meaning ``= 0``) over the family's ring."""
         lhs, _, rhs = text.partition("=")
         expr = f"({lhs}) - ({rhs})" if rhs.strip() else lhs
+        # an option's text, not the file's: OptionError names --where, not the file
         try:
             node = ex.parse(expr)
         except UserError as err:
-            raise UserError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
+            raise OptionError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
         unknown = {n.name for n in xp.names(node)} - set(self.parameters) - set(self.entries.constants)
         if unknown:
-            raise UserError(f"unknown name {sorted(unknown)[0]!r} in {text!r} (the parameters are "
-                            f"{', '.join(self.parameters)})", "--where")
-        return self.entries.polynomial_of(node, "--where")
+            raise OptionError(f"unknown name {sorted(unknown)[0]!r} in {text!r} (the parameters are "
+                              f"{', '.join(self.parameters)})", "--where")
+        try:
+            return self.entries.polynomial_of(node, "--where")
+        except UserError as err:
+            raise OptionError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
 
     def at(self, values: Mapping[str, Fraction | int], name: str | None = None) -> Tableau:
         """The method at rational parameter values (the other parameters must be given too)."""

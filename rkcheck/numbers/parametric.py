@@ -134,6 +134,10 @@ class ParametricEntries:
         except NotAlgebraic as err:
             raise UserError(f"the parameter-free numbers of the family are not exact algebraic numbers: {err}",
                             "parameters") from None
+        except UserError as err:
+            if err.place:
+                raise
+            raise err.located(_failing_place(leaves, fixed_constants) or "parameters") from None
         self.ring = ParameterRing(parameters, found.field)
         # keyed by node identity: the nodes are kept alive with their values, so that an id
         # is never reused by another node while the map holds it
@@ -249,3 +253,16 @@ class ParametricEntries:
         for _ in range(int(exponent)):
             out = self.ring.reduce(out * base)
         return out
+
+
+def _failing_place(leaves: Sequence[tuple[ex.Expr, str]], constants: Mapping[str, ex.Expr]) -> str | None:
+    """The place of the first parameter-free part that cannot be evaluated on its own
+    (read only when the field of all of them refused one, to name where)."""
+    for node, place in leaves:
+        try:
+            field_of([node], dict(constants))
+        except UserError:
+            return place
+        except NotAlgebraic:
+            continue
+    return None

@@ -33,11 +33,23 @@ def test_too_many_parameters(capsys, tmp_path):
     ("sqrt(a11) = 1", ["a parameter under sqrt", "--where"]),
     ("2^a11 = 1", ["a parameter in an exponent", "--where"]),
     ("a11 = (1", ["cannot read the equation", "--where"]),
+    # the option's own numbers: the error names --where, not the family file
+    ("a11 = 1/0", ["cannot read the equation 'a11 = 1/0': division by zero", "--where"]),
+    ("a11 = 2^100000", ["exponent 100000", "--where"]),
 ])
 def test_bad_where_equations(capsys, equation, words):
     r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
                 "--where", equation)
     _one_line(r, *words)
+    assert "theorem1-s2-m3.toml" not in r.err
+
+
+def test_a_kernel_from_python_names_the_entry_it_cannot_read():
+    import rkcheck
+
+    for A, b, place in (("tau", "1/0", "continuous.b"), ("tau/0", "1", "continuous.A")):
+        with pytest.raises(rkcheck.RkcheckError, match=f"^{place}: division by zero"):
+            rkcheck.ContinuousMethod.from_kernel(A, b=b).kernel
 
 
 def test_parameter_under_root_in_a_constant(capsys, tmp_path):
