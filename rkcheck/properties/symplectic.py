@@ -90,7 +90,8 @@ def symplectic_verdict(red: Reduction, entries: Iterable[tuple[sc.Scalar, int, i
         elif sc.is_interval(m):
             value = f"M[{gi}][{gj}] ≈ {sc.approx_text(m, 12)}"
         else:
-            value = f"M[{gi}][{gj}] = {sc.text(m, 12)}"
+            shown = sc.text(m, 12)  # "≈ …" alone when the exact text is too long to print
+            value = f"M[{gi}][{gj}] {shown}" if shown.startswith("≈") else f"M[{gi}][{gj}] = {shown}"
         return PropertyVerdict(
             "symplectic", Verdict(FAILS),
             f"BA + AᵀB − bbᵀ ≠ 0{_after(red)}: largest entry {value}",

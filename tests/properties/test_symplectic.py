@@ -172,3 +172,11 @@ def test_gauss_in_rounded_decimals_is_never_refuted(digits):
     assert not props.exact
     assert props.symplectic.verdict.state == "holds_to_digits"
     assert props.stability.identity.state == "holds_to_digits"
+
+
+def test_a_defect_too_long_to_print_exactly_reads_approximately():
+    # M₁₁ = b(2a − b) = 2·10⁻⁶⁰·θ with θ = root(x⁵ − 3, 1): its exact text is longer than
+    # the report prints, so the entry reads "≈ 2.49…e-60" (it read "= ≈ …")
+    verdict = _decimal_properties('[tableau]\nA = [["1/2 + 10^-60*root(x^5-3,1)"]]\nb = ["1"]\n').symplectic
+    assert verdict.verdict.state == "fails"
+    assert "M[1][1] ≈ 2.49146187923e-60" in verdict.reason and "= ≈" not in verdict.reason
