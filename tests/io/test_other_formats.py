@@ -151,6 +151,15 @@ def test_nodepy_bad_line(tmp_path):
     assert "line 2" in str(err.value)
 
 
+def test_nodepy_entry_given_twice_is_refused(tmp_path):
+    # as a duplicate key of a JSON file: the second value silently won
+    f = tmp_path / "x.txt"
+    f.write_text("k j A[k,j]\n0 0 0.5\n0 0 0.7\nk b[k]\n0 1\n")
+    with pytest.raises(TableauError) as err:
+        load(str(f))
+    assert "line 3" in str(err.value) and "A[0,0] is given twice (first as '0.5')" in str(err.value)
+
+
 # ------------------------------------------------------------------ @name
 
 
