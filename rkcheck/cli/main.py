@@ -7,6 +7,7 @@ import os
 import signal
 import sys
 import warnings
+from typing import Any
 
 import click
 
@@ -117,7 +118,11 @@ def main(argv: list[str] | None = None) -> None:
             # precision): an expected event, not a message for the user
             warnings.filterwarnings("ignore", message="overflow encountered", category=RuntimeWarning)
             warnings.filterwarnings("ignore", message="invalid value encountered", category=RuntimeWarning)
-            _run(argv)
+            stdout, sys.stdout = sys.stdout, _ReaderMayLeave(sys.stdout)
+            try:
+                _run(argv)
+            finally:
+                sys.stdout = stdout
     finally:
         import threading
 
@@ -168,13 +173,44 @@ def _run(argv: list[str] | None) -> None:
         _internal(err)
 
 
-def _quiet_stdout() -> None:
+class _ReaderMayLeave:
+    """Standard output that, once its reader has gone (``rkcheck verify … | head``),
+    drops what is still written: the command then ends with its verdict's exit code, where
+    click turned the broken pipe into exit 1 whatever the verdict."""
+
+    def __init__(self, stream: Any):
+        self._stream, self._gone = stream, False
+
+    def write(self, text: str) -> int:
+        if not self._gone:
+            try:
+                return int(self._stream.write(text))
+            except BrokenPipeError:
+                self._leave()
+        return len(text)
+
+    def flush(self) -> None:
+        if not self._gone:
+            try:
+                self._stream.flush()
+            except BrokenPipeError:
+                self._leave()
+
+    def _leave(self) -> None:
+        self._gone = True
+        _quiet_stdout(self._stream)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _quiet_stdout(stream: Any = None) -> None:
     """After a broken pipe, point stdout at /dev/null so that the interpreter's final flush
     does not print a second BrokenPipeError."""
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError):
+        os.dup2(devnull, (stream or sys.stdout).fileno())
+    except (OSError, ValueError, AttributeError):
         pass
 
 

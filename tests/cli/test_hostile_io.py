@@ -141,3 +141,18 @@ def test_a_named_pipe_is_read_once_and_never_waited_on_for_ever(tmp_path, capsys
     r = run_cli(capsys, "verify", str(fifo), "--order", "2")
     writer.join()
     assert r.code == 0 and "1 stage" in r.out, r.err
+
+
+@pytest.mark.parametrize("args, code", [(["conditions", "--order", "14"], 0),  # 13 100 lines, exit 0
+                                        (["verify", "{euler}", "--degree", "none", "--order", "12", "--all"], 1)])
+def test_a_reader_that_leaves_early_keeps_the_verdicts_exit_code(tmp_path, args, code):
+    # `rkcheck … | head -1` with more output than a pipe holds: the broken pipe is not an
+    # error of the command (click made it exit 1 whatever the verdict); no traceback either
+    euler = tmp_path / "euler.toml"  # no claims: the conditions decide, and 1 301 fail
+    euler.write_text('[tableau]\nA = [["0"]]\nb = ["1"]\n', encoding="utf-8")
+    argv = [a.format(euler=euler) for a in args]
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.readline()
+    proc.stdout.close()  # the reader goes; what rkcheck still writes meets a broken pipe
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == code and "Traceback" not in err and "Error" not in err, err
