@@ -190,3 +190,10 @@ def test_a_file_asking_for_too_much_is_an_error_row_in_a_scan(tmp_path, capsys):
         doc = json.loads(r.out)
         assert [f["status"] for f in doc["files"]] == ["error", "ok"], jobs
         assert "order 30 needs about" in doc["files"][0]["error"]
+
+
+def test_a_required_order_left_out_is_clicks_usage_error(capsys):
+    # `conditions` needs --order (click ≥ 8.3 stopped requiring an option whose default
+    # is given as None: the command then ran and failed on "got None")
+    r = run_cli(capsys, "conditions", "--degree", "3")
+    assert r.code == 2 and "Missing option '--order'" in r.err and r.err.count("\n") == 1, r.err
