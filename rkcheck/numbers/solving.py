@@ -236,7 +236,8 @@ def _from_dict(ctx: Any, names: tuple[str, ...], keep: list[int], d: dict[tuple[
 def _solutions(f: list[Fraction], h: list[list[Fraction]], rest: tuple[str, ...], subs: dict[str, Any], ctx: Any,
                theta: str | None, field: Any) -> list[Solution]:
     """Every solution: per irreducible factor φ of f, each coordinate as a polynomial in
-    z modulo φ, read as a rational, a quadratic closed form or a root of φ."""
+    z modulo φ, read through its own minimal polynomial (a rational, a quadratic closed
+    form or a numbered root of it: :func:`_value`)."""
     from flint import fmpq_poly
 
     names = tuple(ctx.names())
@@ -248,8 +249,9 @@ def _solutions(f: list[Fraction], h: list[list[Fraction]], rest: tuple[str, ...]
         for v, e in subs.items():
             coords[v] = _compose(e, names, coords, phi)
         roots: Any = phi.complex_roots()  # (acb, multiplicity) pairs
+        minimal: dict[str, list[Fraction] | None] = {}  # each coordinate's, shared by φ's roots
         for k, (root, _) in enumerate(roots):
-            values = {v: _coordinate(coords[v], phi, root, k) for v in names}
+            values = {v: _value(coords[v], phi, root, k, minimal, v) for v in names}
             if theta is not None and not _is_the_field_generator(values[theta], field):
                 continue
             real = all(val.real for val in values.values())

@@ -185,3 +185,17 @@ def test_the_api_reads_a_family_files_check_table_as_the_cli_does():
     cli = subprocess.run([sys.executable, "-m", "rkcheck", "conditions", str(path), "--order", "6", "--format",
                           "json"], capture_output=True, text=True)
     assert cli.returncode == 0 and json.loads(cli.stdout)["degree"] == 3, cli.stderr
+
+
+def test_a_solution_in_a_quadratic_subfield_prints_its_closed_form(capsys, tmp_path):
+    # the solution x lies in Q(√2) while the family's numbers span Q(√2, √3) (degree 4):
+    # it prints as 1/4 − √2/4, read through its own minimal polynomial, not as a cubic in
+    # a generator of the quartic field; substituted into the tableau, the conditions hold
+    text = ('[parameters]\nx = "free"\n[tableau]\nA = [["sqrt(2)/4 + x", "1/4 - sqrt(3)/6"], '
+            '["1/4 + sqrt(3)/6", "1/4"]]\nb = ["1/2", "1/2"]\n')
+    path = tmp_path / "nf2.toml"
+    path.write_text(text, encoding="utf-8")
+    r = run_cli(capsys, "solve", str(path), "--degree", "2", "--order", "2")
+    assert r.code == 0 and "x = 1/4 - 1/4*sqrt(2)" in r.out and "at z =" not in r.out, r.out
+    tableau = "[tableau]\n" + text.split("[tableau]\n")[1].replace("x", "(1/4 - sqrt(2)/4)")
+    assert rkcheck.verify(rkcheck.loads(tableau), degree=2, order=2).all_hold
