@@ -41,9 +41,9 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
                 raise UserError("cannot read this folder (permission denied)", source=raw)
             found.extend(unreadable)  # each becomes an error row of the scan, not 0 files
             for f in sorted(p.rglob("*")):
-                # a dangling link or a link loop is kept: it becomes an error row, not a
-                # silently missing file
-                if (f.is_file() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
+                # a dangling link, a link loop, a named pipe or a device is kept: it becomes
+                # an error row, not a silently missing file
+                if (not f.is_dir() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)
         elif raw.startswith("@"):  # a shipped tableau or classical method by name

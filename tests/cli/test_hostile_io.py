@@ -156,3 +156,18 @@ def test_a_reader_that_leaves_early_keeps_the_verdicts_exit_code(tmp_path, args,
     proc.stdout.close()  # the reader goes; what rkcheck still writes meets a broken pipe
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=120) == code and "Traceback" not in err and "Error" not in err, err
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
+def test_a_named_pipe_in_a_scanned_folder_is_one_error_row(tmp_path, capsys, monkeypatch):
+    from support.clirun import run_cli
+
+    from rkcheck.io import bounded
+
+    monkeypatch.setattr(bounded, "FIFO_WAIT_SECONDS", 0.2)
+    (tmp_path / "good.toml").write_text(ONE_STAGE, encoding="utf-8")
+    os.mkfifo(tmp_path / "pipe.toml")  # it was left out without a row
+    r = run_cli(capsys, "scan", str(tmp_path), "--order", "2", "--jobs", "1", "--format", "json")
+    files = {os.path.basename(f["file"]): f for f in json.loads(r.out)["files"]}
+    assert files["good.toml"]["status"] == "ok" and files["pipe.toml"]["status"] == "error", r.out
+    assert "FIFO_WAIT_SECONDS" in files["pipe.toml"]["error"]
