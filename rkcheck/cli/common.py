@@ -192,7 +192,7 @@ def busy(label: str) -> Iterator[None]:
 def order_option(default: int | None = None, required: bool = False, help: str | None = None) -> Callable:
     # no default at all unless one is given: click (8.3 on) takes an explicit default=None
     # as a value, and then a required option left out is no longer an error
-    given = {} if default is None else {"default": default}
+    given: dict[str, Any] = {} if default is None else {"default": default}
     return click.option(
         "--order", "-N", type=click.IntRange(1, MAX_ORDER), required=required, show_default=default is not None,
         help=help or "Check conditions up to this energy order, i.e. free trees with <= N+1 vertices "
