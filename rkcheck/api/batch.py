@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.api.settings import ProjectConfig, budget, guard, project_config
-from rkcheck.api.verification import UNSET, Verification, _option, check_flags
+from rkcheck.api.verification import UNSET, Verification, _option, check_flags, printable_numbers
 from rkcheck.errors import UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
@@ -94,10 +94,11 @@ class ScanResult:
         the table as plain text, as ``--output`` writes it)."""
         from rkcheck.reports import scan as scan_report
 
-        if format == "text":
-            return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,
-                                         constants=self.sort == "energy", fail_on=self.fail_on)
-        return scan_report.scan_document(format, self.outcomes, self.interrupted, self.options, self.elapsed)
+        with printable_numbers():
+            if format == "text":
+                return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,
+                                             constants=self.sort == "energy", fail_on=self.fail_on)
+            return scan_report.scan_document(format, self.outcomes, self.interrupted, self.options, self.elapsed)
 
     def __repr__(self) -> str:
         counts: dict[str, int] = {}

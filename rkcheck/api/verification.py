@@ -36,6 +36,22 @@ if TYPE_CHECKING:
     from rkcheck.energy.budget import Budget
 
 
+@contextmanager
+def printable_numbers() -> Iterator[None]:
+    """Writing exact numbers as text: Python refuses integers of more digits than
+    ``sys.get_int_max_str_digits()`` (4 300 by default; the CLI raises it, a library
+    leaves the process's setting alone), which becomes a :class:`UserError` saying so."""
+    import sys
+
+    try:
+        yield
+    except ValueError as err:
+        if "integer string conversion" not in str(err):
+            raise
+        raise UserError(f"a number has more than {sys.get_int_max_str_digits():,} digits, more than Python writes "
+                        "as text (sys.set_int_max_str_digits raises the limit)") from None
+
+
 class _Unset:
     """The default of an option left to the tableau's ``[check]`` table and the defaults."""
 
@@ -60,7 +76,8 @@ class Verification(CheckResult):
         """The document of ``rkcheck verify --format json`` (same keys and values)."""
         from rkcheck.reports.jsondoc import check_doc
 
-        return check_doc(self)
+        with printable_numbers():
+            return check_doc(self)
 
     def to_json(self) -> str:
         """Exactly what ``rkcheck verify --format json`` prints (without its newline)."""

@@ -378,3 +378,22 @@ def test_an_exact_certificate_is_a_proof_whatever_evaluated_the_conditions(requi
                             require=require, fail_on="conditions")
     assert not result.energy_order_all and result.verdict == "holds_to_digits"
     assert not result.ok and result.to_dict()["summary"]["proven"] is False
+
+
+def test_numbers_past_pythons_digit_limit_are_an_rkcheck_error_naming_it():
+    # residuals of 1/(10^500 + 1) at order 12 have thousands of digits: past Python's
+    # int_max_str_digits (4 300 unless raised) the document is refused with a one-line
+    # RkcheckError, not a ValueError; raised, it is written in full
+    import sys
+
+    result = rkcheck.verify(rkcheck.from_arrays([["1/(10^500+1)"]], [1]), order=12)
+    limit = sys.get_int_max_str_digits()
+    try:
+        sys.set_int_max_str_digits(4300)
+        with pytest.raises(rkcheck.RkcheckError, match="more than 4,300 digits"):
+            result.to_dict()
+        sys.set_int_max_str_digits(0)
+        doc = result.to_dict()
+    finally:
+        sys.set_int_max_str_digits(limit)
+    assert doc["summary"]["conditions_failed"] > 0
