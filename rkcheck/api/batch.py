@@ -12,7 +12,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.api.settings import ProjectConfig, budget, guard, project_config
-from rkcheck.api.verification import UNSET, Verification, _option, check_flags, printable_numbers
+from rkcheck.api.verification import (
+    UNSET,
+    Verification,
+    _option,
+    check_flags,
+    printable_numbers,
+)
 from rkcheck.errors import UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
