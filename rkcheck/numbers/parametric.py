@@ -95,7 +95,8 @@ def uses(node: ex.Expr, names: set[str]) -> bool:
     for n in xp.walk(node):
         if isinstance(n, ex.Name) and n.name in names:
             return True
-        if isinstance(n, ex.Call) and n.func == "root" and n.args and uses(n.args[0], names):
+        # x is the polynomial's own variable, whatever a parameter is called
+        if isinstance(n, ex.Call) and n.func == "root" and n.args and uses(n.args[0], names - {"x"}):
             return True
     return False
 

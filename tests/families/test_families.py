@@ -199,3 +199,16 @@ def test_a_solution_in_a_quadratic_subfield_prints_its_closed_form(capsys, tmp_p
     assert r.code == 0 and "x = 1/4 - 1/4*sqrt(2)" in r.out and "at z =" not in r.out, r.out
     tableau = "[tableau]\n" + text.split("[tableau]\n")[1].replace("x", "(1/4 - sqrt(2)/4)")
     assert rkcheck.verify(rkcheck.loads(tableau), degree=2, order=2).all_hold
+
+
+def test_a_parameter_named_x_leaves_roots_polynomial_variable_alone(tmp_path):
+    # x in root(x^3 - 2, 1) is the polynomial's own variable: a parameter called x made
+    # it "a parameter under root(...)"; named x or y, the family's conditions are the same
+    texts = {}
+    for name in ("x", "y"):
+        path = tmp_path / f"{name}.toml"
+        path.write_text(f'[parameters]\n{name} = "free"\n[tableau]\nA = [["{name}", "root(x^3 - 2, 1)/4"], '
+                        '["0", "1/4"]]\nb = ["1/2", "1/2"]\n', encoding="utf-8")
+        conds = rkcheck.family_conditions(path, degree=None, order=3)
+        texts[name] = [str(c.polynomial).replace(name, "P") for c in conds.energy]
+    assert texts["x"] == texts["y"] and texts["x"]
