@@ -67,6 +67,13 @@ class Verdict:
             return f"holds to {self.digits} digits"
         return self.state
 
+    def answer(self) -> str:
+        """The verdict as the answer to a yes/no property: ``yes``, ``yes, to D digits``
+        (not a proof) or ``no``."""
+        if self.state == FAILS:
+            return "no"
+        return "yes" if self.state == HOLDS else f"yes, to {self.digits} digits"
+
 
 def certified_digits(bound: Fraction | float) -> int:
     """The largest integer D with ``bound <= 10^-D`` (bound > 0), exactly."""

@@ -46,9 +46,7 @@ class PropertyVerdict:
         return self.verdict.state != FAILS
 
     def label(self) -> str:
-        if self.verdict.state == FAILS:
-            return "no"
-        return "yes" if self.verdict.state == HOLDS else f"yes, to {self.verdict.digits} digits"
+        return self.verdict.answer()
 
 
 def _how(v: Verdict) -> str:

@@ -52,10 +52,10 @@ def _state(verdict: Any, reason: str) -> dict[str, Any]:
 
 
 def _answer(doc: dict[str, Any]) -> str:
-    """``yes``, ``yes, to D digits`` (not a proof) or ``no``."""
-    if doc["state"] == "fails":
-        return "no"
-    return "yes" if doc["state"] == "holds" else f"yes, to {doc.get('digits')} digits"
+    """A property's entry of the document as ``yes``, ``yes, to D digits`` or ``no``."""
+    from rkcheck.verdicts import State, Verdict
+
+    return Verdict(State(doc["state"]), doc.get("digits")).answer()
 
 
 def show_continuous(method: Any, fmt: str, file: str, decimals: Any = None) -> None:

@@ -167,10 +167,8 @@ def _facts_table(res: CheckResult) -> Table:
     kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
     if res.avf is not None:
         a = res.avf
-        if a.equals_avf:
-            label = Text("yes", style="green") if a.verdict.state == HOLDS else Text(f"yes, to {a.verdict.digits} digits", style="yellow")
-        else:
-            label = Text("no", style="red")
+        style = "red" if not a.equals_avf else "green" if a.verdict.state == HOLDS else "yellow"
+        label = Text(a.verdict.answer(), style=style)
         label.append(f" — {a.reason}", style="")
         kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))
         for note in a.notes:
