@@ -43,7 +43,7 @@ import numpy as np
 from rkcheck.evaluation.balls import ETA, INFLATE, BallSums, FloatSums, U
 from rkcheck.evaluation.slopes import GradientContext, gradient_groups
 from rkcheck.numbers.enclosure import Enclosure
-from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.intervals import Interval, float_above
 
 if TYPE_CHECKING:
     from rkcheck.trees.listing import ConditionListing
@@ -262,15 +262,7 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: 
     for i in ctx.b_vars:
         x, c = b[i], Fraction(centre_b[i])
         out.append(max(c - x.lo, x.hi - c))
-    return np.array([_float_above(r) for r in out], dtype=float)
-
-
-def _float_above(r: Fraction) -> float:
-    """One float above ``r`` (rounded to nearest, then up): inf past float64's range."""
-    try:
-        return math.nextafter(float(r), math.inf)
-    except OverflowError:
-        return math.inf
+    return np.array([float_above(r) for r in out], dtype=float)
 
 
 def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],

@@ -15,8 +15,9 @@ with ``∂_e f(X)`` an enclosure of the partial derivative over all of ``X``.  A
 (float intervals, every operation rounded outwards: a derivative is multiplied by a
 radius, so a few correct digits are all it needs, and exact end points made a 6-stage
 tableau's properties 20 times slower), which the product rule propagates through
-``+ − × ÷``; its ``lo``/``hi`` are that form intersected with the plain interval result, so it is never wider than
-interval arithmetic and, like it, always an enclosure.  It *is* an
+``+ − × ÷``; its ``lo``/``hi`` are that form intersected with the plain interval
+result, so it is never wider than interval arithmetic and, like it, always an
+enclosure.  It *is* an
 :class:`~rkcheck.numbers.intervals.Interval` (a subclass), so everything that reads an
 enclosure reads it unchanged; mixed with a plain point interval, a Fraction or an int,
 the result stays centred (Python tries the subclass's reflected operator first).
@@ -29,7 +30,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.intervals import Interval, float_above
 
 #: an enclosure ``(lo, hi)`` of a partial derivative, in floats
 _Slope = tuple[float, float]
@@ -53,7 +54,7 @@ class Centred(Interval):
         """The inputs of a box: each interval that is not a point as a centred value
         depending on itself alone (centre its mid-point), the points as they are."""
         moving = [i for i, x in enumerate(boxes) if not x.is_point]
-        radii = tuple(_up(boxes[i].rad) for i in moving)
+        radii = tuple(float_above(boxes[i].rad) for i in moving)
         out = list(boxes)
         for e, i in enumerate(moving):
             x = boxes[i]
@@ -181,18 +182,9 @@ def _down(x: float) -> float:
     return math.nextafter(x, -math.inf)
 
 
-def _up(x: Fraction | float) -> float:
-    """A float ≥ x (inf past the float range)."""
-    try:
-        f = float(x)
-    except OverflowError:
-        return math.inf
-    return math.nextafter(f, math.inf)
-
-
 def _floats(x: Interval) -> _Slope:
     """A float enclosure of the rational interval ``x``."""
-    return -_up(-x.lo), _up(x.hi)
+    return -float_above(-x.lo), float_above(x.hi)
 
 
 def _add_up(a: float, b: float) -> float:

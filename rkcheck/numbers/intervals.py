@@ -116,6 +116,14 @@ class Interval:
         return Interval(Fraction(lo, 1 << bits), Fraction(hi, 1 << bits))
 
 
+def float_above(x: Fraction | float) -> float:
+    """One float above ``x`` (rounded to nearest, then up): inf past float64's range."""
+    try:
+        return math.nextafter(float(x), math.inf)
+    except OverflowError:
+        return math.inf
+
+
 def interval_sum(xs: Iterable[Interval]) -> Interval:
     """The sum of intervals (the point 0 for none)."""
     total = Interval.point(0)
