@@ -233,11 +233,12 @@ def _bits(x: Fraction | int) -> int:
     return max(x.numerator.bit_length(), x.denominator.bit_length())
 
 
-def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[sc.Vector, sc.Vector] | None:
+def _interval_parts(A: sc.Matrix, b: sc.Vector, with_series: bool = True) -> tuple[sc.Vector, sc.Vector] | None:
     """For enclosures: the series r_0 … r_2s and det(I − zA), enclosed with FLINT's ball
     matrices (rigorous: every input interval is enclosed by a ball, every result ball is
     returned as the interval it certifies); O(s³) instead of interval Faddeev–LeVerrier's
-    O(s⁴) on rationals with long end points."""
+    O(s⁴) on rationals with long end points.  ``with_series`` False: the series is r_0
+    alone (the caller computes it another way)."""
     if not all(isinstance(x, Interval) for row in A for x in row) or not all(isinstance(x, Interval) for x in b):
         return None
     import flint
@@ -257,7 +258,7 @@ def _interval_parts(A: sc.Matrix, b: sc.Vector) -> tuple[sc.Vector, sc.Vector] |
         B = arb_mat(1, n, [ball(x) for x in b])
         v = arb_mat(n, 1, [arb(1)] * n)
         series = [Interval.point(1)]
-        for _ in range(2 * n):
+        for _ in range(2 * n if with_series else 0):
             series.append(interval((B * v)[0, 0]))
             v = M * v
         Q = [interval(c) for c in reversed(M.charpoly().coeffs())]
@@ -278,12 +279,14 @@ def stability_function(A: sc.Matrix, b: sc.Vector, series: list[Fraction] | None
     if rational is not None:
         series, P, Q = rational
         return _from_parts(s, True, series, _trim(P), _trim(Q))
-    enclosed = _interval_parts(A, b)
+    # values in mean value form: the series, on which the identity R(z)R(−z) = 1 is
+    # decided, in that form (FLINT's balls take every entry as independent), det(I − zA)
+    # in balls
+    centred = any(isinstance(x, Centred) for x in b)
+    enclosed = _interval_parts(A, b, with_series=not centred)
     if enclosed is not None:
         series, Q = enclosed
-        if any(isinstance(x, Centred) for x in b):
-            # the identity R(z)R(−z) = 1 is decided on the series: in mean value form
-            # (FLINT's balls take every entry as independent), det(I − zA) in balls
+        if centred:
             series = _series(A, b, like)
         P = [sc.total([Q[j] * series[k - j] for j in range(k + 1)], like) for k in range(s + 1)]
         return _from_parts(s, False, series, _trim(P), _trim(Q))
