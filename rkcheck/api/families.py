@@ -63,9 +63,10 @@ def _orders(degree: Any, order: Any, classical_order: Any) -> tuple[int | None, 
     return deg, N, q
 
 
-def _from_file(fam: Family, degree: Any, order: Any) -> tuple[Any, Any]:
+def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET) -> tuple[Any, Any]:
     """``degree`` and ``order``, each left out (:data:`UNSET`) taken from the family
-    file's ``[check]`` table, as the CLI does (order 6 where that has none)."""
+    file's ``[check]`` table (order :data:`~rkcheck.options.DEFAULT_FAMILY_ORDER` where
+    that has none): the one resolution for the API and the CLI."""
     check = fam.info.check
     return (check.get("degree") if degree is UNSET else degree,
             check.get("order", DEFAULT_FAMILY_ORDER) if order is UNSET else order)
@@ -81,7 +82,7 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
     from rkcheck.energy.family_conditions import family_conditions as compute
 
     fam = _family(family)
-    degree, order = _from_file(fam, degree, order)
+    degree, order = check_options(fam, degree, order)
     deg, N, q = _orders(degree, order, classical_order)
     return compute(fam, deg, N, q)
 
@@ -173,7 +174,7 @@ def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degr
     from rkcheck.energy.family_sweep import sweep as run
 
     fam = _family(family)
-    degree, order = _from_file(fam, degree, order)
+    degree, order = check_options(fam, degree, order)
     deg, N, _ = _orders(degree, order, None)
     if isinstance(grids, str):
         grids = [grids]

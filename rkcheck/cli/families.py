@@ -13,7 +13,6 @@ from rkcheck.cli.common import (
     stdout_console,
     write_text,
 )
-from rkcheck.options import DEFAULT_FAMILY_ORDER
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
@@ -22,12 +21,11 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
     line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
     the classical conditions up to the energy order."""
-    from rkcheck.api.families import family_conditions, load_family
+    from rkcheck.api.families import check_options, family_conditions, load_family
+    from rkcheck.api.verification import UNSET
 
     family = load_family(file)
-    check = family.info.check
-    degree = flags.get("degree", check.get("degree"))
-    order = flags.get("order", check.get("order", DEFAULT_FAMILY_ORDER))
+    degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET))
     # "order": the classical conditions up to the same order as the energy conditions
     classical = order if classical_order == "order" else classical_order
     assert classical is None or isinstance(classical, int)
@@ -138,13 +136,13 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
       rkcheck sweep tableaux/families/sweep-s2-lobatto.toml --grid "beta=-1:1:21" --grid "gamma=0:1:21"
       rkcheck sweep FAMILY --grid "beta=-1:1:41" --grid "gamma=0:2:41" --plot order.png --json
     """
-    from rkcheck.api.families import load_family
+    from rkcheck.api.families import check_options, load_family
     from rkcheck.api.families import sweep as run
+    from rkcheck.api.verification import UNSET
 
     family = load_family(file)
-    check = family.info.check
-    deg = degree if degree is not None else check.get("degree")
-    N = order if order is not None else check.get("order", DEFAULT_FAMILY_ORDER)
+    # left out (None): the file's [check]
+    deg, N = check_options(family, UNSET if degree is None else degree, UNSET if order is None else order)
     if plot is not None:
         from rkcheck.reports.charts import pyplot
 
