@@ -105,8 +105,8 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     from rkcheck.numbers.parametric import THETA
     from rkcheck.numbers.solving import solve_system
 
-    fam = _family(family)
     deg, N, q = _orders(degree, order, classical_order)
+    fam = _family(family).covering(max(N + 1, q or 0))
     seconds = _option(lambda: parse_positive(max_seconds, "max_seconds"))
     if not MAX_SECONDS_RANGE[0] <= seconds <= MAX_SECONDS_RANGE[1]:
         raise OptionError(f"expected {MAX_SECONDS_RANGE[0]} to {MAX_SECONDS_RANGE[1]} seconds, got {max_seconds}",

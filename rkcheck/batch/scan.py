@@ -128,7 +128,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             if not _is_tableau_document(data):
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"
                 return out
-            built: Any = build_tableau(data, path, max_stages, skim_families=True)  # a family is only skipped
+            built: Any = build_tableau(data, path, max_stages)
             if not isinstance(built, Tableau) and not getattr(built, "is_continuous", False):
                 out.status, out.error = "skipped", "a family with free [parameters] (check it with rkcheck solve)"
                 return out

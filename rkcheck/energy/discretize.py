@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.methods.continuous import ContinuousMethod, _substituted
+from rkcheck.methods.continuous import ContinuousMethod
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 
@@ -90,7 +90,7 @@ def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, 
     rename: dict[str, ex.Expr] = {k: ex.Name(f"r_{k}", 1) for k in tab.info.constants.definitions}
 
     def text(e: Any) -> str:
-        return xp.to_text(_substituted(e.node, rename))
+        return xp.to_text(xp.substituted(e.node, rename))
 
     c = [text(e) for e in tab.c] if tab.c is not None else [
         " + ".join(f"({text(e)})" for e in row) for row in tab.A]
@@ -119,9 +119,9 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     def node(t: str) -> ex.Expr:
         return ex.parse(f"({t})")
 
-    A = [[f"{_par(w[j])}*({xp.to_text(_substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
+    A = [[f"{_par(w[j])}*({xp.to_text(xp.substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
           for j in range(k)] for i in range(k)]
-    b = [f"{_par(w[i])}*({xp.to_text(_substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
+    b = [f"{_par(w[i])}*({xp.to_text(xp.substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
     consts, A, b, c_out = _simplified(A, b, c, consts)
     facts = kernel_facts(method, None)
     p = method.kernel.deg_tau

@@ -103,13 +103,17 @@ def classical_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Seq
     return sorted(out, key=lambda c: (c.order, c.level_sequence))
 
 
-def quadrature_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any]) -> list[PolynomialCondition]:
+def quadrature_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any],
+                          reach: int | None = None) -> list[PolynomialCondition]:
     """``Σ bᵢ cᵢ^(k−1) − 1/k`` for k = 1 … 2s (c = A·1): the rule (b, c) integrates
-    polynomials of degree < k exactly."""
+    polynomials of degree < k exactly.  ``reach``: for a kernel family's surrogate, exact
+    for trees of up to ``reach`` vertices, k goes to ``reach`` only (the condition of k is
+    the elementary weight of the bush with k vertices; past it the surrogate's rule is not
+    the kernel's)."""
     s = len(b)
     c = [sum(row[1:], row[0]) for row in A]
     out = []
-    for k in range(1, 2 * s + 1):
+    for k in range(1, (2 * s if reach is None else reach) + 1):
         total = ring.constant(0)
         for bi, ci in zip(b, c):
             total = total + bi * ci ** (k - 1)
@@ -167,18 +171,27 @@ class FamilyConditions:
 
     @property
     def quadrature_order(self) -> int | None:
-        """The order of the quadrature rule (b, A·1) for generic parameter values."""
+        """The order of the quadrature rule (b, A·1) for generic parameter values (at least
+        this when it is :attr:`quadrature_checked` for a family of kernels: their rules
+        have no largest order)."""
         if self.quadrature is None:
             return None
         return generic_order(self.quadrature, len(self.quadrature))[0]
+
+    @property
+    def quadrature_checked(self) -> int | None:
+        """The largest k of the quadrature conditions (2s, or for a family of kernels the
+        largest tree its surrogate reads exactly)."""
+        return None if self.quadrature is None else len(self.quadrature)
 
 
 def family_conditions(family: Any, degree: int | None, order: int,
                       classical_order: int | None = None) -> FamilyConditions:
     """The conditions of a :class:`~rkcheck.methods.parametric.Family`."""
+    family = family.covering(max(order + 1, classical_order or 0))
     energy = energy_conditions(family.ring, family.A, family.b, order, degree)
     classical = None
     if classical_order is not None:
         classical = classical_conditions(family.ring, family.A, family.b, classical_order)
-    quadrature = quadrature_conditions(family.ring, family.A, family.b)
+    quadrature = quadrature_conditions(family.ring, family.A, family.b, family.reach)
     return FamilyConditions(family, degree, order, energy, classical_order, classical, quadrature)

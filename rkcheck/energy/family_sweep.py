@@ -98,6 +98,7 @@ def sweep(family: Any, grids: Sequence[str], degree: int | None, order: int) -> 
         total *= len(v)
     if total > MAX_SWEEP_POINTS:
         raise UserError(f"{total} grid points exceed the limit MAX_SWEEP_POINTS = {MAX_SWEEP_POINTS}", "--grid")
+    family = family.covering(order + 1)  # a kernel family's surrogate, for trees up to order + 1 vertices
     conds = energy_conditions(family.ring, family.A, family.b, order, degree)
     generic = generic_order(conds, order)[0]
     out = Sweep(family, degree, order, generic, axes, [])

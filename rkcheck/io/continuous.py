@@ -25,14 +25,13 @@ def _text(value: Any, place: str) -> str:
 
 def from_document(data: dict[str, Any], name: str, info: MethodInfo, warnings: list[str],
                   parameters: dict[str, Any] | None = None, raw_constants: dict[str, Any] | None = None,
-                  definitions: dict[str, Any] | None = None, skim: bool = False) -> Any:
+                  definitions: dict[str, Any] | None = None) -> Any:
     """The method of a document with ``[continuous]`` (``info`` carries its constants), or
     with ``parameters`` (the ``[parameters]`` table, the raw ``[constants]`` and their
-    parsed definitions) the family of kernels (``skim``: on the surrogate of the smallest
-    trees, :func:`rkcheck.io.loader.build_tableau`)."""
+    parsed definitions) the family of kernels."""
     if parameters is not None:
         return build_kernel_family(data["continuous"], name, info.replace(warnings=tuple(warnings)), parameters,
-                                   raw_constants or {}, definitions or {}, skim)
+                                   raw_constants or {}, definitions or {})
     return build_continuous(data["continuous"], name, info, warnings)
 
 
@@ -54,14 +53,10 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
 
 
 def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_table: dict[str, Any],
-                        raw_constants: dict[str, Any], definitions: dict[str, Any], skim: bool = False) -> Any:
+                        raw_constants: dict[str, Any], definitions: dict[str, Any]) -> Any:
     """A ``[continuous]`` kernel with free ``[parameters]``: a family
     (:func:`~rkcheck.methods.continuous_family.kernel_family`)."""
-    from rkcheck.methods.continuous_family import (
-        FAMILY_VERTICES,
-        SKIM_VERTICES,
-        kernel_family,
-    )
+    from rkcheck.methods.continuous_family import kernel_family
     from rkcheck.methods.parametric import parse_parameters
 
     if not isinstance(table, dict):
@@ -72,4 +67,4 @@ def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_tabl
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau")', "continuous")
     parameters = parse_parameters(parameters_table, raw_constants)
     return kernel_family(name, parameters, _text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"),
-                         definitions, info, SKIM_VERTICES if skim else FAMILY_VERTICES)
+                         definitions, info)

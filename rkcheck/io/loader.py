@@ -140,14 +140,10 @@ def build_tableau(
     data: dict[str, Any],
     source: str,
     max_stages: int = DEFAULT_MAX_STAGES,
-    skim_families: bool = False,
 ) -> "Tableau | Family":
-    """Validate a parsed document and build the tableau (errors carry the source).
-    ``skim_families``: a family of continuous kernels gets the surrogate of the smallest
-    trees only, validated the same way, for a caller that only needs to know it is a
-    family (a scan skips it)."""
+    """Validate a parsed document and build the tableau (errors carry the source)."""
     try:
-        return _build(data, source, max_stages, skim_families)
+        return _build(data, source, max_stages)
     except UserError as err:
         raise err.located(source=source) from None
 
@@ -156,7 +152,6 @@ def _build(
     data: dict[str, Any],
     source: str,
     max_stages: int,
-    skim_families: bool = False,
 ) -> "Tableau | Family":
     data, warnings = _tables(data)
     name, info = _method_info(data, source)
@@ -179,8 +174,7 @@ def _build(
 
         raw = _table(data, "constants")
         if "parameters" in data:  # constants may use the parameters: resolved by the family
-            return from_document(data, name, info, warnings, _table(data, "parameters"), raw, _constant_definitions(raw),
-                                 skim_families)
+            return from_document(data, name, info, warnings, _table(data, "parameters"), raw, _constant_definitions(raw))
         return from_document(data, name, info.replace(constants=_constants(raw)), warnings)
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")

@@ -408,28 +408,10 @@ def _literal(q: Fraction) -> ex.Expr:
 
 
 def _rename(node: ex.Expr, old: str, new: str) -> ex.Expr:
-    return _substituted(node, {old: ex.Name(new, 1)})
-
-
-def _substituted(node: ex.Expr, values: dict[str, ex.Expr]) -> ex.Expr:
-    def combine(n: ex.Expr, vals: list[ex.Expr]) -> ex.Expr:
-        if isinstance(n, ex.Name):
-            return values.get(n.name, n)
-        if isinstance(n, ex.Unary):
-            return ex.Unary(n.op, vals[0])
-        if isinstance(n, ex.Binary):
-            return ex.Binary(n.op, vals[0], vals[1], n.column)
-        if isinstance(n, ex.Power):
-            return ex.Power(vals[0], vals[1], n.column)
-        if isinstance(n, ex.Call):
-            return ex.Call(n.func, tuple(vals), n.column)
-        return n
-
-    out: ex.Expr = xp.fold(node, combine, xp.children)
-    return out
+    return xp.substituted(node, {old: ex.Name(new, 1)})
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:
-    value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
+    value = xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
     text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
     return Entry.parse(text, constants)

@@ -2,8 +2,9 @@
 (:class:`~rkcheck.methods.parametric.Family`): its exact surrogate tableau
 (:mod:`rkcheck.methods.continuous`) on rational nodes keeps every entry a polynomial in
 the parameters, so the family machinery (conditions as polynomials, ``rkcheck solve``)
-applies unchanged.  The surrogate is exact for every tree the family commands can read
-(:data:`FAMILY_VERTICES`: energy order 12, classical order 12)."""
+applies unchanged.  The surrogate is built for the trees a computation reads
+(:meth:`~rkcheck.methods.parametric.Family.covering`): its size grows with them, and a
+file is loaded with the smallest (:data:`FIRST_VERTICES`)."""
 
 from __future__ import annotations
 
@@ -15,22 +16,24 @@ from rkcheck.methods.continuous import (
     MAX_SURROGATE_NODES,
     VARIABLES,
     _literal,
-    _substituted,
     rational_rule,
 )
 from rkcheck.methods.tableau import MethodInfo
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 
-#: trees of up to 13 vertices: energy order ≤ 12 and classical order ≤ 12 (the family limits)
-FAMILY_VERTICES = 13
-#: the smallest surrogate, for a caller that only validates the family (a scan skips it)
-SKIM_VERTICES = 2
+#: the surrogate a kernel family is loaded with (trees of up to 2 vertices): enough to
+#: validate the file; each computation widens it to the trees it reads
+FIRST_VERTICES = 2
 
 
 def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, constants: Mapping[str, ex.Expr],
-                  info: MethodInfo, vertices: int = FAMILY_VERTICES) -> Any:
-    """The family of the kernel ``A``, ``b`` (texts in tau, sigma and the parameters)."""
+                  info: MethodInfo, vertices: int = FIRST_VERTICES) -> Any:
+    """The family of the kernel ``A``, ``b`` (texts in tau, sigma and the parameters), its
+    entries a surrogate exact for trees of up to ``vertices`` vertices."""
+    import dataclasses
+    from functools import partial
+
     from rkcheck.methods.parametric import build_family
     from rkcheck.numbers.parametric import ParametricEntries
 
@@ -49,7 +52,7 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
                                 "tau and sigma (and the [parameters] and [constants])", place)
         nodes.append(node)
     if any(n.name == "sigma" for n in xp.names(nodes[1])):
-        nodes[1] = _substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
+        nodes[1] = xp.substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
     poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
     ring = poly.ring
 
@@ -70,13 +73,15 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
     parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
     note = (f"a continuous-stage kernel: its exact surrogate on {n_nodes} rational nodes (elementary weights exact "
             f"for trees up to {vertices} vertices)")
-    info = info.replace(warnings=info.warnings + (note,))
-    return build_family(name, parameters, A_text, b_text, constants, info, parsed)
+    widen = partial(kernel_family, name, parameters, A, b, constants, info)
+    family = build_family(name, parameters, A_text, b_text, constants, info.replace(warnings=info.warnings + (note,)),
+                          parsed)
+    return dataclasses.replace(family, kernel=(A, b), reach=vertices, widen=widen)
 
 
 def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> tuple[str, ex.Expr]:
     """The surrogate's entry ``weight·node(tau, sigma)``: its text (shown, written out)
     and its expression (what the text parses to, built without parsing n² texts)."""
-    value = _substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
+    value = xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
     text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
     return text, ex.Binary("*", _literal(weight), value, 1)

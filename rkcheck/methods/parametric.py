@@ -8,9 +8,9 @@ how they are represented exactly: :mod:`rkcheck.numbers.parametric`.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
@@ -26,7 +26,13 @@ PARAMETER_KINDS = ("free",)
 class Family:
     """``name``, the parameters, the entries as written (``A``, ``b`` texts) and as
     polynomials over one :class:`ParameterRing`, and what the file says besides
-    (``info``)."""
+    (``info``).
+
+    A family of continuous-stage kernels (:mod:`rkcheck.methods.continuous_family`) has
+    its kernel's texts (``kernel``: A, B) and entries that are a surrogate tableau's,
+    whose elementary weights are the kernel's for trees of up to ``reach`` vertices only:
+    :meth:`covering` gives the family with a surrogate wide enough for the trees a
+    computation reads.  A tableau family has ``reach`` None (every tree)."""
 
     name: str
     parameters: tuple[str, ...]
@@ -34,6 +40,9 @@ class Family:
     b_text: tuple[str, ...]
     entries: ParametricEntries
     info: MethodInfo
+    kernel: tuple[str, str] | None = None
+    reach: int | None = None
+    widen: Callable[[int], "Family"] | None = field(default=None, compare=False, repr=False)
 
     def __repr__(self) -> str:
         return f"<Family {self.name!r}: {self.stages} stages, parameters {', '.join(self.parameters)}>"
@@ -41,6 +50,17 @@ class Family:
     @property
     def stages(self) -> int:
         return len(self.b_text)
+
+    def covering(self, vertices: int) -> "Family":
+        """This family with entries whose elementary weights are exact for every tree of
+        up to ``vertices`` vertices: itself for a tableau family or a surrogate that
+        reaches that far, else the kernel's surrogate built for them."""
+        if self.reach is None or vertices <= self.reach or self.widen is None:
+            return self
+        try:
+            return self.widen(vertices)
+        except UserError as err:
+            raise err.located(source=self.info.source) from None
 
     @property
     def ring(self) -> ParameterRing:
@@ -75,27 +95,23 @@ class Family:
         except UserError as err:
             raise OptionError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
 
-    def at(self, values: Mapping[str, Fraction | int], name: str | None = None) -> Tableau:
-        """The method at rational parameter values (the other parameters must be given too)."""
+    def at(self, values: Mapping[str, Fraction | int], name: str | None = None) -> Any:
+        """The method at rational parameter values (the other parameters must be given too):
+        a :class:`Tableau`, or for a family of kernels its
+        :class:`~rkcheck.methods.continuous.ContinuousMethod`."""
         missing = [p for p in self.parameters if p not in values]
         if missing:
             raise UserError(f"no value for the parameter {missing[0]}")
-        texts = [x for row in self.A_text for x in row] + list(self.b_text)
-        constants = {k: xp.to_text(v) for k, v in self.entries.constants.items()}
-        subst = {p: f"({Fraction(values[p])})" for p in self.parameters}
-        out = []
-        for t in texts:
-            for p, v in subst.items():
-                t = re.sub(rf"\b{re.escape(p)}\b", v, t)
-            out.append(t)
-        for k, v in list(constants.items()):
-            for p, val in subst.items():
-                v = re.sub(rf"\b{re.escape(p)}\b", val, v)
-            constants[k] = v
+        # on the expressions, where a root's polynomial keeps its own x
+        subst = {p: ex.parse(f"({Fraction(values[p])})") for p in self.parameters}
+        texts = list(self.kernel) if self.kernel else [x for row in self.A_text for x in row] + list(self.b_text)
+        out = [xp.to_text(xp.substituted(ex.parse(t), subst)) for t in texts]
+        constants = {k: xp.to_text(xp.substituted(v, subst)) for k, v in self.entries.constants.items()}
+        if self.kernel:
+            return _kernel_from_texts(out[0], out[1], constants, name or self.name)
         s = self.stages
-        tab = _tableau_from_texts([out[i * s:(i + 1) * s] for i in range(s)], out[s * s:], constants,
-                                  name or self.name)
-        return tab
+        return _tableau_from_texts([out[i * s:(i + 1) * s] for i in range(s)], out[s * s:], constants,
+                                   name or self.name)
 
 
 def entry_text(value: Any, place: str) -> str:
@@ -141,6 +157,14 @@ def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants:
     A_ = tuple(tuple(Entry.parse(x, consts) for x in row) for row in A)
     b_ = tuple(Entry.parse(x, consts) for x in b)
     return Tableau(A=A_, b=b_, c=None, name=name, info=MethodInfo(constants=consts))
+
+
+def _kernel_from_texts(A: str, b: str, constants: Mapping[str, str], name: str) -> Any:
+    from rkcheck.methods.continuous import ContinuousMethod
+    from rkcheck.numbers.entries import Constants
+
+    consts = Constants({k: ex.parse(v) for k, v in constants.items()})
+    return ContinuousMethod(A, b, name, MethodInfo(constants=consts))
 
 
 def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> tuple[str, ...]:

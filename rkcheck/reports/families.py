@@ -57,14 +57,17 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
     return {
         "rkcheck": __version__,
         "schema": FAMILY_SCHEMA,
+        # a family of kernels has no stages: its kernel instead (its surrogate's nodes are a means)
         "family": {"name": fam.name, "source": fam.info.source, "parameters": list(fam.parameters),
-                   "stages": fam.stages, "field": None if field is None else field.name},
+                   "stages": None if fam.kernel else fam.stages, "field": None if field is None else field.name,
+                   "kernel": {"A": fam.kernel[0], "b": fam.kernel[1]} if fam.kernel else None},
         "degree": fc.degree,
         "order_checked": fc.order,
         "energy_order_generic": fc.energy_order,
         "exceptional": [c.id for c in fc.exceptional],
         "classical_order_generic": fc.classical_order,
         "quadrature_order_generic": fc.quadrature_order,
+        "quadrature_order_checked": fc.quadrature_checked,
         "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
     }
 
@@ -86,7 +89,10 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
     console.print(f"energy order for generic parameter values: {label}")
     if fc.classical is not None:
         console.print(f"classical order for generic parameter values: {fc.classical_order}")
-    console.print(f"quadrature order of (b, A·1) for generic parameter values: {fc.quadrature_order}")
+    quadrature = fc.quadrature_order
+    if fam.kernel and quadrature == fc.quadrature_checked:  # a kernel's rule has no largest order
+        quadrature = f"≥ {quadrature} (checked up to {quadrature})"
+    console.print(f"quadrature order of (b, A·1) for generic parameter values: {quadrature}")
     if show_all:
         shown = fc.energy + (fc.classical or [])
     else:

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 import rkcheck
-from rkcheck.methods.continuous import _substituted
 from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.expressions import substituted
 from rkcheck.numbers.field_builder import field_of
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -19,7 +19,7 @@ EPCM2 = ROOT / "tableaux" / "continuous" / "epcm-2.toml"
 
 
 def _renamed(node, names, prefix):
-    return _substituted(node, {n: ex.Name(prefix + n, 1) for n in names})
+    return substituted(node, {n: ex.Name(prefix + n, 1) for n in names})
 
 
 def assert_same_tableau(mine, theirs):

@@ -31,3 +31,69 @@ def test_a_kernel_family_without_the_symmetry_has_exceptional_values(tmp_path):
     f.write_text('[parameters]\nkappa = "free"\n[continuous]\nA = "tau + kappa*tau*sigma - kappa*tau/2"\n')
     res = rkcheck.solve(f, degree=None, order=4)
     assert [s.values["kappa"].text for s in res.solutions] == ["0"]
+
+
+KERNEL = "tau + kappa*tau*sigma - kappa*tau/2"
+
+
+def _kernel_family(tmp_path, A=KERNEL, b="1"):
+    f = tmp_path / "k.toml"
+    f.write_text(f'[parameters]\nkappa = "free"\n[continuous]\nA = "{A}"\nb = "{b}"\n')
+    return f
+
+
+def test_family_conditions_at_a_value_are_the_kernels_own_residuals(tmp_path):
+    """Each energy condition up to order 6, its polynomial evaluated at κ = 1/3, is the
+    residual the single-kernel route (its own surrogate, built for its own order) finds
+    for the method A = τ + τσ/3 − τ/6: the family's surrogate, built for the trees of
+    order 6 only, reads them exactly."""
+    from fractions import Fraction
+
+    from flint import fmpq
+
+    fc = rkcheck.family_conditions(_kernel_family(tmp_path), degree=None, order=6)
+    assert fc.family.reach == 7
+    member = rkcheck.verify(rkcheck.ContinuousMethod.from_kernel("tau + 1/3*tau*sigma - 1/6*tau"), degree=None,
+                            order=6, arithmetic="exact")
+    residuals = {c.id: Fraction(c.residual) for c in member.conditions}
+    assert len(fc.energy) == len(residuals) == 20
+    for c in fc.energy:
+        value = c.polynomial(fmpq(1, 3))
+        assert Fraction(int(value.p), int(value.q)) == residuals[c.id], c.id
+
+
+def test_a_kernels_quadrature_order_is_its_own(tmp_path):
+    """B(τ) = 1 + κ(τ² − τ + 1/6) is orthogonal to 1 and τ, and ∫ B τ² = 1/3 + κ/180 (by
+    hand): quadrature order 2 with the third condition κ/180.  With B = 1 and C(τ) = τ
+    every ∫ τ^(k−1) = 1/k: the order is at least every k the surrogate reads."""
+    from flint import fmpq
+
+    fc = rkcheck.family_conditions(_kernel_family(tmp_path, b="1 + kappa*(tau^2 - tau + 1/6)"), degree=None, order=4)
+    assert fc.quadrature_order == 2
+    third = fc.quadrature[2].polynomial
+    assert third(fmpq(1)) == fmpq(1, 180) and third(fmpq(0)) == 0
+    fc = rkcheck.family_conditions(_kernel_family(tmp_path), degree=None, order=4)
+    assert fc.quadrature_order == fc.quadrature_checked == 5
+
+
+def test_a_kernel_family_costs_the_surrogate_of_the_order_asked(tmp_path):
+    """τ⁴⁰ in A: trees of n vertices need (n − 1)·40 + 1 nodes — 481 for 13 (over
+    MAX_SURROGATE_NODES = 400), 41 for order 1, which runs; order 10 (401) is refused
+    naming the limit and the file, before any work."""
+    import pytest
+
+    from rkcheck.errors import UserError
+
+    f = _kernel_family(tmp_path, A="tau + kappa*tau^40*(sigma - 1/2)")
+    fc = rkcheck.family_conditions(f, degree=None, order=1)
+    assert fc.family.stages == 41 and fc.quadrature_order == fc.quadrature_checked == 2
+    with pytest.raises(UserError, match="MAX_SURROGATE_NODES") as err:
+        rkcheck.family_conditions(f, degree=None, order=10)
+    assert str(f) in str(err.value)
+
+
+def test_a_kernel_family_at_a_value_is_the_continuous_method(tmp_path):
+    """At κ = 0 the kernel is τ: the AVF method, energy-preserving for every degree."""
+    member = rkcheck.load_family(_kernel_family(tmp_path)).at({"kappa": 0})
+    assert isinstance(member, rkcheck.ContinuousMethod)
+    assert rkcheck.verify(member, degree=None, order=6, arithmetic="exact").energy_order == 6

@@ -212,3 +212,11 @@ def test_a_parameter_named_x_leaves_roots_polynomial_variable_alone(tmp_path):
         conds = rkcheck.family_conditions(path, degree=None, order=3)
         texts[name] = [str(c.polynomial).replace(name, "P") for c in conds.energy]
     assert texts["x"] == texts["y"] and texts["x"]
+
+
+def test_a_member_keeps_roots_own_x_when_a_parameter_is_called_x():
+    """``x·root(x³ − 2, 1)`` at x = 2 is 2·∛2: the root's x is its polynomial's own, only
+    the outer x is the parameter."""
+    fam = rkcheck.family_from_arrays([["x*root(x^3 - 2, 1)"]], ["1"], ["x"])
+    box = fam.at({"x": 2}).A[0][0].enclosure(30)
+    assert (box.lo / 2) ** 3 <= 2 <= (box.hi / 2) ** 3 and box.hi - box.lo < Fraction(1, 10**20)
