@@ -159,7 +159,9 @@ class ConditionResults(Sequence[Condition]):
             return Condition(tree, verdict, Enclosure(e.mid * flip, e.rad, e.exact))
         if o._exact is None and o._records is not None:  # a whole order is being read
             o._exact = o.values.values()
-        value = (o._exact[k] if o._exact is not None else o.values.value(k)) * flip
+        value = o._exact[k] if o._exact is not None else o.values.value(k)
+        if flip < 0:  # a negation, not a product: a field element's product reduces modulo g
+            value = -value
         return Condition(tree, verdict, _enclosure_of(value), value)
 
     @overload

@@ -176,9 +176,17 @@ class ExactOrderSums:
     def values(self) -> list[Any]:
         """Every condition's exact residual (Garner's algorithm vectorised over the
         conditions: the mixed-radix digits in int64, then one integer per condition)."""
-        if self.tableau.degree != 1:
+        if self.tableau.degree == 1:
+            return [Fraction(x, self.scale) for x in self.integers()]
+        if self.dual:
             return [self.value(k) for k in range(len(self.screened))]
-        return [Fraction(x, self.scale) for x in self.integers()]
+        zero = self.is_zero()  # proven zero before the primes for values are added, as in value()
+        self._complete()
+        t = self.tableau
+        columns = self._all_coefficients()
+        nought = t.field_element([0], 1)
+        return [nought if zero[k] else t.field_element([c[k] for c in columns], self.scale)
+                for k in range(len(self.screened))]
 
     def integers(self) -> list[int]:
         """Rationals only: every condition's integer ``N = scale·R`` (Chinese remaindering
@@ -199,6 +207,40 @@ class ExactOrderSums:
             per_prime.append(_vandermonde_solve(roots, vals, p) if D > 1 else vals)
         mods = [p for p, _ in self.primes]
         return [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
+
+
+    def _all_coefficients(self) -> list[list[int]]:
+        """:meth:`_coefficients` of every condition at once: per prime one inverse of the
+        Vandermonde matrix of its roots applied to every condition's residues, then the
+        Chinese remainder of each coefficient over the primes (as :meth:`integers`)."""
+        D = self.tableau.degree
+        per_prime = []
+        for i, (p, roots) in enumerate(self.primes):
+            inverse = _vandermonde_inverse(roots, p)
+            residues = self.screened[:, i, :D].astype(np.int64) % p
+            rows = []
+            for c in range(D):
+                acc = np.zeros(len(residues), dtype=np.int64)
+                for j in range(D):  # residues and entries below 2^30: each step stays below 2^61
+                    acc = (acc + residues[:, j] * inverse[c][j]) % p
+                rows.append(acc.tolist())
+            per_prime.append(rows)
+        mods = [p for p, _ in self.primes]
+        total = math.prod(mods)
+        out = []
+        for c in range(D):
+            combined = _crt_columns([rows[c] for rows in per_prime], mods)
+            out.append([x - total if x > total // 2 else x for x in combined])
+        return out
+
+
+def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
+    """The inverse modulo p of the Vandermonde matrix ``(r_i^k)`` of distinct roots."""
+    from flint import nmod_mat
+
+    D = len(roots)
+    inverse = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p).inv()
+    return [[int(inverse[c, j]) for j in range(D)] for c in range(D)]
 
 
 def _vandermonde_solve(roots: list[int], values: list[int], p: int) -> list[int]:

@@ -61,8 +61,10 @@ class ScaledTableau:
 
     def field_element(self, coeffs: Sequence[int], scale: int) -> Any:
         """``Σ coeffs_k (λθ)^k / scale`` as an element of the number field."""
-        lam = self.theta_scale
-        return self.number_field([Fraction(int(c) * lam**k, scale) for k, c in enumerate(coeffs)])
+        from flint import fmpq_poly
+
+        lam = self.theta_scale  # an integer: the numerators over one denominator, no Fractions
+        return self.number_field(fmpq_poly([int(c) * lam**k for k, c in enumerate(coeffs)], scale))
 
     @property
     def degree(self) -> int:

@@ -85,12 +85,12 @@ class NumberField:
 
     def __call__(self, x: Any) -> "FieldElement":
         """The element ``x`` (a Fraction, int, FieldElement of this field, or a list of
-        coefficients in the power basis of θ)."""
+        coefficients in the power basis of θ, or their FLINT ``fmpq_poly``)."""
         if isinstance(x, FieldElement):
             if x.field is not self:
                 raise ValueError("element of another field")
             return x
-        if isinstance(x, (list, tuple)):
+        if isinstance(x, (list, tuple)) or type(x).__name__ == "fmpq_poly":
             return FieldElement(self, to_flint(x) % self.g)
         return FieldElement(self, to_flint([x]))
 
