@@ -3,7 +3,6 @@ public interface: keys may be added, never renamed or removed without a schema b
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 from rkcheck.energy.check import CheckResult, inconsistent
@@ -15,6 +14,7 @@ from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.expressions import to_text
 from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.reading import DecimalsMode, Reading
+from rkcheck.reports import jsontext
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
 from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.version import __version__
@@ -23,7 +23,7 @@ SCHEMA = 1
 
 
 def dumps(doc: Any) -> str:
-    return json.dumps(doc, indent=2, ensure_ascii=False)
+    return jsontext.dumps(doc)
 
 
 def entry_doc(e) -> dict[str, Any]:

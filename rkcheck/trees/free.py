@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 
 @dataclass(frozen=True)
@@ -17,7 +18,7 @@ class FreeTree:
     max_degree: int
     rootings: int
 
-    @property
+    @cached_property
     def id(self) -> str:
         """The level sequence as ``1,2,3,2``: what every report and tool prints."""
         return ",".join(map(str, self.level_sequence))

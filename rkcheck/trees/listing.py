@@ -28,7 +28,7 @@ from rkcheck.trees.classes import classify
 from rkcheck.trees.counting import condition_counts, listing_size, term_counts
 from rkcheck.trees.factors import RightFactors
 from rkcheck.trees.free import FreeTree
-from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
+from rkcheck.trees.rooted import level_sequence_of_forest, repeated
 from rkcheck.trees.stored import ListingStore, from_record, record_key, to_record
 from rkcheck.trees.table import TreeTable
 from rkcheck.trees.terms import OrderTerms
@@ -98,6 +98,7 @@ class ConditionListing:
         self.degree = degree
         self._store = store if store is not None else _default_store
         self._ls_cache: dict[int, tuple[int, ...]] = {0: (1,)}
+        self._bracket_cache: dict[int, str] = {0: "τ"}
         # conditions already named (free tree and designated sign), shared by every
         # tableau checked against this listing: a scan names the same ones file after file
         self._named: dict[tuple[int, int], tuple[FreeTree, int]] = {}
@@ -258,16 +259,41 @@ class ConditionListing:
     def _forest(self, children: list[int]) -> list[tuple[int, ...]]:
         return [self.tree_level_sequence(c) for c in children]
 
-    def _designated(self, n: int, k: int) -> tuple[tuple[int, ...], list[tuple[int, ...]], int]:
-        """The designated rooting of condition ``k`` (level sequence, the forest B₋ of
-        its root) and the sign that turns the residual of the representative rooting
+    def tree_bracket(self, t: int) -> str:
+        """Butcher's bracket of the stored tree ``t``."""
+        text = self._bracket_cache.get(t)
+        if text is None:
+            text = self._bracket_cache[t] = self._forest_bracket(self._children(t))
+        return text
+
+    def _forest_bracket(self, children: list[int]) -> str:
+        """The bracket of the tree whose root carries the stored trees ``children``, as
+        :func:`~rkcheck.trees.rooted.bracket_of_forest` writes it (larger level sequences
+        first, a repeated subtree once with its count), from the subtrees' own brackets:
+        a listing names each rooted tree once, not once per condition it is part of."""
+        if not children:
+            return "τ"
+        ordered = sorted(((self.tree_level_sequence(c), c) for c in children), reverse=True)
+        parts = []
+        i = 0
+        while i < len(ordered):
+            j = i + 1
+            while j < len(ordered) and ordered[j][0] == ordered[i][0]:
+                j += 1
+            parts.append(self.tree_bracket(ordered[i][1]) + repeated(j - i))
+            i = j
+        return "[" + "".join(parts) + "]"
+
+    def _designated(self, n: int, k: int) -> tuple[tuple[int, ...], list[int], int]:
+        """The designated rooting of condition ``k`` (level sequence, the stored trees
+        B₋ of its root) and the sign that turns the residual of the representative rooting
         into the residual of the designated one."""
         o = self.orders[n]
-        forest = self._forest(self._children(int(o.rep_left[k])) + [int(o.rep_right[k])])
-        seq = level_sequence_of_forest(forest)
+        forest = self._children(int(o.rep_left[k])) + [int(o.rep_right[k])]
+        seq = level_sequence_of_forest(self._forest(forest))
         if o.tall[k] >= 0:  # two centres: the designated one has the larger level sequence
-            other = self._forest(self._children(int(o.tall[k])) + [int(o.rest[k])])
-            other_seq = level_sequence_of_forest(other)
+            other = self._children(int(o.tall[k])) + [int(o.rest[k])]
+            other_seq = level_sequence_of_forest(self._forest(other))
             if other_seq > seq:
                 return other_seq, other, -1
         return seq, forest, 1
@@ -279,7 +305,7 @@ class ConditionListing:
         if named is None:
             seq, forest, sign = self._designated(n, k)
             o = self.orders[n]
-            named = (FreeTree(seq, bracket_of_forest(forest), int(o.max_degree[k]), int(o.counts[k])), sign)
+            named = (FreeTree(seq, self._forest_bracket(forest), int(o.max_degree[k]), int(o.counts[k])), sign)
             if len(self._named) < NAMED_CONDITIONS:
                 self._named[(n, k)] = named
         return named

@@ -54,9 +54,14 @@ def _bracket_of_forest(subtrees: tuple[tuple[int, ...], ...]) -> str:
         while j < len(ordered) and ordered[j] == ordered[i]:
             j += 1
         inner = bracket_of_forest(_split_children(ordered[i]))
-        parts.append(inner + (str(j - i).translate(_SUPERSCRIPTS) if j - i > 1 else ""))
+        parts.append(inner + repeated(j - i))
         i = j
     return "[" + "".join(parts) + "]"
+
+
+def repeated(count: int) -> str:
+    """The mark of a subtree repeated ``count`` times in a bracket (``[τ²]``): none for one."""
+    return str(count).translate(_SUPERSCRIPTS) if count > 1 else ""
 
 
 def bracket(seq: Sequence[int]) -> str:
