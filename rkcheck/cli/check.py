@@ -87,9 +87,12 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     except CheckInterrupted as stop:  # report what was finished, then exit 130
         result, failed, interrupted = stop.result, True, True
     if fmt == "json":
-        from rkcheck.reports.jsondoc import check_doc, dumps
+        from rkcheck.reports.jsondoc import check_doc
+        from rkcheck.reports.jsontext import chunks
 
-        click.echo(dumps(check_doc(result)))
+        for part in chunks(check_doc(result, lazy=True)):  # written as made: no whole text held
+            click.echo(part, nl=False)
+        click.echo()
     else:
         from rkcheck.reports.text import render_check
 

@@ -237,15 +237,17 @@ def claims_doc(claim_results) -> list[dict[str, Any]] | None:
     ]
 
 
-def check_doc(res: CheckResult, failing_only: bool = False) -> dict[str, Any]:
+def check_doc(res: CheckResult, failing_only: bool = False, lazy: bool = False) -> dict[str, Any]:
     """The per-file object of ``verify --format json`` (also used by ``scan``);
     ``failing_only``: its ``conditions`` the failing ones only (what a scan's text
-    report reads of them)."""
+    report reads of them); ``lazy``: they are a generator, made as they are written
+    (:func:`rkcheck.reports.jsontext.chunks`)."""
     o = res.options
     claim_results = res.claims
     summary = summary_doc(res)
     summary.update(properties_doc(res))  # reduction, symplectic, symmetric, stability, error_constant
     summary["claims_ok"] = None if claim_results is None else all(r.met for r in claim_results)
+    conditions = (condition_doc(r, o.dps) for r in (res.failures if failing_only else res.conditions))
     return {
         "schema": SCHEMA,
         "rkcheck": __version__,
@@ -263,7 +265,7 @@ def check_doc(res: CheckResult, failing_only: bool = False) -> dict[str, Any]:
         },
         "summary": summary,
         "claims": claims_doc(claim_results),
-        "conditions": [condition_doc(r, o.dps) for r in (res.failures if failing_only else res.conditions)],
+        "conditions": conditions if lazy else list(conditions),
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},
     }

@@ -11,12 +11,15 @@ same JSON; only the layout differs from ``json.dumps(doc, indent=2)``.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 _NUMBERS = (int, float, bool, type(None))
 _SCALARS = (str, *_NUMBERS)
 _STEP = "  "
+#: the size of the pieces :func:`chunks` hands out (characters)
+CHUNK = 1 << 20
 #: one encoder for every line: json.dumps with a non-default option builds one per call
 _ENCODER = json.JSONEncoder(ensure_ascii=False)
 
@@ -30,9 +33,22 @@ class Encoded:
 
 def dumps(doc: Any) -> str:
     """``doc`` as indented JSON (non-ASCII characters as they are)."""
-    out: list[str] = []
-    _write(doc, 0, out)
-    return "".join(out)
+    return "".join(_pieces(doc, 0))
+
+
+def chunks(doc: Any, size: int = CHUNK) -> Iterator[str]:
+    """The text of :func:`dumps` in pieces of about ``size`` characters, made as they
+    are written out."""
+    part: list[str] = []
+    held = 0
+    for piece in _pieces(doc, 0):
+        part.append(piece)
+        held += len(piece)
+        if held >= size:
+            yield "".join(part)
+            part, held = [], 0
+    if part:
+        yield "".join(part)
 
 
 def _line(value: Any) -> str:
@@ -52,26 +68,26 @@ def _key(key: Any) -> str:
     return _line(key if isinstance(key, str) else json.dumps(key))
 
 
-def _write(value: Any, depth: int, out: list[str]) -> None:
+def _pieces(value: Any, depth: int) -> Iterator[str]:
     pad = "\n" + _STEP * (depth + 1)
     if isinstance(value, dict) and value:
         sep = "{"
         for k, v in value.items():
-            out.append(f"{sep}{pad}{_key(k)}: ")
-            _write(v, depth + 1, out)
+            yield f"{sep}{pad}{_key(k)}: "
+            yield from _pieces(v, depth + 1)
             sep = ","
-        out.append("\n" + _STEP * depth + "}")
-    elif isinstance(value, (list, tuple)) and value and not _numbers(list(value)):
+        yield "\n" + _STEP * depth + "}"
+    elif isinstance(value, Iterator) or (isinstance(value, (list, tuple)) and value and not _numbers(list(value))):
         sep = "["
         for v in value:
-            out.append(sep + pad)
+            yield sep + pad
             if _row(v):
-                out.append(_line(v))
+                yield _line(v)
             else:
-                _write(v, depth + 1, out)
+                yield from _pieces(v, depth + 1)
             sep = ","
-        out.append("\n" + _STEP * depth + "]")
+        yield "[]" if sep == "[" else "\n" + _STEP * depth + "]"
     elif isinstance(value, Encoded):
-        out.append(value.text.replace("\n", "\n" + _STEP * depth))
+        yield value.text.replace("\n", "\n" + _STEP * depth)
     else:
-        out.append(_line(value))
+        yield _line(value)

@@ -31,3 +31,12 @@ def test_rows_and_arrays_of_numbers_take_one_line_each():
     assert '    {"id": "1,2,2", "level_sequence": [1, 2, 2], "bracket": "[τ²]"},' in lines
     assert '    "first",' in lines  # strings keep a line each
     assert lines[0] == "{" and lines[-1] == "}"
+
+
+@given(st.lists(st.dictionaries(st.text(), scalars, max_size=3), max_size=6), st.integers(1, 50))
+def test_an_iterator_is_written_as_its_list_in_pieces_of_any_size(rows, size):
+    from rkcheck.reports.jsontext import chunks
+
+    text = "".join(chunks({"conditions": iter(rows), "after": [1, 2]}, size=size))
+    assert text == dumps({"conditions": rows, "after": [1, 2]})
+    assert json.loads(text) == {"conditions": rows, "after": [1, 2]}
