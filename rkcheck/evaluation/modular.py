@@ -119,36 +119,29 @@ class ExactOrderSums:
         if self.tableau.number_field is not None and not np.any(self.screened[k]):
             return self.tableau.field_element([0], 1)  # proven zero (module docstring)
         self._complete()
-        if self.dual:
-            return self._dual_value(k)
-        coeffs = self._coefficients(k)
-        if self.tableau.number_field is None:
-            return Fraction(coeffs[0], self.scale)
-        return self.tableau.field_element(coeffs, self.scale)
+        return self._values_of(slice(k, k + 1))[0]
 
-    def _dual_value(self, k: int) -> Any:
-        """The residual from the coefficients of ``X = g'(θ)·N_e``
-        (:meth:`ScaledTableau.dual_value_bits`): at a root r modulo p, ``X(r) = g'(r)·N(r)/
-        (d/e)^(n−1)``; then ``R = X / (g'(θ)·(n−1)!·e^(n−1))``."""
+    def _values_of(self, rows: slice) -> list[Any]:
+        """The exact residuals of the conditions ``rows`` (their primes complete)."""
         t = self.tableau
+        if not self.dual:
+            columns = self._coefficients_of(rows)
+            if t.number_field is None:
+                return [Fraction(x, self.scale) for x in columns[0]]
+            return [t.field_element(list(c), self.scale) for c in zip(*columns)]
+        # X = g'(θ)·N_e (ScaledTableau.dual_value_bits): at a root r modulo p, X(r) =
+        # g'(r)·N(r)/(d/e)^(n−1); then R = X / (g'(θ)·(n−1)!·e^(n−1))
         assert t.integral_d is not None
-        D, n = t.degree, self.vertices
-        ratio = t.d // t.integral_d
+        n = self.vertices
         dg = [k * c for k, c in enumerate(t.minpoly)][1:]
-        per_prime = []
-        for i, (p, roots) in enumerate(self.primes):
-            inv = pow(pow(ratio, n - 1, p), -1, p)
-            vals = []
-            for j, r in enumerate(roots):
-                gp = 0
-                for c in reversed(dg):
-                    gp = (gp * r + c) % p
-                vals.append(int(self.screened[k, i, j]) * gp % p * inv % p)
-            per_prime.append(_vandermonde_solve(roots, vals, p))
-        mods = [p for p, _ in self.primes]
-        X = [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
+        weights = []
+        for p, roots in self.primes:
+            inv = pow(pow(t.d // t.integral_d, n - 1, p), -1, p)
+            weights.append([_horner(dg, r, p) * inv % p for r in roots])
+        columns = self._coefficients_of(rows, weights)
         scale = math.factorial(n - 1) * t.integral_d ** (n - 1)
-        return t.field_element(X, scale) / t.field_element(dg, 1)
+        inverse = t.field_element(dg, 1).inverse()
+        return [t.field_element(list(c), scale) * inverse for c in zip(*columns)]
 
     def _complete(self) -> None:
         """Evaluate the primes the coefficients' bound needs beyond the decision's."""
@@ -174,64 +167,49 @@ class ExactOrderSums:
         self.full = None
 
     def values(self) -> list[Any]:
-        """Every condition's exact residual (Garner's algorithm vectorised over the
-        conditions: the mixed-radix digits in int64, then one integer per condition)."""
+        """Every condition's exact residual, the whole order at once
+        (:meth:`_coefficients_of`)."""
         if self.tableau.degree == 1:
             return [Fraction(x, self.scale) for x in self.integers()]
-        if self.dual:
-            return [self.value(k) for k in range(len(self.screened))]
         zero = self.is_zero()  # proven zero before the primes for values are added, as in value()
         self._complete()
-        t = self.tableau
-        columns = self._all_coefficients()
-        nought = t.field_element([0], 1)
-        return [nought if zero[k] else t.field_element([c[k] for c in columns], self.scale)
-                for k in range(len(self.screened))]
+        nought = self.tableau.field_element([0], 1)
+        return [nought if z else v for z, v in zip(zero, self._values_of(slice(None)))]
 
     def integers(self) -> list[int]:
         """Rationals only: every condition's integer ``N = scale·R`` (Chinese remaindering
         over the primes, the symmetric residue)."""
         assert self.tableau.degree == 1
         self._complete()
-        mods = [p for p, _ in self.primes]
-        total = math.prod(mods)
-        columns = [self.screened[:, i, 0].tolist() for i in range(len(mods))]
-        combined = _crt_columns(columns, mods) if mods else [0] * len(self.screened)
-        return [x - total if x > total // 2 else x for x in combined]
+        return self._coefficients_of(slice(None))[0]
 
-    def _coefficients(self, k: int) -> list[int]:
+    def _coefficients_of(self, rows: slice, weights: list[list[int]] | None = None) -> list[list[int]]:
+        """For each coefficient of the power basis, its integers for the conditions
+        ``rows``: per prime the inverse of the Vandermonde matrix of its roots applied to
+        their residues at once (over Q the residues are the coefficient; ``weights[i][j]``
+        multiplies those at prime i and root j first), then the Chinese remainder over the
+        primes, the symmetric residue."""
         D = self.tableau.degree
+        screened = self.screened[rows]
         per_prime = []
         for i, (p, roots) in enumerate(self.primes):
-            vals = [int(v) for v in self.screened[k, i, :D]]
-            per_prime.append(_vandermonde_solve(roots, vals, p) if D > 1 else vals)
-        mods = [p for p, _ in self.primes]
-        return [_crt_symmetric([pp[c] for pp in per_prime], mods) for c in range(D)]
-
-
-    def _all_coefficients(self) -> list[list[int]]:
-        """:meth:`_coefficients` of every condition at once: per prime one inverse of the
-        Vandermonde matrix of its roots applied to every condition's residues, then the
-        Chinese remainder of each coefficient over the primes (as :meth:`integers`)."""
-        D = self.tableau.degree
-        per_prime = []
-        for i, (p, roots) in enumerate(self.primes):
-            inverse = _vandermonde_inverse(roots, p)
-            residues = self.screened[:, i, :D].astype(np.int64) % p
-            rows = []
+            residues = screened[:, i, :D].astype(np.int64) % p
+            if weights is not None:
+                residues = residues * np.array(weights[i], dtype=np.int64) % p
+            inverse = _vandermonde_inverse(roots, p) if D > 1 else [[1]]
+            columns = []
             for c in range(D):
                 acc = np.zeros(len(residues), dtype=np.int64)
                 for j in range(D):  # residues and entries below 2^30: each step stays below 2^61
                     acc = (acc + residues[:, j] * inverse[c][j]) % p
-                rows.append(acc.tolist())
-            per_prime.append(rows)
+                columns.append(acc.tolist())
+            per_prime.append(columns)
         mods = [p for p, _ in self.primes]
+        if not mods:
+            return [[0] * len(screened) for _ in range(D)]
         total = math.prod(mods)
-        out = []
-        for c in range(D):
-            combined = _crt_columns([rows[c] for rows in per_prime], mods)
-            out.append([x - total if x > total // 2 else x for x in combined])
-        return out
+        return [[x - total if x > total // 2 else x for x in _crt_columns([pp[c] for pp in per_prime], mods)]
+                for c in range(D)]
 
 
 def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
@@ -241,16 +219,6 @@ def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
     D = len(roots)
     inverse = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p).inv()
     return [[int(inverse[c, j]) for j in range(D)] for c in range(D)]
-
-
-def _vandermonde_solve(roots: list[int], values: list[int], p: int) -> list[int]:
-    """Coefficients c (mod p) with Σ c_k r^k = value at every root r."""
-    from flint import nmod_mat
-
-    D = len(roots)
-    V = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p)
-    x = V.solve(nmod_mat([[v] for v in values], p))
-    return [int(x[i, 0]) for i in range(D)]
 
 
 def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
@@ -270,14 +238,12 @@ def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
     return nodes[0][0]
 
 
-def _crt_symmetric(residues: list[int], moduli: list[int]) -> int:
-    """The integer in (−Π/2, Π/2] with the given residues (Garner's algorithm)."""
-    x, m = 0, 1
-    for r, p in zip(residues, moduli):
-        t = ((r - x) * pow(m, -1, p)) % p
-        x += m * t
-        m *= p
-    return x - m if x > m // 2 else x
+def _horner(coeffs: list[int], r: int, p: int) -> int:
+    """``Σ coeffs_k r^k`` modulo p."""
+    out = 0
+    for c in reversed(coeffs):
+        out = (out * r + c) % p
+    return out
 
 
 def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,
