@@ -117,7 +117,8 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     theta = THETA if fam.ring.field is not None else None
     if route not in ROUTES:
         raise OptionError(f"expected one of {', '.join(ROUTES)}, got {route!r}", "route")
-    layout = layout_of(fam, extra) if route != "plain" else None
+    # the structured route reads A and b as a tableau's own entries, never a kernel's surrogate
+    layout = layout_of(fam, extra) if route != "plain" and not fam.kernel else None
     if layout is not None:
         found = solve_structured(fam, layout, deg, N, q, extra, seconds, _count(deg, N, q) + len(extra))
         if found is not None:
@@ -132,6 +133,7 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
                           "many solutions of the quadrature conditions", "route")
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
+    polys = polys or [fam.ring.constant(0)]  # order 1 has no condition: every parameter value solves it
     try:
         result = solve_system(polys, theta, fam.ring.field, seconds)
     except SolveLimitError as err:
@@ -157,7 +159,15 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
     images = [ctx.gens()[i] if n not in result.eliminated else result.eliminated[n] for i, n in enumerate(names)]
     keep = [names.index(n) for n in result.rest]
     s = fam.stages
-    gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j]) for i in range(s) for j in range(s)]
+    if fam.kernel:  # AVF's kernel A = τ, B = 1, whose surrogate is A_ij = w_j x_i, b_i = w_i
+        from rkcheck.methods.continuous import rational_rule
+
+        x, w = rational_rule(s)
+        gaps = [fam.ring.reduce(fam.A[i][j] - fam.ring.constant(w[j] * x[i])) for i in range(s) for j in range(s)]
+        gaps += [fam.ring.reduce(fam.b[i] - fam.ring.constant(w[i])) for i in range(s)]
+    else:
+        gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j])
+                for i in range(s) for j in range(s)]
     gaps = [g.compose(*images) for g in gaps]
     dicts = [{tuple(m[i] for i in keep): c for m, c in d.items()} for d in integer_dicts([g for g in gaps if not g.is_zero()])]
     for piece, comp in zip(result.pieces or [], result.components or []):

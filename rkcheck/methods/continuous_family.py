@@ -51,7 +51,10 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
                 raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a polynomial in "
                                 "tau and sigma (and the [parameters] and [constants])", place)
         nodes.append(node)
-    if any(n.name == "sigma" for n in xp.names(nodes[1])):
+    in_b = {n.name for n in xp.names(nodes[1])}
+    if {"tau", "sigma"} <= in_b:
+        raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma", "continuous.b")
+    if "sigma" in in_b:
         nodes[1] = xp.substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
     poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
     ring = poly.ring
@@ -71,11 +74,8 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
     A_text = [[text for text, _ in row] for row in A_at]
     b_text = [text for text, _ in b_at]
     parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
-    note = (f"a continuous-stage kernel: its exact surrogate on {n_nodes} rational nodes (elementary weights exact "
-            f"for trees up to {vertices} vertices)")
     widen = partial(kernel_family, name, parameters, A, b, constants, info)
-    family = build_family(name, parameters, A_text, b_text, constants, info.replace(warnings=info.warnings + (note,)),
-                          parsed)
+    family = build_family(name, parameters, A_text, b_text, constants, info, parsed)
     return dataclasses.replace(family, kernel=(A, b), reach=vertices, widen=widen)
 
 

@@ -30,6 +30,7 @@ kept: certified by interval enclosures that separate θ from its conjugates.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -272,15 +273,24 @@ def _compose(e: Any, names: tuple[str, ...], coords: dict[str, Any], phi: Any) -
     return total % phi
 
 
+def _float(x: Any) -> float:
+    """``x`` (a Fraction or an exact arb) as a float, ±inf past the range (a solution
+    such as ``kappa = 10^400`` is exact; only its floating-point view saturates)."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
+
+
 def _coordinate(p: Any, phi: Any, root: Any, k: int) -> AlgebraicValue:
     """The value of ``p(z)`` at the root ``root`` (the k-th complex root of φ)."""
     value = _horner([Fraction(int(c.p), int(c.q)) for c in p.coeffs()], root)
     real = root.imag == 0
-    approx = complex(float(value.real.mid()), float(value.imag.mid()))
+    approx = complex(_float(value.real.mid()), _float(value.imag.mid()))
     coeffs = [Fraction(int(c.p), int(c.q)) for c in p.coeffs()] or [Fraction(0)]
     if p.degree() <= 0:
         q = coeffs[0]
-        return AlgebraicValue(_frac_text(q), True, complex(float(q)), (-q, Fraction(1)), value)
+        return AlgebraicValue(_frac_text(q), True, complex(_float(q)), (-q, Fraction(1)), value)
     if phi.degree() == 2:
         return _quadratic(coeffs, phi, root, real, approx)
     poly = " + ".join(f"{_frac_text(c)}*z^{j}" for j, c in enumerate(coeffs) if c)
@@ -424,7 +434,7 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
     if len(P) == 3:
         return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), roots[j], j)
     real = roots[j].imag == 0
-    approx = complex(float(value.real.mid()), float(value.imag.mid()))
+    approx = complex(_float(value.real.mid()), _float(value.imag.mid()))
     kind = "" if real else "complex "
     imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
     return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}{imag})", real, approx,

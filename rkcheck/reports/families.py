@@ -60,7 +60,8 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         # a family of kernels has no stages: its kernel instead (its surrogate's nodes are a means)
         "family": {"name": fam.name, "source": fam.info.source, "parameters": list(fam.parameters),
                    "stages": None if fam.kernel else fam.stages, "field": None if field is None else field.name,
-                   "kernel": {"A": fam.kernel[0], "b": fam.kernel[1]} if fam.kernel else None},
+                   "kernel": {"A": fam.kernel[0], "b": fam.kernel[1]} if fam.kernel else None,
+                   "surrogate": {"nodes": fam.stages, "exact_to_vertices": fam.reach} if fam.kernel else None},
         "degree": fc.degree,
         "order_checked": fc.order,
         "energy_order_generic": fc.energy_order,
@@ -69,6 +70,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "quadrature_order_generic": fc.quadrature_order,
         "quadrature_order_checked": fc.quadrature_checked,
         "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
+        "warnings": list(fam.info.warnings),
     }
 
 
@@ -80,6 +82,11 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
     note = _field_note(field)
     if note:
         console.print(note)
+    if fam.kernel:
+        console.print(f"a continuous-stage kernel, through its exact surrogate on {fam.stages} rational nodes "
+                      f"(elementary weights exact for trees up to {fam.reach} vertices)")
+    for w in fam.info.warnings:
+        console.print(Text(f"warning: {w}", style="yellow"))
     total = len(fc.energy)
     zero = sum(c.vanishes for c in fc.energy)
     console.print(f"energy conditions, degree m = {deg}, up to order {fc.order}: {total}, "
@@ -88,7 +95,9 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
     label = f"≥ {generic}" if generic == fc.order and not fc.exceptional else str(generic)
     console.print(f"energy order for generic parameter values: {label}")
     if fc.classical is not None:
-        console.print(f"classical order for generic parameter values: {fc.classical_order}")
+        classical = fc.classical_order
+        at_least = classical == fc.classical_order_checked  # every classical condition checked vanished
+        console.print(f"classical order for generic parameter values: {'≥ ' if at_least else ''}{classical}")
     quadrature = fc.quadrature_order
     if fam.kernel and quadrature == fc.quadrature_checked:  # a kernel's rule has no largest order
         quadrature = f"≥ {quadrature} (checked up to {quadrature})"
@@ -180,9 +189,10 @@ def render_solution_set(family: Any, result: Any, console: Console) -> None:
         if result.components and len(result.components) > 1:
             console.print(f"split along factors into {len(result.components)} pieces (each solution lies in one; "
                           "a piece is not proven irreducible):")
-            _render_pieces(result, console, field)
+            _render_pieces(result, console, field, _avf_form(family))
         elif result.components:
-            avf = {True: "A = (A·1) bᵀ on all of it (AVF)", False: "not A = (A·1) bᵀ", None: ""}[result.components[0].avf]
+            form = _avf_form(family)
+            avf = {True: f"{form} on all of it (AVF)", False: f"not {form}", None: ""}[result.components[0].avf]
             console.print(f"no basis element factors: one piece{', ' + avf if avf else ''}")
         return
     sols = result.solutions or []
@@ -221,9 +231,14 @@ def _render_components(result: Any, console: Console) -> None:
             console.print(f"    {e} = 0")
 
 
-def _render_pieces(result: Any, console: Console, field: Any) -> None:
+def _avf_form(family: Any) -> str:
+    """What makes a solution AVF: a tableau's A = (A·1) bᵀ, a kernel's A = τ and B = 1."""
+    return "A = τ, B = 1" if family.kernel else "A = (A·1) bᵀ"
+
+
+def _render_pieces(result: Any, console: Console, field: Any, form: str) -> None:
     for k, c in enumerate(result.components, start=1):
-        avf = {True: ", A = (A·1) bᵀ (AVF)", False: ", not A = (A·1) bᵀ", None: ""}[c.avf]
+        avf = {True: f", {form} (AVF)", False: f", not {form}", None: ""}[c.avf]
         console.print(f"  piece {k}: dimension {c.dimension}{avf}")
         for e in c.equations:
             console.print(f"    {e if isinstance(e, str) else polynomial_text(e, field)} = 0")

@@ -97,3 +97,35 @@ def test_a_kernel_family_at_a_value_is_the_continuous_method(tmp_path):
     member = rkcheck.load_family(_kernel_family(tmp_path)).at({"kappa": 0})
     assert isinstance(member, rkcheck.ContinuousMethod)
     assert rkcheck.verify(member, degree=None, order=6, arithmetic="exact").energy_order == 6
+
+
+def test_b_in_both_variables_is_refused_and_unknown_keys_are_warned(tmp_path):
+    import pytest
+
+    from rkcheck.errors import UserError
+
+    with pytest.raises(UserError, match="continuous.b: B is a polynomial in one variable"):
+        rkcheck.load_family(_kernel_family(tmp_path, b="tau + sigma + kappa"))
+    f = tmp_path / "B.toml"
+    f.write_text('[parameters]\nkappa = "free"\n[continuous]\nA = "tau + kappa"\nB = "2"\n')
+    assert "unknown key continuous.B ignored (known: A, b)" in rkcheck.load_family(f).info.warnings
+
+
+def test_avf_of_a_kernel_family_is_a_equal_to_tau_and_b_to_1(tmp_path):
+    """A = k (a constant kernel, B = 1): its surrogate on one node is the 1-stage tableau
+    (k, 1), which the tableau families' route would call AVF (A = (A·1) bᵀ) at k = 1/2;
+    as a kernel it is A = 1/2 ≠ τ, not AVF.  A = τ + k(τ² − τ) + j(τ³ − τ) is AVF's kernel
+    only at k = j = 0: on the line k + 3j/2 = 0 where its conditions to order 2 vanish
+    for cubic H, A = C(τ)·1 (a tableau's A = (A·1) bᵀ) but not AVF.  A = τ + k·j·τ(σ − 1/2)
+    is AVF's kernel on both pieces k = 0 and j = 0."""
+    f = tmp_path / "k.toml"
+    f.write_text('[parameters]\nk = "free"\n[continuous]\nA = "k"\n')
+    res = rkcheck.solve(f, degree=2, order=4)
+    assert res.route == "plain" and [s.values["k"].text for s in res.solutions] == ["1/2"]
+    assert not (res.components and any(c.avf for c in res.components))
+    f.write_text('[parameters]\nk = "free"\nj = "free"\n[continuous]\nA = "tau + k*(tau^2 - tau) + j*(tau^3 - tau)"\n')
+    res = rkcheck.solve(f, degree=2, order=2)
+    assert res.dimension == 1 and res.components and res.components[0].avf is not True
+    f.write_text('[parameters]\nk = "free"\nj = "free"\n[continuous]\nA = "tau + k*j*tau*(sigma - 1/2)"\n')
+    res = rkcheck.solve(f, degree=None, order=5)
+    assert len(res.components) == 2 and all(c.avf is True for c in res.components)

@@ -220,3 +220,17 @@ def test_a_member_keeps_roots_own_x_when_a_parameter_is_called_x():
     fam = rkcheck.family_from_arrays([["x*root(x^3 - 2, 1)"]], ["1"], ["x"])
     box = fam.at({"x": 2}).A[0][0].enclosure(30)
     assert (box.lo / 2) ** 3 <= 2 <= (box.hi / 2) ** 3 and box.hi - box.lo < Fraction(1, 10**20)
+
+
+def test_order_1_has_no_condition_and_every_parameter_value_solves_it():
+    """Energy conditions start at order 2 (3 vertices): at order 1 nothing constrains the
+    six free entries of a 2-stage method, a set of dimension 6."""
+    res = rkcheck.solve(TABLEAUX / "families" / "design-s2-m3.toml", degree=None, order=1)
+    assert res.equations == 0 and res.dimension == 6
+
+
+def test_a_solution_past_the_range_of_floats_is_exact():
+    res = rkcheck.solve(TABLEAUX / "families" / "continuous-collocation-kappa.toml", degree=None, order=2,
+                        where=["kappa = 10^400"])
+    (solution,) = res.solutions
+    assert Fraction(solution.values["kappa"].text) == 10**400
