@@ -20,6 +20,7 @@ from rkcheck.cli.common import (
     exit_codes,
     fail_on_option,
     flag_values,
+    interrupts_deferred,
     load_tableau,
     max_conditions_option,
     max_stages_option,
@@ -90,9 +91,17 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         from rkcheck.reports.jsondoc import check_doc
         from rkcheck.reports.jsontext import chunks
 
-        for part in chunks(check_doc(result, lazy=True)):  # written as made: no whole text held
-            click.echo(part, nl=False)
-        click.echo()
+        with interrupts_deferred() as signal:  # the rows go out as made: a Ctrl-C ends them, the document closes
+            doc = check_doc(result, lazy=True)
+            doc["conditions"] = (c for c in doc["conditions"] if not signal.asked)
+            doc["conditions_complete"] = lambda: not signal.asked
+            for part in chunks(doc):
+                click.echo(part, nl=False)
+            click.echo()
+        if signal.asked:
+            click.echo("rkcheck: interrupted while writing; the report lists the conditions written before "
+                       '(JSON "conditions_complete": false)', err=True)
+            sys.exit(EXIT_INTERRUPTED)
     else:
         from rkcheck.reports.text import render_check
 

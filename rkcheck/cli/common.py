@@ -412,3 +412,34 @@ def write_text(text: str, output: str | None) -> None:
         except OSError:
             pass
         raise
+
+
+class Stop:
+    """Whether SIGINT or SIGTERM arrived (:func:`interrupts_deferred`)."""
+
+    asked = False
+
+
+@contextmanager
+def interrupts_deferred() -> Iterator[Stop]:
+    """SIGINT and SIGTERM only noted, for a writer that must end what it has begun (a
+    JSON document whose rows go out as they are made stops its rows and closes); the
+    handlers before are put back after.  Outside the main thread: nothing deferred."""
+    import signal
+    import threading
+
+    stop = Stop()
+    if threading.current_thread() is not threading.main_thread():
+        yield stop
+        return
+
+    def note(signum: int, frame: Any) -> None:
+        stop.asked = True
+
+    before = {sig: signal.signal(sig, note) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield stop
+    finally:
+        for sig, handler in before.items():
+            signal.signal(sig, handler)
+

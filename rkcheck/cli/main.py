@@ -3,6 +3,7 @@ one line on stderr and an exit code (0 ok, 1 fail, 2 user error, 3 bug, 130 inte
 
 from __future__ import annotations
 
+import io
 import os
 import signal
 import sys
@@ -184,10 +185,26 @@ class _ReaderMayLeave:
     def write(self, text: str) -> int:
         if not self._gone:
             try:
+                raw = getattr(self._stream, "buffer", None)
+                if isinstance(raw, io.FileIO):  # unbuffered (python -u): a write(2) a signal cut short
+                    self._write_all(raw, text)  # would be lost, the text layer does not look at the count
+                    return len(text)
                 return int(self._stream.write(text))
             except BrokenPipeError:
                 self._leave()
         return len(text)
+
+    def _write_all(self, raw: io.FileIO, text: str) -> None:
+        self._stream.flush()
+        data = memoryview(text.encode(self._stream.encoding, self._stream.errors or "strict"))
+        while data:
+            n = raw.write(data)
+            if n is None:  # a non-blocking descriptor that is full: wait for the reader
+                import select
+
+                select.select([], [raw], [])
+                continue
+            data = data[n:]
 
     def flush(self) -> None:
         if not self._gone:

@@ -268,6 +268,7 @@ def check_doc(res: CheckResult, failing_only: bool = False, lazy: bool = False) 
         "conditions": conditions if lazy else list(conditions),
         "warnings": res.warnings,
         "timings": {k: round(v, 6) for k, v in res.timings.items()},
+        "conditions_complete": True,  # false only where a writer was interrupted within the list
     }
 
 

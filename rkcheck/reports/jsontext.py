@@ -87,6 +87,8 @@ def _pieces(value: Any, depth: int) -> Iterator[str]:
                 yield from _pieces(v, depth + 1)
             sep = ","
         yield "[]" if sep == "[" else "\n" + _STEP * depth + "]"
+    elif callable(value):  # known only once what comes before it is written
+        yield from _pieces(value(), depth)
     elif isinstance(value, Encoded):
         yield value.text.replace("\n", "\n" + _STEP * depth)
     else:

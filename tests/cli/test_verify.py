@@ -3,6 +3,10 @@
 from __future__ import annotations
 
 import json
+import os
+import signal
+import subprocess
+import sys
 from fractions import Fraction
 
 import pytest
@@ -175,3 +179,27 @@ def test_an_exact_algebraic_verify_never_mentions_digits(capsys):
     assert run.out.rstrip().endswith("(AVF certificate); 66 conditions checked)")
     balls = run_cli(capsys, "verify", str(TABLEAUX / "avf" / "avf-gauss-2.toml"), "--arithmetic", "ball")
     assert "min digits" in balls.out
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_the_json_is_written_closes_the_document(sig):
+    """The conditions go out as they are made: a signal once the list has begun (seen
+    on the pipe, not guessed by a sleep) ends the rows, the document closes, and the
+    exit code is 130 — valid JSON whose ``conditions_complete`` is false and whose
+    rows are fewer than the conditions checked."""
+    env = dict(os.environ, NO_COLOR="1")
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", "verify", str(TABLEAUX / "explicit" / "rk4.toml"),
+                             "--order", "16", "--degree", "none", "--format", "json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    head = []
+    while not head or not head[-1].startswith('  "conditions": ['):
+        head.append(proc.stdout.readline())
+        assert head[-1], "the document ended before its conditions"
+    proc.send_signal(sig)
+    rest = proc.stdout.read()  # the same buffered reader: nothing it read ahead is lost
+    err = proc.stderr.read()
+    proc.wait(timeout=120)
+    doc = json.loads("".join(head) + rest)
+    assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
+    assert doc["conditions_complete"] is False
+    assert len(doc["conditions"]) < doc["summary"]["conditions_checked"]
