@@ -79,13 +79,19 @@ class Family:
 
     def equation(self, text: str) -> Any:
         """``"lhs = rhs"`` (or an expression meaning ``= 0``) over the family's ring."""
-        lhs, _, rhs = text.partition("=")
-        expr = f"({lhs}) - ({rhs})" if rhs.strip() else lhs
+        sides = text.split("=")
         # an option's text, not the file's: OptionError names --where, not the file
-        try:
-            node = ex.parse(expr)
-        except UserError as err:
-            raise OptionError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
+        if len(sides) > 2:
+            raise OptionError(f"cannot read the equation {text!r}: it has more than one '='", "--where")
+        if len(sides) == 2 and not all(side.strip() for side in sides):
+            raise OptionError(f"cannot read the equation {text!r}: '=' needs an expression on each side", "--where")
+        nodes = []
+        for side, where in zip(sides, ("", "right of '=': ") if len(sides) == 2 else ("",)):
+            try:  # each side parsed as written, so that a column counts in what the user typed
+                nodes.append(ex.parse(side))
+            except UserError as err:
+                raise OptionError(f"cannot read the equation {text!r}: {where}{err.message}", "--where") from None
+        node = nodes[0] if len(nodes) == 1 else ex.Binary("-", nodes[0], nodes[1], len(sides[0]) + 1)
         unknown = {n.name for n in xp.names(node)} - set(self.parameters) - set(self.entries.constants)
         if unknown:
             raise OptionError(f"unknown name {sorted(unknown)[0]!r} in {text!r} (the parameters are "

@@ -133,8 +133,8 @@ class ParametricEntries:
         try:
             found = field_of([node for node, _ in leaves], fixed_constants)
         except NotAlgebraic as err:
-            raise UserError(f"the parameter-free numbers of the family are not exact algebraic numbers: {err}",
-                            "parameters") from None
+            place = _failing_place(leaves, fixed_constants, (NotAlgebraic,)) or "parameters"
+            raise UserError(f"not an exact algebraic number: {err}", place) from None
         except UserError as err:
             if err.place:
                 raise
@@ -256,14 +256,17 @@ class ParametricEntries:
         return out
 
 
-def _failing_place(leaves: Sequence[tuple[ex.Expr, str]], constants: Mapping[str, ex.Expr]) -> str | None:
-    """The place of the first parameter-free part that cannot be evaluated on its own
-    (read only when the field of all of them refused one, to name where)."""
-    for node, place in leaves:
+def _failing_place(leaves: Sequence[tuple[ex.Expr, str]], constants: Mapping[str, ex.Expr],
+                   refused: tuple[type[Exception], ...] = (UserError,)) -> str | None:
+    """The place of the first constant, then the first parameter-free part, that cannot
+    be evaluated on its own (``refused``: the errors that count; read only when the
+    field of all of them refused one, to name where)."""
+    parts = [(node, f"constants.{name}") for name, node in constants.items()] + list(leaves)
+    for node, place in parts:
         try:
             field_of([node], dict(constants))
-        except UserError:
+        except refused:
             return place
-        except NotAlgebraic:
+        except (UserError, NotAlgebraic):
             continue
     return None

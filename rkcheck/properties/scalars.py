@@ -149,6 +149,8 @@ def text(x: Scalar, sig: int = 12) -> str:
     q = rational(x)
     if q is not None:
         dec = decimal_string(q, sig)
+        if _beyond_text(q):
+            return f"≈ {dec}"
         s = str(q)
         if s == dec:
             return s
@@ -165,6 +167,16 @@ def text(x: Scalar, sig: int = 12) -> str:
 
 #: longest exact algebraic text printed beside its decimal
 MAX_EXACT_TEXT = 60
+
+
+def _beyond_text(q: Fraction) -> bool:
+    """Whether ``q`` has an integer of more digits than Python writes as text in this
+    process (``sys.get_int_max_str_digits``: the CLI raises it, a library leaves it)."""
+    import sys
+
+    limit = sys.get_int_max_str_digits()
+    bits = max(q.numerator.bit_length(), q.denominator.bit_length())
+    return limit > 0 and bits * 0.30103 > limit - 1
 
 
 def exact_text(x: Scalar) -> str:

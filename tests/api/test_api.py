@@ -397,3 +397,17 @@ def test_numbers_past_pythons_digit_limit_are_an_rkcheck_error_naming_it():
     finally:
         sys.set_int_max_str_digits(limit)
     assert doc["summary"]["conditions_failed"] > 0
+
+
+def test_a_property_text_past_pythons_digit_limit_reads_as_a_decimal(tmp_path):
+    """M₁₁ = b(1 − b) − … for a = 1/2 + 10⁻⁵⁰⁰⁰: an exact rational whose integers have more
+    than Python's 4 300 digits (a library leaves that limit as it is); the check still
+    runs and says the symplectic defect as a decimal, and only writing every exact number
+    as text is refused, as a UserError."""
+    f = tmp_path / "huge.toml"
+    f.write_text('[tableau]\nA = [["1/2 + 1/1' + "0" * 5000 + '"]]\nb = ["1"]\n')
+    result = rkcheck.verify(f, order=3)
+    assert result.properties.symplectic.verdict.state == "fails"
+    assert "≈" in result.properties.symplectic.reason
+    with pytest.raises(rkcheck.UserError, match="4,300 digits"):
+        result.to_json()

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import random
+import re
 import subprocess
 import sys
 from fractions import Fraction
@@ -234,3 +235,27 @@ def test_a_solution_past_the_range_of_floats_is_exact():
                         where=["kappa = 10^400"])
     (solution,) = res.solutions
     assert Fraction(solution.values["kappa"].text) == 10**400
+
+
+@pytest.mark.parametrize("definition, name", [('"zz"', "zz"), ('"tau^2"', "tau")])
+def test_a_constant_that_is_not_a_number_is_named_at_its_place(tmp_path, definition, name):
+    f = tmp_path / "c.toml"
+    f.write_text(f'[parameters]\nk = "free"\n[constants]\nc = {definition}\n[tableau]\nA = [["k*c"]]\nb = ["1"]\n')
+    with pytest.raises(UserError) as err:
+        rkcheck.load_family(f)
+    assert err.value.place == "constants.c" and f"unknown name '{name}'" in err.value.message
+
+
+@pytest.mark.parametrize("where, message", [
+    ("= 3", "'=' needs an expression on each side"),
+    ("kappa =", "'=' needs an expression on each side"),
+    ("kappa = 3 = 3", "more than one '='"),
+    ("kappa = 3x", "right of '=': unexpected 'x' at column 3"),
+])
+def test_a_where_equation_that_cannot_be_read_says_why_in_its_own_text(where, message):
+    from rkcheck.errors import OptionError
+
+    with pytest.raises(OptionError, match=re.escape(message)) as err:
+        rkcheck.solve(TABLEAUX / "families" / "continuous-collocation-kappa.toml", degree=None, order=2,
+                      where=[where])
+    assert err.value.place == "--where"
