@@ -337,7 +337,8 @@ def loads(
         return method.replace(info=method.info.replace(lines=locate_lines(text, fmt)))
     if not isinstance(tableau, Tableau):
         raise UserError("this file has free [parameters]: it is a family, not one tableau; check it with "
-                        "`rkcheck verify`, `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",
+                        "`rkcheck verify FILE` on the file itself (standard input and pipes are read once, as one "
+                        "tableau), `rkcheck conditions FILE` or `rkcheck solve` (Python: rkcheck.load_family)",
                         source=source)
     return tableau.replace(info=tableau.info.replace(lines=locate_lines(text, fmt)))
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from rkcheck.errors import UserError
 from rkcheck.numbers.parametric import THETA
 from rkcheck.version import __version__
 
@@ -74,11 +75,34 @@ def _theta_names(fc: Any, lang: str) -> tuple[list[str], list[str]]:
     return ["theta"] + params, []
 
 
+#: names the emitted code itself uses, besides each language's keywords
+_TAKEN = {"python": {"Fraction", "residuals", "theta"}, "sympy": {"sympy", "residuals", "theta"},
+          "julia": {"residuals", "theta", "sqrt", "Rational", "big"}, "latex": set()}
+_JULIA_KEYWORDS = {"baremodule", "begin", "break", "catch", "const", "continue", "do", "else", "elseif", "end",
+                   "export", "false", "finally", "for", "function", "global", "if", "import", "let", "local", "macro",
+                   "module", "quote", "return", "struct", "true", "try", "using", "while", "abstract", "mutable",
+                   "primitive", "type", "where", "in", "isa"}
+
+
+def _check_names(fc: Any, lang: str) -> None:
+    """Refuse a parameter whose name the emitted code could not use: a keyword of the
+    language, or a name the code defines itself (θ, the function, an import)."""
+    import keyword
+
+    for name in fc.family.parameters:
+        taken = (keyword.iskeyword(name) or keyword.issoftkeyword(name) if lang in ("python", "sympy")
+                 else name in _JULIA_KEYWORDS if lang == "julia" else False)
+        if taken or name in _TAKEN[lang]:
+            raise UserError(f"the parameter {name!r} cannot be a name in {lang} code (a keyword, or a name the "
+                            "code uses itself): rename it in the family file", "--emit")
+
+
 def emit_family(fc: Any, lang: str) -> str:
     """The conditions of a :class:`~rkcheck.energy.family_conditions.FamilyConditions` as
     source text."""
     if lang not in FAMILY_LANGUAGES:
         raise ValueError(f"unknown language {lang!r}")
+    _check_names(fc, lang)
     names, theta_lines = _theta_names(fc, lang)
     conds = fc.energy + (fc.classical or [])
     ring_names = list(fc.family.ring.variables)

@@ -74,3 +74,12 @@ def test_unknown_route_and_structured_on_a_family_it_does_not_fit(capsys):
 def test_emit_with_a_family_needs_a_family_language(capsys):
     r = run_cli(capsys, "conditions", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--order", "4", "--emit", "matlab")
     _one_line(r, "python, sympy, julia, latex")
+
+
+@pytest.mark.parametrize("name, lang", [("lambda", "python"), ("Fraction", "python"), ("sympy", "sympy"),
+                                        ("end", "julia"), ("theta", "python")])
+def test_emit_refuses_a_parameter_the_code_could_not_name(capsys, tmp_path, name, lang):
+    f = tmp_path / "f.toml"
+    f.write_text(f'[parameters]\n{name} = "free"\n[tableau]\nA = [["{name}"]]\nb = ["1"]\n')
+    r = run_cli(capsys, "conditions", str(f), "--order", "3", "--emit", lang)
+    _one_line(r, "--emit", repr(name), f"{lang} code")
