@@ -108,8 +108,11 @@ class Family:
         missing = [p for p in self.parameters if p not in values]
         if missing:
             raise UserError(f"no value for the parameter {missing[0]}")
+        unknown = [k for k in values if k not in self.parameters]
+        if unknown:
+            raise UserError(f"{unknown[0]!r} is not a parameter (the parameters are {', '.join(self.parameters)})")
         # on the expressions, where a root's polynomial keeps its own x
-        subst = {p: ex.parse(f"({Fraction(values[p])})") for p in self.parameters}
+        subst = {p: ex.parse(f"({_rational(values[p], p)})") for p in self.parameters}
         texts = list(self.kernel) if self.kernel else [x for row in self.A_text for x in row] + list(self.b_text)
         out = [xp.to_text(xp.substituted(ex.parse(t), subst)) for t in texts]
         constants = {k: xp.to_text(xp.substituted(v, subst)) for k, v in self.entries.constants.items()}
@@ -118,6 +121,17 @@ class Family:
         s = self.stages
         return _tableau_from_texts([out[i * s:(i + 1) * s] for i in range(s)], out[s * s:], constants,
                                    name or self.name)
+
+
+def _rational(value: Any, name: str) -> Fraction:
+    """A parameter's value: an int, a Fraction, a text ``"1/3"``, or a finite float
+    (taken exactly, as the double it is)."""
+    if isinstance(value, bool) or not isinstance(value, (int, Fraction, float, str)):
+        raise UserError(f"expected a rational number, got {type(value).__name__}", name)
+    try:
+        return Fraction(value)
+    except (ValueError, OverflowError, ZeroDivisionError):
+        raise UserError(f"expected a finite rational number, got {value!r}", name) from None
 
 
 def entry_text(value: Any, place: str) -> str:

@@ -2,6 +2,7 @@
 identically when ∂A/∂τ is symmetric for every value, and `solve` finds the parameter of
 a classical order (κ = 3: Hairer's energy-preserving collocation, order 4)."""
 
+from fractions import Fraction
 from pathlib import Path
 
 import rkcheck
@@ -129,3 +130,16 @@ def test_avf_of_a_kernel_family_is_a_equal_to_tau_and_b_to_1(tmp_path):
     f.write_text('[parameters]\nk = "free"\nj = "free"\n[continuous]\nA = "tau + k*j*tau*(sigma - 1/2)"\n')
     res = rkcheck.solve(f, degree=None, order=5)
     assert len(res.components) == 2 and all(c.avf is True for c in res.components)
+
+
+def test_at_takes_rational_values_of_the_parameters_only(tmp_path):
+    import pytest
+
+    from rkcheck.errors import UserError
+
+    fam = rkcheck.load_family(_kernel_family(tmp_path))
+    assert fam.at({"kappa": "1/3"}).A == fam.at({"kappa": Fraction(1, 3)}).A
+    for values, message in (({"kappa": float("nan")}, "finite rational"), ({"kappa": 1, "zz": 2}, "not a parameter"),
+                            ({"kappa": "sqrt(2)"}, "finite rational"), ({"kappa": None}, "rational number")):
+        with pytest.raises(UserError, match=message):
+            fam.at(values)
