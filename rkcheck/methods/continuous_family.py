@@ -56,7 +56,8 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
         raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma", "continuous.b")
     if "sigma" in in_b:
         nodes[1] = xp.substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
-    poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants)
+    poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants,
+                             noun="tau, sigma or a parameter")
     ring = poly.ring
 
     def deg(p: Any, v: str) -> int:

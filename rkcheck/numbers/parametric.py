@@ -121,11 +121,12 @@ class ParametricEntries:
     constant may use parameters); ``places``: each entry's place for error messages."""
 
     def __init__(self, nodes: Sequence[ex.Expr], places: Sequence[str], parameters: Sequence[str],
-                 constants: Mapping[str, ex.Expr]):
+                 constants: Mapping[str, ex.Expr], noun: str = "a parameter"):
         if len(parameters) > MAX_PARAMETERS:
             raise UserError(f"{len(parameters)} parameters exceed the limit MAX_PARAMETERS = {MAX_PARAMETERS}",
                             "parameters")
         self.constants = dict(constants)
+        self.noun = noun  # what the names are called in messages (a kernel's are tau, sigma and parameters)
         self.dependent = parameter_closure(self.constants, parameters)
         fixed_constants = {k: v for k, v in self.constants.items() if k not in self.dependent}
         self._expanded: dict[str, Any] = {}
@@ -182,14 +183,18 @@ class ParametricEntries:
     def _check_polynomial(self, n: ex.Expr, place: str) -> None:
         """A node that uses a parameter must keep the entry polynomial in it."""
         if isinstance(n, ex.Call):
-            raise UserError(f"a parameter under {n.func}(...) (column {n.column}): entries must be polynomials "
-                            "in the parameters", place)
+            raise UserError(f"{self.noun} under {n.func}(...) (column {n.column}): entries must be polynomials "
+                            f"in {self._names}", place)
         if isinstance(n, ex.Power) and uses(n.exponent, self.dependent):
-            raise UserError(f"a parameter in an exponent (column {n.column}): entries must be polynomials "
-                            "in the parameters", place)
+            raise UserError(f"{self.noun} in an exponent (column {n.column}): entries must be polynomials "
+                            f"in {self._names}", place)
         if isinstance(n, ex.Binary) and n.op == "/" and uses(n.right, self.dependent):
-            raise UserError(f"a parameter in a denominator (column {n.column}): entries must be polynomials "
-                            "in the parameters", place)
+            raise UserError(f"{self.noun} in a denominator (column {n.column}): entries must be polynomials "
+                            f"in {self._names}", place)
+
+    @property
+    def _names(self) -> str:
+        return "them" if self.noun != "a parameter" else "the parameters"
 
     # ------------------------------------------------------------------ polynomials
 
@@ -249,7 +254,7 @@ class ParametricEntries:
     def _power(self, base: Any, n: ex.Power, place: str) -> Any:
         exponent = xp.evaluate_exact(n.exponent, {})
         if exponent is None or exponent.denominator != 1 or not 0 <= exponent <= 64:
-            raise UserError(f"a power of a parameter needs a whole exponent from 0 to 64 (column {n.column})", place)
+            raise UserError(f"a power of {self.noun} needs a whole exponent from 0 to 64 (column {n.column})", place)
         out = self.ring.constant(1)
         for _ in range(int(exponent)):
             out = self.ring.reduce(out * base)

@@ -143,3 +143,13 @@ def test_at_takes_rational_values_of_the_parameters_only(tmp_path):
                             ({"kappa": "sqrt(2)"}, "finite rational"), ({"kappa": None}, "rational number")):
         with pytest.raises(UserError, match=message):
             fam.at(values)
+
+
+def test_a_kernel_familys_errors_call_tau_a_variable_not_a_parameter(tmp_path):
+    import pytest
+
+    from rkcheck.errors import UserError
+
+    with pytest.raises(UserError, match="tau, sigma or a parameter in a denominator") as err:
+        rkcheck.load_family(_kernel_family(tmp_path, A="1/tau + kappa"))
+    assert err.value.place == "continuous.A"
