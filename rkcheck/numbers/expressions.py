@@ -212,7 +212,7 @@ class _RootPolynomial:
         return [c / divisor for c in left]
 
     def power(self, node: Power, base: list[Fraction], exponent: list[Fraction]) -> list[Fraction]:
-        n = _check_exponent(self.constant(exponent, "an exponent"), node.column)
+        n = check_exponent(self.constant(exponent, "an exponent"), node.column)
         if n < 0:
             raise UserError(f"negative power in root's polynomial at column {node.column}")
         out = [Fraction(1)]
@@ -249,7 +249,7 @@ def literals(node: Expr) -> list[Num]:
 # ------------------------------------------------------------------- evaluation
 
 
-def _check_exponent(value: Fraction, column: int) -> int:
+def check_exponent(value: Fraction, column: int) -> int:
     if value.denominator != 1:
         raise UserError(f"exponent {value} at column {column} is not an integer")
     if abs(value) > MAX_EXPONENT:
@@ -257,7 +257,7 @@ def _check_exponent(value: Fraction, column: int) -> int:
     return int(value)
 
 
-def _check_size(base: Fraction, n: int, column: int) -> None:
+def check_power_size(base: Fraction, n: int, column: int) -> None:
     bits = (base.numerator.bit_length() + base.denominator.bit_length()) * abs(n)
     if bits > MAX_BITS:
         raise UserError(f"power at column {column} is too large (about {count_text(bits)} bits)")
@@ -293,12 +293,12 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
             b, e = vals
             if e is None:
                 raise UserError(f"exponent at column {n.column} is not an integer")
-            k = _check_exponent(e, n.column)
+            k = check_exponent(e, n.column)
             if b is None:
                 return None
             if b == 0 and k < 0:
                 raise UserError(f"division by zero (0 to a negative power) at column {n.column}")
-            _check_size(b, k, n.column)
+            check_power_size(b, k, n.column)
             return b**k
         assert isinstance(n, Binary)
         left, right = vals
@@ -364,10 +364,10 @@ def enclose(
             b, e = vals
             if not e.is_point:
                 raise UserError(f"exponent at column {n.column} is not an exact integer")
-            k = _check_exponent(e.lo, n.column)
+            k = check_exponent(e.lo, n.column)
             if k < 0 and b.contains_zero():
                 raise UserError(f"division by zero (0 to a negative power) at column {n.column}")
-            _check_size(max(abs(b.lo), abs(b.hi)) or Fraction(1), k, n.column)
+            check_power_size(max(abs(b.lo), abs(b.hi)) or Fraction(1), k, n.column)
             out = b.power(k)
             _check_value_bits((out.lo, out.hi), n.column)
             return out

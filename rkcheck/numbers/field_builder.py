@@ -257,10 +257,14 @@ class _Builder:
             r = self.lift(e).rational()
             if r is None or r.denominator != 1:
                 raise UserError(f"exponent at column {node.column} is not an integer")
+            k = xp.check_exponent(r, node.column)  # the entries' limits hold here too
             base = self.value(node.base)
             if base.is_zero() and r < 0:
                 raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-            return self.lift(base) ** int(r)
+            q = self.lift(base).rational()
+            if q is not None:
+                xp.check_power_size(q, k, node.column)
+            return self.lift(base) ** k
         if isinstance(node, ex.Call):
             return self._call(node)
         assert isinstance(node, ex.Binary)
@@ -431,10 +435,12 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
             r = vals[0]
             if r.denominator != 1:
                 raise UserError(f"exponent at column {node.column} is not an integer")
+            k = xp.check_exponent(r, node.column)
             base = xp.fold(node.base, combine, _exponent_first)
             if base == 0 and r < 0:
                 raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-            power: Fraction = base ** int(r)
+            xp.check_power_size(Fraction(base), k, node.column)
+            power: Fraction = base ** k
             return power
         assert isinstance(node, ex.Binary)
         out: Fraction = _arithmetic(node, *vals)

@@ -83,3 +83,15 @@ def test_emit_refuses_a_parameter_the_code_could_not_name(capsys, tmp_path, name
     f.write_text(f'[parameters]\n{name} = "free"\n[tableau]\nA = [["{name}"]]\nb = ["1"]\n')
     r = run_cli(capsys, "conditions", str(f), "--order", "3", "--emit", lang)
     _one_line(r, "--emit", repr(name), f"{lang} code")
+
+
+@pytest.mark.parametrize("entry, message", [("k + 3^100000000", "out of range (|n| <= 1000)"),
+                                            ("k + (sqrt(2) + 1)^100000000", "out of range (|n| <= 1000)"),
+                                            ("k + (3^999)^999", "too large")])
+def test_a_familys_numbers_keep_the_entries_limits(capsys, tmp_path, entry, message):
+    """The entry grammar's limits on powers hold in a family's parameter-free parts too:
+    3^100000000 was computed (a hang) where a tableau's entry is refused at once."""
+    f = tmp_path / "f.toml"
+    f.write_text(f'[parameters]\nk = "free"\n[tableau]\nA = [["{entry}"]]\nb = ["1"]\n')
+    r = run_cli(capsys, "verify", str(f), "--order", "2")
+    _one_line(r, "A[1][1]", message)
