@@ -442,4 +442,3 @@ def interrupts_deferred() -> Iterator[Stop]:
     finally:
         for sig, handler in before.items():
             signal.signal(sig, handler)
-

@@ -61,7 +61,8 @@ def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_tabl
 
     if not isinstance(table, dict):
         raise UserError("[continuous] must be a table", "continuous")
-    unknown = tuple(f"unknown key continuous.{printable(key)} ignored (known: A, b)" for key in table if key not in KEYS)
+    unknown = tuple(f"unknown key continuous.{printable(key)} ignored (known: A, b)"
+                    for key in table if key not in KEYS)
     info = info.replace(warnings=info.warnings + unknown)
     if "M" in table:
         raise UserError("a kernel with [parameters] is given by A (and b), not M", "continuous")

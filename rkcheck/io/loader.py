@@ -174,7 +174,8 @@ def _build(
 
         raw = _table(data, "constants")
         if "parameters" in data:  # constants may use the parameters: resolved by the family
-            return from_document(data, name, info, warnings, _table(data, "parameters"), raw, _constant_definitions(raw))
+            return from_document(data, name, info, warnings, _table(data, "parameters"), raw,
+                                 _constant_definitions(raw))
         return from_document(data, name, info.replace(constants=_constants(raw)), warnings)
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
