@@ -268,11 +268,7 @@ class Kernel:
             except UserError as err:
                 raise err.located(place) from None
             nodes.append(node)
-        if any(n.name == "tau" for n in xp.names(nodes[1])) and any(n.name == "sigma" for n in xp.names(nodes[1])):
-            raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma",
-                            matrix_place or "continuous.b")
-        if any(n.name == "sigma" for n in xp.names(nodes[1])):  # B written in σ (as B(σ) = A(1, σ))
-            nodes[1] = _rename(nodes[1], "sigma", "tau")
+        nodes[1] = b_in_tau(nodes[1], matrix_place or "continuous.b")
         try:
             parsed = ParametricEntries(nodes, [matrix_place or "continuous.A", matrix_place or "continuous.b"],
                                        VARIABLES, constants.definitions)
@@ -407,8 +403,13 @@ def _literal(q: Fraction) -> ex.Expr:
     return ex.parse(f"({q.numerator}/{q.denominator})")
 
 
-def _rename(node: ex.Expr, old: str, new: str) -> ex.Expr:
-    return xp.substituted(node, {old: ex.Name(new, 1)})
+def b_in_tau(node: ex.Expr, place: str) -> ex.Expr:
+    """B as a polynomial in tau: written in sigma (as B(σ) = A(1, σ)) it is renamed; in
+    both variables it is refused at ``place``."""
+    used = {n.name for n in xp.names(node)}
+    if {"tau", "sigma"} <= used:
+        raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma", place)
+    return xp.substituted(node, {"sigma": ex.Name("tau", 1)}) if "sigma" in used else node
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:

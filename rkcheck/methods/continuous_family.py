@@ -16,6 +16,7 @@ from rkcheck.methods.continuous import (
     MAX_SURROGATE_NODES,
     VARIABLES,
     _literal,
+    b_in_tau,
     rational_rule,
 )
 from rkcheck.methods.tableau import MethodInfo
@@ -51,11 +52,7 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
                 raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a polynomial in "
                                 "tau and sigma (and the [parameters] and [constants])", place)
         nodes.append(node)
-    in_b = {n.name for n in xp.names(nodes[1])}
-    if {"tau", "sigma"} <= in_b:
-        raise UserError("B is a polynomial in one variable (tau); it uses both tau and sigma", "continuous.b")
-    if "sigma" in in_b:
-        nodes[1] = xp.substituted(nodes[1], {"sigma": ex.Name("tau", 1)})
+    nodes[1] = b_in_tau(nodes[1], "continuous.b")
     poly = ParametricEntries(nodes, ["continuous.A", "continuous.b"], (*VARIABLES, *parameters), constants,
                              noun="tau, sigma or a parameter")
     ring = poly.ring
