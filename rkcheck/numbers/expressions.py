@@ -263,6 +263,14 @@ def check_power_size(base: Fraction, n: int, column: int) -> None:
         raise UserError(f"power at column {column} is too large (about {count_text(bits)} bits)")
 
 
+def rational_power(base: Fraction, k: int, column: int) -> Fraction:
+    """``base**k`` (``k`` from :func:`check_exponent`) within the size budget."""
+    if base == 0 and k < 0:
+        raise UserError(f"division by zero (0 to a negative power) at column {column}")
+    check_power_size(base, k, column)
+    return base**k
+
+
 def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Fraction | None:
     """The exact rational value of ``node`` at face value, or None when it is irrational.
 
@@ -294,12 +302,7 @@ def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Frac
             if e is None:
                 raise UserError(f"exponent at column {n.column} is not an integer")
             k = check_exponent(e, n.column)
-            if b is None:
-                return None
-            if b == 0 and k < 0:
-                raise UserError(f"division by zero (0 to a negative power) at column {n.column}")
-            check_power_size(b, k, n.column)
-            return b**k
+            return None if b is None else rational_power(b, k, n.column)
         assert isinstance(n, Binary)
         left, right = vals
         if n.op == "/" and right == 0:

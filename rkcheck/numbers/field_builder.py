@@ -436,12 +436,7 @@ def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] 
             if r.denominator != 1:
                 raise UserError(f"exponent at column {node.column} is not an integer")
             k = xp.check_exponent(r, node.column)
-            base = xp.fold(node.base, combine, _exponent_first)
-            if base == 0 and r < 0:
-                raise UserError(f"division by zero (0 to a negative power) at column {node.column}")
-            xp.check_power_size(Fraction(base), k, node.column)
-            power: Fraction = base ** k
-            return power
+            return xp.rational_power(Fraction(xp.fold(node.base, combine, _exponent_first)), k, node.column)
         assert isinstance(node, ex.Binary)
         out: Fraction = _arithmetic(node, *vals)
         return out
