@@ -134,10 +134,13 @@ class ExactOrderSums:
         assert t.integral_d is not None
         n = self.vertices
         dg = [k * c for k, c in enumerate(t.minpoly)][1:]
+        from flint import nmod_poly
+
         weights = []
         for p, roots in self.primes:
             inv = pow(pow(t.d // t.integral_d, n - 1, p), -1, p)
-            weights.append([_horner(dg, r, p) * inv % p for r in roots])
+            g_prime = nmod_poly(dg, p)
+            weights.append([int(g_prime(r)) * inv % p for r in roots])
         columns = self._coefficients_of(rows, weights)
         scale = math.factorial(n - 1) * t.integral_d ** (n - 1)
         inverse = t.field_element(dg, 1).inverse()
@@ -236,14 +239,6 @@ def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
             merged.append(nodes[-1])
         nodes = merged
     return nodes[0][0]
-
-
-def _horner(coeffs: list[int], r: int, p: int) -> int:
-    """``Σ coeffs_k r^k`` modulo p."""
-    out = 0
-    for c in reversed(coeffs):
-        out = (out * r + c) % p
-    return out
 
 
 def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,
