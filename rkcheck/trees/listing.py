@@ -20,6 +20,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from functools import lru_cache
+from itertools import groupby
+from operator import itemgetter
 from typing import Callable, Iterator
 
 import numpy as np
@@ -28,7 +30,7 @@ from rkcheck.trees.classes import classify
 from rkcheck.trees.counting import condition_counts, listing_size, term_counts
 from rkcheck.trees.factors import RightFactors
 from rkcheck.trees.free import FreeTree
-from rkcheck.trees.rooted import level_sequence_of_forest, repeated
+from rkcheck.trees.rooted import bracket_of_runs, level_sequence_of_forest
 from rkcheck.trees.stored import ListingStore, from_record, record_key, to_record
 from rkcheck.trees.table import TreeTable
 from rkcheck.trees.terms import OrderTerms
@@ -271,18 +273,9 @@ class ConditionListing:
         :func:`~rkcheck.trees.rooted.bracket_of_forest` writes it (larger level sequences
         first, a repeated subtree once with its count), from the subtrees' own brackets:
         a listing names each rooted tree once, not once per condition it is part of."""
-        if not children:
-            return "τ"
         ordered = sorted(((self.tree_level_sequence(c), c) for c in children), reverse=True)
-        parts = []
-        i = 0
-        while i < len(ordered):
-            j = i + 1
-            while j < len(ordered) and ordered[j][0] == ordered[i][0]:
-                j += 1
-            parts.append(self.tree_bracket(ordered[i][1]) + repeated(j - i))
-            i = j
-        return "[" + "".join(parts) + "]"
+        runs = [list(run) for _, run in groupby(ordered, key=itemgetter(0))]
+        return bracket_of_runs((self.tree_bracket(run[0][1]), len(run)) for run in runs)
 
     def _designated(self, n: int, k: int) -> tuple[tuple[int, ...], list[int], int]:
         """The designated rooting of condition ``k`` (level sequence, the stored trees

@@ -20,7 +20,8 @@ printing a bracket); the bulk tables of trees with integer ids are
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Sequence
+from itertools import groupby
+from typing import Iterable, Sequence
 
 _SUPERSCRIPTS = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 
@@ -44,24 +45,15 @@ def bracket_of_forest(subtrees: Sequence[tuple[int, ...]]) -> str:
 
 @lru_cache(maxsize=1 << 16)
 def _bracket_of_forest(subtrees: tuple[tuple[int, ...], ...]) -> str:
-    if not subtrees:
-        return "τ"
-    parts: list[str] = []
     ordered = sorted(subtrees, reverse=True)
-    i = 0
-    while i < len(ordered):
-        j = i
-        while j < len(ordered) and ordered[j] == ordered[i]:
-            j += 1
-        inner = bracket_of_forest(_split_children(ordered[i]))
-        parts.append(inner + repeated(j - i))
-        i = j
-    return "[" + "".join(parts) + "]"
+    return bracket_of_runs((bracket_of_forest(_split_children(seq)), len(list(run))) for seq, run in groupby(ordered))
 
 
-def repeated(count: int) -> str:
-    """The mark of a subtree repeated ``count`` times in a bracket (``[τ²]``): none for one."""
-    return str(count).translate(_SUPERSCRIPTS) if count > 1 else ""
+def bracket_of_runs(runs: Iterable[tuple[str, int]]) -> str:
+    """The bracket of a root carrying, in order, each subtree (its bracket) as many times
+    as its count — ``[τ²]`` — and τ when it carries none."""
+    parts = [text + (str(count).translate(_SUPERSCRIPTS) if count > 1 else "") for text, count in runs]
+    return "[" + "".join(parts) + "]" if parts else "τ"
 
 
 def bracket(seq: Sequence[int]) -> str:
