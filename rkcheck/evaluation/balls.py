@@ -156,18 +156,33 @@ class BallContext:
 
     def add_terms(self, acc: Any, w_terms: Any, terms: Any, n: int, i0: int, i1: int) -> None:
         """Σ c·w with c = ±(n−1)!/σ exact: mid-points summed exactly, radii |c|·r."""
-        coef = _coefficients(terms)
         cond, idx = terms.block(i0, i1)
-        np.add.at(acc[0], cond, w_terms[0] * coef[idx])
-        # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
-        acc[1] += np.bincount(cond, weights=w_terms[1] * np.abs(coef[idx].astype(float)) * _UP1,
-                              minlength=len(acc[1]))
+        self._bin(acc, w_terms, _coefficients(terms)[idx], cond)
+
+    def _bin(self, acc: Any, w_terms: Any, coef: np.ndarray, cond: np.ndarray) -> None:
+        np.add.at(acc[0], cond, w_terms[0] * coef)
+        # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both;
+        # one term after another into its bin, so that a subset's radii are the pass's
+        np.add.at(acc[1], cond, w_terms[1] * np.abs(coef.astype(float)) * _UP1)
 
     def finish_sums(self, acc: Any, k: int, n: int) -> "BallSums":
         """R = Σ/(n−1)!: the exact mid-point sums over (n−1)!·2^P, the radius bounds
         rounded up (the float additions into each bin, at most a few hundred, covered by
         γ_256)."""
         return BallSums(acc[0][:k], summed_radii(acc[1], k, self.bits), self.bits, self.shift, math.factorial(n - 1))
+
+    def selected_sums(self, part: Any) -> Any:
+        """Bins for the selected conditions of ``part`` (a
+        :class:`~rkcheck.evaluation.subset.Subset`'s order)."""
+        return self.sums(part.conditions, part.terms.vertices)
+
+    def add_selected(self, acc: Any, w_terms: Any, part: Any, t0: int, t1: int) -> None:
+        """The selected terms ``t0 … t1−1`` of ``part`` into their bins, as :meth:`add_terms`."""
+        self._bin(acc, w_terms, _coefficients(part.terms)[part.coefficient[t0:t1]],
+                  part.condition[t0:t1].astype(np.intp))
+
+    def finish_selected(self, acc: Any, part: Any) -> "BallSums":
+        return self.finish_sums(acc, part.conditions, part.terms.vertices)
 
 
 def take_rows(x: np.ndarray, idx: np.ndarray) -> np.ndarray:

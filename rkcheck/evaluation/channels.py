@@ -291,23 +291,23 @@ class PrimeChannels:
         """The residues per condition and channel, ``(k, K)``."""
         return (acc.total()[:, :k].astype(np.int64) % self._P2).T
 
-    def selected_sums(self, k: int) -> np.ndarray:
-        """Bins for ``k`` conditions whose terms come in any order
-        (:class:`~rkcheck.evaluation.subset.Subset`): float64, exact (at most 21 residues below
-        2^30 a condition)."""
-        return np.zeros((self.width, k), dtype=np.float64)
+    def selected_sums(self, part: Any) -> np.ndarray:
+        """Bins for the selected conditions of ``part`` (a
+        :class:`~rkcheck.evaluation.subset.Subset`'s order), whose terms come in any
+        order: float64, exact (at most 21 residues below 2^30 a condition)."""
+        return np.zeros((self.width, part.conditions), dtype=np.float64)
 
-    def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, coefficient_index: np.ndarray,
-                     condition: np.ndarray) -> None:
-        """Add ``((n−1)!/σ)·(±ŵ)`` of some terms of ``terms`` (their coefficient indices
-        and conditions given) modulo each channel's prime to the bins ``acc``."""
-        w_terms *= np.take(self._coefficients(terms, n), coefficient_index, axis=1)
+    def add_selected(self, acc: np.ndarray, w_terms: np.ndarray, part: Any, t0: int, t1: int) -> None:
+        """Add ``((n−1)!/σ)·(±ŵ)`` of the selected terms ``t0 … t1−1`` of ``part``
+        modulo each channel's prime to the bins ``acc``."""
+        terms = part.terms
+        w_terms *= np.take(self._coefficients(terms, terms.vertices), part.coefficient[t0:t1], axis=1)
         w = self._reduce(w_terms).astype(np.float64)
-        cond = condition.astype(np.intp)
+        cond = part.condition[t0:t1].astype(np.intp)
         for c in range(self.width):
             acc[c] += np.bincount(cond, weights=w[c], minlength=acc.shape[1])
 
-    def finish_selected(self, acc: np.ndarray) -> np.ndarray:
+    def finish_selected(self, acc: np.ndarray, part: Any) -> np.ndarray:
         """The residues per condition and channel, ``(k, K)``."""
         return (acc.astype(np.int64) % self._P2).T
 

@@ -77,7 +77,9 @@ class DigitSums:
     def _flush_radii(self) -> None:
         n = self._nr
         if n:
-            self.radii += np.bincount(self._rc[:n], weights=self._r[:n], minlength=len(self.radii))
+            # one term after another into its bin: every radius is then the same sum, in the
+            # same order, whatever else is binned with it (a subset's balls are the pass's)
+            np.add.at(self.radii, self._rc[:n], self._r[:n])
         self._nr = 0
 
     def totals(self) -> tuple[np.ndarray, np.ndarray]:

@@ -376,7 +376,11 @@ class LimbBallContext:
         mult, cabs, _ = multipliers(order, self.digit_bits)
         acc.terms = order
         cond, idx = terms.block(i0, i1)
-        mult = mult[terms.positions(i0, i1)] if order is not terms else mult[i0:i1]
+        self._bin(acc, w_terms, mult[terms.positions(i0, i1)] if order is not terms else mult[i0:i1], cabs[idx], cond)
+
+    def _bin(self, acc: DigitSums, w_terms: Any, mult: np.ndarray, cabs: np.ndarray, cond: np.ndarray) -> None:
+        """The terms ``w_terms`` with the multipliers ``mult`` and coefficients ``|c|`` =
+        ``cabs`` into the bins ``cond`` of ``acc``."""
         wm = w_terms[0]
         # a term whose mid-point is zero adds zero to every digit sum: only the others count
         rows = _sparse_rows(self._may_be_nonzero(w_terms))
@@ -386,16 +390,21 @@ class LimbBallContext:
             acc.add_digits(take_rows(wm, rows).T, mult[rows], cond[rows])
         # |c| rounded to float (relative 2^−53) times r rounded once more: _UP1 covers both
         rad = acc.radius_room(cond)
-        np.multiply(w_terms[1], cabs[idx], out=rad)
+        np.multiply(w_terms[1], cabs, out=rad)
         rad *= _UP1
 
     def finish_sums(self, acc: DigitSums, k: int, n: int) -> DigitBallSums:
         """R = Σ/(n−1)!: the exact mid-point sums (each condition's digit sums carried;
         times its divisor) over (n−1)!·2^P, the radius bounds rounded up (the float
         additions into each bin, at most a few hundred, covered by γ_256)."""
+        divisors = np.ones(k, dtype=np.int64) if acc.terms is None else multipliers(acc.terms, self.digit_bits)[2][:k]
+        return self._finish(acc, divisors, n)
+
+    def _finish(self, acc: DigitSums, divisors: np.ndarray, n: int) -> DigitBallSums:
+        """The ball sums of ``acc``'s conditions, whose divisors are ``divisors``."""
+        k = len(divisors)
         digits, radii = acc.totals()
         rads = summed_radii(radii, k, self.bits)
-        divisors = np.ones(k, dtype=np.int64) if acc.terms is None else multipliers(acc.terms, self.digit_bits)[2][:k]
         carried = np.empty((self.L, k), dtype=np.int64)
         for c0 in range(0, k, _BLOCK):  # by blocks of conditions: small temporaries
             c1 = min(k, c0 + _BLOCK)
@@ -403,6 +412,23 @@ class LimbBallContext:
             d[1:] = digits[:, c0:c1]  # exact: each sum is an integer below 2^53
             carried[:, c0:c1] = self._carry(d)
         return DigitBallSums(carried, divisors, rads, self.bits, self.digit_bits, math.factorial(n - 1))
+
+    def selected_sums(self, part: Any) -> DigitSums:
+        """Bins for the selected conditions of ``part`` (a
+        :class:`~rkcheck.evaluation.subset.Subset`'s order): the sums of
+        :meth:`add_terms`, the terms' conditions renumbered among the selected."""
+        return DigitSums(self.L, part.conditions + 1)
+
+    def add_selected(self, acc: DigitSums, w_terms: Any, part: Any, t0: int, t1: int) -> None:
+        """The selected terms ``t0 … t1−1`` of ``part`` into their bins, as :meth:`add_terms`."""
+        own = part.own_terms
+        mult, cabs, _ = multipliers(own, self.digit_bits)
+        self._bin(acc, w_terms, mult[t0:t1], cabs[part.coefficient[t0:t1]], own.conditions(t0, t1))
+
+    def finish_selected(self, acc: DigitSums, part: Any) -> DigitBallSums:
+        """The balls of the selected conditions."""
+        divisors = multipliers(part.own_terms, self.digit_bits)[2][:part.conditions]
+        return self._finish(acc, divisors, part.terms.vertices)
 
 
 #: stores keep the digits of the rows with a nonzero code only (False: of every row)

@@ -27,14 +27,50 @@ _SCAN = 1 << 18
 @dataclass
 class _OrderPart:
     """The selected terms of one order: factor positions in the subset's trees, the
-    coefficient index of each term and its condition among the selected ones."""
+    coefficient index of each term, its condition among the selected ones, and those
+    conditions' indices in the order."""
 
     terms: Any  # the order's OrderTerms (its coefficients)
     left: np.ndarray  # positions of u in Subset.trees, per term u ∘ v
     right: np.ndarray  # positions of v
     coefficient: np.ndarray
     condition: np.ndarray  # 0 … conditions − 1
-    conditions: int
+    selected: np.ndarray  # the selected conditions, sorted: condition i is selected[i]
+    _own: "SelectedTerms | None" = None
+
+    @property
+    def conditions(self) -> int:
+        return len(self.selected)
+
+    @property
+    def own_terms(self) -> "SelectedTerms":
+        """These terms read as an order of their own (cached)."""
+        if self._own is None:
+            self._own = SelectedTerms(self)
+        return self._own
+
+
+class SelectedTerms:
+    """The selected terms of one order read as an order's terms of their own, their
+    conditions renumbered: what :func:`~rkcheck.evaluation.digit_sums.multipliers` reads,
+    so that the digit balls plan the sums of the selected conditions without planning
+    the whole order's."""
+
+    def __init__(self, part: _OrderPart):
+        self.part = part
+        self.vertices = int(part.terms.vertices)
+        self.coefficients = part.terms.coefficients
+        self.rows = len(part.condition)
+        self.counts = np.bincount(part.condition, minlength=part.conditions)
+
+    def __len__(self) -> int:
+        return self.part.conditions
+
+    def block(self, i0: int, i1: int) -> tuple[np.ndarray, np.ndarray]:
+        return self.conditions(i0, i1), self.part.coefficient[i0:i1]
+
+    def conditions(self, i0: int, i1: int) -> np.ndarray:
+        return self.part.condition[i0:i1].astype(np.intp)
 
 
 class Subset:
@@ -60,7 +96,7 @@ class Subset:
             return None
         mark = np.zeros(first[max(selected) if selected else 2], dtype=bool)
         mark[0] = True  # τ
-        chosen: dict[int, tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]] = {}
+        chosen: dict[int, tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
         for n, conditions in selected.items():
             terms = listing.orders[n]
             where = np.full(len(terms) + 1, -1, dtype=np.int32)  # the superfluous bin stays out
@@ -74,7 +110,7 @@ class Subset:
                 assert terms.left is not None and terms.right is not None
                 u, v = terms.left[index], terms.right[index]
             mark[u] = mark[v] = True
-            chosen[n] = (terms, u, v, coefficient, where[condition], len(conditions))
+            chosen[n] = (terms, u, v, coefficient, where[condition], np.asarray(conditions))
         for k in range(len(first) - 2, 1, -1):  # every tree's factors, from the largest trees down
             lo, hi = first[k], min(first[k + 1], len(mark))
             if lo >= hi:
@@ -93,17 +129,21 @@ class Subset:
             if hi > lo:
                 ids = trees[lo:hi]
                 levels.append((lo, hi, position(listing.left[ids]), position(listing.right[ids])))
-        orders = {n: _OrderPart(terms, position(u), position(v), coefficient, condition, k)
-                  for n, (terms, u, v, coefficient, condition, k) in chosen.items()}
+        orders = {n: _OrderPart(terms, position(u), position(v), coefficient, condition, conditions)
+                  for n, (terms, u, v, coefficient, condition, conditions) in chosen.items()}
         return Subset(trees, levels, orders, s)
 
     def channel_bytes(self) -> int:
         """Memory one channel takes (its weights, int32)."""
         return 4 * len(self.trees) * (2 * self.s + 2)
 
-    def residues(self, ctx: Any) -> dict[int, np.ndarray]:
-        """``{n: (selected conditions, channels) residues}`` in the channels of ``ctx`` (a
-        :class:`~rkcheck.evaluation.channels.PrimeChannels`)."""
+    def residues(self, ctx: Any) -> dict[int, Any]:
+        """``{n: sums of the selected conditions}`` in ``ctx``: residues ``(selected
+        conditions, channels)`` in the channels of a
+        :class:`~rkcheck.evaluation.channels.PrimeChannels`, balls in a
+        :class:`~rkcheck.evaluation.limbs.LimbBallContext` — any context with
+        ``selected_sums(part)``, ``add_selected(acc, w, part, t0, t1)`` and
+        ``finish_selected(acc, part)`` besides the kernel."""
         size = len(self.trees)
         phi, psi, a, w = ctx.vectors(size, self.s), ctx.vectors(size, self.s), ctx.scalars(size), ctx.scalars(size)
         one = ctx.ones(1, self.s)  # τ, at position 0
@@ -122,10 +162,10 @@ class Subset:
                 ctx.put(psi, c0, ctx.matvec(x))
         out = {}
         for n, part in self.orders.items():
-            acc = ctx.selected_sums(part.conditions)
+            acc = ctx.selected_sums(part)
             for t0 in range(0, len(part.left), _CHUNK):
-                t1 = t0 + _CHUNK
+                t1 = min(t0 + _CHUNK, len(part.left))
                 w_terms = ctx.mul(ctx.take(w, part.left[t0:t1]), ctx.take(a, part.right[t0:t1]))
-                ctx.add_selected(acc, w_terms, part.terms, n, part.coefficient[t0:t1], part.condition[t0:t1])
-            out[n] = ctx.finish_selected(acc)
+                ctx.add_selected(acc, w_terms, part, t0, t1)
+            out[n] = ctx.finish_selected(acc, part)
         return out
