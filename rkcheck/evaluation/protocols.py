@@ -53,6 +53,17 @@ class EnclosingContext(NumberContext, Protocol):
     def enclosures(self, x: Any) -> list[Enclosure]: ...
 
 
+class SubsetContext(NumberContext, Protocol):
+    """A context that also sums the selected conditions of a
+    :class:`~rkcheck.evaluation.subset.Subset`, whose terms come in any order: ``part``
+    is one order's selected terms (their coefficient indices, their conditions
+    renumbered among the selected); ``add_selected`` bins its terms ``t0 … t1−1``."""
+
+    def selected_sums(self, part: Any) -> Any: ...
+    def add_selected(self, acc: Any, w_terms: Any, part: Any, t0: int, t1: int) -> None: ...
+    def finish_selected(self, acc: Any, part: Any) -> Any: ...
+
+
 class BoundedSums(Protocol):
     """The condition sums of one order from an inexact context: each an enclosure,
     which ones certainly exclude zero, and a bound on the magnitude of the others."""

@@ -25,7 +25,7 @@ from typing import Any, Callable
 import numpy as np
 
 from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
-from rkcheck.evaluation.protocols import BoundedSums, EnclosingContext
+from rkcheck.evaluation.protocols import BoundedSums, SubsetContext
 from rkcheck.evaluation.screen import ScreenContext
 from rkcheck.evaluation.subset import Subset
 from rkcheck.numbers.enclosure import Enclosure
@@ -45,7 +45,7 @@ class _ManyOpen(Exception):
 class _Balls:
     """The balls of the screened conditions, order by order as they are asked for."""
 
-    def __init__(self, listing: ConditionListing, ctx: EnclosingContext, s: int, wanted: list[int]):
+    def __init__(self, listing: ConditionListing, ctx: SubsetContext, s: int, wanted: list[int]):
         self.listing, self.ctx, self.s, self.wanted = listing, ctx, s, wanted
         self.orders: dict[int, BoundedSums] = {}
 
@@ -91,7 +91,7 @@ class ScreenedSums:
         return self.whole.of(self.n).enclosure(k)
 
 
-def screened_sums(listing: ConditionListing, ctx: EnclosingContext, screen: ScreenContext, s: int,
+def screened_sums(listing: ConditionListing, ctx: SubsetContext, screen: ScreenContext, s: int,
                   wanted: list[int], on_order: Callable[[int, Any], None] | None = None) -> dict[int, Any]:
     """``{vertices: sums}`` of ``wanted`` as :func:`~rkcheck.evaluation.algorithm.condition_sums`
     gives them in the balls ``ctx`` — the same verdicts, digits and enclosures — through

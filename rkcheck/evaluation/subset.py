@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from rkcheck.evaluation.protocols import SubsetContext
+
 #: rows of a level of trees, or of terms, computed at once (as in the full pass)
 _CHUNK = 1 << 14
 
@@ -137,13 +139,11 @@ class Subset:
         """Memory one channel takes (its weights, int32)."""
         return 4 * len(self.trees) * (2 * self.s + 2)
 
-    def residues(self, ctx: Any) -> dict[int, Any]:
+    def residues(self, ctx: SubsetContext) -> dict[int, Any]:
         """``{n: sums of the selected conditions}`` in ``ctx``: residues ``(selected
         conditions, channels)`` in the channels of a
-        :class:`~rkcheck.evaluation.channels.PrimeChannels`, balls in a
-        :class:`~rkcheck.evaluation.limbs.LimbBallContext` — any context with
-        ``selected_sums(part)``, ``add_selected(acc, w, part, t0, t1)`` and
-        ``finish_selected(acc, part)`` besides the kernel."""
+        :class:`~rkcheck.evaluation.channels.PrimeChannels`, balls in the certified
+        contexts."""
         size = len(self.trees)
         phi, psi, a, w = ctx.vectors(size, self.s), ctx.vectors(size, self.s), ctx.scalars(size), ctx.scalars(size)
         one = ctx.ones(1, self.s)  # τ, at position 0

@@ -95,7 +95,7 @@ def _compare(values: TableauValues, order: int) -> int:
     listing = ConditionListing(order, None)
     wanted = sorted(listing.orders)
     ctx = ball_context(values, wanted[-1])
-    screen = screen_for(ctx, values, wanted)
+    screen = screen_for(values, wanted)
     assert screen is not None
     screened = screened_sums(listing, ctx, screen, values.stages, wanted)
     whole = condition_sums(listing, ctx, values.stages, wanted)
@@ -135,7 +135,7 @@ def test_a_report_of_the_low_orders_pays_for_those_alone():
     listing = ConditionListing(14, None)
     wanted = sorted(listing.orders)
     ctx = ball_context(values, wanted[-1])
-    sums = screened_sums(listing, ctx, screen_for(ctx, values, wanted), values.stages, wanted)
+    sums = screened_sums(listing, ctx, screen_for(values, wanted), values.stages, wanted)
     failing = int(np.flatnonzero(sums[9].excludes_zero())[0])
     sums[9].enclosure(failing)
     assert max(sums[9].whole.orders) == 9
