@@ -16,17 +16,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from rkcheck.numbers.parametric import ParameterRing
-
-
-def object_array(values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
-    """An object array holding the polynomials themselves (numpy would otherwise try to
-    iterate them)."""
-    out = np.empty(shape, dtype=object)
-    flat = out.reshape(-1)
-    for i, v in enumerate(values):
-        flat[i] = v
-    return out
+from rkcheck.numbers.parametric import ParameterRing, object_array
 
 
 class PolynomialContext:
@@ -40,6 +30,10 @@ class PolynomialContext:
         self.zero, self.unit = ring.constant(0), ring.constant(1)
         self.A_t = object_array([A[i][j] for j in range(self.s) for i in range(self.s)], (self.s, self.s))
         self.b = object_array(list(b), (self.s,))
+        # a kernel family's A = V C Wᵀ (methods.parametric.KernelMatrix): x Aᵀ = ((x W) Cᵀ) Vᵀ
+        factors = getattr(A, "factors", None)
+        self.factors = None if factors is None or ring.minpoly is not None else \
+            (factors[2], np.ascontiguousarray(factors[1].T), np.ascontiguousarray(factors[0].T))
 
     def _filled(self, shape: tuple[int, ...], value: Any) -> np.ndarray:
         return object_array([value] * int(np.prod(shape)), shape)
@@ -72,6 +66,10 @@ class PolynomialContext:
         return self._reduced(x * y)
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
+        if self.factors is not None:
+            W, C_t, V_t = self.factors
+            result: np.ndarray = ((x @ W) @ C_t) @ V_t
+            return result
         return self._reduced(x @ self.A_t)
 
     def dot(self, x: np.ndarray) -> np.ndarray:

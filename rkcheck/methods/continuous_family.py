@@ -9,7 +9,9 @@ file is loaded with the smallest (:data:`FIRST_VERTICES`)."""
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
+
+import numpy as np
 
 from rkcheck.errors import UserError
 from rkcheck.methods.continuous import (
@@ -67,14 +69,60 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
         raise UserError(f"the kernel needs {n_nodes} quadrature nodes, more than MAX_SURROGATE_NODES = "
                         f"{MAX_SURROGATE_NODES}", "continuous")
     x, w = rational_rule(n_nodes)
-    A_at = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
-    b_at = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
-    A_text = [[text for text, _ in row] for row in A_at]
-    b_text = [text for text, _ in b_at]
-    parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
     widen = partial(kernel_family, name, parameters, A, b, constants, info)
-    family = build_family(name, parameters, A_text, b_text, constants, info, parsed)
+    if ring.minpoly is None:
+        family = _factored_family(name, parameters, constants, info, poly, x, w, (p, q, dB))
+    else:  # constants with roots: the entries folded one by one, their products reduced as formed
+        A_at = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
+        b_at = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
+        parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
+        family = build_family(name, parameters, [[text for text, _ in row] for row in A_at],
+                              [text for text, _ in b_at], constants, info, parsed)
     return dataclasses.replace(family, kernel=(A, b), reach=vertices, widen=widen)
+
+
+def _factored_family(name: str, parameters: tuple[str, ...], constants: Mapping[str, ex.Expr], info: MethodInfo,
+                     kernel: Any, x: list[Fraction], w: list[Fraction], degrees: tuple[int, int, int]) -> Any:
+    """The family of the surrogate on the nodes ``x`` with weights ``w``, its entries
+    ``A_ij = w_j K(x_i, x_j)`` and ``b_i = w_i B(x_i)`` formed from the kernel's
+    coefficients as ``A = V C Wᵀ`` (:class:`~rkcheck.methods.parametric.KernelMatrix`) —
+    not n² expressions folded one by one — over the ring of the parameters (the
+    kernel's constants rational: ``kernel.ring`` has no field)."""
+    from rkcheck.methods.parametric import Family
+    from rkcheck.numbers.parametric import ParametricEntries, object_array
+
+    p, q, dB = degrees
+    entries = ParametricEntries([], [], parameters, constants)  # the ring, and the constants for --where
+    ring = entries.ring
+    A_poly, B_poly = kernel.values
+    C = _coefficients(A_poly, kernel.ring.variables, ring, (p, q))
+    D = _coefficients(B_poly, kernel.ring.variables, ring, (dB, 0))
+    top = max(p, dB)
+    V = object_array([ring.constant(xi ** a) for xi in x for a in range(top + 1)], (len(x), top + 1))
+    W = object_array([ring.constant(wj * xj ** c) for xj, wj in zip(x, w) for c in range(q + 1)], (len(x), q + 1))
+    A_values = (V[:, :p + 1] @ C) @ W.T
+    b_values = (V[:, :dB + 1] @ D)[:, 0] * object_array([ring.constant(wj) for wj in w], (len(w),))
+    entries.values = list(A_values.reshape(-1)) + list(b_values)
+    A_text = tuple(tuple(str(v) for v in row) for row in A_values)
+    return Family(name, parameters, A_text, tuple(str(v) for v in b_values), entries, info,
+                  factors=(np.ascontiguousarray(V[:, :p + 1]), C, W))
+
+
+def _coefficients(poly: Any, names: Sequence[str], ring: Any, degrees: tuple[int, int]) -> Any:
+    """The coefficients of ``τᵃσᶜ`` (a ≤ degrees[0], c ≤ degrees[1]) in ``poly`` (over
+    the variables ``names``: tau, sigma and the parameters) as an array of polynomials
+    in the parameters over ``ring``."""
+    from rkcheck.numbers.parametric import object_array
+
+    at_tau, at_sigma = names.index("tau"), names.index("sigma")
+    rest = [i for i in range(len(names)) if i not in (at_tau, at_sigma)]
+    found: dict[tuple[int, int], dict[tuple[int, ...], Any]] = {}
+    for exps, c in poly.terms():
+        found.setdefault((int(exps[at_tau]), int(exps[at_sigma])), {})[tuple(int(exps[i]) for i in rest)] = c
+    zero = ring.constant(0)
+    a_max, c_max = degrees
+    return object_array([ring.ctx.from_dict(found[(a, c)]) if (a, c) in found else zero
+                         for a in range(a_max + 1) for c in range(c_max + 1)], (a_max + 1, c_max + 1))
 
 
 def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> tuple[str, ex.Expr]:

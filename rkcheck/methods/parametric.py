@@ -43,6 +43,8 @@ class Family:
     kernel: tuple[str, str] | None = None
     reach: int | None = None
     widen: Callable[[int], "Family"] | None = field(default=None, compare=False, repr=False)
+    #: a kernel family's A as a product ``V C Wᵀ`` (:class:`KernelMatrix`), or None
+    factors: tuple[Any, Any, Any] | None = field(default=None, compare=False, repr=False)
 
     def __repr__(self) -> str:
         return f"<Family {self.name!r}: {self.stages} stages, parameters {', '.join(self.parameters)}>"
@@ -70,7 +72,8 @@ class Family:
     def A(self) -> list[list[Any]]:
         s = self.stages
         v = self.entries.values
-        return [v[i * s:(i + 1) * s] for i in range(s)]
+        rows = [v[i * s:(i + 1) * s] for i in range(s)]
+        return rows if self.factors is None else KernelMatrix(rows, self.factors)
 
     @property
     def b(self) -> list[Any]:
@@ -203,6 +206,20 @@ def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> 
     if not names:
         raise UserError("the [parameters] table names no parameter", "parameters")
     return tuple(names)
+
+
+class KernelMatrix(list[list[Any]]):
+    """The rows of a kernel family's surrogate A (a list of rows, as any family's A) that
+    also carries ``factors = (V, C, W)`` with ``A = V C Wᵀ``: ``V[i][a] = x_iᵃ``,
+    ``W[j][c] = w_j x_jᶜ`` (constants) and ``C[a][c]`` the kernel's coefficient of
+    ``τᵃσᶜ`` (a polynomial in the parameters).  A product ``x Aᵀ`` through them costs
+    ``n(p + q + 2)`` products of polynomials by constants and ``(p+1)(q+1)`` of
+    polynomials, where ``x Aᵀ`` itself costs ``n²`` (n nodes, p and q the degrees in τ
+    and σ): the surrogate's nodes grow with the trees, the kernel's degrees do not."""
+
+    def __init__(self, rows: list[list[Any]], factors: tuple[Any, Any, Any]):
+        super().__init__(rows)
+        self.factors = factors
 
 
 def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[str]], b: Sequence[str],

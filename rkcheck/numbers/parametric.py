@@ -21,6 +21,8 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any, Mapping, Sequence
 
+import numpy as np
+
 from rkcheck.errors import UserError
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -33,6 +35,16 @@ THETA = "__theta"
 
 #: At most this many parameters in one family (the solver's cost grows quickly with it).
 MAX_PARAMETERS = 32
+
+
+def object_array(values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
+    """A numpy object array holding the polynomials themselves (numpy would otherwise try
+    to iterate them): numpy's products then call the polynomials' own arithmetic."""
+    out = np.empty(shape, dtype=object)
+    flat = out.reshape(-1)
+    for i, v in enumerate(values):
+        flat[i] = v
+    return out
 
 
 class ParameterRing:

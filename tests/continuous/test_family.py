@@ -153,3 +153,57 @@ def test_a_kernel_familys_errors_call_tau_a_variable_not_a_parameter(tmp_path):
     with pytest.raises(UserError, match="tau, sigma or a parameter in a denominator") as err:
         rkcheck.load_family(_kernel_family(tmp_path, A="1/tau + kappa"))
     assert err.value.place == "continuous.A"
+
+
+def test_a_kernel_familys_surrogate_entries_are_the_kernel_at_the_nodes(tmp_path):
+    """The surrogate built from the kernel's coefficients (A = V C Wᵀ) has, at κ = 2/7,
+    the entries w_j·K(x_i, x_j) and b_i = w_i·B(x_i), K and B evaluated here in
+    Fractions on the same nodes, for a kernel of τ-degree 5 with a σ² term and a b in τ."""
+    from flint import fmpq
+
+    from rkcheck.methods.continuous import rational_rule
+
+    fam = rkcheck.load_family(_kernel_family(tmp_path, A="tau + kappa*tau^5*(sigma^2 - 1/3) - kappa^2*tau*sigma/7",
+                                      b="1 + kappa*(tau - 1/2)")).covering(4)
+    kappa = Fraction(2, 7)
+
+    def K(t, s):
+        return t + kappa * t**5 * (s**2 - Fraction(1, 3)) - kappa**2 * t * s / 7
+
+    def B(t):
+        return 1 + kappa * (t - Fraction(1, 2))
+
+    x, w = rational_rule(fam.stages)
+    at = (fmpq(kappa.numerator, kappa.denominator),)
+
+    def value(p):
+        v = p(*at)
+        return Fraction(int(v.p), int(v.q))
+
+    assert [[value(a) for a in row] for row in fam.A] == [[w[j] * K(x[i], x[j]) for j in range(len(x))]
+                                                          for i in range(len(x))]
+    assert [value(bi) for bi in fam.b] == [w[i] * B(x[i]) for i in range(len(x))]
+
+
+def test_the_factored_product_is_the_product_by_the_entries(tmp_path):
+    """x·Aᵀ through A = V C Wᵀ equals x·Aᵀ through the n² entries, polynomial for
+    polynomial, on vectors of random polynomials in κ."""
+    import random
+
+    import numpy as np
+
+    from rkcheck.evaluation.polynomial import PolynomialContext
+
+    fam = rkcheck.load_family(_kernel_family(tmp_path, A="tau + kappa*tau^3*(sigma - 1/2)")).covering(5)
+    ring, A = fam.ring, fam.A
+    assert getattr(A, "factors", None) is not None
+    rng = random.Random(3)
+    kappa = ring.parameter("kappa")
+    x = np.empty((4, fam.stages), dtype=object)
+    for i in range(4):
+        for j in range(fam.stages):
+            x[i, j] = ring.constant(Fraction(rng.randint(-9, 9), rng.randint(1, 9))) + \
+                ring.constant(Fraction(rng.randint(-9, 9), 7)) * kappa ** rng.randint(0, 3)
+    factored = PolynomialContext(ring, A, fam.b).matvec(x)
+    plain = PolynomialContext(ring, [list(row) for row in A], fam.b).matvec(x)
+    assert all(u == v for u, v in zip(factored.reshape(-1), plain.reshape(-1)))
