@@ -97,20 +97,21 @@ def evaluate(listing: ConditionListing, values: TableauValues, orders: Iterable[
     wanted = sorted(listing.orders if orders is None else orders)
     ctx = ball_context(values, vertices=wanted[-1] if wanted else None)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
-    screen = screen_for(values, wanted)
-    if screen is not None and isinstance(ctx, (LimbBallContext, BallContext)):
-        return Evaluation(Backend.BALL, screened_sums(listing, ctx, screen, values.stages, wanted, on_order))
+    if isinstance(ctx, (LimbBallContext, BallContext)):
+        screen = screen_for(values, wanted, ctx.bits)
+        if screen is not None:
+            return Evaluation(Backend.BALL, screened_sums(listing, ctx, screen, values.stages, wanted, on_order))
     return Evaluation(Backend.BALL, condition_sums(listing, ctx, values.stages, wanted, on_order))
 
 
-def screen_for(values: TableauValues, wanted: list[int]) -> ScreenContext | None:
-    """The float screen in front of the balls on large listings (where a pass of the
-    balls costs: from :data:`~rkcheck.evaluation.balls.LIMB_MIN_VERTICES` vertices), or
-    None where it cannot bound these entries
-    (:meth:`~rkcheck.evaluation.screen.ScreenContext.create`)."""
+def screen_for(values: TableauValues, wanted: list[int], bits: int) -> ScreenContext | None:
+    """The float screen in front of balls of ``bits`` fixed-point bits on large listings
+    (where a pass of the balls costs: from
+    :data:`~rkcheck.evaluation.balls.LIMB_MIN_VERTICES` vertices), or None where it
+    cannot bound these entries (:meth:`~rkcheck.evaluation.screen.ScreenContext.create`)."""
     if not wanted or wanted[-1] < LIMB_MIN_VERTICES:
         return None
-    return ScreenContext.create(values.A, values.b, wanted[-1])
+    return ScreenContext.create(values.A, values.b, wanted[-1], bits)
 
 
 def channels_for(values: TableauValues, order: int) -> int:

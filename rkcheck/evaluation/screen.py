@@ -36,7 +36,9 @@ evaluate every condition, as before.
 A value is a ``(2, rows[, s])`` array: channel 0 the mid-points, channel 1 the absolute
 values.  The screen may say ``fails`` (``|R̂| > κ_n·S̄``, rounded against it); it never
 says ``holds``: :func:`rkcheck.evaluation.screened.screened_sums` evaluates the conditions
-it leaves open in the certified balls.
+it leaves open in the certified balls.  Before balls of P fixed-point bits its radii are
+widened by a bound on theirs (:meth:`ScreenContext.floor`): a residual too small for
+the balls to tell from 0 is left to them, so that the verdicts are the balls'.
 """
 
 from __future__ import annotations
@@ -79,9 +81,12 @@ class ScreenContext:
     exact = False
 
     @classmethod
-    def create(cls, A: Sequence[Sequence[Interval]], b: Sequence[Interval], vertices: int) -> ScreenContext | None:
+    def create(cls, A: Sequence[Sequence[Interval]], b: Sequence[Interval], vertices: int,
+               ball_bits: int | None = None) -> ScreenContext | None:
         """The screen for these entries, or None when an entry is not a float within
-        ``EPSILON`` or the absolute channel could leave ``2^±1000`` (module docstring)."""
+        ``EPSILON`` or the absolute channel could leave ``2^±1000`` (module docstring).
+        ``ball_bits``: the fixed-point precision of the balls behind the screen, whose
+        resolution widens its radii (:meth:`floor`)."""
         floats = [_float_entry(x) for row in [*A, b] for x in row]
         if any(x is None for x in floats) or not any(floats):
             return None
@@ -95,10 +100,12 @@ class ScreenContext:
         high = n * math.log2(largest) + 1
         if low < -_RANGE or high > _RANGE:
             return None
-        return cls(Am, bm)
+        return cls(Am, bm, largest, ball_bits)
 
-    def __init__(self, A: np.ndarray, b: np.ndarray):
+    def __init__(self, A: np.ndarray, b: np.ndarray, growth: float = 1.0, ball_bits: int | None = None):
         self.s = len(b)
+        self.growth = growth  # ≥ every absolute row sum of A and Σ|b|, and ≥ 1
+        self.unit = 0.0 if ball_bits is None else 2.0**-ball_bits
         self.M_t = np.ascontiguousarray(np.stack([A.T, np.abs(A).T]))  # (2, s, s): x Aᵀ and |x| |A|ᵀ
         self.b2 = np.ascontiguousarray(np.stack([b, np.abs(b)])[:, :, None])  # (2, s, 1)
         self._abs_coef: dict[int, tuple[Any, np.ndarray]] = {}
@@ -107,8 +114,19 @@ class ScreenContext:
         """``κ_n`` for conditions of ``n`` vertices with at most ``count`` terms, rounded
         up generously (its own float evaluation errs far less than the factor 1 + 2^−20)."""
         d = (n - 1) * (self.s + 1) + 2 + count
-        grow = math.exp(d * math.log1p(2 * U) + n * math.log1p(EPSILON)) - 1
+        grow = math.expm1(d * math.log1p(2 * U) + n * math.log1p(EPSILON))
         return grow / math.exp(d * math.log1p(-2 * U)) * (1 + 2.0**-20)
+
+    def floor(self, n: int, count: int) -> float:
+        """A bound, with a margin of 2^20, on the radius the fixed-point balls behind the
+        screen give a condition of ``n`` vertices with at most ``count`` terms: a unit
+        2^−P for each of its d roundings and terms, grown by the weights' magnitudes (at
+        most ``growth^n``).  The screen's radii are widened by it, so that the screen
+        decides a condition only where the balls would decide it too — a residual
+        smaller than the balls' resolution is theirs to judge (they say "holds to D
+        digits" where they cannot exclude 0)."""
+        d = (n - 1) * (self.s + 1) + 2 + count  # growth^n ≤ 2^1000: create checked it
+        return self.unit * d * (count + 1) * self.growth ** n * 2.0**20
 
     # ------------------------------------------------------------- kernel
 
@@ -155,9 +173,11 @@ class ScreenContext:
         acc[1] = max(acc[1], terms.max_terms)
 
     def finish_sums(self, acc: Any, k: int, n: int) -> FloatSums:
-        """The residuals ``R̂ ± κ_n·S̄`` (the product rounded up)."""
+        """The residuals ``R̂ ± κ_n·S̄`` (the product rounded up), the radii widened by the
+        balls' resolution (:meth:`floor`) when the screen stands before balls."""
         bins, count = acc
-        return FloatSums(bins[0][:k], bins[1][:k] * (self.kappa(n, count) * (1 + 4 * U)) + ETA)
+        rad = bins[1][:k] * (self.kappa(n, count) * (1 + 4 * U)) + ETA
+        return FloatSums(bins[0][:k], rad + self.floor(n, count) if self.unit else rad)
 
     def _coefficients(self, terms: Any, n: int) -> tuple[np.ndarray, np.ndarray]:
         cached = self._abs_coef.get(n)

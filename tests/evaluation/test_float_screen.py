@@ -5,9 +5,10 @@
   and it never says ``fails`` where exact arithmetic says ``holds``;
 * it is not made where its bound could not hold: entries that are not floats within
   2^−52, or weights that could underflow or overflow;
-* screened balls are the balls: every verdict, digit count and enclosure (mid-point and
-  radius, bit for bit) equals one pass of the certified balls over the whole listing,
-  on Gauss-3 (entries in Q(√15)) and on a random tableau, at 15 vertices, where the
+* screened balls are the balls: every verdict, digit count and enclosure (the mid-point
+  exactly, the radius to its last bits) equals one pass of the certified balls over the
+  whole listing, on Gauss-3 (entries in Q(√15)), a random tableau and one whose
+  residuals lie below the balls' resolution (entries 2⁻²⁰), at 15 vertices, where the
   int64-digit balls run;
 * a Ctrl-C during the screen leaves the finished orders' certified enclosures.
 """
@@ -91,24 +92,26 @@ def test_screen_is_not_made_where_its_bound_could_fail():
 
 def _compare(values: TableauValues, order: int) -> int:
     """Every condition of ``order`` screened and in one pass of the balls: the same
-    verdict, digits and enclosure; returns how many the balls evaluated behind the screen."""
+    verdict, digits and enclosure; returns how many conditions the balls evaluated."""
     listing = ConditionListing(order, None)
     wanted = sorted(listing.orders)
     ctx = ball_context(values, wanted[-1])
-    screen = screen_for(values, wanted)
+    screen = screen_for(values, wanted, ctx.bits)
     assert screen is not None
     screened = screened_sums(listing, ctx, screen, values.stages, wanted)
     whole = condition_sums(listing, ctx, values.stages, wanted)
     opened = 0
     for n in wanted:
-        assert isinstance(screened[n], ScreenedSums)
-        opened += len(screened[n].open)
+        # (an order the screen gave up on is one pass of the balls: every condition open)
+        opened += len(screened[n].open) if isinstance(screened[n], ScreenedSums) else len(whole[n])
         got = classify_bounds(screened[n].excludes_zero(), screened[n].magnitude_bound())
         want = classify_bounds(whole[n].excludes_zero(), whole[n].magnitude_bound())
         assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
         for k in range(len(whole[n])):
             e, f = screened[n].enclosure(k), whole[n].enclosure(k)
-            assert (e.mid, e.rad) == (f.mid, f.rad)
+            # radii: the same sums of the same terms; BLAS may round a row's matrix
+            # product differently in a batch of another size (the subset's), in the last bit
+            assert e.mid == f.mid and abs(e.rad - f.rad) <= f.rad * Fraction(1, 2**40)
     return opened
 
 
@@ -135,7 +138,7 @@ def test_a_report_of_the_low_orders_pays_for_those_alone():
     listing = ConditionListing(14, None)
     wanted = sorted(listing.orders)
     ctx = ball_context(values, wanted[-1])
-    sums = screened_sums(listing, ctx, screen_for(values, wanted), values.stages, wanted)
+    sums = screened_sums(listing, ctx, screen_for(values, wanted, ctx.bits), values.stages, wanted)
     failing = int(np.flatnonzero(sums[9].excludes_zero())[0])
     sums[9].enclosure(failing)
     assert max(sums[9].whole.orders) == 9
@@ -171,3 +174,12 @@ def test_screened_balls_are_the_balls_at_high_precision():
     values = TableauValues.of(load(str(TABLEAUX / "collocation" / "gauss-3.toml")), Reading(dps=150, arithmetic="ball"))
     assert type(ball_context(values, 15)).__name__ == "BallContext"
     assert _compare(values, 14) > 0
+
+
+def test_residuals_below_the_balls_resolution_are_left_to_the_balls():
+    """Entries 2⁻²⁰: most residuals are nonzero but below the 50-digit balls' unit 2⁻¹⁹⁹
+    — the balls say "holds to D digits", and so must the screened check (the screen's
+    radii are widened by the balls' resolution, so it leaves them open)."""
+    t = Fraction(1, 2**20)
+    values = TableauValues.of(Tableau.from_values([[t, 0], [2 * t, t]], [t, t]), Reading(arithmetic="ball"))
+    assert _compare(values, 14) > 10_000
