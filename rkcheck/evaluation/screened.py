@@ -100,19 +100,18 @@ def screened_sums(listing: ConditionListing, ctx: SubsetContext, screen: ScreenC
     screens: dict[int, Any] = {}
 
     def screened(n: int, sums: Any) -> None:
-        screens[n] = sums
         left = len(sums) - int(np.count_nonzero(sums.excludes_zero()))
         if len(sums) >= _SMALL_ORDER and left * OPEN_SHARE > len(sums):
             raise _ManyOpen
+        screens[n] = sums
         if on_order is not None:
             on_order(n, sums)
 
     try:
         condition_sums(listing, screen, s, wanted, screened)
-    except _ManyOpen:
-        done = set(screens)
+    except _ManyOpen:  # the orders already reported are not reported twice
         return condition_sums(listing, ctx, s, wanted, None if on_order is None else
-                              (lambda n, sums: None if n in done else on_order(n, sums)))
+                              (lambda n, sums: None if n in screens else on_order(n, sums)))
     except EvaluationInterrupted:
         # the screen's enclosures are certified: the finished orders stand as they are
         raise EvaluationInterrupted(dict(screens)) from None

@@ -183,3 +183,18 @@ def test_residuals_below_the_balls_resolution_are_left_to_the_balls():
     t = Fraction(1, 2**20)
     values = TableauValues.of(Tableau.from_values([[t, 0], [2 * t, t]], [t, t]), Reading(arithmetic="ball"))
     assert _compare(values, 14) > 10_000
+
+
+def test_progress_tells_every_order_once_when_the_screen_gives_way():
+    """An energy-preserving method leaves every condition open: the screen gives way to
+    one pass of the balls, and each order is told to the progress callback once, in
+    order."""
+    values = TableauValues.of(load(str(TABLEAUX / "avf" / "avf-gauss-2.toml")), Reading(arithmetic="ball"))
+    listing = ConditionListing(14, None)
+    wanted = sorted(listing.orders)
+    ctx = ball_context(values, wanted[-1])
+    told: list[int] = []
+    sums = screened_sums(listing, ctx, screen_for(values, wanted, ctx.bits), values.stages, wanted,
+                         lambda n, _: told.append(n))
+    assert told == wanted
+    assert not any(isinstance(x, ScreenedSums) for x in sums.values())
