@@ -417,7 +417,7 @@ class LimbBallContext:
         """Bins for the selected conditions of ``part`` (a
         :class:`~rkcheck.evaluation.subset.Subset`'s order): the sums of
         :meth:`add_terms`, the terms' conditions renumbered among the selected."""
-        return DigitSums(self.L, part.conditions + 1)
+        return DigitSums(self.L, part.conditions)
 
     def add_selected(self, acc: DigitSums, w_terms: Any, part: Any, t0: int, t1: int) -> None:
         """The selected terms ``t0 … t1−1`` of ``part`` into their bins, as :meth:`add_terms`."""

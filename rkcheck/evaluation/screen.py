@@ -113,7 +113,7 @@ class ScreenContext:
     def kappa(self, n: int, count: int) -> float:
         """``κ_n`` for conditions of ``n`` vertices with at most ``count`` terms, rounded
         up generously (its own float evaluation errs far less than the factor 1 + 2^−20)."""
-        d = (n - 1) * (self.s + 1) + 2 + count
+        d = self._roundings(n, count)
         grow = math.expm1(d * math.log1p(2 * U) + n * math.log1p(EPSILON))
         return grow / math.exp(d * math.log1p(-2 * U)) * (1 + 2.0**-20)
 
@@ -125,8 +125,13 @@ class ScreenContext:
         decides a condition only where the balls would decide it too — a residual
         smaller than the balls' resolution is theirs to judge (they say "holds to D
         digits" where they cannot exclude 0)."""
-        d = (n - 1) * (self.s + 1) + 2 + count  # growth^n ≤ 2^1000: create checked it
-        return self.unit * d * (count + 1) * self.growth ** n * 2.0**20
+        # growth^n ≤ 2^1000: create checked it
+        return self.unit * self._roundings(n, count) * (count + 1) * self.growth ** n * 2.0**20
+
+    def _roundings(self, n: int, count: int) -> int:
+        """``d``: the roundings along any monomial of a condition of ``n`` vertices with
+        at most ``count`` terms (module docstring)."""
+        return (n - 1) * (self.s + 1) + 2 + count
 
     # ------------------------------------------------------------- kernel
 
