@@ -28,12 +28,14 @@ class PolynomialContext:
         self.ring = ring
         self.s = len(b)
         self.zero, self.unit = ring.constant(0), ring.constant(1)
-        self.A_t = object_array([A[i][j] for j in range(self.s) for i in range(self.s)], (self.s, self.s))
         self.b = object_array(list(b), (self.s,))
-        # a kernel family's A = V C Wᵀ (methods.parametric.KernelMatrix): x Aᵀ = ((x W) Cᵀ) Vᵀ
+        # a kernel family's A = V C Wᵀ (methods.parametric.KernelMatrix): x Aᵀ = ((x W) Cᵀ) Vᵀ,
+        # its n² entries never gathered into a matrix
         factors = getattr(A, "factors", None)
         self.factors = None if factors is None or ring.minpoly is not None else \
             (factors[2], np.ascontiguousarray(factors[1].T), np.ascontiguousarray(factors[0].T))
+        self.A_t = None if self.factors is not None else \
+            object_array([A[i][j] for j in range(self.s) for i in range(self.s)], (self.s, self.s))
 
     def _filled(self, shape: tuple[int, ...], value: Any) -> np.ndarray:
         return object_array([value] * int(np.prod(shape)), shape)
