@@ -41,12 +41,12 @@ def render_sweep(sw: Any, console: Console) -> None:
     deg = "none" if sw.degree is None else sw.degree
     console.print(Text(f"{sw.family.name}: energy order over {len(sw.orders)} grid points "
                        f"(degree m = {deg}, checked to order {sw.order}; exact at every point)", style="bold"))
-    generic = f"≥ {sw.generic}" if sw.generic >= sw.order else str(sw.generic)  # every condition checked held
-    console.print(f"energy order for generic parameter values: {generic}")
+    # an order that reaches the one checked is a lower bound: every condition checked held
+    label = lambda o: f"≥ {o}" if o >= sw.order else str(o)  # noqa: E731
+    console.print(f"energy order for generic parameter values: {label(sw.generic)}")
     counts = Counter(sw.orders)
     for o in sorted(counts):
-        label = f"≥ {o}" if o >= sw.order else str(o)
-        console.print(f"  energy order {label}: {counts[o]} point{'s' if counts[o] != 1 else ''}")
+        console.print(f"  energy order {label(o)}: {counts[o]} point{'s' if counts[o] != 1 else ''}")
     swept = [(n, v) for n, v in sw.axes if len(v) > 1]
     if len(swept) == 2 and all(len(v) <= MAX_MAP_SIDE for _, v in swept):
         _map(sw, swept, console)
