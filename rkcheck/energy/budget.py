@@ -8,11 +8,21 @@ prints the same figures) and are deliberately on the high side:
   trees with up to N vertices);
 * exact evaluation: about 0.06 µs per tree and channel (prime, or prime × root for a
   number field); the channels needed grow with the order and the size of the entries;
-* certified balls: about 3.5 µs per tree at 50 digits, growing with the precision;
+* certified balls: about 3.5 µs per tree at 50 digits, growing with the precision; a
+  decimal box 0.5 µs more per tree and interval entry (its derivatives);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
-  grow with the listing until 10 million trees (exact); balls add 64 + 150·s bytes per
-  factor tree (big-integer weights).  Measured peaks: 113 MB at order 16, 420 MB at 18,
-  1.7 GB at 20; the model gives 127 MB, 413 MB and 2.0 GB.
+  grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
+  and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
+  most factor trees, Φ and ψ of the smaller ones), growing as the 0.7th power of the
+  precision, and their working arrays from a million trees; a decimal box adds its
+  derivatives, a float ball per interval entry beside each stored weight, up to the
+  1 GiB that one pass of them may take.
+
+Measured by ``benchmarks/bench_budget.py`` (docs/performance.md), peak against model:
+exact 96–111 MB at order 16, 363–369 MB at 18, 1.4 GB at 20 (132 MB, 432 MB, 2.0 GB);
+balls, in methods whose conditions hold (no float screen decides them), 167–248 MB,
+714–872 MB, and 4.9 GB at order 20 for s = 3 (292–315 MB, 0.94–1.1 GB, 6.4 GB);
+HBVM(6, 2) in 60-digit decimals, 42 directions, 519 MB at order 16 (924 MB).
 
 The machine's available memory is not read here (this is the core: no I/O); the caller
 passes it in a :class:`Budget`.
@@ -24,6 +34,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from rkcheck.errors import UserError
+from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
 from rkcheck.numbers.formatting import count_text as count
 from rkcheck.numbers.formatting import human_bytes
 from rkcheck.trees.counting import listing_size
@@ -31,9 +42,12 @@ from rkcheck.trees.counting import listing_size
 LISTING_SECONDS_PER_TREE = 0.6e-6
 EXACT_SECONDS_PER_TREE_CHANNEL = 0.06e-6
 BALL_SECONDS_PER_TREE = 3.5e-6
+BOX_SECONDS_PER_TREE_DIRECTION = 0.5e-6
 BASE_BYTES = 80 * 2**20
 EXACT_BYTES_PER_TREE = 24
 WORKING_BYTES = 100 * 2**20
+BALL_BYTES_PER_FACTOR = 150
+BALL_BYTES_PER_FACTOR_STAGE = 30
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
 
@@ -71,8 +85,10 @@ class Budget:
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
-             dps: int = 50) -> Estimate:
-    """The cost of listing and evaluating every condition to ``order`` for ``degree``."""
+             dps: int = 50, directions: int = 0) -> Estimate:
+    """The cost of listing and evaluating every condition to ``order`` for ``degree``
+    (``directions``: the interval entries of a decimal box, whose derivatives the
+    evaluation carries beside the weights)."""
     conditions, terms, factors = listing_size(order, degree)
     trees = terms + factors
     seconds = trees * LISTING_SECONDS_PER_TREE
@@ -80,8 +96,15 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
         seconds += trees * channels * EXACT_SECONDS_PER_TREE_CHANNEL
         size = BASE_BYTES + EXACT_BYTES_PER_TREE * trees + WORKING_BYTES * min(1.0, trees / 1e7)
     else:
-        seconds += trees * BALL_SECONDS_PER_TREE * max(1.0, dps / 50) ** 1.2
-        size = BASE_BYTES + EXACT_BYTES_PER_TREE * terms + (64 + 150 * stages) * factors
+        seconds += trees * (BALL_SECONDS_PER_TREE * max(1.0, dps / 50) ** 1.2
+                            + BOX_SECONDS_PER_TREE_DIRECTION * directions)
+        per_factor = (BALL_BYTES_PER_FACTOR + BALL_BYTES_PER_FACTOR_STAGE * stages) * max(1.0, dps / 50) ** 0.7
+        size = (BASE_BYTES + EXACT_BYTES_PER_TREE * terms + per_factor * factors
+                + WORKING_BYTES * min(1.0, trees / 1e6))
+        # a float ball (16 bytes) per direction beside the stored a and w (about 0.7 of a
+        # factor tree's) and Φ and ψ (0.25·s): at most MAX_GRADIENT_BYTES at once (more
+        # directions take more passes)
+        size += min(MAX_GRADIENT_BYTES, factors * directions * (11 + 4 * stages))
     return Estimate(conditions, terms, factors, seconds, int(size))
 
 

@@ -16,7 +16,12 @@ from fractions import Fraction
 from typing import Any, Callable, Self
 
 from rkcheck.energy.budget import Budget, check_budget, estimate
-from rkcheck.energy.judging import Progress, evaluate_orders, refine_undecided
+from rkcheck.energy.judging import (
+    Progress,
+    box_directions,
+    evaluate_orders,
+    refine_undecided,
+)
 from rkcheck.energy.results import (
     Condition,
     ConditionResults,
@@ -281,8 +286,8 @@ def _memo(facts: dict[Any, Any], key: Any, compute: Callable[[], Any]) -> Any:
 def _listing(values: TableauValues, options: CheckOptions, budget: Budget | None) -> ConditionListing:
     """The conditions to check, after the budget allowed them."""
     channels = channels_for(values, options.order) if values.backend is Backend.EXACT else 0
-    check_budget(estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps),
-                 budget, options.order)
+    check_budget(estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps,
+                          box_directions(values)), budget, options.order)
     # built order by order as the evaluation asks: --fail-fast stops before the high orders
     return condition_listing(options.order, options.degree, lazy=True)
 

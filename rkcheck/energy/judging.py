@@ -69,6 +69,14 @@ def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[i
     return judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), wanted, on_order)
 
 
+def box_directions(values: TableauValues) -> int:
+    """The interval entries of a decimal box judged over the whole box (the directions
+    of its derivatives), 0 for anything else."""
+    if not _judged_over_box(values):
+        return 0
+    return sum(not x.is_point for row in (*values.A, values.b) for x in row)
+
+
 def _judged_over_box(values: TableauValues) -> bool:
     """Decimal entries that stand for intervals, rational at face value: one box of
     inputs judged jointly.  (A rounded decimal is never promoted to a number field: a box

@@ -65,3 +65,33 @@ def test_cli_refusal_is_one_line_exit_2(capsys):
     r = run_cli(capsys, "verify", str(TABLEAUX / "explicit" / "rk4.toml"), "--order", "16", "--max-conditions", "10")
     assert r.code == 2 and len(r.err.strip().splitlines()) == 1
     assert "--max-conditions" in r.err
+
+
+def test_ball_memory_grows_with_precision_and_stages():
+    # wider mid-points and more stage values per stored weight take more bytes
+    base = estimate(18, None, "ball", stages=3, dps=50).bytes
+    assert estimate(18, None, "ball", stages=3, dps=300).bytes > base
+    assert estimate(18, None, "ball", stages=6, dps=50).bytes > base
+    # and never less than the exact check's listing, which the balls read as well
+    assert base > estimate(18, None, "exact", 3).bytes
+
+
+def test_forced_balls_at_order_20_are_not_refused_where_they_fit():
+    # benchmarks/bench_budget.py --order-20: the worst case (a 3-stage method whose
+    # conditions hold, every one evaluated in balls) peaks at 4.8 GB; an estimate above
+    # 8 GB refused it on a machine with 8 GB free (the earlier model said 11.8 GB)
+    est = estimate(20, None, "ball", stages=3, dps=50)
+    check_budget(est, Budget(available_bytes=8 * 10**9), 20)
+    assert 4.8e9 < est.bytes < 8e9
+
+
+def test_a_decimal_box_counts_its_directions():
+    # each interval entry is a direction of derivatives carried beside every stored weight
+    plain = estimate(16, None, "ball", stages=6, dps=70)
+    box = estimate(16, None, "ball", stages=6, dps=70, directions=42)
+    assert box.bytes > plain.bytes and box.seconds > plain.seconds
+    # one pass of derivatives takes at most MAX_GRADIENT_BYTES: more directions, more passes
+    from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
+
+    huge = estimate(20, None, "ball", stages=6, dps=70, directions=10**6)
+    assert abs(huge.bytes - estimate(20, None, "ball", stages=6, dps=70).bytes - MAX_GRADIENT_BYTES) <= 1

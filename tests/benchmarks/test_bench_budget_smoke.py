@@ -1,0 +1,25 @@
+"""benchmarks/bench_budget.py runs against the current engine (every case at order 8) and
+finds the estimates on the high side there: each check's peak memory, read by the
+kernel for the child, is below what the check estimated for itself."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "benchmarks" / "bench_budget.py"
+
+
+def test_every_case_runs_within_its_estimate():
+    proc = subprocess.run([sys.executable, str(SCRIPT), "--quick"], capture_output=True, text=True, cwd=ROOT,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    lines = [line for line in proc.stdout.splitlines() if line.startswith("|")]
+    header = [h.strip() for h in lines[0].strip("|").split("|")]
+    rows = [dict(zip(header, (c.strip() for c in line.strip("|").split("|")))) for line in lines[2:]]
+    assert {r["method"] for r in rows} >= {"RK4", "AVF Gauss-3", "HBVM(6, 2), 60-digit decimals"}
+    assert all(r["order"] == "8" for r in rows)
+    for r in rows:
+        assert float(r["peak MB"]) < float(r["estimated MB"]), r
