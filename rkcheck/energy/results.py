@@ -86,6 +86,7 @@ class OrderVerdicts:
     values: Any  # ExactOrderSums, ball order sums, or list[Enclosure] (representative sign)
     _rank: np.ndarray | None = field(default=None, repr=False)  # presentation order
     _records: list[FreeTree] | None = field(default=None, repr=False)
+    _flips: list[int] | None = field(default=None, repr=False)  # the records' flips (a whole order read)
     _exact: list[Any] | None = field(default=None, repr=False)  # all exact values, rebuilt at once
 
     @property
@@ -123,8 +124,8 @@ def _enclosure_of(value: Any) -> Enclosure:
     (exact flag off: it is a numerical view) for an algebraic number."""
     if isinstance(value, Fraction):
         return Enclosure.of(value)
-    iv = value.enclosure(256)
-    return Enclosure(iv.mid, iv.rad, False)
+    mid, rad = value.ball(256)
+    return Enclosure(mid, rad, False)
 
 
 class ConditionResults(Sequence[Condition]):
@@ -140,7 +141,8 @@ class ConditionResults(Sequence[Condition]):
 
     def _presentation(self, o: OrderVerdicts) -> np.ndarray:
         if o._rank is None:
-            o._records = self.listing.records(o.vertices)
+            named = self.listing.named(o.vertices)
+            o._records, o._flips = [tree for tree, _ in named], [flip for _, flip in named]
             o._rank = self.listing.presentation(o.vertices, o._records)
         return o._rank
 
@@ -151,7 +153,7 @@ class ConditionResults(Sequence[Condition]):
         """Condition ``k`` (listing order) of the order with ``n`` vertices."""
         o = self.orders[n]
         tree = self._record(o, k)
-        flip = self.listing.flip(n, k)
+        flip = o._flips[k] if o._flips is not None else self.listing.flip(n, k)
         state = State.of_code(int(o.state[k]))
         verdict = Verdict(state, int(o.digits[k]) if state is HOLDS_TO_DIGITS else None)
         if isinstance(o.values, list) or hasattr(o.values, "excludes_zero"):

@@ -311,7 +311,13 @@ class FieldElement:
         return None
 
     def enclosure(self, bits: int = 64) -> Interval:
-        """A certified enclosure of width ``<= 2^-bits`` (a point when rational): Horner's
+        """A certified enclosure of width ``<= 2^-bits`` (a point when rational)."""
+        mid, rad = self.ball(bits)
+        return Interval(mid - rad, mid + rad) if rad else Interval.point(mid)
+
+    def ball(self, bits: int = 64) -> tuple[Fraction, Fraction]:
+        """``(mid, rad)`` of a certified enclosure of width ``<= 2^-bits`` (``rad = 0``
+        when rational; a report reads these, not an interval's end points): Horner's
         scheme in Arb balls at θ's enclosure, with working precision and θ's width both
         ``bits`` plus the coefficients' size, since the terms cancel from that size down
         to the value (2000-bit coefficients in the Gauss-6 field: in Fraction intervals
@@ -320,7 +326,7 @@ class FieldElement:
 
         r = self.rational()
         if r is not None:
-            return Interval.point(r)
+            return r, Fraction(0)
         coeffs = self.coeffs
         width = Fraction(1, 1 << bits)
         # θ's width times the derivative, at most D times the largest term over |θ|
@@ -336,7 +342,7 @@ class FieldElement:
                 value = arb_poly([fmpq(c.numerator, c.denominator) for c in coeffs])(theta)
                 mid, rad = to_fraction(value.mid()), to_fraction(value.rad())
             if 2 * rad <= width:
-                return Interval(mid - rad, mid + rad)
+                return mid, rad
             tb += max(tb // 2, 32)
 
     def sign(self) -> int:

@@ -314,7 +314,13 @@ class ConditionListing:
 
     def records(self, n: int) -> list[FreeTree]:
         """The conditions with ``n`` vertices in listing order."""
-        return [self.record(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
+        return [tree for tree, _ in self.named(n)]
+
+    def named(self, n: int) -> list[tuple[FreeTree, int]]:
+        """``(free tree, flip)`` of every condition with ``n`` vertices in listing order:
+        one naming each, for a reader of a whole order beyond NAMED_CONDITIONS, which
+        would otherwise name a condition again for its flip."""
+        return [self._name(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
 
     def presentation(self, n: int, records: list[FreeTree] | None = None) -> np.ndarray:
         """The ``k`` of the conditions with ``n`` vertices by canonical id (level

@@ -252,3 +252,27 @@ def test_named_conditions_are_remembered_up_to_the_limit(monkeypatch):
             assert {c.level_sequence for c in got} == set(want)
             assert all(c.max_degree == want[c.level_sequence]["max_degree"] for c in got)
     assert len(L._named) == 5
+
+
+def test_whole_orders_read_past_the_limit_give_the_reference_residuals(monkeypatch):
+    """A whole order read at once names each condition once (tree and designated sign
+    together): past the limit of remembered names, every residual still has the sign of
+    the reference's designated rooting."""
+    import random
+    from fractions import Fraction
+
+    import rkcheck
+    import rkcheck.trees.listing as listing_module
+
+    monkeypatch.setattr(listing_module, "NAMED_CONDITIONS", 3)
+    listing_module.forget_listings()
+    try:
+        rng = random.Random(5)
+        A = [[Fraction(rng.randint(-5, 5), rng.randint(1, 6)) for _ in range(3)] for _ in range(3)]
+        b = [Fraction(rng.randint(-5, 5), rng.randint(1, 6)) for _ in range(3)]
+        result = rkcheck.verify(rkcheck.from_arrays(A, b), order=9, degree="none")
+        got = {c.level_sequence: c.residual for c in result.conditions}
+        want = {d["id"]: ref.energy_residual(d, A, b) for n in range(3, 11) for d in ref.energy_conditions(n)}
+        assert got == want
+    finally:
+        listing_module.forget_listings()
