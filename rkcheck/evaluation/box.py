@@ -30,19 +30,41 @@ Then
 
 Weights that are zero for every tableau with the tableau's zero entries are skipped
 (:mod:`~rkcheck.evaluation.support`): exactly zero on the box, they add nothing.
+
+The derivatives cost one float ball per interval entry beside every weight.  On a large
+listing (:data:`MAJORANT_MIN_VERTICES`) whose box has many entries, the conditions are
+first judged with a bound of ``V`` along one direction
+(:mod:`~rkcheck.evaluation.majorant`, ``V ≤ V̄``): where ``|R(x̃)| > V̄ + ε`` the condition
+fails, as it would with ``V``; the others — the conditions the method nearly satisfies
+— get every direction, on the trees their terms need
+(:class:`~rkcheck.evaluation.subset.Subset`), and a decided condition gets its ``V``
+when a report shows its enclosure (:class:`Refiner`, its order and the ones below in
+one pass).  So verdicts, digits, mid-points and the enclosures shown are those of every
+direction over the whole listing, except that the open conditions' sums group the same
+terms differently, which can move their radii in the last bits.  Where the open
+conditions are not few (a method checked at a degree it preserves), every direction
+goes over the whole listing at once, after a probe of the small orders.
 """
 
 from __future__ import annotations
 
-import math
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
-from rkcheck.evaluation.balls import ETA, INFLATE, BallSums, FloatSums, U
-from rkcheck.evaluation.slopes import GradientContext, gradient_groups
-from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
+from rkcheck.evaluation.backends import certified_context
+from rkcheck.evaluation.balls import ETA, INFLATE, U
+from rkcheck.evaluation.box_sums import BallCentre, BoxSums, ExactCentre, OpenScreen
+from rkcheck.evaluation.majorant import MajorantContext
+from rkcheck.evaluation.slopes import (
+    MAX_GRADIENT_BYTES,
+    GradientContext,
+    gradient_groups,
+)
+from rkcheck.evaluation.subset import Subset
+from rkcheck.evaluation.support import SupportContext, zero_pattern
 from rkcheck.numbers.intervals import Interval, float_above
 
 if TYPE_CHECKING:
@@ -67,137 +89,6 @@ def centre_bits(A: Sequence[Sequence[Interval]], b: Sequence[Interval]) -> int:
     r = Fraction(min(radii))
     below = r.denominator.bit_length() - r.numerator.bit_length()
     return max(below, 0) + CENTRE_BITS_BEYOND_BOX
-
-
-class BallCentre:
-    """``R(x̃)`` of one order's conditions in balls: ``M/(f·2^P) ± ρ/(f·2^S)``
-    (:class:`~rkcheck.evaluation.balls.BallSums`), decided without a Fraction per
-    condition."""
-
-    def __init__(self, sums: BallSums):
-        self.sums = sums
-
-    def spread(self) -> np.ndarray:
-        """The balls' radii (floats, about: only for choosing the exact route)."""
-        s = self.sums
-        result: np.ndarray = np.ldexp(np.asarray(s.rads, dtype=float), -s.shift) / float(s.factorial)
-        return result
-
-    def beyond(self, variation: np.ndarray) -> np.ndarray:
-        """``|R(x̃)| > V`` for every value in the ball: ``|M| > 2^P·(f·V + ρ·2^−S)``, the
-        right side rounded up (a float compared with a Python integer exactly; an
-        overflow to inf claims nothing)."""
-        s = self.sums
-        f = float(s.factorial)
-        if f < s.factorial:
-            f = math.nextafter(f, math.inf)
-        with np.errstate(over="ignore", invalid="ignore"):
-            t = (f * variation + np.ldexp(np.asarray(s.rads, dtype=float), -s.shift)) * (1 + 8 * U) + ETA
-        return s.exceeds(t)
-
-    def bound(self, variation: np.ndarray) -> np.ndarray:
-        """An upper bound of ``|R(x̃)| + ε + V`` (floats, rounded up)."""
-        with np.errstate(over="ignore"):
-            result: np.ndarray = (self.sums.magnitude_bound() + variation) * INFLATE + ETA
-            return result
-
-    def enclosure(self, k: int, variation: float) -> Enclosure:
-        e = self.sums.enclosure(k)
-        return Enclosure(e.mid, e.rad + Fraction(variation), False)
-
-
-class ExactCentre:
-    """``R(x̃) = integers[k] / scale`` exactly (residues modulo primes), decided with
-    integer comparisons: a Fraction per condition (a gcd each) costs more than the
-    evaluation."""
-
-    def __init__(self, integers: list[int], scale: int):
-        self.integers, self.scale = integers, scale
-        self._c: np.ndarray | None = None
-
-    def beyond(self, variation: np.ndarray) -> np.ndarray:
-        """``|R(x̃)| > V``, exactly.  Rounding to nearest is monotone and V is a float, so
-        the correctly rounded ``c = |N|/scale`` above V proves ``|R(x̃)| > V`` and below V
-        disproves it; only ``c = V`` is decided in integers: ``|N|·2^k > m·scale`` for
-        ``V = m/2^k``."""
-        c = self._magnitudes()
-        if c is None:
-            return self._beyond_exactly(variation, range(len(self.integers)))
-        out = c > variation
-        tie = np.flatnonzero(c == variation)
-        if len(tie):
-            out[tie] = self._beyond_exactly(variation, tie.tolist())[tie]
-        return out
-
-    def _beyond_exactly(self, variation: np.ndarray, indices: Iterable[int]) -> np.ndarray:
-        out = np.zeros(len(self.integers), dtype=bool)
-        for i in indices:
-            x = self.integers[i]
-            if x and math.isfinite(variation[i]):
-                m, k = float(variation[i]).as_integer_ratio()
-                out[i] = abs(x) * k > m * self.scale
-        return out
-
-    def _magnitudes(self) -> np.ndarray | None:
-        """``|N|/scale`` correctly rounded (integer true division, as ``float(Fraction)``),
-        element by element in numpy's loop; None past float64's range."""
-        if self._c is None:
-            try:
-                self._c = (np.abs(np.array(self.integers, dtype=object)) / self.scale).astype(float) \
-                    if len(self.integers) else np.zeros(0)
-            except OverflowError:
-                return None
-        return self._c
-
-    def bound(self, variation: np.ndarray) -> np.ndarray:
-        """An upper bound of ``|R(x̃)| + V``: floats, rounded up."""
-        c = self._magnitudes()
-        if c is None:  # the integer division raises past float64's range, as float(Fraction) does
-            c = np.array([_float_or_inf(abs(x), self.scale) for x in self.integers], dtype=float)
-        result: np.ndarray = (c * (1 + 4 * U) + variation) * INFLATE + ETA
-        return result
-
-    def enclosure(self, k: int, variation: float) -> Enclosure:
-        return Enclosure(Fraction(self.integers[k], self.scale), Fraction(variation), False)
-
-
-def _float_or_inf(x: int, q: int) -> float:
-    try:
-        return x / q
-    except OverflowError:
-        return math.inf
-
-
-class BoxSums:
-    """The conditions of one order judged over the box (the representative's sign):
-    the mean value form ``R(x̃) ± V`` and the screen's enclosure over the box, each
-    decisive where it is sharper.  What :func:`~rkcheck.energy.results.order_verdicts`
-    reads: ``excludes_zero``, ``magnitude_bound``, ``enclosure``."""
-
-    def __init__(self, centre: BallCentre | ExactCentre, screen: FloatSums, variation: np.ndarray):
-        self.centre, self.screen, self.variation = centre, screen, variation
-        self._fails = centre.beyond(variation)
-        self._screen_fails = np.asarray(screen.excludes_zero(), dtype=bool)
-        self._bound = centre.bound(variation)
-        self._screen_bound = np.asarray(screen.magnitude_bound(), dtype=float)
-
-    def __len__(self) -> int:
-        return len(self.variation)
-
-    def excludes_zero(self) -> np.ndarray:
-        result: np.ndarray = self._fails | self._screen_fails
-        return result
-
-    def magnitude_bound(self) -> np.ndarray:
-        result: np.ndarray = np.minimum(self._bound, self._screen_bound)
-        return result
-
-    def enclosure(self, k: int) -> Enclosure:
-        """The enclosure that decides: the mean value form's where it fails or bounds
-        ``|R|`` at least as tightly, else the screen's."""
-        if self._fails[k] or not (self._screen_fails[k] or self._screen_bound[k] < self._bound[k]):
-            return self.centre.enclosure(k, float(self.variation[k]))
-        return self.screen.enclosure(k)
 
 
 class _Pair:
@@ -271,35 +162,66 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
     ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
-    more than one pass: after the last)."""
-    from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
-    from rkcheck.evaluation.backends import certified_context
-    from rkcheck.evaluation.support import SupportContext, zero_pattern
+    more than one pass, or the majorant decides first: after the last).
 
+    From :data:`MAJORANT_MIN_VERTICES` vertices, a box whose derivatives cost several
+    times its values is first bounded along one direction
+    (:mod:`~rkcheck.evaluation.majorant`): the conditions that bound decides fail, and
+    the directions are evaluated for the others only, on the trees their terms need —
+    unless they are not few (a method that satisfies many conditions)."""
     wanted = sorted(orders)
     if not wanted:
         return {}
-    s = len(b)
-    whole = GradientContext(A, b)
-    groups = gradient_groups(listing, s, whole.E, whole.EA)
-    radii = box_radii(A, b, centre_A, centre_b, whole)
-    zeros = zero_pattern(A, b)
+    box = _Box(listing, A, b, centre_A, centre_b, wanted)
+    try:
+        out = _by_majorant(box)
+    except EvaluationInterrupted as stop:
+        stop.finished = {}
+        raise
+    if out is None:
+        out = _by_directions(box, on_order)
+    elif on_order is not None:
+        for n in wanted:
+            on_order(n, out[n])
+    return _exact_where_needed(listing, centre_A, centre_b, out)
 
-    def supported(ctx: Any) -> Any:
-        return SupportContext(ctx, *zeros) if zeros[0].any() or zeros[1].any() else ctx
 
-    points_A = [[Interval(x, x) for x in row] for row in centre_A]
-    points_b = [Interval(x, x) for x in centre_b]
-    centre = certified_context(points_A, points_b, centre_bits(A, b), wanted[-1])
-    first = supported(_Pair(centre, GradientContext(A, b, groups[0])))
+class _Box:
+    """What both routes of :func:`judge_box` share: the box, its radii along every
+    direction, the centre's ball context and the pattern of zeros."""
+
+    def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
+                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], wanted: list[int]):
+        self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
+        self.wanted, self.s = wanted, len(b)
+        self.whole = GradientContext(A, b)
+        self.groups = gradient_groups(listing, self.s, self.whole.E, self.whole.EA)
+        self.radii = box_radii(A, b, centre_A, centre_b, self.whole)
+        self.zeros = zero_pattern(A, b)
+        points_A = [[Interval(x, x) for x in row] for row in centre_A]
+        self.centre = certified_context(points_A, [Interval(x, x) for x in centre_b], centre_bits(A, b), wanted[-1])
+
+    def supported(self, ctx: Any) -> Any:
+        return SupportContext(ctx, *self.zeros) if self.zeros[0].any() or self.zeros[1].any() else ctx
+
+    def variation(self, G: np.ndarray) -> np.ndarray:
+        """``V = Σ_e G[:, e]·r_e`` rounded up (the products and the sum of E terms)."""
+        result: np.ndarray = (G @ self.radii) * (1 + (self.whole.E + 2) * U) * INFLATE + ETA
+        return result
+
+
+def _by_directions(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> dict[int, BoxSums]:
+    """Every condition with every direction: the centre and the first group of directions
+    in one pass, the other groups (when their arrays would not fit at once) in more."""
+    listing, A, b, s, wanted, groups = box.listing, box.A, box.b, box.s, box.wanted, box.groups
+    first = box.supported(_Pair(box.centre, GradientContext(A, b, groups[0])))
     out: dict[int, BoxSums] = {}
 
     def judged(n: int, sums: Any, more: Sequence[Any] = ()) -> BoxSums:
         ball, (screen, G) = sums
         if more:  # each direction's column computed alone: the passes' columns side by side
             G = np.concatenate([G] + [m[n][1] for m in more], axis=1)
-        V = (G @ radii) * (1 + (whole.E + 2) * U) * INFLATE + ETA
-        return BoxSums(BallCentre(ball), screen, V)
+        return BoxSums(BallCentre(ball), screen, box.variation(G))
 
     def done(n: int, sums: Any) -> None:
         out[n] = judged(n, sums)
@@ -315,7 +237,7 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
         raise
     if len(groups) > 1:
         try:
-            more = [condition_sums(listing, supported(GradientContext(A, b, g)), s, wanted) for g in groups[1:]]
+            more = [condition_sums(listing, box.supported(GradientContext(A, b, g)), s, wanted) for g in groups[1:]]
         except EvaluationInterrupted as stop:
             stop.finished = {}
             raise
@@ -323,7 +245,103 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
             out[n] = judged(n, raw[n], more)
             if on_order is not None:
                 on_order(n, out[n])
-    return _exact_where_needed(listing, centre_A, centre_b, out)
+    return out
+
+
+#: the majorant decides first only for listings of at least this many vertices, where
+#: the directions cost (below, a pass of them takes milliseconds)
+MAJORANT_MIN_VERTICES = 15
+
+#: ... and only when the derivatives carry at least this many times the majorant's
+#: values per tree (``2·s·E_A + 2·E`` against ``2·s + 2``): decimal RK4's derivatives
+#: run along b alone, and cost little more than the majorant would
+MAJORANT_MIN_WORK = 4
+
+#: the conditions the majorant leaves open may be at most one in OPEN_SHARE (their
+#: trees as few, :class:`~rkcheck.evaluation.subset.Subset`); the orders up to
+#: _PROBE_VERTICES vertices, evaluated first, must leave at most one in _PROBE_SHARE
+#: open (a method that satisfies most conditions, checked at its degree: every
+#: direction is needed, and the probe is all the majorant costs)
+OPEN_SHARE = 8
+_PROBE_VERTICES = 13
+_PROBE_SHARE = 4
+
+
+def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
+    """The conditions the majorant ``V̄`` decides (they fail), the others with every
+    direction on the trees they need; None where that would not pay (then every
+    direction goes over the whole listing)."""
+    listing, A, b, s, wanted, E = box.listing, box.A, box.b, box.s, box.wanted, box.whole
+    if wanted[-1] < MAJORANT_MIN_VERTICES or 2 * s * E.EA + 2 * E.E < MAJORANT_MIN_WORK * (2 * s + 2):
+        return None
+    radii_A = [[0.0] * s for _ in range(s)]
+    radii_b = [0.0] * s
+    for r, (i, j) in zip(box.radii, E.a_vars):
+        radii_A[i][j] = float(r)
+    for r, i in zip(box.radii[len(E.a_vars):], E.b_vars):
+        radii_b[i] = float(r)
+    pair = box.supported(_Pair(box.centre, MajorantContext(radii_A, radii_b, box.centre_A, box.centre_b)))
+    probe = [n for n in wanted if n <= _PROBE_VERTICES]
+    if probe and _open(condition_sums(listing, pair, s, probe), _PROBE_SHARE) is None:
+        return None
+    raw = condition_sums(listing, pair, s, wanted)
+    open_ = _open(raw, OPEN_SHARE)
+    if open_ is None:
+        return None
+    sums = {}
+    if open_:
+        subset = Subset.build(listing, open_, s, OPEN_SHARE)
+        if subset is None or len(subset.trees) * (2 * s * E.EA + 2 * E.E) * 16 > MAX_GRADIENT_BYTES:
+            return None
+        sums = subset.residues(box.supported(GradientContext(A, b)))
+    refiner = Refiner(listing, A, b, box.centre_A, box.centre_b)
+    out = {}
+    for n in wanted:
+        ball, (_, G) = raw[n]
+        centre, coarse = BallCentre(ball), G[:, 0] * INFLATE + ETA
+        decided = centre.beyond(coarse)
+        variation, screen = coarse.copy(), OpenScreen(len(coarse))
+        if n in sums:
+            scr, G_open = sums[n]
+            variation[open_[n]] = box.variation(G_open)
+            screen = OpenScreen(len(coarse), open_[n], scr)
+        out[n] = BoxSums(centre, screen, variation, (refiner, n, decided))
+    return out
+
+
+def _open(raw: dict[int, Any], share: int) -> dict[int, np.ndarray] | None:
+    """The conditions the majorant leaves open, by order (``raw``: the sums of the centre
+    and the majorant), or None when they are more than one in ``share``."""
+    out, total, count = {}, 0, 0
+    for n, (ball, (_, G)) in raw.items():
+        left = np.flatnonzero(~BallCentre(ball).beyond(G[:, 0] * INFLATE + ETA))
+        total, count = total + len(left), count + len(G)
+        if len(left):
+            out[n] = left
+    return None if total * share > count else out
+
+
+class Refiner:
+    """The variation ``V`` of every condition of an order along every direction, computed
+    when a report asks for the enclosure of a condition the majorant decided (it fails
+    with ``V̄``; its enclosure is ``R(x̃) ± V``, as without the majorant): the orders up to
+    the one asked, not yet computed, in one pass.  Kept with the results (it pickles:
+    the listing travels as its key)."""
+
+    def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
+                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any]):
+        self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
+        self._done: dict[int, np.ndarray] = {}
+
+    def variation(self, n: int) -> np.ndarray:
+        if n not in self._done:
+            box = _Box(self.listing, self.A, self.b, self.centre_A, self.centre_b, [n])
+            todo = [k for k in self.listing.orders if k <= n and k not in self._done]
+            passes = [condition_sums(self.listing, box.supported(GradientContext(self.A, self.b, g)), box.s, todo)
+                      for g in box.groups]
+            for k in todo:
+                self._done[k] = box.variation(np.concatenate([p[k][1] for p in passes], axis=1))
+        return self._done[n]
 
 
 def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
@@ -331,7 +349,6 @@ def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[A
     """The orders where the centre's ball is not far narrower than the variation of some
     condition (:data:`CENTRE_SPREAD`: one that hardly varies on the box, or a box far
     narrower than the balls' precision), judged again around the exact ``R(x̃)``."""
-    from rkcheck.evaluation.algorithm import EvaluationInterrupted
     from rkcheck.evaluation.modular import exact_condition_sums
     from rkcheck.evaluation.scaled import scaled_rational
 
@@ -346,8 +363,8 @@ def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[A
         raise
     out = dict(judged)
     for n in loose:
-        out[n] = BoxSums(ExactCentre(exact[n].integers(), exact[n].scale), judged[n].screen, judged[n].variation)
+        out[n] = judged[n].around(ExactCentre(exact[n].integers(), exact[n].scale))
     return out
 
 
-__all__ = ["BallCentre", "BoxSums", "ExactCentre", "judge_box", "centre_bits", "box_radii"]
+__all__ = ["BallCentre", "BoxSums", "ExactCentre", "OpenScreen", "Refiner", "judge_box", "centre_bits", "box_radii"]

@@ -173,7 +173,10 @@ class GradientContext:
         (condition, direction) pairs, which adds each bin's terms in the same order as a
         bincount per direction (the sums are the same, bit for bit)."""
         cond, idx = terms.block(i0, i1)
-        c = _float_coefficients(terms, n)[idx]
+        self._add_block(acc, w_terms, cond, _float_coefficients(terms, n)[idx])
+
+    def _add_block(self, acc: Any, w_terms: Any, cond: np.ndarray, c: np.ndarray) -> None:
+        """The terms ``c·w`` of one block into the bins of their conditions ``cond``."""
         uniq, inv = acc[0][4](cond)
         u = len(uniq)
         _bin_terms(acc[0], c, w_terms[0], uniq, inv, None)
@@ -192,6 +195,19 @@ class GradientContext:
         cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
                 for e in range(self.E)]
         return values, (np.stack(cols, axis=1) if cols else np.zeros((k, 0)))
+
+    def selected_sums(self, part: Any) -> Any:
+        """Bins for the selected conditions of ``part`` (a
+        :class:`~rkcheck.evaluation.subset.Subset`'s order)."""
+        return self.sums(part.conditions, part.terms.vertices)
+
+    def add_selected(self, acc: Any, w_terms: Any, part: Any, t0: int, t1: int) -> None:
+        """The selected terms ``t0 … t1−1`` of ``part`` into their bins, as :meth:`add_terms`."""
+        c = _float_coefficients(part.terms, part.terms.vertices)[part.coefficient[t0:t1]]
+        self._add_block(acc, w_terms, part.condition[t0:t1].astype(np.intp), c)
+
+    def finish_selected(self, acc: Any, part: Any) -> tuple[FloatSums, np.ndarray]:
+        return self.finish_sums(acc, part.conditions, part.terms.vertices)
 
 
 def _bin_terms(acc: Any, c: Any, w: Any, uniq: np.ndarray, bins: np.ndarray, shape: tuple[int, int] | None) -> None:

@@ -238,3 +238,25 @@ class SupportContext:
 
     def finish_sums(self, acc: Any, k: int, n: int) -> Any:
         return self.inner.finish_sums(acc, k, n)
+
+    def selected_sums(self, part: Any) -> Any:
+        return self.inner.selected_sums(part)
+
+    def add_selected(self, acc: Any, w_terms: Any, part: Any, t0: int, t1: int) -> None:
+        """The selected terms that may be nonzero only, as :meth:`add_terms`."""
+        rows = np.flatnonzero(w_terms[0])
+        if len(rows):
+            self.inner.add_selected(acc, self._inner(w_terms), _SelectedRows(part, t0 + rows), 0, len(rows))
+
+    def finish_selected(self, acc: Any, part: Any) -> Any:
+        return self.inner.finish_selected(acc, part)
+
+
+class _SelectedRows:
+    """Some of the selected terms of a :class:`~rkcheck.evaluation.subset.Subset`'s order
+    (``rows``), read as that order's selected terms are: their conditions and coefficient
+    indices; the order and its selected conditions are the part's own."""
+
+    def __init__(self, part: Any, rows: np.ndarray):
+        self.terms, self.conditions = part.terms, part.conditions
+        self.condition, self.coefficient = part.condition[rows], part.coefficient[rows]
