@@ -274,13 +274,19 @@ def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
     listing, A, b, s, wanted, E = box.listing, box.A, box.b, box.s, box.wanted, box.whole
     if wanted[-1] < MAJORANT_MIN_VERTICES or 2 * s * E.EA + 2 * E.E < MAJORANT_MIN_WORK * (2 * s + 2):
         return None
+    if not np.all(np.isfinite(box.radii)):  # a radius past float64's range: V̄ would claim nothing
+        return None
     radii_A = [[0.0] * s for _ in range(s)]
     radii_b = [0.0] * s
     for r, (i, j) in zip(box.radii, E.a_vars):
         radii_A[i][j] = float(r)
     for r, i in zip(box.radii[len(E.a_vars):], E.b_vars):
         radii_b[i] = float(r)
-    pair = box.supported(_Pair(box.centre, MajorantContext(radii_A, radii_b, box.centre_A, box.centre_b)))
+    try:
+        majorant = MajorantContext(radii_A, radii_b, box.centre_A, box.centre_b)
+    except OverflowError:  # a corner |x̃| + r past float64's range
+        return None
+    pair = box.supported(_Pair(box.centre, majorant))
     probe = [n for n in wanted if n <= _PROBE_VERTICES]
     if probe and _open(condition_sums(listing, pair, s, probe), _PROBE_SHARE) is None:
         return None

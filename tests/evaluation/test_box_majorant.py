@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 from support import reference as ref
 
+from rkcheck.errors import RkcheckError
 from rkcheck.evaluation import box as box_module
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.box import BallCentre, box_radii, judge_box
@@ -173,3 +174,26 @@ def test_the_decided_conditions_fail_at_their_centre(monkeypatch):
         mask = sums.refined[2]
         assert np.all(sums.excludes_zero()[mask])
         assert isinstance(sums.centre, BallCentre) or not mask.any() or np.all(sums.centre.beyond(sums.variation)[mask])
+
+
+def _outcome(listing, values, tab, minimum, monkeypatch):
+    """The verdicts of every order, or the one line a refusal says."""
+    with monkeypatch.context() as m:
+        m.setattr(box_module, "MAJORANT_MIN_VERTICES", minimum)
+        try:
+            out = judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), sorted(listing.orders))
+        except RkcheckError as err:
+            return str(err)
+    return [[x.tolist() for x in _verdicts(out[n])] for n in sorted(out)]
+
+
+@pytest.mark.parametrize("big", ["1.234567e30", "1.234567e300", "1.234567e320"])
+def test_entries_near_or_past_the_float_range_fare_as_with_every_direction(monkeypatch, big):
+    # a corner |x̃| + r or a radius past float64's range: the majorant cannot be formed, or
+    # claims nothing; whatever every direction gives (verdicts, or a refusal), it gives
+    A = [["0.1234567", big, "0.3456789"], ["0.4567891", "0.5678912", "0.6789123"],
+         ["0.7891234", "0.8912345", "0.9123456"]]
+    tab = Tableau.from_values(A, ["0.2345678", "0.3456789", "0.4197533"])
+    values = TableauValues(tab, Reading())
+    listing = ConditionListing(8, None)
+    assert _outcome(listing, values, tab, 8, monkeypatch) == _outcome(listing, values, tab, 10**6, monkeypatch)
