@@ -304,7 +304,7 @@ def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
     out = {}
     for n in wanted:
         ball, (_, G) = raw[n]
-        centre, coarse = BallCentre(ball), G[:, 0] * INFLATE + ETA
+        centre, coarse = BallCentre(ball), _coarse(G)
         decided = centre.beyond(coarse)
         variation, screen = coarse.copy(), OpenScreen(len(coarse))
         if n in sums:
@@ -315,12 +315,18 @@ def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
     return out
 
 
+def _coarse(G: np.ndarray) -> np.ndarray:
+    """``V̄`` from the majorant's one column (already an upper bound, rounded up)."""
+    result: np.ndarray = G[:, 0] * INFLATE + ETA
+    return result
+
+
 def _open(raw: dict[int, Any], share: int) -> dict[int, np.ndarray] | None:
     """The conditions the majorant leaves open, by order (``raw``: the sums of the centre
     and the majorant), or None when they are more than one in ``share``."""
     out, total, count = {}, 0, 0
     for n, (ball, (_, G)) in raw.items():
-        left = np.flatnonzero(~BallCentre(ball).beyond(G[:, 0] * INFLATE + ETA))
+        left = np.flatnonzero(~BallCentre(ball).beyond(_coarse(G)))
         total, count = total + len(left), count + len(G)
         if len(left):
             out[n] = left

@@ -169,17 +169,18 @@ class BoxSums:
 
 
 class OpenScreen:
-    """The screen's enclosures over the box of the conditions the majorant left ``open``
-    (their sums from a :class:`~rkcheck.evaluation.subset.Subset`); the others, which
-    the majorant decided, have none: they exclude nothing and bound nothing."""
+    """The screen's enclosures over the box of the conditions the majorant left open
+    (``opened``, their sums from a :class:`~rkcheck.evaluation.subset.Subset`); the
+    others, which the majorant decided, have none: they exclude nothing and bound
+    nothing."""
 
-    def __init__(self, k: int, open: np.ndarray | None = None, sums: FloatSums | None = None):
+    def __init__(self, k: int, opened: np.ndarray | None = None, sums: FloatSums | None = None):
         self._fails, self._bound = np.zeros(k, dtype=bool), np.full(k, np.inf)
         self._sums, self._position = sums, np.full(k, -1, dtype=np.intp)
-        if open is not None and sums is not None:
-            self._fails[open] = np.asarray(sums.excludes_zero(), dtype=bool)
-            self._bound[open] = np.asarray(sums.magnitude_bound(), dtype=float)
-            self._position[open] = np.arange(len(open))
+        if opened is not None and sums is not None:
+            self._fails[opened] = np.asarray(sums.excludes_zero(), dtype=bool)
+            self._bound[opened] = np.asarray(sums.magnitude_bound(), dtype=float)
+            self._position[opened] = np.arange(len(opened))
 
     def excludes_zero(self) -> np.ndarray:
         return self._fails
