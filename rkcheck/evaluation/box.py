@@ -41,9 +41,10 @@ fails, as it would with ``V``; the others — the conditions the method nearly s
 when a report shows its enclosure (:class:`Refiner`, its order and the ones below in
 one pass).  So verdicts, digits, mid-points and the enclosures shown are those of every
 direction over the whole listing, except that the open conditions' sums group the same
-terms differently, which can move their radii in the last bits.  Where the open
-conditions are not few (a method checked at a degree it preserves), every direction
-goes over the whole listing at once, after a probe of the small orders.
+terms differently, which can move their radii in the last bits.  An order whose open
+conditions are not few takes every direction over the listing; a method whose small
+orders leave most conditions open (checked at a degree it preserves) takes them over
+the whole listing at once, as without the majorant.
 """
 
 from __future__ import annotations
@@ -55,7 +56,7 @@ import numpy as np
 
 from rkcheck.evaluation.algorithm import EvaluationInterrupted, condition_sums
 from rkcheck.evaluation.backends import certified_context
-from rkcheck.evaluation.balls import ETA, INFLATE, U
+from rkcheck.evaluation.balls import ETA, INFLATE, FloatSums, U
 from rkcheck.evaluation.box_sums import BallCentre, BoxSums, ExactCentre, OpenScreen
 from rkcheck.evaluation.majorant import MajorantContext
 from rkcheck.evaluation.slopes import (
@@ -162,7 +163,7 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
     ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
-    more than one pass, or the majorant decides first: after the last).
+    more than one pass: after the last).
 
     From :data:`MAJORANT_MIN_VERTICES` vertices, a box whose derivatives cost several
     times its values is first bounded along one direction
@@ -173,16 +174,9 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     if not wanted:
         return {}
     box = _Box(listing, A, b, centre_A, centre_b, wanted)
-    try:
-        out = _by_majorant(box)
-    except EvaluationInterrupted as stop:
-        stop.finished = {}
-        raise
+    out = _by_majorant(box, on_order)
     if out is None:
         out = _by_directions(box, on_order)
-    elif on_order is not None:
-        for n in wanted:
-            on_order(n, out[n])
     return _exact_where_needed(listing, centre_A, centre_b, out)
 
 
@@ -257,22 +251,66 @@ MAJORANT_MIN_VERTICES = 15
 #: run along b alone, and cost little more than the majorant would
 MAJORANT_MIN_WORK = 4
 
-#: the conditions the majorant leaves open may be at most one in OPEN_SHARE (their
-#: trees as few, :class:`~rkcheck.evaluation.subset.Subset`); the orders up to
-#: _PROBE_VERTICES vertices, evaluated first, must leave at most one in _PROBE_SHARE
-#: open (a method that satisfies most conditions, checked at its degree: every
-#: direction is needed, and the probe is all the majorant costs)
+#: the conditions the majorant leaves open in an order are evaluated with every
+#: direction on the trees their terms need when they are at most one in OPEN_SHARE
+#: (their trees as few, :class:`~rkcheck.evaluation.subset.Subset`), else that order
+#: over the listing; the orders up to _PROBE_VERTICES vertices, evaluated first, must
+#: leave at most one in _PROBE_SHARE open (a method checked at a degree it preserves
+#: satisfies most conditions: every direction is needed, and the probe is all the
+#: majorant costs)
 OPEN_SHARE = 8
 _PROBE_VERTICES = 13
 _PROBE_SHARE = 4
 
 
-def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
+def _by_majorant(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> dict[int, BoxSums] | None:
     """The conditions the majorant ``V̄`` decides (they fail), the others with every
-    direction on the trees they need; None where that would not pay (then every
+    direction on the trees they need, order by order as the majorant's pass finishes
+    them (``on_order`` told of each); None where that would not pay (then every
     direction goes over the whole listing)."""
-    listing, A, b, s, wanted, E = box.listing, box.A, box.b, box.s, box.wanted, box.whole
-    if wanted[-1] < MAJORANT_MIN_VERTICES or 2 * s * E.EA + 2 * E.E < MAJORANT_MIN_WORK * (2 * s + 2):
+    listing, s, wanted = box.listing, box.s, box.wanted
+    majorant = _majorant(box)
+    if majorant is None:
+        return None
+    pair = box.supported(_Pair(box.centre, majorant))
+    probe = [n for n in wanted if n <= _PROBE_VERTICES]
+    if probe:
+        raw = condition_sums(listing, pair, s, probe)
+        opened = sum(int(np.count_nonzero(~BallCentre(ball).beyond(_coarse(G)))) for ball, (_, G) in raw.values())
+        if opened * _PROBE_SHARE > sum(len(G) for _, (_, G) in raw.values()):
+            return None
+    refiner = Refiner(listing, box.A, box.b, box.centre_A, box.centre_b)
+    out: dict[int, BoxSums] = {}
+
+    def judged(n: int, sums: Any) -> None:
+        ball, (_, G) = sums
+        centre, coarse = BallCentre(ball), _coarse(G)
+        decided = centre.beyond(coarse)
+        variation, screen = coarse.copy(), OpenScreen(len(coarse))
+        opened = np.flatnonzero(~decided)
+        if len(opened):
+            scr, G_open, whole = _every_direction(box, n, opened)
+            variation[opened] = box.variation(G_open) if whole is None else whole[opened]
+            screen = OpenScreen(len(coarse), opened, scr)
+            if whole is not None:  # the order went over the listing: every V is known
+                refiner.know(n, whole)
+        out[n] = BoxSums(centre, screen, variation, (refiner, n, decided))
+        if on_order is not None:
+            on_order(n, out[n])
+
+    try:
+        condition_sums(listing, pair, s, wanted, judged)
+    except EvaluationInterrupted as stop:  # the orders judged so far, around the balls' centre
+        stop.finished = dict(out)
+        raise
+    return out
+
+
+def _majorant(box: _Box) -> MajorantContext | None:
+    """The majorant of the box, where it may pay: a large listing, derivatives that cost
+    several times the majorant's values, and radii and corners within float64's range."""
+    s, E = box.s, box.whole
+    if box.wanted[-1] < MAJORANT_MIN_VERTICES or 2 * s * E.EA + 2 * E.E < MAJORANT_MIN_WORK * (2 * s + 2):
         return None
     if not np.all(np.isfinite(box.radii)):  # a radius past float64's range: V̄ would claim nothing
         return None
@@ -283,36 +321,9 @@ def _by_majorant(box: _Box) -> dict[int, BoxSums] | None:
     for r, i in zip(box.radii[len(E.a_vars):], E.b_vars):
         radii_b[i] = float(r)
     try:
-        majorant = MajorantContext(radii_A, radii_b, box.centre_A, box.centre_b)
+        return MajorantContext(radii_A, radii_b, box.centre_A, box.centre_b)
     except OverflowError:  # a corner |x̃| + r past float64's range
         return None
-    pair = box.supported(_Pair(box.centre, majorant))
-    probe = [n for n in wanted if n <= _PROBE_VERTICES]
-    if probe and _open(condition_sums(listing, pair, s, probe), _PROBE_SHARE) is None:
-        return None
-    raw = condition_sums(listing, pair, s, wanted)
-    open_ = _open(raw, OPEN_SHARE)
-    if open_ is None:
-        return None
-    sums = {}
-    if open_:
-        subset = Subset.build(listing, open_, s, OPEN_SHARE)
-        if subset is None or len(subset.trees) * (2 * s * E.EA + 2 * E.E) * 16 > MAX_GRADIENT_BYTES:
-            return None
-        sums = subset.residues(box.supported(GradientContext(A, b)))
-    refiner = Refiner(listing, A, b, box.centre_A, box.centre_b)
-    out = {}
-    for n in wanted:
-        ball, (_, G) = raw[n]
-        centre, coarse = BallCentre(ball), _coarse(G)
-        decided = centre.beyond(coarse)
-        variation, screen = coarse.copy(), OpenScreen(len(coarse))
-        if n in sums:
-            scr, G_open = sums[n]
-            variation[open_[n]] = box.variation(G_open)
-            screen = OpenScreen(len(coarse), open_[n], scr)
-        out[n] = BoxSums(centre, screen, variation, (refiner, n, decided))
-    return out
 
 
 def _coarse(G: np.ndarray) -> np.ndarray:
@@ -321,16 +332,19 @@ def _coarse(G: np.ndarray) -> np.ndarray:
     return result
 
 
-def _open(raw: dict[int, Any], share: int) -> dict[int, np.ndarray] | None:
-    """The conditions the majorant leaves open, by order (``raw``: the sums of the centre
-    and the majorant), or None when they are more than one in ``share``."""
-    out, total, count = {}, 0, 0
-    for n, (ball, (_, G)) in raw.items():
-        left = np.flatnonzero(~BallCentre(ball).beyond(_coarse(G)))
-        total, count = total + len(left), count + len(G)
-        if len(left):
-            out[n] = left
-    return None if total * share > count else out
+def _every_direction(box: _Box, n: int, opened: np.ndarray) -> tuple[FloatSums, np.ndarray, np.ndarray | None]:
+    """The screen's sums and the derivatives ``G`` of the conditions ``opened`` of the
+    order with ``n`` vertices along every direction: on the trees their terms need when
+    they are few, else over the listing up to that order — then also the variation of
+    every condition of the order (the third value; None otherwise)."""
+    A, b, s, E = box.A, box.b, box.s, box.whole
+    subset = Subset.build(box.listing, {n: opened}, s, OPEN_SHARE)
+    if subset is not None and len(subset.trees) * (2 * s * E.EA + 2 * E.E) * 16 <= MAX_GRADIENT_BYTES:
+        screen, G = subset.residues(box.supported(GradientContext(A, b)))[n]
+        return screen, G, None
+    passes = [condition_sums(box.listing, box.supported(GradientContext(A, b, g)), s, [n])[n] for g in box.groups]
+    screen, G = passes[0][0], np.concatenate([p[1] for p in passes], axis=1)
+    return FloatSums(screen.mid[opened], screen.rad[opened]), G[opened], box.variation(G)
 
 
 class Refiner:
@@ -344,6 +358,10 @@ class Refiner:
                  centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any]):
         self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
         self._done: dict[int, np.ndarray] = {}
+
+    def know(self, n: int, variation: np.ndarray) -> None:
+        """``V`` of the order with ``n`` vertices, computed already."""
+        self._done[n] = variation
 
     def variation(self, n: int) -> np.ndarray:
         if n not in self._done:

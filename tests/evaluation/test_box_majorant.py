@@ -197,3 +197,39 @@ def test_entries_near_or_past_the_float_range_fare_as_with_every_direction(monke
     values = TableauValues(tab, Reading())
     listing = ConditionListing(8, None)
     assert _outcome(listing, values, tab, 8, monkeypatch) == _outcome(listing, values, tab, 10**6, monkeypatch)
+
+
+def test_ctrl_c_keeps_the_orders_the_majorant_route_judged(monkeypatch):
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    tab, values = _gauss3(16)
+    listing = ConditionListing(14, None)
+    whole, _ = _both_routes(listing, values, tab, monkeypatch)
+    stop_at = sorted(listing.orders)[-2]
+
+    def on_order(n, _):
+        if n == stop_at:
+            raise KeyboardInterrupt
+
+    with pytest.raises(EvaluationInterrupted) as info:
+        judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), sorted(listing.orders), on_order)
+    finished = info.value.finished
+    assert sorted(finished) == [n for n in sorted(listing.orders) if n <= stop_at]
+    for n, sums in finished.items():  # judged as the whole run judged them
+        assert sums.refined is not None
+        for x, y in zip(_verdicts(sums), _verdicts(whole[n])):
+            assert np.array_equal(x, y)
+
+
+def test_an_order_whose_open_conditions_are_many_goes_over_the_listing(monkeypatch):
+    # with no subset allowed, each order's open conditions take every direction over the
+    # listing: the same verdicts, and then the same radii bit for bit
+    tab, values = _gauss3(16)
+    listing = ConditionListing(14, None)
+    monkeypatch.setattr(box_module.Subset, "build", staticmethod(lambda *args, **kwargs: None))
+    new, old = _both_routes(listing, values, tab, monkeypatch)
+    for n in sorted(old):
+        assert new[n].refined is not None
+        for x, y in zip(_verdicts(new[n]), _verdicts(old[n])):
+            assert np.array_equal(x, y)
+        assert [new[n].enclosure(k) for k in range(len(old[n]))] == [old[n].enclosure(k) for k in range(len(old[n]))]
