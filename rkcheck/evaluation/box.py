@@ -39,9 +39,13 @@ fails, as it would with ``V``; the others — the conditions the method nearly s
 — get every direction, on the trees their terms need
 (:class:`~rkcheck.evaluation.subset.Subset`), and a decided condition gets its ``V``
 when a report shows its enclosure (:class:`Refiner`, its order and the ones below in
-one pass).  So verdicts, digits, mid-points and the enclosures shown are those of every
-direction over the whole listing, except that the open conditions' sums group the same
-terms differently, which can move their radii in the last bits.  An order whose open
+one pass).  So the verdicts, mid-points and the decided conditions' enclosures are
+those of every direction over the whole listing.  An open condition's derivatives are
+the same float sums of the same terms computed in other blocks (weights in batches of
+other sizes, terms binned in other chunks); where they cancel heavily their bound is
+mostly rounding error, and its ``V`` can move by parts per million (1.5·10⁻⁶ relative
+found): a sound bound either way, whose digits change only if it lies that close to a
+power of ten.  An order whose open
 conditions are not few takes every direction over the listing; a method whose small
 orders leave most conditions open (checked at a degree it preserves) takes them over
 the whole listing at once, as without the majorant.

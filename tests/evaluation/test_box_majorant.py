@@ -5,8 +5,9 @@ route of ``judge_box`` that decides with it first, against values derived indepe
   ``|R(x) − R(x̃)| ≤ V̄`` wherever x lies in the box;
 * the route with every direction over the whole listing (the one the majorant route
   must agree with): the same verdicts, digits and mid-points, the radii of the
-  conditions the majorant decided the same bit for bit, the others' to their last bits
-  (their sums come from another grouping of the same terms).
+  conditions the majorant decided the same bit for bit, the others' close (their sums
+  come from other blocks of the same terms: Gauss-3's within 2⁻⁴⁰; where derivatives
+  cancel heavily, parts per million, docs/decisions.md).
 """
 
 from __future__ import annotations
