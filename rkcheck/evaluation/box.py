@@ -279,7 +279,11 @@ def _by_majorant(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> 
     pair = box.supported(_Pair(box.centre, majorant))
     probe = [n for n in wanted if n <= _PROBE_VERTICES]
     if probe:
-        raw = condition_sums(listing, pair, s, probe)
+        try:
+            raw = condition_sums(listing, pair, s, probe)
+        except EvaluationInterrupted as stop:  # nothing judged yet: the probe's sums are not verdicts
+            stop.finished = {}
+            raise
         opened = sum(int(np.count_nonzero(~BallCentre(ball).beyond(_coarse(G)))) for ball, (_, G) in raw.values())
         if opened * _PROBE_SHARE > sum(len(G) for _, (_, G) in raw.values()):
             return None

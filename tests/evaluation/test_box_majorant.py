@@ -234,3 +234,24 @@ def test_an_order_whose_open_conditions_are_many_goes_over_the_listing(monkeypat
         for x, y in zip(_verdicts(new[n]), _verdicts(old[n])):
             assert np.array_equal(x, y)
         assert [new[n].enclosure(k) for k in range(len(old[n]))] == [old[n].enclosure(k) for k in range(len(old[n]))]
+
+
+def test_ctrl_c_during_the_probe_keeps_no_order(monkeypatch):
+    # the probe's sums are the majorant's, not verdicts: nothing is finished yet
+    from rkcheck.evaluation import algorithm
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    tab, values = _gauss3(16)
+    listing = ConditionListing(14, None)
+    real = algorithm._weights_and_sums
+
+    def interrupted(listing, ctx, s, wanted, out, on_order):
+        if wanted[-1] <= box_module._PROBE_VERTICES:  # the probe's pass
+            real(listing, ctx, s, wanted[:2], out, on_order)
+            raise KeyboardInterrupt
+        real(listing, ctx, s, wanted, out, on_order)
+
+    monkeypatch.setattr(algorithm, "_weights_and_sums", interrupted)
+    with pytest.raises(EvaluationInterrupted) as info:
+        judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), sorted(listing.orders))
+    assert info.value.finished == {}
