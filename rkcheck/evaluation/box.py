@@ -54,6 +54,7 @@ the whole listing at once, as without the majorant.
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
@@ -63,9 +64,11 @@ from rkcheck.evaluation.backends import certified_context
 from rkcheck.evaluation.balls import ETA, INFLATE, FloatSums, U
 from rkcheck.evaluation.box_sums import BallCentre, BoxSums, ExactCentre, OpenScreen
 from rkcheck.evaluation.majorant import MajorantContext
+from rkcheck.evaluation.protocols import EnclosingContext
 from rkcheck.evaluation.slopes import (
     MAX_GRADIENT_BYTES,
     GradientContext,
+    balls_per_tree,
     gradient_groups,
 )
 from rkcheck.evaluation.subset import Subset
@@ -196,8 +199,14 @@ class _Box:
         self.groups = gradient_groups(listing, self.s, self.whole.E, self.whole.EA)
         self.radii = box_radii(A, b, centre_A, centre_b, self.whole)
         self.zeros = zero_pattern(A, b)
-        points_A = [[Interval(x, x) for x in row] for row in centre_A]
-        self.centre = certified_context(points_A, [Interval(x, x) for x in centre_b], centre_bits(A, b), wanted[-1])
+
+    @cached_property
+    def centre(self) -> EnclosingContext:
+        """The centre's ball context, made when a route first evaluates it (a
+        :class:`Refiner` asks for derivatives only)."""
+        points_A = [[Interval(x, x) for x in row] for row in self.centre_A]
+        return certified_context(points_A, [Interval(x, x) for x in self.centre_b], centre_bits(self.A, self.b),
+                                 self.wanted[-1])
 
     def supported(self, ctx: Any) -> Any:
         return SupportContext(ctx, *self.zeros) if self.zeros[0].any() or self.zeros[1].any() else ctx
@@ -318,7 +327,7 @@ def _majorant(box: _Box) -> MajorantContext | None:
     """The majorant of the box, where it may pay: a large listing, derivatives that cost
     several times the majorant's values, and radii and corners within float64's range."""
     s, E = box.s, box.whole
-    if box.wanted[-1] < MAJORANT_MIN_VERTICES or 2 * s * E.EA + 2 * E.E < MAJORANT_MIN_WORK * (2 * s + 2):
+    if box.wanted[-1] < MAJORANT_MIN_VERTICES or balls_per_tree(s, E.E, E.EA) < MAJORANT_MIN_WORK * (2 * s + 2):
         return None
     if not np.all(np.isfinite(box.radii)):  # a radius past float64's range: V̄ would claim nothing
         return None
@@ -347,7 +356,7 @@ def _every_direction(box: _Box, n: int, opened: np.ndarray) -> tuple[FloatSums, 
     every condition of the order (the third value; None otherwise)."""
     A, b, s, E = box.A, box.b, box.s, box.whole
     subset = Subset.build(box.listing, {n: opened}, s, OPEN_SHARE)
-    if subset is not None and len(subset.trees) * (2 * s * E.EA + 2 * E.E) * 16 <= MAX_GRADIENT_BYTES:
+    if subset is not None and len(subset.trees) * balls_per_tree(s, E.E, E.EA) * 16 <= MAX_GRADIENT_BYTES:
         screen, G = subset.residues(box.supported(GradientContext(A, b)))[n]
         return screen, G, None
     passes = [condition_sums(box.listing, box.supported(GradientContext(A, b, g)), s, [n])[n] for g in box.groups]

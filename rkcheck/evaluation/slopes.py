@@ -230,14 +230,19 @@ def _bin_terms(acc: Any, c: Any, w: Any, uniq: np.ndarray, bins: np.ndarray, sha
         a.reshape(-1)[places] += np.bincount(bins, weights=x.ravel(), minlength=size)
 
 
+def balls_per_tree(s: int, E: int, EA: int) -> int:
+    """The float balls of derivatives one tree keeps along ``E`` directions, ``EA`` of them
+    A's entries: a direction of A's is carried by Φ, ψ, a and w, one of b's by a and w
+    only."""
+    return 2 * s * EA + 2 * E
+
+
 def gradient_bytes(listing: ConditionListing, s: int, E: int, EA: int | None = None) -> int:
     """Memory of the derivative arrays for ``listing`` (what :class:`GradientContext`
-    keeps) along ``E`` directions, ``EA`` of them A's entries (None: all): a direction of
-    A's is carried by Φ, ψ, a and w, one of b's by a and w only."""
+    keeps) along ``E`` directions, ``EA`` of them A's entries (None: all)."""
     top = max(listing.orders, default=1)
     kept = listing.first[min(top, len(listing.first) - 1)]
-    EA = E if EA is None else EA
-    return int(kept) * (2 * s * EA + 2 * E) * 16
+    return int(kept) * balls_per_tree(s, E, E if EA is None else EA) * 16
 
 
 def gradient_groups(listing: ConditionListing, s: int, E: int, EA: int | None = None) -> list[slice]:
