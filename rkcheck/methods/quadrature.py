@@ -27,7 +27,7 @@ from fractions import Fraction
 from functools import lru_cache
 
 from rkcheck.errors import UserError
-from rkcheck.numbers.formatting import count_text
+from rkcheck.numbers.formatting import count_text, exact_string
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.polynomials import (
     RealRoots,
@@ -314,6 +314,6 @@ def rule(name: str, s: int) -> Rule:
             raise UserError(f"unknown rule {name!r} ({', '.join(RULES)}, zeta:<value>)")
         zeta = _parse_zeta(name[5:])
     if abs(zeta) > MAX_ZETA:  # nodes reach out to ~|ζ|; no rule of use lies past it
-        raise UserError(f"zeta must lie in [-{count_text(MAX_ZETA)}, {count_text(MAX_ZETA)}], got {float(zeta):.3g}")
+        raise UserError(f"zeta must lie in [-{count_text(MAX_ZETA)}, {count_text(MAX_ZETA)}], got {exact_string(zeta)}")
     poly = add(shifted_legendre(s), scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))

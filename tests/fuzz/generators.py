@@ -209,7 +209,7 @@ VALID = {
     "--fail-on": ["auto", "conditions", "claims", "never"], "-o": ["out.txt", "/dev/stdout", "missing/out.txt", "-"],
     "--sort": ["path", "energy"], "--emit": ["python", "sympy", "julia", "matlab", "latex"],
     "-s": ["1", "2", "3", "4"], "--stages": ["1", "2", "3"], "--rule": ["gauss", "radau-i", "radau-ii", "lobatto",
-                                                                      "zeta:1/3", "zeta:-1", "zeta:1e7", "x"],
+                                                                      "zeta:1/3", "zeta:-1", "zeta:1e7", "zeta:1e400", "x"],
     "--tableau": ["t.toml", "@rk4", "missing.toml"], "--problem": ["harmonic", "quartic", "henon-heiles",
                                                                   "random:degree=4", "random:degree=99,dim=99"],
     "--h": ["1/10", "0.1", "1/16", "1e300", "1e-1000", "0", "-1"], "--steps": ["1", "10", "50", "20000000"],
