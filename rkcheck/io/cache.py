@@ -22,10 +22,12 @@ Saving is best effort: a read-only or full disk only means no cache.
 from __future__ import annotations
 
 import os
+import re
+import stat
 import sys
 from dataclasses import dataclass
-from pathlib import Path
 from io import BufferedReader
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -43,6 +45,10 @@ MIN_CACHED_TERMS = 20_000
 MAGIC = b"RKCHECK-LISTING\n"
 _SUFFIX = ".rkl"
 _TEMP_PREFIX = ".tmp-"
+#: the names :func:`_name` gives (the key's kind, format, vertices and degree)
+#: the names tempfile.mkstemp gives a file being saved (another program's are not ours)
+_TEMP_NAME = re.compile(r"\.tmp-[a-z0-9_]{8}\.rkl")
+_LISTING_NAME = re.compile(r"[a-z]+(?:-[a-z]+)*-f\d+-n\d+-m(?:none|\d+)\.rkl")
 _MAX_HEADER = 1 << 20  # the header is a few kB (the coefficients of one order)
 _ALIGN = 8
 _DTYPES = {"int8", "int16", "int32", "int64"}
@@ -210,7 +216,10 @@ class ListingCache:
              into: dict[str, np.ndarray] | None = None) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
         path = self.path(key)
         try:
-            with open(path, "rb") as f:
+            f = _open_regular(path)
+            if f is None:
+                return None
+            with f:
                 got = decode(f, os.fstat(f.fileno()).st_size, key, into)
             if got is not None:
                 os.utime(path)  # recently used: evicted last
@@ -252,12 +261,12 @@ class ListingCache:
         except OSError:
             return []
         for entry in entries:
-            if entry.name.endswith(_SUFFIX) and not entry.name.startswith(_TEMP_PREFIX):
+            if _LISTING_NAME.fullmatch(entry.name):
                 try:
                     st = entry.stat(follow_symlinks=False)
                 except OSError:
                     continue
-                if entry.is_file(follow_symlinks=False):
+                if entry.is_file(follow_symlinks=False) and _starts_with_magic(Path(entry.path)):
                     out.append((Path(entry.path), st.st_size, st.st_mtime))
         return sorted(out, key=lambda x: x[2])
 
@@ -283,11 +292,38 @@ class ListingCache:
             _unlink(path)
         try:
             for entry in os.scandir(self.directory):
-                if entry.name.startswith(_TEMP_PREFIX) and entry.name.endswith(_SUFFIX):
+                if _TEMP_NAME.fullmatch(entry.name):
                     _unlink(Path(entry.path))
         except OSError:
             pass
         return len(files)
+
+
+def _open_regular(path: Path) -> BufferedReader | None:
+    """``path`` opened for reading when it is a regular file, else None: opening a named
+    pipe (or a device) put there would wait for a writer that never comes."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            os.close(fd)
+            return None
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def _starts_with_magic(path: Path) -> bool:
+    """Whether the file begins as every listing file does: another program's file that
+    happens to carry the suffix is neither counted nor removed."""
+    try:
+        f = _open_regular(path)
+        if f is None:
+            return False
+        with f:
+            return f.read(len(MAGIC)) == MAGIC
+    except OSError:
+        return False
 
 
 def _unlink(path: Path) -> None:

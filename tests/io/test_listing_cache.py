@@ -8,20 +8,20 @@ from __future__ import annotations
 
 import os
 import re
+import tempfile
 import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 from support.clirun import run_cli
+from trees.test_listing_stream import same_listing
 
 from rkcheck.io import cache as cache_module
 from rkcheck.io.cache import MAGIC, ListingCache, cache_dir, encode, max_cache_bytes
 from rkcheck.numbers.formatting import human_bytes
 from rkcheck.trees.listing import ConditionListing, forget_listings, use_store
 from rkcheck.trees.stored import record_key, to_record
-
-from trees.test_listing_stream import same_listing
 
 RK4 = str(Path(__file__).resolve().parents[2] / "tableaux" / "explicit" / "rk4.toml")
 
@@ -261,14 +261,54 @@ def test_concurrent_writers_never_expose_a_partial_file(tmp_path):
     assert [p.name for p in store.directory.iterdir()] == [store.path(key).name]  # no temporary file left
 
 
+def _others(directory: Path) -> list[str]:
+    """Files of other programs in the cache directory, some named like rkcheck's."""
+    (directory / "notes.txt").write_text("mine")
+    (directory / "notes.rkl").write_text("my notes")
+    (directory / ".tmp-abc.rkl").write_text("not a name mkstemp gives")
+    (directory / "condition-listing-f1-n99-mnone.rkl").write_bytes(b"no magic line")
+    names = ["notes.txt", "notes.rkl", ".tmp-abc.rkl", "condition-listing-f1-n99-mnone.rkl"]
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(directory / "condition-listing-f1-n98-mnone.rkl")
+        names.append("condition-listing-f1-n98-mnone.rkl")
+    return sorted(names)
+
+
 def test_clear_removes_listing_files_and_leftovers_only(tmp_path):
     store = ListingCache(tmp_path / "c", limit=1 << 30, min_terms=0)
     ConditionListing(5, None, store).complete()
-    (store.directory / ".tmp-abc.rkl").write_bytes(b"half a file")  # an interrupted save
-    (store.directory / "notes.txt").write_text("mine")
-    assert store.info().files == 4
+    fd, _ = tempfile.mkstemp(prefix=".tmp-", suffix=".rkl", dir=store.directory)  # an interrupted save
+    os.write(fd, MAGIC[:5])
+    os.close(fd)
+    others = _others(store.directory)
+    assert store.info().files == 4  # 3 to 6 vertices
     assert store.clear() == 4
-    assert sorted(p.name for p in store.directory.iterdir()) == ["notes.txt"]
+    assert sorted(p.name for p in store.directory.iterdir()) == others
+
+
+def test_eviction_removes_listing_files_only(tmp_path):
+    store = ListingCache(tmp_path / "c", limit=1 << 30, min_terms=0)
+    store.directory.mkdir(parents=True)
+    others = _others(store.directory)
+    ConditionListing(6, None, store).complete()
+    store.limit = 0
+    store.evict()
+    assert sorted(p.name for p in store.directory.iterdir()) == others
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+def test_a_named_pipe_in_place_of_a_listing_is_passed_over(tmp_path):
+    # opened for reading, a pipe waits for a writer: the load would never return
+    store = ListingCache(tmp_path / "c", limit=1 << 30, min_terms=0)
+    store.directory.mkdir(parents=True)
+    os.mkfifo(_file(store, 7))
+    done = []
+    worker = threading.Thread(target=lambda: done.append(ConditionListing(6, None, store).complete()), daemon=True)
+    worker.start()
+    worker.join(30)
+    assert done, "the load waited on the pipe"
+    assert 7 not in done[0].cache_hits
+    same_listing(fresh(6), done[0])
 
 
 # ------------------------------------------------------------------ where
