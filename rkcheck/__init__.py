@@ -38,6 +38,8 @@ def __getattr__(name: str) -> Any:
         return ["__version__", *public_names()]
     import rkcheck.api
 
+    if name == "api":  # rkcheck.api.settings with no import of rkcheck.api
+        return rkcheck.api
     value = getattr(rkcheck.api, name)
     globals()[name] = value
     return value

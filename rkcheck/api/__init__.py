@@ -40,6 +40,10 @@ MODULES = ("errors", "types", "tableaux", "verification", "trees", "methods", "f
            "dynamics")
 
 
+#: Every submodule, reachable as an attribute (``rkcheck.api.settings``) without an import.
+SUBMODULES = (*MODULES, "settings")
+
+
 def _module(name: str) -> Any:
     return importlib.import_module(f"rkcheck.api.{name}")
 
@@ -59,6 +63,8 @@ def __getattr__(name: str) -> Any:
             value = getattr(module, name)
             globals()[name] = value
             return value
+    if name in SUBMODULES:  # rkcheck.api.settings after a bare ``import rkcheck``
+        return _module(name)
     raise AttributeError(f"module 'rkcheck.api' has no attribute {name!r}")
 
 

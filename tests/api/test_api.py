@@ -323,6 +323,20 @@ def test_import_rkcheck_is_light():
     assert out.strip() == "False"
 
 
+def test_the_documented_settings_path_works_after_a_bare_import():
+    # docs: rkcheck.api.settings.use_listing_cache(); rkcheck.api was first looked up as
+    # a public name (AttributeError: module 'rkcheck.api' has no attribute 'api')
+    import subprocess
+    import sys
+
+    code = ("import rkcheck; f = rkcheck.api.settings.use_listing_cache; "
+            "print(f.__module__, rkcheck.api.batch.__name__, rkcheck.api.verify is rkcheck.verify)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["rkcheck.api.settings", "rkcheck.api.batch", "True"]
+    with pytest.raises(AttributeError, match="no attribute 'settingz'"):
+        rkcheck.api.settingz
+
+
 def test_tableau_from_arrays_is_the_same_constructor():
     a = rkcheck.Tableau.from_arrays([[0, 0], [0.5, 0]], ["0", 1], name="m")
     b = rkcheck.from_arrays([[0, 0], [0.5, 0]], ["0", 1], name="m")
