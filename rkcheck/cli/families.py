@@ -8,6 +8,7 @@ from rkcheck.cli.common import (
     DEGREE,
     check_output_target,
     exit_codes,
+    flag_values,
     output_options,
     settings,
     stdout_console,
@@ -141,8 +142,9 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
     from rkcheck.api.verification import UNSET
 
     family = load_family(file)
-    # left out (None): the file's [check]
-    deg, N = check_options(family, UNSET if degree is None else degree, UNSET if order is None else order)
+    # given on the command line (degree None: 'none'), else the file's [check]
+    flags = flag_values("degree", "order")
+    deg, N = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET))
     if plot is not None:
         from rkcheck.reports.charts import pyplot
 

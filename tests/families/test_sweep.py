@@ -48,6 +48,20 @@ def test_the_kernel_family_is_avf_only_at_zero(capsys):
     assert doc["energy_order_generic"] == 4 and len(doc["grid"]["beta"]) == 9
 
 
+@pytest.mark.parametrize("degree", ["none", "2", "5"])
+def test_the_degree_given_is_the_one_checked(capsys, degree):
+    # the file's [check] says degree 3: `--degree none` was once read as "not given"
+    r = run_cli(capsys, "sweep", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--grid", "beta=-1:1:3", "--order", "8",
+                "--degree", degree, "--json")
+    assert r.code == 0, r.err
+    doc = json.loads(r.out)
+    fam = rkcheck.load_family(FAMILIES / "seed-kernel-zeta-0.toml")
+    m = None if degree == "none" else int(degree)
+    for point in doc["points"]:
+        values = {k: Fraction(v) for k, v in point["values"].items()}
+        assert point["energy_order"] == rkcheck.verify(fam.at(values), degree=m, order=8).energy_order, point
+
+
 def test_plot_writes_a_png(capsys, tmp_path):
     pytest.importorskip("matplotlib")
     out = tmp_path / "order.png"
