@@ -22,15 +22,13 @@ if TYPE_CHECKING:
     from rkcheck.trees.terms import OrderTerms
 
 
-class NumberContext(Protocol):
+class WeightContext(Protocol):
     """Arithmetic on whole arrays of elementary weights (definitions §2).
 
     ``vectors``/``scalars`` allocate storage for n values (vectors have s components);
     ``ones``/``one`` are the weights of the single-vertex tree; ``take`` gathers rows,
     ``put`` stores a block at row ``lo``; ``mul`` multiplies elementwise; ``matvec``
-    and ``dot`` are ``x Aᵀ`` and ``x b`` row by row; ``sums``, ``add_terms`` and
-    ``finish_sums`` accumulate ``Σ ±w/σ`` over the terms of one order into its condition
-    sums and report them in the context's own terms."""
+    and ``dot`` are ``x Aᵀ`` and ``x b`` row by row."""
 
     def vectors(self, n: int, s: int) -> Any: ...
     def scalars(self, n: int) -> Any: ...
@@ -41,6 +39,13 @@ class NumberContext(Protocol):
     def mul(self, x: Any, y: Any) -> Any: ...
     def matvec(self, x: Any) -> Any: ...
     def dot(self, x: Any) -> Any: ...
+
+
+class NumberContext(WeightContext, Protocol):
+    """Weights and the energy conditions' sums: ``sums``, ``add_terms`` and
+    ``finish_sums`` accumulate ``Σ ±w/σ`` over the terms of one order into its condition
+    sums and report them in the context's own terms."""
+
     def sums(self, k: int, n: int) -> Any: ...
     def add_terms(self, acc: Any, w_terms: Any, terms: OrderTerms, n: int, i0: int, i1: int) -> None: ...
     def finish_sums(self, acc: Any, k: int, n: int) -> Any: ...

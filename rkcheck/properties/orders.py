@@ -24,9 +24,11 @@ import numpy as np
 
 from rkcheck.evaluation.backends import ball_context
 from rkcheck.evaluation.channels import PrimeChannels
-from rkcheck.evaluation.protocols import EnclosingContext, NumberContext
-from rkcheck.evaluation.values import Backend, TableauValues
+from rkcheck.evaluation.protocols import EnclosingContext, WeightContext
+from rkcheck.evaluation.scaled import ScaledTableau, scaled_rational
+from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.numbers.intervals import Interval
 from rkcheck.properties import scalars as sc
 from rkcheck.trees.rooted import bracket_of_forest
 from rkcheck.trees.table import TreeTable
@@ -107,7 +109,7 @@ class TreeWeights:
     classical order conditions ``a(t) = 1/γ(t)``).  Trees run along the first axis of
     the context's arrays, or the second of :class:`PrimeChannels` (channels first)."""
 
-    def __init__(self, ctx: NumberContext, s: int):
+    def __init__(self, ctx: WeightContext, s: int):
         self.ctx, self.s, self.done = ctx, s, 1
         self.axis = 1 if isinstance(ctx, PrimeChannels) else 0
         self.phi, self.psi, self.a = ctx.vectors(1, s), ctx.vectors(1, s), ctx.scalars(1)
@@ -158,27 +160,32 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     """Classical order (definitions §2: ``a(t) = 1/γ(t)`` for every tree with ≤ p vertices),
     capped at ``max_order``, stopping at the first order with a certain failure.
 
-    Exact data: residues of ``γ(t)·â(t) − d^|t|`` (``â = d^|t| a``) modulo primes — a
-    nonzero one proves the failure; zero at enough primes (the size bound of
-    :mod:`rkcheck.evaluation.modular`) proves the condition.  Otherwise certified balls."""
-    if values.backend is Backend.EXACT:
-        return _exact_classical_order(values, max_order)
+    Exact data — also when the energy conditions were asked in balls: like the
+    quadrature order, this is a property of the tableau's own numbers —: residues of
+    ``γ(t)·â(t) − d^|t|`` (``â = d^|t| a``) modulo primes; a nonzero one proves the
+    failure, zero at enough primes (the size bound of :mod:`rkcheck.evaluation.modular`)
+    proves the condition.  Otherwise certified balls, except for the trees whose weight
+    involves no entry known only as an interval (:class:`Dependence`): those are exact."""
+    if values.kind.is_exact:
+        return _exact_classical_order(values.scaled, values.stages, max_order)
     return _ball_classical_order(values, max_order)
 
 
-def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult:
-    """Each order's conditions decided by their residues modulo the primes its size
-    bound needs; a channel opened for a lower order carries on to the higher ones."""
-    table = unbounded_table()
-    s = values.stages
-    verdicts: list[Verdict] = []
-    scaled = values.scaled
-    # the channels opened for one order, run together (one array operation for all of
-    # them per step, not one per channel): their primes as a column, and their weights
-    groups: list[tuple[np.ndarray, TreeWeights]] = []
-    opened: list[int] = []
-    for p in range(1, max_order + 1):
-        table.grow_to(p)
+class ExactWeights:
+    """The classical conditions of each order decided exactly, from residues modulo the
+    primes the order's size bound needs; a channel opened for a lower order carries on
+    to the higher ones."""
+
+    def __init__(self, scaled: ScaledTableau, s: int):
+        self.scaled, self.s = scaled, s
+        # the channels opened for one order, run together (one array operation for all
+        # of them per step, not one per channel): their primes as a column, and their weights
+        self.groups: list[tuple[np.ndarray, TreeWeights]] = []
+        self.opened: list[int] = []
+
+    def failing(self, table: TreeTable, p: int) -> np.ndarray:
+        """Which trees with ``p`` vertices (orders below done) fail ``a(t) = 1/γ(t)``."""
+        scaled = self.scaled
         ids = np.arange(table.first[p], table.first[p + 1])
         gamma = table.gamma(ids)
         # γ(t)·e^p·a(t) − e^p is an algebraic integer (e the integrality denominator,
@@ -195,19 +202,30 @@ def _exact_classical_order(values: TableauValues, max_order: int) -> OrderResult
         # A root whose images are a stage permutation of an earlier root's has the same
         # a(t) = bᵀΦ(t) (ScaledTableau.channel_sources): it is not evaluated again
         pairs: list[tuple[int, int]] = []
-        for q, roots in primes[len(opened):]:
-            opened.append(q)
+        for q, roots in primes[len(self.opened):]:
+            self.opened.append(q)
             sources = scaled.channel_sources(q)
             pairs.extend((q, r) for j, r in enumerate(roots) if sources[j] == j)
         if pairs:
-            groups.append((np.array([q for q, _ in pairs], dtype=np.int64)[:, None],
-                           TreeWeights(scaled.channels(pairs), s)))
+            self.groups.append((np.array([q for q, _ in pairs], dtype=np.int64)[:, None],
+                                TreeWeights(scaled.channels(pairs), self.s)))
         failing = np.zeros(len(ids), dtype=bool)
-        for P, weights in groups:
+        for P, weights in self.groups:
             a = weights.extend(table, p)  # (channels, trees)
             target = np.array([pow(scaled.d, p, q) for q in P[:, 0].tolist()], dtype=np.int64)[:, None]
             failing |= np.any(a * _residues(gamma, P, math.factorial(p)) % P != target, axis=0)
+        return failing
+
+
+def _exact_classical_order(scaled: ScaledTableau, s: int, max_order: int) -> OrderResult:
+    table = unbounded_table()
+    exact = ExactWeights(scaled, s)
+    verdicts: list[Verdict] = []
+    for p in range(1, max_order + 1):
+        table.grow_to(p)
+        failing = exact.failing(table, p)
         if failing.any():
+            ids = np.arange(table.first[p], table.first[p + 1])
             return _order_result(verdicts, p, _first_failure(table, ids[failing]))
         verdicts.append(Verdict(HOLDS))
     return _order_result(verdicts, max_order)
@@ -223,21 +241,30 @@ def _residues(values: np.ndarray, P: np.ndarray, largest: int) -> np.ndarray:
 
 
 def _ball_classical_order(values: TableauValues, max_order: int) -> OrderResult:
-    """Each order's conditions decided on certified balls: a ball without 1/γ(t) fails."""
+    """Each order's conditions decided on certified balls — a ball without 1/γ(t)
+    fails —, but exactly for the trees whose weight involves no interval entry (the
+    same number on the whole box: ``Σ b_i = 1`` with b exact and A in decimals)."""
     table = unbounded_table()
     s = values.stages
     verdicts: list[Verdict] = []
     balls: EnclosingContext = ball_context(values)
     weights = TreeWeights(balls, s)
+    dependence = TreeWeights(Dependence(values.A, values.b), s)
+    exact = ExactWeights(scaled_rational(*_points(values.A, values.b)), s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
         ids = np.arange(table.first[p], table.first[p + 1])
         enclosures = balls.enclosures(weights.extend(table, p))
+        depends = dependence.extend(table, p)
+        fails_exactly = None if depends.all() else exact.failing(table, p)
         gamma = table.gamma(ids)
         order_verdicts = []
         failed: list[int] = []
-        for t, enc, g in zip(ids, enclosures, gamma):
-            v = classify(Enclosure(enc.mid - Fraction(1, int(g)), enc.rad, False))
+        for k, (t, enc, g) in enumerate(zip(ids, enclosures, gamma)):
+            if fails_exactly is not None and not depends[k]:
+                v = Verdict(FAILS) if fails_exactly[k] else Verdict(HOLDS)
+            else:
+                v = classify(Enclosure(enc.mid - Fraction(1, int(g)), enc.rad, False))
             if v.state == FAILS:
                 failed.append(int(t))
             order_verdicts.append(v)
@@ -245,3 +272,58 @@ def _ball_classical_order(values: TableauValues, max_order: int) -> OrderResult:
             return _order_result(verdicts, p, _first_failure(table, np.array(failed)))
         verdicts.append(combine(order_verdicts))
     return _order_result(verdicts, max_order)
+
+
+def _points(A: list[list[Interval]], b: list[Interval]) -> tuple[list[list[Fraction]], list[Fraction]]:
+    """The exact entries, and 0 for the others: what the weights that involve no interval
+    entry are computed from (they are the same whatever stands for the others)."""
+    def point(x: Interval) -> Fraction:
+        return Fraction(x.lo) if x.is_point else Fraction(0)
+
+    return [[point(x) for x in row] for row in A], [point(x) for x in b]
+
+
+class Dependence:
+    """Which weights may involve an entry that is an interval (not a point): booleans in
+    the shape of the weights, through the same kernel (:class:`TreeWeights`).  An entry
+    that is exactly zero contributes nothing; every other one may, so a weight marked
+    False is the same number wherever the interval entries lie in their intervals."""
+
+    def __init__(self, A: list[list[Interval]], b: list[Interval]):
+        self._nonzero = np.array([[not (x.is_point and x.lo == 0) for x in row] for row in A], dtype=np.int64)
+        self._interval_row = np.array([any(not x.is_point for x in row) for row in A], dtype=bool)
+        self._b_nonzero = np.array([not (x.is_point and x.lo == 0) for x in b], dtype=np.int64)
+        self._b_interval = any(not x.is_point for x in b)
+
+    def vectors(self, n: int, s: int) -> np.ndarray:
+        return np.zeros((n, s), dtype=bool)
+
+    def scalars(self, n: int) -> np.ndarray:
+        return np.zeros(n, dtype=bool)
+
+    def ones(self, k: int, s: int) -> np.ndarray:
+        return np.zeros((k, s), dtype=bool)
+
+    def one(self, k: int) -> np.ndarray:
+        return np.zeros(k, dtype=bool)
+
+    def take(self, x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        result: np.ndarray = x[idx]
+        return result
+
+    def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
+        store[lo:lo + len(x)] = x
+
+    def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        result: np.ndarray = x | y
+        return result
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        """``(Ax)_i`` involves an interval entry if a row entry is one, or if it is not
+        zero and meets an ``x_j`` that involves one."""
+        result: np.ndarray = ((x.astype(np.int64) @ self._nonzero.T) > 0) | self._interval_row
+        return result
+
+    def dot(self, x: np.ndarray) -> np.ndarray:
+        result: np.ndarray = ((x.astype(np.int64) @ self._b_nonzero) > 0) | self._b_interval
+        return result

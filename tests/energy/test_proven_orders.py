@@ -35,11 +35,10 @@ def test_forced_balls_do_not_count_digits_in_the_energy_order(tmp_path, capsys):
     assert doc["energy_order"] <= exact["energy_order"]
     assert (doc["energy_order"], doc["energy_order_to_digits"], doc["energy_order_digits"]) == (1, 4, 38)
     assert doc["energy_order_label"] == "1; ≥ 4 to 38 digits"
-    # classical: Σb = 1 holds only to digits in balls, so nothing is proven; the true
-    # classical order is 1 (exact route)
-    assert exact["classical_order"] == 1
-    assert doc["classical_order"] == 0 and doc["classical_order_to_digits"] == 2
-    assert doc["classical_order_digits"] is not None and doc["classical_order_digits"] >= 30
+    # the classical and quadrature orders are the tableau's own, exact whatever the
+    # conditions were evaluated in: Σb = 1 exactly, Σbc = a ≠ 1/2 (by hand, above)
+    for key in ("classical_order", "quadrature_order"):
+        assert exact[key] == doc[key] == 1 and doc[f"{key}_to_digits"] == 1 and doc[f"{key}_digits"] is None
 
 
 def _rk4_16_digits(tmp_path):
@@ -111,3 +110,29 @@ def test_quadratic_energy_order_counts_exact_coefficients_only(tmp_path, capsys)
     face = json.loads(_verify(capsys, path, "--degree", "2", "--order", "6", "--decimals", "exact",
                               "--format", "json").out)["summary"]["stability"]
     assert face["quadratic_energy_order"] == face["quadratic_energy_order_to_digits"]
+
+
+def _classical(A, b, order=4):
+    import rkcheck
+
+    summary = json.loads(rkcheck.verify(rkcheck.from_arrays(A, b), degree=2, order=order).to_json())["summary"]
+    return {k[len("classical_"):]: v for k, v in summary.items() if k.startswith("classical_")}
+
+
+def test_a_classical_condition_free_of_the_decimals_is_proven():
+    # b exact, A one 7-digit decimal: Σb = 1 involves no decimal (exact on the whole
+    # box: order 1 proven), Σbc = 0.1234567 ± 5·10⁻⁸ ≠ 1/2 (fails everywhere)
+    got = _classical([["0.1234567"]], ["1"])
+    assert (got["order"], got["order_to_digits"], got["order_digits"], got["first_failure"]) == (1, 1, None,
+                                                                                               "a([τ]) = 1/2")
+    # a decimal met only through a zero weight: b = (1, 0) never reads stage 2, so
+    # Σb = 1 and Σbc = c₁ = 1/2 hold exactly; Σbc² = 1/4 ≠ 1/3 fails
+    got = _classical([["1/2", "0"], ["0.1234567", "0"]], ["1", "0"])
+    assert (got["order"], got["order_digits"], got["first_failure"]) == (2, None, "a([τ²]) = 1/3")
+
+
+def test_a_classical_condition_that_meets_a_decimal_holds_only_to_digits():
+    # Σbc = a, and a = 0.5000000 stands for [0.49999995, 0.50000005] ∋ 1/2: not proven
+    got = _classical([["0.5000000"]], ["1"])
+    assert (got["order"], got["order_to_digits"], got["first_failure"]) == (1, 2, "a([τ²]) = 1/3")
+    assert got["order_digits"] is not None and 7 <= got["order_digits"] <= 8
