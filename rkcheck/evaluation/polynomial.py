@@ -16,16 +16,33 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from rkcheck.numbers.parametric import ParameterRing, object_array
+from rkcheck.errors import UserError
+from rkcheck.numbers.parametric import MAX_PRODUCT_WORK, ParameterRing, object_array
+
+#: Terms the stored weights and condition sums of one family check may hold together
+#: (50 bytes a term with 30 parameters, about 100 with the temporaries: two gigabytes).
+MAX_FAMILY_TERMS = 20_000_000
+
+
+def _terms(x: np.ndarray) -> np.ndarray:
+    """The number of terms of each polynomial of ``x``."""
+    return np.fromiter((len(v) for v in x.reshape(-1)), dtype=np.int64, count=x.size).reshape(x.shape)
 
 
 class PolynomialContext:
-    """Exact arithmetic on arrays of polynomials over a :class:`ParameterRing`."""
+    """Exact arithmetic on arrays of polynomials over a :class:`ParameterRing`.
+
+    Polynomials in many parameters grow fast with the order (a 5-stage tableau with every
+    entry free: 7 GB at order 8), and a product of two of them runs in FLINT's C, where
+    neither Ctrl-C nor SIGTERM reaches it: each array operation is refused before it
+    would take more than :data:`MAX_PRODUCT_WORK` products of terms, and the weights and
+    sums kept stay within :data:`MAX_FAMILY_TERMS` terms."""
 
     exact = True
 
     def __init__(self, ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any]):
         self.ring = ring
+        self.held = 0  # terms of the weights stored and of the condition sums
         self.s = len(b)
         self.zero, self.unit = ring.constant(0), ring.constant(1)
         self.b = object_array(list(b), (self.s,))
@@ -62,28 +79,52 @@ class PolynomialContext:
         return result
 
     def put(self, store: np.ndarray, lo: int, x: np.ndarray) -> None:
+        self._hold(int(_terms(x).sum()))
         store[lo:lo + len(x)] = x
 
     def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        self._work(int((_terms(x) * _terms(y)).sum()))
         return self._reduced(x * y)
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
         if self.factors is not None:
-            W, C_t, V_t = self.factors
-            result: np.ndarray = ((x @ W) @ C_t) @ V_t
-            return result
-        return self._reduced(x @ self.A_t)
+            for M in self.factors:
+                x = self._matmul(x, M)
+            return x
+        assert self.A_t is not None
+        return self._reduced(self._matmul(x, self.A_t))
 
     def dot(self, x: np.ndarray) -> np.ndarray:
-        return self._reduced(x @ self.b)
+        return self._reduced(self._matmul(x, self.b))
+
+    def _matmul(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
+        self._work(int((_terms(x) @ _terms(M)).sum()))
+        result: np.ndarray = x @ M
+        return result
+
+    def _work(self, products: int) -> None:
+        if products > MAX_PRODUCT_WORK:
+            raise UserError(f"the conditions' polynomials grow too large: one step would take about {products:,} "
+                            f"products of terms, more than the limit MAX_PRODUCT_WORK = {MAX_PRODUCT_WORK:,}; "
+                            "check a lower order, a degree bound or fewer parameters")
+
+    def _hold(self, terms: int) -> None:
+        self.held += terms
+        if self.held > MAX_FAMILY_TERMS:
+            raise UserError(f"the conditions' polynomials grow too large: more than {MAX_FAMILY_TERMS:,} terms "
+                            "(the limit MAX_FAMILY_TERMS); check a lower order, a degree bound or fewer parameters")
 
     def sums(self, k: int, n: int) -> np.ndarray:
         return self.scalars(k)
 
     def add_terms(self, acc: np.ndarray, w_terms: np.ndarray, terms: Any, n: int, i0: int, i1: int) -> None:
         coefficients = [self.ring.constant(c) for c in terms.coefficients]
+        grown = 0
         for cond, ci, w in zip(*terms.block(i0, i1), w_terms):
+            before = len(acc[cond])
             acc[cond] = acc[cond] + coefficients[ci] * w
+            grown += len(acc[cond]) - before
+        self._hold(grown)
 
     def finish_sums(self, acc: np.ndarray, k: int, n: int) -> "PolynomialSums":
         scale = self.ring.constant(Fraction(1, factorial(n - 1)))

@@ -36,6 +36,15 @@ THETA = "__theta"
 #: At most this many parameters in one family (the solver's cost grows quickly with it).
 MAX_PARAMETERS = 32
 
+#: Terms of one entry expanded (``(p0 + … + p9)^64`` would have 10^11): an entry is what
+#: a person writes, and every condition multiplies entries together.
+MAX_ENTRY_TERMS = 100_000
+
+#: Products of terms one step may take — expanding one entry, or one array operation
+#: on the conditions' polynomials — (about its cost: a few seconds; FLINT's C loops are
+#: not interrupted by Ctrl-C or SIGTERM until they return).
+MAX_PRODUCT_WORK = 200_000_000
+
 
 def object_array(values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
     """A numpy object array holding the polynomials themselves (numpy would otherwise try
@@ -156,7 +165,7 @@ class ParametricEntries:
         # keyed by node identity: the nodes are kept alive with their values, so that an id
         # is never reused by another node while the map holds it
         self._fixed = {id(node): (node, self.ring.element(v)) for (node, _), v in zip(leaves, found.values)}
-        self.values = [self.ring.reduce(self._polynomial(node, place)) for node, place in zip(nodes, places)]
+        self.values = [self._entry(node, place) for node, place in zip(nodes, places)]
 
     def polynomial_of(self, node: ex.Expr, place: str) -> Any:
         """Another expression over the same ring (an extra equation): its parameter-free
@@ -171,6 +180,10 @@ class ParametricEntries:
             if value is None:
                 raise UserError("only rational numbers and the family's constants may appear here", place)
             self._fixed[id(leaf)] = (leaf, self.ring.constant(value))
+        return self._entry(node, place)
+
+    def _entry(self, node: ex.Expr, place: str) -> Any:
+        self._work = 0  # products of terms spent on this entry (MAX_PRODUCT_WORK), its constants included
         return self.ring.reduce(self._polynomial(node, place))
 
     # ------------------------------------------------------------------ parameter-free parts
@@ -211,8 +224,6 @@ class ParametricEntries:
     # ------------------------------------------------------------------ polynomials
 
     def _polynomial(self, node: ex.Expr, place: str) -> Any:
-        ring = self.ring
-
         def operands(n: ex.Expr) -> tuple[ex.Expr, ...]:
             return () if id(n) in self._fixed else xp.polynomial_operands(n)
 
@@ -230,8 +241,8 @@ class ParametricEntries:
                 if n.op == "-":
                     return left - right
                 if n.op == "*":
-                    return ring.reduce(left * right)
-                return ring.reduce(left * self._inverse(right, n, place))
+                    return self._product(left, right, n, place)
+                return self._product(left, self._inverse(right, n, place), n, place)
             if isinstance(n, ex.Power):
                 return self._power(vals[0], n, place)
             raise UserError(f"cannot read this part of the entry as a polynomial (column {getattr(n, 'column', 1)})",
@@ -269,7 +280,20 @@ class ParametricEntries:
             raise UserError(f"a power of {self.noun} needs a whole exponent from 0 to 64 (column {n.column})", place)
         out = self.ring.constant(1)
         for _ in range(int(exponent)):
-            out = self.ring.reduce(out * base)
+            out = self._product(out, base, n, place)
+        return out
+
+    def _product(self, left: Any, right: Any, n: ex.Expr, place: str) -> Any:
+        """``left·right``, reduced, within :data:`MAX_PRODUCT_WORK` and :data:`MAX_ENTRY_TERMS`."""
+        column = getattr(n, "column", 1)
+        self._work += len(left) * len(right)
+        if self._work > MAX_PRODUCT_WORK:
+            raise UserError(f"expanding the entry takes more than {MAX_PRODUCT_WORK:,} products of terms at column "
+                            f"{column}, {len(left):,} × {len(right):,} terms there (the limit MAX_PRODUCT_WORK)", place)
+        out = self.ring.reduce(left * right)
+        if len(out) > MAX_ENTRY_TERMS:
+            raise UserError(f"the entry expands to more than {MAX_ENTRY_TERMS:,} terms at column {column} "
+                            f"(the limit MAX_ENTRY_TERMS)", place)
         return out
 
 

@@ -95,3 +95,40 @@ def test_a_familys_numbers_keep_the_entries_limits(capsys, tmp_path, entry, mess
     f.write_text(f'[parameters]\nk = "free"\n[tableau]\nA = [["{entry}"]]\nb = ["1"]\n')
     r = run_cli(capsys, "verify", str(f), "--order", "2")
     _one_line(r, "A[1][1]", message)
+
+
+def _family(tmp_path, entry: str, names: list[str], kernel: bool = False):
+    path = tmp_path / "grow.toml"
+    body = f'[continuous]\nA = "{entry}"\n' if kernel else f'[tableau]\nA = [["{entry}"]]\nb = ["1"]\n'
+    path.write_text("[parameters]\n" + "".join(f'{x} = "free"\n' for x in names) + body, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(("entry", "kernel", "words"), [
+    # (p0 + … + p9)^64 has C(73, 9) ≈ 10^11 terms
+    ("(" + "+".join(f"p{k}" for k in range(10)) + ")^64", False, ["A[1][1]", "MAX_ENTRY_TERMS", "column 32"]),
+    ("tau*(" + "+".join(f"p{k}" for k in range(10)) + "+sigma)^64", True, ["continuous.A", "MAX_ENTRY_TERMS"]),
+    # 4 097 terms to the 64th: 64 products of up to 4 097 × 258 049 terms
+    ("(((p0+1)^64)^64)^64", False, ["A[1][1]", "MAX_PRODUCT_WORK", "× 4,097 terms"]),
+])
+def test_an_entry_that_expands_past_the_limits(capsys, tmp_path, entry, kernel, words):
+    path = _family(tmp_path, entry, [f"p{k}" for k in range(10)] if "p9" in entry else ["p0"], kernel)
+    _one_line(run_cli(capsys, "verify", str(path), "--order", "2", "--degree", "2"), str(path), *words)
+
+
+def test_conditions_that_outgrow_the_limits_are_refused(capsys, tmp_path, monkeypatch):
+    from rkcheck.evaluation import polynomial
+
+    # a 2-stage tableau with every entry free: its conditions' terms, counted by hand
+    # from the reference's polynomials, stay small at order 3 and grow past a small limit
+    path = tmp_path / "free2.toml"
+    names = ["a11", "a12", "a21", "a22", "b1", "b2"]
+    path.write_text("[parameters]\n" + "".join(f'{x} = "free"\n' for x in names)
+                    + '[tableau]\nA = [["a11", "a12"], ["a21", "a22"]]\nb = ["b1", "b2"]\n', encoding="utf-8")
+    whole = run_cli(capsys, "verify", str(path), "--order", "3", "--degree", "none", "--format", "json")
+    monkeypatch.setattr(polynomial, "MAX_FAMILY_TERMS", 400)
+    assert run_cli(capsys, "verify", str(path), "--order", "3", "--degree", "none", "--format", "json").out == whole.out
+    _one_line(run_cli(capsys, "verify", str(path), "--order", "6", "--degree", "none"), str(path), "MAX_FAMILY_TERMS",
+              "400")
+    monkeypatch.setattr(polynomial, "MAX_PRODUCT_WORK", 50)
+    _one_line(run_cli(capsys, "verify", str(path), "--order", "6", "--degree", "none"), str(path), "MAX_PRODUCT_WORK")
