@@ -22,11 +22,12 @@ from typing import Any, Iterator
 
 import numpy as np
 
+from rkcheck.errors import UserError
 from rkcheck.evaluation.backends import ball_context
 from rkcheck.evaluation.channels import PrimeChannels
 from rkcheck.evaluation.protocols import EnclosingContext, WeightContext
 from rkcheck.evaluation.scaled import ScaledTableau, scaled_rational
-from rkcheck.evaluation.values import TableauValues
+from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 from rkcheck.properties import scalars as sc
@@ -166,8 +167,13 @@ def classical_order(values: TableauValues, max_order: int) -> OrderResult:
     failure, zero at enough primes (the size bound of :mod:`rkcheck.evaluation.modular`)
     proves the condition.  Otherwise certified balls, except for the trees whose weight
     involves no entry known only as an interval (:class:`Dependence`): those are exact."""
-    if values.kind.is_exact:
+    if values.backend is Backend.EXACT:
         return _exact_classical_order(values.scaled, values.stages, max_order)
+    if values.kind.is_exact:  # balls asked for: exact where the primes the field needs are found
+        try:
+            return _exact_classical_order(values.scaled, values.stages, max_order)
+        except UserError:  # beyond MAX_PRIMES_SCANNED: the balls, as asked
+            pass
     return _ball_classical_order(values, max_order)
 
 
@@ -250,13 +256,18 @@ def _ball_classical_order(values: TableauValues, max_order: int) -> OrderResult:
     balls: EnclosingContext = ball_context(values)
     weights = TreeWeights(balls, s)
     dependence = TreeWeights(Dependence(values.A, values.b), s)
-    exact = ExactWeights(scaled_rational(*_points(values.A, values.b)), s)
+    exact: ExactWeights | None = ExactWeights(scaled_rational(*_points(values.A, values.b)), s)
     for p in range(1, max_order + 1):
         table.grow_to(p)
         ids = np.arange(table.first[p], table.first[p + 1])
         enclosures = balls.enclosures(weights.extend(table, p))
         depends = dependence.extend(table, p)
-        fails_exactly = None if depends.all() else exact.failing(table, p)
+        fails_exactly = None
+        if exact is not None and not depends.all():
+            try:
+                fails_exactly = exact.failing(table, p)
+            except UserError:  # no primes within MAX_PRIMES_SCANNED: every condition in balls
+                exact = None
         gamma = table.gamma(ids)
         order_verdicts = []
         failed: list[int] = []
