@@ -127,6 +127,7 @@ def main(argv: list[str] | None = None) -> None:
     finally:
         import threading
 
+        sys.set_int_max_str_digits(limit)  # as it was: main() may run inside a program (the tests)
         if threading.current_thread() is threading.main_thread():
             for sig, handler in previous.items():
                 signal.signal(sig, handler)

@@ -13,13 +13,15 @@ import io
 import re
 import sys
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 from rkcheck.errors import UserError
 from rkcheck.io.bounded import bounded_read, max_file_bytes, read_fifo
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import count_text
+from rkcheck.numbers.grammar import MAX_BITS, int_of_digits
 
 #: the tables a tableau file may have
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
@@ -31,6 +33,40 @@ class BareFloat(str):
 
 def _bare_float(text: str) -> BareFloat:
     return BareFloat(text.replace("_", ""))
+
+
+#: digits of a bare integer: past the largest value an entry may have (MAX_BITS)
+MAX_BARE_DIGITS = int(MAX_BITS * 0.30103) + 2
+
+
+def _bare_int(text: str) -> int:
+    """A bare JSON integer of any length up to :data:`MAX_BARE_DIGITS` (Python refuses
+    more than ``sys.get_int_max_str_digits()`` in one conversion; the CLI raises that
+    limit for itself, a library leaves it alone)."""
+    digits = text.lstrip("-")
+    if len(digits) > MAX_BARE_DIGITS:
+        raise ValueError(_too_long(count_text(len(digits))))
+    value = int_of_digits(digits)
+    return -value if text.startswith("-") else value
+
+
+def _too_long(digits: str) -> str:
+    return f"an integer of {digits} digits: more than a value may have ({count_text(MAX_BITS)} bits, MAX_BITS)"
+
+
+@contextmanager
+def _long_integers() -> Iterator[None]:
+    """TOML's bare integers up to :data:`MAX_BARE_DIGITS` (tomllib has no hook for them):
+    Python's limit on one conversion is raised while the text is parsed, and put back."""
+    limit = sys.get_int_max_str_digits()
+    raise_it = 0 < limit < MAX_BARE_DIGITS
+    if raise_it:
+        sys.set_int_max_str_digits(MAX_BARE_DIGITS)
+    try:
+        yield
+    finally:
+        if raise_it:
+            sys.set_int_max_str_digits(limit)
 
 
 def _reject_constant(text: str) -> Any:
@@ -111,10 +147,11 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
         import json  # TOML files (the usual input) do not need it: start-up
     try:
         if fmt == "json":
-            data = json.loads(text, parse_float=_bare_float, parse_constant=_reject_constant,
+            data = json.loads(text, parse_float=_bare_float, parse_int=_bare_int, parse_constant=_reject_constant,
                               object_pairs_hook=_unique_keys)
         else:
-            data = tomllib.loads(text, parse_float=_bare_float)
+            with _long_integers():
+                data = tomllib.loads(text, parse_float=_bare_float)
     except tomllib.TOMLDecodeError as err:
         msg = str(err)
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
@@ -125,6 +162,8 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
     except ValueError as err:  # NaN/Infinity or a duplicate key in JSON, an integer too long in either
         if fmt == "json" and isinstance(err, json.JSONDecodeError):
             raise UserError(f"JSON syntax error: {err.msg}", f"line {err.lineno}, column {err.colno}") from None
+        if "integer string conversion" in str(err):  # TOML: past MAX_BARE_DIGITS
+            raise UserError(f"TOML: {_too_long(f'more than {count_text(MAX_BARE_DIGITS)}')}") from None
         raise UserError(f"{fmt.upper()}: {err}") from None
     except RecursionError:
         raise UserError("nesting too deep") from None

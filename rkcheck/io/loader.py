@@ -94,8 +94,11 @@ def _entry_text(value: Any, place: str) -> tuple[str, bool]:
         if value.lower().lstrip("+-") in ("inf", "nan"):
             raise UserError(f"{value} is not a finite number", place)
         return str(value), True
-    if isinstance(value, int):
-        return str(value), True
+    if isinstance(value, int):  # a bare integer of any length the document allowed (str() stops at 4 300 digits)
+        if abs(value).bit_length() > ex.MAX_BITS:
+            raise UserError(f"an integer of {abs(value).bit_length():,} bits: more than a value may have "
+                            f"({ex.MAX_BITS:,} bits, MAX_BITS)", place)
+        return ex.digits_text(value), True
     return value, False
 
 

@@ -401,7 +401,7 @@ def _number(tok: _Token) -> Num:
     else:
         whole, frac = mantissa, ""
     digits_str = (whole + frac).lstrip("0")
-    value = Fraction(_int_of_digits(whole + frac or "0")) * Fraction(10) ** (exp10 - len(frac))
+    value = Fraction(int_of_digits(whole + frac or "0")) * Fraction(10) ** (exp10 - len(frac))
     is_decimal = "." in mantissa or exp_part is not None
     if not is_decimal:
         return Num(value, tok.text, None, 0)
@@ -415,14 +415,25 @@ def _number(tok: _Token) -> Num:
 _INT_CHUNK = 4000
 
 
-def _int_of_digits(digits: str) -> int:
+def int_of_digits(digits: str) -> int:
     """``int(digits)`` for ASCII digit strings of any length (docs/file-format.md promises decimals
     of any length; Python refuses more than 4 300 digits in one conversion)."""
     if len(digits) <= _INT_CHUNK:
         return int(digits)
     low = len(digits) // 2
-    value: int = _int_of_digits(digits[:-low]) * 10**low + _int_of_digits(digits[-low:])
+    value: int = int_of_digits(digits[:-low]) * 10**low + int_of_digits(digits[-low:])
     return value
+
+
+def digits_text(n: int) -> str:
+    """``str(n)`` for integers of any length (the inverse of :func:`int_of_digits`)."""
+    if -10**_INT_CHUNK < n < 10**_INT_CHUNK:
+        return str(n)
+    if n < 0:
+        return "-" + digits_text(-n)
+    half = int(n.bit_length() * 0.30103) // 2
+    high, low = divmod(n, 10**half)
+    return digits_text(high) + digits_text(low).zfill(half)
 
 
 def parse(text: str) -> Expr:

@@ -250,3 +250,27 @@ def test_a_short_form_beside_a_tableau_table_is_named_as_ignored(tmp_path):
     assert tab.A[0][0].exact == Fraction(1, 4)  # the [tableau] table's
     assert [w for w in tab.info.warnings if "ignored" in w] == [
         "A, b at the top level ignored: the method is given by [tableau]"]
+
+
+@pytest.mark.parametrize("fmt", ["json", "toml"])
+def test_bare_integers_beyond_pythons_text_limit_load_in_a_library(fmt):
+    # Python converts at most 4 300 digits at once by default; the CLI raises that limit
+    # for itself, a library must neither need it raised nor change it
+    import sys
+
+    ones, minus = "1" * 5000, "-" + "7" * 6000
+    text = (json.dumps({"A": [[0]], "b": [1]}).replace("[[0]]", f"[[{ones}]]").replace("[1]", f"[{minus}]")
+            if fmt == "json" else f"[tableau]\nA = [[{ones}]]\nb = [{minus}]\n")
+    before = sys.get_int_max_str_digits()
+    tab = loads(text, fmt=fmt)
+    assert sys.get_int_max_str_digits() == before
+    assert tab.A[0][0].exact == (10**5000 - 1) // 9 and tab.b[0].exact == -7 * (10**6000 - 1) // 9
+
+
+@pytest.mark.parametrize("fmt", ["json", "toml"])
+def test_a_bare_integer_longer_than_any_value_is_one_line(fmt):
+    digits = "9" * 70_000  # 232 535 bits: past MAX_BITS = 200 000, refused before it is converted
+    text = f'{{"A": [[{digits}]], "b": [1]}}' if fmt == "json" else f"[tableau]\nA = [[{digits}]]\nb = [1]\n"
+    with pytest.raises(UserError) as err:
+        loads(text, fmt=fmt)
+    assert "MAX_BITS" in str(err.value) and "\n" not in str(err.value)
