@@ -101,13 +101,8 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     when given, encodes the result's report here, in the worker (a failure leaves it to
     the report, which says so in the file's row)."""
     from rkcheck.energy.claims import judge_tableau
-    from rkcheck.io.documents import (
-        detect_format,
-        locate_lines,
-        parse_document,
-        read_text,
-    )
-    from rkcheck.io.loader import build_tableau, load_named
+    from rkcheck.io.documents import detect_format, locate_lines, read_text
+    from rkcheck.io.loader import build_tableau, load_named, read_document
     from rkcheck.methods.tableau import Tableau
 
     t0 = time.perf_counter()
@@ -120,10 +115,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
         else:
             text = read_text(path)
             fmt = detect_format(path, text)
-            try:
-                data = parse_document(text, fmt)
-            except UserError as err:
-                raise err.located(source=path) from None
+            data = read_document(text, path, fmt, max_stages)  # CSV and nodepy as verify reads them
             out.lines = locate_lines(text, fmt)
             if not _is_tableau_document(data):
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"

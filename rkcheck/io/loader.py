@@ -311,6 +311,21 @@ def _is_float_text(text: str) -> bool:
     return any(ch in text for ch in ".eE")
 
 
+def read_document(text: str, source: str, fmt: str, max_stages: int = DEFAULT_MAX_STAGES) -> dict[str, Any]:
+    """The document of a tableau text in any input format: TOML and JSON parsed, a CSV
+    or nodepy text read into the same tables; errors name ``source``."""
+    try:
+        if fmt in ("csv", "nodepy"):
+            from rkcheck.io.delimited import parse_delimited
+            from rkcheck.io.nodepy_text import parse_nodepy_text
+
+            stem = Path(source).stem if source not in ("-", "<string>") else "stdin"
+            return parse_delimited(text, stem) if fmt == "csv" else parse_nodepy_text(text, stem, max_stages)
+        return parse_document(text, fmt)
+    except UserError as err:
+        raise err.located(source=source) from None
+
+
 def loads(
     text: str,
     source: str = "<string>",
@@ -324,18 +339,7 @@ def loads(
     fmt = fmt or detect_format(source, text)
     if fmt not in INPUT_FORMATS:
         raise UserError(f"unknown input format {fmt!r} (known: {', '.join(INPUT_FORMATS)})", source=source)
-    try:
-        if fmt in ("csv", "nodepy"):
-            from rkcheck.io.delimited import parse_delimited
-            from rkcheck.io.nodepy_text import parse_nodepy_text
-
-            stem = Path(source).stem if source not in ("-", "<string>") else "stdin"
-            data = parse_delimited(text, stem) if fmt == "csv" else parse_nodepy_text(text, stem, max_stages)
-        else:
-            data = parse_document(text, fmt)
-    except UserError as err:
-        raise err.located(source=source) from None
-    tableau = build_tableau(data, source, max_stages)
+    tableau = build_tableau(read_document(text, source, fmt, max_stages), source, max_stages)
     if getattr(tableau, "is_continuous", False):  # a ContinuousMethod: verify takes it like a tableau
         method: Any = tableau
         return method.replace(info=method.info.replace(lines=locate_lines(text, fmt)))

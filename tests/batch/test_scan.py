@@ -456,3 +456,15 @@ def test_a_kernel_family_is_validated_then_skipped(capsys, tmp_path):
         load_family(str(bad))
     assert rows["bad.toml"]["status"] == "error" and "unknown name 'zeta'" in rows["bad.toml"]["error"]
     assert "unknown name 'zeta'" in str(whole.value)
+
+
+def test_a_csv_file_named_on_the_command_line_is_read_as_verify_reads_it(capsys, tmp_path):
+    # Heun's method as a Butcher table in CSV (docs/examples/heun.csv); scan once read it as TOML
+    path = Path(__file__).resolve().parents[2] / "docs" / "examples" / "heun.csv"
+    _, doc = scan_json(capsys, path, "--degree", "3", "--order", "4")
+    (row,) = doc["files"]
+    assert row["status"] in ("ok", "failed"), row
+    alone = json.loads(run_cli(capsys, "verify", str(path), "--degree", "3", "--order", "4", "--format", "json").out)
+    # Heun: classical order 2 (by hand: Σb = 1, Σbc = 1/2, Σbc² = 1/2 ≠ 1/3)
+    assert row["result"]["summary"]["classical_order"] == alone["summary"]["classical_order"] == 2
+    assert row["result"]["summary"]["energy_order"] == alone["summary"]["energy_order"]
