@@ -132,3 +132,19 @@ def test_conditions_that_outgrow_the_limits_are_refused(capsys, tmp_path, monkey
               "400")
     monkeypatch.setattr(polynomial, "MAX_PRODUCT_WORK", 50)
     _one_line(run_cli(capsys, "verify", str(path), "--order", "6", "--degree", "none"), str(path), "MAX_PRODUCT_WORK")
+
+
+def test_claims_in_a_family_are_not_judged_and_it_says_so(capsys, tmp_path):
+    import json
+
+    path = tmp_path / "fexp.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n'
+                    '[expect]\nenergy_order = {degree = 3, value = "all"}\nsymplectic = true\n', encoding="utf-8")
+    text = run_cli(capsys, "verify", str(path), "--order", "4", "--degree", "3")
+    assert text.code == 0 and "claims are not judged for a family" in text.err + text.out
+    doc = json.loads(run_cli(capsys, "verify", str(path), "--order", "4", "--degree", "3", "--format", "json").out)
+    assert any("claims are not judged for a family" in w for w in doc["warnings"])
+    # a family without claims has no such warning
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "verify", str(path), "--order", "4", "--degree", "3", "--format", "json").out)
+    assert not any("claims" in w for w in doc["warnings"])
