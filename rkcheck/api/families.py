@@ -18,7 +18,6 @@ from rkcheck.options import (
     MAX_ORDER,
     parse_degree,
     parse_int_in,
-    parse_positive,
 )
 
 #: The largest order ``solve`` and the polynomial conditions go to (their size grows
@@ -34,7 +33,29 @@ def load_family(path: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_S
     """A family file (a tableau file with a ``[parameters]`` table), or ``"@name"``."""
     from rkcheck.io.loader import load_family as load
 
-    return load(os.fspath(path), max_stages)
+    if not isinstance(path, (str, os.PathLike)):
+        raise OptionError(f"expected a path (str or os.PathLike) or '@name', got {type(path).__name__}", "path")
+    return load(os.fsdecode(path), max_stages)
+
+
+def _texts(value: Any, name: str) -> list[str]:
+    """One text or a list of texts (``where``, ``grids``), as a list."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, (list, tuple)):
+        bad = [v for v in value if not isinstance(v, str)]
+        if not bad:
+            return list(value)
+        raise OptionError(f"expected texts, but the list holds a value of type {type(bad[0]).__name__}", name)
+    raise OptionError(f"expected a text or a list of texts, got {type(value).__name__}", name)
+
+
+def _seconds(value: Any) -> float:
+    """A time limit in seconds, within :data:`MAX_SECONDS_RANGE`."""
+    lo, hi = MAX_SECONDS_RANGE
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and lo <= value <= hi:
+        return float(value)
+    raise OptionError(f"expected a number of seconds from {lo} to {hi:,}, got {value!r}", "max_seconds")
 
 
 def is_family_file(path: str | os.PathLike[str]) -> bool:
@@ -107,13 +128,8 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
 
     deg, N, q = _orders(degree, order, classical_order)
     fam = _family(family).covering(max(N + 1, q or 0))
-    seconds = _option(lambda: parse_positive(max_seconds, "max_seconds"))
-    if not MAX_SECONDS_RANGE[0] <= seconds <= MAX_SECONDS_RANGE[1]:
-        raise OptionError(f"expected {MAX_SECONDS_RANGE[0]} to {MAX_SECONDS_RANGE[1]} seconds, got {max_seconds}",
-                          "max_seconds")
-    if isinstance(where, str):
-        where = [where]
-    extra = [fam.equation(w) for w in where]
+    seconds = _seconds(max_seconds)
+    extra = [fam.equation(w) for w in _texts(() if where is None else where, "where")]
     theta = THETA if fam.ring.field is not None else None
     if route not in ROUTES:
         raise OptionError(f"expected one of {', '.join(ROUTES)}, got {route!r}", "route")
@@ -186,9 +202,7 @@ def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degr
     fam = _family(family)
     degree, order = check_options(fam, degree, order)
     deg, N, _ = _orders(degree, order, None)
-    if isinstance(grids, str):
-        grids = [grids]
-    return run(fam, list(grids), deg, N)
+    return run(fam, _texts(grids, "grids"), deg, N)
 
 
 def _count(degree: int | None, order: int, classical: int | None) -> int:

@@ -29,6 +29,7 @@ of the surrogate, its stage count) is never read from the surrogate:
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property, lru_cache
@@ -84,8 +85,14 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
 
 
 def _matrix_entry(value: Any, place: str) -> str:
+    """An entry's text: an int, a Fraction, a string, or a float as its shortest decimal
+    (as ``Tableau.from_arrays`` reads floats, and a file its bare decimals)."""
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise UserError(f"{value} is not a finite number", place)
+        return repr(value)
     if isinstance(value, bool) or not isinstance(value, (int, str, Fraction)):
-        raise UserError("expected a number or a string", place)
+        raise UserError(f"expected a number (int, Fraction, float) or a string, got {type(value).__name__}", place)
     return str(value)
 
 

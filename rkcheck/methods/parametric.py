@@ -57,6 +57,8 @@ class Family:
         """This family with entries whose elementary weights are exact for every tree of
         up to ``vertices`` vertices: itself for a tableau family or a surrogate that
         reaches that far, else the kernel's surrogate built for them."""
+        if isinstance(vertices, bool) or not isinstance(vertices, int) or vertices < 1:
+            raise UserError(f"expected a positive number of vertices, got {vertices!r}", "vertices")
         if self.reach is None or vertices <= self.reach or self.widen is None:
             return self
         try:
@@ -108,6 +110,9 @@ class Family:
         """The method at rational parameter values (the other parameters must be given too):
         a :class:`Tableau`, or for a family of kernels its
         :class:`~rkcheck.methods.continuous.ContinuousMethod`."""
+        if not isinstance(values, Mapping):
+            raise UserError(f"expected a mapping of the parameters to their values, got {type(values).__name__}",
+                            "values")
         missing = [p for p in self.parameters if p not in values]
         if missing:
             raise UserError(f"no value for the parameter {missing[0]}")
@@ -115,7 +120,7 @@ class Family:
         if unknown:
             raise UserError(f"{unknown[0]!r} is not a parameter (the parameters are {', '.join(self.parameters)})")
         # on the expressions, where a root's polynomial keeps its own x
-        subst = {p: ex.parse(f"({_rational(values[p], p)})") for p in self.parameters}
+        subst = {p: ex.parse(_value_text(_rational(values[p], p))) for p in self.parameters}
         texts = list(self.kernel) if self.kernel else [x for row in self.A_text for x in row] + list(self.b_text)
         out = [xp.to_text(xp.substituted(ex.parse(t), subst)) for t in texts]
         constants = {k: xp.to_text(xp.substituted(v, subst)) for k, v in self.entries.constants.items()}
@@ -126,15 +131,23 @@ class Family:
                                    name or self.name)
 
 
+def _value_text(q: Fraction) -> str:
+    """A parameter's value as an entry's text (of any length: str() stops at 4 300 digits)."""
+    return f"({ex.digits_text(q.numerator)}/{ex.digits_text(q.denominator)})"
+
+
 def _rational(value: Any, name: str) -> Fraction:
     """A parameter's value: an int, a Fraction, a text ``"1/3"``, or a finite float
     (taken exactly, as the double it is)."""
     if isinstance(value, bool) or not isinstance(value, (int, Fraction, float, str)):
         raise UserError(f"expected a rational number, got {type(value).__name__}", name)
     try:
-        return Fraction(value)
+        q = Fraction(value)
     except (ValueError, OverflowError, ZeroDivisionError):
-        raise UserError(f"expected a finite rational number, got {value!r}", name) from None
+        raise UserError(f"expected a finite rational number, got {str(value)[:40]!r}", name) from None
+    if max(q.numerator.bit_length(), q.denominator.bit_length()) > ex.MAX_BITS:
+        raise UserError(f"a value of more than {ex.MAX_BITS:,} bits (the limit MAX_BITS)", name)
+    return q
 
 
 def entry_text(value: Any, place: str) -> str:

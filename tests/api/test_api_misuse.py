@@ -65,3 +65,53 @@ def test_wrong_types_are_rkcheck_errors(call, message):
 def test_loads_takes_the_bytes_of_a_file():
     tab = rkcheck.loads('[tableau]\nA = [["1/2"]]\nb = [1]\n'.encode())
     assert str(tab.A[0][0].exact) == "1/2"
+
+
+SWEEP = TABLEAUX / "families" / "sweep-s2-lobatto.toml"
+THEOREM = TABLEAUX / "families" / "theorem1-s2-m3.toml"
+
+
+def _kernel_family():
+    return rkcheck.load_family(TABLEAUX / "families" / "seed-kernel-zeta-0.toml")
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: rkcheck.load_family(5), "path: expected a path (str or os.PathLike) or '@name', got int"),
+    (lambda: rkcheck.load_family(None), "path: expected a path (str or os.PathLike) or '@name', got NoneType"),
+    (lambda: rkcheck.solve(THEOREM, degree=3, order=4, where=[5]),
+     "where: expected texts, but the list holds a value of type int"),
+    (lambda: rkcheck.solve(THEOREM, degree=3, order=4, where=7), "where: expected a text or a list of texts, got int"),
+    (lambda: rkcheck.solve(THEOREM, degree=3, order=4, max_seconds=0.5),
+     "max_seconds: expected a number of seconds from 1 to 86,400, got 0.5"),
+    (lambda: rkcheck.sweep(SWEEP, None), "grids: expected a text or a list of texts, got NoneType"),
+    (lambda: rkcheck.sweep(SWEEP, [1]), "grids: expected texts, but the list holds a value of type int"),
+    (lambda: _kernel_family().at(None), "values: expected a mapping of the parameters to their values, got NoneType"),
+    (lambda: _kernel_family().at({"beta": 10**100_000}), "beta: a value of more than 200,000 bits (the limit MAX_BITS)"),
+    (lambda: _kernel_family().covering("5"), "vertices: expected a positive number of vertices, got '5'"),
+    (lambda: _kernel_family().covering(0), "vertices: expected a positive number of vertices, got 0"),
+])
+def test_wrong_family_arguments_are_rkcheck_errors(call, message):
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        call()
+    assert str(err.value) == message
+
+
+def test_family_arguments_a_library_may_well_pass(tmp_path):
+    # where=None (no extra equation), a float time limit, and a value beyond str()'s
+    # 4 300 digits (x = 10^5000 + 1/3: exact, taken whole)
+    free = rkcheck.solve(THEOREM, degree=3, order=4)
+    again = rkcheck.solve(THEOREM, degree=3, order=4, where=None, max_seconds=30.5)
+    assert (again.dimension, again.groebner) == (free.dimension, free.groebner)
+    path = tmp_path / "x.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["2*x"]]\nb = ["1"]\n', encoding="utf-8")
+    x = 10**5000 + Fraction(1, 3)
+    assert rkcheck.load_family(path).at({"x": x}).A[0][0].exact == 2 * x
+
+
+def test_a_kernel_matrix_of_floats_reads_them_as_their_decimals():
+    from rkcheck.methods.continuous import ContinuousMethod
+
+    # M = [[1]] is AVF (A = τ, B = 1); 1.0 is that number
+    assert ContinuousMethod.from_matrix([[1.0]]).A == ContinuousMethod.from_matrix([[1]]).A == "tau"
+    with pytest.raises(rkcheck.RkcheckError, match=r"M\[1\]\[1\]: nan is not a finite number"):
+        ContinuousMethod.from_matrix([[float("nan")]])
