@@ -84,13 +84,22 @@ def _orders(degree: Any, order: Any, classical_order: Any) -> tuple[int | None, 
     return deg, N, q
 
 
-def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET) -> tuple[Any, Any]:
+def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET,
+                  places: tuple[str, str] = ("degree", "order")) -> tuple[Any, Any]:
     """``degree`` and ``order``, each left out (:data:`UNSET`) taken from the family
     file's ``[check]`` table (order :data:`~rkcheck.options.DEFAULT_FAMILY_ORDER` where
-    that has none): the one resolution for the API and the CLI."""
+    that has none): the one resolution for the API and the CLI.  Each is validated
+    where it came from: an error names the file's ``check.order``, or ``places`` (the
+    CLI's ``--order``)."""
     check = fam.info.check
-    return (check.get("degree") if degree is UNSET else degree,
-            check.get("order", DEFAULT_FAMILY_ORDER) if order is UNSET else order)
+    from_file = (degree is UNSET, order is UNSET)
+    degree = check.get("degree") if from_file[0] else degree
+    order = check.get("order", DEFAULT_FAMILY_ORDER) if from_file[1] else order
+    where = [("check." + name, fam.info.source) if file else (place, None)
+             for file, name, place in zip(from_file, ("degree", "order"), places)]
+    _option(lambda: parse_degree(degree, *where[0]))
+    _option(lambda: parse_int_in(order, (1, min(MAX_ORDER, MAX_FAMILY_ORDER)), *where[1]))
+    return degree, order
 
 
 def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET,

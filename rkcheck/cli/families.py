@@ -26,7 +26,7 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     from rkcheck.api.verification import UNSET
 
     family = load_family(file)
-    degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET))
+    degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     # "order": the classical conditions up to the same order as the energy conditions
     classical = order if classical_order == "order" else classical_order
     assert classical is None or isinstance(classical, int)
@@ -144,7 +144,7 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
     family = load_family(file)
     # given on the command line (degree None: 'none'), else the file's [check]
     flags = flag_values("degree", "order")
-    deg, N = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET))
+    deg, N = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     if plot is not None:
         from rkcheck.reports.charts import pyplot
 

@@ -228,8 +228,8 @@ class Tableau:
             found = field_of([e.node for e in entries], self.info.constants.definitions)  # type: ignore[attr-defined]
         except NotAlgebraic as err:
             return str(err)
-        except UserError as err:  # the square root of a negative number: name the entry
-            raise err.located(self._place_of_error(entries)) from None
+        except UserError as err:  # the square root of a negative number: name the entry and the file
+            raise err.located(self._place_of_error(entries), self.info.source or None) from None
         s = self.stages
         v = found.values
         A = [v[i * s:(i + 1) * s] for i in range(s)]
@@ -278,6 +278,14 @@ class Tableau:
     def enclosures(self, bits: int, decimals: DecimalsMode) -> tuple[list[list[Interval]], list[Interval]]:
         """Rigorous enclosures of A and b at ``bits`` bits (definitions §5)."""
         decimals = DecimalsMode(decimals)
-        A = [[e.enclosure(bits, decimals) for e in row] for row in self.A]
-        b = [e.enclosure(bits, decimals) for e in self.b]
+
+        def enclosed(e: Any, place: str) -> Interval:
+            try:
+                result: Interval = e.enclosure(bits, decimals)
+                return result
+            except UserError as err:  # an entry that cannot be enclosed: name it and the file
+                raise err.located(place if not err.place else None, self.info.source or None) from None
+
+        A = [[enclosed(e, f"A[{i}][{j}]") for j, e in enumerate(row, start=1)] for i, row in enumerate(self.A, start=1)]
+        b = [enclosed(e, f"b[{i}]") for i, e in enumerate(self.b, start=1)]
         return A, b

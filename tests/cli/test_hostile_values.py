@@ -341,6 +341,34 @@ def test_an_irrational_square_root_of_a_negative_number_names_its_entry(tmp_path
     assert r.code == 2 and r.err == f"rkcheck: error: {path}: A[2][2]: square root of a negative number at column 1\n"
 
 
+@pytest.mark.parametrize("command", [["verify"], ["show"], ["explain", "1,2,3,3,2", "--tableau"]])
+def test_every_command_names_the_file_of_an_entry_found_negative_under_a_root(tmp_path, capsys, command):
+    # 2 − √2 − √2 = 2 − 2√2 < 0: found while building the number field, after loading
+    path = write(tmp_path, "n.toml", '[tableau]\nA = [["sqrt(2-sqrt(2)-sqrt(2))"]]\nb = ["1"]\n')
+    r = run_cli(capsys, *command, path)
+    assert r.code == 2 and r.err == f"rkcheck: error: {path}: A[1][1]: square root of a negative number at column 1\n"
+
+
+def test_the_api_names_the_file_of_an_entry_found_negative_under_a_root(tmp_path):
+    import rkcheck
+
+    path = write(tmp_path, "n.toml", '[tableau]\nA = [["sqrt(2-sqrt(2)-sqrt(2))"]]\nb = ["1"]\n')
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.verify(path)
+    assert str(err.value) == f"{path}: A[1][1]: square root of a negative number at column 1"
+
+
+@pytest.mark.parametrize("entry, message", [
+    # decimals: the argument's interval straddles 0, the divisor's contains it
+    ("sqrt(1.234567 - 1.234567)", "A[1][1]: square root at column 1: the argument cannot be shown to be >= 0"),
+    ("1/(sqrt(2)-1.41421356237)", "A[1][1]: division at column 2: the divisor cannot be shown to be nonzero"),
+])
+def test_an_entry_that_cannot_be_enclosed_is_named(tmp_path, capsys, entry, message):
+    path = write(tmp_path, "e.toml", f'[tableau]\nA = [["{entry}"]]\nb = ["1"]\n')
+    r = run_cli(capsys, "verify", path)
+    assert r.code == 2 and r.err.startswith(f"rkcheck: error: {path}: {message}") and r.err.count("\n") == 1, r.err
+
+
 def test_an_error_of_the_check_names_the_file(tmp_path, capsys):
     path = write(tmp_path, "a.toml", one_stage("10^999"))
     r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")

@@ -148,3 +148,13 @@ def test_claims_in_a_family_are_not_judged_and_it_says_so(capsys, tmp_path):
     path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
     doc = json.loads(run_cli(capsys, "verify", str(path), "--order", "4", "--degree", "3", "--format", "json").out)
     assert not any("claims" in w for w in doc["warnings"])
+
+
+def test_an_order_out_of_range_names_where_it_was_given(capsys, tmp_path):
+    path = tmp_path / "ford.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n[check]\norder = 20\n',
+                    encoding="utf-8")
+    for command in (["verify", str(path)], ["sweep", str(path), "--grid", "x=0:1:3"]):
+        _one_line(run_cli(capsys, *command), f"{path}: check.order: expected an integer from 1 to 12, got 20")
+    _one_line(run_cli(capsys, "verify", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--order", "13"),
+              "--order: expected an integer from 1 to 12, got 13")
