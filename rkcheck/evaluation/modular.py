@@ -65,6 +65,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
 import numpy as np
@@ -210,7 +211,7 @@ class ExactOrderSums:
         mods = [p for p, _ in self.primes]
         if not mods:
             return [[0] * len(screened) for _ in range(D)]
-        total = math.prod(mods)
+        total = _product(tuple(mods))
         return [[x - total if x > total // 2 else x for x in _crt_columns([pp[c] for pp in per_prime], mods)]
                 for c in range(D)]
 
@@ -229,16 +230,39 @@ def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
     for every k: the moduli are merged pairwise, a product tree, so thousands of primes (a
     decimal of thousands of digits) cost O(M(N) log k) per integer where Garner's digits
     cost k² vector operations (52 s for 3 559 primes)."""
-    nodes = [([int(x) for x in col], m) for col, m in zip(columns, moduli)]
-    while len(nodes) > 1:
-        merged = []
-        for (xa, ma), (xb, mb) in zip(nodes[::2], nodes[1::2]):
-            inv = pow(ma, -1, mb)
-            merged.append(([a + ma * (((b - a) * inv) % mb) for a, b in zip(xa, xb)], ma * mb))
+    # GMP's products of the large moduli, far faster than Python's
+    from gmpy2 import mpz
+
+    nodes = [[mpz(int(x)) for x in col] for col in columns]
+    for level in _crt_tree(tuple(moduli)):
+        merged = [[a + ma * (((b - a) * inv) % mb) for a, b in zip(xa, xb)]
+                  for xa, xb, (ma, mb, inv) in zip(nodes[::2], nodes[1::2], level)]
         if len(nodes) % 2:
             merged.append(nodes[-1])
         nodes = merged
-    return nodes[0][0]
+    return [int(x) for x in nodes[0]]
+
+
+@lru_cache(maxsize=4)
+def _product(moduli: tuple[int, ...]) -> int:
+    """Π moduli (the same for every condition of an order)."""
+    return math.prod(moduli)
+
+
+@lru_cache(maxsize=4)
+def _crt_tree(moduli: tuple[int, ...]) -> list[list[tuple[Any, Any, Any]]]:
+    """The product tree of ``moduli`` merged pairwise, level by level: each pair's
+    moduli and the inverse of the first modulo the second.  The same for every
+    condition of an order (a report reads their values one at a time): the inverses of
+    the large products, most of the work, are computed once."""
+    from gmpy2 import invert, mpz
+
+    levels, nodes = [], [mpz(m) for m in moduli]
+    while len(nodes) > 1:
+        pairs = [(ma, mb, invert(ma, mb)) for ma, mb in zip(nodes[::2], nodes[1::2])]
+        levels.append(pairs)
+        nodes = [ma * mb for ma, mb, _ in pairs] + ([nodes[-1]] if len(nodes) % 2 else [])
+    return levels
 
 
 def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,

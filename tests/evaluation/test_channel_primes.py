@@ -43,3 +43,22 @@ def test_primes_skip_and_count_slice_one_fixed_order():
     first = primes(300)
     assert primes(100, 150) == first[150:250]
     assert list(first) == sorted(first, reverse=True) and len(set(first)) == 300
+
+
+@pytest.mark.parametrize("count", [1, 2, 3, 7, 64, 301])
+def test_chinese_remaindering_gives_the_integers_with_those_residues(count):
+    # against the textbook formula x = Σ r_i·(M/m_i)·((M/m_i)^-1 mod m_i) mod M, one
+    # integer at a time, on random residues of the channels' own primes
+    import math
+    import random
+
+    from rkcheck.evaluation.channels import primes
+    from rkcheck.evaluation.modular import _crt_columns
+
+    rng = random.Random(count)
+    moduli = list(primes(count))
+    columns = [[rng.randrange(m) for _ in range(5)] for m in moduli]
+    M = math.prod(moduli)
+    expected = [sum(col[k] * (M // m) * pow(M // m, -1, m) for col, m in zip(columns, moduli)) % M for k in range(5)]
+    assert _crt_columns(columns, moduli) == expected
+    assert _crt_columns(columns, moduli) == expected  # again, from the cached tree of the moduli
