@@ -109,14 +109,10 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
     flags: dict[str, Any] = {}
     if degree is not UNSET:
         flags["degree"] = _option(lambda: parse_degree(degree, "degree"))
-    if order is not UNSET:
-        flags["order"] = _option(lambda: parse_positive(order, "order"))
-        if flags["order"] > MAX_ORDER:
-            raise OptionError(f"at most {MAX_ORDER}, got {order}", "order")
+    if order is not UNSET:  # the words of the [check] table's errors (docs/errors.md)
+        flags["order"] = _option(lambda: parse_int_in(order, (1, MAX_ORDER), "order"))
     if dps is not UNSET:
-        flags["dps"] = _option(lambda: parse_positive(dps, "dps"))
-        if not DPS_RANGE[0] <= flags["dps"] <= DPS_RANGE[1]:
-            raise OptionError(f"expected {DPS_RANGE[0]} to {DPS_RANGE[1]} digits, got {dps}", "dps")
+        flags["dps"] = _option(lambda: parse_int_in(dps, DPS_RANGE, "dps"))
     if decimals is not UNSET:
         flags["decimals"] = _option(lambda: parse_choice(decimals, DECIMALS_MODES, "decimals"))
     if require is not UNSET:

@@ -84,7 +84,8 @@ def max_cache_bytes() -> int:
     if not raw:
         return MAX_CACHE_BYTES
     if not (raw.isascii() and raw.isdigit()) or len(raw) > 20:
-        raise UserError(f"RKCHECK_MAX_CACHE_BYTES: expected a non-negative number of bytes, got {printable(raw)!r}")
+        raise UserError("RKCHECK_MAX_CACHE_BYTES: expected a non-negative number of bytes of at most 20 digits, "
+                        f"got {printable(raw[:40])!r}")
     return int(raw)
 
 

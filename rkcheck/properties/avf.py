@@ -126,6 +126,9 @@ def theorem1_remark(
             f"this method has {s} effective stages, so it cannot"
         )
     if s == smin:
+        if avf.equals_avf and avf.verdict.state == HOLDS_TO_DIGITS:  # AVF only to digits: no proof
+            return (f"Theorem 1: {s} = s_min stages and AVF to {avf.verdict.digits} digits (not a proof) — the "
+                    f"minimal-stage energy-preserving method for degree {m}")
         if avf.equals_avf:
             return f"Theorem 1: {s} = s_min stages and AVF — the minimal-stage energy-preserving method for degree {m}"
         if first_failure:

@@ -69,9 +69,11 @@ def render_explanation(ex: EnergyCondition, console: Console) -> None:
     tableau = ex.tableau
     drawn = f"The free tree of {given}, drawn from its centre (root: the root of {given}):"
     if ex.tree is None:
-        why = "a rooting u∘u exists (equal halves across the central edge)" if ex.superfluous else "fewer than 3 vertices"
-        console.print(f"{given}: {counted(ex.vertices, 'vertex', 'vertices')} — superfluous free tree, no energy "
-                      f"condition ({why})")
+        # a tree with one vertex has no edge, so it is not superfluous: it is below the
+        # conditions, which start at 3 vertices (definitions §3)
+        what = ("superfluous free tree: a rooting u∘u exists (equal halves across the central edge)"
+                if ex.superfluous else "fewer than 3 vertices")
+        console.print(f"{given}: {counted(ex.vertices, 'vertex', 'vertices')} — {what}; no energy condition")
         console.print(drawn)
         console.print(tree_text(ex.given))
         return

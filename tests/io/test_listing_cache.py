@@ -17,6 +17,7 @@ import pytest
 from support.clirun import run_cli
 from trees.test_listing_stream import same_listing
 
+from rkcheck.errors import UserError
 from rkcheck.io import cache as cache_module
 from rkcheck.io.cache import MAGIC, ListingCache, cache_dir, encode, max_cache_bytes
 from rkcheck.numbers.formatting import human_bytes
@@ -337,6 +338,10 @@ def test_the_limit_is_named_and_can_be_set(monkeypatch):
     assert max_cache_bytes() == cache_module.MAX_CACHE_BYTES == 2 * 1024**3
     monkeypatch.setenv("RKCHECK_MAX_CACHE_BYTES", "1_000_000")
     assert max_cache_bytes() == 1_000_000
+    for bad in ("-1", "1e9", "9" * 26):  # the last: more bytes than any disk, said so
+        monkeypatch.setenv("RKCHECK_MAX_CACHE_BYTES", bad)
+        with pytest.raises(UserError, match="non-negative number of bytes of at most 20 digits"):
+            max_cache_bytes()
 
 
 # ------------------------------------------------------------------ the CLI

@@ -179,3 +179,13 @@ def test_theorem1_remark_without_exact_holds_names_the_digits():
     assert "must fail beyond order 6" in theorem1_remark(v, None, 6, True)
     text = theorem1_remark(v, None, 6, False, 58)
     assert "beyond order 6" not in text and "58 digits" in text
+
+
+def test_theorem1_remark_says_when_the_method_is_avf_only_to_digits():
+    from rkcheck.properties.avf import AvfVerdict
+    from rkcheck.verdicts import Verdict
+
+    exact = theorem1_remark(AvfVerdict(4, Verdict("holds"), "x", 2, 2, (1, 2), 2), None, 8)
+    to_digits = theorem1_remark(AvfVerdict(4, Verdict("holds_to_digits", 15), "x", 2, 2, (1, 2), 2), None, 8)
+    assert "digits" not in exact and "the minimal-stage energy-preserving method for degree 4" in exact
+    assert "AVF to 15 digits (not a proof)" in to_digits

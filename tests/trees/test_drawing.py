@@ -108,3 +108,14 @@ def test_explain_picture_without_matplotlib_is_one_line(capsys, tmp_path, monkey
     monkeypatch.setitem(sys.modules, "matplotlib", None)  # as if the plot extra were missing
     r = run_cli(capsys, "explain", "1,2,3", "--draw", str(tmp_path / "t.svg"))
     assert r.code == 2 and "rkcheck[plot]" in r.err and len(r.err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("given, what", [
+    # one vertex: no edge, so nothing superfluous about it; below the conditions (3 vertices)
+    ("1", "1 vertex — fewer than 3 vertices; no energy condition"),
+    # two vertices: τ∘τ, equal halves across the edge (definitions §3)
+    ("1,2", "2 vertices — superfluous free tree: a rooting u∘u exists"),
+])
+def test_explain_says_why_a_small_tree_gives_no_condition(capsys, given, what):
+    r = run_cli(capsys, "explain", given)
+    assert r.code == 0 and r.out.splitlines()[0].startswith(f"{given}: {what}"), r.out
