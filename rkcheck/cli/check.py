@@ -75,7 +75,10 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
     if is_family_file(file):  # free [parameters]: the conditions as polynomials
         from rkcheck.cli.families import family_report
 
-        family_report(file, flag_values("degree", "order"), "order", fmt, show_all)
+        # a family's polynomials are exact, its decimals at face value: the other check
+        # options do not apply, and saying nothing would let them seem to
+        unused = [f"--{name.replace('_', '-')}" for name in flag_values() if name not in ("degree", "order")]
+        family_report(file, flag_values("degree", "order"), "order", fmt, show_all, ignored=unused)
         sys.exit(EXIT_OK)
     tab = load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"

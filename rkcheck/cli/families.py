@@ -17,15 +17,22 @@ from rkcheck.cli.common import (
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
-                  emit: str | None = None, output: str | None = None) -> None:
+                  emit: str | None = None, output: str | None = None, ignored: list[str] | None = None) -> None:
     """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
     line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
-    the classical conditions up to the energy order."""
+    the classical conditions up to the energy order; ``ignored``: options given that do
+    not apply to a family (a warning names them)."""
+    import dataclasses
+
     from rkcheck.api.families import check_options, family_conditions, load_family
     from rkcheck.api.verification import UNSET
 
     family = load_family(file)
+    if ignored:
+        note = (f"{', '.join(ignored)} {'does' if len(ignored) == 1 else 'do'} not apply to a family (its conditions "
+                "are exact polynomials, its decimals read at face value): ignored")
+        family = dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, note)))
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     # "order": the classical conditions up to the same order as the energy conditions
     classical = order if classical_order == "order" else classical_order

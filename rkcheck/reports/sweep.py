@@ -54,7 +54,7 @@ def render_sweep(sw: Any, console: Console) -> None:
     if special and len(special) <= 40:
         console.print("points where the order is not the generic one:")
         for p, o in special:
-            console.print(f"  {', '.join(f'{k} = {_text(v)}' for k, v in p.items())}: {o}")
+            console.print(f"  {', '.join(f'{k} = {_text(v)}' for k, v in p.items())}: {label(o)}")
 
 
 def _map(sw: Any, swept: list, console: Console) -> None:

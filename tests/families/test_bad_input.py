@@ -158,3 +158,14 @@ def test_an_order_out_of_range_names_where_it_was_given(capsys, tmp_path):
         _one_line(run_cli(capsys, *command), f"{path}: check.order: expected an integer from 1 to 12, got 20")
     _one_line(run_cli(capsys, "verify", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--order", "13"),
               "--order: expected an integer from 1 to 12, got 13")
+
+
+def test_check_options_that_do_not_apply_to_a_family_are_named_not_dropped(capsys):
+    import json
+
+    path = str(FAMILIES / "seed-kernel-zeta-0.toml")
+    doc = json.loads(run_cli(capsys, "verify", path, "--decimals", "rounded", "--dps", "80", "--format", "json").out)
+    assert any(w.startswith("--dps, --decimals do not apply to a family") for w in doc["warnings"]), doc["warnings"]
+    plain = json.loads(run_cli(capsys, "verify", path, "--format", "json").out)
+    assert not any("do not apply" in w for w in plain["warnings"])
+    assert doc["conditions"] == plain["conditions"]  # the conditions themselves are the same

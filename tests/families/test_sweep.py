@@ -102,3 +102,9 @@ def test_generic_orders_reached_at_the_order_checked_read_at_least(capsys):
     assert "classical order for generic parameter values: ≥ 1" in r.out
     r = run_cli(capsys, "sweep", kappa, "--grid", "kappa=0:1:3", "--order", "1")
     assert "energy order for generic parameter values: ≥ 1" in r.out
+
+
+def test_a_point_that_reaches_the_order_checked_is_listed_as_a_lower_bound(capsys):
+    # β = 0 is AVF over Gauss-2 (degree 3: every order); checked to 6, it reads "≥ 6"
+    r = run_cli(capsys, "sweep", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--grid", "beta=-1:1:5", "--order", "6")
+    assert r.code == 0 and "  beta = 0: ≥ 6" in r.out.splitlines(), r.out
