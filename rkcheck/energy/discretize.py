@@ -57,6 +57,8 @@ def _rule_texts(spec: Any) -> tuple[list[str], list[str], dict[str, str], int, s
     if not 1 <= k <= MAX_RULE_NODES:
         raise UserError(f"{k} nodes: a rule has 1 to {MAX_RULE_NODES} (MAX_RULE_NODES)", "rule")
     if name == "newton-cotes":
+        if k < 2:  # equispaced with both ends (as lobatto-K): one node cannot be both
+            raise UserError("newton-cotes needs at least 2 nodes (both ends of [0, 1])", "rule")
         from rkcheck.methods.continuous import rational_rule
 
         x, w = rational_rule(k)

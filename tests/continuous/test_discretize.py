@@ -107,3 +107,16 @@ def test_no_degree_below_the_kernels_degree(rule):
     doc = tomllib.loads(text)
     assert "check" not in doc and "expect" not in doc
     assert rkcheck.verify(rkcheck.loads(text), order=4).per_order  # loads and checks
+
+
+def test_newton_cotes_takes_both_ends():
+    from fractions import Fraction
+
+    avf = ROOT / "tableaux" / "continuous" / "avf.toml"
+    # two equispaced nodes with both ends: the trapezoidal rule, b = (1/2, 1/2), c = (0, 1)
+    trap = rkcheck.loads(rkcheck.discretize(str(avf), "newton-cotes-2")[0])
+    assert [e.exact for e in trap.b] == [Fraction(1, 2)] * 2
+    assert [sum(e.exact for e in row) for row in trap.A] == [0, 1]
+    # one node cannot be both ends (it was once the midpoint, silently)
+    with pytest.raises(rkcheck.RkcheckError, match="newton-cotes needs at least 2 nodes"):
+        rkcheck.discretize(str(avf), "newton-cotes-1")
