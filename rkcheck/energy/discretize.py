@@ -127,13 +127,14 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     consts, A, b, c_out = _simplified(A, b, c, consts)
     facts = kernel_facts(method, None)
     p = method.kernel.deg_tau
-    if facts.certificate.certified and 0 < p <= order:
+    if facts.certificate.certified and 0 < p and order // p >= 2:
         kept = order // p
         reason = (f"every energy condition holds for Hamiltonians of degree ≤ {kept} = ⌊q/p⌋ (quadrature order "
                   f"q = {order}, kernel degree p = {p} in τ; line-integral argument)")
-    elif facts.certificate.certified and p > 0:  # ⌊q/p⌋ = 0: not even quadratic Hamiltonians
-        kept, reason = None, (f"the quadrature order q = {order} is below the kernel's degree p = {p} in τ "
-                              "(⌊q/p⌋ = 0): no degree is guaranteed")
+    elif facts.certificate.certified and p > 0:  # ⌊q/p⌋ ≤ 1: not even quadratic Hamiltonians
+        # degree 1 has no energy condition (definitions §3): every method preserves linear H
+        kept, reason = None, (f"the quadrature order q = {order} is below twice the kernel's degree p = {p} in τ "
+                              f"(⌊q/p⌋ = {order // p}): no degree with an energy condition is guaranteed")
     elif facts.certificate.certified:
         kept, reason = None, "the kernel is constant in τ: energy is preserved for every degree"
     else:

@@ -103,10 +103,20 @@ def test_no_degree_below_the_kernels_degree(rule):
     guarantees nothing, so no [check] degree or claim is written, and the file it writes
     is one rkcheck reads (it refused `degree = 0`)."""
     text, note = rkcheck.discretize(str(EPCM2), rule)
-    assert "⌊q/p⌋ = 0" in note and "no degree is guaranteed" in note
+    assert "⌊q/p⌋ = 0" in note and "no degree with an energy condition is guaranteed" in note
     doc = tomllib.loads(text)
     assert "check" not in doc and "expect" not in doc
     assert rkcheck.verify(rkcheck.loads(text), order=4).per_order  # loads and checks
+
+
+def test_no_claim_for_linear_hamiltonians_only():
+    """EPCM(3) has τ-degree p = 3; Radau IIA with 3 nodes has quadrature order q = 5, so
+    ⌊q/p⌋ = 1: degree 1 has no energy condition (every method preserves a linear H), and a
+    claim about it would be empty — none is written."""
+    text, note = rkcheck.discretize(str(ROOT / "tableaux" / "continuous" / "epcm-3.toml"), "radau-ii-3")
+    assert "⌊q/p⌋ = 1" in note
+    doc = tomllib.loads(text)
+    assert "check" not in doc and "expect" not in doc
 
 
 def test_newton_cotes_takes_both_ends():
