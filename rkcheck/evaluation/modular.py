@@ -230,10 +230,8 @@ def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
     for every k: the moduli are merged pairwise, a product tree, so thousands of primes (a
     decimal of thousands of digits) cost O(M(N) log k) per integer where Garner's digits
     cost k² vector operations (52 s for 3 559 primes)."""
-    # GMP's products of the large moduli, far faster than Python's
-    from gmpy2 import mpz
-
-    nodes = [[mpz(int(x)) for x in col] for col in columns]
+    number = _big_integers(len(moduli))
+    nodes = [[number(int(x)) for x in col] for col in columns]
     for level in _crt_tree(tuple(moduli)):
         merged = [[a + ma * (((b - a) * inv) % mb) for a, b in zip(xa, xb)]
                   for xa, xb, (ma, mb, inv) in zip(nodes[::2], nodes[1::2], level)]
@@ -241,6 +239,21 @@ def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
             merged.append(nodes[-1])
         nodes = merged
     return [int(x) for x in nodes[0]]
+
+
+#: from this many moduli on, Chinese remaindering runs in GMP's integers (gmpy2): its
+#: products and inverses of numbers of thousands of bits are far faster than Python's,
+#: while a few primes (an everyday rational tableau) need no import of it
+GMP_MODULI = 32
+
+
+def _big_integers(count: int) -> Callable[[int], Any]:
+    """The integer type the remaindering of ``count`` moduli runs in."""
+    if count < GMP_MODULI:
+        return int
+    from gmpy2 import mpz
+
+    return mpz
 
 
 @lru_cache(maxsize=4)
@@ -255,11 +268,10 @@ def _crt_tree(moduli: tuple[int, ...]) -> list[list[tuple[Any, Any, Any]]]:
     moduli and the inverse of the first modulo the second.  The same for every
     condition of an order (a report reads their values one at a time): the inverses of
     the large products, most of the work, are computed once."""
-    from gmpy2 import invert, mpz
-
-    levels, nodes = [], [mpz(m) for m in moduli]
+    number = _big_integers(len(moduli))
+    levels, nodes = [], [number(m) for m in moduli]
     while len(nodes) > 1:
-        pairs = [(ma, mb, invert(ma, mb)) for ma, mb in zip(nodes[::2], nodes[1::2])]
+        pairs = [(ma, mb, number(pow(ma, -1, mb))) for ma, mb in zip(nodes[::2], nodes[1::2])]
         levels.append(pairs)
         nodes = [ma * mb for ma, mb, _ in pairs] + ([nodes[-1]] if len(nodes) % 2 else [])
     return levels

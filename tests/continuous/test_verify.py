@@ -254,7 +254,7 @@ def test_a_decimal_kernel_is_shown_and_verified_over_its_box(tmp_path):
     ("1", "continuous.M: expected a non-empty list of rows"),
     ([["1", "2"]] * 41, "41 rows exceed the limit MAX_KERNEL_MATRIX = 40"),
     ([["1"] * 41] * 2, "M[1]: 41 columns exceed the limit MAX_KERNEL_MATRIX = 40"),
-    ([["1", True]], "M[1][2]: expected a number or a string"),
+    ([["1", True]], "M[1][2]: expected a number (int, Fraction, float) or a string, got bool"),
 ])
 def test_a_matrix_from_python_is_checked_as_a_file_s(M, message, tmp_path):
     # the API and a file's [continuous] M go through the same checks, with the same words
