@@ -253,7 +253,8 @@ def _big_integers(count: int) -> Callable[[int], Any]:
         return int
     from gmpy2 import mpz
 
-    return mpz
+    big: Callable[[int], Any] = mpz
+    return big
 
 
 @lru_cache(maxsize=4)
