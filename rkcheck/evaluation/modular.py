@@ -65,12 +65,12 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
 import numpy as np
 
 from rkcheck.evaluation.protocols import PassRunner
+from rkcheck.evaluation.remainders import crt_columns, product
 from rkcheck.evaluation.scaled import ScaledTableau
 
 if TYPE_CHECKING:
@@ -211,8 +211,8 @@ class ExactOrderSums:
         mods = [p for p, _ in self.primes]
         if not mods:
             return [[0] * len(screened) for _ in range(D)]
-        total = _product(tuple(mods))
-        return [[x - total if x > total // 2 else x for x in _crt_columns([pp[c] for pp in per_prime], mods)]
+        total = product(tuple(mods))
+        return [[x - total if x > total // 2 else x for x in crt_columns([pp[c] for pp in per_prime], mods)]
                 for c in range(D)]
 
 
@@ -223,59 +223,6 @@ def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
     D = len(roots)
     inverse = nmod_mat([[pow(r, k, p) for k in range(D)] for r in roots], p).inv()
     return [[int(inverse[c, j]) for j in range(D)] for c in range(D)]
-
-
-def _crt_columns(columns: list[list[int]], moduli: list[int]) -> list[int]:
-    """The integers in [0, Π moduli) with residues ``columns[i][k]`` modulo ``moduli[i]``,
-    for every k: the moduli are merged pairwise, a product tree, so thousands of primes (a
-    decimal of thousands of digits) cost O(M(N) log k) per integer where Garner's digits
-    cost k² vector operations (52 s for 3 559 primes)."""
-    number = _big_integers(len(moduli))
-    nodes = [[number(int(x)) for x in col] for col in columns]
-    for level in _crt_tree(tuple(moduli)):
-        merged = [[a + ma * (((b - a) * inv) % mb) for a, b in zip(xa, xb)]
-                  for xa, xb, (ma, mb, inv) in zip(nodes[::2], nodes[1::2], level)]
-        if len(nodes) % 2:
-            merged.append(nodes[-1])
-        nodes = merged
-    return [int(x) for x in nodes[0]]
-
-
-#: from this many moduli on, Chinese remaindering runs in GMP's integers (gmpy2): its
-#: products and inverses of numbers of thousands of bits are far faster than Python's,
-#: while a few primes (an everyday rational tableau) need no import of it
-GMP_MODULI = 32
-
-
-def _big_integers(count: int) -> Callable[[int], Any]:
-    """The integer type the remaindering of ``count`` moduli runs in."""
-    if count < GMP_MODULI:
-        return int
-    from gmpy2 import mpz
-
-    big: Callable[[int], Any] = mpz
-    return big
-
-
-@lru_cache(maxsize=4)
-def _product(moduli: tuple[int, ...]) -> int:
-    """Π moduli (the same for every condition of an order)."""
-    return math.prod(moduli)
-
-
-@lru_cache(maxsize=4)
-def _crt_tree(moduli: tuple[int, ...]) -> list[list[tuple[Any, Any, Any]]]:
-    """The product tree of ``moduli`` merged pairwise, level by level: each pair's
-    moduli and the inverse of the first modulo the second.  The same for every
-    condition of an order (a report reads their values one at a time): the inverses of
-    the large products, most of the work, are computed once."""
-    number = _big_integers(len(moduli))
-    levels, nodes = [], [number(m) for m in moduli]
-    while len(nodes) > 1:
-        pairs = [(ma, mb, number(pow(ma, -1, mb))) for ma, mb in zip(nodes[::2], nodes[1::2])]
-        levels.append(pairs)
-        nodes = [ma * mb for ma, mb, _ in pairs] + ([nodes[-1]] if len(nodes) % 2 else [])
-    return levels
 
 
 def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,

@@ -53,12 +53,12 @@ def test_chinese_remaindering_gives_the_integers_with_those_residues(count):
     import random
 
     from rkcheck.evaluation.channels import primes
-    from rkcheck.evaluation.modular import _crt_columns
+    from rkcheck.evaluation.remainders import crt_columns
 
     rng = random.Random(count)
     moduli = list(primes(count))
     columns = [[rng.randrange(m) for _ in range(5)] for m in moduli]
     M = math.prod(moduli)
     expected = [sum(col[k] * (M // m) * pow(M // m, -1, m) for col, m in zip(columns, moduli)) % M for k in range(5)]
-    assert _crt_columns(columns, moduli) == expected
-    assert _crt_columns(columns, moduli) == expected  # again, from the cached tree of the moduli
+    assert crt_columns(columns, moduli) == expected
+    assert crt_columns(columns, moduli) == expected  # again, from the cached tree of the moduli
