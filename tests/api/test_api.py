@@ -324,8 +324,8 @@ def test_import_rkcheck_is_light():
 
 
 def test_the_documented_settings_path_works_after_a_bare_import():
-    # docs: rkcheck.api.settings.use_listing_cache(); rkcheck.api was first looked up as
-    # a public name (AttributeError: module 'rkcheck.api' has no attribute 'api')
+    # the docs' spelling after a bare import: rkcheck.api is the subpackage (not a public
+    # name looked up in itself), and its submodules are its attributes
     import subprocess
     import sys
 

@@ -459,7 +459,7 @@ def test_a_kernel_family_is_validated_then_skipped(capsys, tmp_path):
 
 
 def test_a_csv_file_named_on_the_command_line_is_read_as_verify_reads_it(capsys, tmp_path):
-    # Heun's method as a Butcher table in CSV (docs/examples/heun.csv); scan once read it as TOML
+    # Heun's method as a Butcher table in CSV (docs/examples/heun.csv): its suffix says CSV
     path = Path(__file__).resolve().parents[2] / "docs" / "examples" / "heun.csv"
     _, doc = scan_json(capsys, path, "--degree", "3", "--order", "4")
     (row,) = doc["files"]

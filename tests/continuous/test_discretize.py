@@ -127,6 +127,6 @@ def test_newton_cotes_takes_both_ends():
     trap = rkcheck.loads(rkcheck.discretize(str(avf), "newton-cotes-2")[0])
     assert [e.exact for e in trap.b] == [Fraction(1, 2)] * 2
     assert [sum(e.exact for e in row) for row in trap.A] == [0, 1]
-    # one node cannot be both ends (it was once the midpoint, silently)
+    # one node cannot be both ends
     with pytest.raises(rkcheck.RkcheckError, match="newton-cotes needs at least 2 nodes"):
         rkcheck.discretize(str(avf), "newton-cotes-1")

@@ -50,7 +50,7 @@ def test_the_kernel_family_is_avf_only_at_zero(capsys):
 
 @pytest.mark.parametrize("degree", ["none", "2", "5"])
 def test_the_degree_given_is_the_one_checked(capsys, degree):
-    # the file's [check] says degree 3: `--degree none` was once read as "not given"
+    # the file's [check] says degree 3: a degree given on the command line, 'none' too, overrides it
     r = run_cli(capsys, "sweep", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--grid", "beta=-1:1:3", "--order", "8",
                 "--degree", degree, "--json")
     assert r.code == 0, r.err
