@@ -10,6 +10,7 @@ from typing import Any
 from rich.console import Console
 from rich.text import Text
 
+from rkcheck.reports.families import FAMILY_SCHEMA
 from rkcheck.version import __version__
 
 #: The map is drawn in text only up to this many values per axis (JSON has every point).
@@ -27,6 +28,7 @@ def _cell(order: int, cap: int) -> str:
 def sweep_doc(sw: Any) -> dict[str, Any]:
     return {
         "rkcheck": __version__,
+        "schema": FAMILY_SCHEMA,
         "family": {"name": sw.family.name, "source": sw.family.info.source, "parameters": list(sw.family.parameters)},
         "degree": sw.degree,
         "order_checked": sw.order,
