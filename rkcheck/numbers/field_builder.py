@@ -179,7 +179,8 @@ class _Builder:
         self.check_time()
         if K.is_rational:
             if f.degree() > self.max_degree:  # root(p, k) of a high degree p: the same limit
-                raise NotAlgebraic(f"the entries generate a number field of degree {f.degree()} "
+                # the entries adjoined so far generate it: theirs all together, at least as large
+                raise NotAlgebraic(f"the entries generate a number field of degree at least {f.degree()} "
                                    f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             L = NumberField(list(gamma.f), gamma.index)
             self._push(L, L(0))
@@ -199,7 +200,7 @@ class _Builder:
 
             h = _identify([fac for fac, _ in R.factor()[1]], eta_enc)
             if h.degree() > self.max_degree:
-                raise NotAlgebraic(f"the entries generate a number field of degree {h.degree()} "
+                raise NotAlgebraic(f"the entries generate a number field of degree at least {h.degree()} "
                                    f"(more than {self.max_degree}, the limit MAX_FIELD_DEGREE)")
             eta = _real_of(h, eta_enc)
             L = NumberField(list(eta.f), eta.index)
