@@ -417,8 +417,21 @@ def write(tab: Tableau, fmt: str) -> str:
     try:
         return WRITERS[fmt](_as_written(tab))
     except RecursionError:  # a sum of thousands of terms is a tree too deep to render recursively
-        raise UserError(f"an entry is nested too deeply to write as {fmt} (a chain of thousands of terms); "
-                        "write the tableau as TOML or JSON") from None
+        raise UserError(f"nested too deeply to write as {fmt} (a chain of thousands of terms); "
+                        "write the tableau as TOML or JSON", _deepest_entry(tab)) from None
+
+
+def _deepest_entry(tab: Tableau) -> str | None:
+    """The place (``A[i][j]``, ``b[i]``) of the entry whose expression is deepest."""
+    def depth(e: Any) -> int:
+        node = getattr(e, "node", None)
+        return 0 if node is None else int(xp.fold(node, lambda n, kids: 1 + max(kids, default=0)))
+
+    s = tab.stages
+    places = [(f"A[{i + 1}][{j + 1}]", tab.A[i][j]) for i in range(s) for j in range(s)]
+    places += [(f"b[{i + 1}]", tab.b[i]) for i in range(s)]
+    best = max(places, key=lambda pe: depth(pe[1]), default=None)
+    return None if best is None else best[0]
 
 
 def _as_written(tab: Tableau) -> Tableau:

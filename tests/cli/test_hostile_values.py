@@ -292,7 +292,8 @@ def test_deep_expression_trees_pickle_without_recursion():
 def test_writing_a_deep_expression_as_code_is_one_line(tmp_path, capsys, fmt):
     path = write(tmp_path, "s.toml", one_stage(SQRT_SUM))
     r = run_cli(capsys, "show", path, "--format", fmt)
-    assert r.code == 2 and r.err == (f"rkcheck: error: {path}: an entry is nested too deeply to write as {fmt} "
+    # one_stage puts the entry in A[1][1] (b is 1): the place names it
+    assert r.code == 2 and r.err == (f"rkcheck: error: {path}: A[1][1]: nested too deeply to write as {fmt} "
                                      "(a chain of thousands of terms); write the tableau as TOML or JSON\n"), r.err
 
 
