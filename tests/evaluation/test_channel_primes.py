@@ -62,3 +62,38 @@ def test_chinese_remaindering_gives_the_integers_with_those_residues(count):
     expected = [sum(col[k] * (M // m) * pow(M // m, -1, m) for col, m in zip(columns, moduli)) % M for k in range(5)]
     assert crt_columns(columns, moduli) == expected
     assert crt_columns(columns, moduli) == expected  # again, from the cached tree of the moduli
+
+
+@pytest.mark.parametrize("rows, chunk", [(8192, 128), (7, 3)])  # one block; many blocks and limb chunks
+def test_large_integers_reduced_through_their_limbs_are_pythons_residues(monkeypatch, rows, chunk):
+    import random
+
+    from rkcheck.evaluation import remainders
+
+    monkeypatch.setattr(remainders, "LIMB_ROWS", rows)
+    monkeypatch.setattr(remainders, "LIMB_CHUNK", chunk)
+    rng = random.Random(rows)
+    values = [rng.getrandbits(rng.randint(0, 4000)) * rng.choice([1, -1]) for _ in range(300)]
+    values += [0, 1, -1, 2**30, -(2**4000), (2**16 - 1) * 2**2000]
+    moduli = list(primes(40))
+    got = remainders.LimbResidues(values).modulo(moduli)
+    assert got.tolist() == [[v % p for p in moduli] for v in values]  # Python's own %, the reference
+
+
+def test_a_tableau_of_large_entries_has_the_same_channel_images_either_way():
+    # entries of thousands of bits take the limbs (LIMB_MIN_BITS); the images of A and b
+    # at every channel are the residues Python's % gives, prime by prime
+    from fractions import Fraction
+
+    from rkcheck.evaluation.scaled import LIMB_MIN_BITS, scaled_rational
+
+    big = Fraction(3**2000 + 7, 2**1500 + 1)
+    A = [[big, Fraction(1, 3)], [Fraction(-5, 7), -big]]
+    b = [Fraction(1, 2), big / 3]
+    scaled = scaled_rational(A, b)
+    assert max(abs(x[0]).bit_length() for row in scaled.A for x in row) >= LIMB_MIN_BITS
+    chosen = scaled.primes_for(4000)
+    for p, roots in chosen[:70]:
+        images_A, images_b = scaled._images(p, roots[0])
+        assert images_A.tolist() == [[x[0] % p for x in row] for row in scaled.A]
+        assert images_b.tolist() == [x[0] % p for x in scaled.b]
