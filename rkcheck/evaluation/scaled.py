@@ -246,7 +246,10 @@ class ScaledTableau:
         the split primes at once (:class:`~rkcheck.evaluation.remainders.LimbResidues`):
         one big-integer division per coefficient and prime took most of such a check."""
         flat = self._flat_coefficients()
-        if max((abs(c).bit_length() for c in flat), default=0) < LIMB_MIN_BITS:
+        wide = self.__dict__.get("_wide")
+        if wide is None:  # decided once, not at every prime
+            wide = self.__dict__["_wide"] = max((abs(c).bit_length() for c in flat), default=0) >= LIMB_MIN_BITS
+        if not wide:
             return np.fromiter((c % p for c in flat), dtype=np.int64, count=len(flat))
         batch = self.__dict__.setdefault("_residue_batch", {})
         if p not in batch:
