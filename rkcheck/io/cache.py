@@ -45,9 +45,9 @@ MIN_CACHED_TERMS = 20_000
 MAGIC = b"RKCHECK-LISTING\n"
 _SUFFIX = ".rkl"
 _TEMP_PREFIX = ".tmp-"
-#: the names :func:`_name` gives (the key's kind, format, vertices and degree)
 #: the names tempfile.mkstemp gives a file being saved (another program's are not ours)
 _TEMP_NAME = re.compile(r"\.tmp-[a-z0-9_]{8}\.rkl")
+#: the names :func:`_name` gives (the key's kind, format, vertices and degree)
 _LISTING_NAME = re.compile(r"[a-z]+(?:-[a-z]+)*-f\d+-n\d+-m(?:none|\d+)\.rkl")
 _MAX_HEADER = 1 << 20  # the header is a few kB (the coefficients of one order)
 _ALIGN = 8
