@@ -427,10 +427,7 @@ def _deepest_entry(tab: Tableau) -> str | None:
         node = getattr(e, "node", None)
         return 0 if node is None else int(xp.fold(node, lambda n, kids: 1 + max(kids, default=0)))
 
-    s = tab.stages
-    places = [(f"A[{i + 1}][{j + 1}]", tab.A[i][j]) for i in range(s) for j in range(s)]
-    places += [(f"b[{i + 1}]", tab.b[i]) for i in range(s)]
-    best = max(places, key=lambda pe: depth(pe[1]), default=None)
+    best = max(zip(tab.entry_places(), tab.entries()), key=lambda pe: depth(pe[1]), default=None)
     return None if best is None else best[0]
 
 

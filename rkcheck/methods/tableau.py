@@ -235,12 +235,16 @@ class Tableau:
         A = [v[i * s:(i + 1) * s] for i in range(s)]
         return ExactValues(found.field, A, v[s * s:s * s + s], v[s * s + s:] if self.c is not None else None)
 
-    def _place_of_error(self, entries: list[Any]) -> str | None:
-        """The first entry (``A[i][j]``, ``b[i]``, ``c[i]``) that fails on its own."""
+    def entry_places(self) -> list[str]:
+        """The places of :meth:`entries`, in their order: ``A[i][j]`` row by row, ``b[i]``,
+        then ``c[i]`` (1-based)."""
         s = self.stages
         places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]
-        places += [f"c[{i + 1}]" for i in range(s)]
-        for place, e in zip(places, entries):
+        return places + [f"c[{i + 1}]" for i in range(s)]
+
+    def _place_of_error(self, entries: list[Any]) -> str | None:
+        """The first entry (``A[i][j]``, ``b[i]``, ``c[i]``) that fails on its own."""
+        for place, e in zip(self.entry_places(), entries):
             try:
                 field_of([e.node], self.info.constants.definitions)
             except UserError:
