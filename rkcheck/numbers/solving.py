@@ -293,7 +293,7 @@ def _coordinate(p: Any, phi: Any, root: Any, k: int) -> AlgebraicValue:
         return AlgebraicValue(_frac_text(q), True, complex(_float(q)), (-q, Fraction(1)), value)
     if phi.degree() == 2:
         return _quadratic(coeffs, phi, root, real, approx)
-    poly = " + ".join(f"{_frac_text(c)}*z^{j}" for j, c in enumerate(coeffs) if c)
+    poly = _poly_text(coeffs, "z")
     phi_text = _poly_text([Fraction(int(c.p), int(c.q)) for c in phi.coeffs()], "z")
     kind = "" if real else "complex "
     return AlgebraicValue(f"{poly} at z = {kind}root {k + 1} of {phi_text}", real, approx, (), value)
@@ -352,7 +352,10 @@ def _poly_text(coeffs: list[Fraction], x: str) -> str:
         c = coeffs[j]
         if c:
             mono = "" if j == 0 else (x if j == 1 else f"{x}^{j}")
-            terms.append(f"{_frac_text(c)}{'*' if mono else ''}{mono}" if c != 1 or not mono else mono)
+            if mono and abs(c) == 1:  # x, not 1*x
+                terms.append(mono if c > 0 else f"-{mono}")
+            else:
+                terms.append(f"{_frac_text(c)}{'*' if mono else ''}{mono}")
     return " + ".join(terms).replace("+ -", "- ") or "0"
 
 
@@ -437,5 +440,7 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
     approx = complex(_float(value.real.mid()), _float(value.imag.mid()))
     kind = "" if real else "complex "
     imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
-    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, 'x')} (≈ {approx.real:.10g}{imag})", real, approx,
+    # the polynomial in the coordinate's own name: with several parameters, an x would
+    # read as another of them
+    return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, name)} (≈ {approx.real:.10g}{imag})", real, approx,
                           tuple(P), value)

@@ -118,3 +118,20 @@ def test_a_real_quadratic_coordinate_at_complex_roots_takes_its_own_conjugate():
         sign = 1 if float(root.real.mid()) > 0 else -1
         assert v.real and v.text == ("sqrt(5)" if sign > 0 else "-sqrt(5)"), (k, v.text)
         assert abs(v.approx - sign * 5 ** 0.5) < 1e-12
+
+
+def test_a_cubic_coordinate_is_shown_as_a_root_of_a_polynomial_in_its_own_name():
+    # y = x² at the roots of x³ − x − 1: y's minimal polynomial (sympy's, independently)
+    # is the one shown, written in y — an x there would read as the other parameter
+    sp = pytest.importorskip("sympy")
+    ctx, (x, y) = ring("x", "y")
+    res = solve_system([x**3 - x - 1, y - x * x], None, None)
+    assert res.dimension == 0 and len(res.solutions) == 3
+    X, Y = sp.symbols("x y")
+    want = sp.Poly(sp.minimal_polynomial(sp.CRootOf(X**3 - X - 1, 0) ** 2, Y), Y).monic()
+    for s in res.solutions:
+        text = s.values["y"].text
+        assert " of " in text and "x" not in text.split(" of ")[1], text
+        shown = sp.Poly(sp.sympify(text.split(" of ")[1].split(" (")[0].replace("^", "**")), Y).monic()
+        assert shown == want and "1*" not in text
+        assert abs(complex(want.as_expr().subs(Y, s.values["y"].approx))) < 1e-9
