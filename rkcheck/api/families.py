@@ -117,7 +117,7 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
     return compute(fam, deg, N, q)
 
 
-def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, order: int,
+def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET, order: int = UNSET,
           classical_order: int | None = None, where: Sequence[str] = (),
           max_seconds: float = 60, route: str = "auto") -> SolutionSet:
     """The exact solution set of every energy condition up to ``order`` (degree ≤
@@ -128,15 +128,18 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None, 
     ``route``: ``"auto"`` takes the structured route (:mod:`rkcheck.energy.family_solve`:
     quadrature conditions, then the conditions linear in A) when it applies and the
     plain one otherwise; ``"plain"`` always one Gröbner basis of every condition;
-    ``"structured"`` refuses a family it does not apply to."""
+    ``"structured"`` refuses a family it does not apply to.  ``degree`` and ``order``
+    left out: the file's ``[check]``, as in :func:`family_conditions`."""
     from rkcheck.energy.family_conditions import family_conditions as compute
     from rkcheck.energy.family_solve import layout_of, solve_structured
     from rkcheck.numbers.groebner import SolveLimitError
     from rkcheck.numbers.parametric import THETA
     from rkcheck.numbers.solving import solve_system
 
+    fam = _family(family)
+    degree, order = check_options(fam, degree, order)
     deg, N, q = _orders(degree, order, classical_order)
-    fam = _family(family).covering(max(N + 1, q or 0))
+    fam = fam.covering(max(N + 1, q or 0))
     seconds = _seconds(max_seconds)
     extra = [fam.equation(w) for w in _texts(() if where is None else where, "where")]
     theta = THETA if fam.ring.field is not None else None

@@ -59,8 +59,11 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
 
 @click.command(epilog=exit_codes(usage="a bad file, option, equation, or a limit reached (one line on stderr)"))
 @click.argument("file", metavar="FILE")
-@click.option("--degree", "-m", type=DEGREE, required=True, help="Polynomial degree m of the Hamiltonians ('none' = no bound).")
-@click.option("--order", "-N", type=click.IntRange(1, 12), required=True, help="Energy order: every condition up to it.")
+@click.option("--degree", "-m", type=DEGREE, default=None,
+              help="Polynomial degree m of the Hamiltonians ('none' = no bound).  [default: the file's [check], "
+                   "else none]")
+@click.option("--order", "-N", type=click.IntRange(1, 12), default=None,
+              help="Energy order: every condition up to it.  [default: the file's [check], else 6]")
 @click.option("--classical-order", type=click.IntRange(1, 12), default=None,
               help="Also the classical order conditions up to this order.")
 @click.option("--where", "where", multiple=True, metavar="EQUATION",
@@ -89,11 +92,15 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
       rkcheck solve tableaux/families/theorem1-s4-m8.toml --degree 8 --order 9
       rkcheck solve family.toml -m 5 -N 6 --where "b1 + b2 + b3 = 1" --format json
     """
-    from rkcheck.api.families import load_family
+    from rkcheck.api.families import check_options, load_family
     from rkcheck.api.families import solve as run
+    from rkcheck.api.verification import UNSET
+    from rkcheck.options import DEFAULT_FAMILY_ORDER
 
     check_output_target(output)
     family = load_family(file)
+    flags = flag_values("degree", "order")  # given on the command line, else the file's [check]
+    degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
                  max_seconds=max_seconds, route=route)
     if fmt == "json":
@@ -110,16 +117,21 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         return
     from rkcheck.reports.families import render_solution_set
 
+    # what was solved, when the command line did not say it all
+    bound = "no degree bound" if degree in (None, "none") else f"degree ≤ {degree}"
+    scope = None if "degree" in flags and "order" in flags else (
+        f"energy conditions to order {order}, {bound} (from the file's [check]; without one: no degree bound, "
+        f"order {DEFAULT_FAMILY_ORDER})")
     if output and output != "-":
         import io
 
         from rich.console import Console
 
         buffer = io.StringIO()
-        render_solution_set(family, result, Console(file=buffer, no_color=True, width=120))
+        render_solution_set(family, result, Console(file=buffer, no_color=True, width=120), scope)
         write_text(buffer.getvalue(), output)
         return
-    render_solution_set(family, result, stdout_console())
+    render_solution_set(family, result, stdout_console(), scope)
 
 
 @click.command(epilog=exit_codes(usage="a bad file, grid or option, or matplotlib missing for --plot (one line on stderr)"))

@@ -162,9 +162,14 @@ def avf_everywhere(result: Any) -> bool | None:
     return None if any(f is None for f in flags) else all(flags)
 
 
-def render_solution_set(family: Any, result: Any, console: Console) -> None:
+def render_solution_set(family: Any, result: Any, console: Console, scope: str | None = None) -> None:
+    """The solution set; ``scope``: a line saying which conditions were solved, when the
+    command line did not say it."""
     field = family.ring.field
-    console.print(Text(f"{family.name}: {result.equations} equations in {', '.join(result.variables)}", style="bold"))
+    equations = f"{result.equations} equation{'' if result.equations == 1 else 's'}"
+    console.print(Text(f"{family.name}: {equations} in {', '.join(result.variables)}", style="bold"))
+    if scope:
+        console.print(Text(scope))
     note = _field_note(field)
     if note:
         console.print(note)

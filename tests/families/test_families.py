@@ -259,3 +259,25 @@ def test_a_where_equation_that_cannot_be_read_says_why_in_its_own_text(where, me
         rkcheck.solve(TABLEAUX / "families" / "continuous-collocation-kappa.toml", degree=None, order=2,
                       where=[where])
     assert err.value.place == "--where"
+
+
+@pytest.mark.parametrize("check", ["[check]\ndegree = 3\norder = 3\n", ""])
+def test_solve_without_degree_and_order_reads_the_check_table_as_verify_does(tmp_path, capsys, check):
+    # the same family solved with the options written out is the reference: the file's
+    # [check] when it has one, else no degree bound and order 6 (the conditions verify uses)
+    path = tmp_path / "fam.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x*x*x/2 - x/2", "0"], ["0", "1/2"]]\n'
+                    f'b = ["1/2", "1/2"]\n{check}', encoding="utf-8")
+    given = ("--degree", "3", "--order", "3") if check else ("--degree", "none", "--order", "6")
+    implicit = run_cli(capsys, "solve", str(path), "--format", "json")
+    explicit = run_cli(capsys, "solve", str(path), *given, "--format", "json")
+    assert implicit.code == explicit.code == 0, implicit.err
+    doc, reference = json.loads(implicit.out), json.loads(explicit.out)
+    del doc["seconds"], reference["seconds"]  # the time taken
+    assert doc == reference
+    assert (doc["options"]["degree"], doc["options"]["order"]) == ((3, 3) if check else (None, 6))
+    text = run_cli(capsys, "solve", str(path))
+    assert f"energy conditions to order {3 if check else 6}" in text.out and "[check]" in text.out
+    assert "energy conditions to order" not in run_cli(capsys, "solve", str(path), *given).out
+    api = rkcheck.solve(path)
+    assert [s.values["x"].text for s in api.solutions] == [s["values"]["x"] for s in doc["solutions"]]
