@@ -75,18 +75,15 @@ def _family(family: Family | str | os.PathLike[str]) -> Family:
     raise OptionError(f"expected a family (rkcheck.load_family) or a path, got {type(family).__name__}", "family")
 
 
-def _orders(degree: Any, order: Any, classical_order: Any) -> tuple[int | None, int, int | None]:
-    deg = _option(lambda: parse_degree(degree, "degree"))
-    N = _option(lambda: parse_int_in(order, (1, min(MAX_ORDER, MAX_FAMILY_ORDER)), "order"))
-    q = None
-    if classical_order is not None:
-        q = _option(lambda: parse_int_in(classical_order, (1, MAX_FAMILY_ORDER), "classical_order"))
-    return deg, N, q
+def _classical(classical_order: Any) -> int | None:
+    if classical_order is None:
+        return None
+    return _option(lambda: parse_int_in(classical_order, (1, MAX_FAMILY_ORDER), "classical_order"))
 
 
 def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET,
-                  places: tuple[str, str] = ("degree", "order")) -> tuple[Any, Any]:
-    """``degree`` and ``order``, each left out (:data:`UNSET`) taken from the family
+                  places: tuple[str, str] = ("degree", "order")) -> tuple[int | None, int]:
+    """``degree`` and ``order`` read (None: no degree bound), each left out (:data:`UNSET`) taken from the family
     file's ``[check]`` table (order :data:`~rkcheck.options.DEFAULT_FAMILY_ORDER` where
     that has none): the one resolution for the API and the CLI.  Each is validated
     where it came from: an error names the file's ``check.order``, or ``places`` (the
@@ -97,9 +94,9 @@ def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET,
     order = check.get("order", DEFAULT_FAMILY_ORDER) if from_file[1] else order
     where = [("check." + name, fam.info.source) if file else (place, None)
              for file, name, place in zip(from_file, ("degree", "order"), places)]
-    _option(lambda: parse_degree(degree, *where[0]))
-    _option(lambda: parse_int_in(order, (1, min(MAX_ORDER, MAX_FAMILY_ORDER)), *where[1]))
-    return degree, order
+    deg = _option(lambda: parse_degree(degree, *where[0]))
+    N = _option(lambda: parse_int_in(order, (1, min(MAX_ORDER, MAX_FAMILY_ORDER)), *where[1]))
+    return deg, N
 
 
 def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET,
@@ -112,9 +109,8 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
     from rkcheck.energy.family_conditions import family_conditions as compute
 
     fam = _family(family)
-    degree, order = check_options(fam, degree, order)
-    deg, N, q = _orders(degree, order, classical_order)
-    return compute(fam, deg, N, q)
+    deg, N = check_options(fam, degree, order)
+    return compute(fam, deg, N, _classical(classical_order))
 
 
 def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET, order: int = UNSET,
@@ -137,8 +133,8 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None =
     from rkcheck.numbers.solving import solve_system
 
     fam = _family(family)
-    degree, order = check_options(fam, degree, order)
-    deg, N, q = _orders(degree, order, classical_order)
+    deg, N = check_options(fam, degree, order)
+    q = _classical(classical_order)
     fam = fam.covering(max(N + 1, q or 0))
     seconds = _seconds(max_seconds)
     extra = [fam.equation(w) for w in _texts(() if where is None else where, "where")]
@@ -212,8 +208,7 @@ def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degr
     from rkcheck.energy.family_sweep import sweep as run
 
     fam = _family(family)
-    degree, order = check_options(fam, degree, order)
-    deg, N, _ = _orders(degree, order, None)
+    deg, N = check_options(fam, degree, order)
     return run(fam, _texts(grids, "grids"), deg, N)
 
 

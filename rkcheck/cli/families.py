@@ -118,7 +118,7 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     from rkcheck.reports.families import render_solution_set
 
     # what was solved, when the command line did not say it all
-    bound = "no degree bound" if degree in (None, "none") else f"degree ≤ {degree}"
+    bound = "no degree bound" if degree is None else f"degree ≤ {degree}"
     scope = None if "degree" in flags and "order" in flags else (
         f"energy conditions to order {order}, {bound} (from the file's [check]; without one: no degree bound, "
         f"order {DEFAULT_FAMILY_ORDER})")
