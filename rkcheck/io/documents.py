@@ -21,7 +21,7 @@ from rkcheck.errors import UserError
 from rkcheck.io.bounded import bounded_read, max_file_bytes, read_fifo
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import count_text
-from rkcheck.numbers.grammar import MAX_BITS, int_of_digits
+from rkcheck.numbers.grammar import MAX_BITS, int_of_digits, too_large
 
 #: the tables a tableau file may have
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
@@ -51,7 +51,7 @@ def _bare_int(text: str) -> int:
 
 
 def _too_long(digits: str) -> str:
-    return f"an integer of {digits} digits: more than a value may have ({count_text(MAX_BITS)} bits, MAX_BITS)"
+    return too_large("integer", f"{digits} digits")
 
 
 @contextmanager

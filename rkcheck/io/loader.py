@@ -37,6 +37,7 @@ from rkcheck.methods.claims import parse_claims
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants, Entry
+from rkcheck.numbers.formatting import count_text
 
 if TYPE_CHECKING:
     from rkcheck.methods.parametric import Family
@@ -96,8 +97,7 @@ def _entry_text(value: Any, place: str) -> tuple[str, bool]:
         return str(value), True
     if isinstance(value, int):  # a bare integer of any length the document allowed (str() stops at 4 300 digits)
         if abs(value).bit_length() > ex.MAX_BITS:
-            raise UserError(f"an integer of {abs(value).bit_length():,} bits: more than a value may have "
-                            f"({ex.MAX_BITS:,} bits, MAX_BITS)", place)
+            raise UserError(ex.too_large("integer", f"{count_text(abs(value).bit_length())} bits"), place)
         return ex.digits_text(value), True
     return value, False
 

@@ -16,6 +16,7 @@ from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.formatting import count_text
 from rkcheck.numbers.parametric import ParameterRing, ParametricEntries
 
 #: What a parameter may be declared as (free real parameters only, for now).
@@ -146,7 +147,8 @@ def _rational(value: Any, name: str) -> Fraction:
     except (ValueError, OverflowError, ZeroDivisionError):
         raise UserError(f"expected a finite rational number, got {str(value)[:40]!r}", name) from None
     if max(q.numerator.bit_length(), q.denominator.bit_length()) > ex.MAX_BITS:
-        raise UserError(f"a value of more than {ex.MAX_BITS:,} bits (the limit MAX_BITS)", name)
+        bits = max(q.numerator.bit_length(), q.denominator.bit_length())
+        raise UserError(ex.too_large("value", f"{count_text(bits)} bits"), name)
     return q
 
 

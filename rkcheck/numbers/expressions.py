@@ -25,6 +25,7 @@ from rkcheck.numbers.grammar import (
     Num,
     Power,
     Unary,
+    too_large,
 )
 from rkcheck.numbers.intervals import Interval, exact_sqrt
 from rkcheck.numbers.reading import DecimalsMode
@@ -131,7 +132,7 @@ def _check_value_bits(values: tuple[Fraction, ...], column: int) -> None:
     """Refuse an intermediate value larger than :data:`MAX_BITS` (the size budget)."""
     bits = max(_bits(v) for v in values)
     if bits > MAX_BITS:
-        raise UserError(f"value at column {column} is too large (about {count_text(bits)} bits; the limit is {count_text(MAX_BITS)})")
+        raise UserError(too_large(f"value at column {column}", f"about {count_text(bits)} bits"))
 
 
 def _check_operand_bits(values: tuple[Fraction, ...], column: int) -> None:
@@ -139,7 +140,7 @@ def _check_operand_bits(values: tuple[Fraction, ...], column: int) -> None:
     twice the budget (the result could not fit, and computing it would cost time)."""
     bits = sum(_bits(v) for v in values)
     if bits > 2 * MAX_BITS:
-        raise UserError(f"value at column {column} is too large (about {count_text(bits)} bits; the limit is {count_text(MAX_BITS)})")
+        raise UserError(too_large(f"value at column {column}", f"about {count_text(bits)} bits"))
 
 
 # ------------------------------------------------------------------- root(p, k)
@@ -260,7 +261,7 @@ def check_exponent(value: Fraction, column: int) -> int:
 def check_power_size(base: Fraction, n: int, column: int) -> None:
     bits = (base.numerator.bit_length() + base.denominator.bit_length()) * abs(n)
     if bits > MAX_BITS:
-        raise UserError(f"power at column {column} is too large (about {count_text(bits)} bits)")
+        raise UserError(too_large(f"power at column {column}", f"about {count_text(bits)} bits"))
 
 
 def rational_power(base: Fraction, k: int, column: int) -> Fraction:

@@ -46,6 +46,12 @@ MAX_EXPONENT = 1000
 MAX_DECIMAL_EXPONENT = 1000
 MAX_BITS = 200_000
 
+
+def too_large(what: str, size: str | None = None) -> str:
+    """The one message of a value past :data:`MAX_BITS`, wherever it is met: ``what``
+    and, where known, its ``size`` (``about 256,002 bits``)."""
+    return f"{what} is too large ({size + '; ' if size else ''}the limit MAX_BITS is {count_text(MAX_BITS)} bits)"
+
 #: A decimal literal with at least this many significant digits is, by default, read as
 #: "rounded to its last digit" (definitions §5).  Shorter decimals such as 0.5, 0.25 or 0.125
 #: are read exactly: see docs/decisions.md for why (a literal reading of the definition would make

@@ -86,7 +86,7 @@ def _kernel_family():
     (lambda: rkcheck.sweep(SWEEP, None), "grids: expected a text or a list of texts, got NoneType"),
     (lambda: rkcheck.sweep(SWEEP, [1]), "grids: expected texts, but the list holds a value of type int"),
     (lambda: _kernel_family().at(None), "values: expected a mapping of the parameters to their values, got NoneType"),
-    (lambda: _kernel_family().at({"beta": 10**100_000}), "beta: a value of more than 200,000 bits (the limit MAX_BITS)"),
+    (lambda: _kernel_family().at({"beta": 10**100_000}), "beta: value is too large (332,193 bits; the limit MAX_BITS is 200,000 bits)"),
     (lambda: _kernel_family().covering("5"), "vertices: expected a positive number of vertices, got '5'"),
     (lambda: _kernel_family().covering(0), "vertices: expected a positive number of vertices, got 0"),
 ])
