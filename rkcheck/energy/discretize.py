@@ -16,21 +16,22 @@ For HBVM(k, s) (Gauss-k, p = s, q = 2k) this is Brugnano–Iavernaro–Trigiante
 
 from __future__ import annotations
 
+import dataclasses
 import re
-from dataclasses import dataclass
 from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.methods.continuous import ContinuousMethod
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
+from rkcheck.numbers.entries import Entry
 
 #: rule names: gauss-k, radau-i-k, radau-ii-k, lobatto-k, newton-cotes-k
 RULE_PATTERN = re.compile(r"(gauss|radau-i|radau-ii|lobatto|newton-cotes)-(\d+)")
 MAX_RULE_NODES = 20
 
 
-@dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class Discretisation:
     """The written tableau's pieces and what the discretisation keeps."""
 
@@ -97,6 +98,11 @@ def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, 
     c = [text(e) for e in tab.c] if tab.c is not None else [
         " + ".join(f"({text(e)})" for e in row) for row in tab.A]
     b = [text(e) for e in tab.b]
+    # the quadrature order of the nodes the tableau is built on: the file's c where it
+    # gives one (which may differ from A·1), through a tableau whose row sums are c
+    if tab.c is not None:
+        zero = Entry.of(0)
+        tab = dataclasses.replace(tab, A=tuple((ci, *[zero] * (len(tab.c) - 1)) for ci in tab.c), c=None)
     values = TableauValues(tab, Reading(DecimalsMode.EXACT))
     order = quadrature_order(*sc.tableau_values(values)).order
     return c, b, consts, order, tab.info.source

@@ -130,3 +130,26 @@ def test_newton_cotes_takes_both_ends():
     # one node cannot be both ends
     with pytest.raises(rkcheck.RkcheckError, match="newton-cotes needs at least 2 nodes"):
         rkcheck.discretize(str(avf), "newton-cotes-1")
+
+
+@pytest.mark.parametrize("A, c, q", [
+    # Gauss-2's A with c = (0, 1): the tableau is built on the nodes 0 and 1 with b = ½, ½
+    # — the trapezoidal rule, q = 2 (it said 4, Gauss-2's, from A·1)
+    ('[["1/4", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4"]]', '["0", "1"]', 2),
+    # A = 0 with Gauss-2's nodes: q = 4 (it said 1, from A·1 = 0)
+    ('[["0", "0"], ["0", "0"]]', '["1/2 - sqrt(3)/6", "1/2 + sqrt(3)/6"]', 4),
+])
+def test_a_rule_from_a_file_is_its_b_and_c_even_where_c_is_not_the_row_sums(tmp_path, A, c, q):
+    sp = pytest.importorskip("sympy")
+    rule = tmp_path / "rule.toml"
+    rule.write_text(f'[tableau]\nA = {A}\nb = ["1/2", "1/2"]\nc = {c}\n', encoding="utf-8")
+    nodes = [sp.sympify(x) for x in tomllib.loads(rule.read_text())["tableau"]["c"]]
+    exact = [k for k in range(1, 6) if sp.simplify(sum(sp.Rational(1, 2) * x ** (k - 1) for x in nodes)
+                                                    - sp.Rational(1, k)) == 0]
+    assert q == len(exact) == exact[-1]  # the rule's quadrature order, by sympy
+    avf = ROOT / "tableaux" / "continuous" / "avf.toml"
+    text, note = rkcheck.discretize(str(avf), str(rule))
+    assert f"quadrature order q = {q}" in note and tomllib.loads(text)["check"]["degree"] == q
+    tab = rkcheck.loads(text)
+    assert rkcheck.verify(tab, degree=q, order=6).all_hold  # the claim the file writes holds
+    assert not rkcheck.verify(tab, degree=q + 1, order=6).all_hold
