@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property, lru_cache
@@ -82,6 +83,12 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
                             f"M[{i}]")
         rows.append([_matrix_entry(x, f"M[{i}][{j}]") for j, x in enumerate(row, start=1)])
     return rows
+
+
+def _has_decimal(node: ex.Expr, constants: Constants) -> bool:
+    """Whether an entry has a decimal literal, itself or through a constant."""
+    return any(lit.is_decimal for lit in xp.literals(node)) or any(
+        constants.has_decimal(u.name) for u in xp.names(node) if u.name in constants.definitions)
 
 
 def _matrix_entry(value: Any, place: str) -> str:
@@ -140,6 +147,7 @@ class ContinuousMethod:
         info = info or MethodInfo(source=name)
         rows = matrix_rows(M)
         values: dict[tuple[int, int], Fraction | None] = {}
+        decimal = False
         for i, row in enumerate(rows, start=1):
             for j, text in enumerate(row, start=1):
                 try:
@@ -148,7 +156,10 @@ class ContinuousMethod:
                     values[i, j] = xp.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
                     raise err.located(f"M[{i}][{j}]") from None
-        if all(v is not None for v in values.values()):  # rational: the polynomials collected
+                decimal = decimal or _has_decimal(node, info.constants)
+        # rational: the polynomials collected; a decimal stays a literal of the kernel's
+        # text, read by the decimals rule as in A and b (collected, it would be exact)
+        if not decimal and all(v is not None for v in values.values()):
             A_coeffs: dict[tuple[int, int], Fraction] = {}
             b_coeffs: dict[tuple[int, int], Fraction] = {}
             for (i, j), v in values.items():
@@ -159,7 +170,8 @@ class ContinuousMethod:
                                     tuple(tuple(r) for r in rows))
         A_terms, b_terms = [], []
         for (i, j), value in values.items():
-            coeff = f"({rows[i - 1][j - 1]})/{i}"
+            text = rows[i - 1][j - 1]
+            coeff = (text if re.fullmatch(r"[\w.]+", text) else f"({text})") + ("" if i == 1 else f"/{i}")
             A_terms.append(coeff + _monomial("tau", i) + _monomial("sigma", j - 1))
             b_terms.append(coeff + _monomial("tau", j - 1))
         return ContinuousMethod(" + ".join(A_terms), " + ".join(b_terms), name, info, tuple(tuple(r) for r in rows))

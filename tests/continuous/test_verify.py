@@ -265,3 +265,31 @@ def test_a_matrix_from_python_is_checked_as_a_file_s(M, message, tmp_path):
     f.write_text(json.dumps({"continuous": {"M": M}}), encoding="utf-8")
     out = run("verify", str(f))
     assert out.returncode == 2 and message in out.stderr and out.stderr.count("\n") == 1, out.stderr
+
+
+@pytest.mark.parametrize("M, constants", [
+    ('[["4", "-6.000000"], ["-6.000000", "12"]]', ""),
+    ('[["4", "-k"], ["-6", "12"]]', '[constants]\nk = "6.000000"\n'),
+])
+def test_a_matrix_decimal_follows_the_decimals_rule_as_in_the_kernel(tmp_path, M, constants):
+    # the same kernel written through A and b, whose decimals are read as rounded to their
+    # last digit (definitions §5): the matrix's decimals are read the same way, never exact
+    written = tmp_path / "written.toml"
+    # A = Σ M_ij τ^i/i σ^(j−1), B(σ) = A(1, σ)
+    written.write_text('[continuous]\nA = "4*tau - 6.000000*tau*sigma - 6.000000/2*tau^2 + 6*tau^2*sigma"\n'
+                       'b = "4 - 6.000000*tau - 6.000000/2 + 6*tau"\n', encoding="utf-8")
+    matrix = tmp_path / "matrix.toml"
+    matrix.write_text(f"{constants}[continuous]\nM = {M}\n", encoding="utf-8")
+    exact = tmp_path / "exact.toml"
+    exact.write_text('[continuous]\nM = [["4", "-6"], ["-6", "12"]]\n', encoding="utf-8")
+
+    def states(path, *options):
+        r = run("verify", str(path), "-N", "4", "-m", "none", "--format", "json", *options)
+        doc = json.loads(r.stdout)
+        return [(c["id"], c["state"]) for c in doc["conditions"]], doc["summary"]["energy_order"]
+
+    reference = states(written)
+    assert {s for _, s in reference[0]} == {"holds_to_digits"}, reference  # a box, not a proof
+    assert states(matrix) == reference
+    assert states(matrix, "--decimals", "exact") == states(exact)
+    assert {s for _, s in states(exact)[0]} == {"holds"}
