@@ -16,6 +16,8 @@ from fractions import Fraction
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.numbers import expressions as xp
+from rkcheck.numbers import grammar as ex
 
 #: At most this many grid points in one sweep (each costs one exact evaluation of every
 #: condition polynomial).
@@ -25,13 +27,16 @@ MAX_GRID_VALUES = 10_001
 
 
 def _rational(text: str, place: str) -> Fraction:
+    """A grid value: a rational number in the entries' grammar (``-1``, ``3/4``, ``0.25``,
+    ``1e-3``, ``2^-4``) read at face value — a decimal is the rational it writes."""
     try:
-        # a decimal is the rational it writes (0.1 = 1/10), never a float
-        if not re.fullmatch(r"\s*[-+]?(\d+(\s*/\s*\d+)?|\d*\.\d+|\d+\.\d*)\s*", text):
-            raise ValueError
-        return Fraction(text.replace(" ", ""))
-    except (ValueError, ZeroDivisionError):
-        raise UserError(f"expected a rational number such as -1, 3/4 or 0.25, got {text!r}", place) from None
+        node = ex.parse(text)
+        value = None if any(True for _ in xp.names(node)) else xp.evaluate_exact(node, {})
+    except UserError as err:
+        raise UserError(f"{text.strip()!r}: {err.message}", place) from None
+    if value is None:
+        raise UserError(f"expected a rational number such as -1, 3/4, 0.25 or 1e-3, got {text!r}", place)
+    return value
 
 
 def parse_grid(spec: str) -> tuple[str, list[Fraction]]:

@@ -13,6 +13,7 @@ from support.paths import TABLEAUX
 
 import rkcheck
 from rkcheck.energy.family_sweep import parse_grid, sweep
+from rkcheck.errors import UserError
 
 FAMILIES = TABLEAUX / "families"
 
@@ -22,6 +23,12 @@ def test_grid_values_are_exact_rationals_with_both_ends():
                                                   Fraction(1)])
     assert parse_grid("gamma=1/3") == ("gamma", [Fraction(1, 3)])
     assert parse_grid("x=0:0.1:3") == ("x", [Fraction(0), Fraction(1, 20), Fraction(1, 10)])  # 0.1 is 1/10
+    # the entries' grammar: scientific notation and powers, exact
+    assert parse_grid("q=1e-3:1:3") == ("q", [Fraction(1, 1000), Fraction(1001, 2000), Fraction(1)])
+    assert parse_grid("q=2^-4") == ("q", [Fraction(1, 16)])
+    for bad, message in (("q=sqrt(2):2:3", "rational"), ("q=y:1:2", "rational"), ("q=1e5000:1:2", "out of range")):
+        with pytest.raises(UserError, match=message):
+            parse_grid(bad)
 
 
 @pytest.mark.parametrize("name", ["sweep-s2-lobatto", "seed-kernel-zeta-0"])
@@ -84,7 +91,7 @@ def test_plot_without_matplotlib_is_a_one_line_error(capsys, tmp_path, monkeypat
     (["beta=-1:1:5", "delta=0:1:3"], "unknown parameter 'delta'"),
     (["beta=1:-1:5", "gamma=0"], "upwards"),
     (["beta=0:1:x", "gamma=0"], "whole number"),
-    (["beta=0:1e-3:3", "gamma=0"], "rational number"),
+    (["beta=0:sqrt(2):3", "gamma=0"], "rational number"),
 ])
 def test_bad_grids_are_one_line_errors(capsys, grids, message):
     args = [a for g in grids for a in ("--grid", g)]
