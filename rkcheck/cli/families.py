@@ -67,7 +67,8 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
 @click.option("--classical-order", type=click.IntRange(1, 12), default=None,
               help="Also the classical order conditions up to this order.")
 @click.option("--where", "where", multiple=True, metavar="EQUATION",
-              help="An extra equation in the parameters, e.g. \"a11 = a22\" or \"b1 + b2 + b3 = 1\" (repeatable).")
+              help="An extra equation in the parameters, e.g. \"a11 = a22\" or \"b1 + b2 + b3 = 1\"; an expression "
+                   "without '=' means it is 0 (repeatable).")
 @click.option("--max-seconds", type=click.FloatRange(1, 86_400), default=60, show_default=True,
               help="Time limit of the Gröbner bases; beyond it, a one-line error.")
 @click.option("--route", type=click.Choice(["auto", "structured", "plain"]), default="auto", show_default=True,
