@@ -316,26 +316,36 @@ def _quadratic(coeffs: list[Fraction], phi: Any, root: Any, real: bool, approx: 
     return AlgebraicValue(text, real, approx, minpoly, root_value(coeffs, root))
 
 
+#: square factors of a discriminant are divided out up to this prime (trial division:
+#: past it, a full factorisation could take any time); a square cofactor is found whole
+SQUARE_TRIAL_LIMIT = 1 << 12
+
+
 def _squarefree_part(D: Fraction) -> tuple[int, Fraction]:
-    """``D = square²·d`` with d a square-free integer (√D = square·√d)."""
+    """``D = square²·d`` with d an integer (√D = square·√d), free of the squares of primes
+    up to :data:`SQUARE_TRIAL_LIMIT` and not itself a square times −1 or 1: square-free
+    for every discriminant but those with the square of a large prime in a larger
+    cofactor (then √d is still exact, merely not reduced)."""
     num = D.numerator * D.denominator
     sign = -1 if num < 0 else 1
     num = abs(num)
-    square, d = 1, 1
+    square = 1
     k = 2
-    while k * k <= num:
+    while k <= SQUARE_TRIAL_LIMIT and k * k <= num:
         while num % (k * k) == 0:
             num //= k * k
             square *= k
         k += 1
-    d = sign * num
-    return d, Fraction(square, D.denominator)
+    root = math.isqrt(num)
+    if root * root == num:
+        num, square = 1, square * root
+    return sign * num, Fraction(square, D.denominator)
 
 
 def _closed_form(P: Fraction, Q: Fraction, d: int) -> str:
     if Q == 0 or d == 1:
         return _frac_text(P + (Q if d == 1 else 0))
-    root = f"sqrt({d})" if d > 0 else f"sqrt({-d})*i"
+    root = f"sqrt({d})" if d > 0 else ("i" if d == -1 else f"sqrt({-d})*i")
     q = "" if abs(Q) == 1 else f"{_frac_text(abs(Q))}*"
     if P == 0:
         return f"{'-' if Q < 0 else ''}{q}{root}"

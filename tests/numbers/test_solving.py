@@ -4,6 +4,8 @@ construction, cross-checked with sympy where a second opinion helps."""
 from __future__ import annotations
 
 import random
+import subprocess
+import sys
 from fractions import Fraction
 
 import pytest
@@ -135,3 +137,23 @@ def test_a_cubic_coordinate_is_shown_as_a_root_of_a_polynomial_in_its_own_name()
         shown = sp.Poly(sp.sympify(text.split(" of ")[1].split(" (")[0].replace("^", "**")), Y).monic()
         assert shown == want and "1*" not in text
         assert abs(complex(want.as_expr().subs(Y, s.values["y"].approx))) < 1e-9
+
+
+def test_a_square_root_of_a_large_prime_is_written_without_factoring_it():
+    # trial division up to √p (10^15 steps) hung here; the closed forms are checked by
+    # sympy: each squared is the discriminant's root, exactly
+    sp = pytest.importorskip("sympy")
+    code = ("from flint import fmpq_mpoly_ctx\nfrom rkcheck.numbers.solving import solve_system\n"
+            "ctx = fmpq_mpoly_ctx.get(('x',), 'lex'); (x,) = ctx.gens()\n"
+            "for eq in (x*x - 1000000000000000000000000000057, x*x - 3*1000000000000000000000000000057**2,"
+            " 16*x*x - 24*x + 13, x*x + 1):\n"
+            "    print(';'.join(s.values['x'].text for s in solve_system([eq], None, None).solutions))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    p = 1000000000000000000000000000057
+    X = sp.Symbol("x")
+    for line, poly in zip(out.stdout.splitlines(), (X**2 - p, X**2 - 3 * p * p, 16 * X**2 - 24 * X + 13, X**2 + 1)):
+        texts = line.split(";")
+        assert len(texts) == 2 and "sqrt(1)" not in line, line
+        for t in texts:
+            assert sp.expand(poly.subs(X, sp.sympify(t.replace("^", "**").replace("i", "I")))) == 0, t
