@@ -325,7 +325,19 @@ def _in_parameters(R: ParameterRing, values: dict[str, Any], gens: list[Any], na
     images = [g[z]] + [g[named[k]] - (values[named[k]] - R.parameter(k)).compose(*at_z) for k in R.ctx.names()[1:]]
     out = [p.compose(*images) for p in gens]
     out += [g[v] - values[v].compose(*images) for v in params if v not in named.values()]
-    return out
+    return _rational_orbit_substituted(out, E)
+
+
+def _rational_orbit_substituted(equations: list[Any], E: Any) -> list[Any]:
+    """The equations with z replaced by its value where φ is linear (a rational orbit of
+    nodes): z then stands for one number, and shown it would read as a parameter."""
+    linear = next((p for p in equations if p.total_degree() == 1 and all(not any(m[1:]) for m in p.monoms())), None)
+    if linear is None:
+        return equations
+    terms = {int(m[0]): c for m, c in zip(linear.monoms(), linear.coeffs())}
+    value = E.constant(-terms.get(0, 0) / terms[1])
+    at = [value] + list(E.gens()[1:])
+    return [q for q in (p.compose(*at) for p in equations) if not q.is_zero()]
 
 
 def _in_ideal(p: Any, basis: list[Terms], names: tuple[str, ...], deadline: float) -> bool:

@@ -198,8 +198,9 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
 
         out.pieces = split(basis, rest, deadline)
         eliminated = [ctx.gens()[names.index(v)] - e for v, e in subs.items()]
-        out.components = [Component(p.dimension, equations=eliminated + as_polynomials(p, ctx, rest))
-                          for p in out.pieces]
+        # θ's minimal polynomial defines the numbers, not the solutions: not an equation
+        out.components = [Component(p.dimension, equations=eliminated + [
+            g for g in as_polynomials(p, ctx, rest) if not _in_alone(g, theta)]) for p in out.pieces]
         out.rest = rest
     if dim == 0:
         f, h = solve_zero_dimensional(basis, rest, deadline)
@@ -208,6 +209,12 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
         out.solutions = []
     out.seconds = time.monotonic() - t0
     return out
+
+
+def _in_alone(g: Any, name: str | None) -> bool:
+    """Whether the polynomial ``g`` uses the variable ``name`` and no other."""
+    names = g.context().names()
+    return name is not None and {names[i] for m in g.monoms() for i, e in enumerate(m) if e} == {name}
 
 
 def _minpoly_in(ctx: Any, theta: str, field: Any) -> Any:

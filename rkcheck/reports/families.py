@@ -179,6 +179,8 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
         console.print("reduced Gröbner basis (eliminated variables first, then degree reverse lexicographic):")
         for g in shown_basis(result):
             console.print(f"  {polynomial_text(g, field)} = 0")
+        if not shown_basis(result):
+            console.print("  (empty: no equation is left)")
     if result.dimension < 0:
         console.print(Text("no solution: the conditions are inconsistent", style="bold red"))
         return
@@ -188,6 +190,10 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
         if result.solutions:
             console.print(f"the points of the finite components ({len(result.solutions)}):")
             _render_points(result.solutions, console)
+        return
+    if result.dimension > 0 and not shown_basis(result):
+        console.print(Text(f"dimension {result.dimension}: every value of {', '.join(result.variables)} is a solution "
+                           "(every condition vanishes identically)", style="bold"))
         return
     if result.dimension > 0:
         console.print(Text(f"dimension {result.dimension}: infinitely many solutions, the set above", style="bold"))
@@ -232,8 +238,21 @@ def _render_components(result: Any, console: Console) -> None:
         what = f"{c.points} point{'s' if c.points != 1 else ''}" if c.dimension == 0 else f"dimension {c.dimension}"
         avf = {True: "A = (A·1) bᵀ (AVF)", False: "not A = (A·1) bᵀ", None: "AVF not decided"}[c.avf]
         console.print(f"  component {k}: {what}, {avf}")
+        z = _orbit_variable(c.equations)
+        if z:
+            console.print(f"    ({z}: a node of the component, a root of the first equation)")
         for e in c.equations:
             console.print(f"    {e} = 0")
+
+
+def _orbit_variable(equations: list[Any]) -> str | None:
+    """The name of the orbit's node z where a component's equations use it (it is the
+    first variable of their ring, not a parameter)."""
+    for e in equations:
+        name = e.context().names()[0] if hasattr(e, "context") else None
+        if name in ("z", "z_") and e.degrees()[0] > 0:
+            return str(name)
+    return None
 
 
 def _avf_form(family: Any) -> str:

@@ -9,6 +9,7 @@ import itertools
 from fractions import Fraction
 
 import pytest
+from support.clirun import run_cli
 from support.paths import TABLEAUX
 
 import rkcheck
@@ -115,7 +116,6 @@ def test_the_s4_m8_avf_tableau_preserves_energy_exactly():
 def test_components_report_avf_in_json(capsys):
     import json
 
-    from support.clirun import run_cli
 
     r = run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--degree", "3", "--order", "6",
                 "--format", "json")
@@ -382,3 +382,55 @@ def test_the_basis_of_the_points_is_flints_basis_of_the_conditions(name, degree,
 
     theirs = {str(monic(ring.ctx.from_dict(d))) for d in flint_basis}
     assert {str(monic(g)) for g in res.groebner} == theirs
+
+
+def _points(sp, equations, known):
+    """Every common zero of ``equations``, found one unknown at a time: an equation with
+    a single unknown left is solved (sympy, univariate), each root substituted."""
+    left = [e for e in (sp.expand(e.subs(known)) for e in equations) if e != 0]
+    if not left:
+        return [known]
+    single = next((e for e in left if len(e.free_symbols) == 1), None)
+    if single is None or any(not e.free_symbols for e in left):
+        return []  # a nonzero constant: no zero here (the curves' equations are triangular)
+    (x,) = single.free_symbols
+    return [p for root in sp.solve(single, x) for p in _points(sp, left, {**known, x: root})]
+
+
+def test_a_component_over_rational_nodes_is_written_in_the_parameters_alone():
+    # 3 stages, A free, Simpson's weights: two curves over nodes of one rational orbit.
+    # Their equations use no z (it stood for one number, shown as "2*z + 11 = 0"), and a
+    # point of each — a33 = 1/7, the rest solved by sympy — is a tableau rkcheck's exact
+    # engine (not the family route) finds energy-preserving to order 6 for quartic H
+    sp = pytest.importorskip("sympy")
+    names = [f"a{i}{j}" for i in range(1, 4) for j in range(1, 4)]
+    weights = ["1/6", "2/3", "1/6"]
+    fam = rkcheck.family_from_arrays([names[0:3], names[3:6], names[6:9]], weights, parameters=names)
+    result = rkcheck.solve(fam, degree=4, order=6)
+    curves = [c for c in result.components if c.dimension == 1]
+    assert len(curves) == 2
+    symbols = sp.symbols(names)
+    local = dict(zip(names, symbols))
+    for curve in curves:
+        texts = [str(e) for e in curve.equations]
+        assert not any("z" in t for t in texts), texts
+        equations = [sp.sympify(t.replace("^", "**"), locals=local).subs(symbols[8], sp.Rational(1, 7))
+                     for t in texts]
+        points = _points(sp, equations, {symbols[8]: sp.Rational(1, 7)})
+        assert points
+        for point in points:
+            entries = [sp.sstr(sp.nsimplify(point[x])).replace("**", "^") for x in symbols]
+            tab = rkcheck.Tableau.from_values([entries[0:3], entries[3:6], entries[6:9]], weights)
+            assert rkcheck.verify(tab, degree=4, order=6).all_hold, entries
+
+
+def test_a_family_whose_conditions_all_vanish_is_solved_by_every_value(capsys):
+    # the seed's kernel family to order 4 for cubic Hamiltonians: every condition is the
+    # zero polynomial (the engine's own, checked first), so every β is a solution — and
+    # √3's minimal polynomial, which defines the numbers, is no equation of the set
+    path = FAMILIES / "seed-kernel-zeta-0.toml"
+    assert all(c.polynomial.is_zero() for c in rkcheck.family_conditions(path, degree=3, order=4).energy)
+    result = rkcheck.solve(path, degree=3, order=4)
+    assert result.dimension == 1 and all(not c.equations for c in result.components)
+    r = run_cli(capsys, "solve", str(path), "-m", "3", "-N", "4")
+    assert r.code == 0 and "every value of beta is a solution" in r.out and "sqrt(3)^2" not in r.out, r.out
