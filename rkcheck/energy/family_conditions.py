@@ -163,6 +163,12 @@ class FamilyConditions:
         return generic_order(self.energy, self.order)[1]
 
     @property
+    def energy_order_everywhere(self) -> bool:
+        """Whether the generic energy order is that of every parameter value: a condition
+        of the next order is a nonzero constant, which no value makes vanish."""
+        return any(c.degree == 0 for c in self.exceptional)
+
+    @property
     def classical_order(self) -> int | None:
         """The classical order for generic parameter values (None: not computed)."""
         if self.classical is None or self.classical_order_checked is None:

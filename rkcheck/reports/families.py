@@ -65,6 +65,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "degree": fc.degree,
         "order_checked": fc.order,
         "energy_order_generic": fc.energy_order,
+        "energy_order_everywhere": fc.energy_order_everywhere,
         "exceptional": [c.id for c in fc.exceptional],
         "classical_order_generic": fc.classical_order,
         "quadrature_order_generic": fc.quadrature_order,
@@ -93,7 +94,8 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
                   f"{zero} vanish identically")
     generic = fc.energy_order
     label = f"≥ {generic}" if generic == fc.order and not fc.exceptional else str(generic)
-    console.print(f"energy order for generic parameter values: {label}")
+    everywhere = fc.energy_order_everywhere
+    console.print(f"energy order for {'every parameter value' if everywhere else 'generic parameter values'}: {label}")
     if fc.classical is not None:
         classical = fc.classical_order
         at_least = classical == fc.classical_order_checked  # every classical condition checked vanished
@@ -106,14 +108,17 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
         shown = fc.energy + (fc.classical or [])
     else:
         shown = fc.exceptional
-        if shown:
+        if shown and everywhere:
+            console.print("the first conditions that do not vanish identically (a nonzero constant among them: no "
+                          "parameter value satisfies them all; --all lists every condition):")
+        elif shown:
             console.print("the first conditions that do not vanish identically (their zeros are the exceptional "
                           "values; --all lists every condition):")
     for c in shown:
         mark = "0" if c.vanishes else polynomial_text(c.polynomial, field)
         degree = "" if c.vanishes else f"  [degree {c.degree}]"
         console.print(Text(f"  {c.kind} order {c.order}  {c.id}  {c.bracket}:  {mark}{degree}"))
-    if fc.exceptional and not show_all:
+    if fc.exceptional and not show_all and not everywhere:
         console.print(f"where they vanish: rkcheck solve {fam.info.source} --degree {deg} --order {fc.order}")
 
 

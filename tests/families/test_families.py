@@ -281,3 +281,19 @@ def test_solve_without_degree_and_order_reads_the_check_table_as_verify_does(tmp
     assert "energy conditions to order" not in run_cli(capsys, "solve", str(path), *given).out
     api = rkcheck.solve(path)
     assert [s.values["x"].text for s in api.solutions] == [s["values"]["x"] for s in doc["solutions"]]
+
+
+def test_a_nonzero_constant_condition_fixes_the_order_of_every_member(tmp_path, capsys):
+    # stage 3 has weight 0 and feeds no stage: p changes no condition, and [τ³] is
+    # Σb c² − 1/3 (×1/4, its 1/σ·…) = 1/2 − 1/3 ≠ 0 for every p: order 2 everywhere, by hand
+    path = tmp_path / "fc.toml"
+    path.write_text('[parameters]\np = "free"\n[tableau]\nA = [["0","0","0"],["1","0","0"],["p","0","0"]]\n'
+                    'b = ["1/2","1/2","0"]\n', encoding="utf-8")
+    for value in (0, 5, Fraction(-7, 3)):
+        assert rkcheck.verify(rkcheck.load_family(path).at({"p": value}), order=4).energy_order == 2
+    r = run_cli(capsys, "verify", str(path), "-N", "4")
+    assert "energy order for every parameter value: 2" in r.out and "rkcheck solve" not in r.out, r.out
+    doc = json.loads(run_cli(capsys, "verify", str(path), "-N", "4", "--format", "json").out)
+    assert doc["energy_order_generic"] == 2 and doc["energy_order_everywhere"] is True
+    seed = json.loads(run_cli(capsys, "verify", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--format", "json").out)
+    assert seed["energy_order_everywhere"] is False  # β²/72: zero at β = 0
