@@ -47,7 +47,14 @@ def hamiltonian(spec: str) -> "Hamiltonian":
 
 
 def _problem(problem: "str | Hamiltonian") -> "Hamiltonian":
-    return hamiltonian(problem) if isinstance(problem, str) else problem
+    from rkcheck.dynamics.hamiltonians import Hamiltonian
+
+    if isinstance(problem, str):
+        return hamiltonian(problem)
+    if not isinstance(problem, Hamiltonian):
+        raise OptionError(f"expected a problem's name (\"henon-heiles\", \"random:degree=4\") or a Hamiltonian, "
+                          f"got {type(problem).__name__}", "problem")
+    return problem
 
 
 def _rational(value: Any, place: str) -> Fraction:

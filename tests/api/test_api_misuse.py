@@ -115,3 +115,14 @@ def test_a_kernel_matrix_of_floats_reads_them_as_their_decimals():
     assert ContinuousMethod.from_matrix([[1.0]]).A == ContinuousMethod.from_matrix([[1]]).A == "tau"
     with pytest.raises(rkcheck.RkcheckError, match=r"M\[1\]\[1\]: nan is not a finite number"):
         ContinuousMethod.from_matrix([[float("nan")]])
+
+
+@pytest.mark.parametrize("call", [
+    lambda: rkcheck.simulate("@euler", None),
+    lambda: rkcheck.simulate("@euler", 5),
+    lambda: rkcheck.empirical_energy_order("@euler", None),
+    lambda: rkcheck.work_precision(["@euler"], None),
+])
+def test_a_problem_that_is_neither_a_name_nor_a_hamiltonian_is_an_rkcheck_error(call):
+    with pytest.raises(rkcheck.RkcheckError, match="^problem: expected a problem's name"):
+        call()
