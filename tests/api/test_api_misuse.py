@@ -111,8 +111,13 @@ def test_family_arguments_a_library_may_well_pass(tmp_path):
 def test_a_kernel_matrix_of_floats_reads_them_as_their_decimals():
     from rkcheck.methods.continuous import ContinuousMethod
 
-    # M = [[1]] is AVF (A = τ, B = 1); 1.0 is that number
-    assert ContinuousMethod.from_matrix([[1.0]]).A == ContinuousMethod.from_matrix([[1]]).A == "tau"
+    # M = [[1]] is AVF (A = τ, B = 1); 1.0 is that number, a decimal kept as written (the
+    # decimals rule reads it exactly: two significant digits), so every condition holds
+    assert ContinuousMethod.from_matrix([[1]]).A == "tau"
+    floats = ContinuousMethod.from_matrix([[1.0]])
+    assert floats.A == "1.0*tau"
+    report = rkcheck.verify(floats, order=5)
+    assert report.all_hold and all(c.state == "holds" for c in report.conditions)
     with pytest.raises(rkcheck.RkcheckError, match=r"M\[1\]\[1\]: nan is not a finite number"):
         ContinuousMethod.from_matrix([[float("nan")]])
 
