@@ -382,6 +382,13 @@ def write_text(text: str, output: str | None) -> None:
     if not output or output == "-":
         click.echo(text, nl=False)
         return
+    try:
+        _write_file(text, output)
+    except OSError as err:  # named by the user's path, not the temporary file's
+        raise UserError(f"cannot write the report: {err.strerror or err}", source=output) from None
+
+
+def _write_file(text: str, output: str) -> None:
     import os
     import stat
     import tempfile

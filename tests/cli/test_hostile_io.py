@@ -11,6 +11,7 @@ import sys
 
 import pytest
 from support.clirun import run_subprocess
+from support.paths import REPO
 
 ONE_STAGE = '[tableau]\nA = [["1/2"]]\nb = ["1"]\n'
 
@@ -171,3 +172,14 @@ def test_a_named_pipe_in_a_scanned_folder_is_one_error_row(tmp_path, capsys, mon
     files = {os.path.basename(f["file"]): f for f in json.loads(r.out)["files"]}
     assert files["good.toml"]["status"] == "ok" and files["pipe.toml"]["status"] == "error", r.out
     assert "FIFO_WAIT_SECONDS" in files["pipe.toml"]["error"]
+
+
+@pytest.mark.parametrize("args", [["new", "gauss", "-s", "2"], ["catalog", "tableaux/avf"],
+                                  ["conditions", "-N", "4", "--emit", "python"]])
+def test_a_report_that_cannot_be_written_names_the_users_path(tmp_path, args):
+    # written through a temporary file beside the target: the error is about the path the
+    # user gave, never that temporary file's name
+    target = tmp_path / "missing" / "out.txt"
+    code, _, err = run(*args, "-o", str(target), cwd=str(REPO))
+    assert code == 2 and err.count("\n") == 1, err
+    assert str(target) in err and ".rkcheck-" not in err and "cannot write" in err
