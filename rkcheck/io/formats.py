@@ -106,6 +106,9 @@ class _Code:
     def paren(self, text: str) -> str:
         return f"({text})"
 
+    def mul(self, left: str, right: str) -> str:
+        return f"{left}*{right}"
+
     def render(self, node: ex.Expr, parent: int = 0) -> str:
         node = _fold_fraction(node)
         if isinstance(node, ex.Num):
@@ -127,7 +130,7 @@ class _Code:
         # a negative right operand is parenthesised: 1 + (-1), x*(-y), never 1 + -1
         right = self.render(node.right, 2 if isinstance(node.right, ex.Unary) else (p + 1 if node.op in "-/" else p))
         text = self.div(left, right) if node.op == "/" else (
-            f"{left} {node.op} {right}" if p == 1 else f"{left}*{right}")
+            f"{left} {node.op} {right}" if p == 1 else self.mul(left, right))
         return self.paren(text) if parent > p else text
 
 
@@ -239,6 +242,12 @@ class _Latex(_Code):
 
     def div(self, left: str, right: str) -> str:
         return rf"\frac{{{left}}}{{{right}}}"
+
+    def mul(self, left: str, right: str) -> str:
+        # a number before a command or a letter is written beside it (7\sqrt{6}), as in print
+        if left.isdigit() and not right[:1].isdigit():
+            return f"{left}{right}" if right.startswith("\\") else f"{left} {right}"
+        return rf"{left} \cdot {right}"
 
 
 def _node(e: TableauEntry) -> ex.Expr:

@@ -85,6 +85,21 @@ def test_latex_inlines_constants_and_writes_roots():
     assert r"\frac{1}{4} - \frac{\sqrt{3}}{6}" in text and "r3" not in text
 
 
+def test_latex_products_by_hand():
+    # LaTeX has no * for a product: a number beside a root or a name, \cdot otherwise
+    tab = loads('[tableau]\nA = [["7*sqrt(6)/360", "2*x"], ["x*y", "(1/2)*(1/3)"]]\nb = ["1/2", "1/2"]\n'
+                '[constants]\nx = "sqrt(2)"\ny = "sqrt(5)"\n', "p.toml")
+    text = to_latex(tab)
+    assert r"\frac{7\sqrt{6}}{360}" in text and r"2 \sqrt{2}" not in text and r"2\sqrt{2}" in text
+    assr = r"\sqrt{2} \cdot \sqrt{5}"
+    assert assr in text and "*" not in text, text
+
+
+@pytest.mark.parametrize("path", tableau_files())
+def test_latex_of_every_shipped_tableau_has_no_asterisk(path):
+    assert "*" not in write(load(path), "latex")
+
+
 def test_julia_by_hand():
     tab = loads('[tableau]\nA = [[0, 0], ["2/3", 0]]\nb = ["1/4", "3/4"]\n', "ralston.toml")
     lines = to_julia(tab).splitlines()
