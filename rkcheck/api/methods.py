@@ -115,9 +115,10 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
              exact: bool = False, name: str | None = None) -> str:
     """The tableau file ``rkcheck new`` writes (TOML), with the parameters of :func:`new`.
 
-    A family's entries are exact expressions when its nodes have a closed form in square
-    roots (``[constants]`` for the nodes), plain fractions when they are rational, else
-    60-digit decimals (read back as rounded to their last digit, definitions §5);
+    A family's entries are exact expressions when its nodes have a closed form (square
+    roots, or ``root(p, k)`` of their polynomial up to ``MAX_EXACT_NODES`` = 8 nodes;
+    ``[constants]`` for the nodes), plain fractions when they are rational, else 60-digit
+    decimals (read back as rounded to their last digit, definitions §5);
     ``digits=D`` writes D-digit decimals instead, ``exact=True`` refuses to write
     decimals.  A classical method is written with its ``[expect]`` claims."""
     method = _validate(method, stages, k)

@@ -29,8 +29,8 @@ from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES
 @click.option("--zeta", default="0", show_default=True, help="kernel: the rule parameter ζ (nodes = zeros of P_2 − ζP_1).")
 @click.option("--beta", default="1/10", show_default=True, help="kernel: the perturbation size β.")
 @click.option("--digits", type=click.IntRange(*DIGITS_RANGE), default=None,
-              help="Write D-digit decimals (default: exact expressions when the nodes have a closed form "
-              "in square roots, else 60-digit decimals).")
+              help="Write D-digit decimals (default: exact expressions when the nodes have a closed form — "
+              "square roots, or root(p, k) of their polynomial up to 8 nodes — else 60-digit decimals).")
 @click.option("--exact", is_flag=True, help="Require exact entries (fails if the nodes have no closed form).")
 @click.option("--name", default=None, help="The [method] name (default: from the family).")
 @click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), default=None,
@@ -46,7 +46,8 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
     Examples:
       rkcheck new rk4                             # a classical method
       rkcheck new gauss -s 3                      # exact: sqrt(15) closed forms
-      rkcheck new hbvm -k 6 -s 2 -o hbvm-6-2.toml # 60-digit decimals (no closed form)
+      rkcheck new hbvm -k 6 -s 2 -o hbvm-6-2.toml # exact: root(p, k) of the nodes' polynomial
+      rkcheck new gauss -s 10                     # 60-digit decimals (more than 8 nodes)
       rkcheck new avf -s 2 --rule radau-ii        # rational: plain fractions
       rkcheck new kernel --zeta 1/3 --beta 1e-12  # the seed's counterexample family
       rkcheck new gauss -s 2 | rkcheck verify - --degree 4
