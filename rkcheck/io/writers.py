@@ -122,8 +122,10 @@ def render_toml(
         doc["tableau"] = {"A": A_t, "b": b_t, "c": c_t}
     else:
         A, b = coefficients(spec, bits_for_digits(digits, 64))
+        # an enclosure of 0 (Radau IA's c₁) has no digit to print: its mid-point is noise
         doc["tableau"] = _tableau_table(
-            A, b, lambda x: str(x.lo) if x.is_point else decimal_string(x.mid, digits, keep_zeros=True))
+            A, b, lambda x: str(x.lo) if x.is_point else "0" if x.contains_zero() else decimal_string(
+                x.mid, digits, keep_zeros=True))
     return document_toml(doc, block_matrix=True)
 
 

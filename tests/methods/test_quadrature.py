@@ -77,3 +77,47 @@ def test_a_zeta_out_of_range_is_refused_with_its_exact_value(value, shown):
     with pytest.raises(UserError) as err:
         rule(f"zeta:{value}", 2)
     assert str(err.value) == f"zeta must lie in [-1,000,000, 1,000,000], got {shown}"
+
+
+@pytest.mark.parametrize("method, s", [("gauss", 20), ("radau-ia", 12)])
+def test_decimal_collocation_entries_against_mpmath(method, s):
+    # past 8 nodes `new` writes 60-digit decimals; each is the entry to its last digit:
+    # a_ij = ∫_0^{c_i} ℓ_j (Gauss) or b_j/b_i ∫_{c_j}^1 ℓ_i (Radau IA), the nodes and
+    # weights from mpmath's own root finding at 120 digits — an independent route
+    import tomllib
+
+    import mpmath
+
+    import rkcheck
+
+    doc = tomllib.loads(rkcheck.new_toml(method, stages=s))["tableau"]
+    with mpmath.workdps(120):
+        if method == "gauss":
+            nodes = sorted((1 + mpmath.mpf(x)) / 2 for x in mpmath.polyroots(
+                mpmath.taylor(lambda t: mpmath.legendre(s, t), 0, s)[::-1], maxsteps=200, extraprec=400))
+        else:  # Radau I: zeros of P_s(2x−1) + P_{s−1}(2x−1), 0 among them
+            nodes = sorted((1 + mpmath.mpf(x)) / 2 for x in mpmath.polyroots(
+                [a + b for a, b in zip(mpmath.taylor(lambda t: mpmath.legendre(s, t), 0, s)[::-1],
+                                       [0] + mpmath.taylor(lambda t: mpmath.legendre(s - 1, t), 0, s - 1)[::-1])],
+                maxsteps=200, extraprec=400))
+
+        def integral(j, lo, hi):  # ∫ ℓ_j from lo to hi: ℓ_j expanded, integrated term by term
+            coeffs = [mpmath.mpf(1)]
+            for k in range(s):
+                if k != j:
+                    coeffs = [(coeffs[m - 1] if m else 0) - nodes[k] * (coeffs[m] if m < len(coeffs) else 0)
+                              for m in range(len(coeffs) + 1)]
+            scale = mpmath.fprod(nodes[j] - nodes[k] for k in range(s) if k != j)
+            return mpmath.fsum(a * (hi ** (m + 1) - lo ** (m + 1)) / (m + 1) for m, a in enumerate(coeffs)) / scale
+
+        weights = [integral(j, 0, 1) for j in range(s)]
+        for i in range(s):
+            for j in range(s):
+                if method == "gauss":
+                    want = integral(j, 0, nodes[i])
+                else:
+                    want = weights[j] / weights[i] * integral(i, nodes[j], 1)
+                got = mpmath.mpf(doc["A"][i][j])
+                assert abs(got - want) <= mpmath.mpf(10) ** -58 * max(abs(want), mpmath.mpf(10) ** -40), (i, j)
+        if method == "radau-ia":
+            assert doc["c"][0] == "0"  # exactly the node 0, not the noise of an enclosure about it
