@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from rkcheck.errors import UserError
+from rkcheck.numbers.formatting import count_text
 from rkcheck.numbers.reading import DEFAULT_DPS, Arithmetic, DecimalsMode, Reading
 
 DEFAULT_ORDER = 8
@@ -174,6 +175,9 @@ def parse_step_counts(value: Any, place: str = "--steps", source: str | None = N
     counts = _integer_list(value, "comma-separated integers", place, source)
     if not counts or min(counts) < 1:
         raise UserError("step counts must be positive", place, source)
+    if max(counts) > STEPS_RANGE[1]:  # the same bound as simulate's: a run of that many steps
+        raise UserError(f"expected step counts from 1 to {count_text(STEPS_RANGE[1])}, got {_shown(max(counts))}",
+                        place, source)
     return counts
 
 
@@ -193,8 +197,6 @@ def _shown(value: Any) -> str:
     """A value for a message: short, one line (repr of a huge integer is refused by Python
     past 4 300 digits, and would not be one line anyway)."""
     if _is_int(value) and value.bit_length() > 128:
-        from rkcheck.numbers.formatting import count_text
-
         return f"an integer of about {count_text(int(value.bit_length() * 0.30103) + 1)} digits"
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."

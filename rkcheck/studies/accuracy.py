@@ -125,22 +125,48 @@ def bench_backends(tableau: Tableau, degree: int | None, order: int, dps_list=DE
 
 
 def parse_eps(text: str) -> list[Fraction]:
-    """``1e-1..1e-40`` (every decade), ``1e-2..1e-30:2`` (every 2nd decade) or ``1e-3,1e-6``."""
+    """``1e-1..1e-40`` (every decade), ``1e-2..1e-30:2`` (every 2nd decade) or ``1e-3,1e-6``:
+    each value a rational number in the entries' grammar, read exactly (its exponent
+    bounded as an entry's, ``MAX_DECIMAL_EXPONENT``)."""
     text = text.strip()
     try:
         if ".." in text:
             lo, _, rest = text.partition("..")
             hi, _, step = rest.partition(":")
-            a, b = Fraction(lo), Fraction(hi)
-            ea, eb = round(math.log10(a)), round(math.log10(b))
-            k = int(step) if step else 1
-            if Fraction(10) ** ea != a or Fraction(10) ** eb != b or k < 1:
+            ea, eb = _decade(_eps_value(lo)), _decade(_eps_value(hi))
+            k = int(step) if step.strip() else 1
+            if ea is None or eb is None or k < 1:
                 raise ValueError
             sign = -1 if eb < ea else 1
             return [Fraction(10) ** e for e in range(ea, eb + sign, sign * k)]
-        return [Fraction(x) for x in text.split(",") if x.strip()]
+        return [_eps_value(x) for x in text.split(",") if x.strip()]
     except (ValueError, ZeroDivisionError):
         raise UserError(f"cannot read {text!r} (examples: 1e-1..1e-40, 1e-2..1e-30:2, 1e-3,1e-6)", "--eps") from None
+
+
+def _eps_value(text: str) -> Fraction:
+    from rkcheck.numbers import expressions as xp
+    from rkcheck.numbers import grammar as ex
+
+    try:
+        node = ex.parse(text)
+    except UserError as err:
+        raise UserError(f"{text.strip()!r}: {err.message}", "--eps") from None
+    value = None if any(True for _ in xp.names(node)) else xp.evaluate_exact(node, {})
+    if value is None:
+        raise ValueError(text)
+    return value
+
+
+def _decade(x: Fraction) -> int | None:
+    """e where x = 10^e exactly, else None."""
+    if x <= 0 or 1 not in (x.numerator, x.denominator):
+        return None
+    power = x.denominator if x.numerator == 1 else x.numerator
+    e = len(str(power)) - 1
+    if 10**e != power:
+        return None
+    return -e if x.numerator == 1 else e
 
 
 def mpf_fraction(x) -> Fraction:

@@ -131,3 +131,12 @@ def test_a_kernel_matrix_of_floats_reads_them_as_their_decimals():
 def test_a_problem_that_is_neither_a_name_nor_a_hamiltonian_is_an_rkcheck_error(call):
     with pytest.raises(rkcheck.RkcheckError, match="^problem: expected a problem's name"):
         call()
+
+
+@pytest.mark.parametrize("steps", [[10**12], "20,99999999999999999999"])
+def test_workprec_step_counts_are_bounded_as_simulates(steps):
+    # each count is a run of that many steps: simulate's bound (10^12 ran until killed)
+    from rkcheck.options import STEPS_RANGE
+
+    with pytest.raises(rkcheck.RkcheckError, match=f"from 1 to {STEPS_RANGE[1]:,}"):
+        rkcheck.work_precision(["@rk4"], "harmonic", T="1", steps=steps)

@@ -11,6 +11,7 @@ from support.clirun import run_cli
 from support.paths import TABLEAUX  # noqa: E402
 
 from rkcheck.energy.double_bush import kernel_of, rule_values
+from rkcheck.errors import UserError
 from rkcheck.io.loader import load
 from rkcheck.studies.accuracy import (
     bench_backends,
@@ -284,3 +285,16 @@ def test_perturb_command_reports_the_base_failure_in_text_and_json(capsys):
     r = run_cli(capsys, "perturb", path, "--direction", "random", "--degree", "3", "--order", "6",
                 "--eps", "1e-2,1e-4", "--dps", "15", "--format", "json")
     assert json.loads(r.out)["warnings"] == []  # Simpson: AVF for degree 3, nothing fails at ε = 0
+
+
+def test_eps_values_are_exact_and_their_exponents_bounded():
+    # a range far past float64 (1e-330 underflows to 0 as a float) is every decade exactly;
+    # an exponent past an entry's bound is refused at once (1e-100000000 ran until killed)
+    values = parse_eps("1e-1..1e-330")
+    assert values == [Fraction(1, 10**k) for k in range(1, 331)]
+    assert parse_eps("1e-3, 1/1000, 10^-3") == [Fraction(1, 1000)] * 3
+    for text, message in (("1e-100000000", "out of range"), ("2e-3..1e-5", "cannot read"),
+                          ("x", "cannot read"), ("1e-1..1e-5:0", "cannot read")):
+        with pytest.raises(UserError, match=message) as err:
+            parse_eps(text)
+        assert str(err.value).startswith("--eps: ")
