@@ -28,7 +28,7 @@ WRITE_FORMATS = ("toml", "json", "latex", "julia", "python")
 
 
 def tableau_document(tab: Tableau) -> dict[str, Any]:
-    """The tableau as a tableau-file document (method, constants, tableau, expect)."""
+    """The tableau as a tableau-file document (method, constants, tableau, check, expect)."""
     doc: dict[str, Any] = {"method": {"name": tab.name}}
     if tab.info.description:
         doc["method"]["description"] = tab.info.description
@@ -39,6 +39,8 @@ def tableau_document(tab: Tableau) -> dict[str, Any]:
     doc["tableau"] = {"A": [[e.text for e in row] for row in tab.A], "b": [e.text for e in tab.b]}
     if tab.c is not None:
         doc["tableau"]["c"] = [e.text for e in tab.c]
+    if tab.info.check:  # the options the file asks for: the written file checks the same
+        doc["check"] = dict(tab.info.check)
     if tab.info.expect:
         doc["expect"] = dict(tab.info.expect)
     return doc
@@ -395,10 +397,21 @@ def _julia_cell(text: str) -> str:
 def to_julia(tab: Tableau) -> str:
     """Julia code defining ``A``, ``b``, ``c`` exactly (``Rational{BigInt}``; square roots
     as ``BigFloat``)."""
-    lines = [f"# {tab.name} (written by rkcheck; exact rationals, sqrt in BigFloat)"]
+    lines = [f"# {tab.name} (written by rkcheck; exact rationals, sqrt in BigFloat{_face_value_note(tab)})"]
     lines += _code_lines(tab, _Julia(), " = ", lambda v: "[" + ", ".join(v) + "]",
                          lambda m: "[" + ";\n     ".join(" ".join(_julia_cell(x) for x in r) for r in m) + "]")
     return "\n".join(lines) + "\n"
+
+
+def _face_value_note(tab: Tableau) -> str:
+    """What the code's header says of decimals: written as the rationals they write, so
+    the rounding the decimals rule reads in them (definitions §5) is not carried."""
+    consts = tab.info.constants
+    nodes = [e.node for e in [*(x for row in tab.A for x in row), *tab.b] if isinstance(e, Entry)]
+    if any(lit.is_decimal for node in nodes for lit in xp.literals(node)) or any(
+            consts.has_decimal(u.name) for node in nodes for u in xp.names(node) if u.name in consts.definitions):
+        return "; decimals at face value"
+    return ""
 
 
 def to_python(tab: Tableau) -> str:
@@ -406,7 +419,7 @@ def to_python(tab: Tableau) -> str:
     the tableau has square roots)."""
     body = _code_lines(tab, _Python(), " = ", lambda v: "[" + ", ".join(v) + "]",
                        lambda m: "[\n    " + ",\n    ".join("[" + ", ".join(r) + "]" for r in m) + ",\n]")
-    lines = [f"# {tab.name} (written by rkcheck; exact entries)", "from fractions import Fraction"]
+    lines = [f"# {tab.name} (written by rkcheck; exact entries{_face_value_note(tab)})", "from fractions import Fraction"]
     if any("sympy." in line for line in body):
         lines.append("import sympy")
     return "\n".join(lines + [""] + body) + "\n"

@@ -25,7 +25,8 @@ FILES = sorted(Path(f) for f in tableau_files() if f.endswith(".toml") and "[fam
 def texts(tab):
     return ([[e.text for e in row] for row in tab.A], [e.text for e in tab.b],
             None if tab.c is None else [e.text for e in tab.c],
-            {k: to_text(v) for k, v in tab.info.constants.definitions.items()}, tab.info.expect, tab.name)
+            {k: to_text(v) for k, v in tab.info.constants.definitions.items()}, tab.info.expect, tab.info.check,
+            tab.name)
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
@@ -35,6 +36,18 @@ def test_toml_and_json_round_trips_are_exact(path):
         back = loads(text, name)
         assert texts(back) == texts(tab)
         assert [[e.exact for e in r] for r in back.A] == [[e.exact for e in r] for r in tab.A]
+
+
+def test_a_written_file_checks_what_the_original_does():
+    # [check] degree = 4 kept: without it the written file was checked for every degree
+    # (three degree-5 conditions fail) while the original holds to digits
+    import rkcheck
+
+    path = TABLEAUX / "avf" / "avf-gauss-2-decimal16.toml"
+    original = rkcheck.verify(path, order=6)
+    written = rkcheck.verify(loads(to_toml(load(str(path))), "x.toml"), order=6)
+    assert written.to_dict()["summary"] == original.to_dict()["summary"]
+    assert original.options.degree == 4
 
 
 def sympy_value(text, constants):
@@ -177,3 +190,10 @@ def test_cli_new_classic_round_trip(capsys):
     assert [[e.exact for e in r] for r in tab.A] == [[0, 0, 0, 0], [Fraction(1, 2), 0, 0, 0],
                                                       [0, Fraction(1, 2), 0, 0], [0, 0, 1, 0]]
     assert tab.info.expect["classical_order"] == 4
+
+
+@pytest.mark.parametrize("fmt, decimals", [("python", True), ("julia", True), ("python", False)])
+def test_code_of_decimals_says_they_are_at_face_value(fmt, decimals):
+    name = "avf-gauss-2-decimal16.toml" if decimals else "avf-gauss-2.toml"
+    first = write(load(str(TABLEAUX / "avf" / name)), fmt).splitlines()[0]
+    assert ("decimals at face value" in first) == decimals, first
