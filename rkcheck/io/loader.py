@@ -102,20 +102,29 @@ def _entry_text(value: Any, place: str) -> tuple[str, bool]:
     return value, False
 
 
-def _parse_entry(value: Any, place: str, constants: Constants) -> Entry:
+def _parse_entry(value: Any, place: str, constants: Constants,
+                 memo: dict[tuple[str, bool], Entry] | None = None) -> Entry:
+    """The entry at ``place``; ``memo``: entries already parsed in this file by their text
+    (a large sparse tableau repeats "0" a million times; an Entry is immutable)."""
     text, bare = _entry_text(value, place)
+    if memo is not None and (text, bare) in memo:
+        return memo[text, bare]
     try:
-        return Entry.parse(text, constants, bare_number=bare)
+        entry = Entry.parse(text, constants, bare_number=bare)
     except UserError as err:
         raise err.located(place) from None
+    if memo is not None:
+        memo[text, bare] = entry
+    return entry
 
 
-def _vector(value: Any, name: str, s: int, constants: Constants) -> tuple[Entry, ...]:
+def _vector(value: Any, name: str, s: int, constants: Constants,
+            memo: dict[tuple[str, bool], Entry] | None = None) -> tuple[Entry, ...]:
     if not isinstance(value, list):
         raise UserError(f"expected a list of {s} entries, got {_kind(value)}", name)
     if len(value) != s:
         raise UserError(f"has {len(value)} entries, expected {s} (one per stage)", name)
-    return tuple(_parse_entry(x, f"{name}[{i}]", constants) for i, x in enumerate(value, start=1))
+    return tuple(_parse_entry(x, f"{name}[{i}]", constants, memo) for i, x in enumerate(value, start=1))
 
 
 def _constant_definitions(table: dict[str, Any]) -> dict[str, ex.Expr]:
@@ -301,12 +310,13 @@ def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
             raise UserError(f"expected a row (a list), got {_kind(row)}", f"A[{i}]")
         if len(row) != s:
             raise UserError(f"row has {len(row)} entries, expected {s} (A must be square)", f"A[{i}]")
+    memo: dict[tuple[str, bool], Entry] = {}
     A = tuple(
-        tuple(_parse_entry(x, f"A[{i}][{j}]", constants) for j, x in enumerate(row, start=1))
+        tuple(_parse_entry(x, f"A[{i}][{j}]", constants, memo) for j, x in enumerate(row, start=1))
         for i, row in enumerate(rows, start=1)
     )
-    b = _vector(tab["b"], "b", s, constants)
-    c = _vector(tab["c"], "c", s, constants) if "c" in tab else None
+    b = _vector(tab["b"], "b", s, constants, memo)
+    c = _vector(tab["c"], "c", s, constants, memo) if "c" in tab else None
     return A, b, c
 
 
