@@ -25,7 +25,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
-from rkcheck.energy.budget import Budget
+from rkcheck.energy.budget import Budget, ResourceError
 from rkcheck.energy.check import CheckResult, CheckRunner
 from rkcheck.energy.gate import conditions_ok
 from rkcheck.methods.claims import Claim
@@ -166,8 +166,22 @@ def check_claims(tableau: Tableau, claims: list[Claim], base: CheckOptions,
     """Judge every claim; ``run_check(tableau, options)`` is the check function (injected
     so that callers can share runs; normally :func:`rkcheck.energy.check.check`)."""
     runs = needed_options(claims, base)
-    results = {deg: run_check(tableau, opts) for deg, opts in runs.items()}
+    results = {deg: _claim_run(run_check, tableau, opts, base) for deg, opts in runs.items()}
     return [judge(c, results[c.degree if c.kind in ("energy_order", "avf") else base.degree]) for c in claims]
+
+
+def _claim_run(run_check: Callable[[Tableau, CheckOptions], CheckResult], tableau: Tableau, opts: CheckOptions,
+               base: CheckOptions) -> CheckResult:
+    """A run the claims need; one too large for the machine says it is the claims' (the
+    degree in the file's [expect]), not the options' the command line gave."""
+    try:
+        return run_check(tableau, opts)
+    except ResourceError as err:
+        if opts.degree == base.degree:
+            raise
+        bound = "every degree" if opts.degree is None else f"degree {opts.degree}"
+        raise ResourceError(f"the file's [expect] claims for {bound} are checked to order {opts.order} too: "
+                            f"{err.message}", err.place, err.source) from None
 
 
 # ------------------------------------------------------------------ one file

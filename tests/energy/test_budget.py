@@ -95,3 +95,16 @@ def test_a_decimal_box_counts_its_directions():
 
     huge = estimate(20, None, "ball", stages=6, dps=70, directions=10**6)
     assert abs(huge.bytes - estimate(20, None, "ball", stages=6, dps=70).bytes - MAX_GRADIENT_BYTES) <= 1
+
+
+def test_a_refusal_the_claims_cause_names_them(capsys):
+    # at degree 2, order 30 has 15 conditions; the file's claims at degree 4 are what
+    # does not fit, and the message says so instead of blaming --degree
+    import rkcheck
+
+    degrees = {c.degree for c in rkcheck.load("@gauss-2").info.claims if c.kind == "energy_order"}
+    assert 4 in degrees
+    r = run_cli(capsys, "verify", "@gauss-2", "--order", "30", "--degree", "2", "-q", "--fail-on", "conditions")
+    assert r.code == 2 and r.err.count("\n") == 1, r.err
+    assert "[expect] claims for degree 4 are checked to order 30" in r.err
+    assert run_cli(capsys, "verify", "@gauss-2", "--order", "30", "--degree", "2", "-q").code == 2
