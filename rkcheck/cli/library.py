@@ -11,11 +11,13 @@ from rkcheck.cli.common import (
     DEGREE,
     busy,
     exit_codes,
+    flag_values,
     order_option,
     output_options,
     progress_steps,
     write_text,
 )
+from rkcheck.errors import UserError
 from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES
 
 
@@ -56,9 +58,25 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
 
     # a family's coefficients can take a while (Gauss s = 20: about 50 s); a classical
     # method is written at once
+    given = flag_values("s", "k", "rule", "zeta", "beta", "digits", "exact")
+    if family not in FAMILIES and given:  # a classical method is one tableau: nothing to choose
+        flags = [_FLAGS[name] for name in given]
+        raise UserError(f"{family} is a classical method (written exactly as published): {', '.join(flags)} "
+                        f"{'does' if len(flags) == 1 else 'do'} not apply")
     with busy(f"computing the {family} coefficients") if family in FAMILIES else nullcontext():
-        text = new_toml(family, stages=s, k=k, rule=rule, zeta=zeta, beta=beta, digits=digits, exact=exact, name=name)
+        try:
+            text = new_toml(family, stages=s, k=k, rule=rule, zeta=zeta, beta=beta, digits=digits, exact=exact,
+                            name=name)
+        except UserError as err:  # the family table's keys are these options here
+            if err.place and err.place.startswith("family."):
+                raise type(err)(err.message, _FLAGS.get(err.place[len("family."):], err.place), err.source) from None
+            raise
     write_text(text, output)
+
+
+#: each of new's family options by the name its [family] table and parameters use
+_FLAGS = {"s": "-s", "k": "-k", "rule": "--rule", "zeta": "--zeta", "beta": "--beta", "digits": "--digits",
+          "exact": "--exact"}
 
 
 @click.command(epilog=exit_codes())
@@ -81,7 +99,12 @@ def catalog(paths, degrees, order, output) -> None:
     from rkcheck.api.batch import catalog as make_catalog
     from rkcheck.reports.markdown import catalog_markdown
 
-    degs = [DEGREE.convert(part, None, None) for part in degrees.split(",")]
+    try:
+        degs = [DEGREE.convert(part.strip(), None, None) for part in degrees.split(",")]
+    except click.BadParameter as err:
+        raise UserError(err.message, "--degrees") from None
+    if len(set(degs)) != len(degs):
+        raise UserError(f"a degree is given twice in {degrees!r}", "--degrees")
     with progress_steps("catalog", "files") as update:
         result = make_catalog(paths, degrees=degs, order=order, progress=update)
     # the command line the header records: no path stays no path

@@ -197,3 +197,18 @@ def test_a_required_order_left_out_is_clicks_usage_error(capsys):
     # is given as None: the command then ran and failed on "got None")
     r = run_cli(capsys, "conditions", "--degree", "3")
     assert r.code == 2 and "Missing option '--order'" in r.err and r.err.count("\n") == 1, r.err
+
+
+@pytest.mark.parametrize("args, message", [
+    (["new", "rk4", "-s", "3"], "rk4 is a classical method (written exactly as published): -s does not apply"),
+    (["new", "euler", "--zeta", "1", "--beta", "2"], "--zeta, --beta do not apply"),
+    (["new", "kernel", "--beta", "x"], "--beta: unknown constant 'x'"),
+    (["new", "hbvm", "-k", "2", "-s", "3"], "-k: expected an integer >= 3, got 2"),
+    (["catalog", "tableaux/avf", "--degrees", "0"], "--degrees: '0' is not a degree"),
+    (["catalog", "tableaux/avf", "--degrees", "2,2"], "--degrees: a degree is given twice"),
+])
+def test_new_and_catalog_options_are_refused_by_their_own_names(capsys, args, message):
+    # an option that does not apply is refused, not ignored; an error names the option
+    # the user typed, not the [family] key behind it
+    r = run_cli(capsys, *args)
+    assert r.code == 2 and r.err.count("\n") == 1 and message in r.err and "family." not in r.err, r.err
