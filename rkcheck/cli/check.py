@@ -80,6 +80,8 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         unused = [f"--{name.replace('_', '-')}" for name in flag_values() if name not in ("degree", "order")]
         family_report(file, flag_values("degree", "order"), "order", fmt, show_all, ignored=unused)
         sys.exit(EXIT_OK)
+    if draw and fmt != "text":
+        raise UserError(f"--draw draws in the text report, not in --format {fmt}")
     tab = load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
@@ -207,6 +209,8 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         raise UserError("--explicit needs --stages")
     if emit is not None and count:
         raise UserError("--count and --emit do not go together")
+    if emit is not None and fmt != "text":
+        raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
     listing = list_conditions(order, degree, count=count, max_conditions=max_conditions,
                               announce=announce_estimate()).listing
     if emit is not None:  # conditions as code (rkcheck.reports.code)

@@ -355,6 +355,14 @@ def project_config():
     return load_project_config()
 
 
+def chart_file(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """A ``--chart`` option's file: a name, not an empty text (which would draw nothing
+    and say nothing)."""
+    if value is not None and not value.strip():
+        raise click.BadParameter("expected a file name (OUT.png, OUT.svg or OUT.pdf)")
+    return value
+
+
 def check_output_target(output: str | None) -> None:
     """Refuse, before any work, an output file whose folder does not exist or is a file
     (rather than after a whole scan)."""

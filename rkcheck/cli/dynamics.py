@@ -10,6 +10,7 @@ from rkcheck.cli.common import (
     EXIT_FAIL,
     EXIT_OK,
     busy,
+    chart_file,
     exit_codes,
     load_tableau,
     max_stages_option,
@@ -33,7 +34,7 @@ from rkcheck.options import POINTS_RANGE, STEPS_RANGE, STUDY_DPS_RANGE
               "compare it with verify's algebraic one (exit 1 when they disagree).")
 @click.option("--points", type=click.IntRange(*POINTS_RANGE), default=4, show_default=True, help="--energy-order: starting points.")
 @click.option("--seed", type=int, default=7, show_default=True, help="--energy-order: seed of the starting points.")
-@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw |ΔH| over time (or against h).")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, callback=chart_file, help="Draw |ΔH| over time (or against h).")
 @max_stages_option
 @output_options
 def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed, chart, max_stages) -> None:
@@ -95,7 +96,7 @@ def simulate(files, problem_spec, h_text, steps, dps, energy_order, points, seed
 @click.option("--T", "T_text", default="10", show_default=True, help="Final time.")
 @click.option("--steps", "steps_text", default="20,40,80,160,320,640", show_default=True,
               help="Comma-separated numbers of steps (step sizes T/N).")
-@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw error and energy error against time.")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, callback=chart_file, help="Draw error and energy error against time.")
 @max_stages_option
 @output_options
 def workprec(files, problem_spec, T_text, steps_text, chart, max_stages) -> None:

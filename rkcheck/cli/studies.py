@@ -6,6 +6,7 @@ import click
 
 from rkcheck.cli.common import (
     busy,
+    chart_file,
     degree_option,
     exit_codes,
     flag_values,
@@ -29,7 +30,7 @@ from rkcheck.options import (
 @order_option(help="Order N [default: file's [check], else 8].")
 @click.option("--dps", "dps_text", default="15,30,50,100,200,400", show_default=True, help="Ball precisions to run.")
 @click.option("--repeat", type=click.IntRange(*REPEAT_RANGE), default=3, show_default=True, help="Best of this many runs.")
-@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw time against certified digits (needs matplotlib).")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, callback=chart_file, help="Draw time against certified digits (needs matplotlib).")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @output_options
 def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
@@ -74,7 +75,7 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
               help="ε values: 1e-1..1e-40 (every decade), 1e-2..1e-30:2 (every 2nd), or a list 1e-3,1e-6.")
 @click.option("--dps", "dps_text", default="15,50", show_default=True, help="Ball precisions whose detection is reported.")
 @click.option("--seed", type=int, default=2024, show_default=True, help="Seed of the random direction.")
-@click.option("--chart", metavar="OUT.png|.svg", default=None, help="Draw max|R| against ε with each backend's floor.")
+@click.option("--chart", metavar="OUT.png|.svg", default=None, callback=chart_file, help="Draw max|R| against ε with each backend's floor.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @output_options
 def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt) -> None:
@@ -134,6 +135,13 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
     from rkcheck.api.studies import kernel as double_bush_kernel
     from rkcheck.reports.studies import render_kernel
 
+    given = flag_values("stages", "rule")
+    if tableau_file and given:  # the tableau's own b and c are the rule
+        from rkcheck.errors import UserError
+
+        flags = [{"stages": "-s", "rule": "--rule"}[name] for name in given]
+        raise UserError(f"--tableau takes the tableau's own b and c = A·1: {', '.join(flags)} "
+                        f"{'does' if len(flags) == 1 else 'do'} not apply")
     tab = load_tableau(tableau_file) if tableau_file else None
     with busy("ranks of the double-bush map"):
         result = double_bush_kernel(degree, stages, rule=rule, tableau=tab, dps=dps)

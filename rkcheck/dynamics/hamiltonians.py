@@ -229,10 +229,14 @@ def problem(spec: str) -> Hamiltonian:
     if spec.startswith("random"):
         params = {"dim": "2", "seed": "1"}  # degree: required
         rest = spec[len("random"):].lstrip(":")
+        seen: set[str] = set()
         for part in filter(None, rest.split(",")):
             m = re.fullmatch(r"\s*(degree|dim|seed)\s*=\s*(-?\d+)\s*", part)
             if not m:
                 raise UserError(f"cannot read {part!r} (expected degree=m, dim=d, seed=S)", "--problem")
+            if m.group(1) in seen:
+                raise UserError(f"{m.group(1)} is given twice in {spec!r}", "--problem")
+            seen.add(m.group(1))
             params[m.group(1)] = m.group(2)
         if "degree" not in params:
             raise UserError("random needs degree=m, e.g. random:degree=4", "--problem")

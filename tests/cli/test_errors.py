@@ -212,3 +212,17 @@ def test_new_and_catalog_options_are_refused_by_their_own_names(capsys, args, me
     # the user typed, not the [family] key behind it
     r = run_cli(capsys, *args)
     assert r.code == 2 and r.err.count("\n") == 1 and message in r.err and "family." not in r.err, r.err
+
+
+@pytest.mark.parametrize("args, message", [
+    (["kernel", "-m", "3", "--tableau", "tableaux/avf/avf-radau-ii-2.toml", "--rule", "lobatto"],
+     "--rule does not apply"),
+    (["kernel", "-m", "3", "-s", "5", "--tableau", "tableaux/avf/avf-radau-ii-2.toml"], "-s does not apply"),
+    (["conditions", "-N", "3", "--emit", "python", "--format", "json"], "--format json and --emit"),
+    (["verify", "@rk4", "-N", "3", "--draw", "--format", "json"], "--draw draws in the text report"),
+    (["simulate", "@rk4", "--problem", "random:degree=3,degree=4", "--steps", "3"], "degree is given twice"),
+    (["simulate", "@rk4", "--problem", "harmonic", "--steps", "3", "--chart", ""], "expected a file name"),
+])
+def test_option_combinations_that_would_be_ignored_are_refused(capsys, args, message):
+    r = run_cli(capsys, *args)
+    assert r.code == 2 and r.err.count("\n") == 1 and message in r.err, r.err
