@@ -348,6 +348,8 @@ def catalog(
 
     # families (free [parameters]) are not one tableau: `rkcheck solve` is their catalogue
     files = [f for f in find_tableau_files(roots, exclude=["README*", "*/README*"]) if not is_family_file(f)]
+    if not files:
+        raise UserError(f"no tableau file (*.toml, *.json) under {', '.join(roots)}: nothing to catalogue", "catalog")
     root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
     rows = []
     if progress is not None:

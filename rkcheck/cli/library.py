@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from contextlib import nullcontext
 
 import click
@@ -9,6 +10,7 @@ import click
 from rkcheck.api.methods import CLASSICAL_METHODS, FAMILIES
 from rkcheck.cli.common import (
     DEGREE,
+    EXIT_FAIL,
     busy,
     exit_codes,
     flag_values,
@@ -79,7 +81,8 @@ _FLAGS = {"s": "-s", "k": "-k", "rule": "--rule", "zeta": "--zeta", "beta": "--b
           "exact": "--exact"}
 
 
-@click.command(epilog=exit_codes())
+@click.command(epilog=exit_codes(fail="a file could not be read (its row says why); the catalogue is still written",
+                                   usage="a bad option, a PATH with no tableau file, or a limit (one line on stderr)"))
 @click.argument("paths", nargs=-1, required=False, metavar="[PATH...]")
 @click.option("--degrees", default="2,3,4,6,none", show_default=True,
               help="Comma-separated degrees m for the energy-order columns ('none' = all Hamiltonians).")
@@ -111,3 +114,5 @@ def catalog(paths, degrees, order, output) -> None:
     command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
                        + ([f"--order {order}"] if order != 8 else []) + ([f"-o {output}"] if output else []))
     write_text(catalog_markdown(result.rows, result.labels, result.order, command), output)
+    if any(r.error for r in result.rows):  # as a scan: a file that cannot be read fails the run
+        sys.exit(EXIT_FAIL)

@@ -226,3 +226,15 @@ def test_new_and_catalog_options_are_refused_by_their_own_names(capsys, args, me
 def test_option_combinations_that_would_be_ignored_are_refused(capsys, args, message):
     r = run_cli(capsys, *args)
     assert r.code == 2 and r.err.count("\n") == 1 and message in r.err, r.err
+
+
+def test_catalog_exits_as_a_scan_on_unreadable_and_missing_files(capsys, tmp_path):
+    # an unreadable file is a row saying why and exit 1; no tableau at all: exit 2
+    (tmp_path / "one").mkdir()
+    (tmp_path / "one" / "bad.toml").write_text("garbage[", encoding="utf-8")
+    (tmp_path / "one" / "euler.toml").write_text('[tableau]\nA = [["0"]]\nb = ["1"]\n', encoding="utf-8")
+    r = run_cli(capsys, "catalog", str(tmp_path / "one"), "-N", "3")
+    assert r.code == 1 and "| `bad.toml` | error:" in r.out and "euler" in r.out, (r.code, r.out)
+    (tmp_path / "none").mkdir()
+    r = run_cli(capsys, "catalog", str(tmp_path / "none"))
+    assert r.code == 2 and "no tableau file" in r.err and r.err.count("\n") == 1

@@ -382,7 +382,7 @@ def test_one_files_check_error_is_its_catalogue_row(tmp_path, capsys):
     (folder / "good.toml").write_text(one_stage("1/2"), encoding="utf-8")
     (folder / "neg.toml").write_text(one_stage("sqrt(1 - sqrt(3))"), encoding="utf-8")
     r = run_cli(capsys, "catalog", str(folder))
-    assert r.code == 0, r.err
+    assert r.code == 1, r.err  # the catalogue written, the run failed (as a scan)
     rows = [line for line in r.out.splitlines() if line.startswith("| `")]
     assert any(line.startswith("| `good.toml` | good |") for line in rows), rows
     assert any("neg.toml` | error: " in line and "A\\[1\\]\\[1\\]: square root of a negative number" in line
