@@ -41,7 +41,14 @@ def info() -> None:
     click.echo(f"path   {state.path}")
     click.echo(f"files  {state.files}")
     click.echo(f"size   {_size(state.bytes)}")
-    click.echo(f"limit  {_size(state.limit)}, set by RKCHECK_MAX_CACHE_BYTES")
+    import os
+
+    source = ("set by RKCHECK_MAX_CACHE_BYTES" if os.environ.get("RKCHECK_MAX_CACHE_BYTES")
+              else "the default; RKCHECK_MAX_CACHE_BYTES changes it")
+    click.echo(f"limit  {_size(state.limit)}, {source}")
+    if os.path.exists(state.path) and not os.path.isdir(state.path):
+        click.echo(f"{state.path} is not a directory: no listing can be saved or read there "
+                   "(RKCHECK_CACHE_DIR names the cache's directory)")
     if state.disabled:
         click.echo("RKCHECK_NO_CACHE is set: the checking commands neither read nor save listings")
 

@@ -413,3 +413,16 @@ def test_scan_saves_the_listing_and_no_cache_does_not(capsys, cli_cache, tmp_pat
     forget_listings()
     assert run_cli(capsys, "scan", str(folder), "-N", "13", "--jobs", "1").code == 0
     assert _listing_files(cli_cache) == ["condition-listing-f1-n14-mnone.rkl"]
+
+
+def test_cache_info_says_where_its_limit_comes_from_and_a_directory_that_is_not_one(capsys, tmp_path, monkeypatch):
+    monkeypatch.setenv("RKCHECK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.delenv("RKCHECK_MAX_CACHE_BYTES", raising=False)
+    assert "the default; RKCHECK_MAX_CACHE_BYTES changes it" in run_cli(capsys, "cache", "info").out
+    monkeypatch.setenv("RKCHECK_MAX_CACHE_BYTES", "1000000")
+    assert "(1,000,000 bytes), set by RKCHECK_MAX_CACHE_BYTES" in run_cli(capsys, "cache", "info").out
+    plain = tmp_path / "plain"
+    plain.write_text("not a directory", encoding="utf-8")
+    monkeypatch.setenv("RKCHECK_CACHE_DIR", str(plain))
+    info = run_cli(capsys, "cache", "info")
+    assert info.code == 0 and f"{plain} is not a directory" in info.out, info.out
