@@ -67,6 +67,7 @@ def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]
     condition trees, by vertices and then canonical id."""
     doc: dict[str, Any] = {
         "schema": SCHEMA,
+        "rkcheck": __version__,
         "order": listing.order,
         "degree": listing.degree,
         "total": len(listing),

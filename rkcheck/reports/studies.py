@@ -66,9 +66,11 @@ def render_perturb(res, console: Console, title: str) -> None:
 def bench_doc(file: str, degree, order: int, rows, t_tables: float) -> dict:
     """``rkcheck bench --format json``."""
     from rkcheck.reports.jsondoc import SCHEMA
+    from rkcheck.version import __version__
 
     return {
-        "schema": SCHEMA, "file": printable(file), "degree": degree, "order": order, "tables_seconds": t_tables,
+        "schema": SCHEMA, "rkcheck": __version__, "file": printable(file), "degree": degree, "order": order,
+        "tables_seconds": t_tables,
         "backends": [
             {"backend": r.backend, "seconds": r.seconds, "conditions": r.conditions,
              "conditions_per_second": r.per_second, "min_digits": r.min_digits, "failures": r.failures,
@@ -81,9 +83,10 @@ def bench_doc(file: str, degree, order: int, rows, t_tables: float) -> dict:
 def perturb_doc(file: str, degree, order: int, res) -> dict:
     """``rkcheck perturb --format json``."""
     from rkcheck.reports.jsondoc import SCHEMA
+    from rkcheck.version import __version__
 
     return {
-        "schema": SCHEMA, "file": printable(file), "direction": res.direction, "degree": degree, "order": order,
+        "schema": SCHEMA, "rkcheck": __version__, "file": printable(file), "direction": res.direction, "degree": degree, "order": order,
         "slope": res.slope,
         "thresholds": {k: None if v is None else str(v) for k, v in res.thresholds.items()},
         "floors": res.floors,

@@ -64,3 +64,14 @@ def test_the_family_keys_are_in_the_family_documents(capsys, which):
             ["sweep", str(families / "seed-kernel-zeta-0.toml"), "--grid", "beta=-1:1:3"]][which]
     doc = _json(capsys, *args)
     assert tables[which] and not [k for k in tables[which] if not _has(doc, k)]
+
+
+@pytest.mark.parametrize("which", [0, 1, 2])
+def test_the_other_commands_keys_are_in_their_documents(capsys, which):
+    tables = _tables(PAGE.split("## Other commands")[1].split("## A complete document")[0])
+    args = [["conditions", "-N", "4"], ["bench", "@rk4", "-N", "4", "--dps", "15", "--repeat", "1"],
+            ["perturb", "@avf-gauss-2", "--direction", "random", "-m", "3", "-N", "4", "--eps", "1e-2,1e-4",
+             "--dps", "15"]][which]
+    doc = _json(capsys, *args)
+    assert list(doc)[:2] == ["schema", "rkcheck"]
+    assert tables[which] and not [k for k in tables[which] if not _has(doc, k)]
