@@ -195,8 +195,8 @@ def order_option(default: int | None = None, required: bool = False, help: str |
     given: dict[str, Any] = {} if default is None else {"default": default}
     return click.option(
         "--order", "-N", type=click.IntRange(1, MAX_ORDER), required=required, show_default=default is not None,
-        help=help or "Check conditions up to this energy order, i.e. free trees with <= N+1 vertices "
-        "[default: file's [check], else 8].", **given,
+        help=help or "Check conditions up to this energy order, i.e. free trees with <= N+1 vertices"
+        + (" [default: file's [check], else 8]." if default is None else "."), **given,
     )
 
 
