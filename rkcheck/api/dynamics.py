@@ -202,8 +202,27 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
     if isinstance(tableaux, (str, os.PathLike, Tableau)):
         raise OptionError("expected a list of tableaux", "tableaux")
+    if not T_value <= MAX_TIME:
+        raise OptionError(f"expected a final time up to {MAX_TIME:,}, got {_short(T_value)}", "--T")
     tabs = [as_tableau(t, max_stages) for t in tableaux]
-    return run(tabs, ham, T_value, counts)
+    try:
+        return run(tabs, ham, T_value, counts)
+    except UserError as err:  # the steps are T/N here: there is no --h to change
+        if err.place == "--h":
+            raise UserError(err.message.replace("a smaller --h", "a smaller --T or more --steps")
+                            .replace("a larger --h", "a larger --T or fewer --steps").replace(", or --dps", ""),
+                            "--T/--steps",
+                            err.source) from None
+        raise
+
+
+#: ``workprec --T``: the longest final time (its steps, T/N, must stay floats)
+MAX_TIME = 10**6
+
+
+def _short(q: Fraction) -> str:
+    text = str(q)
+    return text if len(text) <= 40 else f"{float(q):.3g}" if q < 10**300 else "a number past 10^300"
 
 
 __all__ = ["EnergyOrderFit", "Simulation", "WorkPrecision", "empirical_energy_order", "hamiltonian", "simulate", "work_precision"]

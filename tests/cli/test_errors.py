@@ -238,3 +238,10 @@ def test_catalog_exits_as_a_scan_on_unreadable_and_missing_files(capsys, tmp_pat
     (tmp_path / "none").mkdir()
     r = run_cli(capsys, "catalog", str(tmp_path / "none"))
     assert r.code == 2 and "no tableau file" in r.err and r.err.count("\n") == 1
+
+
+@pytest.mark.parametrize("T, message", [("1e400", "--T: expected a final time up to 1,000,000"),
+                                        ("1e-1000", "--T/--steps: the step size is 0")])
+def test_workprec_names_its_own_options_never_an_h_it_does_not_have(capsys, T, message):
+    r = run_cli(capsys, "workprec", "@rk4", "-p", "harmonic", "--T", T, "--steps", "10")
+    assert r.code == 2 and r.err.count("\n") == 1 and message in r.err and "--h" not in r.err, r.err
