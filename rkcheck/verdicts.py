@@ -139,19 +139,20 @@ def classify_many(encs: list[Enclosure]) -> list[Verdict]:
     return verdicts
 
 
-def classify_bounds(excludes_zero: Any, bound: Any) -> tuple[Any, Any]:
+def classify_bounds(excludes_zero: Any, bound: Any, exponent: int = 0) -> tuple[Any, Any]:
     """The states of many certified values at once, given for each whether its
-    enclosure excludes 0 (exactly) and a float upper bound of its magnitude (|mid| + rad):
-    ``fails`` where 0 is excluded, else ``holds to D digits`` with
-    D = ⌊−log10(bound)⌋, lowered by one when log10's own rounding could make it overstate
-    (a margin of 1e-9 in the exponent: conservative, never optimistic).  Returns
-    (state codes 0/1/2, digits) as numpy arrays."""
+    enclosure excludes 0 (exactly) and a float upper bound of its magnitude (|mid| + rad)
+    in units of ``2^−exponent``: ``fails`` where 0 is excluded, else ``holds to D
+    digits`` with D = ⌊−log10(bound) + exponent·log10(2)⌋, lowered by one when log10's own
+    rounding could make it overstate (a margin of 1e-9 in the exponent, far above the
+    rounding of both terms: conservative, never optimistic).  Returns (state codes
+    0/1/2, digits) as numpy arrays."""
     import numpy as np
 
     fails = np.asarray(excludes_zero, dtype=bool)
     bound = np.asarray(bound, dtype=float)
     with np.errstate(divide="ignore"):
-        digits = np.floor(-np.log10(bound) - 1e-9)
+        digits = np.floor(-np.log10(bound) + exponent * math.log10(2) - 1e-9)
     # never negative: a bound above 1 says nothing about the size (definitions §5); on
     # point data the check raises the precision instead (energy.check.sharpen_weak_holds)
     digits = np.maximum(np.where(np.isfinite(digits), digits, 0), 0).astype(np.int32)

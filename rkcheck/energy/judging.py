@@ -8,6 +8,7 @@ box, point data at a higher precision.
 
 from __future__ import annotations
 
+from fractions import Fraction
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -81,7 +82,19 @@ def _judged_over_box(values: TableauValues) -> bool:
     """Decimal entries that stand for intervals, rational at face value: one box of
     inputs judged jointly.  (A rounded decimal is never promoted to a number field: a box
     with roots is judged by its balls alone.)"""
-    return values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
+    return (values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
+            and _radii_within_floats(values))
+
+
+#: the narrowest entry radius the joint box takes: its variation V is a float64 sum of
+#: derivatives times radii, so a radius near float64's smallest numbers (decimals of more
+#: than about 290 digits) would floor V at 2^−1074 and cap every verdict near 320
+#: digits; such boxes are judged by the certified balls, whose radii are scaled
+BOX_MIN_RADIUS = Fraction(1, 1 << 960)
+
+
+def _radii_within_floats(values: TableauValues) -> bool:
+    return all(x.rad == 0 or x.rad >= BOX_MIN_RADIUS for row in (*values.A, values.b) for x in row)
 
 
 def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVerdicts]:

@@ -103,11 +103,20 @@ class OrderVerdicts:
         return bool(np.any(self.state == state.code))
 
 
+def classify_sums(sums: Any) -> tuple[Any, Any]:
+    """(state codes, digits) of certified order sums: their magnitude bounds in the
+    sums' own units where they have them (balls past float64's range: digits past 320)."""
+    if hasattr(sums, "magnitude_bound_scaled"):
+        bound, z = sums.magnitude_bound_scaled()
+        return classify_bounds(sums.excludes_zero(), bound, z)
+    return classify_bounds(sums.excludes_zero(), sums.magnitude_bound())
+
+
 def order_verdicts(n: int, values: Any) -> OrderVerdicts:
     """The verdicts of one order's residuals (definitions §5): exact residues (zero or
     not), certified balls (excludes 0, magnitude bound), or a list of enclosures."""
     if hasattr(values, "excludes_zero"):
-        state, digits = classify_bounds(values.excludes_zero(), values.magnitude_bound())
+        state, digits = classify_sums(values)
         return OrderVerdicts(n, state, digits, values)
     if isinstance(values, list):
         verdicts = classify_many(values)

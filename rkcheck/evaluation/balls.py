@@ -284,14 +284,23 @@ class BallSums:
         """Floats bounding |mid| + rad from above: ``|m|·2^−P`` rounded up through its 60
         leading bits (``((|m| >> e) + 1)·2^(e−P)``), the radius added, over ``f``, the
         whole inflated by ``1 + 2^−50`` (the three roundings)."""
+        return self._magnitude_in_units(0)
+
+    def magnitude_bound_scaled(self) -> tuple[np.ndarray, int]:
+        """(b, Z): floats b with |mid| + rad ≤ b·2^−Z, in the radii's units (Z = S): below
+        float64's range an absolute bound would floor at 2^−1074 and cap the digits of
+        every verdict near 320, whatever the precision."""
+        return self._magnitude_in_units(self.shift), self.shift
+
+    def _magnitude_in_units(self, z: int) -> np.ndarray:
         m = np.abs(self._ints())
         if not len(m):
             return np.zeros(0)
         e = np.maximum(_bit_length(m).astype(np.int64) - 60, 0)
         top = ((m >> e.astype(object)) + 1).astype(float)  # below 2^61: a float within 2^−52
         with np.errstate(over="ignore"):  # past float64: an infinite bound is still a bound
-            mid_up = np.ldexp(top, e - self.bits)  # >= |m|·2^−P
-            bound: np.ndarray = (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), -self.shift)) \
+            mid_up = np.ldexp(top, e - self.bits + z)  # >= |m|·2^(z−P)
+            bound: np.ndarray = (mid_up + np.ldexp(np.asarray(self.rads, dtype=float), z - self.shift)) \
                 / float(self.factorial) * (1 + 2.0**-50) + ETA
         return bound
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+from rkcheck.energy.results import classify_sums
 from rkcheck.errors import UserError
 from rkcheck.evaluation.algorithm import condition_sums
 from rkcheck.evaluation.backends import ball_context, float_context
@@ -35,7 +36,6 @@ from rkcheck.verdicts import (
     HOLDS,
     HOLDS_TO_DIGITS,
     Verdict,
-    classify_bounds,
 )
 
 DEFAULT_DPS_LIST = (15, 30, 50, 100, 200, 400)
@@ -63,7 +63,7 @@ def evaluate_backend(listing, values: TableauValues, name: str):
     sums = condition_sums(listing, ctx, values.stages)
     out = {}
     for n, order_sums in sums.items():
-        states, digits = classify_bounds(order_sums.excludes_zero(), order_sums.magnitude_bound())
+        states, digits = classify_sums(order_sums)
         for k in range(len(order_sums)):
             v = Verdict(FAILS) if states[k] == FAILS.code else Verdict(HOLDS_TO_DIGITS, int(digits[k]))
             out[(n, k)] = (order_sums.enclosure(k), v)

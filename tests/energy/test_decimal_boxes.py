@@ -220,3 +220,63 @@ def test_box_verdicts_hold_at_every_point_of_the_box(seed, digits):
             assert all(v > 0 for v in values) or all(v < 0 for v in values), r.id
         elif r.verdict.state == HOLDS_TO_DIGITS:
             assert all(abs(v) <= Fraction(1, 10**r.verdict.digits) for v in values), r.id
+
+
+def _decimal_tableau(A, b, digits: int) -> str:
+    """A TOML tableau of exact entries written as ``digits``-digit decimals (rounded)."""
+    def text(x: Fraction) -> str:
+        if x == 0:
+            return "0"
+        e = math.floor(math.log10(abs(x)))
+        q = round(x * Fraction(10) ** (digits - 1 - e))
+        return f"{q}e{e - digits + 1}"
+    rows = ", ".join("[" + ", ".join(f'"{text(x)}"' for x in row) + "]" for row in A)
+    return f"[tableau]\nA = [{rows}]\nb = [{', '.join(chr(34) + text(x) + chr(34) for x in b)}]\n"
+
+
+def _half_unit(x: Fraction, digits: int) -> Fraction:
+    """Half a unit of the last of ``digits`` significant digits of the decimal x: the
+    radius of its box (a corner of the box, not beyond it)."""
+    if x == 0:
+        return Fraction(0)
+    e = math.floor(math.log10(abs(x)))
+    if Fraction(10) ** e > abs(x):  # log10 rounded up across a power of ten
+        e -= 1
+    return Fraction(1, 2) * Fraction(10) ** (e - digits + 1)
+
+
+@pytest.mark.parametrize("digits", [400, 600])
+def test_decimals_of_hundreds_of_digits_are_judged_to_their_own_digits(tmp_path, digits):
+    # a box whose radii lie below float64's range: its verdicts reach the input's own
+    # digits (they stopped at about 323, floored at 2^−1074), and each stays sound — every
+    # residual at the box's centre and at random corners, exactly, within 10^−D
+    # AVF over the Radau IIA rule (1/3, 1; 3/4, 1/4): its conditions hold for cubic H and
+    # some fail beyond; 1/12 has no finite decimal, so the box is not a point
+    rng = random.Random(digits)
+    A = [[Fraction(1, 4), Fraction(1, 12)], [Fraction(3, 4), Fraction(1, 4)]]
+    b = [Fraction(3, 4), Fraction(1, 4)]
+    path = tmp_path / "t.toml"
+    path.write_text(_decimal_tableau(A, b, digits), encoding="utf-8")
+    out = run_subprocess("verify", str(path), "-m", "none", "-N", "4", "--dps", str(digits + 400), "--format", "json")
+    doc = json.loads(out.out)
+    from rkcheck.io.loader import load
+
+    tab = load(str(path))
+    held = 0
+    conds = {c["id"]: c for c in doc["conditions"]}
+    for n in range(3, 6):
+        for cond in ref.energy_conditions(n):
+            key = ",".join(map(str, cond["id"]))
+            got = conds[key]
+            centre = [[e.exact for e in row] for row in tab.A], [e.exact for e in tab.b]
+            points = [centre] + [
+                ([[x + rng.choice((-1, 1)) * _half_unit(x, digits) for x in row] for row in centre[0]],
+                 [x + rng.choice((-1, 1)) * _half_unit(x, digits) for x in centre[1]]) for _ in range(3)]
+            values = [ref.energy_residual(cond, *p) for p in points]
+            if got["state"] == "fails":
+                assert all(v != 0 and (v > 0) == (values[0] > 0) for v in values)
+            else:
+                assert got["state"] == "holds_to_digits" and got["digits"] > 330, got
+                assert all(abs(v) <= Fraction(10) ** -got["digits"] for v in values)
+                held += 1
+    assert held >= 2

@@ -298,3 +298,13 @@ def test_eps_values_are_exact_and_their_exponents_bounded():
         with pytest.raises(UserError, match=message) as err:
             parse_eps(text)
         assert str(err.value).startswith("--eps: ")
+
+
+def test_balls_certify_digits_past_float64s_range():
+    # Gauss-3 is exact: the conditions that hold are 0, so any certified digits are sound;
+    # at 1000 digits the balls certify about that many, where a float bound stopped at 323
+    import rkcheck
+
+    result = rkcheck.bench("@gauss-3", degree=3, order=6, dps=[400, 1000], repeat=1)
+    digits = {row.backend: row.min_digits for row in result.rows}
+    assert digits["dps:400"] > 390 and digits["dps:1000"] > 990, digits
