@@ -38,7 +38,7 @@ from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
 class Certificate(Protocol):
     """What the check and the reports read of a certificate of every order: a
     :class:`LineIntegralCertificate` or a
-    :class:`~rkcheck.properties.stability.StabilityCertificate`."""
+    :class:`~rkcheck.properties.quadratic.StabilityCertificate`."""
 
     @property
     def degree(self) -> int: ...

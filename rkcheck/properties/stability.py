@@ -33,7 +33,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Protocol, TypeVar
 
 from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
@@ -394,78 +393,6 @@ def _from_parts(s: int, exact: bool, series: sc.Vector, numerator: sc.Vector | N
         verdicts.append(v_n)
     identity = Verdict(FAILS) if leading_power is not None else combine(verdicts)
     return StabilityFunction(s, exact, series, defect, identity, leading_power, leading, numerator, denominator)
-
-
-# ------------------------------------------------------------------ the certificate
-
-
-@dataclass(frozen=True)
-class StabilityCertificate:
-    """Energy preservation for every quadratic Hamiltonian at every order, proven by
-    ``R(z)R(−z) ≡ 1`` (the same interface as the line-integral certificate)."""
-
-    degree: int
-    verdict: Verdict
-    reason: str
-    sigma: None = None
-    kind: str = "stability"
-
-    @property
-    def certified(self) -> bool:
-        return self.verdict.state != FAILS
-
-    @property
-    def name(self) -> str:
-        return "stability-function certificate"
-
-    @property
-    def claim_note(self) -> str:
-        return "stability-function certificate (R(z)R(−z) ≡ 1): every order"
-
-    def refuted(self, condition_id: str) -> StabilityCertificate:
-        return StabilityCertificate(
-            self.degree, Verdict(FAILS),
-            f"R(z)R(−z) = 1 only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",
-        )
-
-
-def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCertificate:
-    """The certificate for degree ≤ 2 from the stability function."""
-    if stab.identity.state == FAILS:
-        assert stab.leading_power is not None  # a failing identity has a leading term
-        return StabilityCertificate(
-            degree, Verdict(FAILS),
-            f"{stab.defect_text()}: quadratic energy is preserved to order {stab.leading_power - 1} only",
-        )
-    how = "exactly" if stab.identity.state == HOLDS else f"to {stab.identity.digits} digits"
-    return StabilityCertificate(
-        degree, stab.identity,
-        f"R(z)R(−z) = 1 {how} (e_2 = … = e_{2 * stab.stages} = 0 and deg(P(z)P(−z) − Q(z)Q(−z)) ≤ "
-        f"{2 * stab.stages}): ΔH = 0 for every H of degree ≤ 2",
-    )
-
-
-class _Ranked(Protocol):
-    """What :func:`prefer` reads of a certificate."""
-
-    @property
-    def certified(self) -> bool: ...
-    @property
-    def verdict(self) -> Verdict: ...
-
-
-_C = TypeVar("_C", bound=_Ranked)
-
-
-def prefer(first: _C, second: _C | None) -> _C:
-    """The better of two certificates for the same degree: an exact proof over one that
-    holds to digits, a certified one over none; ``first`` on ties."""
-    def rank(cert: _C | None) -> int:
-        if cert is None or not cert.certified:
-            return 0
-        return 2 if cert.verdict.state == HOLDS else 1
-
-    return second if second is not None and rank(second) > rank(first) else first
 
 
 # ------------------------------------------------------------------------ text

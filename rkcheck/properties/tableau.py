@@ -19,13 +19,9 @@ from rkcheck.properties.lineintegral import (
     LineIntegralCertificate,
     certificate_of_reduction,
 )
+from rkcheck.properties.quadratic import prefer, quadratic_certificate
 from rkcheck.properties.reduction import Reduction, reduce_tableau
-from rkcheck.properties.stability import (
-    StabilityFunction,
-    prefer,
-    quadratic_certificate,
-    stability_function,
-)
+from rkcheck.properties.stability import StabilityFunction, stability_function
 from rkcheck.properties.symplectic import PropertyVerdict, symmetry, symplecticity
 
 
