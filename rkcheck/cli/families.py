@@ -14,6 +14,7 @@ from rkcheck.cli.common import (
     stdout_console,
     write_text,
 )
+from rkcheck.errors import UserError
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
@@ -39,7 +40,6 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     assert classical is None or isinstance(classical, int)
     result = family_conditions(family, degree=degree, order=order, classical_order=classical)
     if emit is not None:  # the polynomials as code (rkcheck.reports.family_code)
-        from rkcheck.errors import UserError
         from rkcheck.reports.family_code import FAMILY_LANGUAGES, emit_family
 
         if emit not in FAMILY_LANGUAGES:
@@ -102,8 +102,13 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     family = load_family(file)
     flags = flag_values("degree", "order")  # given on the command line, else the file's [check]
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
-    result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
-                 max_seconds=max_seconds, route=route)
+    try:
+        result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
+                     max_seconds=max_seconds, route=route)
+    except UserError as err:  # an option's error names the option as typed (the API's argument is "route")
+        if err.source or err.place not in ("route", "where"):
+            raise
+        raise type(err)(err.message, f"--{err.place}") from None
     if fmt == "json":
         from rkcheck.reports.families import solve_doc
         from rkcheck.reports.jsondoc import dumps

@@ -68,7 +68,7 @@ def test_time_limit_prints_nothing_partial(capsys):
 def test_unknown_route_and_structured_on_a_family_it_does_not_fit(capsys):
     r = run_cli(capsys, "solve", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--degree", "3", "--order", "6",
                 "--route", "structured")
-    _one_line(r, "structured route needs A free")
+    _one_line(r, "--route: the structured route needs A free")  # the option as typed, not the API's "route"
 
 
 def test_emit_with_a_family_needs_a_family_language(capsys):
