@@ -17,7 +17,6 @@ from typing import Any, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import expressions as xp
-from rkcheck.numbers import grammar as ex
 
 #: At most this many grid points in one sweep (each costs one exact evaluation of every
 #: condition polynomial).
@@ -30,8 +29,7 @@ def _rational(text: str, place: str) -> Fraction:
     """A grid value: a rational number in the entries' grammar (``-1``, ``3/4``, ``0.25``,
     ``1e-3``, ``2^-4``) read at face value — a decimal is the rational it writes."""
     try:
-        node = ex.parse(text)
-        value = None if any(True for _ in xp.names(node)) else xp.evaluate_exact(node, {})
+        value = xp.rational_text_value(text)
     except UserError as err:
         raise UserError(f"{text.strip()!r}: {err.message}", place) from None
     if value is None:

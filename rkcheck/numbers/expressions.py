@@ -25,6 +25,7 @@ from rkcheck.numbers.grammar import (
     Num,
     Power,
     Unary,
+    parse,
     too_large,
 )
 from rkcheck.numbers.intervals import Interval, exact_sqrt
@@ -270,6 +271,16 @@ def rational_power(base: Fraction, k: int, column: int) -> Fraction:
         raise UserError(f"division by zero (0 to a negative power) at column {column}")
     check_power_size(base, k, column)
     return base**k
+
+
+def rational_text_value(text: str) -> Fraction | None:
+    """The exact value of a number written in the entries' grammar without names (an
+    option's ``1e-3``, ``3/4``, ``2^-4``), None when it is irrational or names something;
+    a text that does not parse, or a value past the limits, raises :class:`UserError`."""
+    node = parse(text)
+    if any(True for _ in names(node)):
+        return None
+    return evaluate_exact(node, {})
 
 
 def evaluate_exact(node: Expr, constants: Mapping[str, Fraction | None]) -> Fraction | None:

@@ -145,14 +145,12 @@ def parse_eps(text: str) -> list[Fraction]:
 
 
 def _eps_value(text: str) -> Fraction:
-    from rkcheck.numbers import expressions as xp
-    from rkcheck.numbers import grammar as ex
+    from rkcheck.numbers.expressions import rational_text_value
 
     try:
-        node = ex.parse(text)
+        value = rational_text_value(text)
     except UserError as err:
         raise UserError(f"{text.strip()!r}: {err.message}", "--eps") from None
-    value = None if any(True for _ in xp.names(node)) else xp.evaluate_exact(node, {})
     if value is None:
         raise ValueError(text)
     return value
