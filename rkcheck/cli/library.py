@@ -58,8 +58,8 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
     """
     from rkcheck.api.methods import new_toml
 
-    # a family's coefficients can take a while (Gauss s = 20: about 50 s); a classical
-    # method is written at once
+    # a family's coefficients can take a moment (Gauss s = 20 at 1000 digits: about a
+    # second); a classical method is written at once
     given = flag_values("s", "k", "rule", "zeta", "beta", "digits", "exact")
     if family not in FAMILIES and given:  # a classical method is one tableau: nothing to choose
         flags = [_FLAGS[name] for name in given]

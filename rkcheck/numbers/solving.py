@@ -329,10 +329,10 @@ SQUARE_TRIAL_LIMIT = 1 << 12
 
 
 def _squarefree_part(D: Fraction) -> tuple[int, Fraction]:
-    """``D = square²·d`` with d an integer (√D = square·√d), free of the squares of primes
-    up to :data:`SQUARE_TRIAL_LIMIT` and not itself a square times −1 or 1: square-free
-    for every discriminant but those with the square of a large prime in a larger
-    cofactor (then √d is still exact, merely not reduced)."""
+    """``D = square²·d`` with d an integer (√D = square·√d): the squares of the integers up
+    to :data:`SQUARE_TRIAL_LIMIT` divided out, then the cofactor whole if it is a square.
+    d is square-free but where the square of a larger prime sits in a larger cofactor
+    (√d is then exact, merely not reduced)."""
     num = D.numerator * D.denominator
     sign = -1 if num < 0 else 1
     num = abs(num)
