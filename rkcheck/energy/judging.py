@@ -8,6 +8,7 @@ box, point data at a higher precision.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any, Callable, Mapping
 
@@ -16,7 +17,7 @@ import numpy as np
 from rkcheck.energy.results import OrderVerdicts, order_verdicts
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
-from rkcheck.evaluation.box import judge_box
+from rkcheck.evaluation.box import centre_bits, judge_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
@@ -63,7 +64,7 @@ def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[i
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
     if not _judged_over_box(values):
-        return evaluate(listing, values, orders, progress).orders
+        return evaluate(listing, _as_sharp_as_the_box(values), orders, progress).orders
     tab = values.tableau
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
@@ -95,6 +96,16 @@ BOX_MIN_RADIUS = Fraction(1, 1 << 960)
 
 def _radii_within_floats(values: TableauValues) -> bool:
     return all(x.rad == 0 or x.rad >= BOX_MIN_RADIUS for row in (*values.A, values.b) for x in row)
+
+
+def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:
+    """A box left to the balls (radii below float64's range) at the precision the box's
+    own centre would have had — past its narrowest radius (:func:`centre_bits`), not the
+    default 50 digits, which would cap a 300-digit input's verdicts near 64 digits."""
+    if not (values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational):
+        return values
+    dps = min(max(values.reading.dps, math.ceil(centre_bits(values.A, values.b) * math.log10(2)) + 1), DPS_RANGE[1])
+    return values if dps == values.reading.dps else TableauValues.of(values.tableau, values.reading.at(dps))
 
 
 def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVerdicts]:

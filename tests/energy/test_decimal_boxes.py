@@ -257,7 +257,10 @@ def test_decimals_of_hundreds_of_digits_are_judged_to_their_own_digits(tmp_path,
     b = [Fraction(3, 4), Fraction(1, 4)]
     path = tmp_path / "t.toml"
     path.write_text(_decimal_tableau(A, b, digits), encoding="utf-8")
-    out = run_subprocess("verify", str(path), "-m", "none", "-N", "4", "--dps", str(digits + 400), "--format", "json")
+    # 400 digits at the default --dps: the balls then work past the input's own digits,
+    # as the box's centre would (at 50 digits they certified about 64)
+    dps = ["--dps", str(digits + 400)] if digits == 600 else []
+    out = run_subprocess("verify", str(path), "-m", "none", "-N", "4", *dps, "--format", "json")
     doc = json.loads(out.out)
     from rkcheck.io.loader import load
 
@@ -276,7 +279,7 @@ def test_decimals_of_hundreds_of_digits_are_judged_to_their_own_digits(tmp_path,
             if got["state"] == "fails":
                 assert all(v != 0 and (v > 0) == (values[0] > 0) for v in values)
             else:
-                assert got["state"] == "holds_to_digits" and got["digits"] > 330, got
+                assert got["state"] == "holds_to_digits" and got["digits"] > digits - 10, got
                 assert all(abs(v) <= Fraction(10) ** -got["digits"] for v in values)
                 held += 1
     assert held >= 2
