@@ -40,7 +40,8 @@ def tableau_document(tab: Tableau) -> dict[str, Any]:
     if tab.c is not None:
         doc["tableau"]["c"] = [e.text for e in tab.c]
     if tab.info.check:  # the options the file asks for: the written file checks the same
-        doc["check"] = dict(tab.info.check)
+        # (no degree bound is read as None; TOML has no null: it is written "none")
+        doc["check"] = {k: "none" if k == "degree" and v is None else v for k, v in tab.info.check.items()}
     if tab.info.expect:
         doc["expect"] = dict(tab.info.expect)
     return doc
@@ -247,7 +248,7 @@ class _Latex(_Code):
 
     def mul(self, left: str, right: str) -> str:
         # a number before a command or a letter is written beside it (7\sqrt{6}), as in print
-        if left.isdigit() and not right[:1].isdigit():
+        if left.isdigit() and not right[:1].isdigit() and not right.startswith("\\frac"):
             return f"{left}{right}" if right.startswith("\\") else f"{left} {right}"
         return rf"{left} \cdot {right}"
 

@@ -197,3 +197,17 @@ def test_code_of_decimals_says_they_are_at_face_value(fmt, decimals):
     name = "avf-gauss-2-decimal16.toml" if decimals else "avf-gauss-2.toml"
     first = write(load(str(TABLEAUX / "avf" / name)), fmt).splitlines()[0]
     assert ("decimals at face value" in first) == decimals, first
+
+
+def test_a_check_table_without_a_degree_bound_is_written_and_read_back():
+    # [check] degree = "none" is read as None, which TOML cannot write: it is "none" again
+    tab = loads('[tableau]\nA = [["1/2"]]\nb = ["1"]\n[check]\ndegree = "none"\norder = 5\n', "t.toml")
+    for text, name in ((to_toml(tab), "x.toml"), (to_json(tab), "x.json")):
+        assert loads(text, name).info.check == tab.info.check
+
+
+def test_latex_never_writes_a_number_beside_a_fraction():
+    # 3\\frac{1}{3} reads as the mixed number 3⅓
+    tab = loads('[constants]\nk = "1/3"\n[tableau]\nA = [["3*k", "0"], ["0", "0"]]\nb = ["1", "0"]\n', "m.toml")
+    text = to_latex(tab)
+    assert r"3 \cdot \frac{1}{3}" in text and r"3\frac" not in text
