@@ -207,7 +207,7 @@ def test_a_check_table_without_a_degree_bound_is_written_and_read_back():
 
 
 def test_latex_never_writes_a_number_beside_a_fraction():
-    # 3\\frac{1}{3} reads as the mixed number 3⅓
-    tab = loads('[constants]\nk = "1/3"\n[tableau]\nA = [["3*k", "0"], ["0", "0"]]\nb = ["1", "0"]\n', "m.toml")
+    # 3\\frac{1}{3} reads as the mixed number 3⅓ (a decimal keeps the entry as written)
+    tab = loads('[constants]\nk = "1/3"\n[tableau]\nA = [["0.5 + 3*k", "0"], ["0", "0"]]\nb = ["1", "0"]\n', "m.toml")
     text = to_latex(tab)
     assert r"3 \cdot \frac{1}{3}" in text and r"3\frac" not in text
