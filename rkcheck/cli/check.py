@@ -158,7 +158,8 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
 
 @click.command(epilog=exit_codes())
 @click.argument("file", metavar="[FAMILY]", required=False)
-@order_option(required=True, help="Energy order (free trees with <= N+1 vertices).")
+@order_option(help="Energy order (free trees with <= N+1 vertices) [required; with a FAMILY file: default its "
+                   "[check], else 6].")
 @click.option("--degree", "-m", type=DEGREE, default="none", show_default=True, help="Maximum vertex degree m ('none' = no bound).")
 @click.option("--count", is_flag=True, help="Only count the conditions per order (from generating functions: "
               "instant at any order).")
@@ -188,9 +189,14 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     """
     from rkcheck.api.trees import conditions as list_conditions
 
+    if file is None and order is None:
+        raise click.MissingParameter(ctx=click.get_current_context(), param_hint="'--order' / '-N'",
+                                     param_type="option")
     if file is not None:
         if count or stages or explicit or (output and emit is None):
             raise UserError("with a FAMILY file: --order, --degree, --classical, --format, --emit and --output only")
+        if emit is not None and fmt != "text":
+            raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
         from rkcheck.api.families import is_family_file
         from rkcheck.api.tableaux import load as load_file
 
@@ -200,7 +206,8 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         from rkcheck.cli.families import family_report
 
         # --degree left at its default: the family file's [check] degree, as verify reads it
-        family_report(file, {"order": order} | flag_values("degree"), order if classical else None, fmt, True,
+        # --order too: given, else the file's [check] (order 6 without one), as verify reads it
+        family_report(file, flag_values("degree", "order"), "order" if classical else None, fmt, True,
                       emit=emit, output=output)
         return
     if emit is None and (classical or stages or explicit or output):

@@ -297,3 +297,15 @@ def test_a_nonzero_constant_condition_fixes_the_order_of_every_member(tmp_path, 
     assert doc["energy_order_generic"] == 2 and doc["energy_order_everywhere"] is True
     seed = json.loads(run_cli(capsys, "verify", str(FAMILIES / "seed-kernel-zeta-0.toml"), "--format", "json").out)
     assert seed["energy_order_everywhere"] is False  # β²/72: zero at β = 0
+
+
+def test_conditions_of_a_family_reads_its_check_order_as_verify_does(capsys):
+    # seed-kernel-zeta-0.toml: [check] degree = 3, order = 6; `conditions FAMILY` took the
+    # degree from it but required --order; the reference is the same with both typed
+    path = str(FAMILIES / "seed-kernel-zeta-0.toml")
+    implicit = json.loads(run_cli(capsys, "conditions", path, "--format", "json").out)
+    explicit = json.loads(run_cli(capsys, "conditions", path, "-N", "6", "-m", "3", "--format", "json").out)
+    assert implicit == explicit and implicit["order_checked"] == 6
+    r = run_cli(capsys, "conditions", path, "--emit", "python", "--format", "json")
+    assert r.code == 2 and "--format json and --emit do not go together" in r.err
+    assert "Missing option '--order'" in run_cli(capsys, "conditions", "--degree", "3").err
