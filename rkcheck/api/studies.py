@@ -98,6 +98,12 @@ def _kernel_work_guard(s: int, degree: int, exact: bool, dps: int) -> None:
 def _eps_list(eps: str | Sequence[Any]) -> list[Fraction]:
     from rkcheck.studies.accuracy import parse_eps
 
+    if isinstance(eps, (int, float, Fraction)) and not isinstance(eps, bool):
+        eps = [eps]  # one value
+    if not isinstance(eps, str) and not (isinstance(eps, Sequence) and not isinstance(eps, (bytes, bytearray))):
+        raise OptionError(f"expected ε values: a text such as \"1e-1..1e-40\", a number or a list, "
+                          f"got {type(eps).__name__}", "eps")
+    # a float as its shortest decimal, as Tableau.from_arrays reads one
     text = eps if isinstance(eps, str) else ",".join(str(x) for x in eps)
     values: list[Fraction] = _option(lambda: parse_eps(text))
     if not values or any(not 0 < e <= 1 for e in values):  # log10(ε) and float radii need 0 < ε <= 1

@@ -140,3 +140,15 @@ def test_workprec_step_counts_are_bounded_as_simulates(steps):
 
     with pytest.raises(rkcheck.RkcheckError, match=f"from 1 to {STEPS_RANGE[1]:,}"):
         rkcheck.work_precision(["@rk4"], "harmonic", T="1", steps=steps)
+
+
+def test_perturb_takes_one_eps_and_refuses_what_is_not_eps():
+    from fractions import Fraction
+
+    assert [r.eps for r in rkcheck.perturb("@avf-gauss-2", "kernel", degree=3, order=4, eps=0.001).rows] == [
+        Fraction(1, 1000)]  # a float as its shortest decimal
+    assert [r.eps for r in rkcheck.perturb("@avf-gauss-2", "kernel", degree=3, order=4, eps=Fraction(1, 3)).rows] == [
+        Fraction(1, 3)]
+    for bad in (None, True, b"1e-3"):
+        with pytest.raises(rkcheck.RkcheckError, match="^eps: expected ε values"):
+            rkcheck.perturb("@avf-gauss-2", "kernel", degree=3, order=4, eps=bad)
