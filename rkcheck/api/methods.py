@@ -6,7 +6,7 @@ family) at any number of stages, and the classical methods (RK4, Heun, SDIRK, ..
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Sequence
 
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.classics import NAMES as _CLASSIC_NAMES
@@ -53,6 +53,26 @@ def _spec(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, 
     return parse_spec(table)
 
 
+#: the parameters each family reads (a classical method reads none); ``digits`` and
+#: ``exact`` say how a family's entries are written
+FAMILY_READS = {"kernel": ("zeta", "beta"), "avf": ("stages", "rule"), "hbvm": ("stages", "k")}
+_WRITING = ("digits", "exact")
+
+
+def unused_options(method: str, given: Sequence[str]) -> list[str]:
+    """The parameters among ``given`` (by the API's names) that ``method`` does not read."""
+    reads = () if method not in FAMILIES else FAMILY_READS.get(method, ("stages",)) + _WRITING
+    return [g for g in given if g not in reads]
+
+
+def _refuse_unused(method: str, given: dict[str, bool]) -> None:
+    unused = unused_options(method, [g for g, on in given.items() if on])
+    if unused:
+        kind = "a classical method (written exactly as published)" if method not in FAMILIES else "a family that"
+        what = f"{method} is {kind}" + ("" if method not in FAMILIES else f" reads {', '.join(FAMILY_READS.get(method, ('stages',)))}")
+        raise OptionError(f"{what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply", "method")
+
+
 def _validate(method: str, stages: int | None, k: int | None) -> str:
     method = _option(lambda: parse_choice(method, FAMILIES + CLASSICAL_METHODS, "method"))
     if stages is not None:
@@ -71,15 +91,18 @@ def new(method: str, *, stages: int | None = None, k: int | None = None, rule: s
     ``radau-i``, ``radau-ii``, ``lobatto`` or ``zeta:<value>``; definitions §4),
     ``hbvm`` (``k`` Gauss nodes, ``stages`` = s ≤ k), ``kernel`` (the seed's ``c bᵀ +
     βN`` with s = 2, nodes the zeros of ``P_2 − ζP_1``; definitions §4) — or a classical
-    method (:data:`CLASSICAL_METHODS`: ``rk4``, ``heun``, ``sdirk2``, ...; the family
-    parameters are then ignored).
+    method (:data:`CLASSICAL_METHODS`: ``rk4``, ``heun``, ``sdirk2``, ...; it reads no
+    parameter).
 
     A family's entries are computed at whatever precision a check asks for, and held
     exactly in their number field when the nodes have a closed form in roots (the same
     tableau as a file's ``[family]`` table); a classical method has exact entries from
     the literature and the claims of ``rkcheck new NAME``.  ``name`` replaces the method's
-    name.  Bad parameters raise :class:`~rkcheck.errors.OptionError`."""
+    name.  Bad parameters, and parameters the method does not read, raise
+    :class:`~rkcheck.errors.OptionError`."""
     method = _validate(method, stages, k)
+    _refuse_unused(method, {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss",
+                            "zeta": str(zeta) != "0", "beta": str(beta) != "1/10"})
     if method not in FAMILIES:
         from rkcheck.methods.classics import classic_tableau
 
@@ -120,8 +143,12 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
     ``[constants]`` for the nodes), plain fractions when they are rational, else 60-digit
     decimals (read back as rounded to their last digit, definitions §5);
     ``digits=D`` writes D-digit decimals instead, ``exact=True`` refuses to write
-    decimals.  A classical method is written with its ``[expect]`` claims."""
+    decimals.  A classical method is written with its ``[expect]`` claims.  Parameters the
+    method does not read raise :class:`~rkcheck.errors.OptionError`."""
     method = _validate(method, stages, k)
+    _refuse_unused(method, {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss",
+                            "zeta": str(zeta) != "0", "beta": str(beta) != "1/10", "digits": digits is not None,
+                            "exact": bool(exact)})
     if method not in FAMILIES:
         from rkcheck.io.writers import document_toml
         from rkcheck.methods.classics import CLASSICS

@@ -7,7 +7,12 @@ from contextlib import nullcontext
 
 import click
 
-from rkcheck.api.methods import CLASSICAL_METHODS, FAMILIES
+from rkcheck.api.methods import (
+    CLASSICAL_METHODS,
+    FAMILIES,
+    FAMILY_READS,
+    unused_options,
+)
 from rkcheck.cli.common import (
     DEGREE,
     EXIT_FAIL,
@@ -60,11 +65,14 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
 
     # a family's coefficients can take a moment (Gauss s = 20 at 1000 digits: about a
     # second); a classical method is written at once
-    given = flag_values("s", "k", "rule", "zeta", "beta", "digits", "exact")
-    if family not in FAMILIES and given:  # a classical method is one tableau: nothing to choose
-        flags = [_FLAGS[name] for name in given]
-        raise UserError(f"{family} is a classical method (written exactly as published): {', '.join(flags)} "
-                        f"{'does' if len(flags) == 1 else 'do'} not apply")
+    given = ["stages" if name == "s" else name for name in flag_values("s", "k", "rule", "zeta", "beta", "digits",
+                                                                        "exact")]
+    unused = [_FLAGS["s" if name == "stages" else name] for name in unused_options(family, given)]
+    if unused:  # typed, even at its default value: refused, never ignored
+        reads = [_FLAGS["s" if n == "stages" else n] for n in FAMILY_READS.get(family, ("stages",))]
+        what = ("a classical method (written exactly as published)" if family not in FAMILIES
+                else f"a family that reads {', '.join(reads)}")
+        raise UserError(f"{family} is {what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply")
     with busy(f"computing the {family} coefficients") if family in FAMILIES else nullcontext():
         try:
             text = new_toml(family, stages=s, k=k, rule=rule, zeta=zeta, beta=beta, digits=digits, exact=exact,

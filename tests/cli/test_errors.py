@@ -245,3 +245,23 @@ def test_catalog_exits_as_a_scan_on_unreadable_and_missing_files(capsys, tmp_pat
 def test_workprec_names_its_own_options_never_an_h_it_does_not_have(capsys, T, message):
     r = run_cli(capsys, "workprec", "@rk4", "-p", "harmonic", "--T", T, "--steps", "10")
     assert r.code == 2 and r.err.count("\n") == 1 and message in r.err and "--h" not in r.err, r.err
+
+
+@pytest.mark.parametrize("args, unused", [
+    (["kernel", "-s", "3", "-k", "5", "--rule", "lobatto"], "-s, -k, --rule do not apply"),
+    (["gauss", "-s", "2", "-k", "3", "--beta", "1"], "-k, --beta do not apply"),
+    (["avf", "-s", "2", "--zeta", "1"], "--zeta does not apply"),
+])
+def test_new_refuses_the_options_a_family_does_not_read(capsys, args, unused):
+    r = run_cli(capsys, "new", *args)
+    assert r.code == 2 and r.err.count("\n") == 1 and unused in r.err, r.err
+
+
+def test_the_api_refuses_them_too():
+    import rkcheck
+
+    for call in (lambda: rkcheck.new("rk4", stages=3), lambda: rkcheck.new_toml("rk4", digits=20),
+                 lambda: rkcheck.new("kernel", stages=3), lambda: rkcheck.new_toml("gauss", stages=2, k=3)):
+        with pytest.raises(rkcheck.RkcheckError, match="not apply"):
+            call()
+    assert rkcheck.new("kernel", zeta="1/3").stages == 2 and rkcheck.new("hbvm", stages=2, k=3).stages == 3
