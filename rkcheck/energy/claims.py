@@ -180,8 +180,10 @@ def _claim_run(run_check: Callable[[Tableau, CheckOptions], CheckResult], tablea
         if opts.degree == base.degree:
             raise
         bound = "every degree" if opts.degree is None else f"degree {opts.degree}"
+        # lowering --degree cannot help: the claims name their own degree
+        message = err.message.replace("lower --order or --degree", "lower --order")
         raise ResourceError(f"the file's [expect] claims for {bound} are checked to order {opts.order} too: "
-                            f"{err.message}", err.place, err.source) from None
+                            f"{message}", err.place, err.source or tableau.info.source) from None
 
 
 # ------------------------------------------------------------------ one file
