@@ -46,8 +46,9 @@ def info() -> None:
     source = ("set by RKCHECK_MAX_CACHE_BYTES" if os.environ.get("RKCHECK_MAX_CACHE_BYTES")
               else "the default; RKCHECK_MAX_CACHE_BYTES changes it")
     click.echo(f"limit  {_size(state.limit)}, {source}")
-    if os.path.exists(state.path) and not os.path.isdir(state.path):
-        click.echo(f"{state.path} is not a directory: no listing can be saved or read there "
+    blocking = _not_a_directory(str(state.path))
+    if blocking is not None:
+        click.echo(f"{blocking} is not a directory: no listing can be saved or read at {state.path} "
                    "(RKCHECK_CACHE_DIR names the cache's directory)")
     if state.disabled:
         click.echo("RKCHECK_NO_CACHE is set: the checking commands neither read nor save listings")
@@ -65,3 +66,17 @@ def clear() -> None:
     if not settings().quiet:
         click.echo(f"removed {removed} listing file{'s' if removed != 1 else ''} ({_short(before.bytes)}) "
                    f"from {before.path}")
+
+
+def _not_a_directory(path: str) -> str | None:
+    """The path itself or the nearest of its folders that exists, when that is not a
+    directory (the cache could never be made there); None otherwise."""
+    import os
+
+    current = os.path.abspath(path)
+    while not os.path.exists(current):
+        parent = os.path.dirname(current)
+        if parent == current:
+            return None
+        current = parent
+    return None if os.path.isdir(current) else current

@@ -426,3 +426,8 @@ def test_cache_info_says_where_its_limit_comes_from_and_a_directory_that_is_not_
     monkeypatch.setenv("RKCHECK_CACHE_DIR", str(plain))
     info = run_cli(capsys, "cache", "info")
     assert info.code == 0 and f"{plain} is not a directory" in info.out, info.out
+    monkeypatch.setenv("RKCHECK_CACHE_DIR", str(plain / "below"))  # a folder inside a file: never made
+    info = run_cli(capsys, "cache", "info")
+    assert f"{plain} is not a directory" in info.out, info.out
+    monkeypatch.setenv("RKCHECK_CACHE_DIR", str(tmp_path / "not-yet" / "made"))  # made on the first save
+    assert "is not a directory" not in run_cli(capsys, "cache", "info").out
