@@ -96,7 +96,6 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     from rkcheck.api.families import check_options, load_family
     from rkcheck.api.families import solve as run
     from rkcheck.api.verification import UNSET
-    from rkcheck.options import DEFAULT_FAMILY_ORDER
 
     check_output_target(output)
     family = load_family(file)
@@ -123,11 +122,13 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         return
     from rkcheck.reports.families import render_solution_set
 
-    # what was solved, when the command line did not say it all
+    # what was solved, when the command line did not say it all: each value and its source
+    def source(name: str) -> str:
+        return "" if name in flags else (" (the file's [check])" if name in family.info.check else " (the default)")
+
     bound = "no degree bound" if degree is None else f"degree ≤ {degree}"
     scope = None if "degree" in flags and "order" in flags else (
-        f"energy conditions to order {order}, {bound} (from the file's [check]; without one: no degree bound, "
-        f"order {DEFAULT_FAMILY_ORDER})")
+        f"energy conditions to order {order}{source('order')}, {bound}{source('degree')}")
     if output and output != "-":
         import io
 

@@ -277,7 +277,8 @@ def test_solve_without_degree_and_order_reads_the_check_table_as_verify_does(tmp
     assert doc == reference
     assert (doc["options"]["degree"], doc["options"]["order"]) == ((3, 3) if check else (None, 6))
     text = run_cli(capsys, "solve", str(path))
-    assert f"energy conditions to order {3 if check else 6}" in text.out and "[check]" in text.out
+    source = "(the file's [check])" if check else "(the default)"
+    assert f"energy conditions to order {3 if check else 6} {source}" in text.out, text.out
     assert "energy conditions to order" not in run_cli(capsys, "solve", str(path), *given).out
     api = rkcheck.solve(path)
     assert [s.values["x"].text for s in api.solutions] == [s["values"]["x"] for s in doc["solutions"]]
