@@ -329,24 +329,28 @@ SQUARE_TRIAL_LIMIT = 1 << 12
 
 
 def _squarefree_part(D: Fraction) -> tuple[int, Fraction]:
-    """``D = square²·d`` with d an integer (√D = square·√d): the squares of the integers up
-    to :data:`SQUARE_TRIAL_LIMIT` divided out, then the cofactor whole if it is a square.
-    d is square-free but where the square of a larger prime sits in a larger cofactor
-    (√d is then exact, merely not reduced)."""
+    """``D = square²·d`` with d an integer (√D = square·√d): every integer up to
+    :data:`SQUARE_TRIAL_LIMIT` divided out (its square into ``square``, an odd power's
+    last factor kept in d), then the rest whole if it is a square.  d is square-free but
+    where the square of a larger prime sits in a larger cofactor (√d is then exact,
+    merely not reduced)."""
     num = D.numerator * D.denominator
     sign = -1 if num < 0 else 1
     num = abs(num)
-    square = 1
+    square, small = 1, 1
     k = 2
-    while k <= SQUARE_TRIAL_LIMIT and k * k <= num:
-        while num % (k * k) == 0:
-            num //= k * k
-            square *= k
+    while k <= SQUARE_TRIAL_LIMIT and k <= num:
+        e = 0
+        while num % k == 0:
+            num //= k
+            e += 1
+        square *= k ** (e // 2)
+        small *= k ** (e % 2)
         k += 1
     root = math.isqrt(num)
     if root * root == num:
         num, square = 1, square * root
-    return sign * num, Fraction(square, D.denominator)
+    return sign * small * num, Fraction(square, D.denominator)
 
 
 def _closed_form(P: Fraction, Q: Fraction, d: int) -> str:

@@ -157,3 +157,20 @@ def test_a_square_root_of_a_large_prime_is_written_without_factoring_it():
         assert len(texts) == 2 and "sqrt(1)" not in line, line
         for t in texts:
             assert sp.expand(poly.subs(X, sp.sympify(t.replace("^", "**").replace("i", "I")))) == 0, t
+
+
+def test_the_square_part_of_a_discriminant_by_hand_and_by_sympy():
+    # D = square²·d exactly; d square-free (sympy factors it) below the trial limit's
+    # square, and the square of a large prime beside a small factor still taken out
+    sp = pytest.importorskip("sympy")
+    from rkcheck.numbers.solving import _squarefree_part
+
+    rng = random.Random(7)
+    for _ in range(300):
+        D = Fraction(rng.randint(-10**8, 10**8) or 1, rng.randint(1, 10**4))
+        d, square = _squarefree_part(D)
+        assert square * square * d == D
+        assert all(e == 1 for e in sp.factorint(abs(d)).values()), (D, d)
+    p = 1000000000000000000000000000057
+    assert _squarefree_part(Fraction(2 * p * p)) == (2, Fraction(p))
+    assert _squarefree_part(Fraction(-3 * 8 * p * p)) == (-6, Fraction(2 * p))
