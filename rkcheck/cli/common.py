@@ -366,7 +366,9 @@ def chart_file(ctx: click.Context, param: click.Parameter, value: str | None) ->
 def check_output_target(output: str | None) -> None:
     """Refuse, before any work, an output file whose folder does not exist or is a file
     (rather than after a whole scan)."""
-    if not output or output == "-":
+    if output == "":
+        raise UserError("expected a file name ('-' for standard output), got an empty one", "--output")
+    if output is None or output == "-":
         return
     from pathlib import Path
 
@@ -387,7 +389,8 @@ def write_text(text: str, output: str | None) -> None:
     stays); anything else that exists and is not a regular file (``/dev/null``, a FIFO, a
     terminal) is written to directly, never replaced.
     """
-    if not output or output == "-":
+    check_output_target(output)  # an empty name is not standard output
+    if output is None or output == "-":
         click.echo(text, nl=False)
         return
     try:

@@ -183,3 +183,9 @@ def test_a_report_that_cannot_be_written_names_the_users_path(tmp_path, args):
     code, _, err = run(*args, "-o", str(target), cwd=str(REPO))
     assert code == 2 and err.count("\n") == 1, err
     assert str(target) in err and ".rkcheck-" not in err and "cannot write" in err
+
+
+@pytest.mark.parametrize("args", [["new", "gauss", "-s", "2"], ["conditions", "-N", "3", "--emit", "python"]])
+def test_an_empty_output_name_is_refused_not_read_as_stdout(args):
+    code, out, err = run(*args, "-o", "", cwd=str(REPO))
+    assert code == 2 and out == "" and "--output: expected a file name" in err and err.count("\n") == 1, err
