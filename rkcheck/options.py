@@ -173,7 +173,9 @@ def parse_step_counts(value: Any, place: str = "--steps", source: str | None = N
     """Numbers of steps: ``"20,40,80"`` (the CLI's text) or a sequence of positive integers
     (``workprec --steps``)."""
     counts = _integer_list(value, "comma-separated integers", place, source)
-    if not counts or min(counts) < 1:
+    if not counts:
+        raise UserError("expected at least one step count", place, source)
+    if min(counts) < 1:
         raise UserError("step counts must be positive", place, source)
     if max(counts) > STEPS_RANGE[1]:  # the same bound as simulate's: a run of that many steps
         raise UserError(f"expected step counts from 1 to {count_text(STEPS_RANGE[1])}, got {_shown(max(counts))}",

@@ -55,7 +55,7 @@ def parse_grid(spec: str) -> tuple[str, list[Fraction]]:
     except ValueError:
         raise UserError(f"the number of values must be a whole number, got {parts[2]!r}", "--grid") from None
     if not 2 <= n <= MAX_GRID_VALUES:
-        raise UserError(f"expected 2 to {MAX_GRID_VALUES} values (MAX_GRID_VALUES), got {n}", "--grid")
+        raise UserError(f"expected 2 to {MAX_GRID_VALUES} values (MAX_GRID_VALUES), got {n} in {spec!r}", "--grid")
     if hi <= lo:
         raise UserError(f"the grid must go upwards (lo < hi), got {spec!r}", "--grid")
     step = (hi - lo) / (n - 1)

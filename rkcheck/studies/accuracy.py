@@ -134,8 +134,10 @@ def parse_eps(text: str) -> list[Fraction]:
             lo, _, rest = text.partition("..")
             hi, _, step = rest.partition(":")
             ea, eb = _decade(_eps_value(lo)), _decade(_eps_value(hi))
+            if ea is None or eb is None:
+                raise UserError(f"a range's ends are powers of ten (1e-1..1e-40), got {text!r}", "--eps")
             k = int(step) if step.strip() else 1
-            if ea is None or eb is None or k < 1:
+            if k < 1:
                 raise ValueError
             sign = -1 if eb < ea else 1
             return [Fraction(10) ** e for e in range(ea, eb + sign, sign * k)]
