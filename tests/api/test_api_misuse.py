@@ -135,7 +135,7 @@ def test_a_problem_that_is_neither_a_name_nor_a_hamiltonian_is_an_rkcheck_error(
 
 @pytest.mark.parametrize("steps", [[10**12], "20,99999999999999999999"])
 def test_workprec_step_counts_are_bounded_as_simulates(steps):
-    # each count is a run of that many steps: simulate's bound (10^12 ran until killed)
+    # each count is a run of that many steps: simulate's bound holds for every count
     from rkcheck.options import STEPS_RANGE
 
     with pytest.raises(rkcheck.RkcheckError, match=f"from 1 to {STEPS_RANGE[1]:,}"):

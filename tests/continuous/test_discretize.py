@@ -134,9 +134,9 @@ def test_newton_cotes_takes_both_ends():
 
 @pytest.mark.parametrize("A, c, q", [
     # Gauss-2's A with c = (0, 1): the tableau is built on the nodes 0 and 1 with b = ½, ½
-    # — the trapezoidal rule, q = 2 (it said 4, Gauss-2's, from A·1)
+    # — the trapezoidal rule, q = 2 (not Gauss-2's 4, which A·1 would give)
     ('[["1/4", "1/4 - sqrt(3)/6"], ["1/4 + sqrt(3)/6", "1/4"]]', '["0", "1"]', 2),
-    # A = 0 with Gauss-2's nodes: q = 4 (it said 1, from A·1 = 0)
+    # A = 0 with Gauss-2's nodes: q = 4 (not the 1 that A·1 = 0 would give)
     ('[["0", "0"], ["0", "0"]]', '["1/2 - sqrt(3)/6", "1/2 + sqrt(3)/6"]', 4),
 ])
 def test_a_rule_from_a_file_is_its_b_and_c_even_where_c_is_not_the_row_sums(tmp_path, A, c, q):

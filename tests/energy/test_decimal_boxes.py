@@ -248,7 +248,7 @@ def _half_unit(x: Fraction, digits: int) -> Fraction:
 @pytest.mark.parametrize("digits", [400, 600])
 def test_decimals_of_hundreds_of_digits_are_judged_to_their_own_digits(tmp_path, digits):
     # a box whose radii lie below float64's range: its verdicts reach the input's own
-    # digits (they stopped at about 323, floored at 2^−1074), and each stays sound — every
+    # digits (past float64's 2^−1074, about 323 digits), and each stays sound — every
     # residual at the box's centre and at random corners, exactly, within 10^−D
     # AVF over the Radau IIA rule (1/3, 1; 3/4, 1/4): its conditions hold for cubic H and
     # some fail beyond; 1/12 has no finite decimal, so the box is not a point

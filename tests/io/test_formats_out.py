@@ -39,7 +39,7 @@ def test_toml_and_json_round_trips_are_exact(path):
 
 
 def test_a_written_file_checks_what_the_original_does():
-    # [check] degree = 4 kept: without it the written file was checked for every degree
+    # [check] degree = 4 kept: without it the written file would be checked for every degree
     # (three degree-5 conditions fail) while the original holds to digits
     import rkcheck
 

@@ -140,7 +140,7 @@ def test_a_cubic_coordinate_is_shown_as_a_root_of_a_polynomial_in_its_own_name()
 
 
 def test_a_square_root_of_a_large_prime_is_written_without_factoring_it():
-    # trial division up to √p (10^15 steps) hung here; the closed forms are checked by
+    # bounded trial division: √p would be 10^15 steps; the closed forms are checked by
     # sympy: each squared is the discriminant's root, exactly
     sp = pytest.importorskip("sympy")
     code = ("from flint import fmpq_mpoly_ctx\nfrom rkcheck.numbers.solving import solve_system\n"
