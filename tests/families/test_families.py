@@ -301,8 +301,8 @@ def test_a_nonzero_constant_condition_fixes_the_order_of_every_member(tmp_path, 
 
 
 def test_conditions_of_a_family_reads_its_check_order_as_verify_does(capsys):
-    # seed-kernel-zeta-0.toml: [check] degree = 3, order = 6; `conditions FAMILY` took the
-    # degree from it but required --order; the reference is the same with both typed
+    # seed-kernel-zeta-0.toml: [check] degree = 3, order = 6; `conditions FAMILY` with
+    # neither option reads both; the reference is the same with both typed
     path = str(FAMILIES / "seed-kernel-zeta-0.toml")
     implicit = json.loads(run_cli(capsys, "conditions", path, "--format", "json").out)
     explicit = json.loads(run_cli(capsys, "conditions", path, "-N", "6", "-m", "3", "--format", "json").out)
