@@ -205,15 +205,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     if not T_value <= MAX_TIME:
         raise OptionError(f"expected a final time up to {MAX_TIME:,}, got {_short(T_value)}", "--T")
     tabs = [as_tableau(t, max_stages) for t in tableaux]
-    try:
-        return run(tabs, ham, T_value, counts)
-    except UserError as err:  # the steps are T/N here: there is no --h to change
-        if err.place == "--h":
-            raise UserError(err.message.replace("a smaller --h", "a smaller --T or more --steps")
-                            .replace("a larger --h", "a larger --T or fewer --steps").replace(", or --dps", ""),
-                            "--T/--steps",
-                            err.source) from None
-        raise
+    return run(tabs, ham, T_value, counts)
 
 
 #: ``workprec --T``: the longest final time (its steps, T/N, must stay floats)

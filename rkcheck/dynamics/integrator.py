@@ -24,6 +24,20 @@ from rkcheck.numbers.precision import mpmath_bits
 from rkcheck.numbers.reading import DecimalsMode
 
 
+@dataclass(frozen=True)
+class StepAdvice:
+    """What a message about the step size tells the user to change: the options through
+    which the command chose its steps (``simulate --h``; ``workprec --T`` and ``--steps``)."""
+
+    smaller: str
+    larger: str
+    place: str
+
+
+#: the steps of ``simulate``: its ``--h`` (and ``--dps`` for a step that underflows)
+H_ADVICE = StepAdvice("a smaller --h", "a larger --h, or --dps", "--h")
+
+
 class NewtonError(UserError):
     """The stage equations could not be solved (the step is probably too large)."""
 
@@ -161,9 +175,11 @@ def lu_solve(LU: list[list[Any]], piv: list[int], b: list[Any]) -> list[Any]:
     return x
 
 
-def step(method: RKMethod, ham, y: Sequence[Any], h: Any, ctx, where: str = "", guess=None) -> list[Any]:
+def step(method: RKMethod, ham, y: Sequence[Any], h: Any, ctx, where: str = "", guess=None,
+         advice: StepAdvice = H_ADVICE) -> list[Any]:
     """y₁ from y₀ = y with step h (see the module docstring).  ``guess``: a list to read
-    and update with the stage increments, used to warm-start the next implicit step."""
+    and update with the stage increments, used to warm-start the next implicit step;
+    ``advice``: what a failure tells the user to change."""
     s = len(method.b)
     A, b = method.A, method.b
     if method.explicit:
@@ -175,7 +191,7 @@ def step(method: RKMethod, ham, y: Sequence[Any], h: Any, ctx, where: str = "", 
                     Yi = [Yk + h * A[i][j] * fk for Yk, fk in zip(Yi, F[j])]
             F.append(ham.f(Yi))
     else:
-        F = _implicit_stages(method, ham, y, h, ctx, where, guess)
+        F = _implicit_stages(method, ham, y, h, ctx, where, guess, advice)
     y1 = list(y)
     for i in range(s):
         if b[i]:
@@ -197,7 +213,7 @@ def _iteration_matrix(A, h, jacobians, n, s):
     return M
 
 
-def _implicit_stages(method, ham, y, h, ctx, where, guess=None):
+def _implicit_stages(method, ham, y, h, ctx, where, guess=None, advice: StepAdvice = H_ADVICE):
     s, n = len(method.b), len(y)
     A = method.A
     try:
@@ -234,23 +250,25 @@ def _implicit_stages(method, ham, y, h, ctx, where, guess=None):
         pass
     raise NewtonError(
         f"Newton's method did not converge{where} (h = {float(h):.3g}): the step is probably too large "
-        "for this problem; try a smaller --h"
+        f"for this problem; try {advice.smaller}"
     )
 
 
-def integrate(method: RKMethod, ham, y0, h, steps: int, ctx, record_every: int = 1):
+def integrate(method: RKMethod, ham, y0, h, steps: int, ctx, record_every: int = 1,
+              advice: StepAdvice = H_ADVICE):
     """(times, states, energies) every ``record_every`` steps, from t = 0.  Raises
     :class:`DivergedError` when the solution overflows (NaN or ±inf), and a UserError for a
-    step size that is zero in the number context (``--h 1e-1000`` in float64)."""
+    step size that is zero in the number context (``--h 1e-1000`` in float64); each says
+    what to change through ``advice``."""
     if not ctx.num(h):
-        raise UserError(f"the step size is 0 in {ctx.name} (it underflows); use a larger --h, or --dps", "--h")
+        raise UserError(f"the step size is 0 in {ctx.name} (it underflows); use {advice.larger}", advice.place)
     y = list(y0)
     H0 = ham.energy(y)
     times, states, energies = [0], [list(y)], [H0]
     guess: list = []
     for k in range(1, steps + 1):
         try:
-            y = step(method, ham, y, h, ctx, f" at step {k}", guess)
+            y = step(method, ham, y, h, ctx, f" at step {k}", guess, advice)
             finite = _finite(ctx, y)
             energy = ham.energy(y) if finite and (k % record_every == 0 or k == steps) else None
         except OverflowError:
@@ -258,7 +276,7 @@ def integrate(method: RKMethod, ham, y0, h, steps: int, ctx, record_every: int =
         if not finite or (energy is not None and not _finite(ctx, [energy])):
             raise DivergedError(
                 f"the solution diverged at step {k} (t = {float(k * h):.6g}): it overflowed {ctx.name}; the step "
-                "is probably too large for this method and problem; try a smaller --h", "--h")
+                f"is probably too large for this method and problem; try {advice.smaller}", advice.place)
         if energy is not None:
             times.append(k * h)
             states.append(list(y))

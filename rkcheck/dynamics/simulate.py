@@ -24,7 +24,15 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from rkcheck.dynamics.integrator import MP, Float64, RKMethod, integrate, step
+from rkcheck.dynamics.integrator import (
+    H_ADVICE,
+    MP,
+    Float64,
+    RKMethod,
+    StepAdvice,
+    integrate,
+    step,
+)
 from rkcheck.errors import UserError
 from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.reading import DecimalsMode
@@ -312,7 +320,7 @@ class WorkPrecision:
         return f"<WorkPrecision on {name}, T = {self.T}: {len(self.rows)} runs>"
 
 
-def reference_solution(ham, y0, T: Fraction, dps: int = 20, steps: int = 160):
+def reference_solution(ham, y0, T: Fraction, dps: int = 20, steps: int = 160, advice: StepAdvice = H_ADVICE):
     """y(T) with 6-stage Gauss collocation (order 12) in mpmath: error ≈ (T/steps)^12."""
     import mpmath
 
@@ -325,14 +333,18 @@ def reference_solution(ham, y0, T: Fraction, dps: int = 20, steps: int = 160):
         y = [ctx.num(x) for x in y0]
         h = ctx.num(T) / steps
         for k in range(steps):
-            y = step(method, ham, y, h, ctx, f" (reference solution, step {k + 1})")
+            y = step(method, ham, y, h, ctx, f" (reference solution, step {k + 1})", advice=advice)
         return [float(x) for x in y]
+
+
+#: the steps of ``workprec``: T/N, chosen through its --T and --steps
+T_ADVICE = StepAdvice("a smaller --T or more --steps", "a larger --T or fewer --steps", "--T/--steps")
 
 
 def work_precision(tableaux: list, ham, T: Fraction, step_counts: list[int], y0=None,
                    ref_steps: int = 160) -> WorkPrecision:
     y0 = y0 or start_point(ham)
-    ref = reference_solution(ham, y0, T, steps=ref_steps)
+    ref = reference_solution(ham, y0, T, steps=ref_steps, advice=T_ADVICE)
     out = WorkPrecision(T=T, reference=f"6-stage Gauss (order 12) at 20 digits with {ref_steps} steps", problem=ham)
     ctx = Float64()
     for tab in tableaux:
@@ -340,7 +352,7 @@ def work_precision(tableaux: list, ham, T: Fraction, step_counts: list[int], y0=
         for n in step_counts:
             h = T / n
             t0 = time.perf_counter()
-            _, states, E = integrate(method, ham, [ctx.num(x) for x in y0], ctx.num(h), n, ctx, 1)
+            _, states, E = integrate(method, ham, [ctx.num(x) for x in y0], ctx.num(h), n, ctx, 1, T_ADVICE)
             secs = time.perf_counter() - t0
             err = max(abs(a - b) for a, b in zip(states[-1], ref))
             de = max(abs(e - E[0]) for e in E)
