@@ -53,24 +53,35 @@ def _spec(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, 
     return parse_spec(table)
 
 
-#: the parameters each family reads (a classical method reads none); ``digits`` and
-#: ``exact`` say how a family's entries are written
-FAMILY_READS = {"kernel": ("zeta", "beta"), "avf": ("stages", "rule"), "hbvm": ("stages", "k")}
+#: the parameters a family reads besides ``stages`` alone (a classical method reads none);
+#: ``digits`` and ``exact``, how a family's entries are written, apply to every family
+_FAMILY_READS = {"kernel": ("zeta", "beta"), "avf": ("stages", "rule"), "hbvm": ("stages", "k")}
 _WRITING = ("digits", "exact")
+
+
+def family_reads(method: str) -> tuple[str, ...]:
+    """The parameters ``method`` reads (by the API's names; none for a classical method)."""
+    return _FAMILY_READS.get(method, ("stages",)) if method in FAMILIES else ()
 
 
 def unused_options(method: str, given: Sequence[str]) -> list[str]:
     """The parameters among ``given`` (by the API's names) that ``method`` does not read."""
-    reads = () if method not in FAMILIES else FAMILY_READS.get(method, ("stages",)) + _WRITING
+    reads = family_reads(method) + (_WRITING if method in FAMILIES else ())
     return [g for g in given if g not in reads]
 
 
-def _refuse_unused(method: str, given: dict[str, bool]) -> None:
+def _refuse_unused(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, beta: Any,
+                   digits: int | None = None, exact: bool = False) -> None:
+    """An OptionError for the parameters given away from their defaults that ``method``
+    does not read."""
+    given = {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss", "zeta": str(zeta) != "0",
+             "beta": str(beta) != "1/10", "digits": digits is not None, "exact": bool(exact)}
     unused = unused_options(method, [g for g, on in given.items() if on])
     if unused:
-        kind = "a classical method (written exactly as published)" if method not in FAMILIES else "a family that"
-        what = f"{method} is {kind}" + ("" if method not in FAMILIES else f" reads {', '.join(FAMILY_READS.get(method, ('stages',)))}")
-        raise OptionError(f"{what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply", "method")
+        what = (f"a family that reads {', '.join(family_reads(method))}" if method in FAMILIES
+                else "a classical method (written exactly as published)")
+        raise OptionError(f"{method} is {what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply",
+                          "method")
 
 
 def _validate(method: str, stages: int | None, k: int | None) -> str:
@@ -101,8 +112,7 @@ def new(method: str, *, stages: int | None = None, k: int | None = None, rule: s
     name.  Bad parameters, and parameters the method does not read, raise
     :class:`~rkcheck.errors.OptionError`."""
     method = _validate(method, stages, k)
-    _refuse_unused(method, {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss",
-                            "zeta": str(zeta) != "0", "beta": str(beta) != "1/10"})
+    _refuse_unused(method, stages, k, rule, zeta, beta)
     if method not in FAMILIES:
         from rkcheck.methods.classics import classic_tableau
 
@@ -146,9 +156,7 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
     decimals.  A classical method is written with its ``[expect]`` claims.  Parameters the
     method does not read raise :class:`~rkcheck.errors.OptionError`."""
     method = _validate(method, stages, k)
-    _refuse_unused(method, {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss",
-                            "zeta": str(zeta) != "0", "beta": str(beta) != "1/10", "digits": digits is not None,
-                            "exact": bool(exact)})
+    _refuse_unused(method, stages, k, rule, zeta, beta, digits, exact)
     if method not in FAMILIES:
         from rkcheck.io.writers import document_toml
         from rkcheck.methods.classics import CLASSICS

@@ -10,7 +10,7 @@ import click
 from rkcheck.api.methods import (
     CLASSICAL_METHODS,
     FAMILIES,
-    FAMILY_READS,
+    family_reads,
     unused_options,
 )
 from rkcheck.cli.common import (
@@ -69,7 +69,7 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
                                                                         "exact")]
     unused = [_FLAGS["s" if name == "stages" else name] for name in unused_options(family, given)]
     if unused:  # typed, even at its default value: refused, never ignored
-        reads = [_FLAGS["s" if n == "stages" else n] for n in FAMILY_READS.get(family, ("stages",))]
+        reads = [_FLAGS["s" if n == "stages" else n] for n in family_reads(family)]
         what = ("a classical method (written exactly as published)" if family not in FAMILIES
                 else f"a family that reads {', '.join(reads)}")
         raise UserError(f"{family} is {what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply")
