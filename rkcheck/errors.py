@@ -17,7 +17,7 @@ Library callers catch ``rkcheck.RkcheckError`` for everything rkcheck refuses, a
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Sequence
 
 
 class RkcheckError(Exception):
@@ -67,6 +67,12 @@ class RkcheckWarning(UserWarning):
     """What rkcheck warns Python callers about (``warnings.warn``): input it read in a
     way that deserves a word, such as floats (read as the decimal they print as, or at
     their exact binary value).  Filter it like any ``UserWarning``."""
+
+
+def not_applying(names: Sequence[str]) -> str:
+    """``--zeta does not apply``, ``-s, -k do not apply``: the options an error or a
+    warning refuses, named, the verb agreeing."""
+    return f"{', '.join(names)} {'does' if len(names) == 1 else 'do'} not apply"
 
 
 def warn(message: str) -> None:

@@ -15,6 +15,7 @@ from rkcheck.api.verification import _option
 from rkcheck.dynamics.simulate import WorkPrecision
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.formatting import exact_string
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     POINTS_RANGE,
@@ -203,7 +204,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     if isinstance(tableaux, (str, os.PathLike, Tableau)):
         raise OptionError("expected a list of tableaux", "tableaux")
     if not T_value <= MAX_TIME:
-        raise OptionError(f"expected a final time up to {MAX_TIME:,}, got {_short(T_value)}", "--T")
+        raise OptionError(f"expected a final time up to {MAX_TIME:,}, got {exact_string(T_value)}", "--T")
     tabs = [as_tableau(t, max_stages) for t in tableaux]
     return run(tabs, ham, T_value, counts)
 
@@ -211,10 +212,6 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
 #: ``workprec --T``: the longest final time (its steps, T/N, must stay floats)
 MAX_TIME = 10**6
 
-
-def _short(q: Fraction) -> str:
-    text = str(q)
-    return text if len(text) <= 40 else f"{float(q):.3g}" if q < 10**300 else "a number past 10^300"
 
 
 __all__ = ["EnergyOrderFit", "Simulation", "WorkPrecision", "empirical_energy_order", "hamiltonian", "simulate", "work_precision"]

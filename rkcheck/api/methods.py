@@ -6,9 +6,9 @@ family) at any number of stages, and the classical methods (RK4, Heun, SDIRK, ..
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
-from rkcheck.errors import OptionError, UserError
+from rkcheck.errors import OptionError, UserError, not_applying
 from rkcheck.methods.classics import NAMES as _CLASSIC_NAMES
 from rkcheck.methods.family_spec import FAMILIES as _FAMILIES
 from rkcheck.methods.tableau import Tableau
@@ -70,18 +70,26 @@ def unused_options(method: str, given: Sequence[str]) -> list[str]:
     return [g for g in given if g not in reads]
 
 
+def unused_refusal(method: str, given: Sequence[str], shown: Callable[[str], str] = str) -> str | None:
+    """Why the parameters among ``given`` that ``method`` does not read are refused (each
+    written as ``shown`` names it: the CLI's flags), or None when it reads them all."""
+    unused = unused_options(method, given)
+    if not unused:
+        return None
+    what = (f"a family that reads {', '.join(shown(n) for n in family_reads(method))}" if method in FAMILIES
+            else "a classical method (written exactly as published)")
+    return f"{method} is {what}: {not_applying([shown(n) for n in unused])}"
+
+
 def _refuse_unused(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, beta: Any,
                    digits: int | None = None, exact: bool = False) -> None:
     """An OptionError for the parameters given away from their defaults that ``method``
     does not read."""
     given = {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss", "zeta": str(zeta) != "0",
              "beta": str(beta) != "1/10", "digits": digits is not None, "exact": bool(exact)}
-    unused = unused_options(method, [g for g, on in given.items() if on])
-    if unused:
-        what = (f"a family that reads {', '.join(family_reads(method))}" if method in FAMILIES
-                else "a classical method (written exactly as published)")
-        raise OptionError(f"{method} is {what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply",
-                          "method")
+    refusal = unused_refusal(method, [g for g, on in given.items() if on])
+    if refusal is not None:
+        raise OptionError(refusal, "method")
 
 
 def _validate(method: str, stages: int | None, k: int | None) -> str:

@@ -192,11 +192,11 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     if file is None and order is None:
         raise click.MissingParameter(ctx=click.get_current_context(), param_hint="'--order' / '-N'",
                                      param_type="option")
+    if emit is not None and fmt != "text":  # for a family and for the trees alike
+        raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
     if file is not None:
         if count or stages or explicit or (output and emit is None):
             raise UserError("with a FAMILY file: --order, --degree, --classical, --format, --emit and --output only")
-        if emit is not None and fmt != "text":
-            raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
         from rkcheck.api.families import is_family_file
         from rkcheck.api.tableaux import load as load_file
 
@@ -216,8 +216,6 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         raise UserError("--explicit needs --stages")
     if emit is not None and count:
         raise UserError("--count and --emit do not go together")
-    if emit is not None and fmt != "text":
-        raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
     listing = list_conditions(order, degree, count=count, max_conditions=max_conditions,
                               announce=announce_estimate()).listing
     if emit is not None:  # conditions as code (rkcheck.reports.code)

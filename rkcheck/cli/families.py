@@ -14,7 +14,7 @@ from rkcheck.cli.common import (
     stdout_console,
     write_text,
 )
-from rkcheck.errors import UserError
+from rkcheck.errors import UserError, not_applying
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
@@ -31,8 +31,8 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
 
     family = load_family(file)
     if ignored:
-        note = (f"{', '.join(ignored)} {'does' if len(ignored) == 1 else 'do'} not apply to a family (its conditions "
-                "are exact polynomials, its decimals read at face value): ignored")
+        note = (f"{not_applying(ignored)} to a family (its conditions are exact polynomials, its decimals read at "
+                "face value): ignored")
         family = dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, note)))
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     # "order": the classical conditions up to the same order as the energy conditions
@@ -105,9 +105,9 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
                      max_seconds=max_seconds, route=route)
     except UserError as err:  # an option's error names the option as typed (the API's argument is "route")
-        if err.source or err.place not in ("route", "where"):
+        if err.source or err.place != "route":
             raise
-        raise type(err)(err.message, f"--{err.place}") from None
+        raise type(err)(err.message, "--route") from None
     if fmt == "json":
         from rkcheck.reports.families import solve_doc
         from rkcheck.reports.jsondoc import dumps

@@ -10,8 +10,7 @@ import click
 from rkcheck.api.methods import (
     CLASSICAL_METHODS,
     FAMILIES,
-    family_reads,
-    unused_options,
+    unused_refusal,
 )
 from rkcheck.cli.common import (
     DEGREE,
@@ -65,14 +64,12 @@ def new(family, s, k, rule, zeta, beta, digits, exact, name, output) -> None:
 
     # a family's coefficients can take a moment (Gauss s = 20 at 1000 digits: about a
     # second); a classical method is written at once
+    # typed, even at its default value: refused, never ignored
     given = ["stages" if name == "s" else name for name in flag_values("s", "k", "rule", "zeta", "beta", "digits",
                                                                         "exact")]
-    unused = [_FLAGS["s" if name == "stages" else name] for name in unused_options(family, given)]
-    if unused:  # typed, even at its default value: refused, never ignored
-        reads = [_FLAGS["s" if n == "stages" else n] for n in family_reads(family)]
-        what = ("a classical method (written exactly as published)" if family not in FAMILIES
-                else f"a family that reads {', '.join(reads)}")
-        raise UserError(f"{family} is {what}: {', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply")
+    refusal = unused_refusal(family, given, lambda name: _FLAGS["s" if name == "stages" else name])
+    if refusal is not None:
+        raise UserError(refusal)
     with busy(f"computing the {family} coefficients") if family in FAMILIES else nullcontext():
         try:
             text = new_toml(family, stages=s, k=k, rule=rule, zeta=zeta, beta=beta, digits=digits, exact=exact,

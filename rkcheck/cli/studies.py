@@ -137,11 +137,9 @@ def kernel(stages, degree, rule, tableau_file, dps) -> None:
 
     given = flag_values("stages", "rule")
     if tableau_file and given:  # the tableau's own b and c are the rule
-        from rkcheck.errors import UserError
-
+        from rkcheck.errors import UserError, not_applying
         flags = [{"stages": "-s", "rule": "--rule"}[name] for name in given]
-        raise UserError(f"--tableau takes the tableau's own b and c = A·1: {', '.join(flags)} "
-                        f"{'does' if len(flags) == 1 else 'do'} not apply")
+        raise UserError(f"--tableau takes the tableau's own b and c = A·1: {not_applying(flags)}")
     tab = load_tableau(tableau_file) if tableau_file else None
     with busy("ranks of the double-bush map"):
         result = double_bush_kernel(degree, stages, rule=rule, tableau=tab, dps=dps)
