@@ -33,6 +33,7 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
     """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
     the first one that has a certainly failing condition."""
     wanted = sorted(listing.orders)
+    values = _as_sharp_as_the_box(values)  # once, not at every batch of orders
     if not (fail_fast and wanted):
         whole = _order_sums(listing, values, None, progress)
         return {n: order_verdicts(n, v) for n, v in whole.items()}
@@ -64,7 +65,7 @@ def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[i
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
     if not _judged_over_box(values):
-        return evaluate(listing, _as_sharp_as_the_box(values), orders, progress).orders
+        return evaluate(listing, values, orders, progress).orders
     tab = values.tableau
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
@@ -83,8 +84,11 @@ def _judged_over_box(values: TableauValues) -> bool:
     """Decimal entries that stand for intervals, rational at face value: one box of
     inputs judged jointly.  (A rounded decimal is never promoted to a number field: a box
     with roots is judged by its balls alone.)"""
-    return (values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
-            and _radii_within_floats(values))
+    return _rational_box(values) and _radii_within_floats(values)
+
+
+def _rational_box(values: TableauValues) -> bool:
+    return values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
 
 
 #: the narrowest entry radius the joint box takes: its variation V is a float64 sum of
@@ -102,7 +106,7 @@ def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:
     """A box left to the balls (radii below float64's range) at the precision the box's
     own centre would have had — past its narrowest radius (:func:`centre_bits`), not the
     default 50 digits, which would cap a 300-digit input's verdicts near 64 digits."""
-    if not (values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational):
+    if not _rational_box(values) or _radii_within_floats(values):
         return values
     dps = min(max(values.reading.dps, math.ceil(centre_bits(values.A, values.b) * math.log10(2)) + 1), DPS_RANGE[1])
     return values if dps == values.reading.dps else TableauValues.of(values.tableau, values.reading.at(dps))
