@@ -407,12 +407,8 @@ def to_julia(tab: Tableau) -> str:
 def _face_value_note(tab: Tableau) -> str:
     """What the code's header says of decimals: written as the rationals they write, so
     the rounding the decimals rule reads in them (definitions §5) is not carried."""
-    consts = tab.info.constants
-    nodes = [e.node for e in [*(x for row in tab.A for x in row), *tab.b] if isinstance(e, Entry)]
-    if any(lit.is_decimal for node in nodes for lit in xp.literals(node)) or any(
-            consts.has_decimal(u.name) for node in nodes for u in xp.names(node) if u.name in consts.definitions):
-        return "; decimals at face value"
-    return ""
+    entries = [*(x for row in tab.A for x in row), *tab.b]
+    return "; decimals at face value" if any(isinstance(e, Entry) and e.has_decimal for e in entries) else ""
 
 
 def to_python(tab: Tableau) -> str:

@@ -85,12 +85,6 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
     return rows
 
 
-def _has_decimal(node: ex.Expr, constants: Constants) -> bool:
-    """Whether an entry has a decimal literal, itself or through a constant."""
-    return any(lit.is_decimal for lit in xp.literals(node)) or any(
-        constants.has_decimal(u.name) for u in xp.names(node) if u.name in constants.definitions)
-
-
 def _matrix_entry(value: Any, place: str) -> str:
     """An entry's text: an int, a Fraction, a string, or a float as its shortest decimal
     (as ``Tableau.from_arrays`` reads floats, and a file its bare decimals)."""
@@ -156,7 +150,7 @@ class ContinuousMethod:
                     values[i, j] = xp.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
                     raise err.located(f"M[{i}][{j}]") from None
-                decimal = decimal or _has_decimal(node, info.constants)
+                decimal = decimal or info.constants.uses_decimal(node)
         # rational: the polynomials collected; a decimal stays a literal of the kernel's
         # text, read by the decimals rule as in A and b (collected, it would be exact)
         if not decimal and all(v is not None for v in values.values()):
@@ -370,9 +364,7 @@ class Kernel:
         fractions for a rational kernel without decimals, otherwise the kernel's own
         expression at the nodes (its decimals and roots then read as in any entry)."""
         n = len(x)
-        plain = self.ring.field is None and not any(
-            lit.is_decimal for node in self.nodes for lit in xp.literals(node)) and not any(
-            constants.has_decimal(u.name) for node in self.nodes for u in xp.names(node) if u.name in constants.definitions)
+        plain = self.ring.field is None and not any(constants.uses_decimal(node) for node in self.nodes)
         if plain:
             tau, sigma = self.gens()
             A = tuple(tuple(_rational_entry(w[j] * self.number(self.substitute(

@@ -146,8 +146,8 @@ def _rational(value: Any, name: str) -> Fraction:
         q = Fraction(value)
     except (ValueError, OverflowError, ZeroDivisionError):
         raise UserError(f"expected a finite rational number, got {str(value)[:40]!r}", name) from None
-    if max(q.numerator.bit_length(), q.denominator.bit_length()) > ex.MAX_BITS:
-        bits = max(q.numerator.bit_length(), q.denominator.bit_length())
+    bits = max(q.numerator.bit_length(), q.denominator.bit_length())
+    if bits > ex.MAX_BITS:
         raise UserError(ex.too_large("value", f"{count_text(bits)} bits"), name)
     return q
 

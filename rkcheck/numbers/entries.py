@@ -125,6 +125,12 @@ class Constants:
     def has_decimal(self, name: str) -> bool:
         return self._decimal[name]
 
+    def uses_decimal(self, node: ex.Expr) -> bool:
+        """Whether the expression ``node`` has a decimal literal, itself or through one of
+        these constants."""
+        return any(lit.is_decimal for lit in xp.literals(node)) or any(
+            self.has_decimal(u.name) for u in xp.names(node) if u.name in self.definitions)
+
 
 class TableauEntry(Protocol):
     """What a tableau and its checks read of a coefficient: an :class:`Entry` as written,
@@ -177,8 +183,8 @@ class Entry:
         exact = xp.evaluate_exact(node, constants.exact_values())
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
-        has_decimal = any(lit.is_decimal for lit in xp.literals(node)) or any(constants.has_decimal(u) for u in used)
-        return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number, has_decimal)
+        return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number,
+                     constants.uses_decimal(node))
 
     @staticmethod
     def of(value: Fraction | int) -> "Entry":
