@@ -298,7 +298,8 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict[str, Any], av
         flag: bool | None = all(_in_ideal(p, basis, names, deadline) for p in avf_polys)
         if not flag:  # certain only when the kernel coordinates are free (the basis is φ alone)
             flag = False if all(not any(m[1:]) for g in gens for m in g.monoms()) else None
-        return OrbitResult(Component(dim, avf=flag, equations=_in_parameters(R, values, gens, named)))
+        equations = _in_parameters(R, values, gens, named)
+        return OrbitResult(Component(dim, avf=flag, equations=equations, node=_node_used(equations)))
     f, h = solve_zero_dimensional(basis, names, deadline)
     fz = fmpq_poly([fmpq_of(x) for x in f])
     points = []
@@ -326,6 +327,12 @@ def _in_parameters(R: ParameterRing, values: dict[str, Any], gens: list[Any], na
     out = [p.compose(*images) for p in gens]
     out += [g[v] - values[v].compose(*images) for v in params if v not in named.values()]
     return _rational_orbit_substituted(out, E)
+
+
+def _node_used(equations: list[Any]) -> str | None:
+    """The name of z (the first variable of the equations' ring) when they still use it."""
+    used = [e for e in equations if e.degrees()[0] > 0]
+    return str(used[0].context().names()[0]) if used else None
 
 
 def _rational_orbit_substituted(equations: list[Any], E: Any) -> list[Any]:

@@ -68,13 +68,16 @@ class Component:
     """One piece of the solution set: ``dimension``, the number of points when finite
     (complex, counted with the family's own field generator), the real ones, whether
     ``A = (A·1) bᵀ`` on all of it (None: not decided), and its defining equations
-    (polynomials in the parameters, or texts) when it is positive-dimensional."""
+    (polynomials in the parameters, or texts) when it is positive-dimensional; ``node``:
+    the name of the auxiliary variable they use beside the parameters (a node of the
+    piece, a root of the first equation), if any."""
 
     dimension: int
     points: int | None = None
     real: int | None = None
     avf: bool | None = None
     equations: list[Any] = field(default_factory=list)
+    node: str | None = None
 
 
 @dataclass(frozen=True)

@@ -243,21 +243,10 @@ def _render_components(result: Any, console: Console) -> None:
         what = f"{c.points} point{'s' if c.points != 1 else ''}" if c.dimension == 0 else f"dimension {c.dimension}"
         avf = {True: "A = (A·1) bᵀ (AVF)", False: "not A = (A·1) bᵀ", None: "AVF not decided"}[c.avf]
         console.print(f"  component {k}: {what}, {avf}")
-        z = _orbit_variable(c.equations)
-        if z:
-            console.print(f"    ({z}: a node of the component, a root of the first equation)")
+        if c.node:
+            console.print(f"    ({c.node}: a node of the component, a root of the first equation)")
         for e in c.equations:
             console.print(f"    {e} = 0")
-
-
-def _orbit_variable(equations: list[Any]) -> str | None:
-    """The name of the orbit's node z where a component's equations use it (it is the
-    first variable of their ring, not a parameter)."""
-    for e in equations:
-        name = e.context().names()[0] if hasattr(e, "context") else None
-        if name in ("z", "z_") and e.degrees()[0] > 0:
-            return str(name)
-    return None
 
 
 def _avf_form(family: Any) -> str:
