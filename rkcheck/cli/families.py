@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from rkcheck.cli.common import (
@@ -122,13 +124,7 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         return
     from rkcheck.reports.families import render_solution_set
 
-    # what was solved, when the command line did not say it all: each value and its source
-    def source(name: str) -> str:
-        return "" if name in flags else (" (the file's [check])" if name in family.info.check else " (the default)")
-
-    bound = "no degree bound" if degree is None else f"degree ≤ {degree}"
-    scope = None if "degree" in flags and "order" in flags else (
-        f"energy conditions to order {order}{source('order')}, {bound}{source('degree')}")
+    scope = _scope(family, flags, degree, order)
     if output and output != "-":
         import io
 
@@ -139,6 +135,19 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
         write_text(buffer.getvalue(), output)
         return
     render_solution_set(family, result, stdout_console(), scope)
+
+
+def _scope(family: Any, flags: dict[str, Any], degree: int | None, order: int) -> str | None:
+    """What was solved, when the command line did not say it all: each value and where it
+    came from (typed, the file's [check], or the default)."""
+    if "degree" in flags and "order" in flags:
+        return None
+
+    def source(name: str) -> str:
+        return "" if name in flags else (" (the file's [check])" if name in family.info.check else " (the default)")
+
+    bound = "no degree bound" if degree is None else f"degree ≤ {degree}"
+    return f"energy conditions to order {order}{source('order')}, {bound}{source('degree')}"
 
 
 @click.command(epilog=exit_codes(usage="a bad file, grid or option, or matplotlib missing for --plot (one line on stderr)"))
