@@ -8,8 +8,8 @@ every command reads the project's settings and refuses oversized work the same w
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from contextlib import contextmanager
+from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterator
 
 from rkcheck.io.config import Config as ProjectConfig
@@ -46,7 +46,7 @@ def guard(order: int, degree: int | None) -> None:
     catalog)."""
     from rkcheck.energy.budget import check_budget, estimate
 
-    check_budget(estimate(order, degree, "exact"), budget(), order)
+    check_budget(estimate(order, degree, "exact", listing=True), budget(), order)
 
 
 def use_listing_cache(enabled: bool = True, directory: str | os.PathLike[str] | None = None) -> None:

@@ -173,7 +173,7 @@ def conditions(order: int, degree: int | str | None = None, *, count: bool = Fal
         from rkcheck.energy.budget import check_budget, estimate
         from rkcheck.trees.listing import condition_listing
 
-        check_budget(estimate(order, bound, "exact", 0), budget(max_conditions, announce), order)
+        check_budget(estimate(order, bound, "exact", 0, listing=True), budget(max_conditions, announce), order)
         listing = condition_listing(order, bound)
     return ConditionList(order, bound, listing, count)
 

@@ -37,7 +37,9 @@ def executor_passes(executor: Executor, cache: bool):
 
     def run(scaled: Any, listing: Any,
             jobs: list[tuple[list[tuple[int, int]], list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]:
-        items = [(scaled, listing.order, listing.degree, pairs, orders, cache) for pairs, orders in jobs]
+        # a listing travels as the recipe it pickles to (its kind and key), made there
+        # after the worker's store is set: rebuilt, read from that cache, or reused
+        items = [(scaled, listing.__reduce__(), pairs, orders, cache) for pairs, orders in jobs]
         with closing(executor.map_unordered(_channel_pass, items, _Lost)) as results:
             for g, got in results:
                 if isinstance(got, _Lost):  # the pass runs here instead
@@ -50,12 +52,11 @@ def executor_passes(executor: Executor, cache: bool):
 
 def _channel_pass(item: tuple) -> dict[int, np.ndarray]:
     """One pass in a worker: the residues of its channels for its orders."""
-    from rkcheck.trees.listing import condition_listing, use_store
+    from rkcheck.trees.listing import use_store
 
-    scaled, order, degree, pairs, orders, cache = item
+    scaled, (make, key), pairs, orders, cache = item
     if cache:
         from rkcheck.io.cache import ListingCache, cache_disabled
 
         use_store(None if cache_disabled() else ListingCache())
-    listing = condition_listing(order, degree, lazy=True)
-    return scaled.residues_at(listing, pairs, orders)
+    return scaled.residues_at(make(*key), pairs, orders)

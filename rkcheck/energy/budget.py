@@ -10,6 +10,11 @@ prints the same figures) and are deliberately on the high side:
   number field); the channels needed grow with the order and the size of the entries;
 * certified balls: about 3.5 µs per tree at 50 digits, growing with the precision; a
   decimal box 0.5 µs more per tree and interval entry (its derivatives);
+* from order :data:`~rkcheck.trees.centroid.CENTROID_FROM_ORDER` an exact check
+  enumerates its conditions by centroid, with no listing: about 0.12 µs per condition,
+  channel and stage (RK4 to order 22: 0.10, a dense 6-stage tableau 0.09), and in
+  memory the residues, verdict and record of every condition and the stage vectors of
+  the trees that wait (RK4 to order 22: 1.63 GB measured against 1.9 GB modelled);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
   grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
   and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
@@ -34,9 +39,11 @@ from dataclasses import dataclass
 from typing import Callable
 
 from rkcheck.errors import UserError
+from rkcheck.evaluation.scaled import CENTROID_PASS_VALUES
 from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
 from rkcheck.numbers.formatting import count_text as count
 from rkcheck.numbers.formatting import human_bytes
+from rkcheck.trees.centroid import CENTROID_FROM_ORDER
 from rkcheck.trees.counting import listing_size
 
 LISTING_SECONDS_PER_TREE = 0.6e-6
@@ -48,6 +55,10 @@ EXACT_BYTES_PER_TREE = 24
 WORKING_BYTES = 100 * 2**20
 BALL_BYTES_PER_FACTOR = 150
 BALL_BYTES_PER_FACTOR_STAGE = 30
+#: a centroid walk (from CENTROID_FROM_ORDER on, exact), per condition, channel and
+#: stage; and the bytes per condition of its record of branches and its verdict
+CENTROID_SECONDS_PER_CONDITION_VALUE = 0.12e-6
+CENTROID_RECORD_BYTES = 16
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
 
@@ -85,11 +96,15 @@ class Budget:
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
-             dps: int = 50, directions: int = 0) -> Estimate:
+             dps: int = 50, directions: int = 0, listing: bool = False) -> Estimate:
     """The cost of listing and evaluating every condition to ``order`` for ``degree``
     (``directions``: the interval entries of a decimal box, whose derivatives the
-    evaluation carries beside the weights)."""
+    evaluation carries beside the weights); a check from ``CENTROID_FROM_ORDER`` on
+    enumerates them by centroid instead, unless ``listing`` (what a command that lists
+    the rooted trees itself builds)."""
     conditions, terms, factors = listing_size(order, degree)
+    if backend == "exact" and order >= CENTROID_FROM_ORDER and not listing:
+        return _centroid_estimate(conditions, terms, factors, channels, stages)
     trees = terms + factors
     seconds = trees * LISTING_SECONDS_PER_TREE
     if backend == "exact":
@@ -105,6 +120,17 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
         # factor tree's) and Φ and ψ (0.25·s): at most MAX_GRADIENT_BYTES at once (more
         # directions take more passes)
         size += min(MAX_GRADIENT_BYTES, factors * directions * (11 + 4 * stages))
+    return Estimate(conditions, terms, factors, seconds, int(size))
+
+
+def _centroid_estimate(conditions: int, terms: int, factors: int, channels: int, stages: int) -> Estimate:
+    """An exact check enumerated by centroid (:mod:`rkcheck.trees.centroid`): a walk per
+    pass of channels, its cost per condition and stage entry; in memory every
+    condition's residues and record of branches, and the stage vectors of the trees
+    that wait, in one pass's channels."""
+    per_pass = min(channels, max(1, CENTROID_PASS_VALUES // stages))
+    seconds = conditions * channels * stages * CENTROID_SECONDS_PER_CONDITION_VALUE
+    size = BASE_BYTES + conditions * (4 * channels + CENTROID_RECORD_BYTES + 2 * per_pass * stages)
     return Estimate(conditions, terms, factors, seconds, int(size))
 
 

@@ -46,8 +46,9 @@ from rkcheck.properties.from_nodes import node_properties, node_quadrature_order
 from rkcheck.properties.lineintegral import Certificate
 from rkcheck.properties.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.properties.tableau import TableauProperties, properties_of_values
+from rkcheck.trees.centroid import CENTROID_FROM_ORDER, Listing, centroid_listing
 from rkcheck.trees.free import FreeTree
-from rkcheck.trees.listing import ConditionListing, condition_listing
+from rkcheck.trees.listing import condition_listing
 from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, State, Verdict
 
 
@@ -283,16 +284,21 @@ def _memo(facts: dict[Any, Any], key: Any, compute: Callable[[], Any]) -> Any:
     return facts[key]
 
 
-def _listing(values: TableauValues, options: CheckOptions, budget: Budget | None) -> ConditionListing:
-    """The conditions to check, after the budget allowed them."""
+def _listing(values: TableauValues, options: CheckOptions,
+             budget: Budget | None) -> Listing:
+    """The conditions to check, after the budget allowed them: from
+    :data:`~rkcheck.trees.centroid.CENTROID_FROM_ORDER` on, an exact check enumerates
+    them by centroid (the rooted trees of its top orders would take gigabytes)."""
     channels = channels_for(values, options.order) if values.backend is Backend.EXACT else 0
     check_budget(estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps,
                           box_directions(values)), budget, options.order)
+    if values.backend is Backend.EXACT and options.order >= CENTROID_FROM_ORDER:
+        return centroid_listing(options.order, options.degree)
     # built order by order as the evaluation asks: --fail-fast stops before the high orders
     return condition_listing(options.order, options.degree, lazy=True)
 
 
-def _judged_orders(listing: ConditionListing, values: TableauValues, options: CheckOptions,
+def _judged_orders(listing: Listing, values: TableauValues, options: CheckOptions,
                    progress: Progress | None) -> tuple[dict[int, OrderVerdicts], bool, str | None]:
     """Every condition judged — with what the balls left undecided judged again
     (:func:`~rkcheck.energy.judging.refine_undecided`) —, whether Ctrl-C cut the work

@@ -21,6 +21,7 @@ from rkcheck.evaluation.box import centre_bits, judge_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
+from rkcheck.trees.centroid import Listing
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
@@ -28,7 +29,7 @@ from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 Progress = Callable[[int, int], None]
 
 
-def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast: bool = False,
+def evaluate_orders(listing: Listing, values: TableauValues, fail_fast: bool = False,
                     progress: Progress | None = None) -> dict[int, OrderVerdicts]:
     """Every condition of the listing, judged; with ``fail_fast`` only the orders up to
     the first one that has a certainly failing condition."""
@@ -59,13 +60,14 @@ def evaluate_orders(listing: ConditionListing, values: TableauValues, fail_fast:
     return orders
 
 
-def _order_sums(listing: ConditionListing, values: TableauValues, orders: list[int] | None,
+def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | None,
                 progress: Progress | None = None) -> Mapping[int, Any]:
     """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
     if not _judged_over_box(values):
         return evaluate(listing, values, orders, progress).orders
+    assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"
     tab = values.tableau
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
@@ -118,7 +120,7 @@ def _up_to_first_failure(orders: dict[int, OrderVerdicts]) -> dict[int, OrderVer
     return {n: o for n, o in orders.items() if n <= failing[0]} if failing else orders
 
 
-def refine_undecided(listing: ConditionListing, values: TableauValues, fail_fast: bool,
+def refine_undecided(listing: Listing, values: TableauValues, fail_fast: bool,
                      orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
     """What the balls left undecided on point data, judged again at a higher precision
     (:func:`sharpen_weak_holds`).  A box of decimal inputs was judged over the whole box
@@ -128,7 +130,7 @@ def refine_undecided(listing: ConditionListing, values: TableauValues, fail_fast
     return sharpen_weak_holds(listing, values, orders)
 
 
-def sharpen_weak_holds(listing: ConditionListing, values: TableauValues,
+def sharpen_weak_holds(listing: Listing, values: TableauValues,
                        orders: dict[int, OrderVerdicts]) -> tuple[dict[int, OrderVerdicts], str | None]:
     """On point data (no decimal box) a ball that contains 0 but is wider than 1 says
     nothing: "holds to D digits" with D ≤ 0 is not a holds (definitions §5).  Such orders

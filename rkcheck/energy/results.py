@@ -15,8 +15,8 @@ from typing import Any, Iterator, NamedTuple, Sequence, overload
 import numpy as np
 
 from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.trees.centroid import Listing
 from rkcheck.trees.free import FreeTree
-from rkcheck.trees.listing import ConditionListing
 from rkcheck.verdicts import (
     FAILS,
     HOLDS_TO_DIGITS,
@@ -140,7 +140,7 @@ def _enclosure_of(value: Any) -> Enclosure:
 class ConditionResults(Sequence[Condition]):
     """Every checked condition, by vertices and then canonical id, built on demand."""
 
-    def __init__(self, listing: ConditionListing, orders: dict[int, OrderVerdicts]):
+    def __init__(self, listing: Listing, orders: dict[int, OrderVerdicts]):
         self.listing = listing
         self.orders = dict(sorted(orders.items()))
         self._offsets = np.cumsum([0] + [len(o) for o in self.orders.values()])
@@ -286,7 +286,7 @@ class OrderCounts:
     min_digits: int | None  # weakest certified digits among numerically held ones
 
 
-def per_order_counts(listing: ConditionListing, orders: dict[int, OrderVerdicts]) -> list[OrderCounts]:
+def per_order_counts(listing: Listing, orders: dict[int, OrderVerdicts]) -> list[OrderCounts]:
     out = []
     for k, total in listing.counts_by_order().items():
         o = orders.get(k + 1)

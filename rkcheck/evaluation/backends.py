@@ -34,6 +34,7 @@ from rkcheck.evaluation.screen import ScreenContext
 from rkcheck.evaluation.screened import screened_sums
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.numbers.intervals import Interval
+from rkcheck.trees.centroid import Listing
 from rkcheck.trees.listing import ConditionListing
 
 
@@ -86,7 +87,7 @@ def float_context(values: TableauValues) -> FloatContext:
     return FloatContext(A, b)
 
 
-def evaluate(listing: ConditionListing, values: TableauValues, orders: Iterable[int] | None = None,
+def evaluate(listing: Listing, values: TableauValues, orders: Iterable[int] | None = None,
              progress: Callable[[int, int], None] | None = None) -> Evaluation:
     """Every condition of ``listing`` (or of the given numbers of vertices), in the
     values' backend; ``progress(done, total)`` as the work advances (passes over primes,
@@ -94,6 +95,7 @@ def evaluate(listing: ConditionListing, values: TableauValues, orders: Iterable[
     if values.backend is Backend.EXACT:
         scaled = values.scaled
         return Evaluation(Backend.EXACT, exact_condition_sums(scaled, listing, orders, progress), scaled)
+    assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"
     wanted = sorted(listing.orders if orders is None else orders)
     ctx = ball_context(values, vertices=wanted[-1] if wanted else None)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))

@@ -72,9 +72,10 @@ import numpy as np
 from rkcheck.evaluation.protocols import PassRunner
 from rkcheck.evaluation.remainders import crt_columns, product
 from rkcheck.evaluation.scaled import ScaledTableau
+from rkcheck.trees.centroid import CentroidListing, Listing
 
 if TYPE_CHECKING:
-    from rkcheck.trees.listing import ConditionListing
+    pass
 
 # ---------------------------------------------------------------------- results
 
@@ -225,7 +226,7 @@ def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
     return [[int(inverse[c, j]) for j in range(D)] for c in range(D)]
 
 
-def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, orders: Iterable[int] | None = None,
+def exact_condition_sums(scaled: ScaledTableau, listing: Listing, orders: Iterable[int] | None = None,
                          on_pass: Callable[[int, int], None] | None = None) -> dict[int, ExactOrderSums]:
     """Every condition of the listing (or of the given orders) exactly: residues over
     enough channels for each order's bound, as many channels per pass over the listing
@@ -289,7 +290,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing: ConditionListing, order
     return out
 
 
-def _fill_contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int],
+def _fill_contained(scaled: ScaledTableau, listing: Listing, count: dict[int, int],
                     channels: list[tuple[int, list[int]]], residues: dict[int, np.ndarray],
                     full: dict[int, int]) -> bool:
     """Whether every order's residues were read off an evaluation of all free trees
@@ -315,7 +316,7 @@ def _store(residues: dict[int, np.ndarray], count: dict[int, int], group: list[A
                 residues[n][:, i, j] = sums[:, c]
 
 
-def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[tuple[int, list[int]]],
+def _screened(scaled: ScaledTableau, listing: Listing, channels: list[tuple[int, list[int]]],
               count: dict[int, int], done: int, residues: dict[int, np.ndarray]) -> bool:
     """The primes from ``done`` on, for the conditions whose residues at the first
     ``done`` are all zero only (the others are decided: they fail), evaluated on the trees
@@ -324,6 +325,8 @@ def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[t
     from rkcheck.evaluation.scaled import PASS_BYTES
     from rkcheck.evaluation.subset import Subset
 
+    if isinstance(listing, CentroidListing):  # its walks cost the same for a few conditions as for all
+        return False
     later = [n for n in residues if count[n] > done]
     selected = {n: np.flatnonzero(~np.any(residues[n][:, :done] != 0, axis=(1, 2))) for n in later}
     subset = Subset.build(listing, selected, scaled.s)
@@ -342,7 +345,7 @@ def _screened(scaled: ScaledTableau, listing: ConditionListing, channels: list[t
     return True
 
 
-def _plan(scaled: ScaledTableau, listing: ConditionListing,
+def _plan(scaled: ScaledTableau, listing: Listing,
           wanted: list[int]) -> tuple[dict[int, int], dict[int, int], dict[int, Any], list[Any], dict[int, int]]:
     """Per order: the bits that decide its zero residues (on N/g_k,
     :meth:`ScaledTableau.decision_bits`), the bits its values need, whether those come
@@ -367,21 +370,21 @@ def _plan(scaled: ScaledTableau, listing: ConditionListing,
     return need, value_need, dual, channels, count
 
 
-def _remember(scaled: ScaledTableau, listing: ConditionListing, sums: dict[int, ExactOrderSums]) -> None:
+def _remember(scaled: ScaledTableau, listing: Listing, sums: dict[int, ExactOrderSums]) -> None:
     """Keep the evaluation of every condition of all free trees on ``scaled``, for the
     listings of lower degrees that a file's claims check next (they share the tableau's
     ScaledTableau; :mod:`rkcheck.evaluation.contained`).  The sums are the check result's
     own: keeping them costs no memory while that result lives."""
-    if listing.degree is None:
+    if listing.degree is None and not isinstance(listing, CentroidListing):  # read off by rooted trees
         scaled.__dict__["_all_trees"] = (listing, sums)
 
 
-def _contained(scaled: ScaledTableau, listing: ConditionListing, count: dict[int, int],
+def _contained(scaled: ScaledTableau, listing: Listing, count: dict[int, int],
                channels: list[tuple[int, list[int]]]) -> dict[int, tuple[np.ndarray, int]] | None:
     """The residues of every order of ``listing`` read off a kept evaluation of all free
     trees that contains it, or None."""
     kept = scaled.__dict__.get("_all_trees")
-    if kept is None or kept[0] is listing:
+    if kept is None or kept[0] is listing or isinstance(listing, CentroidListing):
         return None
     from rkcheck.evaluation.contained import contained_residues
 
@@ -405,7 +408,7 @@ def passes_run_by(runner: PassRunner | None) -> Iterator[None]:
         _RUNNER.reset(token)
 
 
-def _run_passes(scaled: ScaledTableau, listing: ConditionListing,
+def _run_passes(scaled: ScaledTableau, listing: Listing,
                 groups: list[tuple[list[Any], list[int]]]) -> Iterator[tuple[int, dict[int, np.ndarray]]]:
     """``(index, sums)`` of every pass: here in order, or by the runner in force."""
     jobs = [([(p, r) for _, _, p, r in group], orders) for group, orders in groups]
@@ -420,7 +423,7 @@ def _run_passes(scaled: ScaledTableau, listing: ConditionListing,
 Channel = tuple[int, int, int, int]  # (prime i, root j, p, r)
 
 
-def pass_groups(scaled: ScaledTableau, listing: ConditionListing, chosen: list[tuple[int, list[int]]],
+def pass_groups(scaled: ScaledTableau, listing: Listing, chosen: list[tuple[int, list[int]]],
                 orders_for: Callable[[int], list[int]], top: int
                 ) -> tuple[list[tuple[list[Channel], list[int]]], dict[tuple[int, int], list[Channel]]]:
     """The channels of the primes ``chosen`` (prime i, root j) to evaluate, split into
@@ -464,7 +467,7 @@ def _with_copies(scaled: ScaledTableau, group: list[Channel], sums: dict[int, np
     return group, {n: x[:, take] for n, x in sums.items()}
 
 
-def channel_passes(scaled: ScaledTableau, listing: ConditionListing, chosen: list[tuple[int, list[int]]],
+def channel_passes(scaled: ScaledTableau, listing: Listing, chosen: list[tuple[int, list[int]]],
                    orders_for: Callable[[int], list[int]],
                    top: int) -> Iterator[tuple[list[Any], dict[int, np.ndarray]]]:
     """The passes of :func:`pass_groups`, evaluated here or by the runner in force

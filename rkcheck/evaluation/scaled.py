@@ -15,6 +15,7 @@ import numpy as np
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 from rkcheck.evaluation.conjugates import repeated_channels
 from rkcheck.numbers.polynomials import complex_roots, integer_coefficients
+from rkcheck.trees.centroid import CentroidListing
 
 #: the weights one pass holds (:meth:`ScaledTableau.channels_per_pass`) may take this much
 #: memory: channels run together while their weights fit, so that on small listings the
@@ -22,6 +23,10 @@ from rkcheck.numbers.polynomials import complex_roots, integer_coefficients
 #: on larger ones a pass per channel is faster (RK4 at orders 16–18: 10–20 %), its hot
 #: weights (the small subtrees every product reads) staying in the caches
 PASS_BYTES = 8 << 20
+
+#: stage entries per waiting tree that a pass over a centroid listing holds (its channels
+#: times the stages): RK4's five channels at order 22 held 1.3 GB at the peak
+CENTROID_PASS_VALUES = 24
 
 
 #: How many primes the exact route may try in search of those over which the field splits
@@ -310,6 +315,8 @@ class ScaledTableau:
         """How many channels one pass over the listing evaluates for orders up to ``top``
         vertices within :data:`PASS_BYTES` (at least one): Φ and ψ of the trees with up to
         ``top − 2`` vertices, a and w up to ``top − 1``, 4 bytes each per channel."""
+        if isinstance(listing, CentroidListing):  # a few stage vectors per channel and waiting tree
+            return max(1, CENTROID_PASS_VALUES // self.s)
         first = listing.first
         trees_a = first[min(top, len(first) - 1)]
         trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
@@ -319,6 +326,12 @@ class ScaledTableau:
     def residues_at(self, listing: Any, pairs: Sequence[tuple[int, int]], orders: list[int]) -> dict[int, np.ndarray]:
         """``{n: (conditions, channels) residues}`` of the given orders in the channels
         ``(p, root)`` of ``pairs``, all in one pass."""
+        if isinstance(listing, CentroidListing):
+            from rkcheck.evaluation.centroid import centroid_residues
+
+            images = [self._images(p, r) for p, r in pairs]
+            return centroid_residues(listing, [p for p, _ in pairs], np.stack([A for A, _ in images]),
+                                     np.stack([b for _, b in images]), orders)
         from rkcheck.evaluation.algorithm import condition_sums
 
         return condition_sums(listing, self.channels(pairs), self.s, orders)

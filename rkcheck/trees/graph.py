@@ -5,7 +5,7 @@ drawing of its tree."""
 
 from __future__ import annotations
 
-from rkcheck.trees.rooted import canonical_level_sequence
+from rkcheck.trees.rooted import level_sequence_of_forest
 
 
 def adjacency(seq: tuple[int, ...]) -> list[list[int]]:
@@ -23,16 +23,23 @@ def adjacency(seq: tuple[int, ...]) -> list[list[int]]:
 
 def rooted_at(adj: list[list[int]], root: int) -> tuple[int, ...]:
     """Canonical level sequence of the tree rooted at ``root``."""
-    order, depth, parent = [], {root: 1}, {root: -1}
-    stack = [root]
-    while stack:  # depth-first, iteratively: the sequence is canonicalised afterwards
-        v = stack.pop()
-        order.append(v)
-        for w in reversed(adj[v]):
+    return level_sequence_of_forest(subtrees_at(adj, root))
+
+
+def subtrees_at(adj: list[list[int]], root: int) -> list[tuple[int, ...]]:
+    """The canonical level sequences of the subtrees of ``root`` in the tree rooted
+    there: each vertex's built from its children's, bottom up (one canonical form per
+    vertex, not a canonicalisation of a whole sequence at every level)."""
+    order, parent = [root], {root: -1}
+    for v in order:  # breadth first
+        for w in adj[v]:
             if w != parent[v]:
-                parent[w], depth[w] = v, depth[v] + 1
-                stack.append(w)
-    return canonical_level_sequence([depth[v] for v in order])
+                parent[w] = v
+                order.append(w)
+    below: dict[int, tuple[int, ...]] = {}
+    for v in reversed(order[1:]):
+        below[v] = level_sequence_of_forest([below[w] for w in adj[v] if w != parent[v]])
+    return [below[w] for w in adj[root]]
 
 
 def centres(adj: list[list[int]]) -> list[int]:
@@ -66,3 +73,34 @@ def distances(adj: list[list[int]], source: int) -> list[int]:
                 dist[w] = dist[v] + 1
                 queue.append(w)
     return dist
+
+
+def distinct_rootings(adj: list[list[int]]) -> int:
+    """How many distinct rooted trees the rootings at the vertices give (the terms of a
+    free tree's condition): each vertex's rooted shape as an interned code — the codes
+    of the subtrees below it, then of the rest of the tree above it — in two passes,
+    instead of a canonical level sequence per vertex."""
+    n = len(adj)
+    order, parent = [0], [-1] * n
+    for v in order:  # breadth first from vertex 0
+        for w in adj[v]:
+            if w != parent[v]:
+                parent[w] = v
+                order.append(w)
+    codes: dict[tuple[int, ...], int] = {}
+
+    def intern(children: list[int]) -> int:
+        return codes.setdefault(tuple(sorted(children)), len(codes))
+
+    below = [0] * n
+    for v in reversed(order):
+        below[v] = intern([below[w] for w in adj[v] if w != parent[v]])
+    above = [-1] * n  # the rest of the tree seen from v, rooted at v's parent
+    shapes = set()
+    for v in order:
+        kids = [w for w in adj[v] if w != parent[v]]
+        mine = [below[w] for w in kids] + ([above[v]] if parent[v] >= 0 else [])
+        shapes.add(intern(mine))
+        for i, w in enumerate(kids):
+            above[w] = intern(mine[:i] + mine[i + 1:])
+    return len(shapes)

@@ -13,31 +13,32 @@ from rkcheck.energy.budget import Budget, ResourceError, check_budget, estimate
 from rkcheck.energy.check import CheckOptions, check
 from rkcheck.io.loader import load
 
-# order 24 in a child under 300 MB and 10 CPU seconds: listing its 167 871 332 conditions
-# alone would take about 100 GB, so the child can only answer by refusing before any work
-ORDER_24 = """
+# order 25 in a child under 300 MB and 10 CPU seconds: its 447 652 296 conditions take
+# some 40 GB even enumerated by centroid (their residues and records alone), so the child
+# can only answer by refusing before any work
+ORDER_25 = """
 import sys
 from rkcheck.energy.budget import Budget, ResourceError
 from rkcheck.energy.check import CheckOptions, check
 from rkcheck.io.loader import load
 budget = Budget(available_bytes=24 * 2**30) if sys.argv[2] == "budget" else None
 try:
-    check(load(sys.argv[1]), CheckOptions(order=24), budget=budget)
+    check(load(sys.argv[1]), CheckOptions(order=25), budget=budget)
 except ResourceError as err:
     print(err)
 """
 
 
-def test_order_24_is_refused_before_any_work():
-    run = run_limited(["-c", ORDER_24, str(TABLEAUX / "explicit" / "rk4.toml"), "budget"], memory_mb=300, cpu_seconds=10)
+def test_order_25_is_refused_before_any_work():
+    run = run_limited(["-c", ORDER_25, str(TABLEAUX / "explicit" / "rk4.toml"), "budget"], memory_mb=300, cpu_seconds=10)
     assert run.code == 0, run.err
-    assert re.fullmatch(r"order 24 needs about [0-9.]+ GB for 167,871,332 conditions but 25\.8 GB is available; .*\n",
+    assert re.fullmatch(r"order 25 needs about [0-9.]+ GB for 447,652,296 conditions but 25\.8 GB is available; .*\n",
                         run.out), run.out
 
 
-def test_without_a_budget_order_24_does_not_fit_the_same_limits():
+def test_without_a_budget_order_25_does_not_fit_the_same_limits():
     # the control: the limits above do stop a check that starts working
-    run = run_limited(["-c", ORDER_24, str(TABLEAUX / "explicit" / "rk4.toml"), "none"], memory_mb=300, cpu_seconds=10)
+    run = run_limited(["-c", ORDER_25, str(TABLEAUX / "explicit" / "rk4.toml"), "none"], memory_mb=300, cpu_seconds=10)
     assert run.code != 0 and run.out == ""
     assert run.killed or "MemoryError" in run.err or "Unable to allocate" in run.err, run.err
 
