@@ -27,7 +27,7 @@ from typing import Any, Callable
 
 from rkcheck.energy.budget import Budget, ResourceError
 from rkcheck.energy.check import CheckResult, CheckRunner
-from rkcheck.energy.gate import conditions_ok
+from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import DecimalsMode
@@ -42,6 +42,13 @@ class ClaimResult:
     met: bool
     found: str
     note: str | None = None
+    digits: int | None = None  # the evidence holds only to this many digits (None: exactly)
+    proven: bool = True  # False: met by the orders checked, not proven beyond them
+
+    @property
+    def name(self) -> str:
+        """``energy_order = all``: the claim as its file writes it."""
+        return f"{self.claim.kind} = {self.claimed}"
 
     @property
     def claimed(self) -> str:
@@ -104,8 +111,9 @@ def _judge_energy_order(claim: Claim, result: CheckResult) -> ClaimResult:
         if not len(result.failures):
             note = f"verified to order {n_checked}, not proven beyond"
             if result.energy_order_digits is None:
-                return ClaimResult(claim, True, found, note)
-            return _to_digits(claim, True, f"≥ {n_checked}", result.energy_order, result.energy_order_digits, note)
+                return ClaimResult(claim, True, found, note, proven=False)
+            return replace(_to_digits(claim, True, f"≥ {n_checked}", result.energy_order, result.energy_order_digits,
+                                      note), proven=False)
         return ClaimResult(claim, False, found)
     # len(), not first_failure: the verdict needs no exact value (check.first_record)
     if result.certified_all:
@@ -131,7 +139,7 @@ def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: 
         parts.append(f"proven to order {proven} only; beyond it to {digits} digits, not a proof")
     else:
         parts.append(f"to {digits} digits, not a proof")
-    return ClaimResult(claim, met, _reach(found, digits), "; ".join(parts))
+    return ClaimResult(claim, met, _reach(found, digits), "; ".join(parts), digits)
 
 
 def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
@@ -203,7 +211,9 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
-    return result_type.of(result, claims=claims, failed=file_fails(conditions_ok(result), claims, fail_on))
+    require_ok = requirement_shortfall(result, claims) is None
+    return result_type.of(result, claims=claims,
+                          failed=file_fails(conditions_ok(result), claims, fail_on, require_ok))
 
 
 def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:
@@ -225,16 +235,22 @@ def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:
 
 # ---------------------------------------------------------------- exit policy
 
-def file_fails(conditions_ok: bool, claim_results: list[ClaimResult] | None, fail_on: str = "auto") -> bool:
+def file_fails(conditions_ok: bool, claim_results: list[ClaimResult] | None, fail_on: str = "auto",
+               require_ok: bool = True) -> bool:
     """Whether a checked file counts as failed (exit 1) under ``--fail-on``.
 
     ``auto`` (the default): a file with claims is judged by its claims, a file without
     claims by its conditions.  ``conditions``: any failing condition (an AVF certificate
     counts as success).  ``claims``: any broken claim.  ``never``: never fails.
+    ``require_ok``: the holds and the claims met reach ``--require``
+    (:func:`~rkcheck.energy.gate.requirement_shortfall`); a shortfall fails the file
+    under every ``--fail-on`` but ``never``, as its name promises.
     """
     claims_ok = all(r.met for r in claim_results) if claim_results else True
     if fail_on == "never":
         return False
+    if not require_ok:
+        return True
     if fail_on == "claims":
         return not claims_ok
     if fail_on == "conditions":

@@ -4,6 +4,7 @@ whether its conditions pass at all."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -20,6 +21,7 @@ class Shortfall:
     count: int  # conditions that hold only to too few digits (0: the certificate alone)
     examples: list[str]  # their ids, first ones in presentation order
     certificate: bool  # the certificate of every order holds only numerically
+    claims: tuple[str, ...] = ()  # why each claim met only to too few digits (or orders) falls short
 
     def text(self) -> str:
         what = "a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits"
@@ -30,20 +32,24 @@ class Shortfall:
                          f"{'s' if self.count == 1 else ''} only to digits ({ids})")
         if self.certificate:
             parts.append("the certificate of every order holds only to digits")
+        parts.extend(self.claims)
         return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"
 
 
-def requirement_shortfall(result: CheckResult) -> Shortfall | None:
+def requirement_shortfall(result: CheckResult, claims: list[Any] | None = None) -> Shortfall | None:
     """What keeps the holds of ``result`` from meeting its ``options.require``: conditions
-    that hold only to digits (``proof``) or to fewer than D (``digits:D``), or a
-    certificate that is only numerical.  None when the requirement is met, as it is by an
-    exact certificate of every order."""
+    that hold only to digits (``proof``) or to fewer than D (``digits:D``), a certificate
+    that is only numerical, or claims (``claims``, else the result's own) met only that
+    way — or, for ``proof``, met by the orders checked without a proof beyond them.  None
+    when the requirement is met, as it is by an exact certificate of every order."""
     require = result.options.require
     # an exact certificate of every order proves each checked condition exactly, whatever
     # arithmetic evaluated the conditions themselves (definitions §5: a proof)
     if require == "any" or result.energy_order_all:
         return None
     need = result.options.required_digits
+    claims = result.claims if claims is None else claims
+    unmet = tuple(_claim_shortfall(r, need) for r in claims or () if r.met and _claim_short(r, need))
 
     def short(digits: np.ndarray) -> np.ndarray:
         return np.ones(len(digits), dtype=bool) if need is None else digits < need
@@ -59,9 +65,23 @@ def requirement_shortfall(result: CheckResult) -> Shortfall | None:
                     break
     cert_digits = result.energy_order_all_digits
     cert_short = cert_digits is not None and (need is None or cert_digits < need)
-    if not count and not cert_short:
+    if not count and not cert_short and not unmet:
         return None
-    return Shortfall(require, count, examples, cert_short)
+    return Shortfall(require, count, examples, cert_short, unmet)
+
+
+def _claim_short(r: Any, need: int | None) -> bool:
+    """A met claim whose evidence falls short of ``proof`` (``need`` None) or of ``need``
+    digits: it holds only to digits, or (for a proof) only to the orders checked."""
+    if need is None:
+        return r.digits is not None or not r.proven
+    return r.digits is not None and r.digits < need
+
+
+def _claim_shortfall(r: Any, need: int | None) -> str:
+    if r.digits is not None:
+        return f"the claim {r.name} holds only to {r.digits} digits"
+    return f"the claim {r.name} is {r.note}"
 
 
 def conditions_ok(result: CheckResult) -> bool:
