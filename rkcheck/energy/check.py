@@ -229,7 +229,9 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
         energy_order=proven, energy_order_to_digits=to_digits,
         energy_order_all=bool(cert and cert.certified and cert.verdict.state == HOLDS),
         quadrature=quad, classical=classical, avf=avf, certificate=cert,
-        theorem1=None if surrogate is not None else _theorem1(avf, conditions, per_order, options.order),
+        # Theorem 1 is about consistent methods (Σb = 1): of an inconsistent one it says nothing
+        theorem1=(None if surrogate is not None or (quad.to_digits == 0 and quad.first_failure is not None)
+                  else _theorem1(avf, conditions, per_order, options.order)),
         warnings=warnings, values=values,
         properties=props, timings=timings, interrupted=interrupted,
     )

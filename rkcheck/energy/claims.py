@@ -28,6 +28,7 @@ from typing import Any, Callable
 from rkcheck.energy.budget import Budget, ResourceError
 from rkcheck.energy.check import CheckResult, CheckRunner
 from rkcheck.energy.gate import conditions_ok, requirement_shortfall
+from rkcheck.errors import UserError
 from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import DecimalsMode
@@ -151,6 +152,9 @@ def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
         pv = getattr(props, claim.kind)
         return ClaimResult(claim, pv.holds == claim.value, str(pv.holds).lower(), pv.reason)
     stab = props.stability
+    if stab is None:  # a continuous method: its kernel has no stability function as a finite object
+        raise UserError("does not apply to a continuous method (it has no stability function here); "
+                        "claim it of a discretized tableau", claim.place, result.tableau.info.source)
     note = stab.defect_text()
     if stab.leading_power is None:
         return ClaimResult(claim, claim.power is None, "0", note)

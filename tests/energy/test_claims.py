@@ -8,6 +8,8 @@ import pytest
 from support.claimfiles import MIDPOINT, RK4, write  # noqa: F401
 from support.clirun import run_cli
 
+import rkcheck
+
 # RK4: classical order 4 (Kutta), quadrature order 4 (Simpson's rule: nodes 0, 1/2, 1
 # with weights 1/6, 2/3, 1/6 is exact to degree 3), energy order 4 for all H (its h^5
 # energy error term does not vanish: see test_verify.test_rk4_energy_order_is_4).
@@ -83,3 +85,23 @@ def test_malformed_claims_are_user_errors(tmp_path, capsys, expect, message):
     path = write(tmp_path, MIDPOINT, expect)
     r = run_cli(capsys, "verify", path)
     assert r.code == 2 and message in r.err and len(r.err.strip().splitlines()) == 1
+
+
+def test_a_stability_claim_of_a_continuous_method_is_an_error_naming_it(tmp_path, capsys):
+    path = tmp_path / "c1.toml"
+    path.write_text('[continuous]\nA = "tau"\n[expect]\nstability_defect = 0\n', encoding="utf-8")
+    r = run_cli(capsys, "verify", str(path))
+    assert r.code == 2 and len(r.err.splitlines()) == 1
+    assert r.err.startswith(f"rkcheck: error: {path}: expect.stability_defect: does not apply to a continuous method")
+
+
+def test_theorem_1_says_nothing_of_an_inconsistent_method(tmp_path, capsys):
+    # AVF Gauss-2 with A and b doubled: every weight of a tree t scales by 2^|t|, so every
+    # residual by 2^(n−1): all conditions hold, while Σb = 2 (not AVF, not consistent)
+    path = tmp_path / "avf2x.toml"
+    path.write_text('[constants]\nc1 = "1/2 - sqrt(3)/6"\nc2 = "1/2 + sqrt(3)/6"\n[tableau]\n'
+                    'A = [["c1", "c1"], ["c2", "c2"]]\nb = ["1", "1"]\n', encoding="utf-8")
+    r = run_cli(capsys, "verify", str(path), "--degree", "4", "--order", "8")
+    assert "all 66" in r.out or "66 energy conditions" in r.out
+    assert "Theorem 1" not in r.out and "must fail" not in r.out
+    assert rkcheck.verify(path, degree=4, order=8).theorem1 is None
