@@ -22,7 +22,6 @@ from rkcheck.api.verification import (
 from rkcheck.errors import UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
-    DEFAULT_ORDER,
     FAIL_ON,
     JOBS_RANGE,
     MAX_STAGES_RANGE,
@@ -125,15 +124,33 @@ def _config(project: bool | ProjectConfig) -> ProjectConfig:
 def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectConfig = False) -> list[str]:
     """The roots a scan starts from: ``paths``, else the ``paths`` of ``[tool.rkcheck]``
     (with ``project``); none at all is an error (the CLI's message)."""
-    if isinstance(paths, (str, bytes, os.PathLike)):  # one path, not a sequence of its characters
-        paths = [paths]
-    try:
-        roots = [os.fsdecode(p) for p in paths] or _config(project).paths
-    except TypeError:
-        raise UserError("expected a path or a list of paths (str or os.PathLike)", "paths") from None
+    roots = _paths(paths) or _config(project).paths
     if not roots:
         raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
     return roots
+
+
+def _paths(paths: Any) -> list[str]:
+    """``paths`` as a list of path strings: one path (not a sequence of its characters) or
+    several; anything else is refused naming the argument."""
+    if isinstance(paths, (str, bytes, os.PathLike)):
+        paths = [paths]
+    try:
+        out = [os.fsdecode(p) for p in paths]
+    except TypeError:
+        raise UserError("expected a path or a list of paths (str or os.PathLike)", "paths") from None
+    if "" in out:  # read as the current folder otherwise: an unset variable in a CI script
+        raise UserError("an empty path: give a file or folder (. for the current one)", "paths")
+    return out
+
+
+def _patterns(exclude: Any) -> list[str]:
+    """``exclude`` as a list of glob patterns: one pattern, or several."""
+    if isinstance(exclude, str):
+        return [exclude]
+    if isinstance(exclude, (list, tuple)) and all(isinstance(p, str) for p in exclude):
+        return list(exclude)
+    raise UserError(f"expected a glob pattern or a list of them, got {exclude!r}", "exclude")
 
 
 def scan(
@@ -207,15 +224,16 @@ def scan(
     jobs = jobs or config.jobs or default_jobs()
     sort = _option(lambda: parse_choice(sort, SCAN_SORTS, "sort"))
     max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
-    files_budget = _scan_budget(flags, config, max_conditions)
+    files_budget = _scan_budget(flags, max_conditions)
+    patterns = _patterns(exclude) + config.exclude
     address = resolve_scheduler(scheduler, config.scheduler)
     t0 = time.perf_counter()
     outcomes: list[FileOutcome] = []
     interrupted = False
     try:
-        files = find_tableau_files(roots, list(exclude) + config.exclude)
+        files = find_tableau_files(roots, patterns)
         if not files and not (config.allow_empty if allow_empty is None else allow_empty):
-            raise UserError(_nothing_found(roots, list(exclude) + config.exclude), "scan")
+            raise UserError(_nothing_found(roots, patterns), "scan")
         on_result = _reporter(len(files), progress, on_file)
         # connected here: an unreachable scheduler stops the scan before any file
         with executor_for(address, jobs) if address and files else nullcontext() as executor:
@@ -248,17 +266,19 @@ def _nothing_found(roots: list[str], exclude: list[str]) -> str:
             "(--allow-empty, or allow_empty = true in [tool.rkcheck], lets an empty scan pass)")
 
 
-def _scan_budget(flags: dict[str, Any], config: ProjectConfig, max_conditions: int | None) -> Any:
-    """The resource guard: the scan's default options must fit before the tables are
-    built; each file's own ``[check]`` is judged against the same budget (an error row)."""
+def _scan_budget(flags: dict[str, Any], max_conditions: int | None) -> Any:
+    """The resource guard of every file: each is judged against it with the options it
+    is checked with, and one that does not fit is an error row.  An order given to the
+    scan itself is every file's (it overrides their ``[check]``): one that does not fit
+    refuses the scan before any file; without one, a file's own ``[check]`` may fit where
+    the default order does not."""
     from rkcheck.energy.budget import check_budget, estimate
 
     if max_conditions is not None:
         max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
     files_budget = budget(max_conditions)
-    default_order = flags.get("order", config.check.get("order", DEFAULT_ORDER))
-    default_degree = flags.get("degree", config.check.get("degree"))
-    check_budget(estimate(default_order, default_degree, "exact"), files_budget, default_order)
+    if "order" in flags:
+        check_budget(estimate(flags["order"], flags.get("degree"), "exact"), files_budget, flags["order"])
     return files_budget
 
 
@@ -331,7 +351,7 @@ def catalog(
     from rkcheck.io.discovery import find_tableau_files
     from rkcheck.io.library import library_root
 
-    roots = [os.fspath(p) for p in paths]
+    roots = _paths(paths)
     if not roots:
         root_dir = library_root()
         if root_dir is None:

@@ -28,7 +28,8 @@ from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 
 
 @click.command(epilog=exit_codes(
-    "a file fails under --fail-on (default: a broken claim) or cannot be checked",
+    "a file fails under --fail-on (default: a broken claim) or cannot be checked;\n"
+    "never with --fail-on never, which always exits 0 after a complete scan",
     "interrupted (Ctrl-C, SIGTERM); the report holds the files that finished",
     "a bad option, [tool.rkcheck] or path, or no tableau file at all under the\npaths (unless --allow-empty); "
     "one line on stderr"))

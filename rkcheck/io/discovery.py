@@ -10,9 +10,12 @@ from rkcheck.errors import UserError
 SUFFIXES = (".toml", ".json")
 
 
-def _excluded(path: Path, patterns: list[str]) -> bool:
-    text = path.as_posix()
-    return any(fnmatch.fnmatch(text, p) or fnmatch.fnmatch(path.name, p) for p in patterns)
+def _excluded(path: Path, patterns: list[str], root: Path | None = None) -> bool:
+    """Whether a pattern matches the path as given, the file's name, or — under a folder
+    scanned — the path within that folder (``drafts/*`` excludes ``tableaux/drafts/x.toml``
+    of a scan of ``tableaux``)."""
+    texts = [path.as_posix(), path.name] + ([path.relative_to(root).as_posix()] if root is not None else [])
+    return any(fnmatch.fnmatch(text, p) for p in patterns for text in texts)
 
 
 def _unreadable_folders(root: Path) -> list[Path]:
@@ -29,8 +32,8 @@ def _unreadable_folders(root: Path) -> list[Path]:
 def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> list[str]:
     """Every ``*.toml``/``*.json`` under ``paths`` (files given explicitly are kept whatever
     their suffix; ``@name`` stands for a shipped tableau or classical method), sorted,
-    without duplicates, minus the ``exclude`` glob patterns (matched against the path and
-    the file name)."""
+    without duplicates, minus the ``exclude`` glob patterns (matched against the path, the
+    file name, and the path within a folder scanned)."""
     exclude = list(exclude or [])
     found: list[Path] = []
     for raw in paths:
@@ -42,8 +45,9 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
             found.extend(unreadable)  # each becomes an error row of the scan, not 0 files
             for f in sorted(p.rglob("*")):
                 # a dangling link, a link loop, a named pipe or a device is kept: it becomes
-                # an error row, not a silently missing file
-                if (not f.is_dir() or f.is_symlink()) and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude):
+                # an error row, not a silently missing file; a link to a folder is not
+                # followed (is_dir follows it: it is left out, as a folder is)
+                if not f.is_dir() and f.suffix.lower() in SUFFIXES and not _excluded(f, exclude, p):
                     if not any(part.startswith(".") for part in f.relative_to(p).parts):
                         found.append(f)
         elif raw.startswith("@"):  # a shipped tableau or classical method by name

@@ -93,6 +93,8 @@ def read_text(path: str) -> str:
     import stat
 
     limit = max_file_bytes()
+    if path == "":  # read as the current folder otherwise: an unset variable in a CI script
+        raise UserError("an empty path: give a tableau file (or - for standard input)", "path")
     try:
         if path == "-":
             stdin = getattr(sys.stdin, "buffer", None)

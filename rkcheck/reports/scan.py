@@ -383,7 +383,10 @@ def _common_root(paths: list[str]) -> tuple[str, Any]:
     relative to it."""
     import os
 
-    root = os.path.commonpath(paths) if len(paths) > 1 else ""
+    # absolute paths beside relative ones (a folder and @rk4) share no folder: each is
+    # shown as given
+    mixed = len({os.path.isabs(p) for p in paths}) > 1
+    root = os.path.commonpath(paths) if len(paths) > 1 and not mixed else ""
     if root and not os.path.isdir(root):
         root = os.path.dirname(root)
 

@@ -468,3 +468,47 @@ def test_a_csv_file_named_on_the_command_line_is_read_as_verify_reads_it(capsys,
     # Heun: classical order 2 (by hand: Σb = 1, Σbc = 1/2, Σbc² = 1/2 ≠ 1/3)
     assert row["result"]["summary"]["classical_order"] == alone["summary"]["classical_order"] == 2
     assert row["result"]["summary"]["energy_order"] == alone["summary"]["energy_order"]
+
+
+RK4_FILE = Path(__file__).resolve().parents[2] / "tableaux" / "explicit" / "rk4.toml"
+
+
+def test_a_file_over_max_conditions_is_one_row_when_the_scan_gives_no_order(tmp_path, capsys):
+    # RK4 at order 4 has 1 + 1 + 3 = 5 conditions (SPEC §3), at the default order 8 86
+    (tmp_path / "a-default.toml").write_text(RK4_FILE.read_text(), encoding="utf-8")
+    (tmp_path / "b-order4.toml").write_text(RK4_FILE.read_text().split("[expect]")[0] + "\n[check]\norder = 4\n",
+                                            encoding="utf-8")
+    r = run_cli(capsys, "scan", str(tmp_path), "--max-conditions", "10", "--jobs", "1", "--format", "json")
+    doc = json.loads(r.out)
+    assert r.code == 1 and [f["status"] for f in doc["files"]] == ["error", "ok"]
+    assert "86 conditions, above --max-conditions 10" in doc["files"][0]["error"]
+    # an order given to the scan is every file's: refused before any file
+    r = run_cli(capsys, "scan", str(tmp_path), "--max-conditions", "10", "--order", "8", "--jobs", "1")
+    assert r.code == 2 and r.err.startswith("rkcheck: error: order 8 has 86 conditions")
+
+
+def test_a_text_scan_of_absolute_and_relative_paths_shows_each_as_given(tmp_path, capsys, monkeypatch):
+    (tmp_path / "mine.toml").write_text(RK4_FILE.read_text(), encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    r = run_cli(capsys, "scan", "@rk4", str(tmp_path / "mine.toml"), "--order", "2", "--jobs", "1")
+    assert r.code == 0, r.err
+    shown = "".join(r.out.split())  # a long path wraps in its cell
+    assert "@rk4" in shown and "mine.toml" in shown and "2files:2ok" in shown
+
+
+def test_exclude_matches_within_the_folder_scanned_and_links_to_folders_are_left_out(tmp_path, capsys):
+    root = tmp_path / "tableaux"
+    (root / "drafts").mkdir(parents=True)
+    (root / "ok.toml").write_text(RK4_FILE.read_text(), encoding="utf-8")
+    (root / "drafts" / "wip.toml").write_text("not toml [", encoding="utf-8")
+    (root / "linked.toml").symlink_to(root / "drafts", target_is_directory=True)
+    r = run_cli(capsys, "scan", str(root), "--exclude", "drafts/*", "--order", "2", "--jobs", "1", "--format", "json")
+    assert r.code == 0, r.out
+    assert [Path(f["file"]).name for f in json.loads(r.out)["files"]] == ["ok.toml"]
+
+
+def test_an_empty_path_is_refused_not_read_as_the_current_folder(capsys):
+    r = run_cli(capsys, "scan", "")
+    assert r.code == 2 and "an empty path" in r.err
+    r = run_cli(capsys, "verify", "")
+    assert r.code == 2 and "an empty path" in r.err
