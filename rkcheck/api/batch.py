@@ -99,6 +99,8 @@ class ScanResult:
         the table as plain text, as ``--output`` writes it)."""
         from rkcheck.reports import scan as scan_report
 
+        if format not in ("text", "json", "csv", "junit", "github"):
+            raise UserError(f"expected text, json, csv, junit or github, got {format!r}", "format")
         with printable_numbers():
             if format == "text":
                 return scan_report.scan_text(self.outcomes, self.elapsed, self.interrupted,

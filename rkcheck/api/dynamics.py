@@ -201,7 +201,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     T_value = _rational(T, "--T")
     counts = _option(lambda: parse_step_counts(steps))
     max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
-    if isinstance(tableaux, (str, os.PathLike, Tableau)):
+    if isinstance(tableaux, (str, os.PathLike, Tableau)) or not isinstance(tableaux, (list, tuple)):
         raise OptionError("expected a list of tableaux", "tableaux")
     if not T_value <= MAX_TIME:
         raise OptionError(f"expected a final time up to {MAX_TIME:,}, got {exact_string(T_value)}", "--T")

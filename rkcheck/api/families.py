@@ -62,6 +62,8 @@ def is_family_file(path: str | os.PathLike[str]) -> bool:
     """Whether the file (or ``"@name"``) declares free ``[parameters]``."""
     from rkcheck.io.loader import is_family_file as check
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise OptionError(f"expected a path (str or os.PathLike), got {type(path).__name__}", "path")
     return check(os.fspath(path))
 
 

@@ -67,6 +67,9 @@ def kernel(degree: int, stages: int | None = None, *, rule: str = "gauss", table
     from rkcheck.energy.double_bush import kernel_of, rule_kernel, tableau_rule
 
     degree = _option(lambda: parse_int_in(degree, KERNEL_DEGREE_RANGE, "degree"))
+    if not isinstance(rule, str):
+        raise OptionError(f"expected a rule name (gauss, radau-i, radau-ii, lobatto, zeta:<value>), got {rule!r}",
+                          "rule")
     if stages is not None:
         stages = _option(lambda: parse_int_in(stages, KERNEL_STAGES_RANGE, "stages"))
     dps = _option(lambda: parse_int_in(dps, STUDY_DPS_RANGE, "dps"))
@@ -129,6 +132,8 @@ def perturb(tableau: TableauLike, direction: str, *, degree: int | str | None = 
     from rkcheck.studies.accuracy import direction as make_direction
     from rkcheck.studies.accuracy import direction_dps, perturb_sweep
 
+    if not isinstance(direction, str):
+        raise OptionError(f"expected 'random', 'kernel' or 'entry:i,j', got {direction!r}", "direction")
     tab = as_tableau(tableau)
     deg, N = _degree_and_order(tab, degree, order)
     eps_values = _eps_list(eps)

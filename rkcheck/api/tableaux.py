@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
-from rkcheck.errors import TableauError, UserError
+from rkcheck.errors import OptionError, TableauError, UserError
 from rkcheck.methods.tableau import Tableau
 
 #: ``rkcheck.from_arrays``: :meth:`Tableau.from_arrays`
@@ -62,6 +62,8 @@ def write(tableau: Tableau, format: str = "toml") -> str:
         as_tableau(tableau)  # refused in one line, with the way to a tableau (discretize)
     if not isinstance(tableau, Tableau):
         raise UserError(f"expected a Tableau (rkcheck.load, rkcheck.from_arrays), got {type(tableau).__name__}")
+    if not isinstance(format, str):
+        raise OptionError(f"expected a format name (toml, json, latex, julia, python), got {format!r}", "format")
     return write_tableau(tableau, format)
 
 

@@ -11,6 +11,7 @@ import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
+from rkcheck.api.settings import guard
 from rkcheck.energy.explain import EnergyCondition, RootingTerm, explain
 from rkcheck.errors import OptionError, UserError
 from rkcheck.evaluation.values import TableauValues
@@ -50,6 +51,7 @@ def free_trees(n: int, max_degree: int | None = None) -> list[FreeTree]:
         raise OptionError(err.message, err.place) from None
     if n < 3:
         return []
+    guard(n - 1, degree)  # the resource guard: the listing of n vertices must fit in memory
     listing = condition_listing(n - 1, degree)
     return sorted(listing.records(n), key=lambda r: r.level_sequence)
 

@@ -171,7 +171,13 @@ def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters:
                        constants: Mapping[str, Any] | None = None, name: str = "unnamed family") -> Family:
     """A family from Python values (see :func:`entry_text`); ``parameters``: names or
     sympy symbols; ``constants``: name → value, like a file's ``[constants]``."""
+    if constants is not None and not isinstance(constants, Mapping):
+        raise UserError(f"expected a mapping of names to values, got {type(constants).__name__}", "constants")
+    if isinstance(parameters, str) or not isinstance(parameters, (list, tuple)):
+        raise UserError(f"expected a list of parameter names, got {parameters!r}", "parameters")
     params = tuple(str(p) for p in parameters)
+    if len(set(params)) != len(params):
+        raise UserError(f"a parameter is named twice in {list(params)}", "parameters")
     parse_parameters({p: "free" for p in params}, constants or {})
     s = len(b)
     if len(A) != s or any(len(row) != s for row in A):

@@ -152,3 +152,37 @@ def test_perturb_takes_one_eps_and_refuses_what_is_not_eps():
     for bad in (None, True, b"1e-3"):
         with pytest.raises(rkcheck.RkcheckError, match="^eps: expected ε values"):
             rkcheck.perturb("@avf-gauss-2", "kernel", degree=3, order=4, eps=bad)
+
+
+@pytest.mark.parametrize("call, place", [
+    (lambda: rkcheck.kernel(4, 2, rule=None), "rule"),
+    (lambda: rkcheck.perturb("@rk4", None), "direction"),
+    (lambda: rkcheck.write(rkcheck.load("@rk4"), []), "format"),
+    (lambda: rkcheck.work_precision(None, "harmonic"), "tableaux"),
+    (lambda: rkcheck.is_family_file(None), "path"),
+    (lambda: rkcheck.family_from_arrays([["p"]], ["1"], ["p"], constants=5), "constants"),
+    (lambda: rkcheck.family_from_arrays([["p"]], ["1"], ["p", "p"]), "parameters"),
+    (lambda: rkcheck.scan(["@rk4"], exclude=5), "exclude"),
+    (lambda: rkcheck.scan([""]), "paths"),
+    (lambda: rkcheck.load(""), "path"),
+    (lambda: rkcheck.scan(["@rk4"], order=2, jobs=1).report("xml"), "format"),
+])
+def test_an_argument_of_the_wrong_kind_is_a_one_line_error_naming_it(call, place):
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        call()
+    assert err.value.place == place and "\n" not in str(err.value)
+
+
+def test_free_trees_past_the_memory_is_refused_before_it_is_listed():
+    from rkcheck.api.trees import free_trees
+
+    with pytest.raises(rkcheck.RkcheckError, match="available"):
+        free_trees(27)  # order 26: hundreds of GB of rooted trees
+
+
+def test_one_exclude_pattern_as_a_string_is_one_pattern(tmp_path):
+    (tmp_path / "sub").mkdir()
+    for name in ("a.toml", "sub/b.toml"):
+        (tmp_path / name).write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(), encoding="utf-8")
+    result = rkcheck.scan([str(tmp_path)], exclude="sub/*", order=2, jobs=1)
+    assert [r.path for r in result.rows] == [str(tmp_path / "a.toml")]
