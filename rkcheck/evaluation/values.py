@@ -150,6 +150,8 @@ class TableauValues:
         exact values."""
         exact = self.exact
         rows, total = _exact_differences(exact) if exact is not None else self._certain_differences()
+        if exact is not None and rows and self._c_rounded():  # c's decimals stand for intervals
+            rows = self._certain_rows()
         out: list[str] = []
         if rows:
             out.append("c differs from the row sums A·1 (the check uses A·1): "
@@ -158,17 +160,32 @@ class TableauValues:
             out.append(f"Σb = {total} ≠ 1: the method is inconsistent (not even order 1)")
         return out
 
+    def _c_rounded(self) -> bool:
+        """A given ``c`` with decimals that the reading takes as intervals (exact A and b
+        beside it are then compared with them as intervals)."""
+        c = self.tableau.c
+        return c is not None and any(ci.is_box(self.reading.decimals) for ci in c)
+
+    def _certain_rows(self) -> list[tuple[int, str]]:
+        """The rows i with ``c_i ≠ (A·1)_i`` where the enclosures prove it, each with the
+        text of its difference."""
+        tab, face = self.tableau, self.tableau.exact_values()
+        rows: list[tuple[int, str]] = []
+        if tab.c is None:
+            return rows
+        A, _ = tab.enclosures(self.reading.entry_bits, self.reading.decimals) if self.A is None else (self.A, None)
+        for i, (row, ci) in enumerate(zip(A, tab.c), start=1):
+            diff = ci.enclosure(self.reading.entry_bits, self.reading.decimals) - interval_sum(row)
+            if not diff.contains_zero():
+                exact = None if face is None or face.c is None else face.c[i - 1] - sum(face.A[i - 1])
+                rows.append((i, _value_text(diff, exact)))
+        return rows
+
     def _certain_differences(self) -> tuple[list[tuple[int, str]], str | None]:
         """The rows i with ``c_i ≠ (A·1)_i`` and the text of each difference, and that of
         ``Σb`` when it is not 1, where the entries' enclosures prove it."""
         tab, face = self.tableau, self.tableau.exact_values()
-        rows = []
-        if tab.c is not None:
-            for i, (row, ci) in enumerate(zip(self.A, tab.c), start=1):
-                diff = ci.enclosure(self.reading.entry_bits, self.reading.decimals) - interval_sum(row)
-                if not diff.contains_zero():
-                    exact = None if face is None or face.c is None else face.c[i - 1] - sum(face.A[i - 1])
-                    rows.append((i, _value_text(diff, exact)))
+        rows = self._certain_rows()
         sb = interval_sum(self.b)
         if (sb - Interval.point(1)).contains_zero():
             return rows, None

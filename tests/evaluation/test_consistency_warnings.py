@@ -71,3 +71,19 @@ def test_exact_entries_are_compared_exactly_however_small_the_difference(tmp_pat
     path.write_text('[tableau]\nA = [["0", "0"], ["sqrt(2)/4", "sqrt(8)/8"]]\nb = ["0", "1"]\nc = ["0", "sqrt(2)/3"]\n')
     r = run_cli(capsys, "verify", str(path), "--order", "2")
     assert "c[2] - (A·1)[2] = -sqrt(2)/6" in r.out + r.err  # √2/3 − √2/2 = −√2/6
+
+
+GAUSS2_EXACT = '[tableau]\nA = [["1/4","1/4 - sqrt(3)/6"],["1/4 + sqrt(3)/6","1/4"]]\nb = ["1/2","1/2"]\nc = [{}]\n'
+
+
+def test_a_decimal_c_beside_an_exact_a_is_compared_within_its_rounding(tmp_path, capsys):
+    # by hand: 1/2 ∓ √3/6 = 0.21132486540518…, 0.78867513459481…; ten digits round them
+    # within half a unit (5e-11), seven digits (0.2113248: 5.4e-8 away) do not
+    within, beyond = tmp_path / "within.toml", tmp_path / "beyond.toml"
+    within.write_text(GAUSS2_EXACT.format('"0.2113248654", "0.7886751346"'), encoding="utf-8")
+    beyond.write_text(GAUSS2_EXACT.format('"0.2113248", "0.7886751346"'), encoding="utf-8")
+    assert "differs" not in run_cli(capsys, "verify", str(within), "--order", "2").out
+    out = run_cli(capsys, "verify", str(beyond), "--order", "2").out
+    assert "c[1] - (A·1)[1]" in out and "c[2]" not in out.split("warning: c differs")[1].split("\n")[0]
+    # at face value both are off
+    assert "c[2] - (A·1)[2]" in run_cli(capsys, "verify", str(within), "--order", "2", "--decimals", "exact").out
