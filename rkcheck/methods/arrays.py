@@ -24,7 +24,9 @@ from arrays:
                             float whose two readings differ warns
                             (:class:`~rkcheck.errors.RkcheckWarning`).  To check a
                             tableau up to the digits you trust, pass strings:
-                            ``f"{x:.15g}"``
+                            ``f"{x:.15g}"``.  A numpy ``float32`` (or ``float16``) is
+                            the decimal it prints as in its own precision
+                            (``0.16666667``), not widened to a double first
 ``decimal.Decimal``         its decimal text, as a string would be
 sympy numbers               ``Rational``/``Integer`` exactly; other constant expressions
                             (``sqrt(3)/6``) through their text; a ``Float`` of 53 bits
@@ -115,6 +117,8 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
                     return Entry.parse(_sympy_root_text(x, place)), False
             raise TableauError(f"expected a number, got the sympy expression {x}", place)
         if hasattr(x, "item") and hasattr(x, "dtype"):  # a numpy scalar
+            if getattr(x.dtype, "kind", "") == "f" and x.dtype.itemsize < 8:
+                return _narrow_float_entry(x, floats, place)
             item = x.item()
             if type(item) is type(x):  # numpy.longdouble: no Python type holds it
                 return _longdouble_entry(x, floats, place)
@@ -123,6 +127,17 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
         inner = err.place if err.place and not err.place.startswith(place) else None
         raise TableauError(err.message, f"{place}: {inner}" if inner else (err.place or place)) from None
     raise TableauError(f"expected a number (int, Fraction, str, float), got {type(x).__name__}", place)
+
+
+def _narrow_float_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
+    """A numpy float32 (or float16) as the decimal it prints as in its own precision
+    (``str``: ``0.16666667``, numpy's shortest repr for the type) — widened to a
+    Python float it would print as ``0.1666666716337204`` — or its exact binary value."""
+    if not math.isfinite(float(x)):
+        raise TableauError(f"{x} is not a finite number", place)
+    value = Fraction(float(x))  # widening is exact
+    shown = Entry.parse(str(x))
+    return (shown if floats == "shortest" else Entry.of(value)), Fraction(str(x)) != value
 
 
 def _sympy_root_text(x: Any, place: str) -> str:
@@ -158,7 +173,9 @@ def _sympy_float_exact(x: Any) -> Fraction:
 
 
 def _as_list(value: Any, place: str) -> list[Any]:
-    if hasattr(value, "tolist"):  # numpy arrays, sympy matrices
+    if hasattr(value, "dtype") and getattr(value, "ndim", 0) >= 1:  # a numpy array: its own scalars
+        value = list(value)  # (tolist() would widen float32 to float and print its binary noise)
+    elif hasattr(value, "tolist"):  # sympy matrices
         value = value.tolist()
     if isinstance(value, (list, tuple)):
         return list(value)

@@ -186,3 +186,20 @@ def test_one_exclude_pattern_as_a_string_is_one_pattern(tmp_path):
         (tmp_path / name).write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(), encoding="utf-8")
     result = rkcheck.scan([str(tmp_path)], exclude="sub/*", order=2, jobs=1)
     assert [r.path for r in result.rows] == [str(tmp_path / "a.toml")]
+
+
+def test_float32_arrays_are_read_as_the_decimals_they_print_as():
+    import warnings
+
+    import numpy as np
+
+    A = np.array([[0, 0, 0, 0], [0.5, 0, 0, 0], [0, 0.5, 0, 0], [0, 0, 1, 0]], dtype=np.float32)
+    b = np.array([1 / 6, 1 / 3, 1 / 3, 1 / 6], dtype=np.float32)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tab = rkcheck.from_arrays(A, b)
+        result = rkcheck.verify(tab, order=5)
+    assert [e.text for e in tab.b] == [str(x) for x in b] == ["0.16666667", "0.33333334", "0.33333334", "0.16666667"]
+    # RK4 to float32's 8 digits: consistent, classical order 4 to digits (widened to
+    # float64, Σb = 1.0000000298… was "inconsistent" and the order 0)
+    assert result.classical.to_digits == 4 and not any("inconsistent" in w for w in result.warnings)
