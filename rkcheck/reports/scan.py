@@ -369,7 +369,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
     root, shown = _common_root([o["path"] for o in outcomes])
     rows = [o for o in outcomes if not quiet or o["status"] in ("failed", "error")]
     if rows or not quiet:
-        t = _scan_table(f"files under {root}/" if root else None, constants)
+        t = _scan_table(f"files under {root}/" if root else None, constants, console.width)
         for o in rows:
             t.add_row(*_scan_row(o, shown, constants))
         _keep_verdict_widths(t)
@@ -396,13 +396,23 @@ def _common_root(paths: list[str]) -> tuple[str, Any]:
     return root, shown
 
 
-def _scan_table(title: str | None, constants: bool) -> Any:
+#: the narrowest the scan table's file column gets, whatever the terminal's width; the
+#: width the columns after the method's take, with their padding
+FILE_COLUMN_MIN = 16
+VERDICT_COLUMNS = 60
+
+
+def _scan_table(title: str | None, constants: bool, width: int = 140) -> Any:
     from rich import box
     from rich.table import Table
 
     t = Table(box=box.SIMPLE_HEAD, pad_edge=False, title=title, title_justify="left")
-    t.add_column("file", overflow="fold")  # a long path folds; the columns after it never shrink
-    t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=26)
+    # a long path folds, and on a narrow terminal the method's name gives way first (the
+    # verdict columns cannot shrink): without room for it, rich would squeeze the file
+    # column to nothing, and rows could not be told apart
+    t.add_column("file", overflow="fold", min_width=FILE_COLUMN_MIN)
+    method = max(1, min(26, width - FILE_COLUMN_MIN - VERDICT_COLUMNS - (8 if constants else 0)))
+    t.add_column("method", no_wrap=True, overflow="ellipsis", max_width=method)
     for col in ("s", "m", "classical", "energy") + (("C",) if constants else ()):
         t.add_column(col, justify="right", no_wrap=True)
     t.add_column("AVF", justify="center", no_wrap=True)

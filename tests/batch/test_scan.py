@@ -512,3 +512,19 @@ def test_an_empty_path_is_refused_not_read_as_the_current_folder(capsys):
     assert r.code == 2 and "an empty path" in r.err
     r = run_cli(capsys, "verify", "")
     assert r.code == 2 and "an empty path" in r.err
+
+
+@pytest.mark.parametrize("width", [80, 90, 140])
+def test_the_file_column_stays_readable_on_a_narrow_terminal(width):
+    from rich.console import Console
+
+    import rkcheck
+    from rkcheck.reports.scan import render_scan_text
+
+    result = rkcheck.scan([str(RK4_FILE.parent)], order=2, jobs=1)
+    console = Console(file=io.StringIO(), width=width, no_color=True)
+    render_scan_text(result.outcomes, console, 0.0, False)
+    text = console.file.getvalue()
+    assert all(len(line) <= width for line in text.splitlines())
+    for name in ("euler.toml", "rk4.toml", "heun.toml"):  # short names: each whole in its cell
+        assert any(line.split()[:1] == [name] for line in text.splitlines()), (width, text)
