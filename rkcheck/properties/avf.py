@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Iterator
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
 from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
@@ -123,7 +124,7 @@ def theorem1_remark(
     if s < smin:
         return (
             f"Theorem 1: preserving all degree-{m} Hamiltonians needs at least s_min = {smin} stages; "
-            f"this method has {s} effective stages, so it cannot"
+            f"this method has {counted(s, 'effective stage')}, so it cannot"
         )
     if s == smin:
         if avf.equals_avf and avf.verdict.state == HOLDS_TO_DIGITS:  # AVF only to digits: no proof
@@ -147,7 +148,7 @@ def theorem1_remark(
             f"not AVF, so some condition fails; the conditions up to order {order_checked} {held}, so the "
             f"failure may be one of them, too small to show at this precision (raise --dps), or lie beyond"
         )
-    return f"Theorem 1: s_min = {smin} for degree {m}; this method has {s} effective stages"
+    return f"Theorem 1: s_min = {smin} for degree {m}; this method has {counted(s, 'effective stage')}"
 
 
 

@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.properties import scalars as sc
 from rkcheck.verdicts import FAILS, HOLDS, Verdict
 
@@ -76,7 +77,7 @@ class Reduction:
         dead = sorted(i for i in self.dropped if i not in gone)
         if dead:
             parts.append(f"dropped dead stage{'s' if len(dead) > 1 else ''} " + ", ".join(str(i + 1) for i in dead))
-        return f"reduced from {self.stages} to {self.reduced_stages} stages ({'; '.join(parts)})"
+        return f"reduced from {self.stages} to {counted(self.reduced_stages, 'stage')} ({'; '.join(parts)})"
 
 
 def reduce_tableau(A: sc.Matrix, b: sc.Vector) -> Reduction:

@@ -39,7 +39,7 @@ def test_a_merged_cancelling_pair_is_not_called_dead(tmp_path, capsys):
     out = run_cli(capsys, "verify", path, "--degree", "2", "--order", "2").out
     text = " ".join(out.split())  # the terminal wraps long rows
     line = text[text.index("reduced from"):].split(")")[0]
-    assert "reduced from 4 to 1 stages" in line
+    assert "reduced from 4 to 1 stage (" in line + ")"
     assert "merged stages 2+3 into one with weight 0 that nothing uses, then dropped it" in line
     assert "dropped dead stage 4" in line and "dead stages 2" not in line and "dead stage 2" not in line
     red = json.loads(run_cli(capsys, "verify", path, "--degree", "2", "--order", "2",
@@ -54,3 +54,12 @@ def test_an_inconsistent_method_fails_sum_b_equals_one(tmp_path, capsys):
     assert "classical order   0  (Σ b_i = 1 fails)" in out and "a(τ)" not in out
     doc = json.loads(run_cli(capsys, "verify", path, "--order", "2", "--format", "json").out)
     assert doc["summary"]["classical_first_failure"] == "Σ b_i = 1"
+
+
+def test_one_effective_stage_is_singular(tmp_path, capsys):
+    # two equal rows merge into the implicit midpoint rule: 1 stage, below Theorem 1's
+    # s_min = 2 for degree 3
+    path = _write(tmp_path, "mid2.json", {"A": [["1/2", "0"], ["0", "1/2"]], "b": ["1/2", "1/2"]})
+    text = " ".join(run_cli(capsys, "verify", path, "--degree", "3", "--order", "3").out.split())
+    assert "reduced from 2 to 1 stage (merged stages 1+2)" in text
+    assert "this method has 1 effective stage, so it cannot" in text
