@@ -3,13 +3,14 @@
 An exact check evaluates every condition modulo several primes (and, in a number field,
 at several roots of each): each *pass* over the listing computes some of these channels,
 independently of the others (:mod:`rkcheck.evaluation.modular`).  The passes of one
-check go to the workers as jobs; each worker rebuilds the listing of the same order and
-degree (or reads it from its own listing cache) and sends back the residues of its pass.
+check go to the workers as jobs; each worker rebuilds the same listing — of rooted trees
+(or read from its own listing cache), or by centroid — for the same order and degree,
+and sends back the residues of its pass.
 The verdicts do not depend on where a pass ran: the residues are the same numbers.
 
-Passes, not orders, are what is split: the weights of every order are built from those
-of all the orders below it, so an order cannot be computed apart from the others, while
-two passes share nothing but the listing.  A pass whose worker is lost (the cluster gave
+Passes, not orders, are what is split: in a listing of rooted trees the weights of every
+order are built from those of all the orders below it, so an order cannot be computed
+apart from the others, while two passes share nothing but the listing.  A pass whose worker is lost (the cluster gave
 up on it) is computed in this process instead: the check is never left incomplete.
 """
 

@@ -200,6 +200,6 @@ def test_float32_arrays_are_read_as_the_decimals_they_print_as():
         tab = rkcheck.from_arrays(A, b)
         result = rkcheck.verify(tab, order=5)
     assert [e.text for e in tab.b] == [str(x) for x in b] == ["0.16666667", "0.33333334", "0.33333334", "0.16666667"]
-    # RK4 to float32's 8 digits: consistent, classical order 4 to digits (widened to
-    # float64, Σb = 1.0000000298… was "inconsistent" and the order 0)
+    # RK4 to float32's 8 digits: consistent, classical order 4 to digits (the doubles
+    # the float32 values widen to sum to 1.0000000298…: not consistent)
     assert result.classical.to_digits == 4 and not any("inconsistent" in w for w in result.warnings)
