@@ -49,7 +49,14 @@ further primes are evaluated for those alone, on the trees their terms need
 2.7 million trees become one over 18 thousand), unless they are many (then the passes
 go on over the listing).  Every verdict is the same: a zero residue is still proven by
 the whole bound below, and the residues left out belong to conditions already decided;
-those are evaluated when a value or every residue is asked for.
+those are evaluated when a value or every residue is asked for.  A listing by centroid
+(:mod:`rkcheck.trees.centroid`, exact checks from order 21) is not screened: its walk
+costs the same for a few conditions as for all of them.
+
+Listings.  A pass evaluates its channels over the listing it is given
+(:meth:`ScaledTableau.residues_at`): the rooted trees' weights of
+:mod:`~rkcheck.evaluation.algorithm`, or the centroid sums of
+:mod:`~rkcheck.evaluation.centroid`; both give the residues of the same integers ``N``.
 
 Values.  Residues are kept; the exact residual is rebuilt only when asked for (Chinese
 remaindering, Garner's mixed-radix form), so that deciding ``holds``/``fails`` costs
