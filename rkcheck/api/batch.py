@@ -234,7 +234,8 @@ def scan(
     interrupted = False
     try:
         files = find_tableau_files(roots, patterns)
-        if not files and not (config.allow_empty if allow_empty is None else allow_empty):
+        empty_ok = config.allow_empty if allow_empty is None else allow_empty
+        if not files and not empty_ok:
             raise UserError(_nothing_found(roots, patterns), "scan")
         on_result = _reporter(len(files), progress, on_file)
         # connected here: an unreachable scheduler stops the scan before any file
@@ -244,6 +245,11 @@ def scan(
                                              document=encoded_result if json_in_workers else None)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
+    if outcomes and not interrupted and not empty_ok and all(o.status == "skipped" for o in outcomes):
+        # a gate that checks nothing does not pass silently, as when no file is found
+        raise UserError(f"none of the {len(outcomes)} files found is a tableau (rkcheck verify FILE says why "
+                        "of one); nothing was checked (--allow-empty, or allow_empty = true in [tool.rkcheck], "
+                        "lets such a scan pass)", "scan")
     elapsed = time.perf_counter() - t0
     if sort == "energy":  # methods of equal energy order compared by their error constant
         from rkcheck.batch.ranking import rank_outcomes

@@ -14,6 +14,7 @@ input order; Ctrl-C stops the workers and returns the outcomes that finished.
 
 from __future__ import annotations
 
+import difflib
 import os
 import pickle
 import time
@@ -26,6 +27,7 @@ from rkcheck.batch.executors import (
     default_jobs as default_jobs,  # where callers found it before
 )
 from rkcheck.errors import UserError
+from rkcheck.io.printable import printable
 from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
 
 STATUS_RANK = {"ok": 0, "skipped": 0, "failed": 1, "error": 1}
@@ -88,8 +90,22 @@ def options_for(tab, flags: dict[str, Any], project: dict[str, Any]):
 def _is_tableau_document(data: dict[str, Any]) -> bool:
     """A table the loader reads, or the short form (``A`` and ``b`` at the top level), as
     ``verify`` accepts it; any other document (``package.json``, ``pyproject.toml``) is
-    skipped."""
-    return any(k in data for k in ("tableau", "family", "method", "continuous")) or ("A" in data and "b" in data)
+    skipped — unless it is made of rkcheck's tables and near misses of them only
+    (``[tabelau]`` beside ``[expect]``): a misspelt tableau file is an error, not a file
+    to pass over."""
+    if any(k in data for k in ("tableau", "family", "method", "continuous")) or ("A" in data and "b" in data):
+        return True
+    near = {str(k): m[0] for k in data if (m := difflib.get_close_matches(str(k), RKCHECK_TABLES, n=1, cutoff=0.8))}
+    misses = [k for k in near if k not in RKCHECK_TABLES]
+    if misses and all(str(k) in near for k in data):
+        key = misses[0]
+        raise UserError(f"unknown table [{printable(key)}] (did you mean [{near[key]}]?): the file is not read as "
+                        "a tableau", key)
+    return False
+
+
+#: the tables an rkcheck file is made of (a near miss of one is an error in a scan)
+RKCHECK_TABLES = ("tableau", "continuous", "family", "method", "expect", "check", "constants", "parameters")
 
 
 def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on: str,

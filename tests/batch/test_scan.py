@@ -528,3 +528,19 @@ def test_the_file_column_stays_readable_on_a_narrow_terminal(width):
     assert all(len(line) <= width for line in text.splitlines())
     for name in ("euler.toml", "rk4.toml", "heun.toml"):  # short names: each whole in its cell
         assert any(line.split()[:1] == [name] for line in text.splitlines()), (width, text)
+
+
+def test_a_misspelt_table_is_an_error_and_a_scan_that_checks_nothing_does_not_pass(tmp_path, capsys):
+    (tmp_path / "typo.toml").write_text('[tabelau]\nA = [[0]]\nb = [1]\n[expect]\nclassical_order = 5\n',
+                                        encoding="utf-8")
+    (tmp_path / "other.json").write_text('{"content": 1, "name": "x"}', encoding="utf-8")  # not ours: skipped
+    (tmp_path / "empty.toml").write_text("", encoding="utf-8")
+    r = run_cli(capsys, "scan", str(tmp_path), "--jobs", "1", "--format", "json")
+    rows = {Path(f["file"]).name: f for f in json.loads(r.out)["files"]}
+    assert r.code == 1 and rows["typo.toml"]["status"] == "error"
+    assert "unknown table [tabelau] (did you mean [tableau]?)" in rows["typo.toml"]["error"]
+    assert rows["other.json"]["status"] == rows["empty.toml"]["status"] == "skipped"
+    (tmp_path / "typo.toml").unlink()
+    r = run_cli(capsys, "scan", str(tmp_path), "--jobs", "1")
+    assert r.code == 2 and "none of the 2 files found is a tableau" in r.err
+    assert run_cli(capsys, "scan", str(tmp_path), "--jobs", "1", "--allow-empty").code == 0
