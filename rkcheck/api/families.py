@@ -149,8 +149,10 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None =
         found = solve_structured(fam, layout, deg, N, q, extra, seconds, _count(deg, N, q) + len(extra))
         if found is not None:
             return found
+        fix = ("fix more weights with --where (each equation in the weights takes away one freedom)" if extra
+               else "fix a weight with --where (e.g. \"b1 = 1/4\") to solve that slice")
         hint = ("; the quadrature conditions leave infinitely many weights and nodes, so the structured route "
-                "does not apply: fix a weight with --where (e.g. \"b1 = 1/4\") to solve that slice")
+                f"does not apply: {fix}")
     else:
         hint = ""
     if route == "structured":
