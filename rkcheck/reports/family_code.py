@@ -11,6 +11,7 @@ Python and Julia (a float by default: pass an exact value for exact residuals).
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 from typing import Any
 
@@ -55,11 +56,24 @@ def polynomial_code(p: Any, names: list[str], lang: str) -> str:
     return out
 
 
+_GREEK = {"alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "iota", "kappa", "lambda", "mu",
+          "nu", "xi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega"}  # not theta (the field's θ), pi
+
+
+def latex_name(name: str) -> str:
+    """A parameter's name in LaTeX: trailing digits as a subscript (``a11`` → ``a_{11}``,
+    ``b_2`` → ``b_{2}``), a Greek letter's name as the letter (``beta`` → ``\\beta``)."""
+    m = re.fullmatch(r"([A-Za-z]+)_?(\d+)", name)
+    stem, sub = (m.group(1), m.group(2)) if m else (name, None)
+    stem = f"\\{stem}" if stem in _GREEK else stem
+    return f"{stem}_{{{sub}}}" if sub is not None else stem
+
+
 def _theta_names(fc: Any, lang: str) -> tuple[list[str], list[str]]:
     """The variables as written, and the lines defining θ (if any)."""
     fam = fc.family
     field = fam.ring.field
-    params = list(fam.parameters)
+    params = [latex_name(p) for p in fam.parameters] if lang == "latex" else list(fam.parameters)
     if field is None:
         return params, []
     name = field.name

@@ -156,7 +156,11 @@ def test_emitted_latex_and_julia_write_every_condition(capsys):
 
     path = FAMILIES / "seed-kernel-zeta-0.toml"
     latex = run_cli(capsys, "conditions", str(path), "--order", "6", "--degree", "3", "--emit", "latex").out
-    assert "\\tfrac{1}{72} beta^{2}" in latex and latex.count("R_{") == 12
+    assert "\\tfrac{1}{72} \\beta^{2}" in latex and latex.count("R_{") == 12  # a Greek name as its letter
+    free_a = run_cli(capsys, "conditions", str(FAMILIES / "theorem1-s2-m3.toml"), "--emit", "latex").out
+    # by hand, R([τ²]) = Σ b_i c_i − 1/2 with b = (3/4, 1/4), c_i = a_i1 + a_i2: its linear
+    # terms, with the trailing digits of a name as a subscript
+    assert "-\\tfrac{3}{4} a_{11} - \\tfrac{3}{4} a_{12} - \\tfrac{1}{4} a_{21} - \\tfrac{1}{4} a_{22} + \\tfrac{1}{2}" in free_a
     julia = run_cli(capsys, "conditions", str(path), "--order", "6", "--degree", "3", "--emit", "julia").out
     assert "1//72*beta^2" in julia and "theta=sqrt(3)" in julia
     r = run_cli(capsys, "conditions", str(path), "--order", "6", "--emit", "matlab")
