@@ -319,6 +319,8 @@ def final_line(res: CheckResult) -> Text:
         failing = len(res.failures)
         return Text(f"FAIL: {count_text(failing)} of {n} {'fails' if failing == 1 else 'fail'}; "
                     f"energy order {energy_order_phrase(res)}", style="bold red")
+    if res.interrupted:  # no failure among the orders that finished: no verdict either
+        return Text(f"INTERRUPTED: {n} checked before Ctrl-C, none failing; no verdict", style="bold yellow")
     if inconsistent(res):
         return Text(f"FAIL: Σb ≠ 1 (certain): the method is inconsistent, whatever its {counted(count, 'energy condition')} "
                     f"say{'s' if count == 1 else ''}", style="bold red")

@@ -203,3 +203,17 @@ def test_a_signal_while_the_json_is_written_closes_the_document(sig):
     assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
     assert doc["conditions_complete"] is False
     assert len(doc["conditions"]) < doc["summary"]["conditions_checked"]
+
+
+def test_an_interrupted_check_with_no_failure_is_no_ok(capsys, monkeypatch):
+    import rkcheck.energy.check as check
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    def interrupted(*args, **kwargs):
+        raise EvaluationInterrupted({})  # Ctrl-C before any order finished
+
+    monkeypatch.setattr(check, "evaluate_orders", interrupted)
+    r = run_cli(capsys, "verify", "@rk4", "--order", "6")
+    assert r.code == 130 and "(none)" in r.err
+    assert "INTERRUPTED: 0 conditions checked before Ctrl-C, none failing; no verdict" in r.out
+    assert "OK" not in r.out.splitlines()[-1]
