@@ -184,7 +184,7 @@ class TableauValues:
     def _certain_differences(self) -> tuple[list[tuple[int, str]], str | None]:
         """The rows i with ``c_i ≠ (A·1)_i`` and the text of each difference, and that of
         ``Σb`` when it is not 1, where the entries' enclosures prove it."""
-        tab, face = self.tableau, self.tableau.exact_values()
+        face = self.tableau.exact_values()
         rows = self._certain_rows()
         sb = interval_sum(self.b)
         if (sb - Interval.point(1)).contains_zero():
