@@ -38,6 +38,7 @@ from rkcheck.trees.graph import (
     subtrees_at,
 )
 from rkcheck.trees.listing import ConditionListing
+from rkcheck.trees.naming import ConditionNames
 from rkcheck.trees.rooted import bracket_of_forest, level_sequence_of_forest
 
 #: exact checks to this order and beyond enumerate their conditions by centroid: a
@@ -300,7 +301,7 @@ class _Orders(Mapping[int, CentroidOrder]):
         return len(self._keys)
 
 
-class CentroidListing:
+class CentroidListing(ConditionNames):
     """All energy conditions with ``3 … N+1`` vertices whose free trees have maximum
     degree ``<= degree`` (None: no bound), enumerated by centroid: the same conditions
     as a :class:`~rkcheck.trees.listing.ConditionListing` (in another order ``k`` within
@@ -319,7 +320,7 @@ class CentroidListing:
         self.orders = _Orders(lambda n: CentroidOrder(n, self.branches, degree, self._conditions[n]), keys)
         self.store_notes: list[str] = []  # nothing is stored: no note
         self.cache_hits: list[int] = []
-        self._named: dict[tuple[int, int], tuple[FreeTree, int]] = {}
+        self._init_names()
 
     def __reduce__(self) -> tuple[Any, tuple[int, int | None]]:
         # determined by (order, degree): send the key, walk again there
@@ -331,65 +332,17 @@ class CentroidListing:
     def complete(self) -> "CentroidListing":
         return self
 
-    def __len__(self) -> int:
-        return sum(self.counts_by_order().values())
-
-    def counts_by_order(self) -> dict[int, int]:
-        """Conditions per energy order ``2 … N`` (vertices − 1), counted, not built."""
-        if not self.orders:
-            return {k: 0 for k in range(2, self.order + 1)}
-        return {k: self._conditions[k + 1] for k in range(2, self.order + 1)}
-
-    def _name(self, n: int, k: int) -> tuple[FreeTree, int]:
+    def _describe(self, n: int, k: int) -> tuple[FreeTree, int]:
         """Condition ``k``'s free tree, and the sign (−1)^d of the distance d from the
         centroid (where it is evaluated) to the designated centre."""
-        named = self._named.get((n, k))
-        if named is None:
-            found, halves = self.orders[n].branches_of(k)
-            b = self.branches
-            forest = b.children(found[0]) + [found[1]] if halves else found
-            adj = adjacency((1,) + tuple(d + 1 for c in forest for d in b.level_sequence(c)))
-            at = [(subtrees_at(adj, v), v) for v in centres(adj)]
-            seq, subtrees, centre = max((level_sequence_of_forest(subs), subs, v) for subs, v in at)
-            tree = FreeTree(seq, bracket_of_forest(subtrees), max(len(a) for a in adj), distinct_rootings(adj))
-            named = (tree, (-1) ** distances(adj, 0)[centre])
-            if len(self._named) < NAMED_CONDITIONS:
-                self._named[(n, k)] = named
-        return named
-
-    def record(self, n: int, k: int) -> FreeTree:
-        return self._name(n, k)[0]
-
-    def flip(self, n: int, k: int) -> int:
-        """``±1``: the residual of condition ``k`` for its designated rooting is this
-        sign times the residual evaluated at its centroid."""
-        return self._name(n, k)[1]
-
-    def records(self, n: int) -> list[FreeTree]:
-        return [tree for tree, _ in self.named(n)]
-
-    def named(self, n: int) -> list[tuple[FreeTree, int]]:
-        return [self._name(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
-
-    def presentation(self, n: int, records: list[FreeTree] | None = None) -> np.ndarray:
-        """The ``k`` of the conditions with ``n`` vertices by canonical id."""
-        recs = self.records(n) if records is None else records
-        got = np.array(sorted(range(len(recs)), key=lambda k: recs[k].level_sequence), dtype=np.int64)
-        got.flags.writeable = False
-        return got
-
-    def sorted_conditions(self) -> Iterator[tuple[int, int, FreeTree]]:
-        for n in sorted(self.orders):
-            records = self.records(n)
-            for k in sorted(range(len(records)), key=lambda k: records[k].level_sequence):
-                yield n, k, records[k]
-
-    def sorted_records(self) -> Iterator[FreeTree]:
-        return (tree for _, _, tree in self.sorted_conditions())
-
-
-#: conditions whose names a listing remembers (about 300 bytes each)
-NAMED_CONDITIONS = 1 << 16
+        found, halves = self.orders[n].branches_of(k)
+        b = self.branches
+        forest = b.children(found[0]) + [found[1]] if halves else found
+        adj = adjacency((1,) + tuple(d + 1 for c in forest for d in b.level_sequence(c)))
+        at = [(subtrees_at(adj, v), v) for v in centres(adj)]
+        seq, subtrees, centre = max((level_sequence_of_forest(subs), subs, v) for subs, v in at)
+        tree = FreeTree(seq, bracket_of_forest(subtrees), max(len(a) for a in adj), distinct_rootings(adj))
+        return tree, (-1) ** distances(adj, 0)[centre]
 
 
 @lru_cache(maxsize=2)

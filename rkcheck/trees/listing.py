@@ -30,13 +30,11 @@ from rkcheck.trees.classes import classify
 from rkcheck.trees.counting import condition_counts, listing_size, term_counts
 from rkcheck.trees.factors import RightFactors
 from rkcheck.trees.free import FreeTree
+from rkcheck.trees.naming import ConditionNames
 from rkcheck.trees.rooted import bracket_of_runs, level_sequence_of_forest
 from rkcheck.trees.stored import ListingStore, from_record, record_key, to_record
 from rkcheck.trees.table import TreeTable
 from rkcheck.trees.terms import OrderTerms
-
-#: conditions whose names a listing remembers (about 300 bytes each)
-NAMED_CONDITIONS = 1 << 16
 
 #: where listings are kept between runs when a listing is not given a store of its own
 #: (the CLI sets the user's cache: :func:`use_store`); None: nowhere
@@ -81,7 +79,7 @@ class _Orders(Mapping[int, OrderTerms]):
         return len(self._keys)
 
 
-class ConditionListing:
+class ConditionListing(ConditionNames):
     """All energy conditions with ``3 … N+1`` vertices whose free trees have maximum
     degree ``<= degree`` (None: no bound), built order by order as they are asked for.
 
@@ -101,10 +99,7 @@ class ConditionListing:
         self._store = store if store is not None else _default_store
         self._ls_cache: dict[int, tuple[int, ...]] = {0: (1,)}
         self._bracket_cache: dict[int, str] = {0: "τ"}
-        # conditions already named (free tree and designated sign), shared by every
-        # tableau checked against this listing: a scan names the same ones file after file
-        self._named: dict[tuple[int, int], tuple[FreeTree, int]] = {}
-        self._presentations: dict[int, np.ndarray] = {}
+        self._init_names()
         self._table: TreeTable | None = None
         self.cache_hits: list[int] = []  # vertices of the orders read from the store
         self.store_notes: list[str] = []  # why the store declined an order (ListingStore.save)
@@ -228,15 +223,6 @@ class ConditionListing:
 
     # --------------------------------------------------------------- counts
 
-    def __len__(self) -> int:
-        return sum(self.counts_by_order().values())
-
-    def counts_by_order(self) -> dict[int, int]:
-        """Conditions per energy order ``2 … N`` (vertices − 1), counted, not built."""
-        if not self.orders:
-            return {k: 0 for k in range(2, self.order + 1)}
-        return {k: self._conditions[k + 1] for k in range(2, self.order + 1)}
-
     def terms(self) -> int:
         """The terms of every condition (builds the listing)."""
         return sum(t.terms for t in self.orders.values())
@@ -291,61 +277,11 @@ class ConditionListing:
                 return other_seq, other, -1
         return seq, forest, 1
 
-    def _name(self, n: int, k: int) -> tuple[FreeTree, int]:
-        """The free tree of condition ``k`` and the sign of :meth:`flip`, remembered (up
-        to NAMED_CONDITIONS of them: a listing lives as long as the process)."""
-        named = self._named.get((n, k))
-        if named is None:
-            seq, forest, sign = self._designated(n, k)
-            o = self.orders[n]
-            named = (FreeTree(seq, self._forest_bracket(forest), int(o.max_degree[k]), int(o.counts[k])), sign)
-            if len(self._named) < NAMED_CONDITIONS:
-                self._named[(n, k)] = named
-        return named
-
-    def record(self, n: int, k: int) -> FreeTree:
-        """Condition ``k`` of the order with ``n`` vertices, for people."""
-        return self._name(n, k)[0]
-
-    def flip(self, n: int, k: int) -> int:
-        """``±1``: the residual of condition ``k`` for its designated rooting is this sign
-        times the residual of the representative the evaluation computes."""
-        return self._name(n, k)[1]
-
-    def records(self, n: int) -> list[FreeTree]:
-        """The conditions with ``n`` vertices in listing order."""
-        return [tree for tree, _ in self.named(n)]
-
-    def named(self, n: int) -> list[tuple[FreeTree, int]]:
-        """``(free tree, flip)`` of every condition with ``n`` vertices in listing order:
-        one naming each, for a reader of a whole order beyond NAMED_CONDITIONS, which
-        would otherwise name a condition again for its flip."""
-        return [self._name(n, k) for k in range(len(self.orders[n]))] if n in self.orders else []
-
-    def presentation(self, n: int, records: list[FreeTree] | None = None) -> np.ndarray:
-        """The ``k`` of the conditions with ``n`` vertices by canonical id (level
-        sequence), as every report lists them; ``records``: :meth:`records` of ``n``, when
-        the caller has them.  Remembered for orders of at most NAMED_CONDITIONS."""
-        got = self._presentations.get(n)
-        if got is None:
-            recs = self.records(n) if records is None else records
-            got = np.array(sorted(range(len(recs)), key=lambda k: recs[k].level_sequence), dtype=np.int64)
-            got.flags.writeable = False  # shared by every result read against this listing
-            if len(got) <= NAMED_CONDITIONS:
-                self._presentations[n] = got
-        return got
-
-    def sorted_conditions(self) -> Iterator[tuple[int, int, FreeTree]]:
-        """``(vertices, k, free tree)`` of every condition, by vertices and then canonical
-        id (``k``: its position in the listing's order)."""
-        for n in sorted(self.orders):
-            records = self.records(n)
-            for k in sorted(range(len(records)), key=lambda k: records[k].level_sequence):
-                yield n, k, records[k]
-
-    def sorted_records(self) -> Iterator[FreeTree]:
-        """Every condition for people, by vertices and then canonical id."""
-        return (tree for _, _, tree in self.sorted_conditions())
+    def _describe(self, n: int, k: int) -> tuple[FreeTree, int]:
+        """The free tree of condition ``k`` and the sign of :meth:`flip`."""
+        seq, forest, sign = self._designated(n, k)
+        o = self.orders[n]
+        return FreeTree(seq, self._forest_bracket(forest), int(o.max_degree[k]), int(o.counts[k])), sign
 
     def term_forests(self, n: int, k: int) -> list[tuple[int, int, list[tuple[int, ...]]]]:
         """(sign relative to the designated rooting, σ(u), B₋(u) as level sequences) for

@@ -241,9 +241,9 @@ def test_explain_finds_the_condition_of_any_rooting():
 def test_named_conditions_are_remembered_up_to_the_limit(monkeypatch):
     """Names (free tree, designated sign) read twice, or past the limit of remembered
     ones, are the reference's every time."""
-    import rkcheck.trees.listing as listing_module
+    import rkcheck.trees.naming as naming
 
-    monkeypatch.setattr(listing_module, "NAMED_CONDITIONS", 5)
+    monkeypatch.setattr(naming, "NAMED_CONDITIONS", 5)
     L = ConditionListing(7, None)
     for _ in range(2):
         for n in range(3, 9):
@@ -263,8 +263,9 @@ def test_whole_orders_read_past_the_limit_give_the_reference_residuals(monkeypat
 
     import rkcheck
     import rkcheck.trees.listing as listing_module
+    import rkcheck.trees.naming as naming
 
-    monkeypatch.setattr(listing_module, "NAMED_CONDITIONS", 3)
+    monkeypatch.setattr(naming, "NAMED_CONDITIONS", 3)
     listing_module.forget_listings()
     try:
         rng = random.Random(5)
