@@ -229,9 +229,7 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
         energy_order=proven, energy_order_to_digits=to_digits,
         energy_order_all=bool(cert and cert.certified and cert.verdict.state == HOLDS),
         quadrature=quad, classical=classical, avf=avf, certificate=cert,
-        # Theorem 1 is about consistent methods (Σb = 1): of an inconsistent one it says nothing
-        theorem1=(None if surrogate is not None or (quad.to_digits == 0 and quad.first_failure is not None)
-                  else _theorem1(avf, conditions, per_order, options.order)),
+        theorem1=None if surrogate is not None else _theorem1(avf, quad, conditions, per_order, options.order),
         warnings=warnings, values=values,
         properties=props, timings=timings, interrupted=interrupted,
     )
@@ -353,11 +351,12 @@ def _refuted(avf: AvfVerdict | None, cert: Certificate | None,
     return avf, cert
 
 
-def _theorem1(avf: AvfVerdict | None, conditions: ConditionResults, per_order: list[OrderCounts],
+def _theorem1(avf: AvfVerdict | None, quad: OrderResult, conditions: ConditionResults, per_order: list[OrderCounts],
               order: int) -> str | None:
     """The Theorem 1 sentence; it concludes "beyond order N" only from exact holds
-    (per-order counts, so that millions of conditions are not visited one by one)."""
-    if avf is None:
+    (per-order counts, so that millions of conditions are not visited one by one).  None
+    for an inconsistent method: the theorem is about consistent ones (Σb = 1)."""
+    if avf is None or _sum_b_fails(quad):
         return None
     first = conditions.first_record(FAILS)
     first_label = f"condition {first.id} ({first.bracket})" if first else None
@@ -372,7 +371,10 @@ def _theorem1(avf: AvfVerdict | None, conditions: ConditionResults, per_order: l
 def inconsistent(result: CheckResult) -> bool:
     """``Σb ≠ 1`` certainly: the method is not even of order 1, and fails whatever its
     energy conditions say (definitions §5.3)."""
-    q = result.quadrature
+    return _sum_b_fails(result.quadrature)
+
+
+def _sum_b_fails(q: OrderResult) -> bool:
     # Σb = 1 itself failed: not merely unproven (held to digits) with a later power failing
     return q.to_digits == 0 and q.first_failure is not None
 
