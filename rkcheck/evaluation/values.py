@@ -173,8 +173,7 @@ class TableauValues:
         rows: list[tuple[int, str]] = []
         if tab.c is None:
             return rows
-        A, _ = tab.enclosures(self.reading.entry_bits, self.reading.decimals) if self.A is None else (self.A, None)
-        for i, (row, ci) in enumerate(zip(A, tab.c), start=1):
+        for i, (row, ci) in enumerate(zip(self.A, tab.c), start=1):
             diff = ci.enclosure(self.reading.entry_bits, self.reading.decimals) - interval_sum(row)
             if not diff.contains_zero():
                 exact = None if face is None or face.c is None else face.c[i - 1] - sum(face.A[i - 1])
