@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from rkcheck.errors import UserError
-from rkcheck.evaluation.scaled import CENTROID_PASS_VALUES
+from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES
 from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
 from rkcheck.numbers.formatting import count_text as count
 from rkcheck.numbers.formatting import human_bytes

@@ -39,6 +39,10 @@ from rkcheck.trees.centroid import Branches, CentroidListing, CentroidOrder
 #: residues below 2^30 fit int32 in the states that wait; arithmetic widens to int64
 _STORE = np.int32
 
+#: stage entries per waiting tree that a pass over a centroid listing holds (its channels
+#: times the stages): RK4's five channels at order 22 held 1.3 GB at the peak
+CENTROID_PASS_VALUES = 24
+
 
 class _Tables:
     """``Φ, ψ, a, w, Q, m`` and ``1/σ`` of every branch in each channel (images ``A``,

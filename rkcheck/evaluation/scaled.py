@@ -12,6 +12,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES, centroid_residues
 from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
 from rkcheck.evaluation.conjugates import repeated_channels
 from rkcheck.numbers.polynomials import complex_roots, integer_coefficients
@@ -23,10 +24,6 @@ from rkcheck.trees.centroid import CentroidListing
 #: on larger ones a pass per channel is faster (RK4 at orders 16–18: 10–20 %), its hot
 #: weights (the small subtrees every product reads) staying in the caches
 PASS_BYTES = 8 << 20
-
-#: stage entries per waiting tree that a pass over a centroid listing holds (its channels
-#: times the stages): RK4's five channels at order 22 held 1.3 GB at the peak
-CENTROID_PASS_VALUES = 24
 
 
 #: How many primes the exact route may try in search of those over which the field splits
@@ -308,8 +305,13 @@ class ScaledTableau:
 
     def channels(self, pairs: Sequence[tuple[int, int]]) -> PrimeChannels:
         """One context for the channels ``(p, root)`` in ``pairs``, in that order."""
+        return PrimeChannels([p for p, _ in pairs], *self._stacked_images(pairs))
+
+    def _stacked_images(self, pairs: Sequence[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
+        """The images of ``Â`` (channels × s × s) and ``b̂`` (channels × s) in the channels
+        ``(p, root)`` of ``pairs``."""
         images = [self._images(p, r) for p, r in pairs]
-        return PrimeChannels([p for p, _ in pairs], np.stack([A for A, _ in images]), np.stack([b for _, b in images]))
+        return np.stack([A for A, _ in images]), np.stack([b for _, b in images])
 
     def channels_per_pass(self, listing: Any, top: int) -> int:
         """How many channels one pass over the listing evaluates for orders up to ``top``
@@ -327,11 +329,7 @@ class ScaledTableau:
         """``{n: (conditions, channels) residues}`` of the given orders in the channels
         ``(p, root)`` of ``pairs``, all in one pass."""
         if isinstance(listing, CentroidListing):
-            from rkcheck.evaluation.centroid import centroid_residues
-
-            images = [self._images(p, r) for p, r in pairs]
-            return centroid_residues(listing, [p for p, _ in pairs], np.stack([A for A, _ in images]),
-                                     np.stack([b for _, b in images]), orders)
+            return centroid_residues(listing, [p for p, _ in pairs], *self._stacked_images(pairs), orders)
         from rkcheck.evaluation.algorithm import condition_sums
 
         return condition_sums(listing, self.channels(pairs), self.s, orders)
