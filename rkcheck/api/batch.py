@@ -245,11 +245,8 @@ def scan(
                                              document=encoded_result if json_in_workers else None)
     except KeyboardInterrupt:  # before or between files: the result still says what finished
         interrupted = True
-    if outcomes and not interrupted and not empty_ok and all(o.status == "skipped" for o in outcomes):
-        # a gate that checks nothing does not pass silently, as when no file is found
-        raise UserError(f"none of the {len(outcomes)} files found is a tableau (rkcheck verify FILE says why "
-                        "of one); nothing was checked (--allow-empty, or allow_empty = true in [tool.rkcheck], "
-                        "lets such a scan pass)", "scan")
+    if not interrupted and not empty_ok:
+        _refuse_if_nothing_checked(outcomes)
     elapsed = time.perf_counter() - t0
     if sort == "energy":  # methods of equal energy order compared by their error constant
         from rkcheck.batch.ranking import rank_outcomes
@@ -259,6 +256,15 @@ def scan(
     if address:
         options["scheduler"] = address
     return ScanResult(outcomes, interrupted, elapsed, options, fail_on, sort)
+
+
+def _refuse_if_nothing_checked(outcomes: list["FileOutcome"]) -> None:
+    """A gate that checks nothing does not pass silently: files found, every one of them
+    skipped, is refused as finding none is."""
+    if outcomes and all(o.status == "skipped" for o in outcomes):
+        raise UserError(f"none of the {len(outcomes)} files found is a tableau (rkcheck verify FILE says why "
+                        "of one); nothing was checked (--allow-empty, or allow_empty = true in [tool.rkcheck], "
+                        "lets such a scan pass)", "scan")
 
 
 def _nothing_found(roots: list[str], exclude: list[str]) -> str:

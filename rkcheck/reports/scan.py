@@ -402,7 +402,7 @@ FILE_COLUMN_MIN = 16
 VERDICT_COLUMNS = 60
 
 
-def _scan_table(title: str | None, constants: bool, width: int = 140) -> Any:
+def _scan_table(title: str | None, constants: bool, width: int) -> Any:
     from rich import box
     from rich.table import Table
 

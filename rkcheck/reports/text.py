@@ -285,15 +285,13 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
     conditions = final_line(res)
     if not claims:
         return conditions
+    broken = [r for r in claims if not r.met]
     shortfall = requirement_shortfall(res, claims) if fail_on != "never" else None
     if shortfall is not None:  # the file fails, whatever its claims: --require is not met
-        head = Text(f"FAIL: {shortfall.text()}", style="bold red")
         met = "the claim is met" if len(claims) == 1 else f"all {len(claims)} claims met"
-        if any(not r.met for r in claims):
-            met = f"claims broken: {sum(not r.met for r in claims)} of {len(claims)}"
-        head.append(Text(f"  ({met})", style=""))
+        head = Text(f"FAIL: {shortfall.text()}", style="bold red")
+        head.append(Text(f"  ({f'claims broken: {len(broken)} of {len(claims)}' if broken else met})", style=""))
         return head
-    broken = [r for r in claims if not r.met]
     claims_text = (Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)}", style="bold red") if broken
                    else Text("OK: the claim is met" if len(claims) == 1 else f"OK: all {len(claims)} claims met",
                              style="bold green"))
