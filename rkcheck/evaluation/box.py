@@ -68,6 +68,7 @@ from rkcheck.evaluation.protocols import EnclosingContext
 from rkcheck.evaluation.slopes import (
     MAX_GRADIENT_BYTES,
     GradientContext,
+    LiteralChain,
     balls_per_tree,
     gradient_groups,
 )
@@ -166,11 +167,14 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: 
 
 def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
               centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
-              orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None) -> dict[int, BoxSums]:
+              orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None,
+              chain: LiteralChain | None = None) -> dict[int, BoxSums]:
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
     ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
-    more than one pass: after the last).
+    more than one pass: after the last).  With a ``chain`` (decimal literals that feed
+    several entries) the variation runs along the literals: over the tableaux the
+    literals allow, not over every tableau in the entries' box.
 
     From :data:`MAJORANT_MIN_VERTICES` vertices, a box whose derivatives cost several
     times its values is first bounded along one direction
@@ -180,7 +184,7 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     wanted = sorted(orders)
     if not wanted:
         return {}
-    box = _Box(listing, A, b, centre_A, centre_b, wanted)
+    box = _Box(listing, A, b, centre_A, centre_b, wanted, chain)
     out = _by_majorant(box, on_order)
     if out is None:
         out = _by_directions(box, on_order)
@@ -192,9 +196,10 @@ class _Box:
     direction, the centre's ball context and the pattern of zeros."""
 
     def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
-                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], wanted: list[int]):
+                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], wanted: list[int],
+                 chain: LiteralChain | None = None):
         self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
-        self.wanted, self.s = wanted, len(b)
+        self.wanted, self.s, self.chain = wanted, len(b), chain
         self.whole = GradientContext(A, b)
         self.groups = gradient_groups(listing, self.s, self.whole.E, self.whole.EA)
         self.radii = box_radii(A, b, centre_A, centre_b, self.whole)
@@ -211,8 +216,16 @@ class _Box:
     def supported(self, ctx: Any) -> Any:
         return SupportContext(ctx, *self.zeros) if self.zeros[0].any() or self.zeros[1].any() else ctx
 
+    def gradients(self, directions: slice | None = None) -> GradientContext:
+        """The derivatives along ``directions`` (None: all), signed where a chain takes
+        them along the literals."""
+        return GradientContext(self.A, self.b, directions, signed=self.chain is not None)
+
     def variation(self, G: np.ndarray) -> np.ndarray:
-        """``V = Σ_e G[:, e]·r_e`` rounded up (the products and the sum of E terms)."""
+        """``V = Σ_e G[:, e]·r_e`` rounded up (the products and the sum of E terms), or
+        along the literals when the box has a chain."""
+        if self.chain is not None:
+            return self.chain.variation(G)
         result: np.ndarray = (G @ self.radii) * (1 + (self.whole.E + 2) * U) * INFLATE + ETA
         return result
 
@@ -220,8 +233,8 @@ class _Box:
 def _by_directions(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> dict[int, BoxSums]:
     """Every condition with every direction: the centre and the first group of directions
     in one pass, the other groups (when their arrays would not fit at once) in more."""
-    listing, A, b, s, wanted, groups = box.listing, box.A, box.b, box.s, box.wanted, box.groups
-    first = box.supported(_Pair(box.centre, GradientContext(A, b, groups[0])))
+    listing, s, wanted, groups = box.listing, box.s, box.wanted, box.groups
+    first = box.supported(_Pair(box.centre, box.gradients(groups[0])))
     out: dict[int, BoxSums] = {}
 
     def judged(n: int, sums: Any, more: Sequence[Any] = ()) -> BoxSums:
@@ -244,7 +257,7 @@ def _by_directions(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -
         raise
     if len(groups) > 1:
         try:
-            more = [condition_sums(listing, box.supported(GradientContext(A, b, g)), s, wanted) for g in groups[1:]]
+            more = [condition_sums(listing, box.supported(box.gradients(g)), s, wanted) for g in groups[1:]]
         except EvaluationInterrupted as stop:
             stop.finished = {}
             raise
@@ -296,7 +309,7 @@ def _by_majorant(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> 
         opened = sum(int(np.count_nonzero(~BallCentre(ball).beyond(_coarse(G)))) for ball, (_, G) in raw.values())
         if opened * _PROBE_SHARE > sum(len(G) for _, (_, G) in raw.values()):
             return None
-    refiner = Refiner(listing, box.A, box.b, box.centre_A, box.centre_b)
+    refiner = Refiner(listing, box.A, box.b, box.centre_A, box.centre_b, box.chain)
     out: dict[int, BoxSums] = {}
 
     def judged(n: int, sums: Any) -> None:
@@ -354,12 +367,12 @@ def _every_direction(box: _Box, n: int, opened: np.ndarray) -> tuple[FloatSums, 
     order with ``n`` vertices along every direction: on the trees their terms need when
     they are few, else over the listing up to that order — then also the variation of
     every condition of the order (the third value; None otherwise)."""
-    A, b, s, E = box.A, box.b, box.s, box.whole
+    s, E = box.s, box.whole
     subset = Subset.build(box.listing, {n: opened}, s, OPEN_SHARE)
     if subset is not None and len(subset.trees) * balls_per_tree(s, E.E, E.EA) * 16 <= MAX_GRADIENT_BYTES:
-        screen, G = subset.residues(box.supported(GradientContext(A, b)))[n]
+        screen, G = subset.residues(box.supported(box.gradients()))[n]
         return screen, G, None
-    passes = [condition_sums(box.listing, box.supported(GradientContext(A, b, g)), s, [n])[n] for g in box.groups]
+    passes = [condition_sums(box.listing, box.supported(box.gradients(g)), s, [n])[n] for g in box.groups]
     screen, G = passes[0][0], np.concatenate([p[1] for p in passes], axis=1)
     return FloatSums(screen.mid[opened], screen.rad[opened]), G[opened], box.variation(G)
 
@@ -372,8 +385,9 @@ class Refiner:
     the listing travels as its key)."""
 
     def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
-                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any]):
+                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], chain: LiteralChain | None = None):
         self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
+        self.chain = chain
         self._done: dict[int, np.ndarray] = {}
 
     def know(self, n: int, variation: np.ndarray) -> None:
@@ -382,9 +396,9 @@ class Refiner:
 
     def variation(self, n: int) -> np.ndarray:
         if n not in self._done:
-            box = _Box(self.listing, self.A, self.b, self.centre_A, self.centre_b, [n])
+            box = _Box(self.listing, self.A, self.b, self.centre_A, self.centre_b, [n], self.chain)
             todo = [k for k in self.listing.orders if k <= n and k not in self._done]
-            passes = [condition_sums(self.listing, box.supported(GradientContext(self.A, self.b, g)), box.s, todo)
+            passes = [condition_sums(self.listing, box.supported(box.gradients(g)), box.s, todo)
                       for g in box.groups]
             for k in todo:
                 self._done[k] = box.variation(np.concatenate([p[k][1] for p in passes], axis=1))

@@ -16,6 +16,8 @@ at worst, so a box is never too large to judge.
 
 from __future__ import annotations
 
+import math
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
@@ -29,7 +31,7 @@ from rkcheck.evaluation.balls import (
     _float_coefficients,
     round_up,
 )
-from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.intervals import Interval, float_above
 
 if TYPE_CHECKING:
     from rkcheck.trees.listing import ConditionListing
@@ -86,9 +88,12 @@ class GradientContext:
     derivatives at all."""
 
     exact = False
+    signed = False
 
-    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None):
+    def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None,
+                 signed: bool = False):
         self.f = FloatContext(A, b)
+        self.signed = signed
         s = len(b)
         a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
         b_vars = [i for i in range(s) if not b[i].is_point]
@@ -190,11 +195,15 @@ class GradientContext:
 
     def finish_sums(self, acc: Any, k: int, n: int) -> tuple[FloatSums, np.ndarray]:
         """The conditions on the screen over the box, and ``G[k, e]``: an upper bound of
-        ``sup_X |∂R_k/∂x_e|``."""
+        ``sup_X |∂R_k/∂x_e|`` — or, ``signed``, the enclosure itself, ``G[k, e] = (mid,
+        rad)``, for derivatives combined along literals that feed several entries
+        (:class:`~rkcheck.evaluation.box.Chain`)."""
         values, acc = self.f.finish_sums(acc[0], k, n), acc[1]
-        cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n).magnitude_bound()
-                for e in range(self.E)]
-        return values, (np.stack(cols, axis=1) if cols else np.zeros((k, 0)))
+        cols = [self.f.finish_sums([acc[0][:, e], acc[1][:, e], acc[2][:, e], acc[3]], k, n) for e in range(self.E)]
+        if self.signed:
+            return values, (np.stack([np.stack([c.mid, c.rad], axis=1) for c in cols], axis=1) if cols
+                            else np.zeros((k, 0, 2)))
+        return values, (np.stack([c.magnitude_bound() for c in cols], axis=1) if cols else np.zeros((k, 0)))
 
     def selected_sums(self, part: Any) -> Any:
         """Bins for the selected conditions of ``part`` (a
@@ -228,6 +237,47 @@ def _bin_terms(acc: Any, c: Any, w: Any, uniq: np.ndarray, bins: np.ndarray, sha
         places = (uniq[:, None] * shape[1] + np.arange(shape[1])).ravel()
     for a, x in zip(acc, (tm, tr, mag)):
         a.reshape(-1)[places] += np.bincount(bins, weights=x.ravel(), minlength=size)
+
+
+class LiteralChain:
+    """The entries' derivatives along the decimal literals they are written with
+    (:class:`~rkcheck.numbers.literals.LiteralBox`) as float balls, and the literals'
+    radii: the chain rule that turns the derivatives along the entries into the
+    variation along the literals, ``V = Σ_l r_l · sup |Σ_e ∂R/∂x_e · ∂x_e/∂λ_l|``."""
+
+    def __init__(self, mid: np.ndarray, rad: np.ndarray, radii: np.ndarray):
+        self.mid, self.rad, self.radii = mid, rad, radii
+
+    @staticmethod
+    def of(box: Any) -> "LiteralChain | None":
+        """The chain of a :class:`~rkcheck.numbers.literals.LiteralBox`; None where a
+        derivative or a radius lies past float64's range (no claim along it)."""
+        mids, rads = [], []
+        for row in box.rows:
+            for x in row:
+                m = float(x.mid) if abs(x.mid) < 2**1000 else math.inf
+                mids.append(m)
+                rads.append(float_above(max(x.hi - Fraction(m), Fraction(m) - x.lo)) if math.isfinite(m) else math.inf)
+        radii = np.array([float_above(r) for r in box.radii], dtype=float)
+        shape = (len(box.rows), len(box.radii))
+        chain = LiteralChain(np.array(mids, dtype=float).reshape(shape), np.array(rads, dtype=float).reshape(shape),
+                             radii)
+        finite = np.all(np.isfinite(chain.mid)) and np.all(np.isfinite(chain.rad)) and np.all(np.isfinite(radii))
+        return chain if finite else None
+
+    def variation(self, G: np.ndarray) -> np.ndarray:
+        """``V`` from the signed enclosures ``G[k, e] = (mid, rad)`` of the derivatives
+        along the entries, rounded up: ``|Σ_e D·J| ≤ |Σ Dm·Jm| + Σ (|Dm|·Jr + Dr·(|Jm| +
+        Jr))``, each float sum of E products within ``γ`` of its terms' magnitudes."""
+        Dm, Dr = G[..., 0], G[..., 1]
+        E, L = self.mid.shape
+        centre = Dm @ self.mid
+        spread = np.abs(Dm) @ self.rad + Dr @ (np.abs(self.mid) + self.rad)
+        magnitude = np.abs(Dm) @ np.abs(self.mid)
+        gamma = 2 * (E + 2) * U
+        along = (np.abs(centre) + spread + gamma * (magnitude + spread)) * INFLATE + ETA
+        result: np.ndarray = (along @ self.radii) * (1 + (L + 2) * U) * INFLATE + ETA
+        return np.where(np.isnan(result), np.inf, result)
 
 
 def balls_per_tree(s: int, E: int, EA: int) -> int:

@@ -282,6 +282,8 @@ class Kernel:
                 raise err.located(place) from None
             nodes.append(node)
         nodes[1] = b_in_tau(nodes[1], matrix_place or "continuous.b")
+        if matrix_place:
+            nodes[1] = _same_literals(nodes[0], nodes[1])
         try:
             parsed = ParametricEntries(nodes, [matrix_place or "continuous.A", matrix_place or "continuous.b"],
                                        VARIABLES, constants.definitions)
@@ -423,7 +425,37 @@ def b_in_tau(node: ex.Expr, place: str) -> ex.Expr:
     return xp.substituted(node, {"sigma": ex.Name("tau", 1)}) if "sigma" in used else node
 
 
+def _same_literals(A_node: ex.Expr, B_node: ex.Expr) -> ex.Expr:
+    """B of a Miyatake–Butcher matrix with the literals of A's nodes: both are written
+    term by term from the same entries M_ij (:meth:`ContinuousMethod.from_matrix`), so
+    their decimal literals pair up in order, and each M_ij is then one literal — one
+    number — in A and in B alike (:mod:`rkcheck.numbers.literals`)."""
+    in_A = [n for n in xp.literals(A_node) if n.is_decimal]
+    in_B = [n for n in xp.literals(B_node) if n.is_decimal]
+    if len(in_A) != len(in_B) or any(x.text != y.text for x, y in zip(in_A, in_B)):
+        return B_node
+    same = {id(y): x for x, y in zip(in_A, in_B)}
+
+    def combine(n: ex.Expr, vals: list[ex.Expr]) -> ex.Expr:
+        if isinstance(n, ex.Num):
+            return same.get(id(n), n)
+        if isinstance(n, ex.Unary):
+            return ex.Unary(n.op, vals[0])
+        if isinstance(n, ex.Binary):
+            return ex.Binary(n.op, vals[0], vals[1], n.column)
+        if isinstance(n, ex.Power):
+            return ex.Power(vals[0], vals[1], n.column)
+        if isinstance(n, ex.Call):
+            return ex.Call(n.func, tuple(vals), n.column)
+        return n
+
+    out: ex.Expr = xp.fold(B_node, combine, xp.children)
+    return out
+
+
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:
     value = xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
     text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
-    return Entry.parse(text, constants)
+    # built from the kernel's own nodes, not parsed from the text: a decimal of the
+    # kernel is then one literal in every entry (numbers.literals), as it is one number
+    return Entry.from_node(text, ex.Binary("*", _literal(weight), value, 1), constants, shares_literals=True)

@@ -84,6 +84,11 @@ class Constants:
                 pending.append(iter(xp.names(self.definitions[used.name])))
         return order
 
+    @property
+    def order(self) -> list[str]:
+        """The constants' names, each after those it uses."""
+        return list(self._order)
+
     def check_names(self, node: ex.Expr) -> None:
         """Raise for a name in ``node`` that is not a constant of this table."""
         for used in xp.names(node):
@@ -168,12 +173,23 @@ class Entry:
     rounded_digits: int | None  # fewest significant digits among its rounded decimal literals
     bare_number: bool = False  # written as a bare TOML/JSON number, not a string
     has_decimal: bool = False  # a nonzero decimal literal, itself or through a constant (float64 mode)
+    # its literal nodes are shared with the other entries that say so, each one number in
+    # all of them (a kernel's, at a surrogate's nodes); else its own, even where a reader
+    # built entries of equal text from one parse
+    shares_literals: bool = field(default=False, compare=False)
 
     @staticmethod
     def parse(text: str, constants: Constants | None = None, bare_number: bool = False) -> "Entry":
         """Parse an entry; raises :class:`UserError` with the column of the problem."""
+        return Entry.from_node(text, ex.parse(text), constants, bare_number)
+
+    @staticmethod
+    def from_node(text: str, node: ex.Expr, constants: Constants | None = None, bare_number: bool = False,
+                  shares_literals: bool = False) -> "Entry":
+        """The entry of a parsed ``node`` whose text is ``text``; ``shares_literals``: its
+        nodes are another expression's (a kernel's at a surrogate's nodes), whose
+        literals are one number in every entry that holds them."""
         constants = constants or Constants()
-        node = ex.parse(text)
         constants.check_names(node)
         used = {n.name for n in xp.names(node)}
         rounded = [lit.digits for lit in xp.literals(node) if lit.digits is not None and lit.is_rounded_decimal]
@@ -184,7 +200,7 @@ class Entry:
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
         return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number,
-                     constants.uses_decimal(node))
+                     constants.uses_decimal(node), shares_literals)
 
     @staticmethod
     def of(value: Fraction | int) -> "Entry":
