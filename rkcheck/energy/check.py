@@ -43,6 +43,7 @@ from rkcheck.options import CheckOptions
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.avf import AvfVerdict, theorem1_remark
 from rkcheck.properties.from_nodes import node_properties, node_quadrature_order
+from rkcheck.properties.linear import LinearCertificate
 from rkcheck.properties.lineintegral import Certificate
 from rkcheck.properties.orders import OrderResult, classical_order, quadrature_order
 from rkcheck.properties.tableau import TableauProperties, properties_of_values
@@ -327,7 +328,9 @@ def _continuous_facts(surrogate: Surrogate, quad: OrderResult, options: CheckOpt
         quad = OrderResult(min(quad.order, n), n, quad.verdict, exact_failure, min(quad.to_digits or 0, n))
     box = options.decimals if surrogate.method.is_box(options.decimals) else None
     facts = kernel_facts(surrogate.method, options.degree, box)
-    return quad, facts.properties, facts.avf, facts.certificate
+    # degree 1 has no condition and every method preserves linear energy, as a tableau's
+    cert = LinearCertificate() if options.degree == 1 else facts.certificate
+    return quad, facts.properties, facts.avf, cert
 
 
 def _refuted(avf: AvfVerdict | None, cert: Certificate | None,

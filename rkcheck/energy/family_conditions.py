@@ -163,10 +163,17 @@ class FamilyConditions:
         return generic_order(self.energy, self.order)[1]
 
     @property
+    def energy_order_all(self) -> bool:
+        """Every order, for every parameter value: degree 1 has no condition, and every
+        method preserves linear energy (:mod:`rkcheck.properties.linear`)."""
+        return self.degree == 1
+
+    @property
     def energy_order_everywhere(self) -> bool:
         """Whether the generic energy order is that of every parameter value: a condition
-        of the next order is a nonzero constant, which no value makes vanish."""
-        return any(c.degree == 0 for c in self.exceptional)
+        of the next order is a nonzero constant, which no value makes vanish (or there is
+        no condition at all)."""
+        return self.energy_order_all or any(c.degree == 0 for c in self.exceptional)
 
     @property
     def classical_order(self) -> int | None:

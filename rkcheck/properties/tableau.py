@@ -14,6 +14,7 @@ from fractions import Fraction
 
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.avf import AvfVerdict, avf_of_reduction
+from rkcheck.properties.linear import LinearCertificate
 from rkcheck.properties.lineintegral import (
     Certificate,
     LineIntegralCertificate,
@@ -41,6 +42,8 @@ class TableauProperties:
         ``R(z)R(−z) ≡ 1`` when it proves more (exactly where the other holds only to digits,
         or at all)."""
         avf = self.avf(degree)
+        if degree == 1:  # no condition exists; every method preserves linear energy
+            return avf, LinearCertificate()
         cert: Certificate = self.line_integral(degree)
         if degree == 2:
             cert = prefer(cert, quadratic_certificate(self.stability, degree))

@@ -66,6 +66,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "order_checked": fc.order,
         "energy_order_generic": fc.energy_order,
         "energy_order_everywhere": fc.energy_order_everywhere,
+        "energy_order_all": fc.energy_order_all,
         "exceptional": [c.id for c in fc.exceptional],
         "classical_order_generic": fc.classical_order,
         "quadrature_order_generic": fc.quadrature_order,
@@ -94,6 +95,8 @@ def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None
                   f"{zero} vanish identically")
     generic = fc.energy_order
     label = f"≥ {generic}" if generic == fc.order and not fc.exceptional else str(generic)
+    if fc.energy_order_all:
+        label = "all (no condition for degree 1: every method preserves linear energy)"
     everywhere = fc.energy_order_everywhere
     console.print(f"energy order for {'every parameter value' if everywhere else 'generic parameter values'}: {label}")
     if fc.classical is not None:
