@@ -18,9 +18,7 @@ from rkcheck.energy.results import OrderVerdicts, order_verdicts
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
 from rkcheck.evaluation.box import centre_bits, judge_box
-from rkcheck.evaluation.slopes import LiteralChain
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
-from rkcheck.numbers.literals import literal_box
 from rkcheck.numbers.reading import Arithmetic
 from rkcheck.options import DPS_RANGE
 from rkcheck.trees.centroid import Listing
@@ -74,19 +72,7 @@ def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | Non
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
     return judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), wanted, on_order,
-                     literal_chain(values))
-
-
-def literal_chain(values: TableauValues) -> LiteralChain | None:
-    """The entries' derivatives along their decimal literals, where some literal occurs
-    more than once among the interval entries (a constant used in several entries): then
-    the box is judged along the literals (definitions §5.2), else along the entries,
-    whose box is then the literals' image already (to first order)."""
-    tab, s = values.tableau, values.tableau.stages
-    entries = [tab.A[i][j] for i in range(s) for j in range(s) if not values.A[i][j].is_point]
-    entries += [tab.b[i] for i in range(s) if not values.b[i].is_point]
-    box = literal_box(entries, values.reading.entry_bits, values.reading.decimals)
-    return LiteralChain.of(box) if box is not None and box.shared else None
+                     values.literal_chain)
 
 
 def box_directions(values: TableauValues) -> int:

@@ -252,17 +252,16 @@ class LiteralChain:
     def of(box: Any) -> "LiteralChain | None":
         """The chain of a :class:`~rkcheck.numbers.literals.LiteralBox`; None where a
         derivative or a radius lies past float64's range (no claim along it)."""
-        mids, rads = [], []
-        for row in box.rows:
-            for x in row:
-                m = float(x.mid) if abs(x.mid) < 2**1000 else math.inf
-                mids.append(m)
-                rads.append(float_above(max(x.hi - Fraction(m), Fraction(m) - x.lo)) if math.isfinite(m) else math.inf)
-        radii = np.array([float_above(r) for r in box.radii], dtype=float)
         shape = (len(box.rows), len(box.radii))
-        chain = LiteralChain(np.array(mids, dtype=float).reshape(shape), np.array(rads, dtype=float).reshape(shape),
-                             radii)
-        finite = np.all(np.isfinite(chain.mid)) and np.all(np.isfinite(chain.rad)) and np.all(np.isfinite(radii))
+        mid, rad = np.zeros(shape), np.zeros(shape)
+        for e, row in enumerate(box.rows):  # sparse: an entry uses few of the literals
+            for lit, x in row.items():
+                m = float(x.mid) if abs(x.mid) < 2**1000 else math.inf
+                mid[e, lit] = m
+                rad[e, lit] = float_above(max(x.hi - Fraction(m), Fraction(m) - x.lo)) if math.isfinite(m) else math.inf
+        radii = np.array([float_above(r) for r in box.radii], dtype=float)
+        chain = LiteralChain(mid, rad, radii)
+        finite = np.all(np.isfinite(mid)) and np.all(np.isfinite(rad)) and np.all(np.isfinite(radii))
         return chain if finite else None
 
     def variation(self, G: np.ndarray) -> np.ndarray:

@@ -92,6 +92,22 @@ class TableauValues:
     def b(self) -> list[Interval]:
         return self._enclosures[1]
 
+    @cached_property
+    def literal_chain(self) -> Any:
+        """The interval entries' derivatives along their decimal literals
+        (:class:`~rkcheck.evaluation.slopes.LiteralChain`), where some literal occurs more
+        than once among them (a constant used in several entries): the box is then judged
+        along the literals (definitions §5.2); None otherwise, the entries' own box being
+        the literals' image already (to first order)."""
+        from rkcheck.evaluation.slopes import LiteralChain
+        from rkcheck.numbers.literals import literal_box
+
+        tab, s = self.tableau, self.tableau.stages
+        entries = [tab.A[i][j] for i in range(s) for j in range(s) if not self.A[i][j].is_point]
+        entries += [tab.b[i] for i in range(s) if not self.b[i].is_point]
+        box = literal_box(entries, self.reading.entry_bits, self.reading.decimals)
+        return None if box is None else LiteralChain.of(box)
+
     def at(self, dps: int) -> "TableauValues":
         """The same tableau read at another working precision (the exact values are the
         tableau's own, computed once)."""

@@ -43,11 +43,10 @@ _ZERO = Interval.point(0)
 @dataclass(frozen=True)
 class _Slope:
     """A value over the box of literals and its derivative along each literal it depends
-    on; ``uses`` counts how often each literal occurs (through constants too)."""
+    on (by the literal's number)."""
 
     value: Interval
     grad: Mapping[Literal, Interval]
-    uses: Mapping[Literal, int]
 
 
 class Unbounded(Exception):
@@ -57,44 +56,80 @@ class Unbounded(Exception):
 
 @dataclass(frozen=True)
 class LiteralBox:
-    """The Jacobian of some entries along the box literals they are written with.
-
-    ``rows[e][l]`` encloses ``∂x_e/∂λ_l`` over the literals' box, ``radii[l]`` is
-    ``max |λ_l − λ̃_l|`` over the literal's interval, and ``shared`` says whether some
-    literal occurs more than once among the entries — only then is the image of the
-    literals' box thinner than the box of the entries' enclosures."""
+    """The Jacobian of some entries along the box literals they are written with, some
+    literal occurring more than once among them: ``rows[e]`` maps a literal's number
+    ``l`` to an enclosure of ``∂x_e/∂λ_l`` over the literals' box (literals the entry
+    does not use are absent: 0), ``radii[l]`` is ``max |λ_l − λ̃_l|`` over the literal's
+    interval."""
 
     radii: tuple[Fraction, ...]
-    rows: tuple[tuple[Interval, ...], ...]
-    shared: bool
+    rows: tuple[Mapping[Literal, Interval], ...]
 
 
 def literal_box(entries: Sequence[Any], bits: int, decimals: DecimalsMode) -> LiteralBox | None:
     """The Jacobian of ``entries`` along their box literals under the decimals mode,
-    square roots enclosed to ``bits`` bits; None when an entry has no expression (a
-    family's computed coefficient) or a derivative is unbounded on the box."""
-    literals = _Literals(DecimalsMode(decimals))
+    square roots enclosed to ``bits`` bits; None when no literal occurs twice among them
+    (their own box is then the literals' image, to first order), when an entry has no
+    expression (a family's computed coefficient) or a derivative is unbounded on the
+    box."""
+    mode = DecimalsMode(decimals)
+    if any(getattr(entry, "node", None) is None for entry in entries) or not _some_literal_twice(entries, mode):
+        return None
+    literals = _Literals(mode)
     constants: dict[int, dict[str, _Slope]] = {}
     slopes = []
     try:
         for k, entry in enumerate(entries):
-            node = getattr(entry, "node", None)
-            if node is None:
-                return None
             table = entry.constants
             if id(table) not in constants:
                 constants[id(table)] = _constant_slopes(table, bits, literals)
-            owner = "shared" if getattr(entry, "shares_literals", False) else k
-            slopes.append(_slope(node, owner, bits, constants[id(table)], literals))
+            slopes.append(_slope(entry.node, _owner(entry, k), bits, constants[id(table)], literals))
     except Unbounded:
         return None
-    L = len(literals.radii)
-    uses = [0] * L
-    for s in slopes:
-        for lit, k in s.uses.items():
-            uses[lit] += k
-    rows = tuple(tuple(s.grad.get(lit, _ZERO) for lit in range(L)) for s in slopes)
-    return LiteralBox(tuple(literals.radii), rows, any(k > 1 for k in uses))
+    return LiteralBox(tuple(literals.radii), tuple(s.grad for s in slopes))
+
+
+def _owner(entry: Any, k: int) -> Any:
+    """Where the entry's own literals are written: the entry itself (the ``k``-th), or
+    the nodes the entries that share their literals hold."""
+    return "shared" if getattr(entry, "shares_literals", False) else k
+
+
+def _some_literal_twice(entries: Sequence[Any], mode: DecimalsMode) -> bool:
+    """Whether a box literal occurs more than once among the entries' expressions (through
+    the constants they name too): counted on the expressions, before any arithmetic."""
+    tables: dict[int, dict[str, dict[Any, int]]] = {}
+    seen: dict[Any, int] = {}
+    for k, entry in enumerate(entries):
+        table = entry.constants
+        if id(table) not in tables:
+            tables[id(table)] = _constant_uses(table, mode)
+        for key, count in _uses(entry.node, _owner(entry, k), mode, tables[id(table)]).items():
+            seen[key] = seen.get(key, 0) + count
+            if seen[key] > 1:
+                return True
+    return False
+
+
+def _constant_uses(table: Any, mode: DecimalsMode) -> dict[str, dict[Any, int]]:
+    out: dict[str, dict[Any, int]] = {}
+    for name in table.order:
+        out[name] = _uses(table.definitions[name], ("constants", id(table)), mode, out)
+    return out
+
+
+def _uses(node: Expr, owner: Any, mode: DecimalsMode, constants: Mapping[str, Mapping[Any, int]]) -> dict[Any, int]:
+    """How often each box literal occurs in ``node`` (its own written in ``owner``)."""
+    counts: dict[Any, int] = {}
+    for n in xp.walk(node):
+        used: Mapping[Any, int] = {}
+        if isinstance(n, Num) and n.interval(mode) is not None:
+            used = {(owner, id(n)): 1}
+        elif isinstance(n, Name) and n.name in constants:
+            used = constants[n.name]
+        for key, c in used.items():
+            counts[key] = counts.get(key, 0) + c
+    return counts
 
 
 class _Literals:
@@ -112,13 +147,13 @@ class _Literals:
         nodes entries share)."""
         box = n.interval(self.mode)
         if box is None:
-            return _Slope(Interval.point(n.value), {}, {})
+            return _Slope(Interval.point(n.value), {})
         lit = self.index.get((owner, id(n)))
         if lit is None:
             lit = self.index[owner, id(n)] = len(self.nodes)
             self.nodes.append(n)
             self.radii.append(max(n.value - box[0], box[1] - n.value))
-        return _Slope(Interval(*box), {lit: Interval.point(1)}, {lit: 1})
+        return _Slope(Interval(*box), {lit: Interval.point(1)})
 
 
 def _constant_slopes(table: Any, bits: int, literals: _Literals) -> dict[str, _Slope]:
@@ -140,7 +175,7 @@ def _slope(node: Expr, owner: Any, bits: int, constants: Mapping[str, _Slope], l
             return constants[n.name]
         if isinstance(n, Unary):
             v = vals[0]
-            return _Slope(-v.value, {k: -d for k, d in v.grad.items()}, v.uses)
+            return _Slope(-v.value, {k: -d for k, d in v.grad.items()})
         if isinstance(n, Call):
             return _call(n, vals, bits)
         if isinstance(n, Power):
@@ -150,13 +185,6 @@ def _slope(node: Expr, owner: Any, bits: int, constants: Mapping[str, _Slope], l
 
     result: _Slope = xp.fold(node, combine)
     return result
-
-
-def _merged(u: _Slope, v: _Slope) -> dict[Literal, int]:
-    uses = dict(u.uses)
-    for k, c in v.uses.items():
-        uses[k] = uses.get(k, 0) + c
-    return uses
 
 
 def _combination(p: Interval, du: Mapping[Literal, Interval], q: Interval,
@@ -171,14 +199,14 @@ def _combination(p: Interval, du: Mapping[Literal, Interval], q: Interval,
 def _binary(op: str, u: _Slope, v: _Slope) -> _Slope:
     one = Interval.point(1)
     if op == "+":
-        return _Slope(u.value + v.value, _combination(one, u.grad, one, v.grad), _merged(u, v))
+        return _Slope(u.value + v.value, _combination(one, u.grad, one, v.grad))
     if op == "-":
-        return _Slope(u.value - v.value, _combination(one, u.grad, -one, v.grad), _merged(u, v))
+        return _Slope(u.value - v.value, _combination(one, u.grad, -one, v.grad))
     if op == "*":
-        return _Slope(u.value * v.value, _combination(v.value, u.grad, u.value, v.grad), _merged(u, v))
+        return _Slope(u.value * v.value, _combination(v.value, u.grad, u.value, v.grad))
     # d(u/v) = (du − (u/v)·dv)/v; the entry's enclosure has excluded 0 from v already
     q, inverse = u.value / v.value, v.value.reciprocal()
-    return _Slope(q, _combination(inverse, u.grad, -(q * inverse), v.grad), _merged(u, v))
+    return _Slope(q, _combination(inverse, u.grad, -(q * inverse), v.grad))
 
 
 def _power(base: _Slope, exponent: _Slope) -> _Slope:
@@ -186,22 +214,22 @@ def _power(base: _Slope, exponent: _Slope) -> _Slope:
     k = int(exponent.value.lo)
     value = base.value.power(k)
     if k == 0 or not base.grad:
-        return _Slope(value, {}, base.uses if k else {})
+        return _Slope(value, {})
     factor = Interval.point(k) * base.value.power(k - 1)
-    return _Slope(value, {lit: factor * d for lit, d in base.grad.items()}, base.uses)
+    return _Slope(value, {lit: factor * d for lit, d in base.grad.items()})
 
 
 def _call(n: Call, vals: list[_Slope], bits: int) -> _Slope:
     if n.func == "root":  # its polynomial's coefficients are exact: a number, no literal
-        return _Slope(xp.root_enclosure(n, vals[0].value.lo, bits), {}, {})
+        return _Slope(xp.root_enclosure(n, vals[0].value.lo, bits), {})
     v = vals[0]
     value = v.value.sqrt(bits)
     if not v.grad:
-        return _Slope(value, {}, v.uses)
+        return _Slope(value, {})
     if value.lo <= 0:
         raise Unbounded
     half_inverse = (Interval.point(2) * value).reciprocal()
-    return _Slope(value, {lit: half_inverse * d for lit, d in v.grad.items()}, v.uses)
+    return _Slope(value, {lit: half_inverse * d for lit, d in v.grad.items()})
 
 
 __all__ = ["Literal", "LiteralBox", "literal_box"]
