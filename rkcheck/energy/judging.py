@@ -19,7 +19,7 @@ from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
 from rkcheck.evaluation.box import centre_bits, judge_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
-from rkcheck.numbers.reading import Arithmetic
+from rkcheck.numbers.reading import Arithmetic, DecimalsMode
 from rkcheck.options import DPS_RANGE
 from rkcheck.trees.centroid import Listing
 from rkcheck.trees.listing import ConditionListing
@@ -68,11 +68,22 @@ def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | Non
     if not _judged_over_box(values):
         return evaluate(listing, values, orders, progress).orders
     assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"
-    tab = values.tableau
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
-    return judge_box(listing, values.A, values.b, tab.exact_A(), tab.exact_b(), wanted, on_order,
-                     values.literal_chain)
+    centre_A, centre_b = _face_values(values)
+    return judge_box(listing, values.A, values.b, centre_A, centre_b, wanted, on_order, values.literal_chain)
+
+
+def _face_values(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
+    """The centre of the box: the entries at face value, exact rationals, or — a square
+    root of a decimal, an exact root beside the decimals — enclosures far narrower than
+    the box (the centre's own precision, :func:`centre_bits`, and more)."""
+    tab = values.tableau
+    if tab.is_rational:
+        return tab.exact_A(), tab.exact_b()
+    bits = centre_bits(values.A, values.b) + 64
+    face = DecimalsMode.EXACT
+    return [[e.enclosure(bits, face) for e in row] for row in tab.A], [e.enclosure(bits, face) for e in tab.b]
 
 
 def box_directions(values: TableauValues) -> int:
@@ -84,14 +95,14 @@ def box_directions(values: TableauValues) -> int:
 
 
 def _judged_over_box(values: TableauValues) -> bool:
-    """Decimal entries that stand for intervals, rational at face value: one box of
-    inputs judged jointly.  (A rounded decimal is never promoted to a number field: a box
-    with roots is judged by its balls alone.)"""
-    return _rational_box(values) and _radii_within_floats(values)
+    """Decimal entries that stand for intervals: one box of inputs judged jointly, around
+    its face values (rational, or enclosed where a root makes them irrational; a rounded
+    decimal is never promoted to a number field)."""
+    return _box_of_inputs(values) and _radii_within_floats(values)
 
 
-def _rational_box(values: TableauValues) -> bool:
-    return values.backend is Backend.BALL and values.kind is NumberKind.BOX and values.tableau.is_rational
+def _box_of_inputs(values: TableauValues) -> bool:
+    return values.backend is Backend.BALL and values.kind is NumberKind.BOX
 
 
 #: the narrowest entry radius the joint box takes: its variation V is a float64 sum of
@@ -109,7 +120,7 @@ def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:
     """A box left to the balls (radii below float64's range) at the precision the box's
     own centre would have had — past its narrowest radius (:func:`centre_bits`), not the
     default 50 digits, which would cap a 300-digit input's verdicts near 64 digits."""
-    if not _rational_box(values) or _radii_within_floats(values):
+    if not _box_of_inputs(values) or _radii_within_floats(values):
         return values
     dps = min(max(values.reading.dps, math.ceil(centre_bits(values.A, values.b) * math.log10(2)) + 1), DPS_RANGE[1])
     return values if dps == values.reading.dps else TableauValues.of(values.tableau, values.reading.at(dps))

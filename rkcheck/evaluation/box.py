@@ -151,17 +151,23 @@ class _Pair:
         return tuple(c.finish_sums(a, k, n) for c, a in zip(self.parts, acc))
 
 
+def as_interval(x: Any) -> Interval:
+    """A face value as an interval: an exact rational as its point, a narrow enclosure of
+    an irrational one as itself."""
+    return x if isinstance(x, Interval) else Interval.point(Fraction(x))
+
+
 def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: Sequence[Sequence[Any]],
               centre_b: Sequence[Any], ctx: GradientContext) -> np.ndarray:
-    """``r_e = max |x_e − x̃_e|`` over the box, as floats rounded up (inf past float64's
-    range: no claim)."""
+    """``r_e = max |x_e − x̃_e|`` over the box (and over the enclosure of an irrational
+    face value ``x̃_e``), as floats rounded up (inf past float64's range: no claim)."""
     out = []
     for i, j in ctx.a_vars:
-        x, c = A[i][j], Fraction(centre_A[i][j])
-        out.append(max(c - x.lo, x.hi - c))
+        x, c = A[i][j], as_interval(centre_A[i][j])
+        out.append(max(c.hi - x.lo, x.hi - c.lo))
     for i in ctx.b_vars:
-        x, c = b[i], Fraction(centre_b[i])
-        out.append(max(c - x.lo, x.hi - c))
+        x, c = b[i], as_interval(centre_b[i])
+        out.append(max(c.hi - x.lo, x.hi - c.lo))
     return np.array([float_above(r) for r in out], dtype=float)
 
 
@@ -170,8 +176,9 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
               orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None,
               chain: LiteralChain | None = None) -> dict[int, BoxSums]:
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
-    mean value form around ``(centre_A, centre_b)``, the face values (exact rationals):
-    ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
+    mean value form around ``(centre_A, centre_b)``, the face values (exact rationals, or
+    narrow enclosures of irrational ones: the centre's balls then enclose them, and
+    every radius covers them): ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
     more than one pass: after the last).  With a ``chain`` (decimal literals that feed
     several entries) the variation runs along the literals: over the tableaux the
     literals allow, not over every tableau in the entries' box.
@@ -209,8 +216,8 @@ class _Box:
     def centre(self) -> EnclosingContext:
         """The centre's ball context, made when a route first evaluates it (a
         :class:`Refiner` asks for derivatives only)."""
-        points_A = [[Interval(x, x) for x in row] for row in self.centre_A]
-        return certified_context(points_A, [Interval(x, x) for x in self.centre_b], centre_bits(self.A, self.b),
+        points_A = [[as_interval(x) for x in row] for row in self.centre_A]
+        return certified_context(points_A, [as_interval(x) for x in self.centre_b], centre_bits(self.A, self.b),
                                  self.wanted[-1])
 
     def supported(self, ctx: Any) -> Any:
@@ -415,8 +422,8 @@ def _exact_where_needed(listing: ConditionListing, centre_A: Sequence[Sequence[A
 
     loose = [n for n, j in judged.items()
              if isinstance(j.centre, BallCentre) and np.any(~(j.centre.spread() <= CENTRE_SPREAD * j.variation))]
-    if not loose:
-        return judged
+    if not loose or any(isinstance(x, Interval) for x in (*(x for row in centre_A for x in row), *centre_b)):
+        return judged  # (an irrational centre keeps its balls: sound, if fewer digits)
     try:
         exact = exact_condition_sums(scaled_rational(centre_A, centre_b), listing, loose)
     except EvaluationInterrupted as stop:  # every order is judged already, around the balls

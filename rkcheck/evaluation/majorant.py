@@ -46,14 +46,16 @@ class MajorantContext(GradientContext):
     one-column ``G`` whose entries bound ``V̄`` (module docstring).
 
     ``radii_A``/``radii_b``: each entry's ``r_e`` (floats rounded up; 0 for an exact
-    entry), ``centre_A``/``centre_b``: the face values ``x̃`` (exact rationals)."""
+    entry), ``centre_A``/``centre_b``: the face values ``x̃`` (exact rationals, or narrow
+    enclosures of irrational ones)."""
 
     def __init__(self, radii_A: Sequence[Sequence[float]], radii_b: Sequence[float],
                  centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any]):
         s = len(radii_b)
 
         def corner(x: Any, r: float) -> Fraction:
-            return Fraction(float_above(abs(Fraction(x)) + Fraction(r)))
+            size = max(abs(x.lo), abs(x.hi)) if isinstance(x, Interval) else abs(Fraction(x))
+            return Fraction(float_above(size + Fraction(r)))
 
         self.f = FloatContext(_points([[corner(centre_A[i][j], radii_A[i][j]) for j in range(s)] for i in range(s)]),
                               [Interval.point(corner(centre_b[i], radii_b[i])) for i in range(s)])

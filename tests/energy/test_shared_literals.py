@@ -282,3 +282,76 @@ def test_the_majorant_route_judges_along_the_literals_as_every_direction_does(mo
     # the conditions √15's Gauss-3 satisfies exactly never fail on the box that holds it
     res = check(tab, CheckOptions(degree=None, order=14))
     assert held and all(r.verdict.state != FAILS for r in res.conditions if r.id in held)
+
+
+# ------------------------------------------------------------------ irrational face values
+
+def _sympy_residual(cond, A, b):
+    """R for sympy entries, by the definitions' recursion (the reference's, written again
+    over sympy numbers: Φ(τ) = 1, Φ([t₁…t_q]) = Π (AΦ(t_k)), a(t) = bᵀΦ(t))."""
+    s = len(b)
+
+    def phi(t):
+        out = [sympy.Integer(1)] * s
+        for child in ref.split_children(t):
+            v = phi(child)
+            out = [out[i] * sum(A[i][j] * v[j] for j in range(s)) for i in range(s)]
+        return out
+
+    total = sympy.Integer(0)
+    for _, sign, sig, forest in cond["terms"]:
+        term = sympy.Rational(sign, sig)
+        for t in forest:
+            term *= sum(b[i] * w for i, w in enumerate(phi(t)))
+        total += term
+    return sympy.expand(total)
+
+
+@pytest.mark.parametrize("literal", ["0.5000002", "0.5000000", "0.4999998", "0.7320508"])
+def test_exact_roots_beside_a_shared_decimal_are_judged_over_the_literals_box(literal):
+    # Gauss-2 (√3 exact) with b = (h, 1 − h), h one decimal: every residual is a
+    # polynomial in h over Q(√3); its sign at the box's ends is decided exactly by sympy
+    text = ('[constants]\nh = "%s"\nr3 = "sqrt(3)"\n[tableau]\nA = [["1/4", "1/4 - r3/6"], ["1/4 + r3/6", "1/4"]]\n'
+            'b = ["h", "1 - h"]\n' % literal)
+    res = check(loads(text, "g2h.toml"), CheckOptions(degree=None, order=5))
+    h, r3 = sympy.Symbol("h"), sympy.sqrt(3)
+    A = [[sympy.Rational(1, 4), sympy.Rational(1, 4) - r3 / 6], [sympy.Rational(1, 4) + r3 / 6, sympy.Rational(1, 4)]]
+    face, radius = sympy.Rational(literal), sympy.Rational(1, 2 * 10**7)
+    decided = 0
+    for r in res.conditions:
+        cond = next(c for keys, c in _reference_conditions(r.vertices) if ref.canonicalize(r.level_sequence) in keys)
+        R = _sympy_residual(cond, A, [h, 1 - h])
+        state, ends = r.verdict.state, [R.subs(h, face - radius), R.subs(h, face + radius)]
+        if R == 0:
+            assert state == HOLDS_TO_DIGITS, r.id
+            continue
+        # R·R̄ (√3 → −√3) has rational coefficients and the roots of R among its own
+        norm = sympy.Poly(sympy.expand(R * R.subs(r3, -r3)), h, domain="QQ")
+        if sympy.sign(ends[0]) != sympy.sign(ends[1]) or 0 in ends:
+            assert state != FAILS, r.id  # a root in the box: never a false failure
+        elif not norm.count_roots(face - 3 * radius, face + 3 * radius):
+            assert state == FAILS, r.id
+            decided += 1
+        for v in ends + [R.subs(h, face)]:
+            if state == FAILS:
+                assert abs(v - sympy.Rational(Fraction(r.enclosure.mid))) <= sympy.Rational(Fraction(r.enclosure.rad))
+            else:
+                assert abs(v) <= sympy.Rational(1, 10**r.verdict.digits)
+    assert decided or literal == "0.5000000"
+
+
+def test_a_square_root_of_a_shared_decimal_is_one_number():
+    # Ralston's family at c₂ = q = √a, a = "0.4444448": by hand the condition with 4
+    # vertices is 1/6 − q/4, zero only at a = 4/9 = 0.444444…, outside 0.4444448 ± 5e−8
+    # (it fails on the whole box), and bᵀc = 1/2 for every a
+    text = ('[constants]\na = "0.4444448"\nq = "sqrt(a)"\n[tableau]\nA = [["0", "0"], ["q", "0"]]\n'
+            'b = ["1 - 1/(2*q)", "1/(2*q)"]\n')
+    res = check(loads(text, "sqrt.toml"), CheckOptions(degree=None, order=3))
+    by_vertices = {r.vertices: r for r in res.conditions}
+    assert by_vertices[4].verdict.state == FAILS
+    a_lo, a_hi = sympy.Rational("0.44444475"), sympy.Rational("0.44444485")
+    for a in (a_lo, a_hi):
+        value = sympy.Rational(1, 6) - sympy.sqrt(a) / 4
+        enc = by_vertices[4].enclosure
+        assert abs(value - sympy.Rational(Fraction(enc.mid))) <= sympy.Rational(Fraction(enc.rad))
+    assert by_vertices[3].verdict.state == HOLDS_TO_DIGITS and by_vertices[3].verdict.digits >= 12
