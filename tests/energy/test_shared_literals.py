@@ -37,21 +37,20 @@ from rkcheck.options import CheckOptions
 from rkcheck.trees.listing import ConditionListing
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
-#: tableaux in one constant a, entries polynomials in a and 1/a: the 3-stage one has
-#: Σb = 1 for every a; Ralston's family (c₂ = a) has Σb = 1 and bᵀc = 1/2 for every a
+#: tableaux in one constant a, entries polynomials in a and 1/a, as the file writes them
+#: and as the oracle computes them (Fractions): the 3-stage one has Σb = 1 for every a;
+#: Ralston's family (c₂ = a) has Σb = 1 and bᵀc = 1/2 for every a
 FAMILIES = {
-    "polynomial": ([["0", "0", "0"], ["a", "0", "0"], ["a*a", "1 - a", "0"]], ["1 - a - a*a/2", "a", "a*a/2"]),
-    "ralston": ([["0", "0"], ["a", "0"]], ["1 - 1/(2*a)", "1/(2*a)"]),
+    "polynomial": (([["0", "0", "0"], ["a", "0", "0"], ["a*a", "1 - a", "0"]], ["1 - a - a*a/2", "a", "a*a/2"]),
+                   lambda a: ([[0, 0, 0], [a, 0, 0], [a * a, 1 - a, 0]], [1 - a - a * a / 2, a, a * a / 2])),
+    "ralston": (([["0", "0"], ["a", "0"]], ["1 - 1/(2*a)", "1/(2*a)"]),
+                lambda a: ([[0, 0], [a, 0]], [1 - 1 / (2 * a), 1 / (2 * a)])),
 }
 
 
+@functools.lru_cache(maxsize=None)
 def _entries_at(family: str, a: Fraction) -> tuple[list[list[Fraction]], list[Fraction]]:
-    A_texts, b_texts = FAMILIES[family]
-
-    def value(text: str) -> Fraction:
-        v = sympy.sympify(text, locals={"a": sympy.Rational(a.numerator, a.denominator)})
-        return Fraction(int(v.p), int(v.q))
-    return [[value(t) for t in row] for row in A_texts], [value(t) for t in b_texts]
+    return FAMILIES[family][1](a)
 
 
 def _polynomial(values: dict[Fraction, Fraction]) -> sympy.Poly:
@@ -84,7 +83,7 @@ def _roots_within(P: sympy.Poly, lo: Fraction, hi: Fraction) -> int:
 
 
 def _toml(family: str, literal: str) -> str:
-    A_texts, b_texts = FAMILIES[family]
+    A_texts, b_texts = FAMILIES[family][0]
     rows = ", ".join("[" + ", ".join(f'"{t}"' for t in row) + "]" for row in A_texts)
     return (f'[method]\nname = "shared literal"\n[constants]\na = "{literal}"\n'
             f'[tableau]\nA = [{rows}]\nb = [{", ".join(chr(34) + t + chr(34) for t in b_texts)}]\n')
@@ -138,9 +137,11 @@ def test_a_constant_shared_by_entries_is_judged_over_its_own_interval(family, li
 
         def residual_at(a: Fraction, cond=cond) -> Fraction:
             return ref.energy_residual(cond, *_entries_at(family, a))
-        # a^(2n)·R(a) is a polynomial of degree ≤ 4n: 4n + 5 points recover it exactly
+        # the polynomial family's entries have degree ≤ 2 in a, so R has degree ≤ 2n (2n + 3
+        # points recover it exactly); Ralston's b has 1/a, and a^(2n)·R(a) has degree ≤ 4n
         n = r.vertices
-        P = _polynomial({a: a ** (2 * n) * residual_at(a) for a in (face + k for k in range(-2 * n - 2, 2 * n + 3))})
+        power, half = (0, n + 1) if family == "polynomial" else (2 * n, 2 * n + 2)
+        P = _polynomial({a: a ** power * residual_at(a) for a in (face + k for k in range(-half, half + 1))})
         states.add(r.verdict.state)
         inside += _judge_against_polynomial(r, P, residual_at, face, radius)
     assert FAILS in states
