@@ -21,11 +21,14 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, Callable
 
+from rkcheck.energy.judging import box_order, judged_over_box
+from rkcheck.energy.results import ConditionResults
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.numbers.intervals import Interval
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.graph import adjacency, centres, distances, rooted_at
+from rkcheck.trees.listing import ConditionListing
 from rkcheck.trees.rooted import (
     bracket,
     bracket_of_forest,
@@ -183,6 +186,16 @@ def _enclosure(x: Any) -> Enclosure:
     return Enclosure(enc.mid, enc.rad, False)
 
 
+def _over_the_box(condition: FreeTree, values: TableauValues) -> tuple[Enclosure, Verdict]:
+    """The enclosure and verdict of ``condition`` judged jointly over a decimal box (its
+    order with the check's machinery, :mod:`rkcheck.energy.judging`)."""
+    n = condition.vertices
+    listing = ConditionListing(n - 1, None)
+    results = ConditionResults(listing, box_order(listing, values, n))
+    found = next(c for c in results if c.tree.id == condition.id)
+    return found.enclosure, found.verdict
+
+
 def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> EnergyCondition:
     """Take the free tree underlying the rooted tree ``seq`` apart (and evaluate it on a
     tableau's values: exactly when they are exact, else on their enclosures)."""
@@ -235,5 +248,9 @@ def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> Energy
         terms.append(RootingTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, weights, value))
     residual = None if total is None else _enclosure(total)
     verdict = None if residual is None else classify(residual)
+    if values is not None and judged_over_box(values):
+        # the terms evaluated above are each an interval over the box; the condition's
+        # own verdict and enclosure are the joint box's, as verify gives them
+        residual, verdict = _over_the_box(condition, values)
     tableau = None if values is None else values.tableau
     return EnergyCondition(seq, condition, False, n, max_degree, tuple(terms), residual, verdict, tableau)

@@ -65,7 +65,7 @@ def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | Non
     """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
     evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
-    if not _judged_over_box(values):
+    if not judged_over_box(values):
         return evaluate(listing, values, orders, progress).orders
     assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"
     wanted = sorted(listing.orders if orders is None else orders)
@@ -86,15 +86,21 @@ def _face_values(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
     return [[e.enclosure(bits, face) for e in row] for row in tab.A], [e.enclosure(bits, face) for e in tab.b]
 
 
+def box_order(listing: ConditionListing, values: TableauValues, n: int) -> dict[int, OrderVerdicts]:
+    """The conditions with ``n`` vertices of a decimal box judged over the whole box
+    (:func:`judged_over_box`), as the check judges them."""
+    return {n: order_verdicts(n, _order_sums(listing, values, [n])[n])}
+
+
 def box_directions(values: TableauValues) -> int:
     """The interval entries of a decimal box judged over the whole box (the directions
     of its derivatives), 0 for anything else."""
-    if not _judged_over_box(values):
+    if not judged_over_box(values):
         return 0
     return sum(not x.is_point for row in (*values.A, values.b) for x in row)
 
 
-def _judged_over_box(values: TableauValues) -> bool:
+def judged_over_box(values: TableauValues) -> bool:
     """Decimal entries that stand for intervals: one box of inputs judged jointly, around
     its face values (rational, or enclosed where a root makes them irrational; a rounded
     decimal is never promoted to a number field)."""

@@ -23,6 +23,7 @@ from support import reference as ref
 
 import rkcheck
 from rkcheck.energy.check import check
+from rkcheck.energy.explain import explain
 from rkcheck.evaluation import box as box_module
 from rkcheck.evaluation.box import judge_box
 from rkcheck.evaluation.values import TableauValues
@@ -356,3 +357,26 @@ def test_a_square_root_of_a_shared_decimal_is_one_number():
         enc = by_vertices[4].enclosure
         assert abs(value - sympy.Rational(Fraction(enc.mid))) <= sympy.Rational(Fraction(enc.rad))
     assert by_vertices[3].verdict.state == HOLDS_TO_DIGITS and by_vertices[3].verdict.digits >= 12
+
+
+# ------------------------------------------------------------------ explain
+
+@pytest.mark.parametrize("text", [
+    _toml("ralston", "0.6666669"),
+    '[tableau]\nA = [["1/2"]]\nb = ["0.9999999999"]\n',
+    '[constants]\nh = "0.5000002"\nr3 = "sqrt(3)"\n[tableau]\nA = [["1/4", "1/4 - r3/6"], ["1/4 + r3/6", "1/4"]]\n'
+    'b = ["h", "1 - h"]\n',
+])
+def test_explain_on_a_box_gives_the_verdict_and_enclosure_of_the_check(text):
+    # explain's terms are intervals over the box each; its R is the condition judged
+    # over the box jointly, as the check judges it — the same verdict (the enclosure may
+    # come from another pass: the same mid-point, a radius within rounding)
+    tab = loads(text, "box.toml")
+    values = TableauValues(tab, Reading())
+    res = check(tab, CheckOptions(degree=None, order=4))
+    assert res.conditions
+    for r in res.conditions:
+        shown = explain(r.level_sequence, values)
+        assert shown.verdict == r.verdict, r.id
+        assert Fraction(shown.enclosure.mid) == Fraction(r.enclosure.mid), r.id
+        assert math.isclose(float(shown.enclosure.rad), float(r.enclosure.rad), rel_tol=1e-9), r.id
