@@ -19,6 +19,7 @@ from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
 from rkcheck.evaluation.box import centre_bits, judge_box
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
+from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import Arithmetic, DecimalsMode
 from rkcheck.options import DPS_RANGE
 from rkcheck.trees.centroid import Listing
@@ -71,7 +72,8 @@ def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | Non
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
     centre_A, centre_b = _face_values(values)
-    return judge_box(listing, values.A, values.b, centre_A, centre_b, wanted, on_order, values.literal_chain)
+    return judge_box(listing, values.A, values.b, centre_A, centre_b, wanted, on_order, values.literal_chain,
+                     values.varies)
 
 
 def _face_values(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
@@ -81,7 +83,7 @@ def _face_values(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
     tab = values.tableau
     if tab.is_rational:
         return tab.exact_A(), tab.exact_b()
-    bits = centre_bits(values.A, values.b) + 64
+    bits = centre_bits(values.A, values.b, values.varies) + 64
     face = DecimalsMode.EXACT
     return [[e.enclosure(bits, face) for e in row] for row in tab.A], [e.enclosure(bits, face) for e in tab.b]
 
@@ -97,7 +99,7 @@ def box_directions(values: TableauValues) -> int:
     of its derivatives), 0 for anything else."""
     if not judged_over_box(values):
         return 0
-    return sum(not x.is_point for row in (*values.A, values.b) for x in row)
+    return sum(v for _, v in _cells(values))
 
 
 def judged_over_box(values: TableauValues) -> bool:
@@ -119,7 +121,15 @@ BOX_MIN_RADIUS = Fraction(1, 1 << 960)
 
 
 def _radii_within_floats(values: TableauValues) -> bool:
-    return all(x.rad == 0 or x.rad >= BOX_MIN_RADIUS for row in (*values.A, values.b) for x in row)
+    """Every direction's radius within float64's range (an exact irrational entry,
+    enclosed as narrowly as ``--dps`` asks, is no direction)."""
+    return all(x.rad >= BOX_MIN_RADIUS for x, varies in _cells(values) if varies and x.rad)
+
+
+def _cells(values: TableauValues) -> list[tuple[Interval, bool]]:
+    """Every entry's enclosure with whether it is a direction of the box."""
+    in_A, in_b = values.varies
+    return [(x, v) for row, vs in zip(values.A, in_A) for x, v in zip(row, vs)] + list(zip(values.b, in_b))
 
 
 def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:
@@ -128,7 +138,7 @@ def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:
     default 50 digits, which would cap a 300-digit input's verdicts near 64 digits."""
     if not _box_of_inputs(values) or _radii_within_floats(values):
         return values
-    dps = min(max(values.reading.dps, math.ceil(centre_bits(values.A, values.b) * math.log10(2)) + 1), DPS_RANGE[1])
+    dps = min(max(values.reading.dps, math.ceil(centre_bits(values.A, values.b, values.varies) * math.log10(2)) + 1), DPS_RANGE[1])
     return values if dps == values.reading.dps else TableauValues.of(values.tableau, values.reading.at(dps))
 
 

@@ -69,6 +69,7 @@ from rkcheck.evaluation.slopes import (
     MAX_GRADIENT_BYTES,
     GradientContext,
     LiteralChain,
+    Varies,
     balls_per_tree,
     gradient_groups,
 )
@@ -89,10 +90,13 @@ CENTRE_BITS_BEYOND_BOX = 128
 CENTRE_SPREAD = 2.0**-20
 
 
-def centre_bits(A: Sequence[Sequence[Interval]], b: Sequence[Interval]) -> int:
+def centre_bits(A: Sequence[Sequence[Interval]], b: Sequence[Interval], varies: Varies | None = None) -> int:
     """The working bits of the centre's balls: :data:`CENTRE_BITS_BEYOND_BOX` below the
-    narrowest radius of an interval entry."""
-    radii = [x.rad for row in (*A, b) for x in row if x.rad > 0]
+    narrowest radius of an entry that is a direction (``varies``; by default any entry
+    that is not a point)."""
+    cells = [(x, v) for row, vs in zip(A, varies[0]) for x, v in zip(row, vs)] + list(zip(b, varies[1])) \
+        if varies is not None else [(x, True) for row in (*A, b) for x in row]
+    radii = [x.rad for x, v in cells if v and x.rad > 0]
     if not radii:
         return CENTRE_BITS_BEYOND_BOX
     r = Fraction(min(radii))
@@ -174,14 +178,16 @@ def box_radii(A: Sequence[Sequence[Interval]], b: Sequence[Interval], centre_A: 
 def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
               centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any],
               orders: Sequence[int], on_order: Callable[[int, BoxSums], None] | None = None,
-              chain: LiteralChain | None = None) -> dict[int, BoxSums]:
+              chain: LiteralChain | None = None, varies: Varies | None = None) -> dict[int, BoxSums]:
     """The conditions of ``orders`` judged over the box ``(A, b)`` of intervals by the
     mean value form around ``(centre_A, centre_b)``, the face values (exact rationals, or
     narrow enclosures of irrational ones: the centre's balls then enclose them, and
     every radius covers them): ``{n: BoxSums}``.  ``on_order`` as each order is judged (when the derivatives take
     more than one pass: after the last).  With a ``chain`` (decimal literals that feed
     several entries) the variation runs along the literals: over the tableaux the
-    literals allow, not over every tableau in the entries' box.
+    literals allow, not over every tableau in the entries' box.  ``varies``: which entries
+    are directions (by default those that are not points; an exact irrational entry,
+    enclosed, is one number, not a direction).
 
     From :data:`MAJORANT_MIN_VERTICES` vertices, a box whose derivatives cost several
     times its values is first bounded along one direction
@@ -191,7 +197,7 @@ def judge_box(listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Seq
     wanted = sorted(orders)
     if not wanted:
         return {}
-    box = _Box(listing, A, b, centre_A, centre_b, wanted, chain)
+    box = _Box(listing, A, b, centre_A, centre_b, wanted, chain, varies)
     out = _by_majorant(box, on_order)
     if out is None:
         out = _by_directions(box, on_order)
@@ -204,10 +210,10 @@ class _Box:
 
     def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
                  centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], wanted: list[int],
-                 chain: LiteralChain | None = None):
+                 chain: LiteralChain | None = None, varies: Varies | None = None):
         self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
-        self.wanted, self.s, self.chain = wanted, len(b), chain
-        self.whole = GradientContext(A, b)
+        self.wanted, self.s, self.chain, self.varies = wanted, len(b), chain, varies
+        self.whole = GradientContext(A, b, varies=varies)
         self.groups = gradient_groups(listing, self.s, self.whole.E, self.whole.EA)
         self.radii = box_radii(A, b, centre_A, centre_b, self.whole)
         self.zeros = zero_pattern(A, b)
@@ -217,8 +223,8 @@ class _Box:
         """The centre's ball context, made when a route first evaluates it (a
         :class:`Refiner` asks for derivatives only)."""
         points_A = [[as_interval(x) for x in row] for row in self.centre_A]
-        return certified_context(points_A, [as_interval(x) for x in self.centre_b], centre_bits(self.A, self.b),
-                                 self.wanted[-1])
+        return certified_context(points_A, [as_interval(x) for x in self.centre_b],
+                                 centre_bits(self.A, self.b, self.varies), self.wanted[-1])
 
     def supported(self, ctx: Any) -> Any:
         return SupportContext(ctx, *self.zeros) if self.zeros[0].any() or self.zeros[1].any() else ctx
@@ -226,7 +232,7 @@ class _Box:
     def gradients(self, directions: slice | None = None) -> GradientContext:
         """The derivatives along ``directions`` (None: all), signed where a chain takes
         them along the literals."""
-        return GradientContext(self.A, self.b, directions, signed=self.chain is not None)
+        return GradientContext(self.A, self.b, directions, signed=self.chain is not None, varies=self.varies)
 
     def variation(self, G: np.ndarray) -> np.ndarray:
         """``V = Σ_e G[:, e]·r_e`` rounded up (the products and the sum of E terms), or
@@ -316,7 +322,7 @@ def _by_majorant(box: _Box, on_order: Callable[[int, BoxSums], None] | None) -> 
         opened = sum(int(np.count_nonzero(~BallCentre(ball).beyond(_coarse(G)))) for ball, (_, G) in raw.values())
         if opened * _PROBE_SHARE > sum(len(G) for _, (_, G) in raw.values()):
             return None
-    refiner = Refiner(listing, box.A, box.b, box.centre_A, box.centre_b, box.chain)
+    refiner = Refiner(listing, box.A, box.b, box.centre_A, box.centre_b, box.chain, box.varies)
     out: dict[int, BoxSums] = {}
 
     def judged(n: int, sums: Any) -> None:
@@ -392,9 +398,10 @@ class Refiner:
     the listing travels as its key)."""
 
     def __init__(self, listing: ConditionListing, A: Sequence[Sequence[Interval]], b: Sequence[Interval],
-                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], chain: LiteralChain | None = None):
+                 centre_A: Sequence[Sequence[Any]], centre_b: Sequence[Any], chain: LiteralChain | None = None,
+                 varies: Varies | None = None):
         self.listing, self.A, self.b, self.centre_A, self.centre_b = listing, A, b, centre_A, centre_b
-        self.chain = chain
+        self.chain, self.varies = chain, varies
         self._done: dict[int, np.ndarray] = {}
 
     def know(self, n: int, variation: np.ndarray) -> None:
@@ -403,7 +410,7 @@ class Refiner:
 
     def variation(self, n: int) -> np.ndarray:
         if n not in self._done:
-            box = _Box(self.listing, self.A, self.b, self.centre_A, self.centre_b, [n], self.chain)
+            box = _Box(self.listing, self.A, self.b, self.centre_A, self.centre_b, [n], self.chain, self.varies)
             todo = [k for k in self.listing.orders if k <= n and k not in self._done]
             passes = [condition_sums(self.listing, box.supported(box.gradients(g)), box.s, todo)
                       for g in box.groups]

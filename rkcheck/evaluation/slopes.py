@@ -36,6 +36,10 @@ from rkcheck.numbers.intervals import Interval, float_above
 if TYPE_CHECKING:
     from rkcheck.trees.listing import ConditionListing
 
+#: which entries of A and of b are directions (stand for intervals of inputs); by default
+#: every entry that is not a point
+Varies = tuple[Sequence[Sequence[bool]], Sequence[bool]]
+
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
 #: mid and radius each); above, the directions are split into several passes.
 MAX_GRADIENT_BYTES = 1 << 30
@@ -91,12 +95,13 @@ class GradientContext:
     signed = False
 
     def __init__(self, A: Sequence[Sequence[Interval]], b: Sequence[Interval], directions: slice | None = None,
-                 signed: bool = False):
+                 signed: bool = False, varies: Varies | None = None):
         self.f = FloatContext(A, b)
         self.signed = signed
         s = len(b)
-        a_vars = [(i, j) for i in range(s) for j in range(s) if not A[i][j].is_point]
-        b_vars = [i for i in range(s) if not b[i].is_point]
+        in_A, in_b = varies or ([[not x.is_point for x in row] for row in A], [not x.is_point for x in b])
+        a_vars = [(i, j) for i in range(s) for j in range(s) if in_A[i][j]]
+        b_vars = [i for i in range(s) if in_b[i]]
         if directions is not None:  # only these of the interval entries (A's, then b's)
             keep = set(range(len(a_vars) + len(b_vars))[directions])
             a_vars, b_vars = ([v for e, v in enumerate(a_vars) if e in keep],

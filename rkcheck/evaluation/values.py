@@ -103,10 +103,20 @@ class TableauValues:
         from rkcheck.numbers.literals import literal_box
 
         tab, s = self.tableau, self.tableau.stages
-        entries = [tab.A[i][j] for i in range(s) for j in range(s) if not self.A[i][j].is_point]
-        entries += [tab.b[i] for i in range(s) if not self.b[i].is_point]
+        in_A, in_b = self.varies
+        entries = [tab.A[i][j] for i in range(s) for j in range(s) if in_A[i][j]]
+        entries += [tab.b[i] for i in range(s) if in_b[i]]
         box = literal_box(entries, self.reading.entry_bits, self.reading.decimals)
         return None if box is None else LiteralChain.of(box)
+
+    @cached_property
+    def varies(self) -> tuple[list[list[bool]], list[bool]]:
+        """Which entries of A and b stand for intervals of inputs (a rounded decimal in
+        them, or in a constant they use): the directions of a box.  An exact irrational
+        entry (``sqrt(3)``) is one number, enclosed, not a direction."""
+        decimals = self.reading.decimals
+        return ([[e.is_box(decimals) for e in row] for row in self.tableau.A],
+                [e.is_box(decimals) for e in self.tableau.b])
 
     def at(self, dps: int) -> "TableauValues":
         """The same tableau read at another working precision (the exact values are the

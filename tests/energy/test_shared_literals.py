@@ -380,3 +380,28 @@ def test_explain_on_a_box_gives_the_verdict_and_enclosure_of_the_check(text):
         assert shown.verdict == r.verdict, r.id
         assert Fraction(shown.enclosure.mid) == Fraction(r.enclosure.mid), r.id
         assert math.isclose(float(shown.enclosure.rad), float(r.enclosure.rad), rel_tol=1e-9), r.id
+
+
+def test_exact_roots_are_one_number_not_directions_of_the_box_at_any_precision():
+    # Gauss-2 (√3 exact) with decimal weights: the box has 2 directions (b's), whatever
+    # --dps makes of √3's enclosure.  By hand, with b₁ = 1/2 + u, b₂ = 1/2 + v and
+    # c = (1/2 − √3/6, 1/2 + √3/6), R(1,2,2) = (Σb)²/2 − bᵀc = (1/2 + √3/6)u + (1/2 −
+    # √3/6)v + (u + v)²/2: affine but for a 10⁻¹⁴ term, so its least value on the box
+    # (u ∈ [5, 15]·10⁻⁸, v ∈ [−15, −5]·10⁻⁸) is at a corner, where sympy finds it
+    # positive: it fails at 50 digits and at 300 alike (past about 290 digits √3's
+    # enclosure is below float64's range, yet √3 is one number, not a direction)
+    from rkcheck.energy.judging import box_directions
+
+    text = ('[constants]\nr3 = "sqrt(3)"\n[tableau]\nA = [["1/4", "1/4 - r3/6"], ["1/4 + r3/6", "1/4"]]\n'
+            'b = ["0.5000001", "0.4999999"]\n')
+    tab = loads(text, "g2p.toml")
+    r3, half = sympy.sqrt(3), sympy.Rational(1, 20_000_000)
+    c = [sympy.Rational(1, 2) - r3 / 6, sympy.Rational(1, 2) + r3 / 6]
+    for b1 in (sympy.Rational("0.5000001") - half, sympy.Rational("0.5000001") + half):
+        for b2 in (sympy.Rational("0.4999999") - half, sympy.Rational("0.4999999") + half):
+            assert sympy.simplify((b1 + b2) ** 2 / 2 - (b1 * c[0] + b2 * c[1])) > 0
+    for dps in (50, 300):
+        values = TableauValues(tab, Reading(dps=dps))
+        assert box_directions(values) == 2
+        first = next(r for r in check(tab, CheckOptions(degree=4, order=3, dps=dps)).conditions if r.vertices == 3)
+        assert first.verdict.state == FAILS, dps
