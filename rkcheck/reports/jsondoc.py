@@ -128,8 +128,11 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
     o = res.options
     first = res.first_failure
     avf = res.avf
+    # Ctrl-C before any failure: the orders that finished are no verdict on the method
+    unfinished = res.interrupted and res.verdict != FAILS
     return {
-        "verdict": res.verdict,
+        "verdict": "interrupted" if unfinished else res.verdict,
+        "interrupted": res.interrupted,
         "energy_order": res.energy_order,
         "energy_order_to_digits": res.energy_order_to_digits,
         "energy_order_digits": res.energy_order_digits,
@@ -157,11 +160,11 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "conditions_failed": sum(p.failed for p in res.per_order),
         "min_digits": res.min_digits,
         # every condition exact, or an exact certificate of every order (and none failing)
-        "proven": (res.verdict == HOLDS and res.energy_order_all_digits is None)
-        or (res.energy_order_all and res.verdict != FAILS),
+        "proven": not unfinished and ((res.verdict == HOLDS and res.energy_order_all_digits is None)
+                                      or (res.energy_order_all and res.verdict != FAILS)),
         "inconsistent": inconsistent(res),
         "require": _require_doc(res),
-        "passed": conditions_ok(res),
+        "passed": conditions_ok(res) and not unfinished,
         "first_failure": None
         if first is None
         else {"id": first.id, "bracket": first.bracket, "order": first.order},

@@ -217,3 +217,22 @@ def test_an_interrupted_check_with_no_failure_is_no_ok(capsys, monkeypatch):
     assert r.code == 130 and "(none)" in r.err
     assert "INTERRUPTED: 0 conditions checked before Ctrl-C, none failing; no verdict" in r.out
     assert "OK" not in r.out.splitlines()[-1]
+
+
+def test_an_interrupted_check_with_no_failure_is_neither_passed_nor_proven_in_json(capsys, monkeypatch):
+    # RK4 fails conditions at 5 vertices (its energy order is 4): a JSON document of a
+    # check stopped before any order finished must not read as a pass or a proof
+    import rkcheck.energy.check as check
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    def interrupted(*args, **kwargs):
+        raise EvaluationInterrupted({})
+
+    monkeypatch.setattr(check, "evaluate_orders", interrupted)
+    r = run_cli(capsys, "verify", "@rk4", "--order", "6", "--format", "json")
+    assert r.code == 130
+    s = json.loads(r.out)["summary"]
+    assert s["interrupted"] and s["verdict"] == "interrupted" and not s["passed"] and not s["proven"]
+    monkeypatch.undo()
+    finished = run_cli(capsys, "verify", "@rk4", "--order", "6", "--format", "json")
+    assert not json.loads(finished.out)["summary"]["interrupted"]
