@@ -197,7 +197,14 @@ class Tableau:
         """Some entry of A or b stands for an interval of numbers under the decimals mode
         (definitions §5.2): the tableau is a box of tableaux, judged jointly."""
         decimals = DecimalsMode(decimals)
-        return any(e.is_box(decimals) for row in self.A for e in row) or any(e.is_box(decimals) for e in self.b)
+        found = False
+        n = self.stages * (self.stages + 1)  # A and b: c is a check of A·1, not an input of the conditions
+        for place, e in zip(self.entry_places()[:n], self.entries()[:n]):
+            try:  # every entry: one that cannot be read under the mode is named, with its file
+                found = e.is_box(decimals) or found
+            except UserError as err:
+                raise err.located(place, self.info.source or None) from None
+        return found
 
     @property
     def structure(self) -> str:

@@ -43,9 +43,12 @@ class Constants:
         self._enclosures: dict[tuple[int, DecimalsMode], dict[str, Interval]] = {}
         self._rounded: dict[str, int | None] = {}  # fewest digits of its rounded decimals, through others too
         self._decimal: dict[str, bool] = {}
+        self._root_decimal: dict[str, ex.Num | None] = {}  # a decimal in a root's polynomial, through others too
         for name in self._order:
             node = self.definitions[name]
             used = {n.name for n in xp.names(node)}
+            self._root_decimal[name] = next(iter(xp.root_decimals(node)), None) or next(
+                (lit for u in used if (lit := self._root_decimal[u]) is not None), None)
             self._decimal[name] = any(lit.is_decimal for lit in xp.literals(node)) or any(
                 self._decimal[u] for u in used
             )
@@ -127,6 +130,13 @@ class Constants:
         directly or through other constants (None: it depends on none)."""
         return self._rounded[name]
 
+    def root_decimal(self, node: ex.Expr) -> ex.Num | None:
+        """A decimal literal inside a ``root(p, k)`` polynomial of ``node``, itself or
+        through these constants (None: there is none)."""
+        return next(iter(xp.root_decimals(node)), None) or next(
+            (lit for u in xp.names(node) if u.name in self.definitions and (lit := self._root_decimal[u.name]) is not None),
+            None)
+
     def has_decimal(self, name: str) -> bool:
         return self._decimal[name]
 
@@ -177,6 +187,8 @@ class Entry:
     # all of them (a kernel's, at a surrogate's nodes); else its own, even where a reader
     # built entries of equal text from one parse
     shares_literals: bool = field(default=False, compare=False)
+    # a decimal literal inside a root(p, k) polynomial (read exactly there), if any
+    root_decimal: Any = field(default=None, compare=False, repr=False)
 
     @staticmethod
     def parse(text: str, constants: Constants | None = None, bare_number: bool = False) -> "Entry":
@@ -200,7 +212,7 @@ class Entry:
         # sqrt of a non-square is the only source of irrationals: an entry without an
         # exact value is algebraic; sqrt(9/4) stays rational.
         return Entry(text, node, constants, exact, exact is None, rounded_digits, bare_number,
-                     constants.uses_decimal(node), shares_literals)
+                     constants.uses_decimal(node), shares_literals, constants.root_decimal(node))
 
     @staticmethod
     def of(value: Fraction | int) -> "Entry":
@@ -227,6 +239,12 @@ class Entry:
         """Whether the entry stands for an interval of numbers, not one number, under the
         decimals mode (definitions §5.2; :meth:`rkcheck.numbers.grammar.Num.interval`)."""
         decimals = DecimalsMode(decimals)
+        if self.root_decimal is not None and self.root_decimal.interval(decimals) is not None:
+            # a root's polynomial has exact numbers: a decimal there that stands for an
+            # interval would be read at face value, and a verdict could claim too much
+            raise UserError(f"root(p, k): the polynomial's numbers are exact, but {self.root_decimal.text} stands "
+                            f"for an interval (--decimals {decimals.value}); write it as a fraction, or check with "
+                            "--decimals exact")
         if decimals is DecimalsMode.FLOAT64:
             return self.has_decimal
         if decimals.rounds:

@@ -238,6 +238,21 @@ def root_enclosure(call: Call, k_value: Fraction | None, bits: int) -> Interval:
     return roots[k - 1]
 
 
+def root_decimals(node: Expr) -> list[Num]:
+    """The decimal literals inside the polynomials of ``node``'s ``root(p, k)`` calls
+    (whose numbers are read exactly, :func:`root_polynomial`)."""
+    out: list[Num] = []
+    for n in walk(node):
+        if isinstance(n, Call) and n.func == "root" and n.args:
+            stack = [n.args[0]]
+            while stack:
+                m = stack.pop()
+                if isinstance(m, Num) and m.is_decimal:
+                    out.append(m)
+                stack.extend(children(m))
+    return out
+
+
 def names(node: Expr) -> list[Name]:
     """All names used in ``node`` (with repetition), left to right."""
     return [n for n in walk(node) if isinstance(n, Name)]

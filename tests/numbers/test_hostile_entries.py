@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+from support.clirun import run_subprocess
 from support.guards import cpu_guard
 
 from rkcheck.errors import UserError
@@ -125,3 +126,17 @@ def test_overflowing_interval_messages_do_not_crash():
     # sqrt of an interval straddling 0 whose end points overflow a float
     with pytest.raises(UserError, match="cannot be shown to be >= 0"):
         Entry.parse("sqrt(1.000000e400 - 1.000000e400)").enclosure(64, "rounded")
+
+
+@pytest.mark.parametrize("decimals", ["auto", "rounded", "float64"])
+def test_a_rounded_decimal_inside_a_roots_polynomial_is_refused_naming_the_entry(tmp_path, decimals):
+    # root(p, k) reads its polynomial's numbers exactly: 1.000000 (7 digits, ± 5e−7) there
+    # would be taken at face value, and a verdict could claim what the box does not allow
+    # (here the box holds 1.0000003, where p = x² − 3 and the tableau is Gauss-2 exactly)
+    path = tmp_path / "root.toml"
+    path.write_text('[constants]\nr = "root(x^2 - 3 - (1.000000 - 10000003/10000000)*x, 2)"\n[tableau]\n'
+                    'A = [["1/4", "1/4 - r/6"], ["1/4 + r/6", "1/4"]]\nb = ["1/2", "1/2"]\n')
+    run = run_subprocess("verify", str(path), "--order", "3", "--decimals", decimals)
+    assert run.code == 2 and "Traceback" not in run.err
+    assert f"{path}: A[1][2]: root(p, k)" in run.err and "1.000000" in run.err
+    assert run_subprocess("verify", str(path), "--order", "3", "--decimals", "exact").code in (0, 1)
