@@ -186,6 +186,35 @@ def _enclosure(x: Any) -> Enclosure:
     return Enclosure(enc.mid, enc.rad, False)
 
 
+def _terms(rootings: dict[tuple[int, ...], int], values: TableauValues | None) -> tuple[list[RootingTerm], Any]:
+    """Each rooting's term (sign, σ, forest, weights) and, with a tableau, its value and
+    their sum: exactly when the values are exact, else on their enclosures."""
+    weight = None
+    unit: Fraction | Interval = Fraction(1)
+    if values is not None:
+        if values.exact is not None and values.exact.entries() is not None:
+            A, b, unit = values.exact.A, values.exact.b, Fraction(1)
+        else:
+            A, b, unit = values.A, values.b, Interval.point(1)
+        weight = _weights(A, b, unit)
+    terms, total = [], None
+    for u, parity in rootings.items():
+        forest_seqs = sorted(children_of_level_sequence(u), reverse=True)
+        forest = tuple(bracket(f) for f in forest_seqs)
+        weights = tuple(sigma_notation(f) for f in forest_seqs)
+        sign, sigma = (-1 if parity else 1), sigma_of(u)
+        value = None
+        if weight is not None:
+            product: Any = unit
+            for f in forest_seqs:
+                product = product * weight(f)
+            term = product * (Fraction(sign, sigma) if isinstance(unit, Fraction) else Interval.point(Fraction(sign, sigma)))
+            total = term if total is None else total + term
+            value = _enclosure(term)
+        terms.append(RootingTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, weights, value))
+    return terms, total
+
+
 def _over_the_box(condition: FreeTree, values: TableauValues) -> tuple[Enclosure, Verdict]:
     """The enclosure and verdict of ``condition`` judged jointly over a decimal box (its
     order with the check's machinery, :mod:`rkcheck.energy.judging`)."""
@@ -221,31 +250,7 @@ def explain(seq: tuple[int, ...], values: TableauValues | None = None) -> Energy
         rootings.setdefault(rooted_at(adj, v), dist[v] % 2)
     id_seq = rooted_at(adj, designated)
     condition = FreeTree(id_seq, bracket(id_seq), max_degree, len(rootings))
-    weight = None
-    if values is not None:
-        one: Fraction | Interval
-        if values.exact is not None and values.exact.entries() is not None:
-            A, b, one = values.exact.A, values.exact.b, Fraction(1)
-        else:
-            A, b = values.A, values.b
-            one = Interval.point(1)
-        weight = _weights(A, b, one)
-    terms = []
-    total = None
-    for u, parity in rootings.items():
-        forest_seqs = sorted(children_of_level_sequence(u), reverse=True)
-        forest = tuple(bracket(f) for f in forest_seqs)
-        weights = tuple(sigma_notation(f) for f in forest_seqs)
-        sign, sigma = (-1 if parity else 1), sigma_of(u)
-        value = None
-        if weight is not None:
-            product: Any = one
-            for f in forest_seqs:
-                product = product * weight(f)
-            term = product * (Fraction(sign, sigma) if isinstance(one, Fraction) else Interval.point(Fraction(sign, sigma)))
-            total = term if total is None else total + term
-            value = _enclosure(term)
-        terms.append(RootingTerm(u, bracket_of_forest(forest_seqs), sign, sigma, forest, weights, value))
+    terms, total = _terms(rootings, values)
     residual = None if total is None else _enclosure(total)
     verdict = None if residual is None else classify(residual)
     if values is not None and judged_over_box(values):
