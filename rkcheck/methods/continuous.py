@@ -435,22 +435,7 @@ def _same_literals(A_node: ex.Expr, B_node: ex.Expr) -> ex.Expr:
     if len(in_A) != len(in_B) or any(x.text != y.text for x, y in zip(in_A, in_B)):
         return B_node
     same = {id(y): x for x, y in zip(in_A, in_B)}
-
-    def combine(n: ex.Expr, vals: list[ex.Expr]) -> ex.Expr:
-        if isinstance(n, ex.Num):
-            return same.get(id(n), n)
-        if isinstance(n, ex.Unary):
-            return ex.Unary(n.op, vals[0])
-        if isinstance(n, ex.Binary):
-            return ex.Binary(n.op, vals[0], vals[1], n.column)
-        if isinstance(n, ex.Power):
-            return ex.Power(vals[0], vals[1], n.column)
-        if isinstance(n, ex.Call):
-            return ex.Call(n.func, tuple(vals), n.column)
-        return n
-
-    out: ex.Expr = xp.fold(B_node, combine, xp.children)
-    return out
+    return xp.rebuilt(B_node, lambda n: same.get(id(n), n))
 
 
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:

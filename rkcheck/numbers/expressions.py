@@ -101,28 +101,38 @@ def fold(node: Expr, combine: Callable[[Expr, list[Any]], Any],
     return values[0]
 
 
-def substituted(node: Expr, values: Mapping[str, Expr]) -> Expr:
-    """``node`` with every name in ``values`` replaced by its expression — except the
-    ``x`` of a root's polynomial, which is that polynomial's own bound variable."""
-    inner = {k: v for k, v in values.items() if k != ROOT_VARIABLE}
+def rebuilt(node: Expr, leaf: Callable[[Num | Name], Expr],
+            call: Callable[[Call, list[Expr]], list[Expr]] | None = None) -> Expr:
+    """``node`` rebuilt bottom-up with each literal and name ``n`` replaced by
+    ``leaf(n)`` — in a root's polynomial too, unless ``call(n, args)`` (told each call
+    with its rebuilt arguments) gives other arguments."""
 
     def combine(n: Expr, vals: list[Expr]) -> Expr:
-        if isinstance(n, Name):
-            return values.get(n.name, n)
+        if isinstance(n, (Num, Name)):
+            return leaf(n)
         if isinstance(n, Unary):
             return Unary(n.op, vals[0])
         if isinstance(n, Binary):
             return Binary(n.op, vals[0], vals[1], n.column)
         if isinstance(n, Power):
             return Power(vals[0], vals[1], n.column)
-        if isinstance(n, Call):
-            if n.func == "root" and n.args and ROOT_VARIABLE in values:
-                vals[0] = substituted(n.args[0], inner)
-            return Call(n.func, tuple(vals), n.column)
-        return n
+        return Call(n.func, tuple(vals if call is None else call(n, vals)), n.column)
 
     out: Expr = fold(node, combine, children)
     return out
+
+
+def substituted(node: Expr, values: Mapping[str, Expr]) -> Expr:
+    """``node`` with every name in ``values`` replaced by its expression — except the
+    ``x`` of a root's polynomial, which is that polynomial's own bound variable."""
+    inner = {k: v for k, v in values.items() if k != ROOT_VARIABLE}
+
+    def root_bound(n: Call, vals: list[Expr]) -> list[Expr]:
+        if n.func == "root" and n.args and ROOT_VARIABLE in values:
+            vals[0] = substituted(n.args[0], inner)
+        return vals
+
+    return rebuilt(node, lambda n: values.get(n.name, n) if isinstance(n, Name) else n, root_bound)
 
 
 def _bits(q: Fraction) -> int:
