@@ -47,8 +47,7 @@ class Constants:
         for name in self._order:
             node = self.definitions[name]
             used = {n.name for n in xp.names(node)}
-            self._root_decimal[name] = next(iter(xp.root_decimals(node)), None) or next(
-                (lit for u in used if (lit := self._root_decimal[u]) is not None), None)
+            self._root_decimal[name] = self.root_decimal(node)  # the constants it uses came before
             self._decimal[name] = any(lit.is_decimal for lit in xp.literals(node)) or any(
                 self._decimal[u] for u in used
             )
