@@ -18,8 +18,8 @@ from rkcheck.energy.results import OrderVerdicts, order_verdicts
 from rkcheck.evaluation.algorithm import EvaluationInterrupted
 from rkcheck.evaluation.backends import evaluate
 from rkcheck.evaluation.box import centre_bits, judge_box
+from rkcheck.evaluation.slopes import direction_cells
 from rkcheck.evaluation.values import Backend, NumberKind, TableauValues
-from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import Arithmetic, DecimalsMode
 from rkcheck.options import DPS_RANGE
 from rkcheck.trees.centroid import Listing
@@ -99,7 +99,7 @@ def box_directions(values: TableauValues) -> int:
     of its derivatives), 0 for anything else."""
     if not judged_over_box(values):
         return 0
-    return sum(v for _, v in _cells(values))
+    return sum(v for _, v in direction_cells(values.A, values.b, values.varies))
 
 
 def judged_over_box(values: TableauValues) -> bool:
@@ -123,13 +123,8 @@ BOX_MIN_RADIUS = Fraction(1, 1 << 960)
 def _radii_within_floats(values: TableauValues) -> bool:
     """Every direction's radius within float64's range (an exact irrational entry,
     enclosed as narrowly as ``--dps`` asks, is no direction)."""
-    return all(x.rad >= BOX_MIN_RADIUS for x, varies in _cells(values) if varies and x.rad)
-
-
-def _cells(values: TableauValues) -> list[tuple[Interval, bool]]:
-    """Every entry's enclosure with whether it is a direction of the box."""
-    in_A, in_b = values.varies
-    return [(x, v) for row, vs in zip(values.A, in_A) for x, v in zip(row, vs)] + list(zip(values.b, in_b))
+    return all(x.rad >= BOX_MIN_RADIUS for x, varies in direction_cells(values.A, values.b, values.varies)
+               if varies and x.rad)
 
 
 def _as_sharp_as_the_box(values: TableauValues) -> TableauValues:

@@ -71,6 +71,7 @@ from rkcheck.evaluation.slopes import (
     LiteralChain,
     Varies,
     balls_per_tree,
+    direction_cells,
     gradient_groups,
 )
 from rkcheck.evaluation.subset import Subset
@@ -94,9 +95,7 @@ def centre_bits(A: Sequence[Sequence[Interval]], b: Sequence[Interval], varies: 
     """The working bits of the centre's balls: :data:`CENTRE_BITS_BEYOND_BOX` below the
     narrowest radius of an entry that is a direction (``varies``; by default any entry
     that is not a point)."""
-    cells = [(x, v) for row, vs in zip(A, varies[0]) for x, v in zip(row, vs)] + list(zip(b, varies[1])) \
-        if varies is not None else [(x, True) for row in (*A, b) for x in row]
-    radii = [x.rad for x, v in cells if v and x.rad > 0]
+    radii = [x.rad for x, v in direction_cells(A, b, varies) if v and x.rad > 0]
     if not radii:
         return CENTRE_BITS_BEYOND_BOX
     r = Fraction(min(radii))

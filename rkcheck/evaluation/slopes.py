@@ -40,6 +40,15 @@ if TYPE_CHECKING:
 #: every entry that is not a point
 Varies = tuple[Sequence[Sequence[bool]], Sequence[bool]]
 
+def direction_cells(A: Sequence[Sequence[Interval]], b: Sequence[Interval],
+                    varies: Varies | None = None) -> list[tuple[Interval, bool]]:
+    """Every entry of A (row by row), then of b, with whether it is a direction of the
+    box: as ``varies`` says, by default when it is not a point."""
+    if varies is None:
+        return [(x, not x.is_point) for row in (*A, b) for x in row]
+    return [(x, v) for row, vs in zip(A, varies[0]) for x, v in zip(row, vs)] + list(zip(b, varies[1]))
+
+
 #: Bytes one tree's derivative arrays may take, summed over the weights kept (φ, ψ, a, w:
 #: mid and radius each); above, the directions are split into several passes.
 MAX_GRADIENT_BYTES = 1 << 30
@@ -99,9 +108,9 @@ class GradientContext:
         self.f = FloatContext(A, b)
         self.signed = signed
         s = len(b)
-        in_A, in_b = varies or ([[not x.is_point for x in row] for row in A], [not x.is_point for x in b])
-        a_vars = [(i, j) for i in range(s) for j in range(s) if in_A[i][j]]
-        b_vars = [i for i in range(s) if in_b[i]]
+        flags = [v for _, v in direction_cells(A, b, varies)]
+        a_vars = [(i, j) for i in range(s) for j in range(s) if flags[i * s + j]]
+        b_vars = [i for i in range(s) if flags[s * s + i]]
         if directions is not None:  # only these of the interval entries (A's, then b's)
             keep = set(range(len(a_vars) + len(b_vars))[directions])
             a_vars, b_vars = ([v for e, v in enumerate(a_vars) if e in keep],
