@@ -113,7 +113,7 @@ class Num:
         if decimals is DecimalsMode.EXACT:
             return None
         if decimals is DecimalsMode.FLOAT64:
-            return double_interval(self.value) if self.is_decimal else None
+            return self._as_double() if self.is_decimal else None
         if not self.is_rounded_decimal:
             return None
         h = self.half_unit
@@ -124,28 +124,49 @@ class Num:
                 lo, hi = min(lo, d[0]), max(hi, d[1])
         return lo, hi
 
+    def _as_double(self) -> tuple[Fraction, Fraction]:
+        """The rounding interval of the double this literal reads as in ``float64``; a
+        literal that rounds past the largest double is refused: it stands for no double."""
+        box = double_interval(self.value)
+        if box is None:
+            raise UserError(f"{self.text} is beyond the range of binary64 doubles, and "
+                            "--decimals float64 reads every decimal as a double; write it exactly, or check "
+                            "with another --decimals")
+        return box
+
 
 def double_interval(value: Fraction, written_digits: int | None = None) -> tuple[Fraction, Fraction] | None:
     """The rounding interval of the binary64 double nearest to ``value``: the closed
     interval of reals that round to it (half an ulp each side; the spacing below a power
-    of two is half the spacing above).  None when ``value`` is outside the range of
-    doubles, or, given ``written_digits``, when a literal of ``value`` with that many
-    significant digits is not the double's shortest decimal representation (``repr``)."""
-    if value == 0 or abs(value) > _DOUBLE_MAX:
-        return None  # zero, or beyond binary64's range: float() would overflow
-    f = float(value)  # correctly rounded (Fraction.__float__ divides exactly)
-    if f == 0:
-        return None  # below the smallest subnormal
+    of two is half the spacing above; a nonzero value below half the smallest subnormal
+    rounds to a signed zero, whose interval reaches from 0 to that half).  None when
+    ``value`` is zero or rounds past binary64's range, or, given ``written_digits``, when
+    a literal of ``value`` with that many significant digits is not the double's shortest
+    decimal representation (``repr``)."""
+    if value == 0:
+        return None
+    try:
+        f = float(value)  # correctly rounded (Fraction.__float__ divides exactly)
+    except OverflowError:
+        return None  # rounds to infinity: no double stands for it
     if written_digits is not None and (Fraction(repr(f)) != value or _significant_digits(repr(f)) != written_digits):
         return None
+    if f == 0:
+        return (Fraction(0), _HALF_SUBNORMAL) if value > 0 else (-_HALF_SUBNORMAL, Fraction(0))
     x = Fraction(f)
-    lo = (x + Fraction(math.nextafter(f, -math.inf))) / 2
-    hi = (x + Fraction(math.nextafter(f, math.inf))) / 2
+    lo, hi = (x + _next_double(f, -math.inf)) / 2, (x + _next_double(f, math.inf)) / 2
     return lo, hi
 
 
-#: The largest finite double: beyond it a decimal is not read as a double.
-_DOUBLE_MAX = Fraction(1.7976931348623157e308)
+def _next_double(f: float, towards: float) -> Fraction:
+    """The double next to ``f`` towards ``towards``; past the largest double, where the
+    next is infinite, the point one spacing further (rounding reaches infinity halfway)."""
+    g = math.nextafter(f, towards)
+    return Fraction(g) if math.isfinite(g) else 2 * Fraction(f) - Fraction(math.nextafter(f, -towards))
+
+
+#: Half the smallest subnormal double: reals up to it round to zero (ties to even).
+_HALF_SUBNORMAL = Fraction(1, 2**1075)
 
 
 def _significant_digits(text: str) -> int:

@@ -16,6 +16,7 @@ import itertools
 import json
 import math
 import random
+import sys
 from decimal import Decimal
 from fractions import Fraction
 
@@ -67,6 +68,40 @@ def test_auto_covers_the_double_only_for_shortest_reprs():
     assert longer.interval("auto") == longer.interval("rounded")
     assert parse("0.5").interval("auto") is None and parse("0.5").interval("float64") is not None
     assert parse("0.0").interval("float64") is None  # zero keeps the structure exact
+
+
+@pytest.mark.parametrize("text", ["1e-400", "2e-324", "2.4703282292062327e-324"])
+def test_float64_reads_a_decimal_below_the_subnormals_as_zeros_interval(text):
+    # IEEE 754 round to nearest, ties to even: every real in (0, 2^-1075] rounds to +0, so
+    # the double such a literal reads as is zero and it stands for [0, 2^-1075]
+    lo, hi = parse(text).interval("float64")
+    half = Fraction(1, 2**1075)
+    assert (lo, hi) == (0, half) and lo <= parse(text).value <= hi
+    assert float(half) == 0.0 and float(half + Fraction(1, 10**400)) == 5e-324
+
+
+def test_float64_refuses_a_decimal_no_double_stands_for(tmp_path):
+    # the doubles end where rounding reaches infinity, at 2^1024 − 2^970 (IEEE 754)
+    limit = 2**1024 - 2**970
+    with pytest.raises(OverflowError):
+        float(Fraction(limit))
+    top = parse(repr(sys.float_info.max))  # the largest double: reals up to the limit round to it
+    assert top.interval("float64")[1] == limit and parse(str(limit - 1) + ".0").interval("float64") == top.interval("float64")
+    path = _write(tmp_path, "big.json", {"tableau": {"A": [["0", "0"], ["2/3", "0"]], "b": ["1/4", "3/4 + 0*1e400"]}})
+    run = run_subprocess("verify", path, "--decimals", "float64")
+    assert run.code == 2 and "b[2]: 1e400 is beyond the range of binary64 doubles" in run.err
+    assert _json(run_subprocess("verify", path, "--format", "json"))["summary"]["verdict"] == "fails"
+
+
+def test_float64_judges_an_entry_below_the_subnormals_over_its_interval(tmp_path):
+    # a21 = sqrt(1e-400) reads as sqrt([0, 2^-1075]) ∋ 0: R([[τ]²]) = b2·a21²/… and
+    # R([[τ²]τ]) vanish at a21 = 0 (explicit, by hand), so on that box they cannot fail,
+    # while read exactly (a21 = 1e-200) they do
+    path = _write(tmp_path, "tiny.json", {"tableau": {"A": [["0", "0"], ["sqrt(1e-400)", "0"]], "b": ["1/2", "1/2"]}})
+    rows = {d: {c["id"]: c["state"] for c in _json(run_subprocess(
+        "verify", path, "--order", "4", "--decimals", d, "--format", "json"))["conditions"]} for d in ("float64", "exact")}
+    assert rows["exact"]["1,2,3,2,3"] == rows["exact"]["1,2,3,3,2"] == FAILS
+    assert rows["float64"]["1,2,3,2,3"] == rows["float64"]["1,2,3,3,2"] == HOLDS_TO_DIGITS
 
 
 @pytest.mark.parametrize("text, digits", [("0.500000000000000000000000000000", 30), ("0.5000000000000000", 16),
