@@ -28,6 +28,7 @@ from rkcheck.energy.results import (
     Failures,
     OrderCounts,
     OrderVerdicts,
+    checked_through,
     energy_orders_of,
     order_verdicts,
     per_order_counts,
@@ -113,6 +114,12 @@ class CheckResult:
         return min(digits) if digits else None
 
     @property
+    def checked_through(self) -> int:
+        """The largest order every condition up to which was checked: the order asked
+        for, less after Ctrl-C (or past the first failure with ``--fail-fast``)."""
+        return checked_through(self.per_order, self.options.order)
+
+    @property
     def energy_order_all_digits(self) -> int | None:
         """D when a certificate of every order holds only to D digits (then
         :attr:`energy_order_all` is False: a numerical certificate proves nothing)."""
@@ -136,7 +143,7 @@ class CheckResult:
             return "all"
         if self.energy_order_all_digits is not None:
             return f"all to {self.energy_order_all_digits} digits"
-        reach = f"≥ {self.options.order}" if not len(self.failures) else str(self.energy_order_to_digits)
+        reach = f"≥ {self.checked_through}" if not len(self.failures) else str(self.energy_order_to_digits)
         digits = self.energy_order_digits
         if digits is None:
             return reach
@@ -310,7 +317,7 @@ def _judged_orders(listing: Listing, values: TableauValues, options: CheckOption
         return {n: order_verdicts(n, v) for n, v in stop.finished.items()}, True, None
     try:
         orders, note = refine_undecided(listing, values, options.fail_fast, orders)
-    except EvaluationInterrupted:
+    except KeyboardInterrupt:  # the refinement's own, or while its listing is read
         return orders, True, None
     return orders, False, note
 

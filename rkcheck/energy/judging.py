@@ -65,7 +65,19 @@ def _order_sums(listing: Listing, values: TableauValues, orders: list[int] | Non
                 progress: Progress | None = None) -> Mapping[int, Any]:
     """The residuals of ``orders`` (None: all of the listing's): a box of decimal inputs judged over the whole box
     (definitions §5.2; :func:`~rkcheck.evaluation.box.judge_box`), anything else
-    evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish."""
+    evaluated in its backend.  ``progress(done, total)`` as orders (or passes) finish.
+    Ctrl-C is an :class:`EvaluationInterrupted` wherever it comes — also while the
+    listing of the orders is still being built, before any of them is evaluated."""
+    try:
+        return _sums_of(listing, values, orders, progress)
+    except EvaluationInterrupted:
+        raise
+    except KeyboardInterrupt:
+        raise EvaluationInterrupted({}) from None
+
+
+def _sums_of(listing: Listing, values: TableauValues, orders: list[int] | None,
+             progress: Progress | None) -> Mapping[int, Any]:
     if not judged_over_box(values):
         return evaluate(listing, values, orders, progress).orders
     assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"

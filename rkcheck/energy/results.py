@@ -299,11 +299,21 @@ def per_order_counts(listing: Listing, orders: dict[int, OrderVerdicts]) -> list
     return out
 
 
+def checked_through(per_order: list[OrderCounts], order: int) -> int:
+    """The largest n <= order such that every condition of order <= n was checked: the
+    order asked for, unless Ctrl-C or ``--fail-fast`` left an order out (order 1 has no
+    condition, so 1 when order 2 is not finished)."""
+    short = [p.order for p in per_order if p.checked < p.conditions]
+    return min(short) - 1 if short else order
+
+
 def energy_orders_of(per_order: list[OrderCounts], order: int) -> tuple[int, int]:
     """(proven, to digits): the largest n <= order such that every condition with <= n+1
     vertices holds exactly (definitions §3, §5: the energy order), and the largest such
-    that every one holds, exactly or to digits."""
+    that every one holds, exactly or to digits — both within the orders every condition
+    of which was checked (an order left unfinished holds nothing)."""
+    reach = checked_through(per_order, order)
     failing = [p.order for p in per_order if p.failed]
     to_digits = min(failing) - 1 if failing else order
     unproven = [p.order for p in per_order if p.failed or p.min_digits is not None]
-    return (min(unproven) - 1 if unproven else order), to_digits
+    return min(min(unproven) - 1 if unproven else order, reach), min(to_digits, reach)

@@ -238,7 +238,7 @@ def energy_order_phrase(res: CheckResult) -> str:
     digits = res.energy_order_digits
     if digits is None:
         return str(res.energy_order)
-    reach: int | str = f"{res.options.order}, the order checked" if not len(res.failures) else (
+    reach: int | str = f"{res.checked_through}, the order checked" if not len(res.failures) else (
         res.energy_order_to_digits)
     return beyond_digits(res.energy_order, digits, reach)
 
@@ -271,6 +271,12 @@ def _energy_text(res: CheckResult) -> Text:
     if first is None:
         if res.energy_order_digits is not None:
             return Text(f"{energy_order_phrase(res)} (not a proof)", style="yellow")
+        if res.interrupted:
+            done = res.checked_through
+            if done < 2:
+                return Text("≥ 1 (interrupted before every condition of order 2 was checked)", style="yellow")
+            return Text(f"≥ {res.energy_order} (interrupted: every condition up to order {done} holds; "
+                        f"order {done + 1} was not finished)", style="yellow")
         return Text(f"≥ {res.energy_order} (every condition up to order {o.order} holds; not proven beyond)", style="green")
     return Text(
         f"{energy_order_phrase(res)} (first failing condition at order {first.order}: "

@@ -219,6 +219,46 @@ def test_an_interrupted_check_with_no_failure_is_no_ok(capsys, monkeypatch):
     assert "OK" not in r.out.splitlines()[-1]
 
 
+def test_an_interrupted_check_claims_no_order_it_did_not_finish(capsys, monkeypatch):
+    # RK4's energy order is 4: a condition of order 5 fails.  Stopped with orders 2 and 3
+    # finished, the report may claim order 3 and no more — not the 6 asked for
+    import rkcheck.energy.check as check
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    real = check.evaluate_orders
+
+    def interrupted(listing, values, fail_fast=False, progress=None):
+        done = real(listing, values, fail_fast)
+        raise EvaluationInterrupted({n: done[n].values for n in done if n <= 4})  # keyed by vertices
+
+    monkeypatch.setattr(check, "evaluate_orders", interrupted)
+    r = run_cli(capsys, "verify", "@rk4", "--order", "6", "--degree", "none", "--format", "json")
+    s = json.loads(r.out)["summary"]
+    assert r.code == 130 and s["verdict"] == "interrupted"
+    assert (s["energy_order"], s["energy_order_to_digits"], s["energy_order_label"]) == (3, 3, "≥ 3")
+    text = run_cli(capsys, "verify", "@rk4", "--order", "6", "--degree", "none")
+    assert "≥ 3 (interrupted: every condition up to order 3 holds; order 4 was not finished)" in text.out
+    monkeypatch.undo()
+    whole = json.loads(run_cli(capsys, "verify", "@rk4", "--order", "6", "--degree", "none", "--format", "json").out)
+    assert whole["summary"]["energy_order"] == 4  # the order the interrupted report did not claim beyond
+
+
+def test_ctrl_c_while_the_conditions_are_listed_still_reports(capsys, monkeypatch):
+    # the listing of a high order takes seconds before any condition is evaluated: a
+    # Ctrl-C there is a report of nothing finished, valid JSON, not a bare "aborted"
+    from rkcheck.trees.listing import ConditionListing
+
+    def stopped(self, *args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(ConditionListing, "ensure", stopped)
+    r = run_cli(capsys, "verify", "@rk4", "--order", "6", "--no-cache", "--format", "json")
+    s = json.loads(r.out)["summary"]
+    assert r.code == 130 and "(none)" in r.err
+    assert s["verdict"] == "interrupted" and s["conditions_checked"] == 0
+    assert (s["energy_order"], s["energy_order_label"]) == (1, "≥ 1")
+
+
 def test_an_interrupted_check_with_no_failure_is_neither_passed_nor_proven_in_json(capsys, monkeypatch):
     # RK4 fails conditions at 5 vertices (its energy order is 4): a JSON document of a
     # check stopped before any order finished must not read as a pass or a proof
