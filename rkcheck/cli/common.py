@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import functools
 from contextlib import contextmanager
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Iterator, Sequence
 
 import click
 
@@ -363,9 +363,10 @@ def chart_file(ctx: click.Context, param: click.Parameter, value: str | None) ->
     return value
 
 
-def check_output_target(output: str | None) -> None:
+def check_output_target(output: str | None, inputs: Sequence[str] = ()) -> None:
     """Refuse, before any work, an output file whose folder does not exist or is a file
-    (rather than after a whole scan)."""
+    (rather than after a whole scan), or that is one of the command's ``inputs`` (the
+    report would replace the tableau it was made from)."""
     if output == "":
         raise UserError("expected a file name ('-' for standard output), got an empty one", "--output")
     if output is None or output == "-":
@@ -378,6 +379,20 @@ def check_output_target(output: str | None) -> None:
         raise UserError("cannot write the report: its folder does not exist", source=output)
     if target.is_dir():
         raise UserError("cannot write the report: is a directory", source=output)
+    if target.exists() and any(_same_file(target, item) for item in inputs):
+        raise UserError("cannot write the report: it is an input of this command, which it would replace; "
+                        "write it to another file", source=output)
+
+
+def _same_file(target: Any, item: str) -> bool:
+    """Whether the command-line input ``item`` (a path; ``-`` and ``@name`` are none) is
+    the file ``target``, through links and other spellings of the path."""
+    import os
+
+    try:
+        return item not in ("", "-") and not item.startswith("@") and os.path.samefile(target, item)
+    except (OSError, ValueError):
+        return False
 
 
 def write_text(text: str, output: str | None) -> None:

@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import click
 
-from rkcheck.cli.common import exit_codes, output_options, write_text
+from rkcheck.cli.common import (
+    check_output_target,
+    exit_codes,
+    output_options,
+    write_text,
+)
 
 
 @click.command(epilog=exit_codes())
@@ -27,6 +32,7 @@ def discretize(file, rule, output) -> None:
     """
     from rkcheck.api.tableaux import discretize as discretize_method
 
+    check_output_target(output, [file])
     text, note = discretize_method(file, rule, command=" ".join(["rkcheck", "discretize", file, "--rule", rule]))
     write_text(text, output)
     click.echo(note, err=True)  # the tableau alone on stdout: it can be piped into verify

@@ -31,6 +31,7 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     from rkcheck.api.families import check_options, family_conditions, load_family
     from rkcheck.api.verification import UNSET
 
+    check_output_target(output, [file])
     family = load_family(file)
     if ignored:
         note = (f"{not_applying(ignored)} to a family (its conditions are exact polynomials, its decimals read at "
@@ -99,7 +100,7 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     from rkcheck.api.families import solve as run
     from rkcheck.api.verification import UNSET
 
-    check_output_target(output)
+    check_output_target(output, [file])
     family = load_family(file)
     flags = flag_values("degree", "order")  # given on the command line, else the file's [check]
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))

@@ -16,6 +16,7 @@ from rkcheck.cli.common import (
     DEGREE,
     EXIT_FAIL,
     busy,
+    check_output_target,
     exit_codes,
     flag_values,
     order_option,
@@ -113,6 +114,7 @@ def catalog(paths, degrees, order, output) -> None:
         raise UserError(err.message, "--degrees") from None
     if len(set(degs)) != len(degs):
         raise UserError(f"a degree is given twice in {degrees!r}", "--degrees")
+    check_output_target(output, paths)
     with progress_steps("catalog", "files") as update:
         result = make_catalog(paths, degrees=degs, order=order, progress=update)
     # the command line the header records: no path stays no path

@@ -67,7 +67,7 @@ def scan(paths, degree, order, dps, decimals, max_stages, max_conditions, arithm
 
     config = project_config()
     roots = scan_roots(paths, config)
-    check_output_target(output)
+    check_output_target(output, roots)
     fmt = fmt or config.format or "text"
     with progress_steps("checking", "files") as update:  # the API's scan: same options, same rows
         result = run_scan(roots, **flag_values(), exclude=exclude, fail_on=fail_on, jobs=jobs, sort=sort,

@@ -163,6 +163,35 @@ def test_output_targets_are_respected(tmp_path, capsys):
     assert r.code == 2 and r.err == f"rkcheck: error: {tmp_path / 'nope' / 'r.json'}: cannot write the report: its folder does not exist\n"
 
 
+@pytest.mark.parametrize("command", [["scan", "{m}", "--jobs", "1"], ["catalog", "{m}", "--order", "3"],
+                                     ["scan", "{link}", "--jobs", "1"]])
+def test_a_report_never_replaces_an_input_of_its_command(tmp_path, capsys, command):
+    # the tableau is the user's work; a report written over it (through a link, or
+    # another spelling of the path) would lose it silently
+    tableau = '[tableau]\nA = [["0", "0"], ["1", "0"]]\nb = ["1/2", "1/2"]\n'
+    m = tmp_path / "m.toml"
+    m.write_text(tableau, encoding="utf-8")
+    (tmp_path / "link.toml").symlink_to(m)
+    args = [a.format(m=m, link=tmp_path / "link.toml") for a in command]
+    r = run_cli(capsys, *args, "-o", str(tmp_path / "." / "m.toml"))
+    assert r.code == 2 and "cannot write the report: it is an input of this command" in r.err
+    assert m.read_text(encoding="utf-8") == tableau
+    assert run_cli(capsys, *args, "-o", str(tmp_path / "r.md")).code in (0, 1)  # another file is written
+
+
+def test_discretize_and_solve_never_replace_their_input(tmp_path, capsys):
+    kernel = tmp_path / "k.toml"
+    kernel.write_text('[continuous]\nA = "tau"\n', encoding="utf-8")
+    r = run_cli(capsys, "discretize", str(kernel), "--rule", "gauss-2", "-o", str(kernel))
+    assert r.code == 2 and "it is an input of this command" in r.err and kernel.read_text() == '[continuous]\nA = "tau"\n'
+    family = tmp_path / "f.toml"
+    family.write_text('[parameters]\nnames = ["a"]\n[tableau]\nA = [["a"]]\nb = ["1"]\n', encoding="utf-8")
+    before = family.read_text()
+    for args in (["solve", str(family), "--order", "2"], ["conditions", str(family), "--order", "2", "--emit", "python"]):
+        r = run_cli(capsys, *args, "-o", str(family))
+        assert r.code == 2 and "it is an input of this command" in r.err and family.read_text() == before
+
+
 def test_dangling_links_and_link_loops_are_error_rows(tmp_path, capsys):
     folder = tmp_path / "in"
     folder.mkdir()
