@@ -29,6 +29,10 @@ class State(StrEnum):
     HOLDS = "holds"
     HOLDS_TO_DIGITS = "holds_to_digits"
     FAILS = "fails"
+    #: a yes/no property of a method that nothing computed decides either way (a
+    #: continuous method's kernel form does not show it, and no tree refutes it); never
+    #: the state of a condition
+    UNDECIDED = "undecided"
 
     def __repr__(self) -> str:
         # shown as the string it equals (``'fails'``): results print as they serialise
@@ -43,12 +47,13 @@ class State(StrEnum):
         return _STATES[code]
 
 
-_STATES = (State.HOLDS, State.HOLDS_TO_DIGITS, State.FAILS)
+_STATES = (State.HOLDS, State.HOLDS_TO_DIGITS, State.FAILS, State.UNDECIDED)
 _CODES = {state: k for k, state in enumerate(_STATES)}
 
 HOLDS = State.HOLDS
 HOLDS_TO_DIGITS = State.HOLDS_TO_DIGITS
 FAILS = State.FAILS
+UNDECIDED = State.UNDECIDED
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,7 +65,7 @@ class Verdict:
 
     @property
     def holds(self) -> bool:
-        return self.state != FAILS
+        return self.state in (HOLDS, HOLDS_TO_DIGITS)
 
     def label(self) -> str:
         if self.state == HOLDS_TO_DIGITS:
@@ -69,9 +74,11 @@ class Verdict:
 
     def answer(self) -> str:
         """The verdict as the answer to a yes/no property: ``yes``, ``yes, to D digits``
-        (not a proof) or ``no``."""
+        (not a proof), ``no`` or ``not decided``."""
         if self.state == FAILS:
             return "no"
+        if self.state == UNDECIDED:
+            return "not decided"
         return "yes" if self.state == HOLDS else f"yes, to {self.digits} digits"
 
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field, fields
 from fractions import Fraction
-from typing import Any, Callable, Self
+from typing import Any, Callable, Self, cast
 
 from rkcheck.energy.budget import Budget, check_budget, estimate
 from rkcheck.energy.judging import (
@@ -51,7 +51,7 @@ from rkcheck.properties.tableau import TableauProperties, properties_of_values
 from rkcheck.trees.centroid import CENTROID_FROM_ORDER, Listing, centroid_listing
 from rkcheck.trees.free import FreeTree
 from rkcheck.trees.listing import condition_listing
-from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, State, Verdict
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, UNDECIDED, State, Verdict
 
 
 @dataclass
@@ -334,7 +334,7 @@ def _continuous_facts(surrogate: Surrogate, quad: OrderResult, options: CheckOpt
         exact_failure = quad.first_failure if quad.first_failure and (quad.to_digits or 0) + 1 <= n else None
         quad = OrderResult(min(quad.order, n), n, quad.verdict, exact_failure, min(quad.to_digits or 0, n))
     box = options.decimals if surrogate.method.is_box(options.decimals) else None
-    facts = kernel_facts(surrogate.method, options.degree, box)
+    facts = kernel_facts(surrogate.method, options.degree, box, options.order + 1)
     # degree 1 has no condition and every method preserves linear energy, as a tableau's
     cert = LinearCertificate() if options.degree == 1 else facts.certificate
     return quad, facts.properties, facts.avf, cert
@@ -346,6 +346,8 @@ def _refuted(avf: AvfVerdict | None, cert: Certificate | None,
     exact certificate cannot be, so that would be a bug."""
     if first is None:
         return avf, cert
+    if avf is not None and avf.verdict.state == UNDECIDED:  # a continuous kernel's: the failure decides it
+        avf = cast(Any, avf).refuted(first.id)
     if avf is not None and avf.equals_avf:
         if avf.verdict.state != HOLDS_TO_DIGITS:
             raise AssertionError(f"internal inconsistency: exact AVF but {first.id} fails")

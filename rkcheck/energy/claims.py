@@ -33,6 +33,7 @@ from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.options import CheckOptions
+from rkcheck.verdicts import UNDECIDED
 
 
 @dataclass(frozen=True)
@@ -94,6 +95,8 @@ def judge(claim: Claim, result: CheckResult) -> ClaimResult:
     if claim.kind == "avf":
         found_bool = bool(result.avf and result.avf.equals_avf)
         note = result.avf.reason if result.avf else None
+        if result.avf is not None and result.avf.verdict.state == UNDECIDED:  # neither shown nor refuted: not met
+            return ClaimResult(claim, False, "undecided", note)
         return ClaimResult(claim, found_bool == claim.value, str(found_bool).lower(), note)
     return _judge_energy_order(claim, result)
 
@@ -150,6 +153,8 @@ def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
     props = result.properties
     if claim.kind in ("symplectic", "symmetric"):
         pv = getattr(props, claim.kind)
+        if pv.verdict.state == UNDECIDED:  # neither shown nor refuted: a claim either way is not met
+            return ClaimResult(claim, False, "undecided", pv.reason)
         return ClaimResult(claim, pv.holds == claim.value, str(pv.holds).lower(), pv.reason)
     stab = props.stability
     if stab is None:  # a continuous method: its kernel has no stability function as a finite object

@@ -9,12 +9,19 @@ surrogate tableau that carries the B-series (:mod:`rkcheck.methods.continuous`).
   skew) ``H(y₁) − H(y₀) = h∫∫ ∂τA(τ,σ) ∇H(Y_τ)ᵀ J ∇H(Y_σ) dσ dτ = 0`` — the integrand
   is antisymmetric under τ ↔ σ.  So every energy condition holds, for every degree.
   For the Miyatake–Butcher form it says: M symmetric.
-* **Equals AVF**: the kernel is AVF's, ``A ≡ τ`` and ``B ≡ 1`` (then every elementary
-  weight is AVF's; the converse is not claimed).
-* **Symmetric**: the adjoint kernel ``(B(σ) − A(1−τ, 1−σ), B(1−τ))`` is the kernel:
-  ``B(τ) = B(1−τ)`` and ``A(τ,σ) + A(1−τ,1−σ) = B(σ)``.
+* **Equals AVF** (degree m): ``A(τ, σ) = C(τ)B(σ)`` with ``C(τ) = ∫₀¹ A(τ, σ) dσ``, so
+  that ``Y_τ = y₀ + C(τ)(y₁ − y₀)``, and ``∫₀¹ B C^(k−1) = 1/k`` for k = 1…m, so that
+  the rule integrates AVF's integrand exactly (every degree: ``B = ±C'`` with C running
+  from 0 to 1 or from 1 to 0) — the continuous form of a tableau's ``A = (A·1)bᵀ`` with
+  the quadrature conditions; ``A ≡ τ``, ``B ≡ 1`` is AVF itself.
+* **Symmetric**: the reflected adjoint kernel ``(B(1−σ) − A(1−τ, 1−σ), B(1−τ))`` is the
+  kernel: ``B(τ) = B(1−τ)`` and ``A(τ,σ) + A(1−τ,1−σ) = B(σ)``.
 * **Symplectic**: ``B(τ)A(τ,σ) + B(σ)A(σ,τ) = B(τ)B(σ)`` (Tang & Sun 2012), the
   continuous form of ``BA + AᵀB = bbᵀ``.
+
+These three tests on the kernel are sufficient, not necessary (one method has many
+kernels): where one fails, the B-series decides — a rooted tree refutes the property, or
+it stays ``undecided`` (:mod:`rkcheck.energy.kernel_series`).
 
 A kernel whose decimals stand for intervals (a box, definitions §5.2) is judged over the
 whole box (:mod:`rkcheck.energy.kernel_box`): "fails" only when every kernel of the box
@@ -23,12 +30,13 @@ fails, otherwise "holds to D digits" — never a proof.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from fractions import Fraction
 from typing import Any
 
 from rkcheck.methods.continuous import ContinuousMethod
 from rkcheck.properties.symplectic import PropertyVerdict
-from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, UNDECIDED, Verdict
 
 
 @dataclass(frozen=True)
@@ -75,10 +83,17 @@ class ContinuousAvf:
     s_min: int | None = None
     notes: list[str] = field(default_factory=list)
     exact_reduction: bool = True
+    form_reason: str = ""  # what the kernel's form says, when its B-series left it undecided
 
     @property
     def equals_avf(self) -> bool:
-        return self.verdict.state != FAILS
+        return self.verdict.holds
+
+    def refuted(self, condition_id: str) -> "ContinuousAvf":
+        """Undecided by the kernel and its trees, refuted by an energy condition that
+        certainly fails (AVF preserves every energy)."""
+        return replace(self, verdict=Verdict(FAILS),
+                       reason=f"{self.form_reason}, and condition {condition_id} certainly fails")
 
 
 @dataclass(frozen=True)
@@ -110,16 +125,23 @@ def _holds(ok: bool, digits: int | None) -> Verdict:
     return Verdict(HOLDS) if digits is None else Verdict(HOLDS_TO_DIGITS, digits)
 
 
-def kernel_facts(method: ContinuousMethod, degree: int | None, box: Any = None) -> KernelFacts:
+def kernel_facts(method: ContinuousMethod, degree: int | None, box: Any = None, vertices: int = 0) -> KernelFacts:
     """Certificate, AVF, symmetry and symplecticity of ``method``'s kernel; ``box``: the
     decimals mode under which its decimals stand for intervals (None: the kernel at face
-    value), judged over the whole box (:mod:`rkcheck.energy.kernel_box`)."""
+    value), judged over the whole box (:mod:`rkcheck.energy.kernel_box`).  A property
+    the kernel's form does not show is decided by its B-series on the rooted trees up to
+    ``vertices`` (at least :data:`~rkcheck.energy.kernel_series.SERIES_VERTICES`), or
+    stays undecided."""
     facts = _exact_facts(method, degree)
-    if box is None:
-        return facts
+    if box is not None:
+        facts = _over_the_box(facts, method, degree, box)
+    return _by_the_series(facts, method, degree, box, vertices)
+
+
+def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | None, box: Any) -> KernelFacts:
     from rkcheck.energy.kernel_box import box_verdicts
 
-    v = box_verdicts(method, box)
+    v = box_verdicts(method, box, degree)
     cert = facts.certificate
     if v["certificate"].state == FAILS and cert.certified:
         cert = ContinuousCertificate(degree, v["certificate"], "no kernel certificate over the box of its decimals")
@@ -132,6 +154,44 @@ def kernel_facts(method: ContinuousMethod, degree: int | None, box: Any = None) 
         ContinuousProperties(False, PropertyVerdict("symplectic", v["symplectic"], props.symplectic.reason),
                              PropertyVerdict("symmetric", v["symmetric"], props.symmetric.reason)),
     )
+
+
+def _by_the_series(facts: KernelFacts, method: ContinuousMethod, degree: int | None, box: Any,
+                   vertices: int) -> KernelFacts:
+    """Each property whose kernel test failed: ``no`` where a rooted tree refutes it
+    (over the whole box), else ``undecided`` (:mod:`rkcheck.energy.kernel_series`)."""
+    from rkcheck.energy import kernel_series as ks
+    from rkcheck.numbers.reading import DecimalsMode
+
+    avf, props = facts.avf, facts.properties
+    failed = [v.state == FAILS for v in (avf.verdict, props.symmetric.verdict, props.symplectic.verdict)]
+    if not any(failed):
+        return facts
+    A, B = ks.kernel_polys(method, box or DecimalsMode.EXACT)
+    vertices = max(vertices, ks.SERIES_VERTICES)
+    if failed[0]:
+        answer = ks.avf_witness(A, B, degree, vertices)
+        avf = ContinuousAvf(degree, *_decided(answer, avf.reason, f"AVF's{_for(degree)}"), form_reason=avf.reason)
+    symmetric, symplectic = props.symmetric, props.symplectic
+    if failed[1]:
+        answer = ks.symmetric_witness(A, B, vertices)
+        symmetric = PropertyVerdict("symmetric", *_decided(answer, symmetric.reason, "its adjoint's"))
+    if failed[2]:
+        answer = ks.symplectic_witness(A, B, vertices)
+        symplectic = PropertyVerdict("symplectic", *_decided(answer, symplectic.reason,
+                                                            "a(u∘v) + a(v∘u) = a(u)a(v)'s"))
+    return KernelFacts(avf, facts.certificate, ContinuousProperties(props.exact, symplectic, symmetric))
+
+
+def _for(degree: int | None) -> str:
+    return "" if degree is None else f" for degree {degree}"
+
+
+def _decided(answer: Any, kernel_reason: str, agrees_with: str) -> tuple[Verdict, str]:
+    if answer.witness is not None:
+        return Verdict(FAILS), f"{kernel_reason}, and the B-series shows it: {answer.witness}"
+    return Verdict(UNDECIDED), (f"{kernel_reason}, yet its B-series agrees with {agrees_with} on every rooted tree "
+                                f"up to {answer.vertices} vertices: neither shown nor refuted")
 
 
 def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
@@ -156,20 +216,72 @@ def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
                                    ("∂A/∂τ is not symmetric", symmetric_dA)) if not ok]
         cert = ContinuousCertificate(degree, Verdict(FAILS), "no kernel certificate: " + ", ".join(missing))
 
-    is_avf = k.is_zero(A - tau) and k.is_zero(B - one)
-    avf = ContinuousAvf(degree, _holds(is_avf, digits),
-                        "A(τ, σ) = τ and B(τ) = 1: the AVF method itself" if is_avf
-                        else "the kernel is not AVF's (A = τ, B = 1)")
+    avf = ContinuousAvf(degree, *_avf_form(k, A, B, B_sigma, degree))
 
     adj_B = k.substitute(B, one - tau, sigma)
     sym_ok = k.is_zero(B - adj_B) and k.is_zero(A + k.substitute(A, one - tau, one - sigma) - B_sigma)
     symmetric = PropertyVerdict(
         "symmetric", _holds(sym_ok, digits),
-        "B(τ) = B(1−τ) and A(τ,σ) + A(1−τ,1−σ) = B(σ): the adjoint kernel is the kernel" if sym_ok
-        else "the adjoint kernel (B(σ) − A(1−τ,1−σ), B(1−τ)) differs from the kernel")
+        "B(τ) = B(1−τ) and A(τ,σ) + A(1−τ,1−σ) = B(σ): the reflected adjoint kernel is the kernel" if sym_ok
+        else "the reflected adjoint kernel (B(1−σ) − A(1−τ,1−σ), B(1−τ)) differs from the kernel")
     A_swapped = k.substitute(A, sigma, tau)
     sympl_ok = k.is_zero(ring.reduce(B * A + B_sigma * A_swapped - B * B_sigma))
     symplectic = PropertyVerdict(
         "symplectic", _holds(sympl_ok, digits),
         "B(τ)A(τ,σ) + B(σ)A(σ,τ) = B(τ)B(σ)" if sympl_ok else "B(τ)A(τ,σ) + B(σ)A(σ,τ) ≠ B(τ)B(σ)")
+    if k.deg_tau == 0:  # one stage: the tableau's tests decide, both ways
+        symmetric, symplectic = _one_stage(k, A, B)
+    elif not sym_ok and _avf_form(k, A, B, B_sigma, None)[0].state == HOLDS:
+        symmetric = PropertyVerdict("symmetric", Verdict(HOLDS), "the method is AVF, reparametrised (A = C(τ)B(σ), "
+                                    "B = ±C′), and AVF is symmetric")
     return KernelFacts(avf, cert, ContinuousProperties(digits is None, symplectic, symmetric))
+
+
+def _one_stage(k: Any, A: Any, B: Any) -> tuple[PropertyVerdict, PropertyVerdict]:
+    """Symmetry and symplecticity of a kernel whose A does not depend on τ: every stage
+    Y_τ is one Y = y₀ + h·a·f(Y), y₁ = y₀ + h·b·f(Y), with a = ∫A dσ and b = ∫B — the
+    1-stage tableau (a, b), symmetric (adjoint (b − a, b)) and symplectic (2ab = b²)
+    exactly when b = 0 or 2a = b."""
+    ring = k.ring
+    a = k.integrate(A, "sigma")
+    b = k.integrate(B, "tau")
+    ok = k.is_zero(b) or k.is_zero(ring.reduce(2 * a - b))
+    values = f"a = ∫A dσ = {_text(k, a)}, b = ∫B = {_text(k, b)}"
+    why = (f"A does not depend on τ: every stage is one, the 1-stage method {values}, "
+           + ("with 2a = b (or b = 0)" if ok else "with 2a ≠ b"))
+    return PropertyVerdict("symmetric", _holds(ok, None), why), PropertyVerdict("symplectic", _holds(ok, None), why)
+
+
+def _text(k: Any, p: Any) -> str:
+    from rkcheck.numbers.formatting import exact_string
+
+    value = k.number(p)
+    return exact_string(value) if isinstance(value, Fraction) else str(value)
+
+
+def _avf_form(k: Any, A: Any, B: Any, B_sigma: Any, degree: int | None) -> tuple[Verdict, str]:
+    """Whether the kernel has AVF's form (module docstring), exactly, and why."""
+    tau, _ = k.gens()
+    ring = k.ring
+    if k.is_zero(A - tau) and k.is_zero(B - ring.constant(1)):
+        return Verdict(HOLDS), "A(τ, σ) = τ and B(τ) = 1: the AVF method itself"
+    C = k.integrate(A, "sigma")
+    if not k.is_zero(ring.reduce(A - C * B_sigma)):
+        return Verdict(FAILS), "A(τ, σ) is not C(τ)B(σ) with C(τ) = ∫A dσ"
+    if degree is None:
+        zero, one = ring.constant(0), ring.constant(1)
+        ends = (k.substitute(C, zero, zero), k.substitute(C, one, one))
+        dC = ring.reduce(C.derivative("tau"))
+        rising = k.is_zero(ends[0]) and k.is_zero(ends[1] - one) and k.is_zero(B - dC)
+        falling = k.is_zero(ends[0] - one) and k.is_zero(ends[1]) and k.is_zero(B + dC)
+        if rising or falling:
+            return Verdict(HOLDS), ("A(τ, σ) = C(τ)B(σ) with B = ±C′ and C from one end of [0, 1] to the other: "
+                                    "∫B Cᵏ = 1/(k+1) for every k, the AVF method reparametrised")
+        return Verdict(FAILS), "A(τ, σ) = C(τ)B(σ), but B is not ±C′ with C running from 0 to 1"
+    power = ring.constant(1)
+    for j in range(1, degree + 1):
+        if not k.is_zero(ring.reduce(k.integrate(ring.reduce(B * power), "tau") - ring.constant(Fraction(1, j)))):
+            return Verdict(FAILS), f"A(τ, σ) = C(τ)B(σ), but ∫B C^{j - 1} ≠ 1/{j}"
+        power = ring.reduce(power * C)
+    return Verdict(HOLDS), (f"A(τ, σ) = C(τ)B(σ) and ∫B C^(k−1) = 1/k for k = 1…{degree}: the AVF method for "
+                            f"Hamiltonians of degree ≤ {degree}")

@@ -31,7 +31,7 @@ Poly = dict[tuple[int, int], Interval]
 ONE = Interval.point(1)
 
 
-def _add(p: Poly, q: Poly, sign: int = 1) -> Poly:
+def add_poly(p: Poly, q: Poly, sign: int = 1) -> Poly:
     out = dict(p)
     for k, c in q.items():
         c = c if sign > 0 else -c
@@ -74,7 +74,7 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
             return _power(vals[0], int(k))
         left, right = vals
         if n.op in "+-":
-            return _add(left, right, 1 if n.op == "+" else -1)
+            return add_poly(left, right, 1 if n.op == "+" else -1)
         if n.op == "*":
             return _mul(left, right)
         (divisor,) = right.values()  # a number: checked when the kernel was read
@@ -91,7 +91,7 @@ def _affine(p: Poly, which: int) -> Poly:
         e = (i, j)[which]
         term = _power({(0, 0): ONE, ((1, 0) if which == 0 else (0, 1)): -ONE}, e)
         rest = {((0, j) if which == 0 else (i, 0)): c}
-        out = _add(out, _mul(term, rest))
+        out = add_poly(out, _mul(term, rest))
     return out
 
 
@@ -100,7 +100,7 @@ def _at(p: Poly, value: int) -> Poly:
     out: Poly = {}
     for (i, j), c in p.items():
         if value == 1 or i == 0:
-            out = _add(out, {(0, j): c})
+            out = add_poly(out, {(0, j): c})
     return out
 
 
@@ -111,9 +111,9 @@ def verdict_of(defect: Poly) -> Verdict:
     return Verdict(HOLDS) if bound == 0 else Verdict(HOLDS_TO_DIGITS, certified_digits(bound))
 
 
-def box_verdicts(method: Any, decimals: DecimalsMode, bits: int = 256) -> dict[str, Verdict]:
+def box_verdicts(method: Any, decimals: DecimalsMode, degree: int | None = None, bits: int = 256) -> dict[str, Verdict]:
     """The kernel identities over the box: ``certificate`` (its three parts together),
-    ``avf``, ``symmetric``, ``symplectic``."""
+    ``avf`` (AVF's form for Hamiltonians of ``degree``), ``symmetric``, ``symplectic``."""
     consts = method.info.constants.enclosures(bits, decimals)
     A = interval_poly(method.nodes[0], decimals, consts, bits)
     B = interval_poly(method.nodes[1], decimals, consts, bits)
@@ -123,14 +123,42 @@ def box_verdicts(method: Any, decimals: DecimalsMode, bits: int = 256) -> dict[s
         return {(j, i): c for (i, j), c in p.items()}
 
     dA = {(i - 1, j): c * Interval.point(i) for (i, j), c in A.items() if i > 0}
-    parts = [verdict_of(_at(A, 0)), verdict_of(_add(_at(A, 1), B_sigma, -1)), verdict_of(_add(dA, swap(dA), -1))]
+    parts = [verdict_of(_at(A, 0)), verdict_of(add_poly(_at(A, 1), B_sigma, -1)), verdict_of(add_poly(dA, swap(dA), -1))]
     return {
         "certificate": _weakest(parts),
-        "avf": _weakest([verdict_of(_add(A, {(1, 0): ONE}, -1)), verdict_of(_add(B, {(0, 0): ONE}, -1))]),
-        "symmetric": _weakest([verdict_of(_add(B, _affine(B, 0), -1)),
-                               verdict_of(_add(_add(A, _affine(_affine(A, 0), 1)), B_sigma, -1))]),
-        "symplectic": verdict_of(_add(_add(_mul(B, A), _mul(B_sigma, swap(A))), _mul(B, B_sigma), -1)),
+        "avf": _avf_form(A, B, B_sigma, degree),
+        "symmetric": _weakest([verdict_of(add_poly(B, _affine(B, 0), -1)),
+                               verdict_of(add_poly(add_poly(A, _affine(_affine(A, 0), 1)), B_sigma, -1))]),
+        "symplectic": verdict_of(add_poly(add_poly(_mul(B, A), _mul(B_sigma, swap(A))), _mul(B, B_sigma), -1)),
     }
+
+
+def _avf_form(A: Poly, B: Poly, B_sigma: Poly, degree: int | None) -> Verdict:
+    """AVF's form over the box (:mod:`rkcheck.energy.continuous`): ``A = C(τ)B(σ)`` and
+    ``∫B C^(k−1) = 1/k`` for k = 1…m, or for every degree ``B = ±C'`` with C from one
+    end of [0, 1] to the other."""
+    C: Poly = {}
+    for (i, j), c in A.items():  # ∫₀¹ A dσ
+        C = add_poly(C, {(i, 0): c / Interval.point(j + 1)})
+    parts = [verdict_of(add_poly(A, _mul(C, B_sigma), -1))]
+    if degree is None:
+        dC = {(i - 1, 0): c * Interval.point(i) for (i, _), c in C.items() if i > 0}
+        at0, at1 = _at(C, 0), _at(C, 1)
+        rising = [verdict_of(at0), verdict_of(add_poly(at1, {(0, 0): ONE}, -1)), verdict_of(add_poly(B, dC, -1))]
+        falling = [verdict_of(add_poly(at0, {(0, 0): ONE}, -1)), verdict_of(at1), verdict_of(add_poly(B, dC))]
+        ends = max((_weakest(rising), _weakest(falling)), key=_strength)
+        return _weakest(parts + [ends])
+    power: Poly = {(0, 0): ONE}
+    for j in range(1, degree + 1):
+        moment = sum((c / Interval.point(i + 1) for (i, _), c in _mul(B, power).items()), Interval.point(0))
+        parts.append(verdict_of({(0, 0): moment - Interval.point(Fraction(1, j))}))
+        power = _mul(power, C)
+    return _weakest(parts)
+
+
+def _strength(v: Verdict) -> tuple[int, int]:
+    """Order of verdicts from fails to holds (more digits is stronger)."""
+    return {FAILS: (0, 0), HOLDS_TO_DIGITS: (1, v.digits or 0), HOLDS: (2, 0)}[v.state]
 
 
 def _weakest(verdicts: list[Verdict]) -> Verdict:

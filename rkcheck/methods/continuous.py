@@ -342,7 +342,7 @@ class Kernel:
             power = e[k]
             e[k] = 0
             term = self.ring.ctx.from_dict({tuple(e): c})
-            out = out + term * self.ring.constant(Fraction(1, power + 1))
+            out = out + term * self.ring.constant(Fraction(1, int(power) + 1))
         return out
 
     def is_zero(self, p: Any) -> bool:

@@ -43,7 +43,7 @@ class PropertyVerdict:
 
     @property
     def holds(self) -> bool:
-        return self.verdict.state != FAILS
+        return self.verdict.holds
 
     def label(self) -> str:
         return self.verdict.answer()

@@ -26,7 +26,7 @@ from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports.cells import enclosure_text, plain, state_text
 from rkcheck.reports.properties import property_rows, stability_line, tableau_stability
 from rkcheck.reports.trees import tree_text
-from rkcheck.verdicts import HOLDS, HOLDS_TO_DIGITS
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 
 MAX_FAILURES_SHOWN = 20
 
@@ -167,7 +167,7 @@ def _facts_table(res: CheckResult) -> Table:
     kv.add_row(*plain("classical order", _order_text(res.classical, "classical")))
     if res.avf is not None:
         a = res.avf
-        style = "red" if not a.equals_avf else "green" if a.verdict.state == HOLDS else "yellow"
+        style = "red" if a.verdict.state == FAILS else "green" if a.verdict.state == HOLDS else "yellow"
         label = Text(a.verdict.answer(), style=style)
         label.append(f" — {a.reason}", style="")
         kv.add_row(*plain("AVF" if a.degree is None else f"AVF (degree {a.degree})", label))

@@ -1,0 +1,309 @@
+"""A kernel's symmetry, symplecticity and equality with AVF read from its B-series, where
+the kernel's own form does not show them (:mod:`rkcheck.energy.continuous`).
+
+The tests on ``(A, B)`` themselves are sufficient, not necessary: one method has many
+kernels (``σ ↦ φ(σ)`` reparametrises it, ``A(τ, σ) = σ`` is the midpoint rule written with
+a stage for each τ), and a kernel that fails a test may still have the property.  The
+B-series decides: with the stage functions ``G_τ ≡ 1``,
+``G_[t1…tq](τ) = Π_k ∫₀¹ A(τ, σ) G_{t_k}(σ) dσ`` and the weights ``a(t) = ∫₀¹ B G_t``
+(definitions §6),
+
+* **symmetric** ⇔ ``a(t) = a*(t)`` for every rooted tree, ``a*`` the weights of the
+  adjoint kernel ``(B(σ) − A(τ, σ), B(τ))`` (as ``(1bᵀ − A, b)`` is a tableau's adjoint);
+* **symplectic** ⇔ ``a(u∘v) + a(v∘u) = a(u) a(v)`` for all rooted trees u, v (Calvo &
+  Sanz-Serna; Hairer, Lubich & Wanner VI.7.6), and the left side minus the right is
+  ``∫∫ M(τ, σ) G_u(τ) G_v(σ)`` with ``M = B(τ)A(τ,σ) + B(σ)A(σ,τ) − B(τ)B(σ)``;
+* **equals AVF for degree m** ⇔ ``a(t)`` is AVF's (``1`` for τ,
+  ``a(t1)…a(tq)/(q+1)``) for every rooted tree whose vertices have at most m − 1
+  children: the elementary differentials of those trees are independent already for
+  Hamiltonians of degree m (``H = Σ_v p_v Π_{c child of v} q_c`` gives the q-components
+  the vector field whose differentials separate the trees), and the others vanish.
+
+A tree where the two sides differ — enclosed in interval arithmetic, over the whole box of
+a kernel with rounded decimals — proves the property false.  When every tree up to
+:data:`SERIES_VERTICES` vertices agrees, nothing is proven either way: the property is
+``undecided``, never ``no``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Callable
+
+from rkcheck.energy.kernel_box import Poly, interval_poly
+from rkcheck.numbers.formatting import exact_string, short
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.trees.rooted import (
+    bracket,
+    children_of_level_sequence,
+    level_sequence_of_forest,
+)
+
+#: The smallest trees searched for a witness (u∘v of this many vertices for
+#: symplecticity); a check searches up to its own order + 1 where that is more.
+SERIES_VERTICES = 10
+
+#: Products of coefficients one search may spend: a kernel of high degree has stage
+#: functions of high degree, and the search stops at the trees it could afford.
+SERIES_WORK = 4_000_000
+
+#: Bits kept of an interval coefficient's end points (points stay exact).
+SERIES_BITS = 256
+
+Tree = tuple[int, ...]
+Matrix = list[list[Any]]
+
+
+@dataclass(frozen=True)
+class SeriesAnswer:
+    """The B-series' word on one property: ``witness`` names a tree (or a pair) where it
+    certainly fails, None when every tree searched agrees; ``vertices``: every tree up to
+    this size was searched."""
+
+    witness: str | None
+    vertices: int
+
+
+class _OutOfWork(Exception):
+    pass
+
+
+def rooted_trees(max_vertices: int) -> list[Tree]:
+    """Every rooted tree up to ``max_vertices`` vertices, as canonical level sequences,
+    smaller trees first (each tree of n vertices is u∘v of two smaller ones)."""
+    by_size: dict[int, list[Tree]] = {1: [(1,)]}
+    for n in range(2, max_vertices + 1):
+        found = {level_sequence_of_forest([*children_of_level_sequence(u), v])
+                 for k in range(1, n) for u in by_size[n - k] for v in by_size[k]}
+        by_size[n] = sorted(found, reverse=True)
+    return [t for n in sorted(by_size) for t in by_size[n]]
+
+
+class Kernel:
+    """``A(τ, σ) = Σ A[i][j] τ^i σ^j`` and ``B(τ) = Σ B[i] τ^i`` over one arithmetic:
+    exact rationals (python-flint) where every coefficient is a point, else intervals
+    (roots enclosed, or a box of decimals).  Everything the searches need is linear in
+    moments ``m_j(g) = ∫₀¹ σ^j g(σ) dσ``: ``∫ A(τ, σ) g(σ) dσ = Σ_i τ^i Σ_j A[i][j]
+    m_j(g)``, ``a(t) = Σ_i B[i] m_i(G_t)``."""
+
+    def __init__(self, A: Poly, B: Poly, work: int = SERIES_WORK):
+        self.exact = all(c.is_point for c in [*A.values(), *B.values()])
+        p = 1 + max((i for i, _ in [*A, *B]), default=0)
+        q = 1 + max((j for _, j in A), default=0)
+        self.A = [[self._number(A.get((i, j))) for j in range(q)] for i in range(p)]
+        self.B = [self._number(B.get((i, 0))) for i in range(p)]
+        self.left = work
+
+    def _number(self, c: Interval | None) -> Any:
+        if c is None:
+            return self.zero
+        if self.exact:
+            import flint
+
+            return flint.fmpq(c.lo.numerator, c.lo.denominator)
+        return c
+
+    @property
+    def zero(self) -> Any:
+        if self.exact:
+            import flint
+
+            return flint.fmpq(0)
+        return Interval.point(0)
+
+    def spend(self, work: int) -> None:
+        self.left -= work
+        if self.left < 0:
+            raise _OutOfWork
+
+    def mul(self, f: list[Any], g: list[Any]) -> list[Any]:
+        """The product of two polynomials in τ (coefficient lists)."""
+        self.spend(len(f) * len(g))
+        if self.exact:
+            import flint
+
+            return list((flint.fmpq_poly(f) * flint.fmpq_poly(g)).coeffs())
+        out = [Interval.point(0)] * (len(f) + len(g) - 1)
+        for i, a in enumerate(f):
+            for j, b in enumerate(g):
+                out[i + j] = out[i + j] + a * b
+        return [c.round_out(SERIES_BITS) for c in out]
+
+    def moments(self, g: list[Any], n: int) -> list[Any]:
+        """``m_j(g)`` for j < n."""
+        self.spend(len(g) * n)
+        out = []
+        for j in range(n):
+            total = self.zero
+            for k, c in enumerate(g):
+                total = total + c * self._reciprocal(j + k + 1)
+            out.append(total)
+        return out
+
+    def _reciprocal(self, n: int) -> Any:
+        if self.exact:
+            import flint
+
+            return flint.fmpq(1, n)
+        return Interval.point(Fraction(1, n))
+
+    def apply(self, g: list[Any]) -> list[Any]:
+        """``∫₀¹ A(τ, σ) g(σ) dσ`` as a polynomial in τ."""
+        m = self.moments(g, len(self.A[0]))
+        return [sum((a * x for a, x in zip(row, m)), self.zero) for row in self.A]
+
+    def weight(self, g: list[Any]) -> Any:
+        return sum((b * x for b, x in zip(self.B, self.moments(g, len(self.B)))), self.zero)
+
+    def nonzero(self, x: Any) -> bool:
+        return x != 0 if self.exact else not x.contains_zero()
+
+    def text(self, x: Any) -> str:
+        if self.exact:
+            return exact_string(Fraction(int(x.p), int(x.q)))
+        return exact_string(x.lo) if x.is_point else f"≈ {short(x.mid)}"
+
+    def adjoint(self) -> "Kernel":
+        """The adjoint kernel ``(B(σ) − A(τ, σ), B(τ))`` in the same arithmetic."""
+        other = object.__new__(Kernel)
+        other.exact, other.left = self.exact, self.left
+        q = max(len(self.A[0]), len(self.B))
+        rows = [[-a for a in row] + [self.zero] * (q - len(row)) for row in self.A]
+        rows[0] = [b + x for b, x in zip([*self.B, *[self.zero] * (q - len(self.B))], rows[0])]
+        other.A, other.B = rows, list(self.B)
+        return other
+
+
+class _Stages:
+    """Stage functions ``G_t`` of one kernel, each tree once."""
+
+    def __init__(self, kernel: Kernel):
+        self.kernel = kernel
+        self.G: dict[Tree, list[Any]] = {}
+        self._applied: dict[Tree, list[Any]] = {}
+
+    def __call__(self, t: Tree) -> list[Any]:
+        if t not in self.G:
+            g = [self.kernel._reciprocal(1)]
+            for child in children_of_level_sequence(t):
+                if child not in self._applied:
+                    self._applied[child] = self.kernel.apply(self(child))
+                g = self.kernel.mul(g, self._applied[child])
+            self.G[t] = g
+        return self.G[t]
+
+    def weight(self, t: Tree) -> Any:
+        return self.kernel.weight(self(t))
+
+
+def kernel_polys(method: Any, decimals: DecimalsMode, bits: int = 256) -> tuple[Poly, Poly]:
+    """``A(τ, σ)`` and ``B(τ)`` with interval coefficients: exact where the kernel is
+    rational, enclosures of its roots, or its decimals' box under ``decimals``."""
+    consts = method.info.constants.enclosures(bits, decimals)
+    return interval_poly(method.nodes[0], decimals, consts, bits), interval_poly(method.nodes[1], decimals, consts, bits)
+
+
+def _first(trees: list[Tree], differs: Callable[[Tree], str | None], vertices: int) -> SeriesAnswer:
+    """The first tree that ``differs`` (smaller trees first), or how far the search got."""
+    for t in trees:
+        try:
+            why = differs(t)
+        except _OutOfWork:
+            return SeriesAnswer(None, len(t) - 1)
+        if why is not None:
+            return SeriesAnswer(why, vertices)
+    return SeriesAnswer(None, vertices)
+
+
+def symmetric_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
+    """A rooted tree whose weight differs from the adjoint kernel's, if one of at most
+    ``vertices`` vertices does."""
+    kernel = Kernel(A, B)
+    own, adjoint = _Stages(kernel), _Stages(kernel.adjoint())
+
+    def differs(t: Tree) -> str | None:
+        a, b = own.weight(t), adjoint.weight(t)
+        if kernel.nonzero(a - b):
+            return f"its weight of {bracket(t)} is not its adjoint's ({kernel.text(a)} against {kernel.text(b)})"
+        return None
+
+    return _first(rooted_trees(vertices), differs, vertices)
+
+
+def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
+    """Rooted trees u, v (|u| + |v| at most ``vertices``) with a(u∘v) + a(v∘u) ≠ a(u)a(v):
+    ``m(G_u)ᵀ M m(G_v)`` with ``M[i][j]`` the coefficients of ``B(τ)A(τ,σ) + B(σ)A(σ,τ) −
+    B(τ)B(σ)``.  Many trees share a stage function: each distinct pair is tried once."""
+    kernel = Kernel(A, B)
+    stages = _Stages(kernel)
+    n_m = max(len(kernel.A) + len(kernel.B), len(kernel.A[0]) + len(kernel.B))
+    M = [[kernel.zero] * n_m for _ in range(n_m)]
+    for i, b in enumerate(kernel.B):
+        for k, row in enumerate(kernel.A):
+            for j, a in enumerate(row):
+                M[i + k][j] = M[i + k][j] + b * a  # B(τ)A(τ, σ)
+                M[j][i + k] = M[j][i + k] + b * a  # B(σ)A(σ, τ)
+        for j, b2 in enumerate(kernel.B):
+            M[i][j] = M[i][j] - b * b2
+    trees = rooted_trees(vertices - 1)
+    distinct: dict[int, list[Tree]] = {}
+    rows: dict[Tree, list[Any]] = {}
+    n = 1
+    try:
+        for n in range(2, vertices + 1):  # pairs of n vertices in all, smaller first
+            distinct[n - 1] = _distinct(stages, [t for t in trees if len(t) == n - 1])
+            for size_u in range(1, n):
+                for u in distinct[size_u]:
+                    if u not in rows:  # m(G_u)ᵀ M
+                        m = kernel.moments(stages(u), n_m)
+                        rows[u] = [sum((m[i] * M[i][j] for i in range(n_m)), kernel.zero) for j in range(n_m)]
+                    for v in distinct[n - size_u]:
+                        m_v = kernel.moments(stages(v), n_m)
+                        defect = sum((r * x for r, x in zip(rows[u], m_v)), kernel.zero)
+                        if kernel.nonzero(defect):
+                            return SeriesAnswer(f"a(u∘v) + a(v∘u) − a(u)a(v) = {kernel.text(defect)} for u = "
+                                                f"{bracket(u)}, v = {bracket(v)}", vertices)
+    except _OutOfWork:
+        return SeriesAnswer(None, n - 1)
+    return SeriesAnswer(None, vertices)
+
+
+def _distinct(stages: _Stages, trees: list[Tree]) -> list[Tree]:
+    """One of ``trees`` for each distinct stage function among them."""
+    found: dict[Any, Tree] = {}
+    for t in trees:
+        found.setdefault(tuple(str(c) for c in stages(t)), t)
+    return list(found.values())
+
+
+def avf_witness(A: Poly, B: Poly, degree: int | None, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
+    """A rooted tree (each vertex with at most m − 1 children) whose weight is not AVF's."""
+    kernel = Kernel(A, B)
+    stages = _Stages(kernel)
+    avf: dict[Tree, Any] = {}
+
+    def avf_weight(t: Tree) -> Any:
+        if t not in avf:
+            kids = children_of_level_sequence(t)
+            w = kernel._reciprocal(len(kids) + 1)
+            for child in kids:
+                w = w * avf_weight(child)
+            avf[t] = w
+        return avf[t]
+
+    def differs(t: Tree) -> str | None:
+        a, e = stages.weight(t), avf_weight(t)
+        if kernel.nonzero(a - e):
+            return f"its weight of {bracket(t)} is not AVF's ({kernel.text(a)} against {kernel.text(e)})"
+        return None
+
+    trees = [t for t in rooted_trees(vertices) if degree is None or _widest(t) <= degree - 1]
+    return _first(trees, differs, vertices)
+
+
+def _widest(t: Tree) -> int:
+    """The most children of any vertex."""
+    kids = children_of_level_sequence(t)
+    return max([len(kids), *(_widest(c) for c in kids)])
