@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.io.printable import printable
+from rkcheck.io.documents import ignored_keys
 from rkcheck.methods.continuous import ContinuousMethod, _unalias
 from rkcheck.methods.tableau import MethodInfo
 
@@ -39,9 +39,7 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
     """The method of a ``[continuous]`` table (``info`` carries the ``[constants]``)."""
     if not isinstance(table, dict):
         raise UserError("[continuous] must be a table", "continuous")
-    for key in table:
-        if key not in KEYS:
-            warnings.append(f"unknown key continuous.{printable(key)} ignored (known: A, b, M)")
+    warnings = warnings + ignored_keys(table, KEYS, "continuous")
     info = info.replace(warnings=tuple(warnings))
     if "M" in table:
         if "A" in table or "b" in table:
@@ -61,8 +59,7 @@ def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_tabl
 
     if not isinstance(table, dict):
         raise UserError("[continuous] must be a table", "continuous")
-    unknown = tuple(f"unknown key continuous.{printable(key)} ignored (known: A, b)"
-                    for key in table if key not in KEYS)
+    unknown = tuple(ignored_keys(table, ("A", "b"), "continuous"))
     info = info.replace(warnings=info.warnings + unknown)
     if "M" in table:
         raise UserError("a kernel with [parameters] is given by A (and b), not M", "continuous")

@@ -27,6 +27,22 @@ from rkcheck.numbers.grammar import MAX_BITS, int_of_digits, too_large
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
 
 
+def ignored_keys(table: dict[str, Any], known: tuple[str, ...], name: str) -> list[str]:
+    """Warnings for the keys of ``[name]`` that nothing reads.  A key that is a known one
+    in another case (``B`` for ``b``) is refused: ignored, it would check another method
+    than the one written, and say so only in a warning."""
+    out = []
+    for key in table:
+        if key in known:
+            continue
+        twin = next((k for k in known if isinstance(key, str) and k.lower() == key.lower()), None)
+        if twin is not None:
+            raise UserError(f"unknown key: keys are case-sensitive, and this one would be ignored; write {twin}",
+                            f"{name}.{printable(key)}")
+        out.append(f"unknown key {name}.{printable(key)} ignored (known: {', '.join(known)})")
+    return out
+
+
 class BareFloat(str):
     """The text of a bare TOML/JSON float, kept digit for digit."""
 

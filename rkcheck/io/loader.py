@@ -28,6 +28,7 @@ from rkcheck.io.documents import (
     KNOWN_TABLES,
     BareFloat,
     detect_format,
+    ignored_keys,
     locate_lines,
     parse_document,
     read_text,
@@ -195,9 +196,7 @@ def _build(
     if "tableau" not in data:
         raise UserError(f"missing [tableau] table (or [family]); the smallest tableau file is {SMALLEST_FILE}")
     tab = _table(data, "tableau", required=True)
-    for key in tab:
-        if key not in ("A", "b", "c"):
-            warnings.append(f"unknown key tableau.{printable(key)} ignored (known: A, b, c)")
+    warnings += ignored_keys(tab, ("A", "b", "c"), "tableau")
     if "parameters" in data:
         return _build_family(data, tab, name, info.replace(warnings=tuple(warnings)), max_stages)
     constants = _constants(_table(data, "constants"))

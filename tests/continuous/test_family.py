@@ -108,8 +108,12 @@ def test_b_in_both_variables_is_refused_and_unknown_keys_are_warned(tmp_path):
     with pytest.raises(UserError, match="continuous.b: B is a polynomial in one variable"):
         rkcheck.load_family(_kernel_family(tmp_path, b="tau + sigma + kappa"))
     f = tmp_path / "B.toml"
+    f.write_text('[parameters]\nkappa = "free"\n[continuous]\nA = "tau + kappa"\nweight = "2"\n')
+    assert "unknown key continuous.weight ignored (known: A, b)" in rkcheck.load_family(f).info.warnings
+    # B for b would be ignored, and another family (B = 1) checked without a word but a warning
     f.write_text('[parameters]\nkappa = "free"\n[continuous]\nA = "tau + kappa"\nB = "2"\n')
-    assert "unknown key continuous.B ignored (known: A, b)" in rkcheck.load_family(f).info.warnings
+    with pytest.raises(UserError, match="continuous.B: unknown key: keys are case-sensitive.*write b"):
+        rkcheck.load_family(f)
 
 
 def test_avf_of_a_kernel_family_is_a_equal_to_tau_and_b_to_1(tmp_path):

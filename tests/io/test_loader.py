@@ -274,3 +274,20 @@ def test_a_bare_integer_longer_than_any_value_is_one_line(fmt):
     with pytest.raises(UserError) as err:
         loads(text, fmt=fmt)
     assert "MAX_BITS" in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("text, place, twin", [
+    ('[tableau]\nA = [["0", "0"], ["1", "0"]]\nb = ["1/2", "1/2"]\nC = ["0", "1/2"]\n', "tableau.C", "c"),
+    ('[continuous]\nA = "sigma"\nB = "2*tau"\n', "continuous.B", "b"),
+    ('[continuous]\na = "tau"\n', "continuous.a", "A"),
+])
+def test_a_known_key_in_another_case_is_refused_not_ignored(tmp_path, capsys, text, place, twin):
+    # ignored, B = "2*tau" would leave B = 1 and check another method (exit 0 or 1 on it)
+    path = tmp_path / "m.toml"
+    path.write_text(text, encoding="utf-8")
+    r = run_cli(capsys, "verify", str(path), "--order", "3")
+    assert r.code == 2 and r.err.strip() == (f"rkcheck: error: {path}: {place}: unknown key: keys are case-sensitive, "
+                                             f"and this one would be ignored; write {twin}")
+    if twin != "A":  # any other unknown key is only a warning
+        path.write_text(text.replace(place.split(".")[1] + " =", "note ="), encoding="utf-8")
+        assert f"unknown key {place.split('.')[0]}.note ignored" in run_cli(capsys, "verify", str(path), "--order", "3").out
