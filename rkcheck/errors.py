@@ -50,6 +50,14 @@ class UserError(RkcheckError):
         parts = [p for p in (self.source, self.place, self.message) if p]
         return ": ".join(parts)
 
+    def as_tableau_error(self) -> "UserError":
+        """The same error as a :class:`TableauError` — what building a method from its
+        content raises — unless it is of a narrower kind already (a bad ``[check]``
+        option stays an :class:`OptionError`)."""
+        if type(self) is not UserError:
+            return self
+        return TableauError(self.message, self.place, self.source)
+
 
 class TableauError(UserError):
     """A tableau that cannot be built from what was given (shape, entry, table)."""

@@ -158,7 +158,7 @@ def build_tableau(
     try:
         return _build(data, source, max_stages)
     except UserError as err:
-        raise err.located(source=source) from None
+        raise err.as_tableau_error().located(source=source) from None
 
 
 def _build(

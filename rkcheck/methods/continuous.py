@@ -113,7 +113,10 @@ class ContinuousMethod:
     is_continuous = True
 
     def __post_init__(self) -> None:
-        self.kernel  # noqa: B018 - parse now: a bad kernel is refused at construction
+        try:
+            self.kernel  # noqa: B018 - parse now: a bad kernel is refused at construction
+        except UserError as err:
+            raise err.as_tableau_error() from None
 
     # ----------------------------------------------------------------- construction
 
@@ -139,7 +142,10 @@ class ContinuousMethod:
         """The Miyatake–Butcher method of the matrix ``M`` (indices from 1):
         ``A(τ,σ) = Σ M_ij τ^i/i σ^(j−1)``, ``B(σ) = A(1, σ)``."""
         info = info or MethodInfo(source=name)
-        rows = matrix_rows(M)
+        try:
+            rows = matrix_rows(M)
+        except UserError as err:
+            raise err.as_tableau_error() from None
         values: dict[tuple[int, int], Fraction | None] = {}
         decimal = False
         for i, row in enumerate(rows, start=1):
@@ -149,7 +155,7 @@ class ContinuousMethod:
                     info.constants.check_names(node)
                     values[i, j] = xp.evaluate_exact(node, info.constants.exact_values())
                 except UserError as err:
-                    raise err.located(f"M[{i}][{j}]") from None
+                    raise err.located(f"M[{i}][{j}]").as_tableau_error() from None
                 decimal = decimal or info.constants.uses_decimal(node)
         # rational: the polynomials collected; a decimal stays a literal of the kernel's
         # text, read by the decimals rule as in A and b (collected, it would be exact)

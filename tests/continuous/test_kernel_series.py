@@ -9,9 +9,10 @@ import pytest
 
 sympy = pytest.importorskip("sympy")
 
+from support.clirun import run_subprocess  # noqa: E402
+
 import rkcheck  # noqa: E402
 from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402
-from support.clirun import run_subprocess  # noqa: E402
 
 from .test_weights import rooted_trees, sigma, tau, weight_sympy  # noqa: E402
 
@@ -132,3 +133,17 @@ def test_a_box_kernel_is_refuted_only_by_a_tree_that_fails_on_the_whole_box():
     assert far.avf.verdict.state == "fails" and "[τ]" in far.avf.reason
     near = verify("1.000000*tau", "1", degree=None)
     assert near.avf.verdict.state != "fails"
+
+
+@pytest.mark.parametrize("make", [
+    lambda: ContinuousMethod.from_kernel("sqrt(tau)"),
+    lambda: ContinuousMethod.from_kernel("tau", "1/0"),
+    lambda: ContinuousMethod.from_matrix([["x"]]),
+    lambda: ContinuousMethod.from_matrix([[1, 2], [3]]),
+    lambda: rkcheck.loads('[continuous]\nA = "tau"\nM = [[1]]\n'),
+    lambda: rkcheck.loads('[tableau]\nA = [["sqrt("]]\nb = [1]\n'),
+])
+def test_a_method_refused_for_its_content_raises_a_tableau_error(make):
+    # docs/api.md and docs/continuous.md: what cannot be built from its content is a TableauError
+    with pytest.raises(rkcheck.TableauError):
+        make()
