@@ -148,11 +148,16 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
                      else [polynomial_text(g, field) for g in shown_basis(result)]),
         "dimension": result.dimension,
         "route": result.route,
-        "rule_dimension": result.rule_dimension,
+        "rule_dimension": result.rule_dimension if result.route == "structured" else None,
         "components": None if result.components is None else [component_doc(c, field) for c in result.components],
         "avf_on_every_component": avf_everywhere(result),
-        "solutions": None if result.solutions is None else [
+        # every solution, when there are finitely many; the structured route also finds
+        # the points of the finite pieces of a positive-dimensional set
+        "solutions": None if result.solutions is None or result.dimension > 0 else [
             {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
+        "points_of_finite_components": [
+            {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions]
+        if result.solutions is not None and result.dimension > 0 else None,
         "seconds": round(result.seconds, 3),
     }
 

@@ -439,3 +439,17 @@ def test_a_family_whose_conditions_all_vanish_is_solved_by_every_value(capsys):
     assert result.dimension == 1 and all(not c.equations for c in result.components)
     r = run_cli(capsys, "solve", str(path), "-m", "3", "-N", "4")
     assert r.code == 0 and "every value of beta is a solution" in r.out and "sqrt(3)^2" not in r.out, r.out
+
+
+def test_a_positive_dimensional_set_has_no_solution_list_on_either_route(capsys):
+    # solutions[] is null unless finitely many; the plain route (one Gröbner basis, an
+    # independent algorithm) agrees on the dimension
+    import json
+
+    docs = {route: json.loads(run_cli(capsys, "solve", str(FAMILIES / "design-s2-m3.toml"), "--degree", "3", "--order",
+                                      "5", "--where", "b1 + b2 = 1", "--route", route, "--format", "json").out)
+            for route in ("plain", "structured")}
+    assert docs["plain"]["dimension"] == docs["structured"]["dimension"] == 1
+    assert docs["plain"]["solutions"] is None and docs["structured"]["solutions"] is None
+    assert docs["structured"]["points_of_finite_components"] == [] and docs["plain"]["points_of_finite_components"] is None
+    assert docs["plain"]["rule_dimension"] is None and docs["structured"]["rule_dimension"] == 1
