@@ -375,7 +375,7 @@ def render_scan_text(outcomes, console, total_time: float, interrupted: bool, ve
         _keep_verdict_widths(t)
         console.print(t)
     _print_notes(outcomes, shown, verbose, console, fail_on)
-    console.print(_totals_line(outcomes, total_time, interrupted))
+    console.print(_totals_line(outcomes, total_time, interrupted), soft_wrap=True)  # one line for tail -1
 
 
 def _common_root(paths: list[str]) -> tuple[str, Any]:

@@ -276,3 +276,13 @@ def test_an_interrupted_check_with_no_failure_is_neither_passed_nor_proven_in_js
     monkeypatch.undo()
     finished = run_cli(capsys, "verify", "@rk4", "--order", "6", "--format", "json")
     assert not json.loads(finished.out)["summary"]["interrupted"]
+
+
+@pytest.mark.parametrize("args", [["verify", "@avf-gauss-2-decimal16", "-q"],
+                                  ["verify", "@gauss-2", "--require", "proof", "--arithmetic", "ball", "-q"]])
+def test_the_verdict_is_one_line_when_piped_however_long(args):
+    # a CI job reads the verdict with `| tail -1`: rich's fixed pipe width must not wrap it
+    env = dict(os.environ, NO_COLOR="1", COLUMNS="60")
+    proc = subprocess.run([sys.executable, "-m", "rkcheck", *args], capture_output=True, text=True, env=env)
+    last = proc.stdout.rstrip("\n").splitlines()[-1]
+    assert last.startswith(("OK", "FAIL")) and last.endswith(")") and len(last) > 128
