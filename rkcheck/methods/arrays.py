@@ -117,6 +117,9 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
                     return Entry.parse(_sympy_root_text(x, place)), False
             raise TableauError(f"expected a number, got the sympy expression {x}", place)
         if hasattr(x, "item") and hasattr(x, "dtype"):  # a numpy scalar
+            if getattr(x, "ndim", 0) >= 1:  # an array where a number belongs: A of three axes, b of two
+                shape = "×".join(str(n) for n in x.shape)
+                raise TableauError(f"expected a number, got an array of shape {shape}", place)
             if getattr(x.dtype, "kind", "") == "f" and x.dtype.itemsize < 8:
                 return _narrow_float_entry(x, floats, place)
             item = x.item()

@@ -3,6 +3,7 @@ one-line message, never in another exception."""
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 
 import pytest
@@ -203,3 +204,16 @@ def test_float32_arrays_are_read_as_the_decimals_they_print_as():
     # RK4 to float32's 8 digits: consistent, classical order 4 to digits (the doubles
     # the float32 values widen to sum to 1.0000000298…: not consistent)
     assert result.classical.to_digits == 4 and not any("inconsistent" in w for w in result.warnings)
+
+
+@pytest.mark.parametrize("A, b, place", [
+    (lambda np: np.zeros((2, 2, 2)), lambda np: [1, 1], "A[1][1]"),
+    (lambda np: np.zeros((1, 1, 1)), lambda np: [1], "A[1][1]"),
+    (lambda np: [[0]], lambda np: np.zeros((1, 1)), "b[1]"),
+])
+def test_arrays_with_an_axis_too_many_are_refused_naming_the_entry(A, b, place):
+    # a 2×2×2 A has a 2-vector where a number belongs; (1, 1, 1) one of size 1, which
+    # numpy's item() would have read as that number
+    np = pytest.importorskip("numpy")
+    with pytest.raises(rkcheck.TableauError, match=rf"^{re.escape(place)}: expected a number, got an array"):
+        rkcheck.from_arrays(A(np), b(np))
