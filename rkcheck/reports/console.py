@@ -15,7 +15,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass
-from typing import IO, TYPE_CHECKING, cast
+from typing import IO, TYPE_CHECKING, Callable, cast
 
 from rkcheck.numbers.formatting import count_text  # noqa: F401  (the CLI prints counts through the reports)
 
@@ -95,3 +95,20 @@ def make_console(settings: OutputSettings = OutputSettings(), stderr: bool = Fal
         emoji=False,
         color_system="auto" if color and tty else ("standard" if color else None),
     )
+
+
+def as_piped_text(render: "Callable[[Console], None]") -> str:
+    """What ``render`` prints to a console, laid out as piped output is (the same width,
+    no colour, no trailing spaces): a report written with ``-o`` reads as the one printed
+    through ``>``."""
+    import io
+
+    from rich.console import Console
+
+    buffer = io.StringIO()
+    stripped = _StripTrailingSpaces(buffer)
+    console = Console(file=cast(IO[str], stripped), no_color=True, highlight=False, width=PIPE_WIDTH,
+                      soft_wrap=False, emoji=False, color_system=None)
+    render(console)
+    stripped.flush()
+    return buffer.getvalue()

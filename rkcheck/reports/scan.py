@@ -87,12 +87,11 @@ def scan_document(fmt: str, outcomes, interrupted: bool, options: dict[str, Any]
 
 
 def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = False, fail_on: str = "claims") -> str:
-    """The text report as plain text (for ``--output``)."""
-    from rich.console import Console
+    """The text report as plain text (for ``--output``), as it prints when piped."""
+    from rkcheck.reports.console import as_piped_text
 
-    console = Console(record=True, file=io.StringIO(), no_color=True, width=140)
-    render_scan_text(outcomes, console, elapsed, interrupted, constants=constants, fail_on=fail_on)
-    return console.export_text()
+    return as_piped_text(lambda console: render_scan_text(outcomes, console, elapsed, interrupted,
+                                                          constants=constants, fail_on=fail_on))
 
 
 def _summary(o: dict[str, Any]) -> dict[str, Any]:

@@ -5,12 +5,14 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
 from support.clirun import run_cli
+from support.paths import TABLEAUX
 
 MIDPOINT_OK = """[method]
 name = "midpoint, honest claims"
@@ -544,3 +546,25 @@ def test_a_misspelt_table_is_an_error_and_a_scan_that_checks_nothing_does_not_pa
     r = run_cli(capsys, "scan", str(tmp_path), "--jobs", "1")
     assert r.code == 2 and "none of the 2 files found is a tableau" in r.err
     assert run_cli(capsys, "scan", str(tmp_path), "--jobs", "1", "--allow-empty").code == 0
+
+
+def test_a_text_report_written_with_o_is_the_piped_one(tmp_path):
+    # the same layout through -o as through `>`: no trailing spaces, the same width
+    import re
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NO_COLOR="1")
+    folder = str(TABLEAUX / "explicit")
+    out = tmp_path / "r.txt"
+    subprocess.run([sys.executable, "-m", "rkcheck", "scan", folder, "-j", "1", "-o", str(out)], env=env,
+                   capture_output=True, text=True)
+    piped = subprocess.run([sys.executable, "-m", "rkcheck", "scan", folder, "-j", "1"], env=env,
+                           capture_output=True, text=True).stdout
+
+    def timeless(text):
+        return [re.sub(r"\d+\.\d+( s)?\b", "<t>", line) for line in text.splitlines()]
+
+    written = out.read_text(encoding="utf-8")
+    assert not any(line.endswith(" ") for line in written.splitlines())
+    assert timeless(written) == timeless(piped)
