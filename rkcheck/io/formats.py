@@ -103,7 +103,7 @@ class _Code:
 
     def call(self, func: str, args: list[str]) -> str:
         if func != "sqrt":
-            raise UserError(f"{func}(…) has no exact form in this output format; write the tableau as TOML or JSON")
+            raise _NoExactForm(func)
         return f"{self.sqrt}({args[0]})"
 
     def paren(self, text: str) -> str:
@@ -207,6 +207,20 @@ class _Python(_Code):
 
     def power(self, base: str, exponent: str) -> str:
         return f"{base}**{exponent}"
+
+    def render(self, node: ex.Expr, parent: int = 0) -> str:
+        if isinstance(node, ex.Call) and node.func == "root":
+            # sympy's CRootOf indexes the real roots first, from the smallest: the k-th
+            # smallest real root is CRootOf(p, k − 1), exact; the polynomial's x is its own
+            saved, self.names = self.names, {**self.names, "x": 'sympy.Symbol("x")'}
+            try:
+                poly = super().render(node.args[0], 0)
+            finally:
+                self.names = saved
+            k = node.args[1]
+            index = f"{int(k.value) - 1}" if isinstance(k, ex.Num) else f"{super().render(k, 0)} - 1"
+            return f"sympy.CRootOf({poly}, {index})"
+        return super().render(node, parent)
 
 
 class _Latex(_Code):
@@ -435,9 +449,32 @@ def write(tab: Tableau, fmt: str) -> str:
         raise UserError(f"unknown output format {fmt!r} (known: {', '.join(WRITE_FORMATS)})")
     try:
         return WRITERS[fmt](_as_written(tab))
+    except _NoExactForm as err:
+        raise err.located(_first_entry_calling(tab, err.func)) from None
     except RecursionError:  # a sum of thousands of terms is a tree too deep to render recursively
         raise UserError(f"nested too deeply to write as {fmt} (a chain of thousands of terms); "
                         "write the tableau as TOML or JSON", _deepest_entry(tab)) from None
+
+
+class _NoExactForm(UserError):
+    """A function of the entries that the output format cannot write exactly."""
+
+    def __init__(self, func: str):
+        super().__init__(f"{func}(…) has no exact form in this output format; write the tableau as TOML or JSON"
+                         + (" (or as Python: sympy's CRootOf)" if func == "root" else ""))
+        self.func = func
+
+
+def _first_entry_calling(tab: Tableau, func: str) -> str | None:
+    """The place of the first entry that calls ``func``, itself or through a constant."""
+    constants = tab.info.constants.definitions
+
+    def calls(node: ex.Expr) -> bool:
+        return bool(xp.fold(node, lambda n, kids: any(kids) or (isinstance(n, ex.Call) and n.func == func)
+                            or (isinstance(n, ex.Name) and n.name in constants and calls(constants[n.name]))))
+
+    return next((place for place, e in zip(tab.entry_places(), tab.entries())
+                 if getattr(e, "node", None) is not None and calls(e.node)), None)
 
 
 def _deepest_entry(tab: Tableau) -> str | None:

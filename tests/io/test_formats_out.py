@@ -211,3 +211,21 @@ def test_latex_never_writes_a_number_beside_a_fraction():
     tab = loads('[constants]\nk = "1/3"\n[tableau]\nA = [["0.5 + 3*k", "0"], ["0", "0"]]\nb = ["1", "0"]\n', "m.toml")
     text = to_latex(tab)
     assert r"3 \cdot \frac{1}{3}" in text and r"3\frac" not in text
+
+
+def test_python_writes_roots_of_polynomials_exactly_and_julia_names_the_entry(tmp_path, capsys):
+    # HBVM(6, 2): its nodes are root(p, k) of the degree-6 shifted Legendre polynomial;
+    # numpy's Gauss–Legendre rule gives the same nodes and weights independently
+    sympy = pytest.importorskip("sympy")
+    np = pytest.importorskip("numpy")
+    path = tmp_path / "h.toml"
+    run_cli(capsys, "new", "hbvm", "-k", "6", "-s", "2", "-o", str(path))
+    code = run_cli(capsys, "show", str(path), "--format", "python").out
+    assert "sympy.CRootOf(" in code
+    space: dict = {}
+    exec(code, space)  # the code rkcheck wrote, not file content: it is what a user runs
+    x, w = np.polynomial.legendre.leggauss(6)
+    assert np.allclose([float(sympy.N(v, 30)) for v in space["c"]], (x + 1) / 2, atol=1e-14)
+    assert np.allclose([float(sympy.N(v, 30)) for v in space["b"]], w / 2, atol=1e-14)
+    julia = run_cli(capsys, "show", str(path), "--format", "julia")
+    assert julia.code == 2 and f"{path}: A[1][1]: root(…) has no exact form in this output format" in julia.err
