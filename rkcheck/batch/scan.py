@@ -117,7 +117,12 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     when given, encodes the result's report here, in the worker (a failure leaves it to
     the report, which says so in the file's row)."""
     from rkcheck.energy.claims import judge_tableau
-    from rkcheck.io.documents import detect_format, locate_lines, read_text
+    from rkcheck.io.documents import (
+        detect_format,
+        is_rkcheck_report,
+        locate_lines,
+        read_text,
+    )
     from rkcheck.io.loader import build_tableau, load_named, read_document
     from rkcheck.methods.tableau import Tableau
 
@@ -133,6 +138,9 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             fmt = detect_format(path, text)
             data = read_document(text, path, fmt, max_stages)  # CSV and nodepy as verify reads them
             out.lines = locate_lines(text, fmt)
+            if is_rkcheck_report(data):  # a report written into the folder scanned: scan ... -o dir/r.json
+                out.status, out.error = "skipped", "a JSON report of rkcheck, not a tableau file"
+                return out
             if not _is_tableau_document(data):
                 out.status, out.error = "skipped", "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"
                 return out

@@ -27,6 +27,12 @@ from rkcheck.numbers.grammar import MAX_BITS, int_of_digits, too_large
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
 
 
+def is_rkcheck_report(data: dict[str, Any]) -> bool:
+    """A JSON report rkcheck wrote (``verify``/``show --format json``): it has a
+    ``tableau`` and a ``method`` too, but is not a tableau file."""
+    return "schema" in data and "tableau" in data and "method" in data
+
+
 def ignored_keys(table: dict[str, Any], known: tuple[str, ...], name: str) -> list[str]:
     """Warnings for the keys of ``[name]`` that nothing reads.  A key that is a known one
     in another case (``B`` for ``b``) is refused: ignored, it would check another method

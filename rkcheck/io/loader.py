@@ -29,6 +29,7 @@ from rkcheck.io.documents import (
     BareFloat,
     detect_format,
     ignored_keys,
+    is_rkcheck_report,
     locate_lines,
     parse_document,
     read_text,
@@ -166,6 +167,9 @@ def _build(
     source: str,
     max_stages: int,
 ) -> "Tableau | Family":
+    if is_rkcheck_report(data):
+        raise UserError("this is a JSON report of rkcheck (`show`/`verify --format json`), not a tableau file; "
+                        "`rkcheck show FILE --format tableau-json` (or `toml`) writes one that reads back")
     data, warnings = _tables(data)
     name, info = _method_info(data, source)
     if "parameters" in data and info.claims:

@@ -568,3 +568,20 @@ def test_a_text_report_written_with_o_is_the_piped_one(tmp_path):
     written = out.read_text(encoding="utf-8")
     assert not any(line.endswith(" ") for line in written.splitlines())
     assert timeless(written) == timeless(piped)
+
+
+def test_rkcheck_reports_are_no_tableaux(tmp_path, capsys):
+    # a verify or show JSON report has [tableau] and [method] too: read back it is refused
+    # with the way to write a tableau file, and in a scanned folder it is skipped
+    folder = tmp_path / "methods"
+    folder.mkdir()
+    (folder / "rk4.toml").write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    for command in (["verify", "--order", "3"], ["show"]):
+        report = folder / f"{command[0]}.json"
+        report.write_text(run_cli(capsys, command[0], str(folder / "rk4.toml"), *command[1:], "--format", "json").out,
+                          encoding="utf-8")
+        refused = run_cli(capsys, "verify", str(report))
+        assert refused.code == 2 and "this is a JSON report of rkcheck" in refused.err and "--format tableau-json" in refused.err
+    doc = json.loads(run_cli(capsys, "scan", str(folder), "-j", "1", "--format", "json").out)
+    assert sorted((Path(f["file"]).name, f["status"]) for f in doc["files"]) == [
+        ("rk4.toml", "ok"), ("show.json", "skipped"), ("verify.json", "skipped")]
