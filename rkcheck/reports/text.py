@@ -345,6 +345,9 @@ def final_line(res: CheckResult) -> Text:
             f"{n} checked",
             style="bold green",
         )
+    if count == 0:  # order 1: the first energy condition has three vertices (order 2)
+        return Text(f"OK: no energy condition up to order {res.options.order} (the first is of order 2)",
+                    style="bold green")
     if v.state == HOLDS:
         return Text(f"OK: {every} {holds} exactly", style="bold green")
     return Text(f"OK to {v.digits} digits (not a proof): {every} {holds} to at least {v.digits} digits",

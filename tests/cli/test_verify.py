@@ -286,3 +286,10 @@ def test_the_verdict_is_one_line_when_piped_however_long(args):
     proc = subprocess.run([sys.executable, "-m", "rkcheck", *args], capture_output=True, text=True, env=env)
     last = proc.stdout.rstrip("\n").splitlines()[-1]
     assert last.startswith(("OK", "FAIL")) and last.endswith(")") and len(last) > 128
+
+
+def test_order_one_says_there_is_no_condition_not_all_zero_hold(capsys):
+    # by hand: a free tree of one or two vertices carries no energy condition, so order 1
+    # (trees of two vertices) has none
+    r = run_cli(capsys, "verify", "@heun", "--order", "1", "--degree", "none")
+    assert r.out.splitlines()[-1].endswith("OK: no energy condition up to order 1 (the first is of order 2))")

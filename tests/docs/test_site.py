@@ -101,3 +101,12 @@ def test_references_in_the_code_point_at_existing_docs(source):
         assert (DOCS / page).is_file(), f"{source.name}: no page docs/{page}"
         if anchor:
             assert anchor in {slug(h) for h in headings(DOCS / page)}, f"{source.name}: docs/{page}#{anchor}"
+
+
+def test_the_count_of_curated_files_is_the_library_s():
+    # README and file-format.md say how many files the six curated folders hold
+    folders = ("avf", "collocation", "hbvm", "explicit", "pseudo-energy-preserving", "counterexamples")
+    count = sum(len(list((REPO / "tableaux" / f).glob("*.toml"))) for f in folders)
+    for page in (REPO / "README.md", REPO / "docs" / "file-format.md"):
+        said = re.search(r"`tableaux/` holds (\d+) curated", page.read_text(encoding="utf-8"))
+        assert said is not None and int(said.group(1)) == count, page
