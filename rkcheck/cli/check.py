@@ -78,8 +78,10 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         # a family's polynomials are exact, its decimals at face value: the other check
         # options do not apply, and saying nothing would let them seem to
         unused = [f"--{name.replace('_', '-')}" for name in flag_values() if name not in ("degree", "order")]
-        family_report(file, flag_values("degree", "order"), "order", fmt, show_all, ignored=unused)
-        sys.exit(EXIT_OK)
+        conditions = family_report(file, flag_values("degree", "order"), "order", fmt, show_all, ignored=unused)
+        # a condition that is a nonzero constant fails for every member: the family fails
+        gate = (fail_on or config.fail_on or "auto") != "never"
+        sys.exit(EXIT_FAIL if gate and conditions.fails_everywhere is not None else EXIT_OK)
     if draw and fmt != "text":
         raise UserError(f"--draw draws in the text report, not in --format {fmt}")
     tab = load_input(file, max_stages, input_format)

@@ -20,7 +20,7 @@ from rkcheck.errors import UserError, not_applying
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,
-                  emit: str | None = None, output: str | None = None, ignored: list[str] | None = None) -> None:
+                  emit: str | None = None, output: str | None = None, ignored: list[str] | None = None) -> Any:
     """The conditions of a family as polynomials (``verify`` and ``conditions`` on a file
     with ``[parameters]``): ``flags`` holds the degree and order given on the command
     line; the file's ``[check]`` supplies the others; ``classical_order`` ``"order"``:
@@ -48,16 +48,17 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
         if emit not in FAMILY_LANGUAGES:
             raise UserError(f"--emit {emit}: a family's conditions are written in {', '.join(FAMILY_LANGUAGES)}")
         write_text(emit_family(result, emit), output)
-        return
+        return result
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
         from rkcheck.reports.jsondoc import dumps
 
         click.echo(dumps(conditions_doc(result)))
-        return
+        return result
     from rkcheck.reports.families import render_conditions
 
-    render_conditions(result, stdout_console(), show_all=show_all or settings().verbose)
+    render_conditions(result, stdout_console(), show_all=show_all or settings().verbose, quiet=settings().quiet)
+    return result
 
 
 @click.command(epilog=exit_codes(usage="a bad file, option, equation, or a limit reached (one line on stderr)"))

@@ -176,6 +176,12 @@ class FamilyConditions:
         return self.energy_order_all or any(c.degree == 0 for c in self.exceptional)
 
     @property
+    def fails_everywhere(self) -> Any:
+        """The first energy condition that is a nonzero constant — it fails for every
+        parameter value, so no member reaches its order — or None."""
+        return next((c for c in self.exceptional if c.degree == 0 and not c.vanishes), None)
+
+    @property
     def classical_order(self) -> int | None:
         """The classical order for generic parameter values (None: not computed)."""
         if self.classical is None or self.classical_order_checked is None:

@@ -67,6 +67,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "energy_order_generic": fc.energy_order,
         "energy_order_everywhere": fc.energy_order_everywhere,
         "energy_order_all": fc.energy_order_all,
+        "fails_everywhere": None if fc.fails_everywhere is None else fc.fails_everywhere.id,
         "exceptional": [c.id for c in fc.exceptional],
         "classical_order_generic": fc.classical_order,
         "quadrature_order_generic": fc.quadrature_order,
@@ -76,7 +77,28 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
     }
 
 
-def render_conditions(fc: Any, console: Console, show_all: bool = False) -> None:
+def render_conditions(fc: Any, console: Console, show_all: bool = False, quiet: bool = False) -> None:
+    """The family's conditions (``quiet``: its last line only)."""
+    if not quiet:
+        _conditions_text(fc, console, show_all)
+    console.print(family_verdict_line(fc), soft_wrap=True)
+
+
+def family_verdict_line(fc: Any) -> Text:
+    """FAIL when a condition is a nonzero constant (no member reaches its order), else
+    what the conditions leave to ``solve``."""
+    first = fc.fails_everywhere
+    if first is not None:
+        return Text(f"FAIL: condition {first.id} of order {first.order} is a nonzero constant: no parameter value "
+                    f"gives energy order {first.order}", style="bold red")
+    if not fc.exceptional or fc.energy_order_all:
+        return Text(f"OK: every condition up to order {fc.order} vanishes for every parameter value",
+                    style="bold green")
+    return Text(f"OK: energy order {fc.energy_order} for every parameter value, more where the first conditions "
+                f"of order {fc.exceptional[0].order} vanish (rkcheck solve finds where)", style="bold green")
+
+
+def _conditions_text(fc: Any, console: Console, show_all: bool) -> None:
     fam = fc.family
     field = fam.ring.field
     deg = "none" if fc.degree is None else fc.degree

@@ -310,3 +310,21 @@ def test_conditions_of_a_family_reads_its_check_order_as_verify_does(capsys):
     r = run_cli(capsys, "conditions", path, "--emit", "python", "--format", "json")
     assert r.code == 2 and "--format json and --emit do not go together" in r.err
     assert "Missing option '--order'" in run_cli(capsys, "conditions", "--degree", "3").err
+
+
+def test_a_family_whose_condition_is_a_nonzero_constant_fails(tmp_path, capsys):
+    # every member is the midpoint rule (a = 1/2, b = 1 whatever p): its condition [τ³]
+    # is a nonzero constant, so no value of p gives energy order 3 — the tableau engine,
+    # on the midpoint rule itself, finds that condition failing (below)
+    path = tmp_path / "f.toml"
+    path.write_text('[parameters]\np = "free"\n[tableau]\nA = [["1/2 + 0*p"]]\nb = ["1"]\n', encoding="utf-8")
+    quiet = run_cli(capsys, "verify", str(path), "-q")
+    assert quiet.code == 1 and quiet.out.strip().splitlines() == [
+        "FAIL: condition 1,2,2,2 of order 3 is a nonzero constant: no parameter value gives energy order 3"]
+    assert run_cli(capsys, "verify", str(path), "--fail-on", "never").code == 0
+    doc = json.loads(run_cli(capsys, "verify", str(path), "--format", "json").out)
+    assert doc["fails_everywhere"] == "1,2,2,2"
+    midpoint = rkcheck.verify(rkcheck.from_arrays([["1/2"]], ["1"]), degree=None, order=3)
+    assert midpoint.energy_order == 2 and midpoint.failures[0].id == "1,2,2,2"  # the member, checked as a tableau
+    free = FAMILIES / "theorem1-s2-m3.toml"  # its conditions are polynomials that vanish somewhere
+    assert run_cli(capsys, "verify", str(free), "-q").code == 0
