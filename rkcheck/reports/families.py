@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from rich.console import Console
@@ -154,7 +155,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
     field = family.ring.field
 
     def value(v: Any) -> dict[str, Any] | str:
-        return v.text
+        return value_text(v, result.variables)
 
     return {
         "rkcheck": __version__,
@@ -247,9 +248,17 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
     _render_points(sols, console)
 
 
+def value_text(v: Any, parameters: Any) -> str:
+    """A solution's value as text; the imaginary unit ``i`` is written ``sqrt(-1)`` when a
+    parameter is called i, which would read as that parameter."""
+    if "i" not in parameters:
+        return str(v.text)
+    return re.sub(r"(?<![\w.])i(?![\w(])", "sqrt(-1)", v.text)
+
+
 def _render_points(sols: list[Any], console: Console) -> None:
     for k, s in enumerate(sols, start=1):
-        values = ", ".join(f"{name} = {v.text}" for name, v in s.values.items())
+        values = ", ".join(f"{name} = {value_text(v, s.values)}" for name, v in s.values.items())
         console.print(f"  {k}. {values}{'' if s.real else '  (not real)'}")
 
 

@@ -328,3 +328,25 @@ def test_a_family_whose_condition_is_a_nonzero_constant_fails(tmp_path, capsys):
     assert midpoint.energy_order == 2 and midpoint.failures[0].id == "1,2,2,2"  # the member, checked as a tableau
     free = FAMILIES / "theorem1-s2-m3.toml"  # its conditions are polynomials that vanish somewhere
     assert run_cli(capsys, "verify", str(free), "-q").code == 0
+
+
+def test_a_parameter_named_i_is_not_confused_with_the_imaginary_unit(tmp_path, capsys):
+    # two stages, weights (2, −1), A free with a11 called i: the solutions are complex; their
+    # values, read back by sympy with sqrt(-1) as the unit, are AVF over a rule exact to
+    # degree 2 (A = c bᵀ, Σ b c^(k−1) = 1/k for k ≤ 3) — which they could not be were the
+    # unit read as the parameter
+    sympy = pytest.importorskip("sympy")
+    path = tmp_path / "fi.toml"
+    path.write_text('[parameters]\ni = "free"\na12 = "free"\na21 = "free"\na22 = "free"\n[tableau]\n'
+                    'A = [["i", "a12"], ["a21", "a22"]]\nb = ["2", "-1"]\n', encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "solve", str(path), "--degree", "3", "--order", "5", "--format", "json").out)
+    assert doc["solutions"]
+    for s in doc["solutions"]:
+        assert not any(re.search(r"(?<![\w.])i(?![\w(])", t) for t in s["values"].values())
+        v = {k: sympy.sympify(t) for k, t in s["values"].items()}
+        A = sympy.Matrix([[v["i"], v["a12"]], [v["a21"], v["a22"]]])
+        b = sympy.Matrix([2, -1])
+        c = A * sympy.Matrix([1, 1])
+        assert sympy.simplify(A - c * b.T) == sympy.zeros(2, 2)
+        assert all(sympy.simplify(sum(b[j] * c[j] ** (k - 1) for j in range(2)) - sympy.Rational(1, k)) == 0
+                   for k in (1, 2, 3))
