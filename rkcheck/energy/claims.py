@@ -89,7 +89,10 @@ def judge(claim: Claim, result: CheckResult) -> ClaimResult:
 
             r = classical_order(result.values, int(claim.value) + 1)
         found = r.to_digits
-        if claim.kind == "classical_order" and r.first_failure is None:
+        # nothing failed: at least this order, maybe more — a classical order checked no
+        # further, or a kernel's rule, whose order has no bound (a tableau's s nodes stop at 2s)
+        unbounded = claim.kind == "classical_order" or result.tableau.info.continuous is not None
+        if unbounded and r.first_failure is None:
             return ClaimResult(claim, False, f"≥ {_reach(found, r.digits)}", f"checked to order {r.checked} only")
         return _to_digits(claim, found == claim.value, str(found), r.order, r.digits)
     if claim.kind == "avf":

@@ -147,3 +147,13 @@ def test_a_method_refused_for_its_content_raises_a_tableau_error(make):
     # docs/api.md and docs/continuous.md: what cannot be built from its content is a TableauError
     with pytest.raises(rkcheck.TableauError):
         make()
+
+
+def test_a_kernels_quadrature_order_claim_reads_at_least_what_was_checked(tmp_path):
+    # AVF's rule (B = 1, C(τ) = τ) integrates every polynomial: ∫ τ^(k−1) dτ = 1/k for all
+    # k, so its quadrature order has no bound and the check can only say "≥"
+    path = tmp_path / "avf.toml"
+    path.write_text('[continuous]\nA = "tau"\n[expect]\nquadrature_order = 7\n', encoding="utf-8")
+    doc = json.loads(run_subprocess("verify", str(path), "--order", "6", "--format", "json").out)
+    claim = doc["claims"][0]
+    assert claim["found"].startswith("≥ ") and int(claim["found"][2:]) > 7 and not claim["met"]
