@@ -13,7 +13,7 @@ from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.io.documents import ignored_keys
-from rkcheck.methods.continuous import ContinuousMethod, _unalias
+from rkcheck.methods.continuous import ContinuousMethod, _unalias, with_written_columns
 from rkcheck.methods.tableau import MethodInfo
 
 KEYS = ("A", "b", "M")
@@ -47,7 +47,10 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
         return ContinuousMethod.from_matrix(table["M"], name=name, info=info)
     if "A" not in table:
         raise UserError('missing A (the kernel A(τ, σ), e.g. A = "tau") or M', "continuous")
-    return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)
+    try:
+        return ContinuousMethod(_text(table["A"], "continuous.A"), _text(table.get("b", "1"), "continuous.b"), name, info)
+    except UserError as err:
+        raise with_written_columns(err, {"continuous.A": str(table["A"]), "continuous.b": str(table.get("b", "1"))}) from None
 
 
 def build_kernel_family(table: Any, name: str, info: MethodInfo, parameters_table: dict[str, Any],

@@ -57,6 +57,26 @@ def _unalias(text: str) -> str:
     return text
 
 
+def with_written_columns(err: UserError, written: dict[str, str]) -> UserError:
+    """``err`` with its ``column N`` counted in the entry as written, where τ and σ are one
+    character each (the parser saw ``tau`` and ``sigma``); ``written`` maps places
+    (``continuous.A``) to the texts as written."""
+    text = written.get(err.place or "")
+    if text is None or not any(greek in text for greek in ALIASES):
+        return err
+    columns: list[int] = []  # the written column of each character the parser saw
+    for column, ch in enumerate(text, start=1):
+        columns += [column] * len(ALIASES.get(ch, ch))
+
+    def written_column(m: re.Match[str]) -> str:
+        k = int(m.group(1))
+        return f"column {columns[k - 1] if 0 < k <= len(columns) else k}"
+
+    copy = UserError.__new__(type(err))
+    UserError.__init__(copy, re.sub(r"column (\d+)", written_column, err.message), err.place, err.source)
+    return copy
+
+
 #: the Miyatake–Butcher matrix has at most this many rows and columns
 MAX_KERNEL_MATRIX = 40
 
@@ -134,7 +154,10 @@ class ContinuousMethod:
             except UserError as err:
                 raise err.located(f"constants.{key}") from None
         consts = Constants(defs)
-        return ContinuousMethod(_unalias(A), _unalias(b), name, MethodInfo(source=name, constants=consts))
+        try:
+            return ContinuousMethod(_unalias(A), _unalias(b), name, MethodInfo(source=name, constants=consts))
+        except UserError as err:
+            raise with_written_columns(err, {"continuous.A": A, "continuous.b": b}) from None
 
     @staticmethod
     def from_matrix(M: Sequence[Sequence[Any]], *, name: str = "continuous-stage method",

@@ -293,3 +293,15 @@ def test_a_matrix_decimal_follows_the_decimals_rule_as_in_the_kernel(tmp_path, M
     assert states(matrix) == reference
     assert states(matrix, "--decimals", "exact") == states(exact)
     assert {s for _, s in states(exact)[0]} == {"holds"}
+
+
+@pytest.mark.parametrize("written, column", [("σ*σ*σ + 1/0", 10), ("τ + σ*)", 7), ("tau + sigma*)", 13)])
+def test_an_error_column_counts_the_kernel_as_written(tmp_path, written, column):
+    # τ and σ are one character each where the user wrote them (counted by hand above: the
+    # '/' of 1/0 and the stray ')'), whatever the parser reads them as
+    path = tmp_path / "k.toml"
+    path.write_text(f'[continuous]\nA = "{written}"\n', encoding="utf-8")
+    with pytest.raises(rkcheck.TableauError, match=rf"continuous\.A: .* at column {column}$"):
+        rkcheck.load(str(path))
+    with pytest.raises(rkcheck.TableauError, match=rf"at column {column}$"):
+        ContinuousMethod.from_kernel(written)
