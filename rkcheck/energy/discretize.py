@@ -25,6 +25,7 @@ from rkcheck.methods.continuous import ContinuousMethod
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry
+from rkcheck.numbers.reading import DecimalsMode
 
 #: rule names: gauss-k, radau-i-k, radau-ii-k, lobatto-k, newton-cotes-k
 RULE_PATTERN = re.compile(r"(gauss|radau-i|radau-ii|lobatto|newton-cotes)-(\d+)")
@@ -85,7 +86,7 @@ def _rule_texts(spec: Any) -> tuple[list[str], list[str], dict[str, str], int, s
 def _tableau_rule(tab: Any) -> tuple[list[str], list[str], dict[str, str], int, str]:
     """The rule (b, c) of a tableau (c = A·1 when it gives none)."""
     from rkcheck.evaluation.values import TableauValues
-    from rkcheck.numbers.reading import DecimalsMode, Reading
+    from rkcheck.numbers.reading import Reading
     from rkcheck.properties import scalars as sc
     from rkcheck.properties.orders import quadrature_order
 
@@ -145,6 +146,9 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
         kept, reason = None, "the kernel is constant in τ: energy is preserved for every degree"
     else:
         kept, reason = None, f"{facts.certificate.reason}: no degree is guaranteed"
+    if method.is_box(DecimalsMode.AUTO):  # the rule's entries fold the decimals into exact numbers
+        reason += (f"; the kernel's decimals (as few as {method.rounded_digits} significant digits) are taken at "
+                   "face value: the tableau is exact, the centre of the box they stand for")
     return Discretisation(consts, A, b, c_out, name, order, kept, reason)
 
 

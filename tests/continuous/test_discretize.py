@@ -153,3 +153,17 @@ def test_a_rule_from_a_file_is_its_b_and_c_even_where_c_is_not_the_row_sums(tmp_
     tab = rkcheck.loads(text)
     assert rkcheck.verify(tab, degree=q, order=6).all_hold  # the claim the file writes holds
     assert not rkcheck.verify(tab, degree=q + 1, order=6).all_hold
+
+
+def test_a_kernel_of_rounded_decimals_is_written_at_face_value_and_says_so(tmp_path):
+    # κ = 2.99999999 stands for an interval (9 digits, definitions §5); the written tableau
+    # is exact — its entries at κ's face value — and the note says so
+    kernel = tmp_path / "k.toml"
+    kernel.write_text('[continuous]\nA = "tau + 2.99999999*(tau^2 - tau)*(2*sigma - 1)"\n', encoding="utf-8")
+    text, note = rkcheck.discretize(str(kernel), "gauss-3")
+    assert "taken at face value" in note and "9 significant digits" in note
+    written = rkcheck.loads(text)
+    assert not written.is_box("auto")
+    exact = tmp_path / "e.toml"
+    exact.write_text('[continuous]\nA = "tau + 3*(tau^2 - tau)*(2*sigma - 1)"\n', encoding="utf-8")
+    assert "face value" not in rkcheck.discretize(str(exact), "gauss-3")[1]
