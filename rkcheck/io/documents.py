@@ -25,6 +25,7 @@ from rkcheck.numbers.grammar import MAX_BITS, int_of_digits, too_large
 
 #: the tables a tableau file may have
 KNOWN_TABLES = ("method", "constants", "parameters", "tableau", "check", "expect", "family", "continuous")
+SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 
 
 def is_rkcheck_report(data: dict[str, Any]) -> bool:
@@ -166,7 +167,11 @@ def detect_format(path: str, text: str) -> str:
 
 
 def parse_document(text: str, fmt: str) -> dict[str, Any]:
-    """TOML or JSON text -> dict, syntax errors as UserError with their line."""
+    """TOML or JSON text -> dict, syntax errors as UserError with their line.  An empty
+    file is one error in either format (a scan does not pass over it: it is a tableau file
+    left empty, not some other document)."""
+    if not text.strip():
+        raise UserError(f"the file is empty; the smallest tableau file is {SMALLEST_FILE}")
     if fmt == "json":
         import json  # TOML files (the usual input) do not need it: start-up
     try:

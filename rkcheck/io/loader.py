@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from rkcheck.errors import UserError
 from rkcheck.io.documents import (
     KNOWN_TABLES,
+    SMALLEST_FILE,
     BareFloat,
     detect_format,
     ignored_keys,
@@ -54,7 +55,6 @@ from rkcheck.options import (
 )
 
 #: the smallest valid tableau file, shown when a file has no tableau at all
-SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b": [1]} (JSON)'
 SHORT_FORM_KEYS = ("A", "b", "c")
 
 #: the tables that each define a whole method: a file gives one of them

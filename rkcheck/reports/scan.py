@@ -466,11 +466,12 @@ def _print_notes(outcomes: list[dict[str, Any]], shown, verbose: bool, console, 
     """Below the table: each error and failure, and with ``verbose`` the warnings."""
     from rich.text import Text
 
-    for o in outcomes:
+    for o in outcomes:  # each note one line however long, for grep
         if o["status"] == "error":
-            console.print(Text(f"error: {o['error']}", style="red"))
+            console.print(Text(f"error: {o['error']}", style="red"), soft_wrap=True)
         elif o["status"] == "failed":
-            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o, fail_on)}", style="red"))
+            console.print(Text(f"failed: {shown(o['path'])}: {failure_message(o, fail_on)}", style="red"),
+                          soft_wrap=True)
         if verbose:
             for w in (o.get("result") or {}).get("warnings", []):
                 console.print(Text(f"warning: {shown(o['path'])}: {w}", style="yellow"))

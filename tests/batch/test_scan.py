@@ -541,8 +541,17 @@ def test_a_misspelt_table_is_an_error_and_a_scan_that_checks_nothing_does_not_pa
     rows = {Path(f["file"]).name: f for f in json.loads(r.out)["files"]}
     assert r.code == 1 and rows["typo.toml"]["status"] == "error"
     assert "unknown table [tabelau] (did you mean [tableau]?)" in rows["typo.toml"]["error"]
-    assert rows["other.json"]["status"] == rows["empty.toml"]["status"] == "skipped"
-    (tmp_path / "typo.toml").unlink()
+    assert rows["other.json"]["status"] == "skipped"
+    # an empty file is a tableau file left empty, in TOML as in JSON: an error, not passed over
+    assert rows["empty.toml"]["status"] == "error" and rows["empty.toml"]["error"].endswith(
+        "empty.toml: the file is empty; the smallest tableau file is [tableau] A = [[\"1/2\"]] b = [1]  (TOML), "
+        "or {\"A\": [[\"1/2\"]], \"b\": [1]} (JSON)")
+    (tmp_path / "empty.json").write_text("  \n", encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "scan", str(tmp_path), "--jobs", "1", "--format", "json").out)
+    assert {Path(f["file"]).name: f["status"] for f in doc["files"]}["empty.json"] == "error"
+    for name in ("typo.toml", "empty.toml", "empty.json"):
+        (tmp_path / name).unlink()
+    (tmp_path / "more.toml").write_text("[tool.other]\nx = 1\n", encoding="utf-8")
     r = run_cli(capsys, "scan", str(tmp_path), "--jobs", "1")
     assert r.code == 2 and "none of the 2 files found is a tableau" in r.err
     assert run_cli(capsys, "scan", str(tmp_path), "--jobs", "1", "--allow-empty").code == 0
