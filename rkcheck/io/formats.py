@@ -473,8 +473,8 @@ def _first_entry_calling(tab: Tableau, func: str) -> str | None:
         return bool(xp.fold(node, lambda n, kids: any(kids) or (isinstance(n, ex.Call) and n.func == func)
                             or (isinstance(n, ex.Name) and n.name in constants and calls(constants[n.name]))))
 
-    return next((place for place, e in zip(tab.entry_places(), tab.entries())
-                 if getattr(e, "node", None) is not None and calls(e.node)), None)
+    nodes = ((place, getattr(e, "node", None)) for place, e in zip(tab.entry_places(), tab.entries()))
+    return next((place for place, node in nodes if node is not None and calls(node)), None)
 
 
 def _deepest_entry(tab: Tableau) -> str | None:
