@@ -16,7 +16,8 @@ from typing import Any
 
 from rkcheck.numbers.groebner import Terms, dimension, groebner, leading_monomial
 
-#: At most this many pieces (splitting stops there; the pieces left are reported unsplit).
+#: At most this many pieces: a split that would make more is not made, and the piece it
+#: would have split is reported whole (``Piece.whole``), possibly a union of several.
 MAX_PIECES = 32
 
 
@@ -26,6 +27,7 @@ class Piece:
 
     basis: list[dict[tuple[int, ...], int]]
     dimension: int
+    whole: bool = False  # left unsplit at MAX_PIECES: it may be a union of several
 
 
 def _key(basis: list[Terms]) -> tuple[Any, ...]:
@@ -50,15 +52,15 @@ def split(basis: list[Terms], names: tuple[str, ...], deadline: float) -> list[P
     done: dict[tuple[Any, ...], Piece] = {}
     while todo:
         G = todo.pop()
-        if len(done) + len(todo) >= MAX_PIECES:
-            done.setdefault(_key(G), Piece(G, _dimension(G, names)))
-            continue
         for g in G:
             found = _factors(g, names)
             if found is not None:
                 break
         else:
             done.setdefault(_key(G), Piece(G, _dimension(G, names)))
+            continue
+        if len(done) + len(todo) + len(found) > MAX_PIECES:  # splitting G would pass the limit
+            done.setdefault(_key(G), Piece(G, _dimension(G, names), whole=True))
             continue
         for f in found:
             H = groebner(G + [f], names, "degrevlex", deadline)

@@ -236,6 +236,11 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
         if result.components and len(result.components) > 1:
             console.print(f"split along factors into {len(result.components)} pieces (each solution lies in one; "
                           "a piece is not proven irreducible):")
+            if any(p.whole for p in result.pieces or []):
+                from rkcheck.numbers.decompose import MAX_PIECES
+
+                console.print(f"  splitting stopped at MAX_PIECES = {MAX_PIECES}: a piece marked whole may be a "
+                              "union of several")
             _render_pieces(result, console, field, _avf_form(family))
         elif result.components:
             form = _avf_form(family)
@@ -296,6 +301,7 @@ def _avf_form(family: Any) -> str:
 def _render_pieces(result: Any, console: Console, field: Any, form: str) -> None:
     for k, c in enumerate(result.components, start=1):
         avf = {True: f", {form} (AVF)", False: f", not {form}", None: ""}[c.avf]
-        console.print(f"  piece {k}: dimension {c.dimension}{avf}")
+        whole = " (whole: not split further)" if result.pieces and result.pieces[k - 1].whole else ""
+        console.print(f"  piece {k}: dimension {c.dimension}{avf}{whole}")
         for e in c.equations:
             console.print(f"    {e if isinstance(e, str) else polynomial_text(e, field)} = 0")

@@ -350,3 +350,16 @@ def test_a_parameter_named_i_is_not_confused_with_the_imaginary_unit(tmp_path, c
         assert sympy.simplify(A - c * b.T) == sympy.zeros(2, 2)
         assert all(sympy.simplify(sum(b[j] * c[j] ** (k - 1) for j in range(2)) - sympy.Rational(1, k)) == 0
                    for k in (1, 2, 3))
+
+
+@pytest.mark.parametrize("limit", [3, 32])
+def test_the_pieces_of_a_solution_set_never_pass_max_pieces(monkeypatch, limit):
+    # every 2-stage method with energy order 5 for cubic H: a set of dimension 4 whose
+    # basis factors again and again (34 pieces when splitting ran past the limit)
+    import rkcheck.numbers.decompose as decompose
+
+    monkeypatch.setattr(decompose, "MAX_PIECES", limit)
+    family = rkcheck.load_family(str(FAMILIES / "design-s2-m3.toml"))
+    result = rkcheck.solve(family, degree=3, order=5, route="plain")
+    assert result.dimension == 4 and 1 < len(result.pieces) <= limit
+    assert any(p.whole for p in result.pieces)
