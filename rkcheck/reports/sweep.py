@@ -10,6 +10,7 @@ from typing import Any
 from rich.console import Console
 from rich.text import Text
 
+from rkcheck.numbers.formatting import counted
 from rkcheck.reports.families import FAMILY_SCHEMA
 from rkcheck.version import __version__
 
@@ -41,7 +42,7 @@ def sweep_doc(sw: Any) -> dict[str, Any]:
 
 def render_sweep(sw: Any, console: Console) -> None:
     deg = "none" if sw.degree is None else sw.degree
-    console.print(Text(f"{sw.family.name}: energy order over {len(sw.orders)} grid points "
+    console.print(Text(f"{sw.family.name}: energy order over {counted(len(sw.orders), 'grid point')} "
                        f"(degree m = {deg}, checked to order {sw.order}; exact at every point)", style="bold"))
     # an order that reaches the one checked is a lower bound: every condition checked held
     label = lambda o: f"≥ {o}" if o >= sw.order else str(o)  # noqa: E731
