@@ -27,9 +27,11 @@ a kernel with rounded decimals — proves the property false.  When every tree u
 
 from __future__ import annotations
 
+import functools
+from contextlib import contextmanager
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 from rkcheck.energy.kernel_box import Poly, interval_poly
 from rkcheck.numbers.formatting import exact_string, short
@@ -49,7 +51,7 @@ SERIES_VERTICES = 10
 #: functions of high degree, and the search stops at the trees it could afford.
 SERIES_WORK = 4_000_000
 
-#: Bits kept of an interval coefficient's end points (points stay exact).
+#: Bits of the Arb balls of a kernel that is not exact (roots, or a box of decimals).
 SERIES_BITS = 256
 
 Tree = tuple[int, ...]
@@ -83,13 +85,18 @@ def rooted_trees(max_vertices: int) -> list[Tree]:
 
 class Kernel:
     """``A(τ, σ) = Σ A[i][j] τ^i σ^j`` and ``B(τ) = Σ B[i] τ^i`` over one arithmetic:
-    exact rationals (python-flint) where every coefficient is a point, else intervals
-    (roots enclosed, or a box of decimals).  Everything the searches need is linear in
-    moments ``m_j(g) = ∫₀¹ σ^j g(σ) dσ``: ``∫ A(τ, σ) g(σ) dσ = Σ_i τ^i Σ_j A[i][j]
+    exact rationals where every coefficient is a point, else Arb balls of
+    :data:`SERIES_BITS` bits that contain the coefficients' intervals (roots enclosed, or
+    a box of decimals) — python-flint either way.  Everything the searches need is linear
+    in moments ``m_j(g) = ∫₀¹ σ^j g(σ) dσ``: ``∫ A(τ, σ) g(σ) dσ = Σ_i τ^i Σ_j A[i][j]
     m_j(g)``, ``a(t) = Σ_i B[i] m_i(G_t)``."""
 
     def __init__(self, A: Poly, B: Poly, work: int = SERIES_WORK):
+        import flint
+
         self.exact = all(c.is_point for c in [*A.values(), *B.values()])
+        self.scalar: Any = flint.fmpq if self.exact else flint.arb
+        self.poly: Any = flint.fmpq_poly if self.exact else flint.arb_poly
         p = 1 + max((i for i, _ in [*A, *B]), default=0)
         q = 1 + max((j for _, j in A), default=0)
         self.A = [[self._number(A.get((i, j))) for j in range(q)] for i in range(p)]
@@ -97,21 +104,16 @@ class Kernel:
         self.left = work
 
     def _number(self, c: Interval | None) -> Any:
+        import flint
+
         if c is None:
             return self.zero
-        if self.exact:
-            import flint
-
-            return flint.fmpq(c.lo.numerator, c.lo.denominator)
-        return c
+        lo, hi = (flint.fmpq(x.numerator, x.denominator) for x in (c.lo, c.hi))
+        return lo if self.exact else flint.arb(lo).union(flint.arb(hi))  # a ball around [lo, hi]
 
     @property
     def zero(self) -> Any:
-        if self.exact:
-            import flint
-
-            return flint.fmpq(0)
-        return Interval.point(0)
+        return self.scalar(0)
 
     def spend(self, work: int) -> None:
         self.left -= work
@@ -121,15 +123,7 @@ class Kernel:
     def mul(self, f: list[Any], g: list[Any]) -> list[Any]:
         """The product of two polynomials in τ (coefficient lists)."""
         self.spend(len(f) * len(g))
-        if self.exact:
-            import flint
-
-            return list((flint.fmpq_poly(f) * flint.fmpq_poly(g)).coeffs())
-        out = [Interval.point(0)] * (len(f) + len(g) - 1)
-        for i, a in enumerate(f):
-            for j, b in enumerate(g):
-                out[i + j] = out[i + j] + a * b
-        return [c.round_out(SERIES_BITS) for c in out]
+        return list((self.poly(f) * self.poly(g)).coeffs())
 
     def moments(self, g: list[Any], n: int) -> list[Any]:
         """``m_j(g)`` for j < n."""
@@ -138,16 +132,12 @@ class Kernel:
         for j in range(n):
             total = self.zero
             for k, c in enumerate(g):
-                total = total + c * self._reciprocal(j + k + 1)
+                total += c * self.reciprocal(j + k + 1)
             out.append(total)
         return out
 
-    def _reciprocal(self, n: int) -> Any:
-        if self.exact:
-            import flint
-
-            return flint.fmpq(1, n)
-        return Interval.point(Fraction(1, n))
+    def reciprocal(self, n: int) -> Any:
+        return self.scalar(1) / n
 
     def apply(self, g: list[Any]) -> list[Any]:
         """``∫₀¹ A(τ, σ) g(σ) dσ`` as a polynomial in τ."""
@@ -158,22 +148,45 @@ class Kernel:
         return sum((b * x for b, x in zip(self.B, self.moments(g, len(self.B)))), self.zero)
 
     def nonzero(self, x: Any) -> bool:
-        return x != 0 if self.exact else not x.contains_zero()
+        return bool(x != 0) if self.exact else not x.contains(0)
 
     def text(self, x: Any) -> str:
         if self.exact:
             return exact_string(Fraction(int(x.p), int(x.q)))
-        return exact_string(x.lo) if x.is_point else f"≈ {short(x.mid)}"
+        return f"≈ {short(Fraction(float(x.mid())))}"
 
     def adjoint(self) -> "Kernel":
         """The adjoint kernel ``(B(σ) − A(τ, σ), B(τ))`` in the same arithmetic."""
         other = object.__new__(Kernel)
-        other.exact, other.left = self.exact, self.left
+        other.exact, other.left, other.scalar, other.poly = self.exact, self.left, self.scalar, self.poly
         q = max(len(self.A[0]), len(self.B))
         rows = [[-a for a in row] + [self.zero] * (q - len(row)) for row in self.A]
         rows[0] = [b + x for b, x in zip([*self.B, *[self.zero] * (q - len(self.B))], rows[0])]
         other.A, other.B = rows, list(self.B)
         return other
+
+
+@contextmanager
+def _precision() -> Iterator[None]:
+    """Arb balls at :data:`SERIES_BITS` bits while a search runs (python-flint's
+    precision is one global setting: restored after)."""
+    import flint
+
+    saved = flint.ctx.prec
+    flint.ctx.prec = SERIES_BITS
+    try:
+        yield
+    finally:
+        flint.ctx.prec = saved
+
+
+def _searched(search: Callable[..., SeriesAnswer]) -> Callable[..., SeriesAnswer]:
+    @functools.wraps(search)
+    def run(*args: Any, **kwargs: Any) -> SeriesAnswer:
+        with _precision():
+            return search(*args, **kwargs)
+
+    return run
 
 
 class _Stages:
@@ -186,7 +199,7 @@ class _Stages:
 
     def __call__(self, t: Tree) -> list[Any]:
         if t not in self.G:
-            g = [self.kernel._reciprocal(1)]
+            g = [self.kernel.reciprocal(1)]
             for child in children_of_level_sequence(t):
                 if child not in self._applied:
                     self._applied[child] = self.kernel.apply(self(child))
@@ -217,6 +230,7 @@ def _first(trees: list[Tree], differs: Callable[[Tree], str | None], vertices: i
     return SeriesAnswer(None, vertices)
 
 
+@_searched
 def symmetric_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
     """A rooted tree whose weight differs from the adjoint kernel's, if one of at most
     ``vertices`` vertices does."""
@@ -232,6 +246,7 @@ def symmetric_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> Seri
     return _first(rooted_trees(vertices), differs, vertices)
 
 
+@_searched
 def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
     """Rooted trees u, v (|u| + |v| at most ``vertices``) with a(u∘v) + a(v∘u) ≠ a(u)a(v):
     ``m(G_u)ᵀ M m(G_v)`` with ``M[i][j]`` the coefficients of ``B(τ)A(τ,σ) + B(σ)A(σ,τ) −
@@ -278,6 +293,7 @@ def _distinct(stages: _Stages, trees: list[Tree]) -> list[Tree]:
     return list(found.values())
 
 
+@_searched
 def avf_witness(A: Poly, B: Poly, degree: int | None, vertices: int = SERIES_VERTICES) -> SeriesAnswer:
     """A rooted tree (each vertex with at most m − 1 children) whose weight is not AVF's."""
     kernel = Kernel(A, B)
@@ -287,7 +303,7 @@ def avf_witness(A: Poly, B: Poly, degree: int | None, vertices: int = SERIES_VER
     def avf_weight(t: Tree) -> Any:
         if t not in avf:
             kids = children_of_level_sequence(t)
-            w = kernel._reciprocal(len(kids) + 1)
+            w = kernel.reciprocal(len(kids) + 1)
             for child in kids:
                 w = w * avf_weight(child)
             avf[t] = w

@@ -157,3 +157,11 @@ def test_a_kernels_quadrature_order_claim_reads_at_least_what_was_checked(tmp_pa
     doc = json.loads(run_subprocess("verify", str(path), "--order", "6", "--format", "json").out)
     claim = doc["claims"][0]
     assert claim["found"].startswith("≥ ") and int(claim["found"][2:]) > 7 and not claim["met"]
+
+
+def test_an_irrational_kernel_is_searched_in_certified_balls():
+    # A = √2·τ: a([τ]) = ∫√2·τ dτ = √2/2 (by hand), not AVF's 1/2 — found in Arb balls
+    res = verify("sqrt(2)*tau", "1", degree=None, order=4)
+    assert res.avf.verdict.state == "fails"
+    shown = res.avf.reason.split("[τ] is not AVF's (≈ ")[1].split(" ")[0]
+    assert abs(float(shown) - 2 ** 0.5 / 2) < 1e-5
