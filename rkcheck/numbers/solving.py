@@ -356,6 +356,10 @@ def _squarefree_part(D: Fraction) -> tuple[int, Fraction]:
     return sign * small * num, Fraction(square, D.denominator)
 
 
+#: Bits of the roots an approximate value (``≈``, ten digits) is read from.
+APPROX_BITS = 128
+
+
 def _closed_form(P: Fraction, Q: Fraction, d: int) -> str:
     if Q == 0 or d == 1:
         return _frac_text(P + (Q if d == 1 else 0))
@@ -455,13 +459,19 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
     # which root of P the coordinate is, by enclosures: its value at a complex root of ψ
     # is a ball whose imaginary part straddles 0 even when it is real, so P's own root
     # (real exactly where it is real) is what the closed form is read from
-    found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
+    from flint import ctx
+
+    with ctx.workprec(APPROX_BITS):  # P's roots, tight enough that every digit shown is right
+        found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
     roots = [r for r, _ in found]
     j = next(i for i, r in enumerate(roots) if r.overlaps(value))
     if len(P) == 3:
         return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), roots[j], j)
     real = roots[j].imag == 0
-    approx = complex(_float(value.real.mid()), _float(value.imag.mid()))
+    # from P's own root, not from the coordinate's value at ψ's root: that ball is as wide
+    # as ψ's root isolation (±1e-5 in a field of degree 12), and its midpoint's tenth
+    # digit would be shown as if it were known
+    approx = complex(_float(roots[j].real.mid()), _float(roots[j].imag.mid()))
     kind = "" if real else "complex "
     imag = "" if real else f" {'+' if approx.imag >= 0 else '-'} {abs(approx.imag):.10g}i"
     # the polynomial in the coordinate's own name: with several parameters, an x would

@@ -363,3 +363,64 @@ def test_the_pieces_of_a_solution_set_never_pass_max_pieces(monkeypatch, limit):
     result = rkcheck.solve(family, degree=3, order=5, route="plain")
     assert result.dimension == 4 and 1 < len(result.pieces) <= limit
     assert any(p.whole for p in result.pieces)
+
+
+CUBIC_FIELD = """[parameters]
+p = "free"
+q = "free"
+[constants]
+k = "{k}"
+[tableau]
+A = [["p*k", "p"], ["k^2 - p", "1/3"]]
+b = ["1/2 + q*k", "1/2 - q"]
+"""
+
+
+def test_solutions_over_a_cubic_field_are_read_from_the_quotient_ring(tmp_path, capsys):
+    # two conditions in p, q over Q(k), k³ = k + 1: the lexicographic route ran for minutes.
+    # sympy, independently: the resultant in p of the two residuals (k numerical, 60
+    # digits) has as many distinct roots q as rkcheck has solutions, and every solution
+    # makes both residuals vanish
+    sympy = pytest.importorskip("sympy")
+    path = tmp_path / "cubic.toml"
+    path.write_text(CUBIC_FIELD.format(k="root(x^3 - x - 1, 1)"), encoding="utf-8")
+    result = rkcheck.solve(path, degree=3, order=3, max_seconds=30)
+    code = run_cli(capsys, "conditions", str(path), "--order", "3", "--degree", "3", "--emit", "sympy").out
+    space: dict = {}
+    exec(code, space)  # the code rkcheck wrote for this family, not file content
+    p, q = sympy.symbols("p q")
+    f1, f2 = (sympy.expand(r) for r in space["residuals"](p, q))
+    k = sympy.N(sympy.CRootOf(sympy.Symbol("x") ** 3 - sympy.Symbol("x") - 1, 0), 60)
+    t = sympy.Symbol("t")  # k as a symbol: the resultant exact, then k put in
+    exact = sympy.resultant(f1.subs(space["theta"], t), f2.subs(space["theta"], t), p)
+    roots = sympy.Poly(sympy.expand(exact.subs(t, k)), q).nroots(n=30)
+    distinct = [r for i, r in enumerate(roots) if all(abs(r - s) > 1e-12 for s in roots[:i])]
+    assert len(result.solutions) == len(distinct) > 0
+    for s in result.solutions:
+        at = {p: s.values["p"].approx, q: s.values["q"].approx, space["theta"]: complex(k)}
+        assert all(abs(complex(f.subs(at))) < 1e-9 for f in (f1, f2))
+    # every digit of a value shown "≈" is right: mpmath's roots of its minimal polynomial
+    import mpmath
+
+    shown = [v for s in result.solutions for v in s.values.values() if "≈" in v.text]
+    assert shown
+    for v in shown:
+        real = float(re.search(r"≈ (-?[0-9.e+-]+)", v.text).group(1))
+        with mpmath.workdps(40):
+            roots = mpmath.polyroots([mpmath.mpf(c.numerator) / c.denominator for c in reversed(v.minpoly)],
+                                     maxsteps=400, extraprec=400)
+        assert min(abs(float(mpmath.re(r)) - real) for r in roots) <= 6e-10 * max(1.0, abs(real)), v.text
+
+
+def test_the_quotient_ring_and_the_lexicographic_route_agree(tmp_path, monkeypatch):
+    # over Q(√5) both routes finish: the same solutions, exactly
+    import rkcheck.numbers.quotient as quotient
+
+    path = tmp_path / "quad.toml"
+    path.write_text(CUBIC_FIELD.format(k="sqrt(5)"), encoding="utf-8")
+    read = sorted(tuple(sorted((n, v.text) for n, v in s.values.items())) for s in
+                  rkcheck.solve(path, degree=3, order=3).solutions)
+    monkeypatch.setattr(quotient, "MAX_QUOTIENT_DIMENSION", 0)  # the quotient ring refused: the lex route
+    lex = sorted(tuple(sorted((n, v.text) for n, v in s.values.items())) for s in
+                 rkcheck.solve(path, degree=3, order=3).solutions)
+    assert read == lex and len(read) > 0
