@@ -19,7 +19,7 @@ from rkcheck.api.verification import (
     check_flags,
     printable_numbers,
 )
-from rkcheck.errors import UserError
+from rkcheck.errors import RkcheckError, UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     FAIL_ON,
@@ -130,6 +130,41 @@ def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectC
     if not roots:
         raise UserError("give PATH... or set paths in [tool.rkcheck]", "scan")
     return roots
+
+
+def files_read(inputs: Sequence[str]) -> list[str]:
+    """The files a command reads for ``inputs``: each file, the tableau files under each
+    folder (as a scan finds them), the file of each shipped ``@name`` where it is one on
+    disk; ``-`` (standard input) is none.  What cannot be found is left out: the command
+    itself says so."""
+    from rkcheck.io.discovery import find_tableau_files
+    from rkcheck.io.library import find
+
+    out: list[str] = []
+    for item in inputs:
+        try:
+            if item.startswith("@"):
+                entry = find(item[1:])
+                if entry is not None and isinstance(entry.resource, os.PathLike):
+                    out.append(os.fspath(entry.resource))
+            elif item not in ("", "-"):
+                out += [f for f in find_tableau_files([item]) if f != "-"]
+        except (RkcheckError, OSError):
+            continue
+    return out
+
+
+def is_rkcheck_report_file(path: str) -> bool:
+    """Whether the file holds a JSON report rkcheck wrote (a scan's, a check's): a report
+    written again where the last one was is no input lost, even in a folder scanned."""
+    import json
+
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.loads(f.read(1 << 24))
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and "schema" in data and "rkcheck" in data
 
 
 def _paths(paths: Any) -> list[str]:

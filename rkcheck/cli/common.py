@@ -379,18 +379,21 @@ def check_output_target(output: str | None, inputs: Sequence[str] = ()) -> None:
         raise UserError("cannot write the report: its folder does not exist", source=output)
     if target.is_dir():
         raise UserError("cannot write the report: is a directory", source=output)
-    if target.exists() and any(_same_file(target, item) for item in inputs):
-        raise UserError("cannot write the report: it is an input of this command, which it would replace; "
-                        "write it to another file", source=output)
+    if target.exists() and inputs:
+        from rkcheck.api.batch import files_read, is_rkcheck_report_file
+
+        read = any(_same_file(target, f) for f in files_read(list(inputs)))
+        if read and not is_rkcheck_report_file(str(target)):
+            raise UserError("cannot write the report: it is an input of this command, which it would replace; "
+                            "write it to another file", source=output)
 
 
-def _same_file(target: Any, item: str) -> bool:
-    """Whether the command-line input ``item`` (a path; ``-`` and ``@name`` are none) is
-    the file ``target``, through links and other spellings of the path."""
+def _same_file(target: Any, path: str) -> bool:
+    """Whether ``path`` is the file ``target``, through links and other spellings."""
     import os
 
     try:
-        return item not in ("", "-") and not item.startswith("@") and os.path.samefile(target, item)
+        return os.path.samefile(target, path)
     except (OSError, ValueError):
         return False
 

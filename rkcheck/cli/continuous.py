@@ -32,7 +32,7 @@ def discretize(file, rule, output) -> None:
     """
     from rkcheck.api.tableaux import discretize as discretize_method
 
-    check_output_target(output, [file])
+    check_output_target(output, [file, rule])  # a rule may be a tableau file too
     text, note = discretize_method(file, rule, command=" ".join(["rkcheck", "discretize", file, "--rule", rule]))
     write_text(text, output)
     click.echo(note, err=True)  # the tableau alone on stdout: it can be piped into verify

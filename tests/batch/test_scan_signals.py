@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 from support.clirun import run_cli
 from support.guards import hang_guard
+from support.paths import TABLEAUX
 
 # about half a second each at order 15: the scan is still running when the signal comes
 DENSE = ('[tableau]\nA = [["1/7", "-2/9", "3/11", "1/13"], ["2/5", "1/8", "-1/6", "3/10"],'
@@ -295,3 +296,24 @@ def test_workers_are_born_with_ctrl_c_held_back(tmp_path, monkeypatch):
     assert not interrupted and len(outcomes) == 2 and all(o.error is None for o in outcomes)
     assert seen.read_text().splitlines() == ["True False True"] * 2
     assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+
+
+def test_a_report_never_replaces_a_tableau_a_folder_or_a_name_brings_in(tmp_path, capsys, monkeypatch):
+    # the folder's own tableau, written over by its scan or catalog; a discretize rule
+    # file; but a JSON report written again where the last one was is no input lost
+    monkeypatch.chdir(tmp_path)
+    tableau = '[tableau]\nA = [["0"]]\nb = ["1"]\n'
+    (tmp_path / "euler.toml").write_text(tableau, encoding="utf-8")
+    for command in (["scan", ".", "-j", "1"], ["catalog", ".", "--order", "2"]):
+        r = run_cli(capsys, *command, "-o", "euler.toml")
+        assert r.code == 2 and "it is an input of this command" in r.err
+    assert (tmp_path / "euler.toml").read_text(encoding="utf-8") == tableau
+    (tmp_path / "rule.toml").write_text('[tableau]\nA = [["1/2"]]\nb = ["1"]\n', encoding="utf-8")
+    kernel = str(TABLEAUX / "continuous" / "epcm-2.toml")
+    assert run_cli(capsys, "discretize", kernel, "--rule", "rule.toml", "-o", "rule.toml").code == 2
+    for _ in range(2):
+        assert run_cli(capsys, "scan", ".", "-j", "1", "--format", "json", "-o", "report.json").code == 0
+    from rkcheck.api.batch import files_read
+
+    shipped = files_read(["@rk4"])
+    assert len(shipped) == 1 and Path(shipped[0]).samefile(TABLEAUX / "explicit" / "rk4.toml")
