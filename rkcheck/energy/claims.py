@@ -105,7 +105,7 @@ def judge(claim: Claim, result: CheckResult) -> ClaimResult:
 
 
 def _judge_energy_order(claim: Claim, result: CheckResult) -> ClaimResult:
-    n_checked = result.options.order
+    n_checked = result.checked_through  # an interrupted check: the orders it finished
     found = result.energy_order_label
     cert = result.certificate
     if claim.value == "all":

@@ -266,8 +266,8 @@ def _energy_text(res: CheckResult) -> Text:
         digits = _numeric_certificate(res)
         if digits is not None:
             return Text(f"to {digits} digits: all orders for {_degree_words(o.degree)} ({_certificate_name(res)}, "
-                        f"not a proof); {o.order} verified", style="yellow")
-        return Text(f"all orders for {_degree_words(o.degree)} ({_certificate_name(res)}); {o.order} verified", style="green")
+                        f"not a proof); {res.checked_through} verified", style="yellow")
+        return Text(f"all orders for {_degree_words(o.degree)} ({_certificate_name(res)}); {res.checked_through} verified", style="green")
     first = res.first_failure
     if first is None:
         if res.energy_order_digits is not None:

@@ -293,3 +293,21 @@ def test_order_one_says_there_is_no_condition_not_all_zero_hold(capsys):
     # (trees of two vertices) has none
     r = run_cli(capsys, "verify", "@heun", "--order", "1", "--degree", "none")
     assert r.out.splitlines()[-1].endswith("OK: no energy condition up to order 1 (the first is of order 2))")
+
+
+def test_an_interrupted_certified_check_counts_only_the_orders_it_verified(capsys, monkeypatch):
+    # AVF over Gauss-2 is certified for degree 4 (every order); stopped with orders 2 and 3
+    # done, the report says 3 verified, not the 6 asked for
+    import rkcheck.energy.check as check
+    from rkcheck.evaluation.algorithm import EvaluationInterrupted
+
+    real = check.evaluate_orders
+
+    def interrupted(listing, values, fail_fast=False, progress=None):
+        done = real(listing, values, fail_fast)
+        raise EvaluationInterrupted({n: done[n].values for n in done if n <= 4})  # keyed by vertices
+
+    monkeypatch.setattr(check, "evaluate_orders", interrupted)
+    r = run_cli(capsys, "verify", "@avf-gauss-2", "--degree", "4", "--order", "6")
+    energy = next(line for line in r.out.splitlines() if line.startswith("energy order"))
+    assert r.code == 130 and energy.rstrip().endswith("; 3 verified")
