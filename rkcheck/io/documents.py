@@ -29,9 +29,10 @@ SMALLEST_FILE = '[tableau] A = [["1/2"]] b = [1]  (TOML), or {"A": [["1/2"]], "b
 
 
 def is_rkcheck_report(data: dict[str, Any]) -> bool:
-    """A JSON report rkcheck wrote (``verify``/``show --format json``): it has a
-    ``tableau`` and a ``method`` too, but is not a tableau file."""
-    return "schema" in data and "tableau" in data and "method" in data
+    """A JSON report rkcheck wrote (any command's ``--format json``): its ``schema``
+    number says so — a check's has a ``tableau`` and a ``method`` too, a family's a
+    ``family``, yet none is a tableau file."""
+    return isinstance(data.get("schema"), int) and not isinstance(data.get("schema"), bool)
 
 
 def ignored_keys(table: dict[str, Any], known: tuple[str, ...], name: str) -> list[str]:

@@ -168,7 +168,7 @@ def _build(
     max_stages: int,
 ) -> "Tableau | Family":
     if is_rkcheck_report(data):
-        raise UserError("this is a JSON report of rkcheck (`show`/`verify --format json`), not a tableau file; "
+        raise UserError("this is a JSON report of rkcheck (`--format json`), not a tableau file; "
                         "`rkcheck show FILE --format tableau-json` (or `toml`) writes one that reads back")
     data, warnings = _tables(data)
     name, info = _method_info(data, source)

@@ -591,6 +591,13 @@ def test_rkcheck_reports_are_no_tableaux(tmp_path, capsys):
                           encoding="utf-8")
         refused = run_cli(capsys, "verify", str(report))
         assert refused.code == 2 and "this is a JSON report of rkcheck" in refused.err and "--format tableau-json" in refused.err
+    family = TABLEAUX / "families" / "theorem1-s2-m3.toml"
+    for name, command in (("family.json", ["verify", str(family)]), ("solve.json", ["solve", str(family)]),
+                          ("scan.json", ["scan", str(folder / "rk4.toml"), "-j", "1"])):
+        (folder / name).write_text(run_cli(capsys, *command, "--format", "json").out, encoding="utf-8")
+        refused = run_cli(capsys, "verify", str(folder / name))
+        assert refused.code == 2 and "this is a JSON report of rkcheck" in refused.err
     doc = json.loads(run_cli(capsys, "scan", str(folder), "-j", "1", "--format", "json").out)
     assert sorted((Path(f["file"]).name, f["status"]) for f in doc["files"]) == [
-        ("rk4.toml", "ok"), ("show.json", "skipped"), ("verify.json", "skipped")]
+        ("family.json", "skipped"), ("rk4.toml", "ok"), ("scan.json", "skipped"), ("show.json", "skipped"),
+        ("solve.json", "skipped"), ("verify.json", "skipped")]
