@@ -114,7 +114,9 @@ def claims_table(claim_results, title: str = "Claims ([expect])") -> Table:
     t.add_column("", no_wrap=True)
     t.add_column("note")
     for r in claim_results:
-        ok = Text("ok", style="green") if r.met else Text("BROKEN", style="bold red")
+        # a claim on what nothing decides is not met, but not shown false either
+        ok = (Text("ok", style="green") if r.met else Text("NOT SHOWN", style="bold yellow")
+              if r.found == "undecided" else Text("BROKEN", style="bold red"))
         t.add_row(*plain(r.claim.label(), r.claimed, r.found, ok, r.note or ""))
     return t
 
@@ -299,7 +301,9 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
         head = Text(f"FAIL: {shortfall.text()}", style="bold red")
         head.append(Text(f"  ({f'claims broken: {len(broken)} of {len(claims)}' if broken else met})", style=""))
         return head
-    claims_text = (Text(f"CLAIMS BROKEN: {len(broken)} of {len(claims)}", style="bold red") if broken
+    unshown = all(r.found == "undecided" for r in broken)
+    what = "CLAIMS NOT SHOWN" if unshown else "CLAIMS BROKEN"
+    claims_text = (Text(f"{what}: {len(broken)} of {len(claims)}", style="bold red") if broken
                    else Text("OK: the claim is met" if len(claims) == 1 else f"OK: all {len(claims)} claims met",
                              style="bold green"))
     if fail_on == "conditions":

@@ -110,6 +110,9 @@ def test_a_symmetric_kernel_the_reflection_misses_is_undecided_not_no(tmp_path):
     assert doc["summary"]["symmetric"]["state"] == "undecided"
     claim = next(c for c in doc["claims"] if c["claim"] == "symmetric")
     assert claim["found"] == "undecided" and not claim["met"] and run.code == 1
+    text = run_subprocess("verify", str(path), "--order", "6")
+    assert text.code == 1 and text.out.splitlines()[-1].startswith("CLAIMS NOT SHOWN: 1 of 1")
+    assert "BROKEN" not in text.out
 
 
 def test_the_witness_of_two_tau_sigma_is_sympys():
