@@ -34,7 +34,7 @@ from fractions import Fraction
 from typing import Any, Callable, Iterator
 
 from rkcheck.energy.kernel_box import Poly, interval_poly
-from rkcheck.numbers.formatting import exact_string, short
+from rkcheck.numbers.formatting import short
 from rkcheck.numbers.intervals import Interval
 from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.trees.rooted import (
@@ -151,8 +151,9 @@ class Kernel:
         return bool(x != 0) if self.exact else not x.contains(0)
 
     def text(self, x: Any) -> str:
-        if self.exact:
-            return exact_string(Fraction(int(x.p), int(x.q)))
+        if self.exact:  # p/q, as the weights are written (never a decimal beside a fraction)
+            q = Fraction(int(x.p), int(x.q))
+            return str(q) if len(str(q)) <= 40 else f"≈ {short(q)}"
         return f"≈ {short(Fraction(float(x.mid())))}"
 
     def adjoint(self) -> "Kernel":

@@ -77,7 +77,8 @@ def show_continuous(method: Any, fmt: str, file: str, decimals: Any = None) -> N
     lines += [f"A(τ, σ) = {method.A}", f"B(τ) = {method.b}",
               f"degrees: {kern['degree_tau']} in τ, {kern['degree_sigma']} in σ; B: {kern['degree_b']}",
               f"certificate  {_answer(doc['certificate'])} — {doc['certificate']['reason']}",
-              f"AVF          {_answer(doc['avf'])}",
+              # the kernel's own verdict, for every Hamiltonian (verify judges a degree)
+              f"AVF          {_answer(doc['avf'])}, for every Hamiltonian — {doc['avf']['reason']}",
               f"symmetric    {_answer(doc['symmetric'])} — {doc['symmetric']['reason']}",
               f"symplectic   {_answer(doc['symplectic'])} — {doc['symplectic']['reason']}"]
     lines += [f"warning: {w}" for w in doc["warnings"]]
