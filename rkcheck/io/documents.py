@@ -199,6 +199,8 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
         raise UserError("nesting too deep") from None
     if not isinstance(data, dict):
         raise UserError("the top level must be a table/object")
+    if not data:  # comments only, or {}: as empty as an empty file
+        raise UserError(f"the file is empty (no table, no key); the smallest tableau file is {SMALLEST_FILE}")
     return data
 
 
