@@ -171,15 +171,18 @@ def _by_the_series(facts: KernelFacts, method: ContinuousMethod, degree: int | N
     vertices = max(vertices, ks.SERIES_VERTICES)
     if failed[0]:
         answer = ks.avf_witness(A, B, degree, vertices)
-        avf = ContinuousAvf(degree, *_decided(answer, avf.reason, f"AVF's{_for(degree)}"), form_reason=avf.reason)
+        agrees = f"its B-series agrees with AVF's{_for(degree)} on every rooted tree up to {answer.vertices} vertices"
+        avf = ContinuousAvf(degree, *_decided(answer, avf.reason, agrees), form_reason=avf.reason)
     symmetric, symplectic = props.symmetric, props.symplectic
     if failed[1]:
         answer = ks.symmetric_witness(A, B, vertices)
-        symmetric = PropertyVerdict("symmetric", *_decided(answer, symmetric.reason, "its adjoint's"))
+        agrees = f"its B-series agrees with its adjoint's on every rooted tree up to {answer.vertices} vertices"
+        symmetric = PropertyVerdict("symmetric", *_decided(answer, symmetric.reason, agrees))
     if failed[2]:
         answer = ks.symplectic_witness(A, B, vertices)
-        symplectic = PropertyVerdict("symplectic", *_decided(answer, symplectic.reason,
-                                                            "a(u∘v) + a(v∘u) = a(u)a(v)'s"))
+        agrees = (f"a(u∘v) + a(v∘u) = a(u)a(v) for every pair of rooted trees up to {answer.vertices} vertices "
+                  "in all")
+        symplectic = PropertyVerdict("symplectic", *_decided(answer, symplectic.reason, agrees))
     return KernelFacts(avf, facts.certificate, ContinuousProperties(props.exact, symplectic, symmetric))
 
 
@@ -187,11 +190,10 @@ def _for(degree: int | None) -> str:
     return "" if degree is None else f" for degree {degree}"
 
 
-def _decided(answer: Any, kernel_reason: str, agrees_with: str) -> tuple[Verdict, str]:
+def _decided(answer: Any, kernel_reason: str, agrees: str) -> tuple[Verdict, str]:
     if answer.witness is not None:
         return Verdict(FAILS), f"{kernel_reason}, and the B-series shows it: {answer.witness}"
-    return Verdict(UNDECIDED), (f"{kernel_reason}, yet its B-series agrees with {agrees_with} on every rooted tree "
-                                f"up to {answer.vertices} vertices: neither shown nor refuted")
+    return Verdict(UNDECIDED), f"{kernel_reason}, yet {agrees}: neither shown nor refuted"
 
 
 def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:

@@ -279,7 +279,9 @@ def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> Ser
                         m_v = kernel.moments(stages(v), n_m)
                         defect = sum((r * x for r, x in zip(rows[u], m_v)), kernel.zero)
                         if kernel.nonzero(defect):
-                            return SeriesAnswer(f"a(u∘v) + a(v∘u) − a(u)a(v) = {kernel.text(defect)} for u = "
+                            value = kernel.text(defect)
+                            value = value if value.startswith("≈") else f"= {value}"
+                            return SeriesAnswer(f"a(u∘v) + a(v∘u) − a(u)a(v) {value} for u = "
                                                 f"{bracket(u)}, v = {bracket(v)}", vertices)
     except _OutOfWork:
         return SeriesAnswer(None, n - 1)
