@@ -19,9 +19,9 @@ from rkcheck.numbers.groebner import (
     groebner,
     integer_dicts,
     leading_monomial,
-    solve_zero_dimensional,
 )
 from rkcheck.numbers.parametric import THETA
+from rkcheck.numbers.quotient import shape_position
 from rkcheck.numbers.solving import _compose, _minpoly_in, eliminate_linear
 
 # ------------------------------------------------------------------ step 1: b and c
@@ -84,7 +84,7 @@ def finite_orbits(polys: list[Any], ctx: Any, theta: str | None, field_: Any, de
         return []
     if dim > 0:
         return None
-    f, h = solve_zero_dimensional(basis, rest, deadline)
+    f, h = shape_position(basis, rest, deadline)
     fz = fmpq_poly([fmpq_of(x) for x in f])
     out = []
     for phi, _ in fz.factor()[1]:

@@ -51,10 +51,10 @@ from rkcheck.numbers.groebner import (
     groebner,
     integer_dicts,
     leading_monomial,
-    solve_zero_dimensional,
 )
 from rkcheck.numbers.macaulay import forced_zero
 from rkcheck.numbers.parametric import THETA, ParameterRing
+from rkcheck.numbers.quotient import shape_position
 from rkcheck.numbers.solving import (
     Component,
     Solution,
@@ -300,7 +300,7 @@ def _kernel_system(R: ParameterRing, rest: list[Any], values: dict[str, Any], av
             flag = False if all(not any(m[1:]) for g in gens for m in g.monoms()) else None
         equations = _in_parameters(R, values, gens, named)
         return OrbitResult(Component(dim, avf=flag, equations=equations, node=_node_used(equations)))
-    f, h = solve_zero_dimensional(basis, names, deadline)
+    f, h = shape_position(basis, names, deadline)
     fz = fmpq_poly([fmpq_of(x) for x in f])
     points = []
     avf = True

@@ -189,15 +189,10 @@ def _read_shape(lex: list[Terms], n: int) -> tuple[list[Fraction], list[list[Fra
 
 def solve_zero_dimensional(basis: list[Terms], names: tuple[str, ...],
                            deadline: float) -> tuple[list[Fraction], list[list[Fraction]]]:
-    """``(f, [h_i])`` in shape position: read from the quotient ring when the ideal is
-    radical (:mod:`rkcheck.numbers.quotient`), else from a lexicographic basis.  A shape
-    basis with a square-free f generates a radical ideal, so the radical is computed only
-    when the first try is not one."""
-    from rkcheck.numbers.quotient import shape_by_multiplication
-
-    read = shape_by_multiplication(basis, names, deadline)
-    if read is not None:
-        return read
+    """``(f, [h_i])`` in shape position from a lexicographic basis (what the quotient ring
+    of :mod:`rkcheck.numbers.quotient` does not read).  A shape basis with a square-free
+    f generates a radical ideal, so the radical is computed only when the first try is
+    not one."""
     try:
         _, f, h = shape_basis(basis, names, deadline, tries=1)
         if len(_squarefree(f)) == len(f):

@@ -18,7 +18,12 @@ import random
 import time
 from fractions import Fraction
 
-from rkcheck.numbers.groebner import SolveLimitError, Terms, leading_monomial
+from rkcheck.numbers.groebner import (
+    SolveLimitError,
+    Terms,
+    leading_monomial,
+    solve_zero_dimensional,
+)
 
 #: The largest quotient ring read this way (standard monomials); beyond it the
 #: lexicographic route is left to decide.
@@ -131,3 +136,10 @@ def shape_by_multiplication(basis: list[Terms], names: tuple[str, ...], deadline
             h.append([Fraction(int(coords[k, 0].p), int(coords[k, 0].q)) for k in range(D)])
         return [Fraction(int(c.p), int(c.q)) for c in f.coeffs()], h
     return None
+
+
+def shape_position(basis: list[Terms], names: tuple[str, ...], deadline: float) -> tuple[list[Fraction], list[list[Fraction]]]:
+    """``(f, [h_i])`` of the finitely many solutions of a reduced degrevlex basis: read from
+    its quotient ring when the ideal is radical, else through a lexicographic basis of its
+    radical (:func:`~rkcheck.numbers.groebner.solve_zero_dimensional`)."""
+    return shape_by_multiplication(basis, names, deadline) or solve_zero_dimensional(basis, names, deadline)

@@ -44,7 +44,6 @@ from rkcheck.numbers.groebner import (
     groebner,
     integer_dicts,
     leading_monomial,
-    solve_zero_dimensional,
 )
 
 
@@ -206,7 +205,9 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
             g for g in as_polynomials(p, ctx, rest) if not _in_alone(g, theta)]) for p in out.pieces]
         out.rest = rest
     if dim == 0:
-        f, h = solve_zero_dimensional(basis, rest, deadline)
+        from rkcheck.numbers.quotient import shape_position
+
+        f, h = shape_position(basis, rest, deadline)
         out.solutions = _solutions(f, h, rest, subs, ctx, theta, field)
     elif dim == -1:
         out.solutions = []
