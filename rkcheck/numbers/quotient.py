@@ -9,7 +9,7 @@ I is radical with D solutions and z separates them (Stickelberger: the eigenvalu
 are the values of z at the solutions); the vectors 1, z, …, z^(D−1) are then a basis,
 and writing each x_i in it gives x_i = h_i(z) mod f — the shape basis the lexicographic
 route computes, at the cost of D normal forms and one D×D solve instead of a Gröbner basis
-in lex order, which over a number field of degree 3 or more ran for minutes.
+in lex order, which over a number field of degree 3 or more can take minutes.
 """
 
 from __future__ import annotations

@@ -355,7 +355,7 @@ def test_a_parameter_named_i_is_not_confused_with_the_imaginary_unit(tmp_path, c
 @pytest.mark.parametrize("limit", [3, 32])
 def test_the_pieces_of_a_solution_set_never_pass_max_pieces(monkeypatch, limit):
     # every 2-stage method with energy order 5 for cubic H: a set of dimension 4 whose
-    # basis factors again and again (34 pieces when splitting ran past the limit)
+    # basis factors again and again (34 pieces, were every split made)
     import rkcheck.numbers.decompose as decompose
 
     monkeypatch.setattr(decompose, "MAX_PIECES", limit)
@@ -377,7 +377,7 @@ b = ["1/2 + q*k", "1/2 - q"]
 
 
 def test_solutions_over_a_cubic_field_are_read_from_the_quotient_ring(tmp_path, capsys):
-    # two conditions in p, q over Q(k), k³ = k + 1: the lexicographic route ran for minutes.
+    # two conditions in p, q over Q(k), k³ = k + 1, where a lexicographic basis takes minutes.
     # sympy, independently: the resultant in p of the two residuals (k numerical, 60
     # digits) has as many distinct roots q as rkcheck has solutions, and every solution
     # makes both residuals vanish
