@@ -31,7 +31,7 @@ import functools
 from contextlib import contextmanager
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Iterable, Iterator
 
 from rkcheck.energy.kernel_box import Poly, interval_poly
 from rkcheck.numbers.formatting import short
@@ -72,15 +72,22 @@ class _OutOfWork(Exception):
     pass
 
 
-def rooted_trees(max_vertices: int) -> list[Tree]:
-    """Every rooted tree up to ``max_vertices`` vertices, as canonical level sequences,
-    smaller trees first (each tree of n vertices is u∘v of two smaller ones)."""
-    by_size: dict[int, list[Tree]] = {1: [(1,)]}
-    for n in range(2, max_vertices + 1):
-        found = {level_sequence_of_forest([*children_of_level_sequence(u), v])
-                 for k in range(1, n) for u in by_size[n - k] for v in by_size[k]}
-        by_size[n] = sorted(found, reverse=True)
-    return [t for n in sorted(by_size) for t in by_size[n]]
+@functools.lru_cache(maxsize=None)
+def trees_of(n: int) -> tuple[Tree, ...]:
+    """Every rooted tree of ``n`` vertices, as canonical level sequences (each is u∘v of
+    two smaller ones); built once per process, as the searches first need them."""
+    if n == 1:
+        return ((1,),)
+    found = {level_sequence_of_forest([*children_of_level_sequence(u), v])
+             for k in range(1, n) for u in trees_of(n - k) for v in trees_of(k)}
+    return tuple(sorted(found, reverse=True))
+
+
+def rooted_trees(max_vertices: int) -> Iterator[Tree]:
+    """Every rooted tree up to ``max_vertices`` vertices, smaller trees first, each size
+    built only when the one before is used up (a witness is usually small)."""
+    for n in range(1, max_vertices + 1):
+        yield from trees_of(n)
 
 
 class Kernel:
@@ -219,7 +226,7 @@ def kernel_polys(method: Any, decimals: DecimalsMode, bits: int = 256) -> tuple[
     return interval_poly(method.nodes[0], decimals, consts, bits), interval_poly(method.nodes[1], decimals, consts, bits)
 
 
-def _first(trees: list[Tree], differs: Callable[[Tree], str | None], vertices: int) -> SeriesAnswer:
+def _first(trees: Iterable[Tree], differs: Callable[[Tree], str | None], vertices: int) -> SeriesAnswer:
     """The first tree that ``differs`` (smaller trees first), or how far the search got."""
     for t in trees:
         try:
@@ -263,13 +270,12 @@ def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> Ser
                 M[j][i + k] = M[j][i + k] + b * a  # B(σ)A(σ, τ)
         for j, b2 in enumerate(kernel.B):
             M[i][j] = M[i][j] - b * b2
-    trees = rooted_trees(vertices - 1)
     distinct: dict[int, list[Tree]] = {}
     rows: dict[Tree, list[Any]] = {}
     n = 1
     try:
         for n in range(2, vertices + 1):  # pairs of n vertices in all, smaller first
-            distinct[n - 1] = _distinct(stages, [t for t in trees if len(t) == n - 1])
+            distinct[n - 1] = _distinct(stages, list(trees_of(n - 1)))
             for size_u in range(1, n):
                 for u in distinct[size_u]:
                     if u not in rows:  # m(G_u)ᵀ M
@@ -318,7 +324,7 @@ def avf_witness(A: Poly, B: Poly, degree: int | None, vertices: int = SERIES_VER
             return f"its weight of {bracket(t)} is not AVF's ({kernel.text(a)} against {kernel.text(e)})"
         return None
 
-    trees = [t for t in rooted_trees(vertices) if degree is None or _widest(t) <= degree - 1]
+    trees = (t for t in rooted_trees(vertices) if degree is None or _widest(t) <= degree - 1)
     return _first(trees, differs, vertices)
 
 

@@ -168,3 +168,11 @@ def test_an_irrational_kernel_is_searched_in_certified_balls():
     assert res.avf.verdict.state == "fails"
     shown = res.avf.reason.split("[τ] is not AVF's (≈ ")[1].split(" ")[0]
     assert abs(float(shown) - 2 ** 0.5 / 2) < 1e-5
+
+
+def test_the_rooted_trees_searched_are_all_of_them():
+    # OEIS A000081: rooted trees with n vertices
+    from rkcheck.energy.kernel_series import trees_of
+
+    assert [len(trees_of(n)) for n in range(1, 11)] == [1, 1, 2, 4, 9, 20, 48, 115, 286, 719]
+    assert all(len(t) == n and len(set(trees_of(n))) == len(trees_of(n)) for n in range(1, 9) for t in trees_of(n))
