@@ -219,9 +219,8 @@ def test_an_interrupted_check_with_no_failure_is_no_ok(capsys, monkeypatch):
     assert "OK" not in r.out.splitlines()[-1]
 
 
-def test_an_interrupted_check_claims_no_order_it_did_not_finish(capsys, monkeypatch):
-    # RK4's energy order is 4: a condition of order 5 fails.  Stopped with orders 2 and 3
-    # finished, the report may claim order 3 and no more — not the 6 asked for
+def _stopped_after_order(monkeypatch, last: int) -> None:
+    """Ctrl-C with the orders up to ``last`` evaluated (keyed by vertices: order n has n + 1)."""
     import rkcheck.energy.check as check
     from rkcheck.evaluation.algorithm import EvaluationInterrupted
 
@@ -229,9 +228,15 @@ def test_an_interrupted_check_claims_no_order_it_did_not_finish(capsys, monkeypa
 
     def interrupted(listing, values, fail_fast=False, progress=None):
         done = real(listing, values, fail_fast)
-        raise EvaluationInterrupted({n: done[n].values for n in done if n <= 4})  # keyed by vertices
+        raise EvaluationInterrupted({n: done[n].values for n in done if n <= last + 1})
 
     monkeypatch.setattr(check, "evaluate_orders", interrupted)
+
+
+def test_an_interrupted_check_claims_no_order_it_did_not_finish(capsys, monkeypatch):
+    # RK4's energy order is 4: a condition of order 5 fails.  Stopped with orders 2 and 3
+    # finished, the report may claim order 3 and no more — not the 6 asked for
+    _stopped_after_order(monkeypatch, 3)
     r = run_cli(capsys, "verify", "@rk4", "--order", "6", "--degree", "none", "--format", "json")
     s = json.loads(r.out)["summary"]
     assert r.code == 130 and s["verdict"] == "interrupted"
@@ -298,16 +303,7 @@ def test_order_one_says_there_is_no_condition_not_all_zero_hold(capsys):
 def test_an_interrupted_certified_check_counts_only_the_orders_it_verified(capsys, monkeypatch):
     # AVF over Gauss-2 is certified for degree 4 (every order); stopped with orders 2 and 3
     # done, the report says 3 verified, not the 6 asked for
-    import rkcheck.energy.check as check
-    from rkcheck.evaluation.algorithm import EvaluationInterrupted
-
-    real = check.evaluate_orders
-
-    def interrupted(listing, values, fail_fast=False, progress=None):
-        done = real(listing, values, fail_fast)
-        raise EvaluationInterrupted({n: done[n].values for n in done if n <= 4})  # keyed by vertices
-
-    monkeypatch.setattr(check, "evaluate_orders", interrupted)
+    _stopped_after_order(monkeypatch, 3)
     r = run_cli(capsys, "verify", "@avf-gauss-2", "--degree", "4", "--order", "6")
     energy = next(line for line in r.out.splitlines() if line.startswith("energy order"))
     assert r.code == 130 and energy.rstrip().endswith("; 3 verified")
