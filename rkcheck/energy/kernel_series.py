@@ -28,7 +28,6 @@ a kernel with rounded decimals — proves the property false.  When every tree u
 from __future__ import annotations
 
 import functools
-from contextlib import contextmanager
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Callable, Iterable, Iterator
@@ -55,7 +54,6 @@ SERIES_WORK = 4_000_000
 SERIES_BITS = 256
 
 Tree = tuple[int, ...]
-Matrix = list[list[Any]]
 
 
 @dataclass(frozen=True)
@@ -174,24 +172,14 @@ class Kernel:
         return other
 
 
-@contextmanager
-def _precision() -> Iterator[None]:
-    """Arb balls at :data:`SERIES_BITS` bits while a search runs (python-flint's
-    precision is one global setting: restored after)."""
-    import flint
-
-    saved = flint.ctx.prec
-    flint.ctx.prec = SERIES_BITS
-    try:
-        yield
-    finally:
-        flint.ctx.prec = saved
-
-
 def _searched(search: Callable[..., SeriesAnswer]) -> Callable[..., SeriesAnswer]:
+    """``search`` with Arb balls of :data:`SERIES_BITS` bits (python-flint's precision is
+    one global setting: ``workprec`` restores it after)."""
     @functools.wraps(search)
     def run(*args: Any, **kwargs: Any) -> SeriesAnswer:
-        with _precision():
+        from flint import ctx
+
+        with ctx.workprec(SERIES_BITS):
             return search(*args, **kwargs)
 
     return run
@@ -219,7 +207,7 @@ class _Stages:
         return self.kernel.weight(self(t))
 
 
-def kernel_polys(method: Any, decimals: DecimalsMode, bits: int = 256) -> tuple[Poly, Poly]:
+def kernel_polys(method: Any, decimals: DecimalsMode, bits: int = SERIES_BITS) -> tuple[Poly, Poly]:
     """``A(τ, σ)`` and ``B(τ)`` with interval coefficients: exact where the kernel is
     rational, enclosures of its roots, or its decimals' box under ``decimals``."""
     consts = method.info.constants.enclosures(bits, decimals)
