@@ -31,7 +31,7 @@ Poly = dict[tuple[int, int], Interval]
 ONE = Interval.point(1)
 
 
-def add_poly(p: Poly, q: Poly, sign: int = 1) -> Poly:
+def _add(p: Poly, q: Poly, sign: int = 1) -> Poly:
     out = dict(p)
     for k, c in q.items():
         c = c if sign > 0 else -c
@@ -74,7 +74,7 @@ def interval_poly(node: ex.Expr, decimals: DecimalsMode, constants: dict[str, In
             return _power(vals[0], int(k))
         left, right = vals
         if n.op in "+-":
-            return add_poly(left, right, 1 if n.op == "+" else -1)
+            return _add(left, right, 1 if n.op == "+" else -1)
         if n.op == "*":
             return _mul(left, right)
         (divisor,) = right.values()  # a number: checked when the kernel was read
@@ -91,7 +91,7 @@ def _affine(p: Poly, which: int) -> Poly:
         e = (i, j)[which]
         term = _power({(0, 0): ONE, ((1, 0) if which == 0 else (0, 1)): -ONE}, e)
         rest = {((0, j) if which == 0 else (i, 0)): c}
-        out = add_poly(out, _mul(term, rest))
+        out = _add(out, _mul(term, rest))
     return out
 
 
@@ -100,7 +100,7 @@ def _at(p: Poly, value: int) -> Poly:
     out: Poly = {}
     for (i, j), c in p.items():
         if value == 1 or i == 0:
-            out = add_poly(out, {(0, j): c})
+            out = _add(out, {(0, j): c})
     return out
 
 
@@ -123,13 +123,13 @@ def box_verdicts(method: Any, decimals: DecimalsMode, degree: int | None = None,
         return {(j, i): c for (i, j), c in p.items()}
 
     dA = {(i - 1, j): c * Interval.point(i) for (i, j), c in A.items() if i > 0}
-    parts = [verdict_of(_at(A, 0)), verdict_of(add_poly(_at(A, 1), B_sigma, -1)), verdict_of(add_poly(dA, swap(dA), -1))]
+    parts = [verdict_of(_at(A, 0)), verdict_of(_add(_at(A, 1), B_sigma, -1)), verdict_of(_add(dA, swap(dA), -1))]
     return {
         "certificate": _weakest(parts),
         "avf": _avf_form(A, B, B_sigma, degree),
-        "symmetric": _weakest([verdict_of(add_poly(B, _affine(B, 0), -1)),
-                               verdict_of(add_poly(add_poly(A, _affine(_affine(A, 0), 1)), B_sigma, -1))]),
-        "symplectic": verdict_of(add_poly(add_poly(_mul(B, A), _mul(B_sigma, swap(A))), _mul(B, B_sigma), -1)),
+        "symmetric": _weakest([verdict_of(_add(B, _affine(B, 0), -1)),
+                               verdict_of(_add(_add(A, _affine(_affine(A, 0), 1)), B_sigma, -1))]),
+        "symplectic": verdict_of(_add(_add(_mul(B, A), _mul(B_sigma, swap(A))), _mul(B, B_sigma), -1)),
     }
 
 
@@ -139,13 +139,13 @@ def _avf_form(A: Poly, B: Poly, B_sigma: Poly, degree: int | None) -> Verdict:
     end of [0, 1] to the other."""
     C: Poly = {}
     for (i, j), c in A.items():  # ∫₀¹ A dσ
-        C = add_poly(C, {(i, 0): c / Interval.point(j + 1)})
-    parts = [verdict_of(add_poly(A, _mul(C, B_sigma), -1))]
+        C = _add(C, {(i, 0): c / Interval.point(j + 1)})
+    parts = [verdict_of(_add(A, _mul(C, B_sigma), -1))]
     if degree is None:
         dC = {(i - 1, 0): c * Interval.point(i) for (i, _), c in C.items() if i > 0}
         at0, at1 = _at(C, 0), _at(C, 1)
-        rising = [verdict_of(at0), verdict_of(add_poly(at1, {(0, 0): ONE}, -1)), verdict_of(add_poly(B, dC, -1))]
-        falling = [verdict_of(add_poly(at0, {(0, 0): ONE}, -1)), verdict_of(at1), verdict_of(add_poly(B, dC))]
+        rising = [verdict_of(at0), verdict_of(_add(at1, {(0, 0): ONE}, -1)), verdict_of(_add(B, dC, -1))]
+        falling = [verdict_of(_add(at0, {(0, 0): ONE}, -1)), verdict_of(at1), verdict_of(_add(B, dC))]
         ends = max((_weakest(rising), _weakest(falling)), key=_strength)
         return _weakest(parts + [ends])
     power: Poly = {(0, 0): ONE}
