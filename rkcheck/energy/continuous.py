@@ -233,7 +233,7 @@ def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
         "B(τ)A(τ,σ) + B(σ)A(σ,τ) = B(τ)B(σ)" if sympl_ok else "B(τ)A(τ,σ) + B(σ)A(σ,τ) ≠ B(τ)B(σ)")
     if k.deg_tau == 0:  # one stage: the tableau's tests decide, both ways
         symmetric, symplectic = _one_stage(k, A, B)
-    elif not sym_ok and _avf_form(k, A, B, B_sigma, None)[0].state == HOLDS:
+    elif not sym_ok and (avf.verdict if degree is None else _avf_form(k, A, B, B_sigma, None)[0]).state == HOLDS:
         symmetric = PropertyVerdict("symmetric", Verdict(HOLDS), "the method is AVF, reparametrised (A = C(τ)B(σ), "
                                     "B = ±C′), and AVF is symmetric")
     return KernelFacts(avf, cert, ContinuousProperties(digits is None, symplectic, symmetric))
