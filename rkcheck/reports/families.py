@@ -154,9 +154,10 @@ def _conditions_text(fc: Any, console: Console, show_all: bool) -> None:
 def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, Any]:
     field = family.ring.field
 
-    def value(v: Any) -> dict[str, Any] | str:
-        return value_text(v, result.variables)
-
+    points = None if result.solutions is None else [
+        {"values": {k: value_text(v, result.variables) for k, v in s.values.items()}, "real": s.real}
+        for s in result.solutions]
+    finite = result.dimension <= 0
     return {
         "rkcheck": __version__,
         "schema": FAMILY_SCHEMA,
@@ -176,11 +177,8 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "avf_on_every_component": avf_everywhere(result),
         # every solution, when there are finitely many; the structured route also finds
         # the points of the finite pieces of a positive-dimensional set
-        "solutions": None if result.solutions is None or result.dimension > 0 else [
-            {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions],
-        "points_of_finite_components": [
-            {"values": {k: value(v) for k, v in s.values.items()}, "real": s.real} for s in result.solutions]
-        if result.solutions is not None and result.dimension > 0 else None,
+        "solutions": points if finite else None,
+        "points_of_finite_components": None if finite else points,
         "seconds": round(result.seconds, 3),
     }
 
