@@ -128,7 +128,7 @@ def parse_degree(value: Any, place: str, source: str | None = None) -> int | Non
     """A degree bound: a positive integer, or ``none``/``all``/``any``/None for no bound."""
     if value is None or (isinstance(value, str) and value.strip().lower() in NO_DEGREE):
         return None
-    if isinstance(value, str) and value.strip().isdigit():
+    if isinstance(value, str) and value.strip().isascii() and value.strip().isdigit():  # '²'.isdigit() too
         value = int(value)
     if _is_int(value) and 1 <= value <= MAX_DEGREE:
         return value

@@ -26,6 +26,8 @@ MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
         ("dps", "1e7", f"expected an integer from {DPS_RANGE[0]} to {DPS_RANGE[1]}, got '1e7'"),
         ("degree", 0, "expected a positive integer or 'none', got 0"),
         ("degree", 201, "expected a degree from 1 to 200 or 'none', got 201"),
+        ("degree", "\u00b2", "expected a positive integer or 'none', got '\u00b2'"),  # str.isdigit() is true of it
+        ("degree", "\u0663", "expected a positive integer or 'none', got '\u0663'"),
         ("decimals", "round", "expected one of 'auto', 'rounded', 'float64', 'exact', got 'round'"),
     ],
 )

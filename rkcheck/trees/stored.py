@@ -13,6 +13,7 @@ order is built again.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Protocol
 
 import numpy as np
@@ -126,6 +127,7 @@ def _within(a: np.ndarray, lo: int, hi: int) -> bool:
 
 
 _MAX_COEFFICIENT_DIGITS = 40  # (n−1)!/σ for n ≤ 31 vertices has at most 33 digits
+_INTEGER = re.compile(r"-?[0-9]+")  # ASCII: str.isdigit() is also true of '²', which int() refuses
 
 
 def _coefficients(raw: Any) -> list[int] | None:
@@ -134,7 +136,7 @@ def _coefficients(raw: Any) -> list[int] | None:
         return None
     out = []
     for x in raw:
-        if not isinstance(x, str) or not 0 < len(x) <= _MAX_COEFFICIENT_DIGITS or not x.lstrip("-").isdigit():
+        if not isinstance(x, str) or not 0 < len(x) <= _MAX_COEFFICIENT_DIGITS or not _INTEGER.fullmatch(x):
             return None
         out.append(int(x))
     if any(out[i] <= 0 or out[i + 1] != -out[i] for i in range(0, len(out), 2)):

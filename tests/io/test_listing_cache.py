@@ -128,8 +128,23 @@ def _valid_hash_wrong_counts(store, path):
     path.write_bytes(b"".join(bytes(p) for p in encode(record_key(9, None), arrays, meta)))
 
 
+def _valid_hash_coefficient(text):
+    def damage(store, path):
+        # well-formed, hash and all, but a coefficient is no integer int() reads
+        listing = fresh()
+        o = listing.orders[9]
+        lo, hi = listing.first[9], listing.first[10]
+        arrays, meta = to_record(listing.left[lo:hi], listing.right[lo:hi], o)
+        meta = dict(meta, coefficients=[text, *meta["coefficients"][1:]])
+        path.write_bytes(b"".join(bytes(p) for p in encode(record_key(9, None), arrays, meta)))
+
+    damage.__name__ = f"_coefficient_{text.encode('unicode_escape').decode()}"
+    return damage
+
+
 DAMAGE = [_damage_payload, _damage_header, _truncate, _foreign, _garbage, _empty, _other_format,
-          _valid_hash_bad_index, _valid_hash_wrong_counts]
+          _valid_hash_bad_index, _valid_hash_wrong_counts,
+          _valid_hash_coefficient("\u00b2"), _valid_hash_coefficient("--1"), _valid_hash_coefficient("\u0663")]
 
 
 @pytest.mark.parametrize("damage", DAMAGE, ids=lambda f: f.__name__.strip("_"))
