@@ -60,8 +60,17 @@ def cache_dir() -> Path:
     ``~/.cache/rkcheck`` on Linux and other Unixes, ``~/Library/Caches/rkcheck`` on macOS,
     ``%LOCALAPPDATA%\\rkcheck\\Cache`` on Windows."""
     explicit = os.environ.get("RKCHECK_CACHE_DIR", "").strip()
-    if explicit:
-        return Path(explicit).expanduser()
+    try:
+        if explicit:
+            return Path(explicit).expanduser()
+        return _platform_cache_dir()
+    except RuntimeError:  # pathlib's "Could not determine home directory": ~user of no user, no HOME
+        where = f"RKCHECK_CACHE_DIR: cannot expand {printable(explicit[:80])!r}" if explicit else \
+            "the listing cache: cannot find the home directory"
+        raise UserError(f"{where}; set RKCHECK_CACHE_DIR to a directory, or run with --no-cache") from None
+
+
+def _platform_cache_dir() -> Path:
     if sys.platform == "win32":
         base = os.environ.get("LOCALAPPDATA", "").strip()
         return Path(base or Path.home() / "AppData" / "Local") / "rkcheck" / "Cache"
@@ -73,8 +82,9 @@ def cache_dir() -> Path:
 
 
 def cache_disabled() -> bool:
-    """``RKCHECK_NO_CACHE`` set to anything but ``""``/``0``: no listing is read or saved."""
-    return os.environ.get("RKCHECK_NO_CACHE", "").strip() not in ("", "0")
+    """``RKCHECK_NO_CACHE`` set to anything but a false value (``""``, ``0``, ``false``,
+    ``no``, ``off``, in any case): no listing is read or saved."""
+    return os.environ.get("RKCHECK_NO_CACHE", "").strip().lower() not in ("", "0", "false", "no", "off")
 
 
 def max_cache_bytes() -> int:

@@ -398,6 +398,14 @@ def test_no_cache_neither_reads_nor_saves(capsys, cli_cache, monkeypatch):
     assert _listing_files(cli_cache) == []
 
 
+@pytest.mark.parametrize("value, off", [("0", False), ("false", False), (" No ", False), ("OFF", False),
+                                        ("1", True), ("yes", True), ("true", True)])
+def test_no_cache_in_the_environment_reads_false_as_false(capsys, cli_cache, monkeypatch, value, off):
+    monkeypatch.setenv("RKCHECK_NO_CACHE", value)
+    assert run_cli(capsys, "verify", RK4, "-N", "13").code == 0
+    assert (_listing_files(cli_cache) == []) is off
+
+
 def test_cache_clear(capsys, cli_cache):
     run_cli(capsys, "verify", RK4, "-N", "13")
     (cli_cache / "keep.txt").write_text("not a listing")
@@ -411,6 +419,20 @@ def test_a_bad_cache_limit_is_one_line_naming_it(capsys, cli_cache, monkeypatch)
     r = run_cli(capsys, "verify", RK4, "-N", "4")
     assert r.code == 2
     assert r.err.strip().count("\n") == 0 and "RKCHECK_MAX_CACHE_BYTES" in r.err
+
+
+@pytest.mark.parametrize("command", [("verify", RK4, "-N", "13"), ("cache", "info"), ("cache", "clear")])
+def test_a_cache_directory_of_no_users_home_is_one_line_naming_it(capsys, cli_cache, monkeypatch, command):
+    pwd = pytest.importorskip("pwd")
+    user = "rkcheck-no-such-user"
+    with pytest.raises(KeyError):
+        pwd.getpwnam(user)
+    monkeypatch.setenv("RKCHECK_CACHE_DIR", f"~{user}/listings")
+    r = run_cli(capsys, *command)
+    assert r.code == 2 and r.err.strip().count("\n") == 0
+    assert f"RKCHECK_CACHE_DIR: cannot expand '~{user}/listings'" in r.err
+    if command[0] == "verify":  # without the cache, nothing to expand
+        assert run_cli(capsys, *command, "--no-cache").code in (0, 1)
 
 
 @pytest.mark.parametrize("command", ["verify", "scan", "conditions"])
