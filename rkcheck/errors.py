@@ -77,6 +77,21 @@ class RkcheckWarning(UserWarning):
     their exact binary value).  Filter it like any ``UserWarning``."""
 
 
+def is_digits_limit(err: BaseException) -> bool:
+    """Python's refusal to write an integer of more digits than
+    ``sys.get_int_max_str_digits()`` as text (a ValueError, raised wherever one is
+    printed): a limit the user's numbers met, not a bug."""
+    return isinstance(err, ValueError) and "integer string conversion" in str(err)
+
+
+def too_many_digits(source: str | None = None) -> UserError:
+    """The one line for :func:`is_digits_limit`, naming the file whose report it is."""
+    import sys
+
+    return UserError(f"a number of the report has more than {sys.get_int_max_str_digits():,} digits, too many to "
+                     "print (docs/errors.md)", source=source)
+
+
 def not_applying(names: Sequence[str]) -> str:
     """``--zeta does not apply``, ``-s, -k do not apply``: the options an error or a
     warning refuses, named, the verb agreeing."""

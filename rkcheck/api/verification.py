@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping
 
 from rkcheck.energy.check import CheckResult
 from rkcheck.energy.results import Condition
-from rkcheck.errors import OptionError, UserError
+from rkcheck.errors import OptionError, UserError, is_digits_limit
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     ARITHMETICS,
@@ -46,7 +46,7 @@ def printable_numbers() -> Iterator[None]:
     try:
         yield
     except ValueError as err:
-        if "integer string conversion" not in str(err):
+        if not is_digits_limit(err):
             raise
         raise UserError(f"a number has more than {sys.get_int_max_str_digits():,} digits, more than Python writes "
                         "as text (sys.set_int_max_str_digits raises the limit)") from None

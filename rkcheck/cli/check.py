@@ -31,7 +31,7 @@ from rkcheck.cli.common import (
     settings,
     stdout_console,
 )
-from rkcheck.errors import CheckInterrupted, OptionError, UserError
+from rkcheck.errors import CheckInterrupted, OptionError, UserError, is_digits_limit, too_many_digits
 from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS, JOBS_RANGE
 
 
@@ -94,6 +94,23 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
         result, failed, interrupted = stop.result, True, True
+    try:
+        _write_report(result, fmt, show_all, fail_on, draw)
+    except ValueError as err:  # a number of more digits than Python writes: the limit, for this file
+        if not is_digits_limit(err):
+            raise
+        raise too_many_digits(tab.info.source or file) from None
+    if interrupted:
+        done = [p.order for p in result.per_order if p.checked]
+        click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
+                   f"{f' (up to {max(done)})' if done else ' (none)'}", err=True)
+        sys.exit(EXIT_INTERRUPTED)
+    sys.exit(EXIT_FAIL if failed else EXIT_OK)
+
+
+def _write_report(result, fmt: str, show_all: bool, fail_on: str, draw: bool) -> None:
+    """The check's report on standard output, as JSON (streamed: a Ctrl-C while it is
+    written closes the document) or as text."""
     if fmt == "json":
         from rkcheck.reports.jsondoc import check_doc
         from rkcheck.reports.jsontext import chunks
@@ -115,12 +132,6 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         out = settings()
         render_check(result, stdout_console(), show_all=show_all, quiet=out.quiet, verbose=out.verbose,
                      fail_on=fail_on, draw=draw)
-    if interrupted:
-        done = [p.order for p in result.per_order if p.checked]
-        click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
-                   f"{f' (up to {max(done)})' if done else ' (none)'}", err=True)
-        sys.exit(EXIT_INTERRUPTED)
-    sys.exit(EXIT_FAIL if failed else EXIT_OK)
 
 
 @click.command(epilog=exit_codes())

@@ -20,7 +20,7 @@ from rkcheck.cli.common import (
     exit_codes,
     output_options,
 )
-from rkcheck.errors import UserError
+from rkcheck.errors import UserError, is_digits_limit, too_many_digits
 from rkcheck.io.printable import printable
 from rkcheck.version import __version__
 
@@ -165,12 +165,9 @@ def _run(argv: list[str] | None) -> None:
         where = f"{err.filename}: " if getattr(err, "filename", None) else ""
         _error(f"{where}{err.strerror or err}", EXIT_USAGE)
     except ValueError as err:
-        if "integer string conversion" not in str(err):
+        if not is_digits_limit(err):
             _internal(err)
-        from rkcheck.reports.console import count_text
-
-        _error(f"a number has more than {count_text(MAX_PRINTED_DIGITS)} digits, too many to print "
-               "(docs/errors.md)", EXIT_USAGE)
+        _error(str(too_many_digits()), EXIT_USAGE)
     except Exception as err:  # a bug in rkcheck, not a user error
         _internal(err)
 

@@ -86,11 +86,14 @@ def exact_string(q: Fraction | int, max_digits: int = 40) -> str:
     (``0.99``, ``12.25``), else as ``p/q`` (``1/3``); a rational too long for either is
     its 20 leading digits, marked ``≈``."""
     q = Fraction(q)
-    if q.denominator == 1 and len(str(abs(q.numerator))) <= max_digits:
+    # lengths by bits first: Python refuses to write an integer of more than
+    # sys.get_int_max_str_digits() digits (4 300 unless raised), and this never needs to
+    bits = 3.33 * max_digits + 4
+    if q.denominator == 1 and q.numerator.bit_length() <= bits and len(str(abs(q.numerator))) <= max_digits:
         return str(q.numerator)
     places = _decimal_places(q.denominator, max_digits)
-    if places is not None:
-        sig = len(str(abs(q.numerator * 10**places // q.denominator)).rstrip("0"))
+    if places is not None and (scaled := abs(q.numerator * 10**places // q.denominator)).bit_length() <= 4 * bits:
+        sig = len(str(scaled).rstrip("0"))
         if sig <= max_digits:
             return decimal_string(q, max(sig, 1))
     if q.numerator.bit_length() + q.denominator.bit_length() <= 3.33 * max_digits:

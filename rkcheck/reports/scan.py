@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any, Callable
 from xml.sax.saxutils import escape, quoteattr
 
+from rkcheck.errors import is_digits_limit, too_many_digits
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string
 from rkcheck.reports.jsondoc import check_doc
@@ -55,7 +56,8 @@ def outcome_docs(outcomes, row_check: Callable[[dict[str, Any]], Any] | None = N
                 row_check(doc)
         except Exception as err:  # a bug (or a value no format can say): this row says so
             o.status, o.result = "error", None
-            o.error = (f"{o.path}: internal error while writing its report: {type(err).__name__}: {err} "
+            o.error = (str(too_many_digits(o.path)) if is_digits_limit(err) else
+                       f"{o.path}: internal error while writing its report: {type(err).__name__}: {err} "
                        "(a bug in rkcheck; please report it)")
             doc.update(status=o.status, error=o.error, result=None)
         docs.append(doc)

@@ -413,6 +413,21 @@ def test_numbers_past_pythons_digit_limit_are_an_rkcheck_error_naming_it():
     assert doc["summary"]["conditions_failed"] > 0
 
 
+def test_a_weight_sum_past_pythons_digit_limit_is_said_by_its_leading_digits():
+    # Σb = 111…1 (5 000 ones) has more digits than Python writes under its default limit:
+    # the check still runs, and its warning gives the 20 leading digits of 10^4999·(10/9)
+    import sys
+
+    before = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(4300)
+    try:
+        result = rkcheck.verify(rkcheck.from_arrays([["1/2"]], ["1" * 5000]), order=2)
+    finally:
+        sys.set_int_max_str_digits(before)
+    assert result.failed
+    assert any(w.startswith("Σb = ≈1.1111111111111111111e4999 ≠ 1") for w in result.warnings)
+
+
 def test_a_property_text_past_pythons_digit_limit_reads_as_a_decimal(tmp_path):
     """M₁₁ = b(1 − b) − … for a = 1/2 + 10⁻⁵⁰⁰⁰: an exact rational whose integers have more
     than Python's 4 300 digits (a library leaves that limit as it is); the check still

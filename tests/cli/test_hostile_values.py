@@ -155,6 +155,24 @@ def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, cap
         assert files["a.toml"]["result"] is not None and files["bad.toml"]["result"] is None
 
 
+@pytest.mark.parametrize("command", ["verify", "scan"])
+def test_a_report_past_the_printed_digits_limit_is_one_line_naming_the_file(tmp_path, capsys, monkeypatch, command):
+    # b = 3^6000 (2 863 digits) puts residuals of thousands of digits in the report: past
+    # the CLI's limit (lowered here to 5 000) verify ends with one line naming the file
+    # and a scan gives the file an error row — a limit the numbers met, not a bug
+    import importlib
+
+    monkeypatch.setattr(importlib.import_module("rkcheck.cli.main"), "MAX_PRINTED_DIGITS", 5000)
+    path = write(tmp_path, "huge.toml", '[constants]\nx = "3^1000"\n[tableau]\nA = [["1/2"]]\nb = ["x^6"]\n')
+    r = run_cli(capsys, command, path, "--order", "2")
+    assert r.code == (2 if command == "verify" else 1)
+    message = f"{path}: a number of the report has more than 5,000 digits, too many to print (docs/errors.md)"
+    if command == "verify":
+        assert r.err.strip().splitlines()[-1] == f"rkcheck: error: {message}"
+    else:
+        assert message in " ".join(r.out.split()) and "internal error" not in r.out
+
+
 # ------------------------------------------------------------------ long decimals
 
 def test_a_decimal_of_4437_digits_gets_exact_residuals(tmp_path, capsys):
