@@ -167,11 +167,20 @@ def to_fmpq(x: Fraction | int) -> Any:
     return fmpq(x.numerator, x.denominator)
 
 
+def _coprime_by_keyword(p: int, q: int) -> Fraction:
+    return Fraction(p, q, _normalize=False)  # type: ignore[call-arg]  # Python 3.11's spelling
+
+
+#: ``p/q`` from integers already in lowest terms, ``q > 0``, without the gcd that
+#: normalising costs (most of the time of converting a FLINT matrix of large rationals)
+_coprime: Callable[[int, int], Fraction] = getattr(Fraction, "_from_coprime_ints", _coprime_by_keyword)
+
+
 def to_fraction(x: Any) -> Fraction:
     """An exact FLINT number as a Fraction: ``fmpq``, ``fmpz``, or an exact ``arb``/``arf``
     (a ball's mid-point or radius)."""
-    if hasattr(x, "p"):  # fmpq, the common case first
-        return Fraction(int(x.p), int(x.q))
+    if hasattr(x, "p"):  # fmpq, the common case first; FLINT keeps it in lowest terms
+        return _coprime(int(x.p), int(x.q))
     if hasattr(x, "man_exp"):
         man, exp = x.man_exp()
         man, exp = int(man), int(exp)

@@ -81,6 +81,23 @@ def test_surrogate_weights_equal_exact_integrals(A_text, b_text):
             assert weight_tableau(tree, A, b) == weight_sympy(tree, A_sym, B_sym), (size, tree)
 
 
+def test_surrogate_entries_are_the_kernel_at_the_nodes_times_the_weights():
+    # a_ij = w_j A(x_i, x_j), b_i = w_i B(x_i), by sympy node by node; and each entry's
+    # text reads back as its value
+    from rkcheck.numbers.entries import Entry
+
+    A_text, b_text = "tau - 7*tau^2*sigma + 2*tau*sigma^2/3", "3/2 - tau"
+    tab = ContinuousMethod.from_kernel(A_text, b_text).surrogate(5)
+    x, w = rational_rule(tab.stages)
+    A_sym, B_sym = sympy.sympify(A_text.replace("^", "**")), sympy.sympify(b_text.replace("^", "**"))
+    for i, xi in enumerate(x):
+        assert tab.b[i].exact == Fraction(str(w[i] * B_sym.subs(tau, xi)))
+        for j, xj in enumerate(x):
+            assert tab.A[i][j].exact == Fraction(str(w[j] * A_sym.subs({tau: xi, sigma: xj})))
+    assert any(e.exact < 0 for e in tab.entries())
+    assert all(Entry.parse(e.text).exact == e.exact for e in tab.entries())
+
+
 def test_node_bound_is_needed():
     """With one node fewer than the bound, the tallest-degree tree's weight is wrong:
     the bound is not loose for this kernel."""
@@ -101,12 +118,16 @@ def test_node_bound_is_needed():
     assert weight_tableau(bush, A, b) != weight_sympy(bush, A_sym, B_sym)
 
 
-def test_rational_rule_is_exact_to_its_degree():
-    x, w = rational_rule(6)
-    assert x == [Fraction(i, 5) for i in range(6)]
-    for k in range(6):
+@pytest.mark.parametrize("n", [2, 6, 24, 25])
+def test_rational_rule_is_exact_to_its_degree(n):
+    # the moment equations determine the n weights; an even count is exact to degree
+    # n − 1 only, an odd one (symmetric about 1/2) to n
+    x, w = rational_rule(n)
+    assert x == [Fraction(i, n - 1) for i in range(n)]
+    top = n + n % 2
+    for k in range(top):
         assert sum(wi * xi ** k for xi, wi in zip(x, w)) == Fraction(1, k + 1)
-    assert sum(wi * xi ** 6 for xi, wi in zip(x, w)) != Fraction(1, 7)
+    assert sum(wi * xi ** top for xi, wi in zip(x, w)) != Fraction(1, top + 1)
 
 
 def gamma(tree):

@@ -166,6 +166,17 @@ def test_flint_numbers_convert_exactly():
     assert pl.from_flint(pl.to_flint(p)) == p and pl.from_flint(pl.to_flint([F(0)])) == [0]
 
 
+def test_flint_rationals_convert_to_normalised_fractions():
+    # built without a gcd (FLINT keeps p/q in lowest terms): the same Fraction as the
+    # normalising constructor gives, numerator, denominator, hash and all
+    from flint import fmpq
+
+    for p, q in [(-6 * 10**300 - 18, 4 * 10**250 + 12), (0, 7), (-14, 21), (3**400, 2**500)]:
+        x, y = pl.to_fraction(fmpq(p, q)), F(p, q)
+        assert (x.numerator, x.denominator, hash(x)) == (y.numerator, y.denominator, hash(y))
+        assert x == y and x + 1 == y + 1
+
+
 # ------------------------------------------------------------ over a number field
 
 
