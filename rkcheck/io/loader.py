@@ -283,7 +283,7 @@ def _entry_texts(tab: dict[str, Any], max_stages: int) -> tuple[list[list[str]],
         raise UserError("expected a non-empty list of rows", "A")
     s = len(rows)
     if s > max_stages:
-        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages)", "A")
+        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages, or max_stages= in Python)", "A")
     A = []
     for i, row in enumerate(rows, start=1):
         if not isinstance(row, list) or len(row) != s:
@@ -307,7 +307,7 @@ def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
     if s == 0:
         raise UserError("the tableau is empty (A has no rows)", "A")
     if s > max_stages:
-        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages)", "A")
+        raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages, or max_stages= in Python)", "A")
     for i, row in enumerate(rows, start=1):
         if not isinstance(row, list):
             raise UserError(f"expected a row (a list), got {_kind(row)}", f"A[{i}]")

@@ -45,7 +45,7 @@ def parse_nodepy_text(text: str, name: str, max_stages: int = DEFAULT_MAX_STAGES
         key = tuple(int(w) for w in words[:-1])
         if max(key) >= max_stages:
             raise TableauError(f"stage index {max(key)} means {max(key) + 1} stages, which exceeds the limit of "
-                               f"{max_stages} (raise it with --max-stages)", f"line {no}")
+                               f"{max_stages} (raise it with --max-stages, or max_stages= in Python)", f"line {no}")
         if key in values[section]:  # as a JSON file's duplicate key: which one was meant is not ours to guess
             index = ",".join(str(k) for k in key)
             raise TableauError(f"{section}[{index}] is given twice (first as {values[section][key]!r})", f"line {no}")

@@ -48,7 +48,7 @@ from typing import Any, Literal
 
 from rkcheck.errors import TableauError, UserError, warn
 from rkcheck.numbers.entries import Entry
-from rkcheck.options import DEFAULT_MAX_STAGES
+from rkcheck.options import DEFAULT_MAX_STAGES, MAX_STAGES_RANGE, parse_int_in
 
 FloatMode = Literal["exact", "shortest"]
 
@@ -206,12 +206,13 @@ def entries_from_arrays(
     (``A[2][3]``, 1-based like ``a_ij``)."""
     if floats not in ("exact", "shortest"):
         raise TableauError(f"floats must be 'exact' or 'shortest', got {floats!r}", "floats")
+    parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages")  # as load() and loads() refuse it
     rows = _as_list(A, "A")
     s = len(rows)
     if s == 0:
         raise TableauError("the tableau is empty (A has no rows)", "A")
     if s > max_stages:
-        raise TableauError(f"{s} stages exceeds the limit of {max_stages}", "A")
+        raise TableauError(f"{s} stages exceeds the limit of {max_stages} (raise it with max_stages=)", "A")
     inexact: list[tuple[str, Entry]] = []
 
     def entry(x: Any, place: str) -> Entry:

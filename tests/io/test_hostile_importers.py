@@ -18,7 +18,7 @@ def test_a_nodepy_stage_index_beyond_max_stages_is_refused_before_allocating(tmp
     r = run_subprocess("verify", str(path), timeout=30)
     assert r.code == 2, r.err
     assert r.err == (f"rkcheck: error: {path}: line 3: stage index 99999 means 100000 stages, which exceeds "
-                     "the limit of 64 (raise it with --max-stages)\n")
+                     "the limit of 64 (raise it with --max-stages, or max_stages= in Python)\n")
 
 
 def test_max_stages_itself_is_bounded(capsys, tmp_path):

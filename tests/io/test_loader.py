@@ -169,7 +169,7 @@ def test_more_than_64_stages_is_refused_unless_allowed(tmp_path, capsys):
     path = write(tmp_path, "big.json", json.dumps({"tableau": {"A": rows, "b": [1] + [0] * (s - 1)}}))
     r = run_cli(capsys, "show", path)
     assert r.code == 2
-    assert f"{path}: A: 65 stages exceeds the limit of 64 (raise it with --max-stages)" in r.err
+    assert f"{path}: A: 65 stages exceeds the limit of 64 (raise it with --max-stages, or max_stages= in Python)" in r.err
     r = run_cli(capsys, "show", path, "--max-stages", "70")
     assert r.code == 0
 
