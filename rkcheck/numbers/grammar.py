@@ -170,10 +170,12 @@ _HALF_SUBNORMAL = Fraction(1, 2**1075)
 
 
 def _significant_digits(text: str) -> int:
-    """Significant digits of Python's ``repr`` of a finite double (``1e-05`` -> 1,
-    ``123.0`` -> 3, ``0.16666666666666666`` -> 17)."""
+    """Significant digits of Python's ``repr`` of a finite double, counted as a literal's
+    are (leading zeros dropped, trailing ones kept: ``1e-05`` -> 1, ``123.0`` -> 4,
+    ``0.16666666666666666`` -> 17), so that ``562949953421312.0`` as written is that
+    double's repr."""
     mantissa = text.lstrip("-").split("e")[0].replace(".", "")
-    return len(mantissa.strip("0")) or 1
+    return len(mantissa.lstrip("0")) or 1
 
 
 @dataclass(frozen=True, slots=True)

@@ -24,7 +24,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from support import reference as ref
-from support.clirun import run_subprocess
+from support.clirun import run_cli, run_subprocess
 
 from rkcheck.energy.check import check
 from rkcheck.methods.tableau import Tableau
@@ -68,6 +68,27 @@ def test_auto_covers_the_double_only_for_shortest_reprs():
     assert longer.interval("auto") == longer.interval("rounded")
     assert parse("0.5").interval("auto") is None and parse("0.5").interval("float64") is not None
     assert parse("0.0").interval("float64") is None  # zero keeps the structure exact
+
+
+@pytest.mark.parametrize("x", [2.0**49, 2.0**49 + 1, 1e15, 9007199254740993.0, 123456.0])
+def test_auto_covers_a_whole_double_written_with_its_point_zero(x):
+    # repr(2.0**49) = '562949953421312.0' is a double's shortest repr as written: auto
+    # covers the reals that round to it, whose half-ulp (1/16) is wider than the literal's
+    # half unit (1/20), as float64 does
+    literal = parse(repr(x))
+    (lo, hi), (d_lo, d_hi) = literal.interval("auto"), literal.interval("float64")
+    assert repr(x).endswith(".0") and lo <= d_lo and d_hi <= hi
+
+
+def test_a_whole_double_and_its_true_value_are_one_verdict(capsys, tmp_path):
+    # a21 = 2^49 + 0.06 rounds to the double 2^49, written as Python writes it; b makes
+    # [τ²]'s residual vanish at the true a21: so it holds to digits, not fails
+    path = tmp_path / "big.toml"
+    path.write_text('[tableau]\nA = [["0", "0"], ["562949953421312.0", "0"]]\n'
+                    'b = ["1 - 1/(2*(562949953421312 + 3/50))", "1/(2*(562949953421312 + 3/50))"]\n')
+    assert float(Fraction(2**49) + Fraction(3, 50)) == 2.0**49
+    doc = _json(run_cli(capsys, "verify", str(path), "--degree", "2", "--order", "2", "--format", "json"))
+    assert [c["state"] for c in doc["conditions"]] == ["holds_to_digits"]
 
 
 @pytest.mark.parametrize("text", ["1e-400", "2e-324", "2.4703282292062327e-324"])
