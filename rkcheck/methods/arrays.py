@@ -24,9 +24,11 @@ from arrays:
                             float whose two readings differ warns
                             (:class:`~rkcheck.errors.RkcheckWarning`).  To check a
                             tableau up to the digits you trust, pass strings:
-                            ``f"{x:.15g}"``.  A numpy ``float32`` (or ``float16``) is
-                            the decimal it prints as in its own precision
-                            (``0.16666667``), not widened to a double first
+                            ``f"{x:.15g}"``.  A numpy ``float32``, ``float16`` or
+                            ``longdouble`` is a decimal whose half unit in the last
+                            digit covers the reals that round to it in its own
+                            precision (a float32 1/12 reads ``0.0833333``, not the
+                            ``0.083333336`` it prints as, which excludes 1/12)
 ``decimal.Decimal``         its decimal text, as a string would be
 sympy numbers               ``Rational``/``Integer`` exactly; other constant expressions
                             (``sqrt(3)/6``) through their text; a ``Float`` of 53 bits
@@ -68,20 +70,47 @@ def _float_entry(x: float, floats: FloatMode, place: str) -> tuple[Entry, bool]:
 
 
 def _longdouble_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
-    """A numpy extended-precision float: its exact binary value (or, ``shortest``, the
-    shortest decimal numpy prints for it), like a float."""
+    """A numpy extended-precision float: its exact binary value, or (``shortest``) a
+    decimal whose rounding reading covers the reals that round to it
+    (:func:`_covering_decimal`)."""
     try:
         value = Fraction(*x.as_integer_ratio())
     except (OverflowError, ValueError, AttributeError):
         raise TableauError(f"{x} is not a finite number", place) from None
-    shortest = str(x)
-    if floats == "shortest":
-        return Entry.parse(shortest), False
-    try:
-        differs = Fraction(shortest) != value
-    except ValueError:
-        differs = True
-    return Entry.of(value), differs
+    return _own_precision_entry(x, value, floats)
+
+
+def _own_precision_entry(x: Any, value: Fraction, floats: FloatMode) -> tuple[Entry, bool]:
+    """A numpy float of another precision than a double's (float16, float32, longdouble),
+    exactly ``value``: at ``shortest``, the decimal of :func:`_covering_decimal`, which the
+    ``auto`` and ``rounded`` decimals rules read as covering every real that rounds to
+    ``x`` in its own precision (its printed decimal would cover only half a unit of its
+    last digit, several times less: a float32 1/12 would then exclude 1/12)."""
+    import numpy as np
+
+    if floats == "exact" or value == 0:
+        return Entry.of(value), False
+    below, above = (Fraction(*np.nextafter(x, np.asarray(d, dtype=x.dtype)).item().as_integer_ratio())
+                    if x.dtype.itemsize > 8 else Fraction(float(np.nextafter(x, np.asarray(d, dtype=x.dtype))))
+                    for d in (-np.inf, np.inf))
+    text = _covering_decimal(value, max(value - below, above - value) / 2)
+    if text is None:  # fewer digits than a rounded decimal has: its exact value, and a warning
+        return Entry.of(value), True
+    return Entry.parse(text), Fraction(text) != value
+
+
+def _covering_decimal(value: Fraction, radius: Fraction) -> str | None:
+    """The decimal of the most significant digits (at least ROUNDED_MIN_DIGITS) whose half
+    unit in the last digit covers ``[value − radius, value + radius]``, or None."""
+    from rkcheck.numbers.formatting import decimal_digits, decimal_string
+    from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
+
+    for sig in range(40, ROUNDED_MIN_DIGITS - 1, -1):
+        n, e = decimal_digits(value, sig)
+        d = (-1 if value < 0 else 1) * Fraction(n) * Fraction(10) ** (e - sig + 1)
+        if abs(d - value) + radius <= Fraction(1, 2) * Fraction(10) ** (e - sig + 1):
+            return decimal_string(d, sig, keep_zeros=True)
+    return None
 
 
 def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry, bool]:
@@ -133,14 +162,11 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
 
 
 def _narrow_float_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
-    """A numpy float32 (or float16) as the decimal it prints as in its own precision
-    (``str``: ``0.16666667``, numpy's shortest repr for the type) — widened to a
-    Python float it would print as ``0.1666666716337204`` — or its exact binary value."""
+    """A numpy float32 (or float16) as a decimal covering its own rounding interval
+    (:func:`_own_precision_entry`), or its exact binary value."""
     if not math.isfinite(float(x)):
         raise TableauError(f"{x} is not a finite number", place)
-    value = Fraction(float(x))  # widening is exact
-    shown = Entry.parse(str(x))
-    return (shown if floats == "shortest" else Entry.of(value)), Fraction(str(x)) != value
+    return _own_precision_entry(x, Fraction(float(x)), floats)  # widening to a double is exact
 
 
 def _sympy_root_text(x: Any, place: str) -> str:
@@ -244,9 +270,13 @@ def entries_from_arrays(
 
 def _float_warning(inexact: list[tuple[str, Entry]], floats: FloatMode) -> str:
     place, first = inexact[0]
+    if floats == "shortest" and first.rounded_digits is None:  # a float16: no decimal reading covers it
+        return (f"{len(inexact)} float entries (first {place}) were taken at their exact binary value: they have "
+                "fewer digits than a rounded decimal (definitions §5), so no decimal stands for the reals that round "
+                "to them; pass strings to mean decimals")
     if floats == "exact":
         return (f"{len(inexact)} float entries (first {place}) were taken at their exact binary value, which is not "
                 "the decimal they print as; pass strings, or floats='shortest' (the default), to mean the decimals")
-    return (f"{len(inexact)} float entries (first {place} = {first.text}) were read as the decimal they print as, "
-            "which stands for the double's rounding interval (decimals 'auto') or for that decimal exactly "
-            "(0.1 is not the double 0.1); floats='exact' takes their exact binary values")
+    return (f"{len(inexact)} float entries (first {place} = {first.text}) were read as a decimal, which stands "
+            "for the reals that round to the float (decimals 'auto') or for that decimal exactly (0.1 is not the "
+            "double 0.1); floats='exact' takes their exact binary values")

@@ -25,19 +25,37 @@ def test_scan_of_something_that_is_no_path_is_an_rkcheck_error():
         rkcheck.scan([42])
 
 
+def _own_rounding_interval(np, x):
+    """The reals that round to x in its own precision: halfway to each neighbour."""
+    lo, hi = (Fraction(*np.nextafter(x, np.asarray(d, dtype=x.dtype)).item().as_integer_ratio())
+              if x.dtype.itemsize > 8 else Fraction(float(np.nextafter(x, np.asarray(d, dtype=x.dtype))))
+              for d in (-np.inf, np.inf))
+    value = Fraction(*x.item().as_integer_ratio()) if x.dtype.itemsize > 8 else Fraction(float(x))
+    return (lo + value) / 2, (value + hi) / 2
+
+
+def _covers(np, entry, x):
+    lo, hi = entry.node.interval("auto")
+    r_lo, r_hi = _own_rounding_interval(np, x)
+    return lo <= r_lo and r_hi <= hi
+
+
 def test_a_numpy_longdouble_entry_is_read_like_a_float():
     import warnings
 
     import numpy as np
 
+    x = np.longdouble(1) / 3
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the API warns when it reads floats
-        tab = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)])
-        binary = rkcheck.from_arrays([[np.longdouble(1) / 3]], [np.longdouble(1)], floats="exact")
-    x = np.longdouble(1) / 3
+        tab = rkcheck.from_arrays([[x]], [np.longdouble(1)])
+        binary = rkcheck.from_arrays([[x]], [np.longdouble(1)], floats="exact")
     num, den = x.as_integer_ratio()
-    # by default a float stands for the shortest decimal it prints as; floats="exact": its binary value
-    assert tab.A[0][0].exact == Fraction(str(x)) and tab.b[0].exact == 1
+    # by default a decimal covering every real that rounds to it in its own precision
+    # (1/3 among them); floats="exact": its binary value
+    assert _covers(np, tab.A[0][0], x) and tab.b[0].exact == 1
+    lo, hi = tab.A[0][0].node.interval("auto")
+    assert lo < Fraction(1, 3) < hi and lo < Fraction(num, den) < hi
     assert binary.A[0][0].exact == Fraction(num, den)
 
 
@@ -189,7 +207,7 @@ def test_one_exclude_pattern_as_a_string_is_one_pattern(tmp_path):
     assert [r.path for r in result.rows] == [str(tmp_path / "a.toml")]
 
 
-def test_float32_arrays_are_read_as_the_decimals_they_print_as():
+def test_float32_arrays_are_read_as_decimals_covering_their_own_rounding():
     import warnings
 
     import numpy as np
@@ -200,10 +218,38 @@ def test_float32_arrays_are_read_as_the_decimals_they_print_as():
         warnings.simplefilter("ignore")
         tab = rkcheck.from_arrays(A, b)
         result = rkcheck.verify(tab, order=5)
-    assert [e.text for e in tab.b] == [str(x) for x in b] == ["0.16666667", "0.33333334", "0.33333334", "0.16666667"]
-    # RK4 to float32's 8 digits: consistent, classical order 4 to digits (the doubles
+    assert all(_covers(np, e, x) for e, x in zip(tab.b, b))
+    # RK4 to float32's digits: consistent, classical order 4 to digits (the doubles
     # the float32 values widen to sum to 1.0000000298…: not consistent)
     assert result.classical.to_digits == 4 and not any("inconsistent" in w for w in result.warnings)
+
+
+@pytest.mark.parametrize("dtype", ["float32", "longdouble"])
+def test_avf_over_radau_in_narrow_floats_holds_to_digits_not_fails(dtype):
+    # AVF over Radau I-2 (A = c bᵀ, c = (1/3, 1), b = (3/4, 1/4)): with a12 = 1/12 + e its
+    # conditions for cubic H are −3e/4, −e(3e+2)/8, 3e(9e+2)/32, 9e²/8 (sympy), zero at
+    # e = 0; 1/12 rounds to the float entry, so no condition may fail
+    import warnings
+
+    import numpy as np
+
+    c, w = np.array([1, 3], dtype=dtype) / 3, np.array([3, 1], dtype=dtype) / 4
+    A = np.outer(c, w)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tab = rkcheck.from_arrays(A, w)
+        result = rkcheck.verify(tab, degree=3, order=4)
+    assert all(_covers(np, e, x) for row, xs in zip(tab.A, A) for e, x in zip(row, xs))
+    assert result.verdict == "holds_to_digits" and not result.failures
+
+
+def test_a_float16_is_taken_at_its_binary_value_with_a_warning_saying_so():
+    # 3.3 digits: no decimal of six digits or more covers its rounding interval
+    import numpy as np
+
+    with pytest.warns(rkcheck.RkcheckWarning, match="exact binary value"):
+        tab = rkcheck.from_arrays(np.array([[1 / 12]], dtype=np.float16), np.array([1], dtype=np.float16))
+    assert tab.A[0][0].exact == Fraction(float(np.float16(1 / 12)))
 
 
 @pytest.mark.parametrize("A, b, place", [
