@@ -1,10 +1,12 @@
 """What this machine offers a check: the memory available to this process.
 
-The smaller of the kernel's ``MemAvailable`` (``/proc/meminfo``) and the room left under
+The smallest of the kernel's ``MemAvailable`` (``/proc/meminfo``), the room left under
 a cgroup memory limit (v2 ``memory.max`` − ``memory.current``, or v1
 ``memory.limit_in_bytes`` − ``memory.usage_in_bytes``) — a container's limit is what
-the kernel enforces, whatever the host has free.  None when nothing can be read (then no
-memory-based refusal is made).
+the kernel enforces, whatever the host has free — and the room left under this
+process's own address-space limit (``ulimit -v``, ``prlimit --as``: ``RLIMIT_AS`` less
+the ``VmSize`` already mapped).  None when nothing can be read (then no memory-based
+refusal is made).
 """
 
 from __future__ import annotations
@@ -47,7 +49,25 @@ def _cgroup_room() -> int | None:
     return max(0, limit - (used or 0))
 
 
+def _address_space_room() -> int | None:
+    try:
+        import resource
+    except ImportError:  # Windows
+        return None
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return None
+    mapped = None
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmSize:"):
+                mapped = int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return max(0, soft - (mapped or 0))
+
+
 def available_memory() -> int | None:
     """Bytes this process can still use, or None when unknown."""
-    values = [v for v in (_meminfo_available(), _cgroup_room()) if v is not None]
+    values = [v for v in (_meminfo_available(), _cgroup_room(), _address_space_room()) if v is not None]
     return min(values) if values else None

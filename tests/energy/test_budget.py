@@ -68,6 +68,15 @@ def test_cli_refusal_is_one_line_exit_2(capsys):
     assert "--max-conditions" in r.err
 
 
+def test_an_address_space_limit_is_memory_the_check_cannot_have():
+    # under ulimit -v 1 GB order 20 (about 2 GB) is refused before any work, naming what
+    # is available under the limit, and no more than the limit itself
+    r = run_limited(["-m", "rkcheck", "verify", "@rk4", "--order", "20", "--no-cache"], memory_mb=1024, cpu_seconds=60)
+    assert r.code == 2 and len(r.err.strip().splitlines()) == 1, r.err
+    found = re.search(r"order 20 needs about ([\d.]+) GB for [\d,]+ conditions but (\d+) MB is available", r.err)
+    assert found and float(found.group(1)) > 1 and int(found.group(2)) < 1024, r.err
+
+
 def test_ball_memory_grows_with_precision_and_stages():
     # wider mid-points and more stage values per stored weight take more bytes
     base = estimate(18, None, "ball", stages=3, dps=50).bytes
