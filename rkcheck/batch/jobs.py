@@ -67,6 +67,10 @@ class Failure:
 
 
 def internal_error(err: BaseException) -> str:
+    """A job's failure outside the check's own handling: a bug — or the machine's memory
+    running out (an allocation, or a library's segments that cannot be mapped)."""
+    if isinstance(err, MemoryError) or "failed to map segment" in str(err) or "Cannot allocate memory" in str(err):
+        return "out of memory; lower --order or --degree, or run fewer --jobs"
     return f"internal error: {type(err).__name__}: {err} (a bug in rkcheck; please report it)"
 
 

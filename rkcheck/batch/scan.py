@@ -188,13 +188,23 @@ def _lost(path: str, why: str) -> FileOutcome:
     return FileOutcome(path, error=f"{path}: {why}; the other files went on")
 
 
-def warm_tables(flags: dict[str, Any], project: dict[str, Any]) -> None:
-    """Build the condition table of the scan's default options before forking workers."""
+def warm_tables(flags: dict[str, Any], project: dict[str, Any], budget=None) -> None:
+    """Build the condition table of the scan's default options before forking workers
+    (each inherits it) — unless ``budget`` refuses it or it does not fit: then nothing
+    is shared, and each file meets the limit in its own row."""
+    from dataclasses import replace
+
+    from rkcheck.energy.budget import check_budget, estimate
     from rkcheck.trees.listing import condition_listing
 
     degree = flags.get("degree", project.get("degree"))
     order = flags.get("order", project.get("order", DEFAULT_ORDER))
-    condition_listing(order, degree)
+    try:
+        if budget is not None:
+            check_budget(estimate(order, degree, "exact", listing=True), replace(budget, announce=None), order)
+        condition_listing(order, degree)
+    except (UserError, MemoryError):
+        return
 
 
 def run_scan(
@@ -219,7 +229,7 @@ def run_scan(
 
     if executor is None:
         jobs = max(1, min(jobs, len(files)))
-        executor = executor_for(None, jobs, partial(warm_tables, flags, project))
+        executor = executor_for(None, jobs, partial(warm_tables, flags, project, budget))
     check = partial(_check_path, (flags, project, fail_on, max_stages, budget, document))
     done: dict[int, FileOutcome] = {}
     interrupted = False

@@ -601,3 +601,25 @@ def test_rkcheck_reports_are_no_tableaux(tmp_path, capsys):
     assert sorted((Path(f["file"]).name, f["status"]) for f in doc["files"]) == [
         ("family.json", "skipped"), ("rk4.toml", "ok"), ("scan.json", "skipped"), ("show.json", "skipped"),
         ("solve.json", "skipped"), ("verify.json", "skipped")]
+
+
+def test_the_shared_listing_is_built_only_when_the_budget_allows_it(monkeypatch):
+    # built in the parent before the workers fork: a listing past the memory available
+    # is left to each file's own check (its row meets the limit), and one that runs out
+    # of memory while built is given up, not the whole scan
+    import rkcheck.trees.listing
+    from rkcheck.batch.scan import warm_tables
+    from rkcheck.energy.budget import Budget
+
+    built = []
+    monkeypatch.setattr(rkcheck.trees.listing, "condition_listing", lambda n, m: built.append((n, m)))
+    warm_tables({"order": 18, "degree": None}, {}, Budget(available_bytes=50 * 2**20))
+    assert built == []
+    warm_tables({"order": 6, "degree": 2}, {}, Budget(available_bytes=50 * 2**30))
+    assert built == [(6, 2)]
+
+    def starved(n, m):
+        raise MemoryError
+
+    monkeypatch.setattr(rkcheck.trees.listing, "condition_listing", starved)
+    warm_tables({"order": 6, "degree": 2}, {}, None)

@@ -133,6 +133,30 @@ def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch)
         assert r.code == 1
 
 
+def test_memory_running_out_outside_a_files_check_is_its_row_not_a_bug(tmp_path, capsys, monkeypatch):
+    # an allocation that fails around one file's check (a worker under ulimit -v): that
+    # file's row says out of memory, not "a bug in rkcheck", and the others are checked
+    import rkcheck.batch.scan
+
+    real = rkcheck.batch.scan.scan_file
+
+    def starved(path, *args, **kwargs):
+        if path.endswith("t01.toml"):
+            raise MemoryError
+        return real(path, *args, **kwargs)
+
+    monkeypatch.setattr(rkcheck.batch.scan, "scan_file", starved)
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i in range(3):
+        (folder / f"t{i:02d}.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    for jobs in ("1", "2"):
+        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--degree", "2", "--order", "4")
+        files = json.loads(r.out)["files"]
+        assert [f["status"] for f in files] == ["ok", "error", "ok"], jobs
+        assert "out of memory" in files[1]["error"] and "bug" not in files[1]["error"]
+
+
 def test_output_targets_are_respected(tmp_path, capsys):
     src = tmp_path / "m.toml"
     src.write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
