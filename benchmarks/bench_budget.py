@@ -2,7 +2,7 @@
 
     python benchmarks/bench_budget.py             # orders 16 and 18 (a few minutes)
     python benchmarks/bench_budget.py --order-20  # also order 20 (several GB, minutes each)
-    python benchmarks/bench_budget.py --quick     # every case at order 8 (half a minute)
+    python benchmarks/bench_budget.py --quick     # the tableaux at order 8, the kernels lower (a minute)
 
 Before a check, rkcheck estimates its time and memory from the exact counts of its
 listing (``rkcheck.energy.budget``), announces a long one and refuses one that would
@@ -14,7 +14,12 @@ memory read through ``os.wait4``, beside the estimate the check computes for its
 
 The ball rows use methods whose conditions hold or nearly all hold, so the float screen
 decides few of them and the certified balls evaluate every condition: the worst case
-the model covers.
+the model covers.  The last rows have many stages: the continuous methods with
+Miyatake–Butcher matrix ``M = I_k`` (energy-preserving: every condition holds), checked
+through surrogates of 100–270 stages, written to a temporary folder.
+
+Each estimate is computed in a process of its own: a forked child's peak memory counts
+its parent's pages, so the measuring process stays small.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import argparse
 import os
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -41,21 +47,46 @@ CASES = [
 ]
 
 
+#: (label, k of M = I_k, arithmetic, orders, quick order): continuous methods of many stages
+KERNELS = [
+    ("M = I_10", 10, "exact", (10, 11), 9),
+    ("M = I_20", 20, "exact", (8,), 6),
+    ("M = I_10", 10, "ball", (9,), 7),
+]
+
+
+def identity_kernel(folder: Path, k: int) -> Path:
+    path = folder / f"identity-{k}.toml"
+    rows = ",\n".join("[" + ", ".join('"1"' if i == j else '"0"' for j in range(k)) + "]" for i in range(k))
+    path.write_text(f'[method]\nname = "M = I_{k}"\n[continuous]\nM = [\n{rows}\n]\n')
+    return path
+
+
 def estimated(path: Path, order: int, arithmetic: str, extra: tuple[str, ...]) -> tuple[float, int]:
-    """The seconds and bytes the check's own estimate gives (as ``energy.check`` computes it)."""
-    from rkcheck.energy.budget import estimate
+    """The seconds and bytes the check's own estimate gives, in a fresh process."""
+    argv = [sys.executable, __file__, "--estimate", str(path), str(order), arithmetic, *extra]
+    seconds, size = subprocess.run(argv, capture_output=True, text=True, check=True, cwd=ROOT).stdout.split()
+    return float(seconds), int(size)
+
+
+def print_estimate(path: str, order: int, arithmetic: str, extra: list[str]) -> None:
+    """As ``energy.check`` computes it: the surrogate of a continuous method, its channels,
+    stages, precision, box directions and entries."""
+    from rkcheck.energy.budget import entries_size, estimate
     from rkcheck.energy.judging import box_directions
     from rkcheck.evaluation.backends import channels_for
     from rkcheck.evaluation.values import TableauValues
     from rkcheck.io.loader import load
     from rkcheck.numbers.reading import Reading
 
-    tableau = load(str(path))
+    tableau = load(path)
+    if getattr(tableau, "is_continuous", False):
+        tableau = tableau.surrogate(order + 1)
     dps = int(extra[extra.index("--dps") + 1]) if "--dps" in extra else int(tableau.info.check.get("dps", 50))
     values = TableauValues(tableau, Reading(dps=dps, arithmetic=arithmetic))
     est = estimate(order, None, values.backend, channels_for(values, order), values.stages, dps,
-                   box_directions(values))
-    return est.seconds, est.bytes
+                   box_directions(values), entry_bytes=entries_size(e.text for e in tableau.entries()))
+    print(est.seconds, est.bytes)
 
 
 def measured(path: Path, order: int, arithmetic: str, extra: tuple[str, ...]) -> tuple[float, int]:
@@ -75,18 +106,26 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--order-20", action="store_true", help="also order 20 (several GB, minutes each)")
     parser.add_argument("--quick", action="store_true", help="every case at order 8 only")
+    parser.add_argument("--estimate", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)  # PATH ORDER ARITHMETIC [EXTRA...]
     args = parser.parse_args(argv)
+    if args.estimate:
+        path, order, arithmetic, *extra = args.estimate
+        return print_estimate(path, int(order), arithmetic, extra)
     print("| method | arithmetic | order | CPU s | estimated s | peak MB | estimated MB | estimate / peak |\n"
           "|---|---|---|---|---|---|---|---|")
-    for label, name, arithmetic, orders, extra in CASES:
-        for order in (8,) if args.quick else orders:
-            if order >= 20 and not args.order_20:
-                continue
-            path = TABLEAUX / name
-            seconds, size = estimated(path, order, arithmetic, extra)
-            cpu, peak = measured(path, order, arithmetic, extra)
-            print(f"| {label} | {arithmetic} | {order} | {cpu:.1f} | {seconds:.0f} | {peak / 1e6:.0f} "
-                  f"| {size / 1e6:.0f} | {size / peak:.2f} |", flush=True)
+    rows = [(label, TABLEAUX / name, arithmetic, (8,) if args.quick else orders, extra)
+            for label, name, arithmetic, orders, extra in CASES]
+    with tempfile.TemporaryDirectory() as folder:
+        rows += [(label, identity_kernel(Path(folder), k), arithmetic, (quick,) if args.quick else orders, ())
+                 for label, k, arithmetic, orders, quick in KERNELS]
+        for label, path, arithmetic, orders, extra in rows:
+            for order in orders:
+                if order >= 20 and not args.order_20:
+                    continue
+                cpu, peak = measured(path, order, arithmetic, extra)
+                seconds, size = estimated(path, order, arithmetic, extra)
+                print(f"| {label} | {arithmetic} | {order} | {cpu:.1f} | {seconds:.0f} | {peak / 1e6:.0f} "
+                      f"| {size / 1e6:.0f} | {size / peak:.2f} |", flush=True)
 
 
 if __name__ == "__main__":

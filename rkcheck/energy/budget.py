@@ -15,6 +15,12 @@ prints the same figures) and are deliberately on the high side:
   channel and stage (RK4 to order 22: 0.10, a dense 6-stage tableau 0.09), and in
   memory the residues, verdict and record of every condition and the stage vectors of
   the trees that wait (RK4 to order 22: 1.63 GB measured against 1.9 GB modelled);
+* many stages (a continuous method's surrogate has hundreds): the products with A, s²
+  per factor tree and s per term in every channel (2.5 ns each exact, 150 ns in balls at
+  50 digits); making each entry a ball (up to 0.8 ms); the images of the entries in
+  every channel (100 ns and 8 bytes each, 32 where the products go through float
+  halves); the stage vectors beyond 4 stages (16 bytes per factor tree and stage exact,
+  170 in balls); and the entries as written (:func:`entries_size`);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
   grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
   and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
@@ -27,7 +33,9 @@ Measured by ``benchmarks/bench_budget.py`` (docs/performance.md), peak against m
 exact 96–111 MB at order 16, 363–369 MB at 18, 1.4 GB at 20 (132 MB, 432 MB, 2.0 GB);
 balls, in methods whose conditions hold (no float screen decides them), 167–248 MB,
 714–872 MB, and 4.9 GB at order 20 for s = 3 (292–315 MB, 0.94–1.1 GB, 6.4 GB);
-HBVM(6, 2) in 60-digit decimals, 42 directions, 519 MB at order 16 (924 MB).
+HBVM(6, 2) in 60-digit decimals, 42 directions, 519 MB at order 16 (924 MB); kernels
+``M = I_k`` through their surrogates of 60–270 stages, 92–776 MB (122–953 MB), exact and
+in balls.
 
 The machine's available memory is not read here (this is the core: no I/O); the caller
 passes it in a :class:`Budget`.
@@ -36,10 +44,11 @@ passes it in a :class:`Budget`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Iterable
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES
+from rkcheck.evaluation.channels import SLICE, SPLIT_STAGES
 from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
 from rkcheck.numbers.formatting import count_text as count
 from rkcheck.numbers.formatting import human_bytes
@@ -59,6 +68,29 @@ BALL_BYTES_PER_FACTOR_STAGE = 30
 #: stage; and the bytes per condition of its record of branches and its verdict
 CENTROID_SECONDS_PER_CONDITION_VALUE = 0.12e-6
 CENTROID_RECORD_BYTES = 16
+#: beyond a few stages, the products with A (s² per factor tree, s per term and
+#: channel) and the stage vectors of the stored trees set the cost (a kernel's surrogate
+#: has hundreds of stages): about 2.5 ns a product exact (BLAS on float halves), 150 ns
+#: in balls at 50 digits; in memory, the images of A in every channel (8 bytes an entry)
+#: and, per factor tree and stage beyond SMALL_STAGES, 16 bytes exact and 170 in balls
+EXACT_SECONDS_PER_STAGE_PRODUCT = 2.5e-9
+#: and the images of the entries in every channel, about 100 ns each (large rationals)
+EXACT_SECONDS_PER_ENTRY_CHANNEL = 100e-9
+BALL_SECONDS_PER_STAGE_PRODUCT = 150e-9
+#: and each entry made a ball, once per precision the check tries (up to 0.8 ms for the
+#: rationals of hundreds of digits a kernel's surrogate has)
+BALL_SECONDS_PER_ENTRY = 0.8e-3
+EXACT_BYTES_PER_ENTRY_CHANNEL = 8
+#: the float halves the products of SLICE < s <= SPLIT_STAGES stages take beside them
+EXACT_BYTES_PER_ENTRY_CHANNEL_HALVES = 24
+EXACT_BYTES_PER_FACTOR_STAGE = 16
+BALL_BYTES_PER_LARGE_FACTOR_STAGE = 170
+#: the stage counts the per-tree costs above were measured at (RK4, Gauss-3, AVF Gauss-2..4)
+SMALL_STAGES = 4
+#: a tableau's entries held as written: their text and numbers take about this many
+#: bytes per character of their text, and this many besides
+ENTRY_BYTES_PER_CHARACTER = 4
+ENTRY_BYTES = 1000
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
 
@@ -96,31 +128,49 @@ class Budget:
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
-             dps: int = 50, directions: int = 0, listing: bool = False) -> Estimate:
+             dps: int = 50, directions: int = 0, listing: bool = False, entry_bytes: int = 0) -> Estimate:
     """The cost of listing and evaluating every condition to ``order`` for ``degree``
     (``directions``: the interval entries of a decimal box, whose derivatives the
-    evaluation carries beside the weights); a check from ``CENTROID_FROM_ORDER`` on
-    enumerates them by centroid instead, unless ``listing`` (what a command that lists
-    the rooted trees itself builds)."""
+    evaluation carries beside the weights; ``entry_bytes``: what the tableau's entries
+    take, :func:`entries_size`); a check from ``CENTROID_FROM_ORDER`` on enumerates them
+    by centroid instead, unless ``listing`` (what a command that lists the rooted trees
+    itself builds)."""
     conditions, terms, factors = listing_size(order, degree)
     if backend == "exact" and order >= CENTROID_FROM_ORDER and not listing:
         return _centroid_estimate(conditions, terms, factors, channels, stages)
     trees = terms + factors
     seconds = trees * LISTING_SECONDS_PER_TREE
+    products = factors * stages**2 + terms * stages  # per channel
+    large = factors * max(0, stages - SMALL_STAGES)
     if backend == "exact":
         seconds += trees * channels * EXACT_SECONDS_PER_TREE_CHANNEL
-        size = BASE_BYTES + EXACT_BYTES_PER_TREE * trees + WORKING_BYTES * min(1.0, trees / 1e7)
+        seconds += channels * (products * EXACT_SECONDS_PER_STAGE_PRODUCT + stages**2 * EXACT_SECONDS_PER_ENTRY_CHANNEL)
+        size = (BASE_BYTES + EXACT_BYTES_PER_TREE * trees + WORKING_BYTES * min(1.0, trees / 1e7)
+                + _image_bytes(stages) * channels * stages**2 + EXACT_BYTES_PER_FACTOR_STAGE * large)
     else:
-        seconds += trees * (BALL_SECONDS_PER_TREE * max(1.0, dps / 50) ** 1.2
-                            + BOX_SECONDS_PER_TREE_DIRECTION * directions)
-        per_factor = (BALL_BYTES_PER_FACTOR + BALL_BYTES_PER_FACTOR_STAGE * stages) * max(1.0, dps / 50) ** 0.7
+        precision = max(1.0, dps / 50)
+        seconds += trees * (BALL_SECONDS_PER_TREE * precision**1.2 + BOX_SECONDS_PER_TREE_DIRECTION * directions)
+        seconds += products * BALL_SECONDS_PER_STAGE_PRODUCT * precision**1.2 + stages**2 * BALL_SECONDS_PER_ENTRY
+        per_factor = (BALL_BYTES_PER_FACTOR + BALL_BYTES_PER_FACTOR_STAGE * stages) * precision**0.7
         size = (BASE_BYTES + EXACT_BYTES_PER_TREE * terms + per_factor * factors
-                + WORKING_BYTES * min(1.0, trees / 1e6))
+                + WORKING_BYTES * min(1.0, trees / 1e6) + BALL_BYTES_PER_LARGE_FACTOR_STAGE * precision**0.7 * large)
         # a float ball (16 bytes) per direction beside the stored a and w (about 0.7 of a
         # factor tree's) and Φ and ψ (0.25·s): at most MAX_GRADIENT_BYTES at once (more
         # directions take more passes)
         size += min(MAX_GRADIENT_BYTES, factors * directions * (11 + 4 * stages))
-    return Estimate(conditions, terms, factors, seconds, int(size))
+    return Estimate(conditions, terms, factors, seconds, int(size + entry_bytes))
+
+
+def _image_bytes(stages: int) -> int:
+    """Bytes per entry and channel of the images of A in an exact check."""
+    halves = SLICE < stages <= SPLIT_STAGES  # multiplied by BLAS in two float halves
+    return EXACT_BYTES_PER_ENTRY_CHANNEL + (EXACT_BYTES_PER_ENTRY_CHANNEL_HALVES if halves else 0)
+
+
+def entries_size(texts: Iterable[str]) -> int:
+    """About what entries written as ``texts`` take in memory (a kernel's surrogate of
+    270 nodes: 73 000 entries of 1 100 characters, 380 MB)."""
+    return sum(ENTRY_BYTES + ENTRY_BYTES_PER_CHARACTER * len(t) for t in texts)
 
 
 def _centroid_estimate(conditions: int, terms: int, factors: int, channels: int, stages: int) -> Estimate:
