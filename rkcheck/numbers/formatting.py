@@ -92,13 +92,22 @@ def exact_string(q: Fraction | int, max_digits: int = 40) -> str:
     if q.denominator == 1 and q.numerator.bit_length() <= bits and len(str(abs(q.numerator))) <= max_digits:
         return str(q.numerator)
     places = _decimal_places(q.denominator, max_digits)
-    if places is not None and (scaled := abs(q.numerator * 10**places // q.denominator)).bit_length() <= 4 * bits:
-        sig = len(str(scaled).rstrip("0"))
-        if sig <= max_digits:
+    if places is not None:
+        digits = _without_trailing_zeros(abs(q.numerator * 10**places // q.denominator))
+        if digits.bit_length() <= bits and (sig := len(str(digits))) <= max_digits:
             return decimal_string(q, max(sig, 1))
     if q.numerator.bit_length() + q.denominator.bit_length() <= 3.33 * max_digits:
         return f"{q.numerator}/{q.denominator}"
     return "≈" + decimal_string(q, 20)
+
+
+def _without_trailing_zeros(n: int) -> int:
+    """``n`` with its trailing decimal zeros removed (``7e1000`` -> 7), never written out."""
+    while n and n % 10**20 == 0:
+        n //= 10**20
+    while n and n % 10 == 0:
+        n //= 10
+    return n
 
 
 def _decimal_places(denominator: int, limit: int) -> int | None:

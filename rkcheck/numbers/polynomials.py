@@ -168,7 +168,9 @@ def to_fmpq(x: Fraction | int) -> Any:
 
 
 def _coprime_by_keyword(p: int, q: int) -> Fraction:
-    return Fraction(p, q, _normalize=False)  # type: ignore[call-arg]  # Python 3.11's spelling
+    make: Any = Fraction  # Python 3.11's spelling, which the type stubs do not declare
+    made: Fraction = make(p, q, _normalize=False)
+    return made
 
 
 #: ``p/q`` from integers already in lowest terms, ``q > 0``, without the gcd that
