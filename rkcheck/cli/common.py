@@ -429,6 +429,9 @@ def _write_file(text: str, output: str) -> None:
         mode = os.stat(output).st_mode
     except FileNotFoundError:
         mode = None
+    if mode is not None and stat.S_ISFIFO(mode):
+        _write_pipe(text, output)
+        return
     if mode is not None and not stat.S_ISREG(mode):
         with open(output, "w", encoding="utf-8", errors="surrogateescape") as fh:
             fh.write(text)
@@ -436,7 +439,11 @@ def _write_file(text: str, output: str) -> None:
     target = Path(os.path.realpath(output))
     umask = os.umask(0)
     os.umask(umask)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")
+    try:
+        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".rkcheck-", suffix=".tmp")
+    except OSError as err:  # /proc, a folder that takes no new file: say so of the file asked for
+        raise UserError(f"cannot write the report beside it ({err.strerror}): rkcheck writes a temporary file in "
+                        "its folder, then renames it", source=output) from None
     try:
         os.fchmod(fd, (stat.S_IMODE(mode) if mode is not None else 0o666 & ~umask))
         with os.fdopen(fd, "w", encoding="utf-8", errors="surrogateescape") as fh:
@@ -448,6 +455,23 @@ def _write_file(text: str, output: str) -> None:
         except OSError:
             pass
         raise
+
+
+def _write_pipe(text: str, output: str) -> None:
+    """A named pipe: written when something reads it, refused at once when nothing does
+    (opening it to write would wait for a reader without end)."""
+    import errno
+    import os
+
+    try:
+        fd = os.open(output, os.O_WRONLY | os.O_NONBLOCK)
+    except OSError as err:
+        if err.errno == errno.ENXIO:
+            raise UserError("a named pipe that nothing reads: start its reader first", source=output) from None
+        raise
+    os.set_blocking(fd, True)
+    with os.fdopen(fd, "w", encoding="utf-8", errors="surrogateescape") as fh:
+        fh.write(text)
 
 
 class Stop:

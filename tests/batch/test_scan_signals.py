@@ -157,6 +157,23 @@ def test_memory_running_out_outside_a_files_check_is_its_row_not_a_bug(tmp_path,
         assert "out of memory" in files[1]["error"] and "bug" not in files[1]["error"]
 
 
+def test_a_named_pipe_nothing_reads_is_refused_not_waited_on(tmp_path, capsys):
+    # opening a FIFO to write blocks until a reader comes: -o says so instead, at once
+    import os
+
+    from support.guards import hang_guard
+
+    if not hasattr(os, "mkfifo"):
+        pytest.skip("no named pipes here")
+    src = tmp_path / "m.toml"
+    src.write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    fifo = tmp_path / "out.fifo"
+    os.mkfifo(fifo)
+    with hang_guard(60):
+        r = run_cli(capsys, "scan", str(src), "-o", str(fifo))
+    assert r.code == 2 and r.err.strip() == f"rkcheck: error: {fifo}: a named pipe that nothing reads: start its reader first"
+
+
 def test_output_targets_are_respected(tmp_path, capsys):
     src = tmp_path / "m.toml"
     src.write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
