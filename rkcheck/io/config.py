@@ -84,7 +84,10 @@ def load_config(start: Path | None = None) -> Config:
         place = f"tool.rkcheck.{key}"
         key_n = key.replace("-", "_")
         if key_n == "paths":
-            cfg.paths = [str((path.parent / p)) for p in parse_strings(value, place, src)]
+            given = parse_strings(value, place, src)
+            if "" in given:  # the project's folder otherwise, as `scan ''` would be the current one
+                raise UserError("an empty path: give a file or folder (. for the project's folder)", place, src)
+            cfg.paths = [str((path.parent / p)) for p in given]
         elif key_n == "exclude":
             cfg.exclude = parse_strings(value, place, src)
         elif key_n == "jobs":

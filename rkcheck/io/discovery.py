@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import fnmatch
+import os
 from pathlib import Path
 
 from rkcheck.errors import UserError
@@ -21,8 +22,6 @@ def _excluded(path: Path, patterns: list[str], root: Path | None = None) -> bool
 def _unreadable_folders(root: Path) -> list[Path]:
     """Folders under ``root`` (itself included) that cannot be listed: ``rglob`` skips
     them silently, so a scan of an unreadable folder would report 0 files."""
-    import os
-
     bad: list[Path] = []
     for _ in os.walk(root, onerror=lambda err: bad.append(Path(err.filename))):
         pass
@@ -62,9 +61,9 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
             raise UserError("no such file or directory", source=raw)
     seen: set[str] = set()
     out = []
-    for f in found:
-        key = f.as_posix()
+    for f in found:  # one file however it was spelt (a.toml, ../p/a.toml, /abs/a.toml): checked once
+        key = f.as_posix() if f.as_posix() == "-" or f.as_posix().startswith("@") else os.path.realpath(f)
         if key not in seen:
             seen.add(key)
-            out.append(key)
+            out.append(f.as_posix())
     return out

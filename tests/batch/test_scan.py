@@ -623,3 +623,15 @@ def test_the_shared_listing_is_built_only_when_the_budget_allows_it(monkeypatch)
 
     monkeypatch.setattr(rkcheck.trees.listing, "condition_listing", starved)
     warm_tables({"order": 6, "degree": 2}, {}, None)
+
+
+def test_one_file_spelt_several_ways_is_checked_once(tmp_path, capsys, monkeypatch):
+    # a.toml, ../p/a.toml, its absolute path, a link to it and its folder: one row
+    folder = tmp_path / "p"
+    folder.mkdir()
+    (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    (tmp_path / "link.toml").symlink_to(folder / "a.toml")
+    monkeypatch.chdir(folder)
+    r = run_cli(capsys, "scan", "a.toml", "../p/a.toml", str(folder / "a.toml"), "../link.toml", ".",
+                "--format", "json", "--order", "4", "--degree", "2")
+    assert [f["file"] for f in json.loads(r.out)["files"]] == ["a.toml"]

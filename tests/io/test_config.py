@@ -19,6 +19,8 @@ MIDPOINT = '[tableau]\nA = [["1/2"]]\nb = [1]\n'
         ("[tool.rkcheck]\ndps = 1\n", "tool.rkcheck.dps: expected an integer from 10 to 5000, got 1"),
         ("[tool.rkcheck]\nformt = 'json'\n", "tool.rkcheck.formt: unknown key (did you mean 'format'?)"),
         ("[tool.rkcheck]\nx = 1\nx = 2\n", "cannot read [tool.rkcheck]"),
+        ("[tool.rkcheck]\npaths = ['.', '']\n",
+         "tool.rkcheck.paths: an empty path: give a file or folder (. for the project's folder)"),
         (b"[tool]\nname = '\xff'\n", "cannot read [tool.rkcheck]"),
     ],
 )
