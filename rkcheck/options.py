@@ -219,6 +219,20 @@ def parse_choice(value: Any, choices: tuple[str, ...], place: str, source: str |
     raise UserError(f"expected one of {names}, got {_shown(value)}", place, source)
 
 
+def parse_flag(value: Any, place: str, source: str | None = None) -> bool:
+    """True or False, and nothing that merely reads as one (``'no'`` is a true string)."""
+    if isinstance(value, bool):
+        return value
+    raise UserError(f"expected True or False, got {_shown(value)}", place, source)
+
+
+def parse_callback(value: Any, place: str) -> Any:
+    """A function to call, or None."""
+    if value is None or callable(value):
+        return value
+    raise UserError(f"expected a function or None, got {_shown(value)}", place)
+
+
 def parse_require(value: Any, place: str, source: str | None = None) -> str:
     """The proof gate (definitions §5.3): ``any`` (every ``holds to D digits`` passes),
     ``proof`` (only exact ``holds`` and exact certificates pass) or ``digits:D`` (a

@@ -19,7 +19,7 @@ from rkcheck.api.verification import (
     check_flags,
     printable_numbers,
 )
-from rkcheck.errors import RkcheckError, UserError
+from rkcheck.errors import OptionError, RkcheckError, UserError
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
     FAIL_ON,
@@ -27,8 +27,10 @@ from rkcheck.options import (
     MAX_STAGES_RANGE,
     ORDER_RANGE,
     SCAN_SORTS,
+    parse_callback,
     parse_choice,
     parse_degree,
+    parse_flag,
     parse_int_in,
     parse_positive,
 )
@@ -118,9 +120,9 @@ class ScanResult:
 def _config(project: bool | ProjectConfig) -> ProjectConfig:
     if isinstance(project, ProjectConfig):
         return project
-    if project:
-        return project_config()
-    return ProjectConfig()
+    if not isinstance(project, bool):
+        raise OptionError(f"expected True, False or a ProjectConfig, got {type(project).__name__}", "project")
+    return project_config() if project else ProjectConfig()
 
 
 def scan_roots(paths: Sequence[str | os.PathLike[str]], project: bool | ProjectConfig = False) -> list[str]:
@@ -253,6 +255,9 @@ def scan(
     from rkcheck.reports.scan_json import encoded_result
 
     config = _config(project)
+    progress = _option(lambda: parse_callback(progress, "progress"))
+    on_file = _option(lambda: parse_callback(on_file, "on_file"))
+    json_in_workers = _option(lambda: parse_flag(json_in_workers, "json_in_workers"))
     roots = scan_roots(paths, config)
     flags = check_flags(degree, order, dps, decimals, fail_fast, require, arithmetic)
     fail_on = _option(lambda: parse_choice(fail_on or config.fail_on or "claims", FAIL_ON, "fail_on"))
@@ -269,7 +274,7 @@ def scan(
     interrupted = False
     try:
         files = find_tableau_files(roots, patterns)
-        empty_ok = config.allow_empty if allow_empty is None else allow_empty
+        empty_ok = config.allow_empty if allow_empty is None else _option(lambda: parse_flag(allow_empty, "allow_empty"))
         if not files and not empty_ok:
             raise UserError(_nothing_found(roots, patterns), "scan")
         on_result = _reporter(len(files), progress, on_file)

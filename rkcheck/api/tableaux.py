@@ -34,6 +34,8 @@ def loads(text: str, *, format: str = "toml", name: str = "<string>",
     """A tableau from the text of a tableau file (``format``: toml, json, csv, nodepy)."""
     from rkcheck.io.loader import loads as load_text
 
+    if not isinstance(name, str):
+        raise OptionError(f"expected the name its errors give the text (str), got {type(name).__name__}", "name")
     if isinstance(text, (bytes, bytearray)):
         try:
             text = bytes(text).decode("utf-8")

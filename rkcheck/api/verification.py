@@ -26,6 +26,7 @@ from rkcheck.options import (
     MAX_ORDER,
     parse_choice,
     parse_degree,
+    parse_flag,
     parse_int_in,
     parse_positive,
     parse_require,
@@ -119,7 +120,7 @@ def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decim
         flags["require"] = _option(lambda: parse_require(require, "require"))
     if arithmetic is not UNSET:
         flags["arithmetic"] = _option(lambda: parse_choice(arithmetic, ARITHMETICS, "arithmetic"))
-    if fail_fast:
+    if _option(lambda: parse_flag(fail_fast, "fail_fast")):
         flags["fail_fast"] = True
     return flags
 
@@ -207,7 +208,7 @@ def verify(
     if max_conditions is not None:
         max_conditions = _option(lambda: parse_positive(max_conditions, "max_conditions"))
     project_check: dict[str, Any] = {}
-    if project:
+    if _option(lambda: parse_flag(project, "project")):
         from rkcheck.io.config import load_config
 
         config = load_config()

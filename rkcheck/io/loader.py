@@ -342,6 +342,18 @@ def read_document(text: str, source: str, fmt: str, max_stages: int = DEFAULT_MA
         raise err.located(source=source) from None
 
 
+def _within_file_limit(text: str, source: str) -> None:
+    """A text is held to the limit of a file (its UTF-8 bytes, counted only where they
+    could exceed it)."""
+    from rkcheck.io.bounded import max_file_bytes
+
+    limit = max_file_bytes()
+    size = len(text) if len(text) > limit or 4 * len(text) <= limit else len(text.encode("utf-8", "surrogatepass"))
+    if size > limit:
+        raise UserError(f"text too large ({count_text(size)} bytes; the limit MAX_FILE_BYTES is {count_text(limit)}; "
+                        "set RKCHECK_MAX_FILE_BYTES to change it)", source=source)
+
+
 def loads(
     text: str,
     source: str = "<string>",
@@ -351,6 +363,7 @@ def loads(
     """Parse tableau text (``fmt``: one of :data:`INPUT_FORMATS`, default by the source's
     suffix and the content)."""
     parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages")
+    _within_file_limit(text, source)
     text = text.removeprefix("\ufeff")  # a byte order mark, as spreadsheets and editors write it
     fmt = fmt or detect_format(source, text)
     if fmt not in INPUT_FORMATS:

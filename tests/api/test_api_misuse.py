@@ -263,3 +263,30 @@ def test_arrays_with_an_axis_too_many_are_refused_naming_the_entry(A, b, place):
     np = pytest.importorskip("numpy")
     with pytest.raises(rkcheck.TableauError, match=rf"^{re.escape(place)}: expected a number, got an array"):
         rkcheck.from_arrays(A(np), b(np))
+
+
+@pytest.mark.parametrize("call, place", [
+    (lambda: rkcheck.scan(["@rk4"], order=4, progress=5), "progress"),
+    (lambda: rkcheck.scan(["@rk4"], order=4, on_file="x"), "on_file"),
+    (lambda: rkcheck.scan(["@rk4"], order=4, allow_empty="x"), "allow_empty"),
+    (lambda: rkcheck.scan(["@rk4"], order=4, project="yes"), "project"),
+    (lambda: rkcheck.scan(["@rk4"], order=4, json_in_workers=1), "json_in_workers"),
+    (lambda: rkcheck.verify("@rk4", order=4, project="x"), "project"),
+    (lambda: rkcheck.verify("@rk4", order=4, fail_fast="no"), "fail_fast"),
+    (lambda: rkcheck.loads('[tableau]\nA = [["1/2"]]\nb = [1]\n', name=5), "name"),
+])
+def test_a_flag_or_callback_of_the_wrong_type_is_an_option_error_naming_it(call, place):
+    # 'no' and 'x' are true in Python: taken as flags they would turn an option on
+    with pytest.raises(rkcheck.OptionError) as err:
+        call()
+    assert err.value.place == place and "\n" not in str(err.value)
+
+
+def test_a_text_is_held_to_the_limit_of_a_file(monkeypatch):
+    from rkcheck.io.bounded import MAX_FILE_BYTES
+
+    with pytest.raises(rkcheck.RkcheckError, match="text too large .* the limit MAX_FILE_BYTES"):
+        rkcheck.loads(" " * (MAX_FILE_BYTES + 1))
+    monkeypatch.setenv("RKCHECK_MAX_FILE_BYTES", "100")
+    with pytest.raises(rkcheck.RkcheckError, match="text too large"):
+        rkcheck.loads("[tableau]\nA = [[\"1/2\"]]\nb = [1]\n" + "#" * 100)
