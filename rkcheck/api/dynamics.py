@@ -18,12 +18,12 @@ from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import exact_string
 from rkcheck.options import (
     DEFAULT_MAX_STAGES,
+    MAX_STAGES_RANGE,
     POINTS_RANGE,
     STEPS_RANGE,
     STUDY_DPS_RANGE,
     parse_int_in,
     parse_integer,
-    parse_positive,
     parse_step_counts,
 )
 
@@ -200,7 +200,7 @@ def work_precision(tableaux: Sequence[TableauLike], problem: "str | Hamiltonian"
     ham = _problem(problem)
     T_value = _rational(T, "--T")
     counts = _option(lambda: parse_step_counts(steps))
-    max_stages = _option(lambda: parse_positive(max_stages, "max_stages"))
+    max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))
     if isinstance(tableaux, (str, os.PathLike, Tableau)) or not isinstance(tableaux, (list, tuple)):
         raise OptionError("expected a list of tableaux", "tableaux")
     if not T_value <= MAX_TIME:

@@ -97,5 +97,5 @@ def scheduler_timeout() -> float:
     except ValueError:
         value = -1.0
     if not 0 < value <= 3600:
-        raise UserError(f"expected a number of seconds from 0 to 3600, got {text!r}"[:120], SCHEDULER_TIMEOUT_ENV)
+        raise UserError(f"expected a number of seconds above 0 and at most 3600, got {text!r}"[:120], SCHEDULER_TIMEOUT_ENV)
     return value

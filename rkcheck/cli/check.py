@@ -31,7 +31,13 @@ from rkcheck.cli.common import (
     settings,
     stdout_console,
 )
-from rkcheck.errors import CheckInterrupted, OptionError, UserError, is_digits_limit, too_many_digits
+from rkcheck.errors import (
+    CheckInterrupted,
+    OptionError,
+    UserError,
+    is_digits_limit,
+    too_many_digits,
+)
 from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS, JOBS_RANGE
 
 

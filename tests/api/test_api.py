@@ -339,12 +339,13 @@ def test_the_documented_settings_path_works_after_a_bare_import():
 
 @pytest.mark.parametrize("value", [-1, 0, 1001, 10**6, True, 3.5, "x", None])
 def test_max_stages_is_refused_alike_by_every_constructor(tmp_path, value):
-    # the 1–1000 range holds whatever the source: a file, a text, arrays
+    # the 1–1000 range holds whatever the source: a file, a text, arrays, a study
     f = tmp_path / "m.toml"
     f.write_text('[tableau]\nA = [["1/2"]]\nb = ["1"]\n')
     messages = set()
     for make in (lambda: rkcheck.load(f, max_stages=value), lambda: rkcheck.loads(f.read_text(), max_stages=value),
-                 lambda: rkcheck.from_arrays([["1/2"]], ["1"], max_stages=value)):
+                 lambda: rkcheck.from_arrays([["1/2"]], ["1"], max_stages=value),
+                 lambda: rkcheck.work_precision([f], "harmonic", T="1", steps=[4], max_stages=value)):
         with pytest.raises(rkcheck.RkcheckError) as err:
             make()
         messages.add(str(err.value))

@@ -120,9 +120,11 @@ def test_an_unreachable_scheduler_is_one_line_within_the_connect_limit(tmp_path,
         assert "SCHEDULER_CONNECT_TIMEOUT" in r.err
     r = run_cli(capsys, "scan", str(folder), "--scheduler", "nonsense")
     assert r.code == 2 and r.err.startswith("rkcheck: error: scheduler: not a scheduler address")
-    monkeypatch.setenv(SCHEDULER_TIMEOUT_ENV, "soon")
-    r = run_cli(capsys, "scan", str(folder), "--scheduler", address)
-    assert r.code == 2 and r.err.startswith(f"rkcheck: error: {SCHEDULER_TIMEOUT_ENV}: expected a number of seconds")
+    for value in ("soon", "0", "3601"):  # the range the message states is the one held
+        monkeypatch.setenv(SCHEDULER_TIMEOUT_ENV, value)
+        r = run_cli(capsys, "scan", str(folder), "--scheduler", address)
+        assert r.code == 2 and r.err.startswith(f"rkcheck: error: {SCHEDULER_TIMEOUT_ENV}: expected a number of "
+                                                f"seconds above 0 and at most 3600, got '{value}'")
 
 
 @pytest.fixture(scope="module")
