@@ -144,8 +144,9 @@ def _run(argv: list[str] | None) -> None:
             sys.exit(EXIT_USAGE)
         where = f"{err.ctx.command_path}: " if err.ctx is not None else ""
         _error(f"{where}{err.format_message()} (see --help)", EXIT_USAGE)
-    except click.Abort:
-        click.echo("rkcheck: aborted", err=True)
+    except click.Abort as err:  # click's word for a Ctrl-C (or end of input) it caught itself
+        interrupted = isinstance(err.__context__, KeyboardInterrupt)
+        click.echo("rkcheck: interrupted" if interrupted else "rkcheck: aborted", err=True)
         sys.exit(EXIT_INTERRUPTED)
     except click.exceptions.Exit as err:
         sys.exit(err.exit_code)

@@ -307,3 +307,16 @@ def test_an_interrupted_certified_check_counts_only_the_orders_it_verified(capsy
     r = run_cli(capsys, "verify", "@avf-gauss-2", "--degree", "4", "--order", "6")
     energy = next(line for line in r.out.splitlines() if line.startswith("energy order"))
     assert r.code == 130 and energy.rstrip().endswith("; 3 verified")
+
+
+def test_ctrl_c_that_click_catches_says_interrupted(capsys, monkeypatch):
+    # a command that leaves Ctrl-C to click (listing the conditions) ends as the others
+    # do: "interrupted", exit 130
+    import rkcheck.api.trees
+
+    def stopped(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(rkcheck.api.trees, "conditions", stopped)
+    r = run_cli(capsys, "conditions", "--order", "6")
+    assert r.code == 130 and r.err.strip().splitlines()[-1] == "rkcheck: interrupted"
