@@ -23,6 +23,7 @@ back mechanically.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 from rkcheck.numbers.formatting import counted
 from rkcheck.trees.rooted import (
@@ -54,6 +55,12 @@ class ConditionCode:
     degree: int | None
     stages: int | None
     explicit: bool
+
+    @cached_property
+    def positions(self) -> dict[tuple[int, ...], int]:
+        """Each tree's place in :attr:`trees` (built once: per tree it made emitting the
+        conditions of order 12 quadratic, 20 s)."""
+        return {s: k for k, s in enumerate(self.trees)}
 
     def description(self) -> str:
         deg = "all Hamiltonians" if self.degree is None else f"degree ≤ {self.degree}"
@@ -118,8 +125,7 @@ def condition_code(listing, classical: bool = False, stages: int | None = None,
 
 
 def _children_positions(code: ConditionCode, seq: tuple[int, ...]) -> list[int]:
-    pos = {s: k for k, s in enumerate(code.trees)}
-    return [pos[canonical_level_sequence(c)] for c in children_of_level_sequence(seq)]
+    return [code.positions[canonical_level_sequence(c)] for c in children_of_level_sequence(seq)]
 
 
 def _product(factors: list[str], op: str = "*") -> str:

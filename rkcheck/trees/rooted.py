@@ -90,7 +90,14 @@ def children_of_level_sequence(seq: Sequence[int]) -> list[tuple[int, ...]]:
 
 def canonical_level_sequence(seq: Sequence[int]) -> tuple[int, ...]:
     """The canonical form of any valid level sequence."""
-    return level_sequence_of_forest([canonical_level_sequence(s) for s in _split_children(tuple(seq))])
+    return _canonical(tuple(seq))
+
+
+@lru_cache(maxsize=1 << 16)
+def _canonical(seq: tuple[int, ...]) -> tuple[int, ...]:
+    # the same subtrees recur in tree after tree (emitting the conditions of order 12
+    # asked for 700 000 of them): each is put in canonical form once
+    return level_sequence_of_forest([_canonical(s) for s in _split_children(seq)])
 
 
 def parse_level_sequence(text: str) -> tuple[int, ...]:
