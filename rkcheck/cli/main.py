@@ -173,6 +173,13 @@ def _run(argv: list[str] | None) -> None:
         _internal(err)
 
 
+def _on_stdout(err: OSError) -> OSError:
+    """``err`` as an error of standard output (its message then says so)."""
+    if not getattr(err, "filename", None):
+        err.filename = "standard output"
+    return err
+
+
 class _ReaderMayLeave:
     """Standard output that, once its reader has gone (``rkcheck verify … | head``),
     drops what is still written: the command then ends with its verdict's exit code, where
@@ -191,6 +198,8 @@ class _ReaderMayLeave:
                 return int(self._stream.write(text))
             except BrokenPipeError:
                 self._leave()
+            except OSError as err:  # a full disk, an I/O error: the one line names where
+                raise _on_stdout(err) from None
         return len(text)
 
     def _write_all(self, raw: io.FileIO, text: str) -> None:
@@ -211,6 +220,8 @@ class _ReaderMayLeave:
                 self._stream.flush()
             except BrokenPipeError:
                 self._leave()
+            except OSError as err:
+                raise _on_stdout(err) from None
 
     def _leave(self) -> None:
         self._gone = True
