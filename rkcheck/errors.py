@@ -77,6 +77,15 @@ class RkcheckWarning(UserWarning):
     their exact binary value).  Filter it like any ``UserWarning``."""
 
 
+def is_out_of_memory(err: BaseException) -> bool:
+    """Memory running out, however it surfaced: an allocation (``MemoryError``), or a
+    library whose segments could not be mapped when imported (an ``ImportError`` under
+    ``ulimit -v``)."""
+    text = str(err)
+    return isinstance(err, MemoryError) or (isinstance(err, (ImportError, OSError)) and (
+        "failed to map segment" in text or "Cannot allocate memory" in text))
+
+
 def is_digits_limit(err: BaseException) -> bool:
     """Python's refusal to write an integer of more digits than
     ``sys.get_int_max_str_digits()`` as text (a ValueError, raised wherever one is

@@ -23,7 +23,7 @@ from __future__ import annotations
 import os
 from typing import Callable, Generator, Sequence, TypeVar
 
-from rkcheck.errors import UserError
+from rkcheck.errors import UserError, is_out_of_memory
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -69,7 +69,7 @@ class Failure:
 def internal_error(err: BaseException) -> str:
     """A job's failure outside the check's own handling: a bug — or the machine's memory
     running out (an allocation, or a library's segments that cannot be mapped)."""
-    if isinstance(err, MemoryError) or "failed to map segment" in str(err) or "Cannot allocate memory" in str(err):
+    if is_out_of_memory(err):
         return "out of memory; lower --order or --degree, or run fewer --jobs"
     return f"internal error: {type(err).__name__}: {err} (a bug in rkcheck; please report it)"
 

@@ -20,7 +20,7 @@ from rkcheck.cli.common import (
     exit_codes,
     output_options,
 )
-from rkcheck.errors import UserError, is_digits_limit, too_many_digits
+from rkcheck.errors import UserError, is_digits_limit, is_out_of_memory, too_many_digits
 from rkcheck.io.printable import printable
 from rkcheck.version import __version__
 
@@ -160,7 +160,9 @@ def _run(argv: list[str] | None) -> None:
         sys.exit(EXIT_INTERRUPTED)
     except RecursionError:  # input nested beyond Python's stack (the grammar bounds parentheses, not chains)
         _error("an expression is nested too deeply for this command (a chain of thousands of terms?)", EXIT_USAGE)
-    except MemoryError:
+    except (MemoryError, ImportError) as err:  # an ImportError too: a library that could not be mapped
+        if not is_out_of_memory(err):
+            _internal(err)
         _error("out of memory; lower --order, --degree or --dps (docs/errors.md)", EXIT_USAGE)
     except OSError as err:  # -o into a missing folder, a full disk, ...: the environment, not a bug
         where = f"{err.filename}: " if getattr(err, "filename", None) else ""

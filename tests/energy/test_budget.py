@@ -77,6 +77,14 @@ def test_an_address_space_limit_is_memory_the_check_cannot_have():
     assert found and float(found.group(1)) > 1 and int(found.group(2)) < 1024, r.err
 
 
+def test_too_little_memory_to_load_the_libraries_is_out_of_memory_not_a_bug():
+    # under 45 MB of address space numpy's or FLINT's shared objects cannot be mapped:
+    # an ImportError, which is the machine's limit, said in one line with exit 2
+    r = run_limited(["-m", "rkcheck", "verify", "@rk4", "--order", "6"], memory_mb=45, cpu_seconds=60)
+    assert r.code == 2, r.err
+    assert r.err.strip().splitlines()[-1] == "rkcheck: error: out of memory; lower --order, --degree or --dps (docs/errors.md)"
+
+
 def test_ball_memory_grows_with_precision_and_stages():
     # wider mid-points and more stage values per stored weight take more bytes
     base = estimate(18, None, "ball", stages=3, dps=50).bytes
