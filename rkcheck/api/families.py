@@ -188,7 +188,7 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
     keep = [names.index(n) for n in result.rest]
     s = fam.stages
     if fam.kernel:  # AVF's kernel A = τ, B = 1, whose surrogate is A_ij = w_j x_i, b_i = w_i
-        from rkcheck.methods.continuous import rational_rule
+        from rkcheck.methods.quadrature import rational_rule
 
         x, w = rational_rule(s)
         gaps = [fam.ring.reduce(fam.A[i][j] - fam.ring.constant(w[j] * x[i])) for i in range(s) for j in range(s)]

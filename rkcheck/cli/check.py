@@ -238,7 +238,7 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     listing = list_conditions(order, degree, count=count, max_conditions=max_conditions,
                               announce=announce_estimate()).listing
     if emit is not None:  # conditions as code (rkcheck.reports.code)
-        from rkcheck.cli.common import write_text
+        from rkcheck.cli.output import write_text
         from rkcheck.reports.code import emit as emit_code
 
         write_text(emit_code(listing, emit, classical, stages, explicit), output)

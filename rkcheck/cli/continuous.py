@@ -5,11 +5,10 @@ from __future__ import annotations
 import click
 
 from rkcheck.cli.common import (
-    check_output_target,
     exit_codes,
     output_options,
-    write_text,
 )
+from rkcheck.cli.output import check_output_target, write_text
 
 
 @click.command(epilog=exit_codes())

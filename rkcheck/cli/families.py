@@ -8,14 +8,13 @@ import click
 
 from rkcheck.cli.common import (
     DEGREE,
-    check_output_target,
     exit_codes,
     flag_values,
     output_options,
     settings,
     stdout_console,
-    write_text,
 )
+from rkcheck.cli.output import check_output_target, write_text
 from rkcheck.errors import UserError, not_applying
 
 

@@ -16,14 +16,13 @@ from rkcheck.cli.common import (
     DEGREE,
     EXIT_FAIL,
     busy,
-    check_output_target,
     exit_codes,
     flag_values,
     order_option,
     output_options,
     progress_steps,
-    write_text,
 )
+from rkcheck.cli.output import check_output_target, write_text
 from rkcheck.errors import UserError
 from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES
 

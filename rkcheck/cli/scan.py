@@ -12,7 +12,6 @@ from rkcheck.cli.common import (
     EXIT_INTERRUPTED,
     EXIT_OK,
     check_options,
-    check_output_target,
     exit_codes,
     fail_on_option,
     flag_values,
@@ -21,8 +20,8 @@ from rkcheck.cli.common import (
     project_config,
     settings,
     stdout_console,
-    write_text,
 )
+from rkcheck.cli.output import check_output_target, write_text
 from rkcheck.io.printable import printable
 from rkcheck.options import JOBS_RANGE, SCAN_FORMATS, SCAN_SORTS
 

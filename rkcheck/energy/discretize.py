@@ -61,7 +61,7 @@ def _rule_texts(spec: Any) -> tuple[list[str], list[str], dict[str, str], int, s
     if name == "newton-cotes":
         if k < 2:  # equispaced with both ends (as lobatto-K): one node cannot be both
             raise UserError("newton-cotes needs at least 2 nodes (both ends of [0, 1])", "rule")
-        from rkcheck.methods.continuous import rational_rule
+        from rkcheck.methods.quadrature import rational_rule
 
         x, w = rational_rule(k)
         order = k + 1 if k % 2 == 1 else k  # symmetric: an odd count gains one degree

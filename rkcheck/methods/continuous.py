@@ -37,6 +37,7 @@ from functools import cached_property, lru_cache
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
+from rkcheck.methods.quadrature import rational_rule, vandermonde
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -266,28 +267,6 @@ class Surrogate:
     nodes: int
 
 
-def rational_rule(n: int) -> tuple[list[Fraction], list[Fraction]]:
-    """``n`` equispaced rational nodes on [0, 1] (the midpoint for n = 1) and the
-    weights that integrate every polynomial of degree < n exactly: ``w_i = ∫₀¹ L_i`` for
-    the Lagrange basis ``L_i = P/((x − x_i) P′(x_i))``, ``P = Π (x − x_j)`` (a quarter of
-    a second for 270 nodes, where solving the Vandermonde system took six times that)."""
-    from flint import fmpq, fmpq_poly
-
-    if n == 1:
-        return [Fraction(1, 2)], [Fraction(1)]
-    nodes = [fmpq(i, n - 1) for i in range(n)]
-    X = fmpq_poly([0, 1])
-    P = fmpq_poly([1])
-    for xi in nodes:
-        P *= X - xi
-    dP = P.derivative()
-    w = []
-    for xi in nodes:
-        integral = (P // (X - xi)).integral()  # exact: x_i is a root of P
-        w.append((integral(1) - integral(0)) / dP(xi))
-    return [Fraction(i, n - 1) for i in range(n)], [Fraction(int(q.p), int(q.q)) for q in w]
-
-
 # --------------------------------------------------------------------------- the kernel
 
 
@@ -410,9 +389,9 @@ class Kernel:
         C = fmpq_mat(1 + max((i for i, _ in monoms), default=0), 1 + max((j for _, j in monoms), default=0))
         for (i, j), c in zip(monoms, p.coeffs()):
             C[i, j] = c
-        values = _vandermonde(x, C.nrows()) * C
+        values = vandermonde(x, C.nrows()) * C
         if not rows:
-            values = values * _vandermonde(x, C.ncols()).transpose()
+            values = values * vandermonde(x, C.ncols()).transpose()
         weights = [to_fmpq(q) for q in w]
         return [[values[i, j] * weights[i if rows else j] for j in range(values.ncols())] for i in range(values.nrows())]
 
@@ -430,12 +409,6 @@ class Kernel:
         A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
         b = tuple(_entry_at(self.nodes[1], w[i], x[i], Fraction(0), constants) for i in range(n))
         return A, b
-
-
-def _vandermonde(x: list[Fraction], columns: int) -> Any:
-    from flint import fmpq, fmpq_mat
-
-    return fmpq_mat(len(x), columns, [fmpq(xi.numerator, xi.denominator) ** k for xi in x for k in range(columns)])
 
 
 def _poly_text(coeffs: dict[tuple[int, int], Fraction]) -> str:

@@ -19,8 +19,8 @@ from rkcheck.methods.continuous import (
     VARIABLES,
     _literal,
     b_in_tau,
-    rational_rule,
 )
+from rkcheck.methods.quadrature import rational_rule
 from rkcheck.methods.tableau import MethodInfo
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex

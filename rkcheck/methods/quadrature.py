@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
+from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.formatting import count_text, exact_string
@@ -347,3 +348,32 @@ def rule(name: str, s: int) -> Rule:
         raise UserError(f"zeta must lie in [-{count_text(MAX_ZETA)}, {count_text(MAX_ZETA)}], got {exact_string(zeta)}")
     poly = add(shifted_legendre(s), scale(shifted_legendre(s - 1), -zeta))
     return Rule(name, s, zeta, isolate_zeros(poly))
+
+
+def rational_rule(n: int) -> tuple[list[Fraction], list[Fraction]]:
+    """``n`` equispaced rational nodes on [0, 1] (the midpoint for n = 1) and the
+    weights that integrate every polynomial of degree < n exactly: ``w_i = ∫₀¹ L_i`` for
+    the Lagrange basis ``L_i = P/((x − x_i) P′(x_i))``, ``P = Π (x − x_j)`` (a quarter of
+    a second for 270 nodes, where solving the Vandermonde system took six times that)."""
+    from flint import fmpq, fmpq_poly
+
+    if n == 1:
+        return [Fraction(1, 2)], [Fraction(1)]
+    nodes = [fmpq(i, n - 1) for i in range(n)]
+    X = fmpq_poly([0, 1])
+    P = fmpq_poly([1])
+    for xi in nodes:
+        P *= X - xi
+    dP = P.derivative()
+    w = []
+    for xi in nodes:
+        integral = (P // (X - xi)).integral()  # exact: x_i is a root of P
+        w.append((integral(1) - integral(0)) / dP(xi))
+    return [Fraction(i, n - 1) for i in range(n)], [Fraction(int(q.p), int(q.q)) for q in w]
+
+
+def vandermonde(x: list[Fraction], columns: int) -> Any:
+    """The matrix ``[x_i^k]`` of the nodes' powers below ``columns``, in FLINT."""
+    from flint import fmpq, fmpq_mat
+
+    return fmpq_mat(len(x), columns, [fmpq(xi.numerator, xi.denominator) ** k for xi in x for k in range(columns)])

@@ -165,7 +165,7 @@ def test_a_kernel_familys_surrogate_entries_are_the_kernel_at_the_nodes(tmp_path
     Fractions on the same nodes, for a kernel of τ-degree 5 with a σ² term and a b in τ."""
     from flint import fmpq
 
-    from rkcheck.methods.continuous import rational_rule
+    from rkcheck.methods.quadrature import rational_rule
 
     fam = rkcheck.load_family(_kernel_family(tmp_path, A="tau + kappa*tau^5*(sigma^2 - 1/3) - kappa^2*tau*sigma/7",
                                       b="1 + kappa*(tau - 1/2)")).covering(4)

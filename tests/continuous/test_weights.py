@@ -7,7 +7,8 @@ import pytest
 
 sympy = pytest.importorskip("sympy")
 
-from rkcheck.methods.continuous import ContinuousMethod, rational_rule  # noqa: E402
+from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402
+from rkcheck.methods.quadrature import rational_rule  # noqa: E402
 
 tau, sigma = sympy.symbols("tau sigma")
 
