@@ -110,11 +110,15 @@ def test_io_errors_of_the_output_are_one_line_exit_2(tmp_path, capsys):
     missing = tmp_path / "no" / "such" / "dir" / "out.json"
     r = run_cli(capsys, "scan", path, "--jobs", "1", "--format", "json", "-o", str(missing))
     assert r.code == 2 and len(r.err.splitlines()) == 1 and "Traceback" not in r.err, r.err
-    if os.path.exists("/dev/full"):
-        with open("/dev/full", "w") as full:
-            proc = subprocess.run([sys.executable, "-m", "rkcheck", "show", path, "--format", "json"],
+    if not os.path.exists("/dev/full"):
+        return
+    for command in (["show", path, "--format", "json"], ["verify", path, "--order", "4"],
+                    ["verify", path, "--order", "4", "--format", "json"]):
+        with open("/dev/full", "w") as full:  # every write fails: the line names standard output
+            proc = subprocess.run([sys.executable, "-m", "rkcheck", *command],
                                   stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
-        assert proc.returncode == 2 and proc.stderr == "rkcheck: error: No space left on device\n", proc.stderr
+        assert proc.returncode == 2, (command, proc.stderr)
+        assert proc.stderr == "rkcheck: error: standard output: No space left on device\n", (command, proc.stderr)
 
 
 def test_residuals_longer_than_4300_digits_are_printed(tmp_path):
