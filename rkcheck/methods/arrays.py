@@ -53,23 +53,30 @@ from rkcheck.numbers.entries import Entry
 from rkcheck.options import DEFAULT_MAX_STAGES, MAX_STAGES_RANGE, parse_int_in
 
 FloatMode = Literal["exact", "shortest"]
+#: how a float was read where its two readings (the decimal it prints as, its binary
+#: value) differ: as a decimal, or at its exact binary value (None: they agree)
+DECIMAL, BINARY = "decimal", "binary"
 
 
 def _is_sympy(x: Any) -> bool:
     return type(x).__module__.split(".")[0] == "sympy"
 
 
-def _float_entry(x: float, floats: FloatMode, place: str) -> tuple[Entry, bool]:
+def _float_entry(x: float, floats: FloatMode, place: str) -> tuple[Entry, str | None]:
     if not math.isfinite(x):
         raise TableauError(f"{x} is not a finite number", place)
     text = repr(float(x))
     # only worth a warning when the two readings differ: the binary value is not the
     # decimal the user sees (0.1), or the decimal stands for an interval (0.16666666666666666)
     entry = Entry.parse(text) if floats == "shortest" else Entry.of(Fraction(x))
-    return entry, Fraction(text) != Fraction(x) or Entry.parse(text).is_rounded
+    return entry, _reading(Fraction(text) != Fraction(x) or Entry.parse(text).is_rounded, floats)
 
 
-def _longdouble_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
+def _reading(differs: bool, floats: FloatMode) -> str | None:
+    return None if not differs else (BINARY if floats == "exact" else DECIMAL)
+
+
+def _longdouble_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, str | None]:
     """A numpy extended-precision float: its exact binary value, or (``shortest``) a
     decimal whose rounding reading covers the reals that round to it
     (:func:`_covering_decimal`)."""
@@ -80,7 +87,7 @@ def _longdouble_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, boo
     return _own_precision_entry(x, value, floats)
 
 
-def _own_precision_entry(x: Any, value: Fraction, floats: FloatMode) -> tuple[Entry, bool]:
+def _own_precision_entry(x: Any, value: Fraction, floats: FloatMode) -> tuple[Entry, str | None]:
     """A numpy float of another precision than a double's (float16, float32, longdouble),
     exactly ``value``: at ``shortest``, the decimal of :func:`_covering_decimal`, which the
     ``auto`` and ``rounded`` decimals rules read as covering every real that rounds to
@@ -88,15 +95,30 @@ def _own_precision_entry(x: Any, value: Fraction, floats: FloatMode) -> tuple[En
     last digit, several times less: a float32 1/12 would then exclude 1/12)."""
     import numpy as np
 
-    if floats == "exact" or value == 0:
-        return Entry.of(value), False
-    below, above = (Fraction(*np.nextafter(x, np.asarray(d, dtype=x.dtype)).item().as_integer_ratio())
-                    if x.dtype.itemsize > 8 else Fraction(float(np.nextafter(x, np.asarray(d, dtype=x.dtype))))
-                    for d in (-np.inf, np.inf))
-    text = _covering_decimal(value, max(value - below, above - value) / 2)
+    if value == 0:
+        return Entry.of(value), None
+    if floats == "exact":
+        return Entry.of(value), (BINARY if Fraction(str(x)) != value else None)
+    spacing = max(value - _neighbour(x, -np.inf), _neighbour(x, np.inf) - value)  # both: the larger
+    text = _covering_decimal(value, spacing / 2)
     if text is None:  # fewer digits than a rounded decimal has: its exact value, and a warning
-        return Entry.of(value), True
-    return Entry.parse(text), Fraction(text) != value
+        return Entry.of(value), BINARY
+    entry = Entry.parse(text)
+    return entry, (DECIMAL if Fraction(text) != value or entry.is_rounded else None)
+
+
+def _neighbour(x: Any, towards: float) -> Fraction:
+    """The next float of ``x``'s own type towards ±inf; past the largest one, as far
+    beyond it as the float below is beneath it (the rounding interval's other half)."""
+    import numpy as np
+
+    def exact(y: Any) -> Fraction:
+        return Fraction(*y.item().as_integer_ratio()) if y.dtype.itemsize > 8 else Fraction(float(y))
+
+    y = np.nextafter(x, np.asarray(towards, dtype=x.dtype))
+    if np.isfinite(y):
+        return exact(y)
+    return 2 * exact(x) - exact(np.nextafter(x, np.asarray(-towards, dtype=x.dtype)))
 
 
 def _covering_decimal(value: Fraction, radius: Fraction) -> str | None:
@@ -113,37 +135,37 @@ def _covering_decimal(value: Fraction, radius: Fraction) -> str | None:
     return None
 
 
-def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry, bool]:
+def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry, str | None]:
     """One value as an :class:`Entry` (see the module docstring for what each type
-    means) and whether it was a float whose readings (shortest repr, exact binary
-    value) differ."""
+    means) and, for a float whose readings (shortest repr, exact binary value) differ,
+    which was taken (:data:`DECIMAL` or :data:`BINARY`; None otherwise)."""
     try:
         if isinstance(x, bool):
             raise TableauError("expected a number, got a boolean", place)
         if isinstance(x, str):
-            return Entry.parse(x), False
+            return Entry.parse(x), None
         if isinstance(x, (int, Fraction)):
-            return Entry.of(x), False
+            return Entry.of(x), None
         if isinstance(x, float):
             return _float_entry(x, floats, place)
         if isinstance(x, Decimal):
             if not x.is_finite():
                 raise TableauError(f"{x} is not a finite number", place)
-            return Entry.parse(str(x)), False
+            return Entry.parse(str(x)), None
         if _is_sympy(x):
             if getattr(x, "is_Rational", False):
-                return Entry.of(Fraction(int(x.p), int(x.q))), False
+                return Entry.of(Fraction(int(x.p), int(x.q))), None
             if getattr(x, "is_Float", False):
                 if getattr(x, "_prec", None) == 53:  # a double: read as the float it is
                     return _float_entry(float(x), floats, place)
                 value, shown = _sympy_float_exact(x), Entry.parse(str(x))
                 differs = Fraction(str(x)) != value or shown.is_rounded
-                return (shown if floats == "shortest" else Entry.of(value)), differs
+                return (shown if floats == "shortest" else Entry.of(value)), _reading(differs, floats)
             if getattr(x, "is_number", False):
                 try:
-                    return Entry.parse(str(x)), False
+                    return Entry.parse(str(x)), None
                 except UserError:  # cos(pi/18) and the like: exact through its minimal polynomial
-                    return Entry.parse(_sympy_root_text(x, place)), False
+                    return Entry.parse(_sympy_root_text(x, place)), None
             raise TableauError(f"expected a number, got the sympy expression {x}", place)
         if hasattr(x, "item") and hasattr(x, "dtype"):  # a numpy scalar
             if getattr(x, "ndim", 0) >= 1:  # an array where a number belongs: A of three axes, b of two
@@ -161,7 +183,7 @@ def entry_of(x: Any, place: str, floats: FloatMode = "shortest") -> tuple[Entry,
     raise TableauError(f"expected a number (int, Fraction, str, float), got {type(x).__name__}", place)
 
 
-def _narrow_float_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, bool]:
+def _narrow_float_entry(x: Any, floats: FloatMode, place: str) -> tuple[Entry, str | None]:
     """A numpy float32 (or float16) as a decimal covering its own rounding interval
     (:func:`_own_precision_entry`), or its exact binary value."""
     if not math.isfinite(float(x)):
@@ -239,12 +261,12 @@ def entries_from_arrays(
         raise TableauError("the tableau is empty (A has no rows)", "A")
     if s > max_stages:
         raise TableauError(f"{s} stages exceeds the limit of {max_stages} (raise it with max_stages=)", "A")
-    inexact: list[tuple[str, Entry]] = []
+    inexact: list[tuple[str, Entry, str]] = []
 
     def entry(x: Any, place: str) -> Entry:
-        e, differs = entry_of(x, place, floats)
-        if differs:
-            inexact.append((place, e))
+        e, reading = entry_of(x, place, floats)
+        if reading is not None:
+            inexact.append((place, e, reading))
         return e
 
     matrix = []
@@ -262,21 +284,29 @@ def entries_from_arrays(
 
     b_entries = vector(b, "b")
     c_entries = None if c is None else vector(c, "c")
-    warnings = [_float_warning(inexact, floats)] if inexact else []
+    warnings = _float_warnings(inexact, floats)
     for w in warnings:
         warn(w)
     return tuple(matrix), b_entries, c_entries, warnings
 
 
-def _float_warning(inexact: list[tuple[str, Entry]], floats: FloatMode) -> str:
-    place, first = inexact[0]
-    if floats == "shortest" and first.rounded_digits is None:  # a float16: no decimal reading covers it
-        return (f"{len(inexact)} float entries (first {place}) were taken at their exact binary value: they have "
-                "fewer digits than a rounded decimal (definitions §5), so no decimal stands for the reals that round "
-                "to them; pass strings to mean decimals")
-    if floats == "exact":
-        return (f"{len(inexact)} float entries (first {place}) were taken at their exact binary value, which is not "
-                "the decimal they print as; pass strings, or floats='shortest' (the default), to mean the decimals")
-    return (f"{len(inexact)} float entries (first {place} = {first.text}) were read as a decimal, which stands "
-            "for the reals that round to the float (decimals 'auto') or for that decimal exactly (0.1 is not the "
-            "double 0.1); floats='exact' takes their exact binary values")
+def _float_warnings(inexact: list[tuple[str, Entry, str]], floats: FloatMode) -> list[str]:
+    """One warning per way floats were read where the two readings differ: as a decimal
+    (:data:`DECIMAL`), or at their exact binary value (:data:`BINARY`)."""
+    out = []
+    decimal = [(p, e) for p, e, how in inexact if how == DECIMAL]
+    if decimal:
+        place, first = decimal[0]
+        out.append(f"{len(decimal)} float entries (first {place} = {first.text}) were read as a decimal, which "
+                   "stands for the reals that round to the float (decimals 'auto') or for that decimal exactly (0.1 "
+                   "is not the double 0.1); floats='exact' takes their exact binary values")
+    binary = [p for p, _, how in inexact if how == BINARY]
+    if binary and floats == "exact":
+        out.append(f"{len(binary)} float entries (first {binary[0]}) were taken at their exact binary value, which is "
+                   "not the decimal they print as; pass strings, or floats='shortest' (the default), to mean the "
+                   "decimals")
+    elif binary:
+        out.append(f"{len(binary)} float entries (first {binary[0]}) were taken at their exact binary value: they "
+                   "have fewer digits than a rounded decimal (definitions §5), so no decimal stands for the reals "
+                   "that round to them; pass strings to mean decimals")
+    return out

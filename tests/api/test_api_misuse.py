@@ -26,11 +26,15 @@ def test_scan_of_something_that_is_no_path_is_an_rkcheck_error():
 
 
 def _own_rounding_interval(np, x):
-    """The reals that round to x in its own precision: halfway to each neighbour."""
-    lo, hi = (Fraction(*np.nextafter(x, np.asarray(d, dtype=x.dtype)).item().as_integer_ratio())
-              if x.dtype.itemsize > 8 else Fraction(float(np.nextafter(x, np.asarray(d, dtype=x.dtype))))
-              for d in (-np.inf, np.inf))
-    value = Fraction(*x.item().as_integer_ratio()) if x.dtype.itemsize > 8 else Fraction(float(x))
+    """The reals that round to x in its own precision: halfway to each neighbour (past
+    the largest float, the spacing below mirrored)."""
+    def exact(y):
+        return Fraction(*y.item().as_integer_ratio()) if y.dtype.itemsize > 8 else Fraction(float(y))
+
+    value = exact(x)
+    lo, hi = (np.nextafter(x, np.asarray(d, dtype=x.dtype)) for d in (-np.inf, np.inf))
+    lo = exact(lo) if np.isfinite(lo) else 2 * value - exact(hi)
+    hi = exact(hi) if np.isfinite(hi) else 2 * value - lo
     return (lo + value) / 2, (value + hi) / 2
 
 
@@ -290,3 +294,40 @@ def test_a_text_is_held_to_the_limit_of_a_file(monkeypatch):
     monkeypatch.setenv("RKCHECK_MAX_FILE_BYTES", "100")
     with pytest.raises(rkcheck.RkcheckError, match="text too large"):
         rkcheck.loads("[tableau]\nA = [[\"1/2\"]]\nb = [1]\n" + "#" * 100)
+
+
+def test_the_largest_narrow_floats_are_read_covering_their_rounding():
+    # past the largest float32 the next one is inf: the rounding interval's upper half
+    # mirrors the lower one, as IEEE rounding to nearest has it
+    import warnings
+
+    import numpy as np
+
+    top = np.finfo(np.float32).max
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tab = rkcheck.from_arrays([[top, np.float32(3e38)], [-top, np.float16(65504)]], [1, 0])
+    assert _covers(np, tab.A[0][0], top) and _covers(np, tab.A[0][1], np.float32(3e38))
+    assert tab.A[1][0].text == "-" + tab.A[0][0].text and tab.A[1][1].exact == 65504
+
+
+def test_each_way_floats_were_read_has_its_own_true_warning():
+    import numpy as np
+
+    def said(A, b, **kwargs):
+        with pytest.warns(rkcheck.RkcheckWarning) as record:
+            rkcheck.from_arrays(A, b, **kwargs)
+        return [str(w.message) for w in record]
+
+    mixed = said([[np.float16(1 / 3), np.float32(1 / 3)], [np.float32(1 / 7), np.longdouble(1) / 7]], [1, 0])
+    assert len(mixed) == 2
+    assert mixed[0].startswith("3 float entries (first A[1][2] = 0.333333) were read as a decimal")
+    assert mixed[1].startswith("1 float entries (first A[1][1]) were taken at their exact binary value: they have "
+                               "fewer digits")
+    # a double's short decimal is that decimal, not its binary value
+    assert said([[0.1]], [1])[0].startswith("1 float entries (first A[1][1] = 0.1) were read as a decimal")
+    # floats='exact' says so for every precision, and an exactly representable float32
+    # still stands for an interval, which is said
+    assert said([[np.float32(1 / 12)]], [1], floats="exact")[0].startswith(
+        "1 float entries (first A[1][1]) were taken at their exact binary value, which is not the decimal")
+    assert said([[np.float32(0.5)]], [1])[0].startswith("1 float entries (first A[1][1] = 0.5000000) were read")
