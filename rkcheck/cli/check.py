@@ -286,4 +286,9 @@ def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
         title = (f"{given}: superfluous, no energy condition" if cond.tree is None
                  else f"{cond.id}  {cond.bracket}" + (f"  (given as {given})" if cond.id != given else ""))
         tree_picture(tree_drawing(cond.given), title, picture)
-    render_explanation(cond, stdout_console())
+    try:
+        render_explanation(cond, stdout_console())
+    except ValueError as err:  # a number of more digits than Python writes: the limit, for this file
+        if not is_digits_limit(err):
+            raise
+        raise too_many_digits(tableau_file) from None

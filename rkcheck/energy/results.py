@@ -14,6 +14,7 @@ from typing import Any, Iterator, NamedTuple, Sequence, overload
 
 import numpy as np
 
+from rkcheck.errors import is_digits_limit
 from rkcheck.numbers.enclosure import Enclosure
 from rkcheck.trees.centroid import Listing
 from rkcheck.trees.free import FreeTree
@@ -27,6 +28,15 @@ from rkcheck.verdicts import (
 )
 
 
+def _shown(value: Any) -> str:
+    try:
+        return repr(value)
+    except ValueError as err:
+        if not is_digits_limit(err):
+            raise
+        return f"<{type(value).__name__} with more digits than sys.get_int_max_str_digits()>"
+
+
 class Condition(NamedTuple):
     """One checked energy condition (definitions §3, §5): its free tree, its verdict, a
     certified enclosure of its residual R for the designated rooting, and R exactly
@@ -36,6 +46,11 @@ class Condition(NamedTuple):
     verdict: Verdict
     enclosure: Enclosure
     residual: Any = None
+
+    def __repr__(self) -> str:
+        # field by field as a named tuple shows itself, except a number of more digits
+        # than Python writes (an echo in the REPL must not raise)
+        return "Condition(" + ", ".join(f"{name}={_shown(getattr(self, name))}" for name in self._fields) + ")"
 
     @property
     def id(self) -> str:

@@ -443,6 +443,23 @@ def test_a_weight_sum_past_pythons_digit_limit_is_said_by_its_leading_digits():
     assert any(w.startswith("Σb = ≈1.1111111111111111111e4999 ≠ 1") for w in result.warnings)
 
 
+def test_a_condition_shows_itself_whatever_its_digits():
+    # echoed in a REPL, a condition whose residual has more digits than Python writes
+    # shows the rest of itself; a small one shows its residual (RK4's [τ⁵]: −1/2880)
+    import sys
+
+    assert "residual=Fraction(-1, 2880)" in repr(rkcheck.verify("@rk4", order=5).first_failure)
+    before = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(4300)
+    try:
+        first = rkcheck.verify(rkcheck.from_arrays([["1" * 5000]], [1]), order=3).first_failure
+        shown = repr(first)
+    finally:
+        sys.set_int_max_str_digits(before)
+    assert shown.startswith("Condition(tree=FreeTree(level_sequence=(1, 2, 2)") and "verdict=Verdict(state='fails'" in shown
+    assert "residual=<Fraction with more digits than sys.get_int_max_str_digits()>" in shown
+
+
 def test_a_property_text_past_pythons_digit_limit_reads_as_a_decimal(tmp_path):
     """M₁₁ = b(1 − b) − … for a = 1/2 + 10⁻⁵⁰⁰⁰: an exact rational whose integers have more
     than Python's 4 300 digits (a library leaves that limit as it is); the check still

@@ -155,7 +155,7 @@ def test_a_report_row_that_cannot_be_built_is_that_files_error_row(tmp_path, cap
         assert files["a.toml"]["result"] is not None and files["bad.toml"]["result"] is None
 
 
-@pytest.mark.parametrize("command", ["verify", "scan"])
+@pytest.mark.parametrize("command", ["verify", "scan", "explain"])
 def test_a_report_past_the_printed_digits_limit_is_one_line_naming_the_file(tmp_path, capsys, monkeypatch, command):
     # b = 3^6000 (2 863 digits) puts residuals of thousands of digits in the report: past
     # the CLI's limit (lowered here to 5 000) verify ends with one line naming the file
@@ -164,10 +164,11 @@ def test_a_report_past_the_printed_digits_limit_is_one_line_naming_the_file(tmp_
 
     monkeypatch.setattr(importlib.import_module("rkcheck.cli.main"), "MAX_PRINTED_DIGITS", 5000)
     path = write(tmp_path, "huge.toml", '[constants]\nx = "3^1000"\n[tableau]\nA = [["1/2"]]\nb = ["x^6"]\n')
-    r = run_cli(capsys, command, path, "--order", "2")
-    assert r.code == (2 if command == "verify" else 1)
+    args = ("explain", "1,2,2", "--tableau", path) if command == "explain" else (command, path, "--order", "2")
+    r = run_cli(capsys, *args)
+    assert r.code == (1 if command == "scan" else 2)
     message = f"{path}: a number of the report has more than 5,000 digits, too many to print (docs/errors.md)"
-    if command == "verify":
+    if command != "scan":
         assert r.err.strip().splitlines()[-1] == f"rkcheck: error: {message}"
     else:
         assert message in " ".join(r.out.split()) and "internal error" not in r.out
