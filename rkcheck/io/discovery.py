@@ -5,6 +5,7 @@ from __future__ import annotations
 import fnmatch
 import os
 from pathlib import Path
+from typing import Any
 
 from rkcheck.errors import UserError
 
@@ -59,11 +60,24 @@ def find_tableau_files(paths: list[str], exclude: list[str] | None = None) -> li
                 found.append(p)
         else:
             raise UserError("no such file or directory", source=raw)
-    seen: set[str] = set()
+    seen: set[Any] = set()
     out = []
-    for f in found:  # one file however it was spelt (a.toml, ../p/a.toml, /abs/a.toml): checked once
-        key = f.as_posix() if f.as_posix() == "-" or f.as_posix().startswith("@") else os.path.realpath(f)
+    for f in found:  # one file however it was spelt (a.toml, ../p/a.toml, /abs/a.toml, a link): checked once
+        key = _identity(f)
         if key not in seen:
             seen.add(key)
             out.append(f.as_posix())
     return out
+
+
+def _identity(f: Path) -> Any:
+    """The file itself: its device and inode (links, hard ones too, and other spellings
+    are one), else its resolved path; ``-`` and ``@name`` as written."""
+    name = f.as_posix()
+    if name == "-" or name.startswith("@"):
+        return name
+    try:
+        st = os.stat(f)
+        return (st.st_dev, st.st_ino)
+    except OSError:  # a dangling link, an unreadable entry: by its path (it becomes an error row)
+        return os.path.realpath(f)

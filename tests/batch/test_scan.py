@@ -626,12 +626,13 @@ def test_the_shared_listing_is_built_only_when_the_budget_allows_it(monkeypatch)
 
 
 def test_one_file_spelt_several_ways_is_checked_once(tmp_path, capsys, monkeypatch):
-    # a.toml, ../p/a.toml, its absolute path, a link to it and its folder: one row
+    # a.toml, ../p/a.toml, its absolute path, a link and a hard link to it, its folder: one row
     folder = tmp_path / "p"
     folder.mkdir()
     (folder / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
     (tmp_path / "link.toml").symlink_to(folder / "a.toml")
+    os.link(folder / "a.toml", tmp_path / "hard.toml")
     monkeypatch.chdir(folder)
-    r = run_cli(capsys, "scan", "a.toml", "../p/a.toml", str(folder / "a.toml"), "../link.toml", ".",
+    r = run_cli(capsys, "scan", "a.toml", "../p/a.toml", str(folder / "a.toml"), "../link.toml", "../hard.toml", ".",
                 "--format", "json", "--order", "4", "--degree", "2")
     assert [f["file"] for f in json.loads(r.out)["files"]] == ["a.toml"]
