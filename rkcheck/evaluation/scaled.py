@@ -152,10 +152,7 @@ class ScaledTableau:
                 if self._scanned >= MAX_PRIMES_SCANNED:
                     from rkcheck.errors import UserError
 
-                    raise UserError(
-                        f"exact arithmetic needs primes over which the entries' number field (degree {self.degree}) "
-                        f"splits, and only {len(self._split)} of the first {self._scanned:,} primes do (the limit "
-                        "MAX_PRIMES_SCANNED); use --arithmetic ball")
+                    raise UserError(_too_few_primes(self.degree, len(self._split), self._scanned, bits))
                 for p in primes(64, self._scanned):
                     roots = self._roots_mod(p)
                     if roots is not None:
@@ -333,6 +330,17 @@ class ScaledTableau:
         from rkcheck.evaluation.algorithm import condition_sums
 
         return condition_sums(listing, self.channels(pairs), self.s, orders)
+
+
+def _too_few_primes(degree: int, split: int, scanned: int, bits: int) -> str:
+    """Why the primes ran out: too few split in the field, or, over Q (where every
+    prime serves), the numbers are too large for any count of them within the limit."""
+    if degree == 1 or (scanned and split == scanned):
+        return (f"the entries are too large for exact arithmetic: their conditions' values take about {bits:,} "
+                f"bits, more than the first {scanned:,} primes cover (the limit MAX_PRIMES_SCANNED); write them "
+                "smaller, or check a lower --order")
+    return (f"exact arithmetic needs primes over which the entries' number field (degree {degree}) splits, and "
+            f"only {split} of the first {scanned:,} primes do (the limit MAX_PRIMES_SCANNED); use --arithmetic ball")
 
 
 def _log2_weight(n: int, terms: int, weight: int | None) -> float:

@@ -433,6 +433,18 @@ def test_ball_magnitude_bounds_past_float64_are_infinite_not_an_error(tmp_path, 
     assert r.code == 1 and "energy order 1" in r.out, r.out
 
 
+def test_rationals_too_large_for_the_primes_allowed_say_so_not_splitting(tmp_path, capsys, monkeypatch):
+    # over Q every prime serves: past the limit it is the entries' size that is too much
+    # (64 primes of 30 bits cover some 1 900 bits; (1/3 + 10^700)^3 takes about 7 000)
+    import rkcheck.evaluation.scaled as scaled
+
+    monkeypatch.setattr(scaled, "MAX_PRIMES_SCANNED", 64)
+    path = write(tmp_path, "big.toml", '[tableau]\nA = [["1/3 + 10^700"]]\nb = ["1"]\n')
+    r = run_cli(capsys, "verify", path, "--order", "2")
+    assert r.code == 2 and len(r.err.splitlines()) == 1, r.err
+    assert "the entries are too large for exact arithmetic" in r.err and "splits" not in r.err, r.err
+
+
 def test_the_search_for_split_primes_stops_at_its_limit(capsys, monkeypatch):
     # with no prime allowed, Q(√3) of Gauss-2 cannot be checked exactly: one line names
     # the limit and the way out, which works
