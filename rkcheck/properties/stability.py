@@ -377,12 +377,15 @@ def _from_parts(s: int, exact: bool, series: sc.Vector, numerator: sc.Vector | N
                 denominator: sc.Vector | None) -> StabilityFunction:
     """The defect coefficients e_n and the identity verdict from the series."""
     like = series[0]
-    defect = [sc.const(0, like)]
-    for n in range(1, 2 * s + 1):
-        if n % 2:
-            defect.append(sc.const(0, like))  # e_odd = 0 identically
-            continue
-        defect.append(sc.total([(series[j] if j % 2 == 0 else -series[j]) * series[n - j] for j in range(n + 1)], like))
+    defect = _rational_defect(series, s)
+    if defect is None:
+        defect = [sc.const(0, like)]
+        for n in range(1, 2 * s + 1):
+            if n % 2:
+                defect.append(sc.const(0, like))  # e_odd = 0 identically
+                continue
+            defect.append(sc.total([(series[j] if j % 2 == 0 else -series[j]) * series[n - j]
+                                    for j in range(n + 1)], like))
     verdicts = []
     leading_power = leading = None
     for n in range(2, 2 * s + 1, 2):
@@ -393,6 +396,20 @@ def _from_parts(s: int, exact: bool, series: sc.Vector, numerator: sc.Vector | N
         verdicts.append(v_n)
     identity = Verdict(FAILS) if leading_power is not None else combine(verdicts)
     return StabilityFunction(s, exact, series, defect, identity, leading_power, leading, numerator, denominator)
+
+
+def _rational_defect(series: sc.Vector, s: int) -> sc.Vector | None:
+    """The coefficients e_0 … e_2s of R(z)R(−z) − 1 as one FLINT product of the series
+    and its reflection, for a rational series of more than MAX_FRACTION_STAGES stages
+    (their O(s²) products in Fractions of hundreds of digits took minutes at 300
+    stages); None otherwise."""
+    if s <= MAX_FRACTION_STAGES or not all(isinstance(x, (Fraction, int)) for x in series):
+        return None
+    terms = list(series[:2 * s + 1])
+    product = poly.to_flint(terms) * poly.to_flint([x if j % 2 == 0 else -x for j, x in enumerate(terms)])
+    coeffs = product.coeffs()
+    return [Fraction(0)] + [poly.to_fraction(coeffs[n]) if n % 2 == 0 and n < len(coeffs) else Fraction(0)
+                            for n in range(1, 2 * s + 1)]
 
 
 # ------------------------------------------------------------------------ text
