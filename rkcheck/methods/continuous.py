@@ -381,7 +381,7 @@ class Kernel:
         """``w_j p(x_i, x_j)`` for the rational polynomial ``p(τ, σ)`` at every pair of
         nodes, or ``w_i p(x_i)`` (one column) with ``rows``, as FLINT rationals: ``V_τ C
         V_σᵀ``, ``C`` its coefficients and ``V`` the Vandermonde matrices of the nodes
-        (node by node in Python, a surrogate of a few hundred nodes took seconds)."""
+        (node by node in Python, a surrogate of a few hundred nodes would take seconds)."""
         from flint import fmpq_mat
 
         t, s = self._index("tau"), self._index("sigma")

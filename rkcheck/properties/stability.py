@@ -401,7 +401,7 @@ def _from_parts(s: int, exact: bool, series: sc.Vector, numerator: sc.Vector | N
 def _rational_defect(series: sc.Vector, s: int) -> sc.Vector | None:
     """The coefficients e_0 … e_2s of R(z)R(−z) − 1 as one FLINT product of the series
     and its reflection, for a rational series of more than MAX_FRACTION_STAGES stages
-    (their O(s²) products in Fractions of hundreds of digits took minutes at 300
+    (O(s²) products in Fractions of hundreds of digits would take minutes at 300
     stages); None otherwise."""
     if s <= MAX_FRACTION_STAGES or not all(isinstance(x, (Fraction, int)) for x in series):
         return None

@@ -58,8 +58,8 @@ class ConditionCode:
 
     @cached_property
     def positions(self) -> dict[tuple[int, ...], int]:
-        """Each tree's place in :attr:`trees` (built once: per tree it made emitting the
-        conditions of order 12 quadratic, 20 s)."""
+        """Each tree's place in :attr:`trees`, built once (built per tree, emitting the
+        conditions would be quadratic in their number)."""
         return {s: k for k, s in enumerate(self.trees)}
 
     def description(self) -> str:
