@@ -31,13 +31,8 @@ from rkcheck.cli.common import (
     settings,
     stdout_console,
 )
-from rkcheck.errors import (
-    CheckInterrupted,
-    OptionError,
-    UserError,
-    is_digits_limit,
-    too_many_digits,
-)
+from rkcheck.cli.output import printed_for, write_text
+from rkcheck.errors import CheckInterrupted, OptionError, UserError
 from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS, JOBS_RANGE
 
 
@@ -100,12 +95,8 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         failed = result.failed
     except CheckInterrupted as stop:  # report what was finished, then exit 130
         result, failed, interrupted = stop.result, True, True
-    try:
+    with printed_for(tab.info.source or file):
         _write_report(result, fmt, show_all, fail_on, draw)
-    except ValueError as err:  # a number of more digits than Python writes: the limit, for this file
-        if not is_digits_limit(err):
-            raise
-        raise too_many_digits(tab.info.source or file) from None
     if interrupted:
         done = [p.order for p in result.per_order if p.checked]
         click.echo(f"rkcheck: interrupted; the report holds the orders that finished"
@@ -238,7 +229,6 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     listing = list_conditions(order, degree, count=count, max_conditions=max_conditions,
                               announce=announce_estimate()).listing
     if emit is not None:  # conditions as code (rkcheck.reports.code)
-        from rkcheck.cli.output import write_text
         from rkcheck.reports.code import emit as emit_code
 
         write_text(emit_code(listing, emit, classical, stages, explicit), output)
@@ -286,9 +276,5 @@ def explain(tree_id, tableau_file, picture, dps, decimals, max_stages) -> None:
         title = (f"{given}: superfluous, no energy condition" if cond.tree is None
                  else f"{cond.id}  {cond.bracket}" + (f"  (given as {given})" if cond.id != given else ""))
         tree_picture(tree_drawing(cond.given), title, picture)
-    try:
+    with printed_for(tableau_file):
         render_explanation(cond, stdout_console())
-    except ValueError as err:  # a number of more digits than Python writes: the limit, for this file
-        if not is_digits_limit(err):
-            raise
-        raise too_many_digits(tableau_file) from None

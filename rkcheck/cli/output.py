@@ -3,11 +3,25 @@ any work (its folder exists, it is not one of the command's own inputs)."""
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from contextlib import contextmanager
+from typing import Any, Iterator, Sequence
 
 import click
 
-from rkcheck.errors import UserError
+from rkcheck.errors import UserError, is_digits_limit, too_many_digits
+
+
+@contextmanager
+def printed_for(source: str | None) -> Iterator[None]:
+    """A report printed for the file ``source``: a number of more digits than Python
+    writes is the one line naming that file (:func:`~rkcheck.errors.too_many_digits`),
+    a limit the numbers met, not a bug."""
+    try:
+        yield
+    except ValueError as err:
+        if not is_digits_limit(err):
+            raise
+        raise too_many_digits(source) from None
 
 
 def check_output_target(output: str | None, inputs: Sequence[str] = ()) -> None:
