@@ -45,6 +45,8 @@ from rkcheck.numbers.polynomials import (
     scale,
     shift,
     squarefree_split,
+    to_fmpq,
+    to_fraction,
     trim,
 )
 
@@ -369,11 +371,11 @@ def rational_rule(n: int) -> tuple[list[Fraction], list[Fraction]]:
     for xi in nodes:
         integral = (P // (X - xi)).integral()  # exact: x_i is a root of P
         w.append((integral(1) - integral(0)) / dP(xi))
-    return [Fraction(i, n - 1) for i in range(n)], [Fraction(int(q.p), int(q.q)) for q in w]
+    return [Fraction(i, n - 1) for i in range(n)], [to_fraction(q) for q in w]
 
 
 def vandermonde(x: list[Fraction], columns: int) -> Any:
     """The matrix ``[x_i^k]`` of the nodes' powers below ``columns``, in FLINT."""
-    from flint import fmpq, fmpq_mat
+    from flint import fmpq_mat
 
-    return fmpq_mat(len(x), columns, [fmpq(xi.numerator, xi.denominator) ** k for xi in x for k in range(columns)])
+    return fmpq_mat(len(x), columns, [to_fmpq(xi) ** k for xi in x for k in range(columns)])
