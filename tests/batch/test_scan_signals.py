@@ -108,6 +108,18 @@ def test_a_worker_killed_with_sigkill_is_one_error_row_and_the_scan_goes_on(tmp_
     assert "killed by SIGKILL" in dead["error"]
 
 
+def _scans_of_midpoints(tmp_path, capsys, count):
+    """``count`` midpoint files t00.toml, t01.toml, … scanned with --jobs 1 and 2 (forked
+    workers inherit a test's patches): (jobs, the run, its JSON rows) of each."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i in range(count):
+        (folder / f"t{i:02d}.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
+    for jobs in ("1", "2"):
+        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--degree", "2", "--order", "4")
+        yield jobs, r, json.loads(r.out)["files"]
+
+
 def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch):
     # a simulated bug on one file: that file is an error row, the others are checked
     # (workers are forked, so they inherit the patch)
@@ -121,15 +133,9 @@ def test_an_internal_error_in_one_file_is_one_row(tmp_path, capsys, monkeypatch)
         return real(tab, *args, **kwargs)
 
     monkeypatch.setattr(rkcheck.energy.claims, "judge_tableau", buggy)
-    folder = tmp_path / "in"
-    folder.mkdir()
-    for i in range(4):
-        (folder / f"t{i:02d}.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
-    for jobs in ("1", "2"):
-        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--degree", "2", "--order", "4")
-        doc = json.loads(r.out)
-        assert [f["status"] for f in doc["files"]] == ["ok", "error", "ok", "ok"], jobs
-        assert "internal error: RuntimeError: simulated bug" in doc["files"][1]["error"]
+    for jobs, r, files in _scans_of_midpoints(tmp_path, capsys, 4):
+        assert [f["status"] for f in files] == ["ok", "error", "ok", "ok"], jobs
+        assert "internal error: RuntimeError: simulated bug" in files[1]["error"]
         assert r.code == 1
 
 
@@ -146,13 +152,7 @@ def test_memory_running_out_outside_a_files_check_is_its_row_not_a_bug(tmp_path,
         return real(path, *args, **kwargs)
 
     monkeypatch.setattr(rkcheck.batch.scan, "scan_file", starved)
-    folder = tmp_path / "in"
-    folder.mkdir()
-    for i in range(3):
-        (folder / f"t{i:02d}.toml").write_text('[tableau]\nA = [["1/2"]]\nb = [1]\n', encoding="utf-8")
-    for jobs in ("1", "2"):
-        r = run_cli(capsys, "scan", str(folder), "--jobs", jobs, "--format", "json", "--degree", "2", "--order", "4")
-        files = json.loads(r.out)["files"]
+    for jobs, _, files in _scans_of_midpoints(tmp_path, capsys, 3):
         assert [f["status"] for f in files] == ["ok", "error", "ok"], jobs
         assert "out of memory" in files[1]["error"] and "bug" not in files[1]["error"]
 
