@@ -4,8 +4,9 @@ report shares.  May import: :mod:`rkcheck.numbers`.
 
 =================== =====================================================================
 ``holds``           the residual is exactly zero (exact arithmetic on exact data)
-``holds_to_digits`` a rigorous enclosure of the residual contains 0; ``digits`` = D with
-                    ``|R| <= 10^-D`` certified
+``holds_to_digits`` a rigorous enclosure of the residual contains 0; ``digits`` = D, the
+                    certain decimal digits: ``|R| <= 10^-D`` certified when D >= 1, and
+                    D = 0 when not even the first digit is (however wide the enclosure)
 ``fails``           a rigorous enclosure of the residual excludes 0: certainly violated
 =================== =====================================================================
 """
@@ -55,13 +56,34 @@ HOLDS_TO_DIGITS = State.HOLDS_TO_DIGITS
 FAILS = State.FAILS
 UNDECIDED = State.UNDECIDED
 
+#: the fewest certain digits a ``holds to D digits`` needs to count as an answer: with
+#: none, its enclosure contains 0 and says nothing more (definitions §5)
+DECIDING_DIGITS = 1
+
 
 @dataclass(frozen=True, slots=True)
 class Verdict:
-    """holds, holds to ``digits`` digits, or fails (definitions §5.3)."""
+    """holds, holds to ``digits`` digits, or fails (definitions §5.3).
+
+    ``digits`` counts certain digits, so it is never negative: an enclosure that contains
+    0 and is wider than 1 certifies no digit, and is ``holds to 0 digits`` whatever its
+    width (the enclosure itself says how wide).  Such a verdict decides nothing, and no
+    ``--require`` gate passes it (:data:`DECIDING_DIGITS`)."""
 
     state: State
     digits: int | None = None  # only for holds_to_digits
+
+    def __post_init__(self) -> None:
+        if self.digits is not None and self.digits < 0:
+            object.__setattr__(self, "digits", 0)
+
+    @property
+    def decided(self) -> bool:
+        """Whether the verdict says anything: not ``undecided``, and a holds to digits
+        certifies at least one digit."""
+        if self.state == HOLDS_TO_DIGITS:
+            return (self.digits or 0) >= DECIDING_DIGITS
+        return self.state != UNDECIDED
 
     @property
     def holds(self) -> bool:
@@ -77,13 +99,14 @@ class Verdict:
         (not a proof), ``no`` or ``not decided``."""
         if self.state == FAILS:
             return "no"
-        if self.state == UNDECIDED:
+        if not self.decided:
             return "not decided"
         return "yes" if self.state == HOLDS else f"yes, to {self.digits} digits"
 
 
 def certified_digits(bound: Fraction | float) -> int:
-    """The largest integer D with ``bound <= 10^-D`` (bound > 0), exactly."""
+    """The largest integer D with ``bound <= 10^-D`` (bound > 0), exactly; negative for a
+    bound above 10 (a :class:`Verdict` counts that as 0 certain digits)."""
     if bound <= 0:
         raise ValueError("bound must be positive")
     p, q = bound.as_integer_ratio()
@@ -129,7 +152,8 @@ def classify_many(encs: list[Enclosure]) -> list[Verdict]:
     fails = np.abs(mid) > rad
     bound = (np.abs(mid) + rad) * (1 + 2.0**-51) + 2.0**-1074
     with np.errstate(divide="ignore"):
-        digits = np.floor(-np.log10(bound) - 1e-9).astype(np.int64)
+        digits = np.floor(-np.log10(bound) - 1e-9)
+    digits = np.maximum(np.where(np.isfinite(digits), digits, 0), 0).astype(np.int64)  # certain digits
     cache: dict[int, Verdict] = {}
     fail, hold = Verdict(FAILS), Verdict(HOLDS)
     verdicts = []
@@ -160,8 +184,8 @@ def classify_bounds(excludes_zero: Any, bound: Any, exponent: int = 0) -> tuple[
     bound = np.asarray(bound, dtype=float)
     with np.errstate(divide="ignore"):
         digits = np.floor(-np.log10(bound) + exponent * math.log10(2) - 1e-9)
-    # never negative: a bound above 1 says nothing about the size (definitions §5); on
-    # point data the check raises the precision instead (energy.check.sharpen_weak_holds)
+    # certain digits, never negative (as :class:`Verdict` counts them); on point data the
+    # check raises the precision instead (energy.judging.sharpen_weak_holds)
     digits = np.maximum(np.where(np.isfinite(digits), digits, 0), 0).astype(np.int32)
     state = np.where(fails, FAILS.code, HOLDS_TO_DIGITS.code).astype(np.int8)
     return state, np.where(fails, -1, digits).astype(np.int32)

@@ -10,7 +10,7 @@ import numpy as np
 
 from rkcheck.energy.check import CheckResult, inconsistent
 from rkcheck.numbers.formatting import count_text
-from rkcheck.verdicts import HOLDS_TO_DIGITS
+from rkcheck.verdicts import DECIDING_DIGITS, HOLDS_TO_DIGITS
 
 
 @dataclass(frozen=True)
@@ -24,16 +24,20 @@ class Shortfall:
     claims: tuple[str, ...] = ()  # why each claim met only to too few digits (or orders) falls short
 
     def text(self) -> str:
-        what = "a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits"
+        if self.require == "any":  # the shortfall of any is holds to 0 digits
+            held, ending = "to 0 digits", ": not one digit is certain"
+        else:
+            held = "only to digits"
+            ending = ", which is not " + ("a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits")
         parts = []
         if self.count:
             ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
             parts.append(f"{count_text(self.count)} condition{'s' if self.count != 1 else ''} hold"
-                         f"{'s' if self.count == 1 else ''} only to digits ({ids})")
+                         f"{'s' if self.count == 1 else ''} {held} ({ids})")
         if self.certificate:
-            parts.append("the certificate of every order holds only to digits")
+            parts.append(f"the certificate of every order holds {held}")
         parts.extend(self.claims)
-        return f"--require {self.require}: " + "; ".join(parts) + f", which is not {what}"
+        return f"--require {self.require}: " + "; ".join(parts) + ending
 
 
 def requirement_shortfall(result: CheckResult, claims: list[Any] | None = None) -> Shortfall | None:
@@ -41,13 +45,15 @@ def requirement_shortfall(result: CheckResult, claims: list[Any] | None = None) 
     that hold only to digits (``proof``) or to fewer than D (``digits:D``), a certificate
     that is only numerical, or claims (``claims``, else the result's own) met only that
     way — or, for ``proof``, met by the orders checked without a proof beyond them.  None
-    when the requirement is met, as it is by an exact certificate of every order."""
+    when the requirement is met, as it is by an exact certificate of every order.  Even
+    ``any`` asks one certain digit of every holds (:data:`DECIDING_DIGITS`): a holds to 0
+    digits decides nothing."""
     require = result.options.require
     # an exact certificate of every order proves each checked condition exactly, whatever
     # arithmetic evaluated the conditions themselves (definitions §5: a proof)
-    if require == "any" or result.energy_order_all:
+    if result.energy_order_all:
         return None
-    need = result.options.required_digits
+    need = DECIDING_DIGITS if require == "any" else result.options.required_digits
     claims = result.claims if claims is None else claims
     unmet = tuple(_claim_shortfall(r, need) for r in claims or () if r.met and _claim_short(r, need))
 
