@@ -107,6 +107,7 @@ class Kernel:
         self.A = [[self._number(A.get((i, j))) for j in range(q)] for i in range(p)]
         self.B = [self._number(B.get((i, 0))) for i in range(p)]
         self.left = work
+        self._reciprocals: list[Any] = [self.zero]
 
     def _number(self, c: Interval | None) -> Any:
         import flint
@@ -133,16 +134,24 @@ class Kernel:
     def moments(self, g: list[Any], n: int) -> list[Any]:
         """``m_j(g)`` for j < n."""
         self.spend(len(g) * n)
+        inv = self.reciprocals(n + len(g))
         out = []
         for j in range(n):
             total = self.zero
-            for k, c in enumerate(g):
-                total += c * self.reciprocal(j + k + 1)
+            for c, r in zip(g, inv[j + 1:]):
+                total += c * r
             out.append(total)
         return out
 
+    def reciprocals(self, n: int) -> list[Any]:
+        """``[0, 1, 1/2, …, 1/n]``: the moments' weights, made once per kernel."""
+        inv = self._reciprocals
+        while len(inv) <= n:
+            inv.append(self.scalar(1) / len(inv))
+        return inv
+
     def reciprocal(self, n: int) -> Any:
-        return self.scalar(1) / n
+        return self.reciprocals(n)[n]
 
     def apply(self, g: list[Any]) -> list[Any]:
         """``∫₀¹ A(τ, σ) g(σ) dσ`` as a polynomial in τ."""
@@ -165,6 +174,7 @@ class Kernel:
         """The adjoint kernel ``(B(σ) − A(τ, σ), B(τ))`` in the same arithmetic."""
         other = object.__new__(Kernel)
         other.exact, other.left, other.scalar, other.poly = self.exact, self.left, self.scalar, self.poly
+        other._reciprocals = self._reciprocals
         q = max(len(self.A[0]), len(self.B))
         rows = [[-a for a in row] + [self.zero] * (q - len(row)) for row in self.A]
         rows[0] = [b + x for b, x in zip([*self.B, *[self.zero] * (q - len(self.B))], rows[0])]
@@ -260,6 +270,13 @@ def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> Ser
             M[i][j] = M[i][j] - b * b2
     distinct: dict[int, list[Tree]] = {}
     rows: dict[Tree, list[Any]] = {}
+    moments_of: dict[Tree, list[Any]] = {}
+
+    def moments(t: Tree) -> list[Any]:  # each tree's moments once, for every pair it is in
+        if t not in moments_of:
+            moments_of[t] = kernel.moments(stages(t), n_m)
+        return moments_of[t]
+
     n = 1
     try:
         for n in range(2, vertices + 1):  # pairs of n vertices in all, smaller first
@@ -267,10 +284,10 @@ def symplectic_witness(A: Poly, B: Poly, vertices: int = SERIES_VERTICES) -> Ser
             for size_u in range(1, n):
                 for u in distinct[size_u]:
                     if u not in rows:  # m(G_u)ᵀ M
-                        m = kernel.moments(stages(u), n_m)
+                        m = moments(u)
                         rows[u] = [sum((m[i] * M[i][j] for i in range(n_m)), kernel.zero) for j in range(n_m)]
                     for v in distinct[n - size_u]:
-                        m_v = kernel.moments(stages(v), n_m)
+                        m_v = moments(v)
                         defect = sum((r * x for r, x in zip(rows[u], m_v)), kernel.zero)
                         if kernel.nonzero(defect):
                             value = kernel.text(defect)
