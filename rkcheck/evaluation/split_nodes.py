@@ -131,7 +131,7 @@ def _log2_bound(form: NodeForm, e: int) -> float:
     roots of P (any numbering: every embedding gives a condition the same value)."""
     from flint import acb, arb, ctx
 
-    from rkcheck.evaluation.scaled import log2_upper
+    from rkcheck.evaluation.field_bounds import log2_upper
     from rkcheck.numbers.polynomials import complex_roots
 
     integer = integer_coefficients(form.P)

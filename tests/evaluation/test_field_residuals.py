@@ -211,7 +211,7 @@ def test_scaled_field_makes_theta_an_algebraic_integer():
 def test_integrality_denominator_is_the_least_that_makes_every_entry_integral(spec):
     # definition, checked with sympy's minimal polynomials (not FLINT's charpoly): e·x is
     # an algebraic integer for every entry, and no proper divisor e/q does that
-    from rkcheck.evaluation.scaled import integrality_denominator
+    from rkcheck.evaluation.field_bounds import integrality_denominator
 
     values = tableau(spec).exact_values()
     e = integrality_denominator([x for row in values.A for x in row] + list(values.b), values.field)

@@ -15,7 +15,8 @@ from fractions import Fraction
 import pytest
 
 from rkcheck.evaluation.modular import exact_condition_sums
-from rkcheck.evaluation.scaled import integrality_denominator, scaled_field
+from rkcheck.evaluation.field_bounds import integrality_denominator
+from rkcheck.evaluation.scaled import scaled_field
 from rkcheck.evaluation.split_nodes import scaled_nodes
 from rkcheck.methods.closed_forms import family_exact_values
 from rkcheck.methods.families import family_tableau
