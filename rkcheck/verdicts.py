@@ -59,6 +59,8 @@ UNDECIDED = State.UNDECIDED
 #: the fewest certain digits a ``holds to D digits`` needs to count as an answer: with
 #: none, its enclosure contains 0 and says nothing more (definitions §5)
 DECIDING_DIGITS = 1
+#: what a statement held to 0 digits concludes
+UNDECIDED_TEXT = "not decided, no digit being certain"
 
 
 @dataclass(frozen=True, slots=True)

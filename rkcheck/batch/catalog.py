@@ -30,13 +30,15 @@ class CatalogRow:
     avf_degrees: list[int] = field(default_factory=list)
     claims: str = ""  # "ok" / "BROKEN" / ""
     error: str | None = None
-    symplectic: str = ""  # "yes" / "no" / "yes†" (held to the working precision only)
+    symplectic: str = ""  # "yes" / "no" / "yes†" (held to the working precision only) / "?" (not decided)
     symmetric: str = ""
     energy_orders: dict[str, int | None] = field(default_factory=dict)  # label -> energy order (None: all / ≥ N)
     constants: dict[str, Fraction | None] = field(default_factory=dict)  # label -> C_m (None: no failure)
 
 
 def _property_cell(pv) -> str:
+    if not pv.verdict.decided:
+        return "?"
     if pv.verdict.state is State.FAILS:
         return "no"
     return "yes" if pv.verdict.state is State.HOLDS else "yes†"

@@ -33,7 +33,7 @@ from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.options import CheckOptions
-from rkcheck.verdicts import UNDECIDED
+from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict
 
 
 @dataclass(frozen=True)
@@ -96,12 +96,20 @@ def judge(claim: Claim, result: CheckResult) -> ClaimResult:
             return ClaimResult(claim, False, f"≥ {_reach(found, r.digits)}", f"checked to order {r.checked} only")
         return _to_digits(claim, found == claim.value, str(found), r.order, r.digits)
     if claim.kind == "avf":
-        found_bool = bool(result.avf and result.avf.equals_avf)
-        note = result.avf.reason if result.avf else None
-        if result.avf is not None and result.avf.verdict.state == UNDECIDED:  # neither shown nor refuted: not met
-            return ClaimResult(claim, False, "undecided", note)
-        return ClaimResult(claim, found_bool == claim.value, str(found_bool).lower(), note)
+        if result.avf is None:
+            return ClaimResult(claim, claim.value is False, "false")
+        return _yes_no(claim, result.avf.verdict, result.avf.reason)
     return _judge_energy_order(claim, result)
+
+
+def _yes_no(claim: Claim, verdict: Verdict, note: str | None) -> ClaimResult:
+    """A true/false claim on a property whose verdict is ``verdict``: met when it agrees,
+    to the verdict's digits; a property neither shown nor refuted (``undecided``, or held
+    to 0 digits) meets neither claim."""
+    if not verdict.decided:
+        return ClaimResult(claim, False, "undecided", note)
+    digits = verdict.digits if verdict.state == HOLDS_TO_DIGITS else None
+    return ClaimResult(claim, verdict.holds == claim.value, str(verdict.holds).lower(), note, digits)
 
 
 def _judge_energy_order(claim: Claim, result: CheckResult) -> ClaimResult:
@@ -156,16 +164,14 @@ def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
     props = result.properties
     if claim.kind in ("symplectic", "symmetric"):
         pv = getattr(props, claim.kind)
-        if pv.verdict.state == UNDECIDED:  # neither shown nor refuted: a claim either way is not met
-            return ClaimResult(claim, False, "undecided", pv.reason)
-        return ClaimResult(claim, pv.holds == claim.value, str(pv.holds).lower(), pv.reason)
+        return _yes_no(claim, pv.verdict, pv.reason)
     stab = props.stability
     if stab is None:  # a continuous method: its kernel has no stability function as a finite object
         raise UserError("does not apply to a continuous method (it has no stability function here); "
                         "claim it of a discretized tableau", claim.place, result.tableau.info.source)
     note = stab.defect_text()
     if stab.leading_power is None:
-        return ClaimResult(claim, claim.power is None, "0", note)
+        return _shown(ClaimResult(claim, claim.power is None, "0", note), stab.identity)
     lead = stab.leading_coefficient
     q = sc.rational(lead)
     found = f"{q if q is not None else sc.text(lead, 12)} z^{stab.leading_power}"
@@ -178,7 +184,16 @@ def judge_property(claim: Claim, result: CheckResult) -> ClaimResult:
         diff = lead - sc.const(entry.exact, lead)
     else:
         diff = sc.enclosure(lead, 256) - entry.enclosure(256, DecimalsMode.EXACT)
-    return ClaimResult(claim, sc.verdict(diff).holds, found, note)
+    return _shown(ClaimResult(claim, True, found, note), sc.verdict(diff))
+
+
+def _shown(result: ClaimResult, verdict: Verdict) -> ClaimResult:
+    """``result`` as far as ``verdict`` (that the value found is the value claimed) shows
+    it: not met when it fails or decides nothing, met only to its digits when it holds
+    to digits."""
+    if not verdict.decided or verdict.state == FAILS:
+        return replace(result, met=False)
+    return replace(result, digits=verdict.digits if verdict.state == HOLDS_TO_DIGITS else None)
 
 
 def check_claims(tableau: Tableau, claims: list[Claim], base: CheckOptions,

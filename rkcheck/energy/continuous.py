@@ -51,7 +51,9 @@ class ContinuousCertificate:
 
     @property
     def certified(self) -> bool:
-        return self.verdict.state != FAILS
+        """It proves every order, exactly or to digits (a verdict with no certain digit
+        certifies nothing)."""
+        return self.verdict.state != FAILS and self.verdict.decided
 
     @property
     def kind(self) -> str | None:
@@ -87,7 +89,7 @@ class ContinuousAvf:
 
     @property
     def equals_avf(self) -> bool:
-        return self.verdict.holds
+        return self.verdict.holds and self.verdict.decided
 
     def refuted(self, condition_id: str) -> "ContinuousAvf":
         """Undecided by the kernel and its trees, refuted by an energy condition that
@@ -146,14 +148,26 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
     if v["certificate"].state == FAILS and cert.certified:
         cert = ContinuousCertificate(degree, v["certificate"], "no kernel certificate over the box of its decimals")
     elif cert.certified:
-        cert = ContinuousCertificate(degree, v["certificate"], cert.reason)
+        cert = ContinuousCertificate(degree, v["certificate"], _boxed(cert.verdict, v["certificate"], cert.reason))
     props = facts.properties
+    sym, sym_box = props.symplectic, v["symplectic"]
+    rev, rev_box = props.symmetric, v["symmetric"]
     return KernelFacts(
-        ContinuousAvf(degree, v["avf"], facts.avf.reason),
+        ContinuousAvf(degree, v["avf"], _boxed(facts.avf.verdict, v["avf"], facts.avf.reason)),
         cert,
-        ContinuousProperties(False, PropertyVerdict("symplectic", v["symplectic"], props.symplectic.reason),
-                             PropertyVerdict("symmetric", v["symmetric"], props.symmetric.reason)),
+        ContinuousProperties(False, PropertyVerdict("symplectic", sym_box, _boxed(sym.verdict, sym_box, sym.reason)),
+                             PropertyVerdict("symmetric", rev_box, _boxed(rev.verdict, rev_box, rev.reason))),
     )
+
+
+def _boxed(face: Verdict, box: Verdict, reason: str) -> str:
+    """The reason of a kernel identity at face value, as the verdict over the box of its
+    decimals reads it: unchanged where both agree, else said of the face values."""
+    if box.state == face.state or box.state == FAILS:
+        return reason
+    if face.state == FAILS:  # nonzero at face value; the box's enclosure does not exclude 0
+        return f"{reason} at face value, which the box of its decimals does not exclude"
+    return f"{reason} at face value; over the box of its decimals {box.label()}"
 
 
 def _by_the_series(facts: KernelFacts, method: ContinuousMethod, degree: int | None, box: Any,

@@ -45,7 +45,9 @@ class AvfVerdict:
 
     @property
     def equals_avf(self) -> bool:
-        return self.verdict.state != FAILS
+        """Shown to be AVF: exactly or to digits (a verdict with no certain digit shows
+        nothing)."""
+        return self.verdict.state != FAILS and self.verdict.decided
 
 
 def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:
@@ -122,6 +124,12 @@ def theorem1_remark(
         return None
     s, m, smin = avf.reduced_stages, avf.degree, avf.s_min
     if s < smin:
+        if not avf.exact_reduction:  # stages merged on equalities shown only to digits: s may be too few
+            return (
+                f"Theorem 1: preserving all degree-{m} Hamiltonians needs at least s_min = {smin} stages; this "
+                f"method has {counted(s, 'effective stage')} only if the stages merged to digits are equal, "
+                "which is not a proof"
+            )
         return (
             f"Theorem 1: preserving all degree-{m} Hamiltonians needs at least s_min = {smin} stages; "
             f"this method has {counted(s, 'effective stage')}, so it cannot"

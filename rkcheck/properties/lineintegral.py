@@ -32,7 +32,7 @@ from rkcheck.methods.quadrature import shifted_legendre
 from rkcheck.numbers.polynomials import integral
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
-from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
+from rkcheck.verdicts import FAILS, HOLDS, UNDECIDED_TEXT, Verdict, combine
 
 
 class Certificate(Protocol):
@@ -70,7 +70,9 @@ class LineIntegralCertificate:
 
     @property
     def certified(self) -> bool:
-        return self.verdict.state != FAILS
+        """It proves every order, exactly or to digits (a verdict with no certain digit
+        certifies nothing)."""
+        return self.verdict.state != FAILS and self.verdict.decided
 
     @property
     def kind(self) -> str | None:
@@ -173,8 +175,9 @@ def line_integral_certificate(red: Reduction, degree: int, residuals: Iterator[s
             return LineIntegralCertificate(
                 degree, sigma, verdict,
                 f"A = Σ_(j<{sigma}) (2j+1) G_j(c)(P_j(c)⊙b)ᵀ and the rule (b, A·1) has quadrature order "
-                f"{quad_order} ≥ {degree}·{sigma}, {how}: the stages lie on a degree-{sigma} path and "
-                f"ΔH = 0 for every H of degree ≤ {degree}",
+                f"{quad_order} ≥ {degree}·{sigma}, {how}: " + (
+                    f"the stages lie on a degree-{sigma} path and ΔH = 0 for every H of degree ≤ {degree}"
+                    if verdict.decided else UNDECIDED_TEXT),
             )
     return LineIntegralCertificate(
         degree, None, Verdict(FAILS),

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Protocol, TypeVar
 
 from rkcheck.properties.stability import StabilityFunction
-from rkcheck.verdicts import FAILS, HOLDS, Verdict
+from rkcheck.verdicts import FAILS, HOLDS, UNDECIDED_TEXT, Verdict
 
 
 @dataclass(frozen=True)
@@ -25,7 +25,9 @@ class StabilityCertificate:
 
     @property
     def certified(self) -> bool:
-        return self.verdict.state != FAILS
+        """It proves every order, exactly or to digits (a verdict with no certain digit
+        certifies nothing)."""
+        return self.verdict.state != FAILS and self.verdict.decided
 
     @property
     def name(self) -> str:
@@ -54,7 +56,7 @@ def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCert
     return StabilityCertificate(
         degree, stab.identity,
         f"R(z)R(−z) = 1 {how} (e_2 = … = e_{2 * stab.stages} = 0 and deg(P(z)P(−z) − Q(z)Q(−z)) ≤ "
-        f"{2 * stab.stages}): ΔH = 0 for every H of degree ≤ 2",
+        f"{2 * stab.stages}): " + ("ΔH = 0 for every H of degree ≤ 2" if stab.identity.decided else UNDECIDED_TEXT),
     )
 
 
@@ -72,10 +74,13 @@ _C = TypeVar("_C", bound=_Ranked)
 
 def prefer(first: _C, second: _C | None) -> _C:
     """The better of two certificates for the same degree: an exact proof over one that
-    holds to digits, a certified one over none; ``first`` on ties."""
+    holds to digits, a certified one over none, and one that decides nothing (held to 0
+    digits) over one that fails; ``first`` on ties."""
     def rank(cert: _C | None) -> int:
-        if cert is None or not cert.certified:
+        if cert is None or cert.verdict.state == FAILS:
             return 0
-        return 2 if cert.verdict.state == HOLDS else 1
+        if not cert.certified:
+            return 1
+        return 3 if cert.verdict.state == HOLDS else 2
 
     return second if second is not None and rank(second) > rank(first) else first

@@ -189,6 +189,8 @@ class StabilityFunction:
         """``R(z)R(−z) − 1 = …``: the exact rational function when it is short, else its
         leading term."""
         if self.leading_power is None:
+            if not self.identity.decided:
+                return "R(z)R(−z) = 1 not decided (to 0 digits)"
             how = "exactly" if self.identity.state == HOLDS else f"to {self.identity.digits} digits"
             return f"R(z)R(−z) = 1 ({how})"
         lead = monomial_text(self.leading_coefficient, self.leading_power)

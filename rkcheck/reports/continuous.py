@@ -18,7 +18,6 @@ def show_doc(method: Any, file: str, decimals: Any = None) -> dict[str, Any]:
     from rkcheck.io.printable import printable
     from rkcheck.numbers.reading import DecimalsMode
     from rkcheck.reports.jsondoc import SCHEMA
-    from rkcheck.verdicts import State
     from rkcheck.version import __version__
 
     k = method.kernel
@@ -37,7 +36,7 @@ def show_doc(method: Any, file: str, decimals: Any = None) -> dict[str, Any]:
                        "degree_tau": k.deg_tau, "degree_sigma": k.deg_sigma, "degree_b": k.deg_b},
         },
         "certificate": _state(facts.certificate.verdict, facts.certificate.reason),
-        "equals_avf": None if facts.avf.verdict.state == State.UNDECIDED else facts.avf.equals_avf,
+        "equals_avf": None if not facts.avf.verdict.decided else facts.avf.equals_avf,
         "avf": _state(facts.avf.verdict, facts.avf.reason),
         "symmetric": _state(facts.properties.symmetric.verdict, facts.properties.symmetric.reason),
         "symplectic": _state(facts.properties.symplectic.verdict, facts.properties.symplectic.reason),

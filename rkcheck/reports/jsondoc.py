@@ -16,7 +16,7 @@ from rkcheck.numbers.formatting import ball_strings, decimal_string
 from rkcheck.numbers.reading import DecimalsMode, Reading
 from rkcheck.reports import jsontext
 from rkcheck.reports.properties import properties_doc, stability_doc, tableau_stability
-from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, UNDECIDED
+from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS
 from rkcheck.version import __version__
 
 SCHEMA = 1
@@ -141,7 +141,7 @@ def summary_doc(res: CheckResult) -> dict[str, Any]:
         "energy_order_label": res.energy_order_label,
         "order_checked": o.order,
         "degree": o.degree,
-        "equals_avf": None if avf is None or avf.verdict.state == UNDECIDED else avf.equals_avf,
+        "equals_avf": None if avf is None or not avf.verdict.decided else avf.equals_avf,
         "avf": _avf_doc(avf),
         "certificate": _certificate_doc(res.certificate),
         "theorem1": res.theorem1,

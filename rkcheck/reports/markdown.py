@@ -21,7 +21,7 @@ def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: i
         "`all to D digits` and `n; K to D digits` (orders too) = the certificate, or the conditions beyond the "
         "proven order n up to K, hold only to D digits: not a proof. "
         "Symplectic and symmetric are decided on the irreducible form of the method "
-        "(`yes†` = holds to the working precision, the entries being enclosed, not exact). "
+        "(`yes†` = holds to the working precision, the entries being enclosed, not exact; `?` = not decided, no digit certain). "
         "Every file's `[expect]` claims are checked by the test-suite.",
         "",
         "| file | method | s | classical | quadrature | " + " | ".join(degrees_labels)

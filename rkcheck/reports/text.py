@@ -295,8 +295,10 @@ def verdict_line(res: CheckResult, claims, fail_on: str) -> Text:
     if not claims:
         return conditions
     broken = [r for r in claims if not r.met]
-    shortfall = requirement_shortfall(res, claims) if fail_on != "never" else None
-    if shortfall is not None:  # the file fails, whatever its claims: --require is not met
+    # the file fails, whatever its claims, when --require is not met; under --fail-on
+    # conditions the conditions' line says so, after any condition that fails
+    shortfall = requirement_shortfall(res, claims) if fail_on not in ("never", "conditions") else None
+    if shortfall is not None:
         met = "the claim is met" if len(claims) == 1 else f"all {len(claims)} claims met"
         head = Text(f"FAIL: {shortfall.text()}", style="bold red")
         head.append(Text(f"  ({f'claims broken: {len(broken)} of {len(claims)}' if broken else met})", style=""))
