@@ -48,6 +48,9 @@ class ContinuousCertificate:
     verdict: Verdict
     reason: str
     sigma: int | None = None
+    #: the kernel is AVF for the degree (its stages lie on the segment from y₀ to y₁, and
+    #: its rule integrates their polynomial exactly): AVF's certificate, not the kernel's
+    via_avf: bool = False
 
     @property
     def certified(self) -> bool:
@@ -57,19 +60,23 @@ class ContinuousCertificate:
 
     @property
     def kind(self) -> str | None:
-        return "continuous_kernel" if self.certified else None
+        if not self.certified:
+            return None
+        return "avf" if self.via_avf else "continuous_kernel"
 
     @property
     def name(self) -> str:
-        return "kernel certificate"
+        return "AVF certificate" if self.via_avf else "kernel certificate"
 
     @property
     def claim_note(self) -> str:
+        if self.via_avf:
+            return f"AVF certificate (A = C(τ)B(σ), ∫B C^(k−1) = 1/k): every order{_for(self.degree)}"
         return "kernel certificate (∂A/∂τ symmetric, A(0,σ) = 0, A(1,σ) = B(σ)): every order, every degree"
 
     def refuted(self, condition_id: str) -> "ContinuousCertificate":
-        return ContinuousCertificate(self.degree, Verdict(FAILS),
-                                     f"{self.reason}; refuted: condition {condition_id} certainly fails")
+        return replace(self, verdict=Verdict(FAILS), reason=f"{self.reason}; refuted: condition {condition_id} "
+                       "certainly fails")
 
 
 @dataclass(frozen=True)
@@ -145,10 +152,11 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
 
     v = box_verdicts(method, box, degree)
     cert = facts.certificate
-    if v["certificate"].state == FAILS and cert.certified:
-        cert = ContinuousCertificate(degree, v["certificate"], "no kernel certificate over the box of its decimals")
+    boxed = v["avf"] if cert.via_avf else v["certificate"]
+    if boxed.state == FAILS and cert.certified:
+        cert = replace(cert, verdict=boxed, reason=f"no {cert.name} over the box of its decimals")
     elif cert.certified:
-        cert = ContinuousCertificate(degree, v["certificate"], _boxed(cert.verdict, v["certificate"], cert.reason))
+        cert = replace(cert, verdict=boxed, reason=_boxed(cert.verdict, boxed, cert.reason))
     props = facts.properties
     sym, sym_box = props.symplectic, v["symplectic"]
     rev, rev_box = props.symmetric, v["symmetric"]
@@ -233,6 +241,10 @@ def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
         cert = ContinuousCertificate(degree, Verdict(FAILS), "no kernel certificate: " + ", ".join(missing))
 
     avf = ContinuousAvf(degree, *_avf_form(k, A, B, B_sigma, degree))
+    if not cert.certified and avf.verdict.state == HOLDS:  # AVF for the degree proves every order of it
+        cert = ContinuousCertificate(degree, Verdict(HOLDS), f"{avf.reason}: energy is preserved to every order for "
+                                     f"{'every Hamiltonian' if degree is None else f'degree ≤ {degree}'} "
+                                     "(AVF certificate)", via_avf=True)
 
     adj_B = k.substitute(B, one - tau, sigma)
     sym_ok = k.is_zero(B - adj_B) and k.is_zero(A + k.substitute(A, one - tau, one - sigma) - B_sigma)

@@ -44,6 +44,21 @@ def test_collocation_orders():
     assert res3.classical_order == 6
 
 
+P3 = "20*sigma^3 - 30*sigma^2 + 12*sigma - 1"  # the shifted Legendre polynomial of degree 3
+
+
+def test_a_kernel_avf_for_its_degree_has_the_avf_certificate():
+    """A = τ·B(σ), B = 1 + P₃: the stages are y₀ + τ(y₁ − y₀), and ∫B τ^k = 1/(k+1) for
+    k ≤ 2 (P₃ is orthogonal to every quadratic), so for a cubic H the update integrates
+    the quadratic f(y₀ + τΔ) exactly: AVF for degree 3, a proof of every order.  For
+    degree 4 ∫P₃ τ³ = 1/140 ≠ 0: not AVF, no certificate (by hand)."""
+    method = ContinuousMethod.from_kernel(f"tau*(1 + {P3})", f"1 + {P3}")
+    res = rkcheck.verify(method, degree=3, order=6)
+    assert res.energy_order_all and res.certificate.kind == "avf" and res.verdict == "holds"
+    res4 = rkcheck.verify(method, degree=4, order=6)
+    assert not res4.energy_order_all and not res4.certificate.certified
+
+
 def test_two_tau_sigma_first_failure_by_hand():
     """A = 2τσ, B = 1.  The condition [[τ]²] (5 vertices) is, from its rootings,
     R = (∫BC)²/2 − ∫∫B A C · ∫B + ∫∫∫ B A A C with C(τ) = τ:
