@@ -62,10 +62,11 @@ def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int,
 
     tab: Any = load(path)
     if getattr(tab, "is_continuous", False):  # its B-series through a surrogate exact as far as the checks read
-        from rkcheck.energy.claims import vertices_needed
+        from rkcheck.energy.claims import in_intervals, vertices_needed
 
         row.name, row.stages, row.structure = tab.name, "∞", "continuous"
-        tab = tab.surrogate(vertices_needed(CheckOptions(order=order), list(tab.info.claims)))
+        options = CheckOptions(order=order)
+        tab = tab.surrogate(vertices_needed(options, list(tab.info.claims)), in_intervals(tab, options))
     else:
         row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
     runner = CheckRunner()

@@ -31,7 +31,7 @@ from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.errors import UserError
 from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
-from rkcheck.numbers.reading import DecimalsMode
+from rkcheck.numbers.reading import Arithmetic, DecimalsMode
 from rkcheck.options import CheckOptions
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict
 
@@ -234,13 +234,19 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
     ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
     if getattr(tableau, "is_continuous", False):  # its B-series through an exact surrogate tableau
         method: Any = tableau
-        tableau = method.surrogate(vertices_needed(options, list(method.info.claims)))
+        tableau = method.surrogate(vertices_needed(options, list(method.info.claims)), in_intervals(method, options))
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
     require_ok = requirement_shortfall(result, claims) is None
     return result_type.of(result, claims=claims,
                           failed=file_fails(conditions_ok(result), claims, fail_on, require_ok))
+
+
+def in_intervals(method: Any, options: CheckOptions) -> bool:
+    """Whether a continuous method's conditions are judged in intervals (its decimals'
+    box, or balls on request): then on the surrogate of positive weights."""
+    return bool(method.is_box(options.decimals) or options.arithmetic == Arithmetic.BALL)
 
 
 def vertices_needed(options: CheckOptions, claims: list[Claim]) -> int:

@@ -37,7 +37,7 @@ from functools import cached_property, lru_cache
 from typing import Any, Sequence
 
 from rkcheck.errors import UserError
-from rkcheck.methods.quadrature import rational_rule, vandermonde
+from rkcheck.methods.quadrature import positive_rule, rational_rule, vandermonde
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -244,17 +244,21 @@ class ContinuousMethod:
         need = max(k.deg_sigma + max(vertices - 2, 0) * k.deg_tau, k.deg_b + (vertices - 1) * k.deg_tau)
         return need + 1
 
-    def surrogate(self, vertices: int) -> Tableau:
+    def surrogate(self, vertices: int, positive: bool = False) -> Tableau:
         """A tableau with the method's elementary weights for every tree with at most
-        ``vertices`` vertices (module docstring); its ``info.continuous`` says so."""
+        ``vertices`` vertices (module docstring); its ``info.continuous`` says so.
+        ``positive``: on the rule of positive weights
+        (:func:`~rkcheck.methods.quadrature.positive_rule`), for a kernel judged in
+        intervals, whose widths the equispaced rule's weights would multiply by Σ|w_i|
+        at every level of a tree."""
         n_nodes = self.nodes_for(vertices)
         if n_nodes > MAX_SURROGATE_NODES:
             raise UserError(f"the exact B-series to {vertices} vertices needs {n_nodes} quadrature nodes, "
                             f"more than the limit MAX_SURROGATE_NODES = {MAX_SURROGATE_NODES}; check a lower order",
                             source=self.info.source)
-        x, w = rational_rule(n_nodes)
+        x, w = positive_rule(n_nodes) if positive else rational_rule(n_nodes)
         A, b = self.kernel.surrogate_entries(x, w, self.info.constants)
-        info = self.info.replace(continuous=Surrogate(self, vertices, n_nodes))
+        info = self.info.replace(continuous=Surrogate(self, vertices, n_nodes, positive))
         return Tableau(A=A, b=b, c=None, name=self.name, info=info)
 
 
@@ -265,6 +269,7 @@ class Surrogate:
     method: ContinuousMethod
     vertices: int
     nodes: int
+    positive: bool = False  # on the rule of positive weights, not the equispaced one
 
 
 # --------------------------------------------------------------------------- the kernel

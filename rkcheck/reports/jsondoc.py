@@ -288,5 +288,6 @@ def _tableau_summary(res: Any) -> dict[str, Any]:
         "stages": None, "structure": "continuous", "numbers": res.values.describe(),
         "kernel": {"A": m.A, "b": m.b, "M": None if m.M is None else [list(r) for r in m.M],
                    "degree_tau": k.deg_tau, "degree_sigma": k.deg_sigma, "degree_b": k.deg_b},
-        "surrogate": {"nodes": surrogate.nodes, "exact_to_vertices": surrogate.vertices},
+        "surrogate": {"nodes": surrogate.nodes, "exact_to_vertices": surrogate.vertices,
+                      "rule": "positive" if surrogate.positive else "equispaced"},
     }

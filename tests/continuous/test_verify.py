@@ -217,6 +217,36 @@ def test_rounded_decimals_make_a_box_judged_to_digits():
     assert rkcheck.verify(bent, order=4).certificate.verdict.state == "fails"
 
 
+def test_a_decimal_kernel_is_judged_alike_at_every_order():
+    """A = (0.500000 + τ² − σ²)·2σ, B = 2σ: its literal stands for 1/2 ± 5·10⁻⁷.  A
+    residual of the kernel at face value (``decimals="exact"``, an exact surrogate on
+    equispaced nodes) that is nonzero by far more than that moves it fails over the whole
+    box at every order checked, and a zero one holds to the digits the literal allows —
+    however many nodes the surrogate of the order needs (the equispaced rule's weights
+    would widen every enclosure by Σ|w_i|, 175 at 19 nodes, at every level of a tree)."""
+    m = ContinuousMethod.from_kernel("(0.500000 + tau^2 - sigma^2)*2*sigma", "2*sigma")
+    exact = {c.id: Fraction(c.residual) for c in rkcheck.verify(m, order=6, decimals="exact").conditions}
+    for order in (6, 10):
+        res = rkcheck.verify(m, order=order)
+        for c in res.conditions:
+            if c.id not in exact:
+                continue
+            if abs(exact[c.id]) > Fraction(1, 10**4):
+                assert c.state == "fails", (order, c.id)
+            elif exact[c.id] == 0:
+                assert c.state == "holds_to_digits" and c.digits >= 5, (order, c.id)
+
+
+def test_a_symmetric_decimal_matrix_holds_to_its_digits_at_every_order(tmp_path):
+    """M = [[4, m], [m, 12]] with m = −6.00000 ± 5·10⁻⁶ is symmetric for every m, so
+    every energy condition vanishes on the whole box (definitions §6): each holds to the
+    same digits at order 10 as at order 5."""
+    path = tmp_path / "m.toml"
+    path.write_text('[constants]\nm = "-6.00000"\n[continuous]\nM = [["4", "m"], ["m", "12"]]\n', encoding="utf-8")
+    low, high = (rkcheck.verify(path, degree=4, order=n) for n in (5, 10))
+    assert high.ok and high.min_digits >= low.min_digits - 1 >= 4
+
+
 def test_algebraic_kernel_is_exact_in_its_field():
     """A = τ + √2(τ² − τ)(2σ − 1): ∂τA = 1 + √2(2τ − 1)(2σ − 1) is symmetric, so the
     certificate holds, and exactly (in Q(√2)); C(τ) = τ, so a([τ]) = 1/2 but

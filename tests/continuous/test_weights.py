@@ -8,7 +8,7 @@ import pytest
 sympy = pytest.importorskip("sympy")
 
 from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402
-from rkcheck.methods.quadrature import rational_rule  # noqa: E402
+from rkcheck.methods.quadrature import positive_rule, rational_rule  # noqa: E402
 
 tau, sigma = sympy.symbols("tau sigma")
 
@@ -125,6 +125,20 @@ def test_rational_rule_is_exact_to_its_degree(n):
     # n − 1 only, an odd one (symmetric about 1/2) to n
     x, w = rational_rule(n)
     assert x == [Fraction(i, n - 1) for i in range(n)]
+    top = n + n % 2
+    for k in range(top):
+        assert sum(wi * xi ** k for xi, wi in zip(x, w)) == Fraction(1, k + 1)
+    assert sum(wi * xi ** top for xi, wi in zip(x, w)) != Fraction(1, top + 1)
+
+
+@pytest.mark.parametrize("n", [3, 6, 9, 19, 24, 31])
+def test_positive_rule_is_exact_positive_and_symmetric(n):
+    # the same moment equations on other nodes: exact to degree n − 1, n for an odd
+    # count (the nodes are symmetric about 1/2); every weight positive, so Σ|w| = 1
+    x, w = positive_rule(n)
+    assert len(set(x)) == n and x[0] == 0 and x[-1] == 1
+    assert all(xi + xj == 1 for xi, xj in zip(x, reversed(x)))
+    assert all(wi > 0 for wi in w)
     top = n + n % 2
     for k in range(top):
         assert sum(wi * xi ** k for xi, wi in zip(x, w)) == Fraction(1, k + 1)
