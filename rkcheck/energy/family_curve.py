@@ -42,7 +42,7 @@ from rkcheck.numbers.groebner import (
     integer_dicts,
     leading_monomial,
 )
-from rkcheck.numbers.parametric import ParameterRing
+from rkcheck.numbers.parametric import ParameterRing, fresh_name
 from rkcheck.numbers.solving import Component
 
 
@@ -325,8 +325,9 @@ def _avf_equations(family: Any, rules: RuleRing, polys: list[Any], nodes: list[s
     from flint import fmpq_mpoly_ctx
 
     ring = family.ring
-    taken = set(ring.parameters)
-    shown = [f"c{i + 1}" if f"c{i + 1}" not in taken else f"c{i + 1}_" for i in range(len(nodes))]
+    shown: list[str] = []
+    for i in range(len(nodes)):
+        shown.append(fresh_name(f"c{i + 1}", [*ring.parameters, *shown]))
     E = fmpq_mpoly_ctx.get(tuple(shown) + tuple(ring.parameters), "lex")
     g = dict(zip(E.names(), E.gens()))
     params = [g[n] for n in ring.parameters]

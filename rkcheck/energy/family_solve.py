@@ -53,7 +53,7 @@ from rkcheck.numbers.groebner import (
     leading_monomial,
 )
 from rkcheck.numbers.macaulay import forced_zero
-from rkcheck.numbers.parametric import THETA, ParameterRing
+from rkcheck.numbers.parametric import THETA, ParameterRing, fresh_name
 from rkcheck.numbers.quotient import shape_position
 from rkcheck.numbers.solving import (
     Component,
@@ -319,7 +319,7 @@ def _in_parameters(R: ParameterRing, values: dict[str, Any], gens: list[Any], na
     from flint import fmpq_mpoly_ctx
 
     params = [v for v in values if v != THETA]
-    z = "z" if "z" not in params else "z_"
+    z = fresh_name("z", params)
     E = fmpq_mpoly_ctx.get((z,) + tuple(params), "lex")
     g = dict(zip(E.names(), E.gens()))
     at_z = [g[z]] + [E.constant(0)] * (len(R.ctx.names()) - 1)

@@ -19,7 +19,7 @@ about exact coefficients.
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -44,6 +44,16 @@ MAX_ENTRY_TERMS = 100_000
 #: on the conditions' polynomials — (about its cost: a few seconds; FLINT's C loops are
 #: not interrupted by Ctrl-C or SIGTERM until they return).
 MAX_PRODUCT_WORK = 200_000_000
+
+
+def fresh_name(base: str, taken: Iterable[str]) -> str:
+    """``base``, or ``base_``, ``base__``… — the first not in ``taken``: a name rkcheck
+    adds beside the family's parameters (a node ``z``, ``c1``) never equals one of them."""
+    taken = set(taken)
+    name = base
+    while name in taken:
+        name += "_"
+    return name
 
 
 def object_array(values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
