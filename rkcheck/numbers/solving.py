@@ -193,7 +193,10 @@ def solve_system(polys: list[Any], theta: str | None, field: Any, max_seconds: f
     basis = groebner(dicts, rest, "degrevlex", deadline)
     dim = dimension([leading_monomial(d, "degrevlex") for d in basis], len(rest)) if basis else len(rest)
     gb = [_from_dict(ctx, names, keep, d) for d in basis]
-    gb = [ctx.gens()[names.index(v)] - e for v, e in subs.items()] + gb
+    if dim == -1:  # the unit ideal: its reduced basis is 1 alone, whatever was eliminated
+        gb = [ctx.constant(1)]
+    else:
+        gb = [ctx.gens()[names.index(v)] - e for v, e in subs.items()] + gb
     out = SolutionSet(params, equations, gb, dim, subs)
     if dim > 0:
         from rkcheck.numbers.decompose import as_polynomials, split
@@ -237,9 +240,8 @@ def _from_dict(ctx: Any, names: tuple[str, ...], keep: list[int], d: dict[tuple[
         for j, i in enumerate(keep):
             e[i] = m[j]
         full[tuple(e)] = c
-    p = ctx.from_dict(full)
-    lead = p.leading_coefficient() if hasattr(p, "leading_coefficient") else None
-    return p / lead if lead else p
+    # monic in the order of the basis (degree reverse lexicographic), as a reduced basis is
+    return ctx.from_dict(full) / d[leading_monomial(d, "degrevlex")]
 
 
 # ------------------------------------------------------------------ solutions, exactly

@@ -166,10 +166,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
-        # the structured route has the basis of finitely many solutions, none for a
-        # positive-dimensional set (components instead)
-        "groebner": (None if result.route == "structured" and (result.dimension > 0 or not result.groebner)
-                     else [polynomial_text(g, field) for g in shown_basis(result)]),
+        "groebner": _basis_doc(result, field),
         "dimension": result.dimension,
         "route": result.route,
         "rule_dimension": result.rule_dimension if result.route == "structured" else None,
@@ -181,6 +178,17 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "points_of_finite_components": None if finite else points,
         "seconds": round(result.seconds, 3),
     }
+
+
+def _basis_doc(result: Any, field: Any) -> list[str] | None:
+    """The reduced basis as texts: ``["1"]`` for no solution (the unit ideal, on either
+    route); the structured route has the basis of finitely many solutions, none for a
+    positive-dimensional set (its components instead)."""
+    if result.dimension == -1:
+        return ["1"]
+    if result.route == "structured" and (result.dimension > 0 or not result.groebner):
+        return None
+    return [polynomial_text(g, field) for g in shown_basis(result)]
 
 
 def component_doc(c: Any, field: Any = None) -> dict[str, Any]:

@@ -60,12 +60,19 @@ _GREEK = {"alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "iota", "
           "nu", "xi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega"}  # not theta (the field's θ), pi
 
 
+_CAPITAL_GREEK = {"Gamma", "Delta", "Lambda", "Xi", "Sigma", "Upsilon", "Phi", "Psi", "Omega"}
+
+
 def latex_name(name: str) -> str:
     """A parameter's name in LaTeX: trailing digits as a subscript (``a11`` → ``a_{11}``,
-    ``b_2`` → ``b_{2}``), a Greek letter's name as the letter (``beta`` → ``\\beta``)."""
-    m = re.fullmatch(r"([A-Za-z]+)_?(\d+)", name)
-    stem, sub = (m.group(1), m.group(2)) if m else (name, None)
-    stem = f"\\{stem}" if stem in _GREEK else stem
+    ``b_2`` → ``b_{2}``), a Greek letter's name as the letter (``beta`` → ``\\beta``,
+    ``Gamma`` → ``\\Gamma``); any other name upright, its underscores escaped
+    (``lambda_`` → ``\\mathrm{lambda\\_}``), so that every name compiles."""
+    m = re.fullmatch(r"([A-Za-z]+)(?:_?(\d+))?", name)
+    if m is None:
+        return "\\mathrm{" + name.replace("_", "\\_") + "}"
+    stem, sub = m.group(1), m.group(2)
+    stem = f"\\{stem}" if stem in _GREEK or stem in _CAPITAL_GREEK else stem
     return f"{stem}_{{{sub}}}" if sub is not None else stem
 
 

@@ -6,6 +6,7 @@ Gauss rule."""
 from __future__ import annotations
 
 import itertools
+import json
 from fractions import Fraction
 
 import pytest
@@ -149,6 +150,20 @@ def test_emitted_family_conditions_agree_with_the_exact_engine(capsys, tmp_path,
     want = {c.id: c.residual for c in rkcheck.verify(fam.at(point), degree=3, order=5).conditions}
     ids = [c.id for c in rkcheck.family_conditions(fam, degree=3, order=5).energy]
     assert got == [want[i] for i in ids]
+
+
+def test_emitted_latex_names_every_parameter_as_latex_reads_it(capsys, tmp_path):
+    # an underscore is a subscript only before braces, else escaped; capital Greek names too
+    import re
+
+    path = tmp_path / "f.toml"
+    path.write_text('[parameters]\nlambda_ = "free"\nGamma = "free"\nx_a = "free"\nbeta2 = "free"\n'
+                    '[tableau]\nA = [["lambda_", "Gamma"], ["x_a", "beta2"]]\nb = ["1/2", "1/2"]\n', encoding="utf-8")
+    latex = run_cli(capsys, "conditions", str(path), "--order", "3", "--degree", "3", "--emit", "latex").out
+    math = "\n".join(re.split(r"(?<!\\)%", line)[0] for line in latex.splitlines())  # comments aside
+    assert not re.search(r"(?<!\\)_(?!\{)", math)
+    for name in ("\\mathrm{lambda\\_}", "\\Gamma", "\\mathrm{x\\_a}", "\\beta_{2}"):
+        assert name in latex, name
 
 
 def test_emitted_latex_and_julia_write_every_condition(capsys):
@@ -453,3 +468,103 @@ def test_a_positive_dimensional_set_has_no_solution_list_on_either_route(capsys)
     assert docs["plain"]["solutions"] is None and docs["structured"]["solutions"] is None
     assert docs["structured"]["points_of_finite_components"] == [] and docs["plain"]["points_of_finite_components"] is None
     assert docs["plain"]["rule_dimension"] is None and docs["structured"]["rule_dimension"] == 1
+
+
+@pytest.mark.parametrize("names", [("z", "z_", "z__", "w"), ("p", "q", "r", "w")])
+def test_a_node_is_named_apart_from_every_parameter(capsys, tmp_path, names):
+    """A = [[x₁, x₂], [x₃, w]], b = (1/2, 1/2) at degree 3, order 4: by hand the rule is
+    2-point Gauss (node n a root of 6n² − 6n + 1), and the rows sum to the nodes, so
+    x₁ + x₂ = n, x₃ + w = 1 − n; the remaining conditions leave x₁ + w = 1/2 — a line in w,
+    dimension 1.  Parameters named like the node (z, z_, z__) must not change that."""
+    import sympy
+
+    x1, x2, x3, w = names
+    path = tmp_path / "f.toml"
+    path.write_text("[parameters]\n" + "".join(f'{n} = "free"\n' for n in names)
+                    + f'[tableau]\nA = [["{x1}", "{x2}"], ["{x3}", "{w}"]]\nb = ["1/2", "1/2"]\n'
+                    "[check]\ndegree = 3\norder = 4\n", encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "solve", str(path), "--format", "json").out)
+    (component,) = doc["components"]
+    equations = [sympy.sympify(e) for e in component["equations"]]
+    symbols = sorted(set().union(*(e.free_symbols for e in equations)), key=str)
+    assert len(symbols) == 5  # the four parameters and one node
+    basis = sympy.groebner(equations, *symbols, order="grevlex")
+    # dimension 1: every point of the line satisfies them, w free
+    solutions = sympy.solve(equations, [s for s in symbols if str(s) != w], dict=True)
+    assert component["dimension"] == 1 and len(basis.exprs) == 4 and len(solutions) == 2
+
+
+def test_avf_nodes_are_named_apart_from_every_parameter(capsys, tmp_path):
+    """A = [[c1, c1_], [c2, c2_]], b = (b1, b2), b1 + b2 = 1: AVF over the 2-point Gauss
+    rule (nodes (3 ∓ √3)/6, weights 1/2, a_ij = c_i b_j, by hand) preserves every cubic
+    energy, so it lies on the AVF component, whatever the names rkcheck gives the nodes."""
+    import sympy
+
+    path = tmp_path / "f.toml"
+    path.write_text('[parameters]\nc1 = "free"\nc1_ = "free"\nc2 = "free"\nc2_ = "free"\nb1 = "free"\n'
+                    'b2 = "free"\n[tableau]\nA = [["c1", "c1_"], ["c2", "c2_"]]\nb = ["b1", "b2"]\n'
+                    "[check]\ndegree = 3\norder = 4\n", encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "solve", str(path), "--where", "b1+b2=1", "--format", "json").out)
+    avf = [c for c in doc["components"] if c["avf"] is True]
+    assert avf
+    n1, n2 = (3 - sympy.sqrt(3)) / 6, (3 + sympy.sqrt(3)) / 6
+    point = {"c1": n1 / 2, "c1_": n1 / 2, "c2": n2 / 2, "c2_": n2 / 2, "b1": sympy.Rational(1, 2),
+             "b2": sympy.Rational(1, 2)}
+    for component in avf:
+        equations = [sympy.sympify(e, locals={k: sympy.Symbol(k) for k in [*point, "c1__", "c2__"]})
+                     for e in component["equations"]]
+        nodes = {n for e in equations for n in map(str, e.free_symbols)} - set(point)
+        assert nodes == {"c1__", "c2__"}
+        at = {sympy.Symbol(k): v for k, v in point.items()}
+        # the nodes are the row sums, n1 and n2 in some order
+        if any(sympy.simplify(e.subs({**at, sympy.Symbol("c1__"): n1, sympy.Symbol("c2__"): n2})) != 0
+               for e in equations):
+            continue
+        break
+    else:
+        raise AssertionError("AVF over Gauss-2 is on no AVF component")
+
+
+def test_the_printed_basis_is_reduced(capsys):
+    """Reduced: monic in its order and each element reduced by the others — so sympy's
+    reduced basis of the printed elements (in the variables left after elimination, the
+    degree reverse lexicographic part) is those elements themselves."""
+    import sympy
+
+    doc = json.loads(run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--route", "plain",
+                             "--format", "json").out)
+    rest = [v for v in doc["parameters"] if v not in doc["eliminated"]]
+    symbols = sympy.symbols(rest)
+    part = [sympy.sympify(g) for g in doc["groebner"]
+            if not {str(s) for s in sympy.sympify(g).free_symbols} & set(doc["eliminated"])]
+    ours = {sympy.expand(p) for p in part}
+    theirs = {sympy.expand(p) for p in sympy.groebner(part, *symbols, order="grevlex").exprs}
+    assert part and ours == theirs
+
+
+@pytest.mark.parametrize("route", ["plain", "structured"])
+def test_no_solution_is_the_unit_ideal_on_either_route(capsys, route):
+    # 1 = 2 holds nowhere: the reduced basis of the unit ideal is [1], whatever was eliminated
+    doc = json.loads(run_cli(capsys, "solve", str(FAMILIES / "theorem1-s2-m3.toml"), "--route", route,
+                             "--where", "1=2", "--format", "json").out)
+    assert doc["dimension"] == -1 and doc["groebner"] == ["1"]
+
+
+def test_no_solution_after_elimination_is_the_unit_ideal(capsys, tmp_path):
+    """A = [[p, 0], [q, p]], b = (1/2, 1/2).  By hand: Σ b_i c_i = 1/2 is 2p + q = 1, linear,
+    eliminated first; classical order 3 then needs p − p² = 1/6, p = 1/2 ± √3/6 (the
+    2-stage SDIRK of order 3).  Neither preserves energy to order 4 for every Hamiltonian
+    (checked below by the exact verify, another engine), so there is no solution, and the
+    basis is the unit ideal's alone."""
+    path = tmp_path / "u.toml"
+    path.write_text('[parameters]\np = "free"\nq = "free"\n[tableau]\nA = [["p","0"],["q","p"]]\n'
+                    'b = ["1/2","1/2"]\n', encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "solve", str(path), "-m", "none", "-N", "4", "--classical-order", "3",
+                             "--format", "json").out)
+    assert doc["dimension"] == -1 and doc["groebner"] == ["1"]
+    for sign in "+-":
+        p = f"1/2 {sign} sqrt(3)/6"
+        sdirk = rkcheck.loads(f'[tableau]\nA = [["{p}", "0"], ["1 - 2*({p})", "{p}"]]\nb = ["1/2", "1/2"]\n',
+                              name="sdirk3.toml")
+        res = rkcheck.verify(sdirk, degree=None, order=4)
+        assert res.classical_order == 3 and res.failures
