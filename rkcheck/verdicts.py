@@ -20,6 +20,7 @@ from fractions import Fraction
 from typing import Any
 
 from rkcheck.numbers.enclosure import Enclosure
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.intervals import Interval
 
 
@@ -93,7 +94,7 @@ class Verdict:
 
     def label(self) -> str:
         if self.state == HOLDS_TO_DIGITS:
-            return f"holds to {self.digits} digits"
+            return f"holds to {digits_text(self.digits)}"
         return self.state
 
     def answer(self) -> str:
@@ -103,7 +104,7 @@ class Verdict:
             return "no"
         if not self.decided:
             return "not decided"
-        return "yes" if self.state == HOLDS else f"yes, to {self.digits} digits"
+        return "yes" if self.state == HOLDS else f"yes, to {digits_text(self.digits)}"
 
 
 def certified_digits(bound: Fraction | float) -> int:

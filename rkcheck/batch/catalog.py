@@ -14,7 +14,7 @@ from rkcheck.energy.check import CheckOptions
 from rkcheck.energy.error_constants import error_constant
 from rkcheck.errors import UserError
 from rkcheck.io.loader import load
-from rkcheck.numbers.formatting import decimal_string
+from rkcheck.numbers.formatting import decimal_string, digits_text
 from rkcheck.verdicts import State
 
 
@@ -95,4 +95,4 @@ def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int,
 
 def _order_cell(reach, r) -> str:
     """``4``, or ``0; 4 to 15 digits`` when the order is reached only to digits."""
-    return str(reach) if r.digits is None else f"{r.order}; {reach} to {r.digits} digits"
+    return str(reach) if r.digits is None else f"{r.order}; {reach} to {digits_text(r.digits)}"

@@ -39,6 +39,7 @@ from rkcheck.evaluation.backends import channels_for
 from rkcheck.evaluation.values import Backend, TableauValues
 from rkcheck.methods.continuous import Surrogate
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.grammar import ROUNDED_MIN_DIGITS
 from rkcheck.options import CheckOptions
 from rkcheck.properties import scalars as sc
@@ -142,12 +143,12 @@ class CheckResult:
         if self.energy_order_all:
             return "all"
         if self.energy_order_all_digits is not None:
-            return f"all to {self.energy_order_all_digits} digits"
+            return f"all to {digits_text(self.energy_order_all_digits)}"
         reach = f"≥ {self.checked_through}" if not len(self.failures) else str(self.energy_order_to_digits)
         digits = self.energy_order_digits
         if digits is None:
             return reach
-        return f"{self.energy_order}; {reach} to {digits} digits"
+        return f"{self.energy_order}; {reach} to {digits_text(digits)}"
 
     @property
     def verdict(self) -> State:
@@ -354,7 +355,7 @@ def _refuted(avf: AvfVerdict | None, cert: Certificate | None,
             raise AssertionError(f"internal inconsistency: exact AVF but {first.id} fails")
         avf = AvfVerdict(
             avf.degree, Verdict(FAILS),
-            f"A = (A·1)bᵀ only to {avf.verdict.digits} digits, and condition {first.id} certainly fails",
+            f"A = (A·1)bᵀ only to {digits_text(avf.verdict.digits)}, and condition {first.id} certainly fails",
             avf.reduced_stages, avf.stages, avf.kept, avf.s_min, avf.notes,
         )
     if cert is not None and cert.certified:

@@ -31,6 +31,7 @@ from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.errors import UserError
 from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.reading import Arithmetic, DecimalsMode
 from rkcheck.options import CheckOptions
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict
@@ -140,7 +141,7 @@ def _judge_energy_order(claim: Claim, result: CheckResult) -> ClaimResult:
 
 
 def _reach(found: int | str | None, digits: int | None) -> str:
-    return str(found) if digits is None else f"{found} to {digits} digits"
+    return str(found) if digits is None else f"{found} to {digits_text(digits)}"
 
 
 def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: int | None,
@@ -151,9 +152,9 @@ def _to_digits(claim: Claim, met: bool, found: str, proven: int | None, digits: 
         return ClaimResult(claim, met, found, note)
     parts = [note] if note else []
     if proven is not None:
-        parts.append(f"proven to order {proven} only; beyond it to {digits} digits, not a proof")
+        parts.append(f"proven to order {proven} only; beyond it to {digits_text(digits)}, not a proof")
     else:
-        parts.append(f"to {digits} digits, not a proof")
+        parts.append(f"to {digits_text(digits)}, not a proof")
     return ClaimResult(claim, met, _reach(found, digits), "; ".join(parts), digits)
 
 

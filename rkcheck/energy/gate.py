@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from rkcheck.energy.check import CheckResult, inconsistent
-from rkcheck.numbers.formatting import count_text
+from rkcheck.numbers.formatting import count_text, counted, digits_text
 from rkcheck.verdicts import DECIDING_DIGITS, HOLDS_TO_DIGITS
 
 
@@ -28,7 +28,7 @@ class Shortfall:
             held, ending = "to 0 digits", ": not one digit is certain"
         else:
             held = "only to digits"
-            ending = ", which is not " + ("a proof" if self.require == "proof" else f"{self.require.split(':')[1]} digits")
+            ending = ", which is not " + ("a proof" if self.require == "proof" else counted(int(self.require.split(':')[1]), 'digit'))
         parts = []
         if self.count:
             ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
@@ -86,7 +86,7 @@ def _claim_short(r: Any, need: int | None) -> bool:
 
 def _claim_shortfall(r: Any, need: int | None) -> str:
     if r.digits is not None:
-        return f"the claim {r.name} holds only to {r.digits} digits"
+        return f"the claim {r.name} holds only to {digits_text(r.digits)}"
     return f"the claim {r.name} is {r.note}"
 
 

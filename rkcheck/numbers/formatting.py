@@ -149,6 +149,11 @@ def counted(n: int, noun: str, plural: str | None = None) -> str:
     return f"{count_text(n)} {noun if n == 1 else (plural or noun + 's')}"
 
 
+def digits_text(d: int | None) -> str:
+    """``1 digit``, ``15 digits``: the certain digits of a verdict held to digits."""
+    return counted(d or 0, "digit")
+
+
 def human_bytes(n: float) -> str:
     """A size in bytes for people, in decimal units (1 KB = 1000 B)."""
     for unit in ("B", "KB", "MB", "GB", "TB", "PB"):

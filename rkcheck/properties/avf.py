@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Iterator
 
-from rkcheck.numbers.formatting import counted
+from rkcheck.numbers.formatting import counted, digits_text
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
 from rkcheck.verdicts import FAILS, HOLDS, HOLDS_TO_DIGITS, Verdict, combine
@@ -105,7 +105,7 @@ def avf_verdict(red: Reduction, degree: int, entries: Iterable[tuple[int, int, s
         assert verdict.state == HOLDS_TO_DIGITS
         reason = (
             f"A = (A·1)bᵀ and Σ b_i c_i^(k−1) = 1/k for k = 1..{degree}, "
-            f"to {verdict.digits} digits"
+            f"to {digits_text(verdict.digits)}"
         )
     return result(verdict, reason)
 
@@ -136,7 +136,7 @@ def theorem1_remark(
         )
     if s == smin:
         if avf.equals_avf and avf.verdict.state == HOLDS_TO_DIGITS:  # AVF only to digits: no proof
-            return (f"Theorem 1: {s} = s_min stages and AVF to {avf.verdict.digits} digits (not a proof) — the "
+            return (f"Theorem 1: {s} = s_min stages and AVF to {digits_text(avf.verdict.digits)} (not a proof) — the "
                     f"minimal-stage energy-preserving method for degree {m}")
         if avf.equals_avf:
             return f"Theorem 1: {s} = s_min stages and AVF — the minimal-stage energy-preserving method for degree {m}"
@@ -150,7 +150,7 @@ def theorem1_remark(
                 f"Theorem 1: with s_min = {smin} stages only AVF preserves degree-{m} energy; this method is "
                 f"not AVF, so a condition must fail beyond order {order_checked}"
             )
-        held = f"hold only to {min_digits} digits" if min_digits is not None else "were not all decided exactly"
+        held = f"hold only to {digits_text(min_digits)}" if min_digits is not None else "were not all decided exactly"
         return (
             f"Theorem 1: with s_min = {smin} stages only AVF preserves degree-{m} energy and this method is "
             f"not AVF, so some condition fails; the conditions up to order {order_checked} {held}, so the "

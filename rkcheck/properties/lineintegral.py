@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Callable, Iterator, Protocol
 
 from rkcheck.methods.quadrature import shifted_legendre
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.polynomials import integral
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
@@ -98,7 +99,7 @@ class LineIntegralCertificate:
         (possible only when it held to digits, never when exact)."""
         return LineIntegralCertificate(
             self.degree, None, Verdict(FAILS),
-            f"(LI) holds only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",
+            f"(LI) holds only to {digits_text(self.verdict.digits)}, and condition {condition_id} certainly fails",
         )
 
 
@@ -171,7 +172,7 @@ def line_integral_certificate(red: Reduction, degree: int, residuals: Iterator[s
         entries = matches(sigma)
         if entries is not None:
             verdict = combine(list(red.decisions) + entries + quad[: degree * sigma])
-            how = "exactly" if verdict.state == HOLDS else f"to {verdict.digits} digits"
+            how = "exactly" if verdict.state == HOLDS else f"to {digits_text(verdict.digits)}"
             return LineIntegralCertificate(
                 degree, sigma, verdict,
                 f"A = Σ_(j<{sigma}) (2j+1) G_j(c)(P_j(c)⊙b)ᵀ and the rule (b, A·1) has quadrature order "

@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol, TypeVar
 
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.properties.stability import StabilityFunction
 from rkcheck.verdicts import FAILS, HOLDS, UNDECIDED_TEXT, Verdict
 
@@ -40,7 +41,7 @@ class StabilityCertificate:
     def refuted(self, condition_id: str) -> StabilityCertificate:
         return StabilityCertificate(
             self.degree, Verdict(FAILS),
-            f"R(z)R(−z) = 1 only to {self.verdict.digits} digits, and condition {condition_id} certainly fails",
+            f"R(z)R(−z) = 1 only to {digits_text(self.verdict.digits)}, and condition {condition_id} certainly fails",
         )
 
 
@@ -52,7 +53,7 @@ def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCert
             degree, Verdict(FAILS),
             f"{stab.defect_text()}: quadratic energy is preserved to order {stab.leading_power - 1} only",
         )
-    how = "exactly" if stab.identity.state == HOLDS else f"to {stab.identity.digits} digits"
+    how = "exactly" if stab.identity.state == HOLDS else f"to {digits_text(stab.identity.digits)}"
     return StabilityCertificate(
         degree, stab.identity,
         f"R(z)R(−z) = 1 {how} (e_2 = … = e_{2 * stab.stages} = 0 and deg(P(z)P(−z) − Q(z)Q(−z)) ≤ "

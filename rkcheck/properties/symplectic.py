@@ -25,6 +25,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterable
 
+from rkcheck.numbers.formatting import digits_text
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
 from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
@@ -50,7 +51,7 @@ class PropertyVerdict:
 
 
 def _how(v: Verdict) -> str:
-    return "exactly" if v.state == HOLDS else f"to {v.digits} digits"
+    return "exactly" if v.state == HOLDS else f"to {digits_text(v.digits)}"
 
 
 def _after(red: Reduction) -> str:

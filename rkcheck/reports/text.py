@@ -20,6 +20,7 @@ from rkcheck.numbers.formatting import (
     count_text,
     counted,
     decimal_string,
+    digits_text,
 )
 from rkcheck.numbers.precision import bits_for_dps
 from rkcheck.numbers.reading import DecimalsMode, Reading
@@ -232,7 +233,7 @@ def _degree_words(degree: int | None) -> str:
 def beyond_digits(proven: int, digits: int, reach: int | str) -> str:
     """``1, holds to 15 digits beyond order 1 up to order 4``: a proven order and how far
     the conditions beyond it hold to digits."""
-    return f"{proven}, holds to {digits} digits beyond order {proven} up to order {reach}"
+    return f"{proven}, holds to {digits_text(digits)} beyond order {proven} up to order {reach}"
 
 
 def energy_order_phrase(res: CheckResult) -> str:
@@ -254,7 +255,7 @@ def _certificate_name(res: CheckResult) -> str:
         return "certificate"
     name = cert.name
     if cert.verdict.state == HOLDS_TO_DIGITS:
-        name = name.replace("certificate", "criterion") + f", to {cert.verdict.digits} digits"
+        name = name.replace("certificate", "criterion") + f", to {digits_text(cert.verdict.digits)}"
     return name
 
 
@@ -267,7 +268,7 @@ def _energy_text(res: CheckResult) -> Text:
     if res.certified_all:
         digits = _numeric_certificate(res)
         if digits is not None:
-            return Text(f"to {digits} digits: all orders for {_degree_words(o.degree)} ({_certificate_name(res)}, "
+            return Text(f"to {digits_text(digits)}: all orders for {_degree_words(o.degree)} ({_certificate_name(res)}, "
                         f"not a proof); {res.checked_through} verified", style="yellow")
         return Text(f"all orders for {_degree_words(o.degree)} ({_certificate_name(res)}); {res.checked_through} verified", style="green")
     first = res.first_failure
@@ -342,7 +343,7 @@ def final_line(res: CheckResult) -> Text:
         digits = _numeric_certificate(res)
         if digits is not None:
             return Text(
-                f"OK to {digits} digits (not a proof): energy preserved to all orders for "
+                f"OK to {digits_text(digits)} (not a proof): energy preserved to all orders for "
                 f"{_degree_words(res.options.degree)} ({_certificate_name(res)}); {n} checked",
                 style="bold yellow",
             )
@@ -356,7 +357,7 @@ def final_line(res: CheckResult) -> Text:
                     style="bold green")
     if v.state == HOLDS:
         return Text(f"OK: {every} {holds} exactly", style="bold green")
-    return Text(f"OK to {v.digits} digits (not a proof): {every} {holds} to at least {v.digits} digits",
+    return Text(f"OK to {digits_text(v.digits)} (not a proof): {every} {holds} to at least {digits_text(v.digits)}",
                 style="bold yellow")
 
 

@@ -44,7 +44,8 @@ def test_certain_digits_count_from_zero(rad, digits):
     assert exact == Verdict(HOLDS_TO_DIGITS, digits)
     # the float screen may be one digit conservative, never optimistic, and never negative
     assert screened.state == HOLDS_TO_DIGITS and max(0, digits - 1) <= screened.digits <= digits
-    assert exact.answer() == ("not decided" if digits == 0 else f"yes, to {digits} digits")
+    words = {0: "not decided", 1: "yes, to 1 digit"}.get(digits, f"yes, to {digits} digits")
+    assert exact.answer() == words
 
 
 def test_a_negative_count_is_no_digit():
