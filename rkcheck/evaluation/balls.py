@@ -250,8 +250,9 @@ def summed_radii(radii: np.ndarray, k: int, bits: int) -> np.ndarray:
         from rkcheck.errors import UserError
 
         raise UserError(f"the certified error bounds overflow float64 (about 1.8e308) at {bits} bits: the "
-                        "entries are too large in magnitude, or --dps is too high; lower --dps, or read the "
-                        "decimals at face value (--decimals exact) for exact arithmetic")
+                        "entries are too large in magnitude for balls at this precision (a lower --dps lowers it, "
+                        "down to 10 digits); exact arithmetic has no such limit: --arithmetic exact, with "
+                        "--decimals exact where decimals are read as intervals")
     return rads
 
 

@@ -73,6 +73,9 @@ def test_ball_bounds_past_float64_are_refused_with_the_reason(tmp_path, capsys):
     path = write(tmp_path, "a.toml", one_stage("10^999"))
     r = run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "ball")
     assert r.code == 2 and "overflow float64" in r.err and "magnitude" in r.err, r.err
+    # the way out it names works: exact arithmetic decides (a = 10^999, b = 1: R([τ²]) = 1/2 − a fails)
+    assert "--arithmetic exact" in r.err
+    assert run_cli(capsys, "verify", path, "--order", "3", "--arithmetic", "exact").code == 1
 
 
 def test_explain_evaluates_irrational_entries(tmp_path, capsys):
