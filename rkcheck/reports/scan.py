@@ -202,9 +202,12 @@ def _claim_line(c: dict[str, Any]) -> str:
 def failure_message(o: dict[str, Any], fail_on: str = "claims") -> str:
     """One line: the broken claims when the file is judged by them, else why the
     conditions fail (the first failing ones, with exact residuals when known)."""
-    if judged_by_claims(o, fail_on):
-        return "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken_claims(o))
     s = _summary(o)
+    if judged_by_claims(o, fail_on):
+        broken = broken_claims(o)
+        if broken:
+            return "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken)
+        return (s.get("require") or {}).get("reason") or "check failed"  # every claim met: the gate failed it
     fails = failing_conditions(o, 3)
     if fails:
         n = s.get("conditions_failed", len(fails))
@@ -213,6 +216,17 @@ def failure_message(o: dict[str, Any], fail_on: str = "claims") -> str:
     if s.get("inconsistent"):
         return "Σb ≠ 1 (certain): the method is inconsistent"
     return (s.get("require") or {}).get("reason") or "check failed"
+
+
+def failure_title(o: dict[str, Any], fail_on: str = "claims") -> str:
+    """What failed the file, in a few words (an annotation's title): its conditions, its
+    consistency, or the ``--require`` gate."""
+    s = _summary(o)
+    if not judged_by_claims(o, fail_on) and failing_conditions(o, 1):
+        return "rkcheck: energy conditions fail"
+    if not judged_by_claims(o, fail_on) and s.get("inconsistent"):
+        return "rkcheck: the method is inconsistent (Σb ≠ 1)"
+    return f"rkcheck: --require {(s.get('require') or {}).get('level', 'any')} not met"
 
 
 def failure_detail(o: dict[str, Any], fail_on: str = "claims", limit: int = 20) -> list[str]:
@@ -226,7 +240,7 @@ def failure_detail(o: dict[str, Any], fail_on: str = "claims", limit: int = 20) 
             lines += [f"  {e}" for e in evidence[:limit]]
             if len(evidence) > limit:
                 lines.append(f"  … and {len(evidence) - limit} more")
-        return lines
+        return lines or [failure_message(o, fail_on)]
     fails = failing_conditions(o, None)
     lines = [_condition_line(c) for c in fails[:limit]]
     if len(fails) > limit:
@@ -337,10 +351,9 @@ def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
                 out.append(_annotation("error", path, line, f"rkcheck: claim {c['claim']}",
                                        f"{c['place']}: claimed {c['claimed']}, found {c['found']}"
                                        + (f" ({c['note']})" if c.get("note") else "")))
-            if not judged_by_claims(o, fail_on):
+            if not broken or not judged_by_claims(o, fail_on):
                 line = lines.get("tableau") or lines.get("family")
-                out.append(_annotation("error", path, line, "rkcheck: energy conditions fail",
-                                       failure_message(o, fail_on)))
+                out.append(_annotation("error", path, line, failure_title(o, fail_on), failure_message(o, fail_on)))
         for w in (o.get("result") or {}).get("warnings", []):
             out.append(_annotation("warning", path, lines.get("tableau"), "rkcheck", w))
     return "\n".join(out) + ("\n" if out else "")

@@ -240,6 +240,21 @@ def test_a_scan_that_finds_nothing_is_an_error_unless_allowed(capsys, tmp_path, 
     assert r.code == 2 and "tool.rkcheck.allow_empty: expected true or false" in r.err
 
 
+def test_a_gate_that_fails_a_file_is_its_annotation_and_junit_failure(capsys, tmp_path):
+    # the 6-digit Gauss-2 tableau meets its claims only to its digits: no claim is broken,
+    # no condition fails, and --require proof fails the file — which must still say why
+    (tmp_path / "g.toml").write_text((TABLEAUX.parent / "docs" / "examples" / "g2six.toml").read_text(encoding="utf-8")
+                                     + "\n[expect]\nsymplectic = true\n", encoding="utf-8")
+    args = ("scan", str(tmp_path), "--degree", "4", "--order", "1", "--require", "proof", "--jobs", "1")
+    r = run_cli(capsys, *args, "--format", "github")
+    errors = [line for line in r.out.splitlines() if line.startswith("::error")]
+    assert r.code == 1 and len(errors) == 1 and ANNOTATION.match(errors[0])
+    assert "title=rkcheck%3A --require proof not met::--require proof: the claim symplectic = true" in errors[0]
+    junit = ET.fromstring(run_cli(capsys, *args, "--format", "junit").out)
+    (failure,) = junit.iter("failure")
+    assert failure.get("message").startswith("--require proof: the claim symplectic = true holds only to")
+
+
 @pytest.mark.parametrize("marker", [".git", "pyproject.toml"])
 def test_github_annotations_name_files_from_the_repository_root(capsys, tmp_path, monkeypatch, marker):
     # a repository whose pyproject.toml sits in a subproject: GitHub wants paths from the
