@@ -89,7 +89,8 @@ def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -
         "",
         "## Energy error constants",
         "",
-        "For each degree, `q: C` is the energy order q and the constant C = (Σ R(t̄)²)^½ over the "
+        "For each degree, `q: C` is the energy order q (counting conditions that hold only to digits, as "
+        "`n; K to D digits` reaches K) and the constant C = (Σ R(t̄)²)^½ over the "
         "residuals of the conditions of order q + 1: the energy error of one step is "
         "h^(q+1) Σ R(t̄) F_t̄(H) + O(h^(q+2)). `—`: no condition fails up to the checked order.",
         "",
