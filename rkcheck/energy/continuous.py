@@ -191,19 +191,26 @@ def _by_the_series(facts: KernelFacts, method: ContinuousMethod, degree: int | N
         return facts
     A, B = ks.kernel_polys(method, box or DecimalsMode.EXACT)
     vertices = max(vertices, ks.SERIES_VERTICES)
+    # over a box the balls only fail to tell the two apart: no agreement is shown
+    exact = all(c.is_point for c in [*A.values(), *B.values()])
     if failed[0]:
         answer = ks.avf_witness(A, B, degree, vertices)
-        agrees = f"its B-series agrees with AVF's{_for(degree)} on every rooted tree up to {answer.vertices} vertices"
+        agrees = (f"its B-series agrees with AVF's{_for(degree)} on every rooted tree up to {answer.vertices} vertices"
+                  if exact else f"no rooted tree up to {answer.vertices} vertices tells its B-series from AVF's"
+                  f"{_for(degree)} over the box of its decimals")
         avf = ContinuousAvf(degree, *_decided(answer, avf.reason, agrees), form_reason=avf.reason)
     symmetric, symplectic = props.symmetric, props.symplectic
     if failed[1]:
         answer = ks.symmetric_witness(A, B, vertices)
-        agrees = f"its B-series agrees with its adjoint's on every rooted tree up to {answer.vertices} vertices"
+        agrees = (f"its B-series agrees with its adjoint's on every rooted tree up to {answer.vertices} vertices"
+                  if exact else f"no rooted tree up to {answer.vertices} vertices tells its B-series from its "
+                  "adjoint's over the box of its decimals")
         symmetric = PropertyVerdict("symmetric", *_decided(answer, symmetric.reason, agrees))
     if failed[2]:
         answer = ks.symplectic_witness(A, B, vertices)
         agrees = (f"a(u∘v) + a(v∘u) = a(u)a(v) for every pair of rooted trees up to {answer.vertices} vertices "
-                  "in all")
+                  "in all" if exact else f"no pair of rooted trees up to {answer.vertices} vertices in all shows "
+                  "a(u∘v) + a(v∘u) ≠ a(u)a(v) over the box of its decimals")
         symplectic = PropertyVerdict("symplectic", *_decided(answer, symplectic.reason, agrees))
     return KernelFacts(avf, facts.certificate, ContinuousProperties(props.exact, symplectic, symmetric))
 

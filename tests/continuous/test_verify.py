@@ -350,3 +350,18 @@ def test_an_error_column_counts_the_kernel_as_written(tmp_path, written, column)
         rkcheck.load(str(path))
     with pytest.raises(rkcheck.TableauError, match=rf"at column {column}$"):
         ContinuousMethod.from_kernel(written)
+
+
+def test_over_a_box_the_series_search_claims_no_agreement():
+    """A = τ + (1.00000 − 1)·10⁹τ²(2σ − 1), B = 1: at face value AVF, which is not
+    symplectic (u = τ, v = [τ]: a([[τ]]) + a([τ, τ]) − a(τ)a([τ]) = 1/4 + 1/3 − 1/2 = 1/12,
+    with AVF's a([t₁…t_q]) = Π a(t_i)/(q + 1)); over the box the extra term reaches
+    ±5000τ²(2σ − 1), so the balls of the series search contain 0 for every pair: not
+    refuted — and not shown to agree."""
+    m = ContinuousMethod.from_kernel("tau + (1.00000 - 1)*1e9*tau^2*(2*sigma-1)")
+    res = rkcheck.verify(m, degree=1, order=4)
+    symplectic = res.properties.symplectic
+    assert symplectic.verdict.state == "undecided"
+    assert "over the box of its decimals" in symplectic.reason and "for every pair" not in symplectic.reason
+    exact = rkcheck.verify(m, degree=1, order=4, decimals="exact").properties.symplectic
+    assert exact.verdict.state == "fails"  # at face value the B-series refutes it
