@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from rkcheck.errors import UserError
-from rkcheck.io.documents import ignored_keys
+from rkcheck.io.documents import BareFloat, bare_floats_warning, ignored_keys
 from rkcheck.methods.continuous import ContinuousMethod, _unalias, with_written_columns
 from rkcheck.methods.tableau import MethodInfo
 
@@ -39,7 +39,9 @@ def build_continuous(table: Any, name: str, info: MethodInfo, warnings: list[str
     """The method of a ``[continuous]`` table (``info`` carries the ``[constants]``)."""
     if not isinstance(table, dict):
         raise UserError("[continuous] must be a table", "continuous")
-    warnings = warnings + ignored_keys(table, KEYS, "continuous")
+    written = [table.get("A"), table.get("b"), *(x for row in table.get("M") or [] if isinstance(row, list) for x in row)]
+    warnings = (warnings + ignored_keys(table, KEYS, "continuous")
+                + bare_floats_warning([x for x in written if isinstance(x, BareFloat)]))
     info = info.replace(warnings=tuple(warnings))
     if "M" in table:
         if "A" in table or "b" in table:

@@ -55,6 +55,19 @@ class BareFloat(str):
     """The text of a bare TOML/JSON float, kept digit for digit."""
 
 
+def bare_floats_warning(texts: list[str]) -> list[str]:
+    """A warning when some entries, written as bare TOML/JSON numbers (``texts``), are
+    floats, which other tools read as binary64 doubles."""
+    bare = [t for t in texts if any(ch in t for ch in ".eE")]
+    if not bare:
+        return []
+    if len(bare) == 1:
+        return [f"1 entry is a bare float ({bare[0]}): rkcheck reads it digit for digit, but other tools read it "
+                "as a binary64 double; write it as a string to be unambiguous"]
+    return [f"{count_text(len(bare))} entries are bare floats (e.g. {bare[0]}): rkcheck reads them digit for digit, "
+            "but other tools read them as binary64 doubles; write them as strings to be unambiguous"]
+
+
 def _bare_float(text: str) -> BareFloat:
     return BareFloat(text.replace("_", ""))
 

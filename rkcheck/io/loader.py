@@ -28,6 +28,7 @@ from rkcheck.io.documents import (
     KNOWN_TABLES,
     SMALLEST_FILE,
     BareFloat,
+    bare_floats_warning,
     detect_format,
     ignored_keys,
     is_rkcheck_report,
@@ -250,11 +251,7 @@ def _method_info(data: dict[str, Any], source: str) -> tuple[str, MethodInfo]:
 
 def _bare_floats(entries) -> list[str]:
     """A warning when entries are bare TOML/JSON floats, which other tools read as doubles."""
-    bare = [e for e in entries if e.bare_number and _is_float_text(e.text)]
-    if not bare:
-        return []
-    return [f"{len(bare)} entries are bare floats (e.g. {bare[0].text}): rkcheck reads them digit for "
-            "digit, but other tools read them as binary64 doubles; write them as strings to be unambiguous"]
+    return bare_floats_warning([e.text for e in entries if e.bare_number])
 
 
 def _build_family(data: dict[str, Any], tab: dict[str, Any], name: str, info: MethodInfo,
@@ -321,10 +318,6 @@ def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
     b = _vector(tab["b"], "b", s, constants, memo)
     c = _vector(tab["c"], "c", s, constants, memo) if "c" in tab else None
     return A, b, c
-
-
-def _is_float_text(text: str) -> bool:
-    return any(ch in text for ch in ".eE")
 
 
 def read_document(text: str, source: str, fmt: str, max_stages: int = DEFAULT_MAX_STAGES) -> dict[str, Any]:

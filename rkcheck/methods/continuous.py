@@ -36,7 +36,7 @@ from fractions import Fraction
 from functools import cached_property, lru_cache
 from typing import Any, Sequence
 
-from rkcheck.errors import UserError
+from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.quadrature import positive_rule, rational_rule, vandermonde
 from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
@@ -143,12 +143,21 @@ class ContinuousMethod:
     # ----------------------------------------------------------------- construction
 
     @staticmethod
-    def from_kernel(A: str, b: str = "1", *, name: str = "continuous-stage method",
+    def from_kernel(A: str | int | Fraction, b: str | int | Fraction = "1", *, name: str = "continuous-stage method",
                     constants: dict[str, str] | None = None) -> "ContinuousMethod":
-        """A method from its kernel ``A(τ, σ)`` and weight ``B(τ)`` (``rkcheck.ContinuousMethod``)."""
+        """A method from its kernel ``A(τ, σ)`` and weight ``B(τ)`` (``rkcheck.ContinuousMethod``):
+        expressions in tau and sigma, or numbers (an int or a Fraction, as a file's ``b = 2``)."""
+        texts = []
         for what, value in (("A", A), ("b", b)):
+            if isinstance(value, Fraction):
+                value = f"{value.numerator}/{value.denominator}"
+            elif isinstance(value, int) and not isinstance(value, bool):
+                value = str(value)
             if not isinstance(value, str):
-                raise UserError(f"expected an expression in tau and sigma (a str), got {type(value).__name__}", what)
+                raise TableauError(f"expected an expression in tau and sigma (a str) or a number (an int or a "
+                                   f"Fraction), got {type(value).__name__}", what)
+            texts.append(value)
+        A, b = texts
         defs = {}
         for key, text in (constants or {}).items():
             try:

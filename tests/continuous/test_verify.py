@@ -365,3 +365,13 @@ def test_over_a_box_the_series_search_claims_no_agreement():
     assert "over the box of its decimals" in symplectic.reason and "for every pair" not in symplectic.reason
     exact = rkcheck.verify(m, degree=1, order=4, decimals="exact").properties.symplectic
     assert exact.verdict.state == "fails"  # at face value the B-series refutes it
+
+
+def test_from_kernel_takes_numbers_as_a_file_does():
+    # b = 1 written as a number is AVF's B, exactly; what is neither text nor an exact
+    # number is a TableauError naming the argument
+    assert rkcheck.verify(ContinuousMethod.from_kernel("tau", b=1), order=3).energy_order_all
+    assert rkcheck.verify(ContinuousMethod.from_kernel("tau", b=Fraction(1)), order=3).energy_order_all
+    for bad in (0.5, True, None, ["1"]):
+        with pytest.raises(rkcheck.TableauError, match=r"^b: expected an expression in tau and sigma"):
+            ContinuousMethod.from_kernel("tau", b=bad)

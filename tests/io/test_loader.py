@@ -68,7 +68,17 @@ def test_bare_toml_float_keeps_its_digits_and_warns(tmp_path):
     e = tab.A[0][0]
     assert e.exact == Fraction(21132486540518711774542560974902127, 10**35)  # not a binary64 double
     assert e.rounded_digits == 35
-    assert any("bare floats" in w for w in tab.info.warnings)
+    assert any("1 entry is a bare float (0.2113248654" in w for w in tab.info.warnings)
+
+
+@pytest.mark.parametrize("table", ['A = "tau"\nb = 1.0', 'A = 0.5', 'M = [[1.0]]', 'M = [["1", 0.5], [0.5, "2"]]'])
+def test_bare_floats_in_a_kernel_warn_as_in_a_tableau(tmp_path, table):
+    method = load(write(tmp_path, "k.toml", f"[continuous]\n{table}\n"))
+    floats = table.count(".")
+    word = "1 entry is a bare float" if floats == 1 else f"{floats} entries are bare floats"
+    assert any(w.startswith(word) for w in method.info.warnings), method.info.warnings
+    quiet = load(write(tmp_path, "q.toml", '[continuous]\nA = "tau"\nb = 1\n'))  # a bare integer is exact
+    assert not any("bare float" in w for w in quiet.info.warnings)
 
 
 def test_bare_json_float_keeps_its_digits(tmp_path):
