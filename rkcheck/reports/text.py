@@ -329,8 +329,9 @@ def final_line(res: CheckResult) -> Text:
     holds = "holds" if count == 1 else "hold"
     if len(res.failures):
         failing = len(res.failures)
+        also = "; Σb ≠ 1 (certain): the method is inconsistent" if inconsistent(res) else ""
         return Text(f"FAIL: {count_text(failing)} of {n} {'fails' if failing == 1 else 'fail'}; "
-                    f"energy order {energy_order_phrase(res)}", style="bold red")
+                    f"energy order {energy_order_phrase(res)}{also}", style="bold red")
     if res.interrupted:  # no failure among the orders that finished: no verdict either
         return Text(f"INTERRUPTED: {n} checked before Ctrl-C, none failing; no verdict", style="bold yellow")
     if inconsistent(res):

@@ -87,3 +87,11 @@ def test_a_decimal_c_beside_an_exact_a_is_compared_within_its_rounding(tmp_path,
     assert "c[1] - (A·1)[1]" in out and "c[2]" not in out.split("warning: c differs")[1].split("\n")[0]
     # at face value both are off
     assert "c[2] - (A·1)[2]" in run_cli(capsys, "verify", str(within), "--order", "2", "--decimals", "exact").out
+
+
+def test_the_verdict_line_names_an_inconsistency_beside_failing_conditions(tmp_path, capsys):
+    # b = (1, 1): Σb = 2, certainly not 1; R([τ²]) = (Σb)²/2 − Σ b_i c_i = 2 − 3/2 = 1/2 fails too
+    path = tmp_path / "inc.toml"
+    path.write_text('[tableau]\nA = [["1/2", "0"], ["1/2", "1/2"]]\nb = ["1", "1"]\n', encoding="utf-8")
+    last = run_cli(capsys, "verify", str(path), "--order", "2", "-q").out.strip().splitlines()[-1]
+    assert last.startswith("FAIL: 1 of 1 condition fails;") and last.endswith("Σb ≠ 1 (certain): the method is inconsistent")
