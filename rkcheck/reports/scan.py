@@ -17,7 +17,7 @@ from xml.sax.saxutils import escape, quoteattr
 
 from rkcheck.errors import is_digits_limit, too_many_digits
 from rkcheck.io.printable import printable
-from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string
+from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string, digits_text
 from rkcheck.reports.jsondoc import check_doc
 from rkcheck.reports.scan_json import Encoded, json_row, scan_json, totals
 
@@ -362,6 +362,18 @@ def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
 # ---------------------------------------------------------------------- text
 
 
+def classical_cell(s: dict[str, Any]) -> str:
+    """The classical order as the energy column writes orders: ``4``, ``≥ 4`` (nothing
+    failed up to the order checked), ``0; 4 to 6 digits`` (reached only to digits)."""
+    if not s:
+        return ""
+    order, reach, digits = s.get("classical_order", ""), s.get("classical_order_to_digits"), s.get("classical_order_digits")
+    open_ended = "≥ " if s.get("classical_first_failure") is None else ""
+    if digits is None or reach is None:
+        return f"{open_ended}{order}"
+    return f"{order}; {open_ended}{reach} to {digits_text(digits)}"
+
+
 def compact_constant(value: Fraction | str) -> str:
     """An error constant in a few characters: ``0.15``, ``0.042``, ``1.5e-4``, ``2e+200``
     (exact decimal rounding: a constant past 1e308 is no float)."""
@@ -455,9 +467,7 @@ def _scan_row(o: dict[str, Any], shown, constants: bool) -> list[Any]:
     claims_t = Text("—") if claims is None else (Text("ok", style="green") if claims else Text("BROKEN", style="bold red"))
     energy = Text(energy_text(o), style="red" if s.get("first_failure") and o["status"] == "failed" else "")
     deg = s.get("degree")
-    classical = s.get("classical_order", "")
-    if s and s.get("classical_first_failure") is None:
-        classical = f"≥ {classical}"
+    classical = classical_cell(s)
     ec = s.get("error_constant")
     extra = ["—" if not ec else compact_constant(ec["value"])] if constants else []
     t = r.get("tableau") or {}  # s: the stage count, or ∞ for a continuous-stage method (Butcher: infinitely many stages)

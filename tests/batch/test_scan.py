@@ -651,3 +651,16 @@ def test_one_file_spelt_several_ways_is_checked_once(tmp_path, capsys, monkeypat
     r = run_cli(capsys, "scan", "a.toml", "../p/a.toml", str(folder / "a.toml"), "../link.toml", "../hard.toml", ".",
                 "--format", "json", "--order", "4", "--degree", "2")
     assert [f["file"] for f in json.loads(r.out)["files"]] == ["a.toml"]
+
+
+def test_the_classical_column_reads_an_order_held_to_digits_as_verify_does(capsys, tmp_path):
+    # the 6-digit Gauss-2 tableau: classical order 0 proven (nothing is exact), order 4 to
+    # its digits, and a condition of order 5 fails (Gauss-2 has order 4: Hairer–Wanner)
+    (tmp_path / "g.toml").write_text((TABLEAUX.parent / "docs" / "examples" / "g2six.toml").read_text(encoding="utf-8"),
+                                     encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "verify", str(tmp_path / "g.toml"), "--format", "json").out)["summary"]
+    want = f"{doc['classical_order']}; {doc['classical_order_to_digits']} to {doc['classical_order_digits']} digits"
+    assert doc["classical_order_to_digits"] == 4 and doc["classical_first_failure"] is not None
+    row = next(line for line in run_cli(capsys, "scan", str(tmp_path), "--jobs", "1").out.splitlines()
+               if "Gauss–Legendre" in line)  # the method's name: a long path wraps
+    assert want in row
