@@ -266,6 +266,8 @@ def _build_family(data: dict[str, Any], tab: dict[str, Any], name: str, info: Me
     if "c" in tab:
         info = info.replace(warnings=info.warnings + ("tableau.c ignored: a family's nodes are its row sums",))
     A, b = _entry_texts(tab, max_stages)
+    written = [x for row in tab["A"] for x in row] + list(tab["b"])
+    info = info.replace(warnings=info.warnings + tuple(bare_floats_warning([x for x in written if isinstance(x, BareFloat)])))
     return build_family(name, parameters, A, b, constants, info)
 
 

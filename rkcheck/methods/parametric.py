@@ -7,6 +7,7 @@ how they are represented exactly: :mod:`rkcheck.numbers.parametric`.
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -254,7 +255,7 @@ def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[st
     places = [f"A[{i + 1}][{j + 1}]" for i in range(s) for j in range(s)] + [f"b[{i + 1}]" for i in range(s)]
     if parsed is not None:
         entries = ParametricEntries(list(parsed), places, parameters, constants)
-        return Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info)
+        return _with_warnings(Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info))
     nodes = []
     known = set(parameters) | set(constants)
     for text, place in zip(texts, places):
@@ -268,4 +269,43 @@ def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[st
                             f"{', '.join(parameters)})", place)
         nodes.append(node)
     entries = ParametricEntries(nodes, places, parameters, constants)
-    return Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info)
+    return _with_warnings(Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info))
+
+
+#: how the warning that Σb is not identically 1 begins (:func:`without_sum_note`)
+SUM_B_NOTE = "Σb = "
+
+
+def without_sum_note(family: Family) -> Family:
+    """``family`` without the warning that Σb is not identically 1 (for a solve, which
+    says where it is 1 when asked)."""
+    kept = tuple(w for w in family.info.warnings if not w.startswith(SUM_B_NOTE))
+    return dataclasses.replace(family, info=family.info.replace(warnings=kept))
+
+
+def _with_warnings(family: Family) -> Family:
+    """``family`` with what its entries say of it beside the conditions: parameters no
+    entry uses (every value of them is the same method), and a Σb that is not
+    identically 1 (a member is consistent only where it is)."""
+    values = family.entries.values
+    s = family.stages
+    notes = []
+    ring_names = list(family.ring.ctx.names())
+    used = [any(v.degrees()[ring_names.index(p)] for v in values if not v.is_zero()) for p in family.parameters]
+    unused = [p for p, u in zip(family.parameters, used) if not u]
+    if unused:
+        many = len(unused) > 1
+        notes.append(f"parameter{'s' if many else ''} {', '.join(unused)} appear{'' if many else 's'} in no entry: "
+                     f"every value of {'them' if many else 'it'} gives the same method")
+    total = sum(values[-s:], values[0] * 0)
+    defect = total - 1
+    if not defect.is_zero():
+        shown = SUM_B_NOTE + str(total).replace(" ", "")
+        if defect.is_constant():
+            notes.append(f"{shown} ≠ 1 for every parameter value: no member is consistent (not even order 1)")
+        else:
+            notes.append(f"{shown} is not identically 1: a member is consistent only where it is 1 "
+                         f"(rkcheck solve {family.info.source or 'FILE'} --classical-order 1 says where)")
+    if not notes:
+        return family
+    return dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, *notes)))

@@ -163,6 +163,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "schema": FAMILY_SCHEMA,
         "family": {"name": family.name, "source": family.info.source, "field": None if field is None else field.name},
         "options": options,
+        "warnings": solve_warnings(family),
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
@@ -204,12 +205,22 @@ def avf_everywhere(result: Any) -> bool | None:
     return None if any(f is None for f in flags) else all(flags)
 
 
+def solve_warnings(family: Any) -> list[str]:
+    """The family's warnings for a solve, but the one that Σb is not identically 1: a
+    solve says where Σb = 1 itself, when its equations (--classical-order, --where) ask."""
+    from rkcheck.methods.parametric import without_sum_note
+
+    return list(without_sum_note(family).info.warnings)
+
+
 def render_solution_set(family: Any, result: Any, console: Console, scope: str | None = None) -> None:
     """The solution set; ``scope``: a line saying which conditions were solved, when the
     command line did not say it."""
     field = family.ring.field
     equations = f"{result.equations} equation{'' if result.equations == 1 else 's'}"
     console.print(Text(f"{family.name}: {equations} in {', '.join(result.variables)}", style="bold"))
+    for w in solve_warnings(family):
+        console.print(Text(f"warning: {w}", style="yellow"))
     if scope:
         console.print(Text(scope))
     note = _field_note(field)

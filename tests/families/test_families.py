@@ -424,3 +424,25 @@ def test_the_quotient_ring_and_the_lexicographic_route_agree(tmp_path, monkeypat
     lex = sorted(tuple(sorted((n, v.text) for n, v in s.values.items())) for s in
                  rkcheck.solve(path, degree=3, order=3).solutions)
     assert read == lex and len(read) > 0
+
+
+def test_a_family_says_what_its_entries_say_beside_the_conditions(capsys, tmp_path):
+    # Σb = 1/2 + p (by hand) is 1 only at p = 1/2; r appears in no entry; 0.5 is a bare float;
+    # c is ignored (a family's nodes are its row sums)
+    path = tmp_path / "f.toml"
+    path.write_text('[parameters]\np = "free"\nr = "free"\n[tableau]\nA = [["p", 0.5], ["1/2", "0"]]\n'
+                    'b = ["1/2", "p"]\nc = ["1", "1/2"]\n', encoding="utf-8")
+    text = " ".join(run_cli(capsys, "verify", str(path)).out.split())
+    assert "parameter r appears in no entry" in text
+    assert "Σb = p+1/2 is not identically 1" in text
+    assert "1 entry is a bare float (0.5)" in text and "tableau.c ignored" in text
+    solved = json.loads(run_cli(capsys, "solve", str(path), "--format", "json").out)
+    # solve says the same, but where Σb = 1 is its own answer to give
+    assert any("tableau.c ignored" in w for w in solved["warnings"])
+    assert any("bare float" in w for w in solved["warnings"]) and not any("Σb" in w for w in solved["warnings"])
+    text = " ".join(run_cli(capsys, "solve", str(path)).out.split())
+    assert "warning: tableau.c ignored" in text and "warning: parameter r appears in no entry" in text
+    consistent = tmp_path / "g.toml"
+    consistent.write_text('[parameters]\np = "free"\n[tableau]\nA = [["p", "0"], ["1/2", "0"]]\n'
+                          'b = ["1 - p", "p"]\n', encoding="utf-8")
+    assert "warning" not in run_cli(capsys, "verify", str(consistent)).out
