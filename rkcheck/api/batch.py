@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 import time
 from contextlib import nullcontext
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.api.settings import ProjectConfig, budget, guard, project_config
@@ -364,18 +364,20 @@ class Catalog:
     """What :func:`catalog` gives: one :class:`~rkcheck.batch.catalog.CatalogRow` per file
     (``name``, ``stages``, ``classical``, ``quadrature``, ``energy`` by degree label,
     ``avf_degrees``, ``claims``, ``symplectic``, ``symmetric``, ``constants``, or
-    ``error``), the degree labels (``m=4``, ``all H``) and the order checked."""
+    ``error``), the degree labels (``m=4``, ``all H``), the order checked, and the family
+    files found and left out (``families``)."""
 
     rows: "list[CatalogRow]"
     labels: list[str]
     degrees: list[int | None]
     order: int
+    families: list[str] = field(default_factory=list)
 
     def to_markdown(self, command: str = "") -> str:
         """The Markdown page of ``rkcheck catalog`` (``command`` is recorded in its header)."""
         from rkcheck.reports.markdown import catalog_markdown
 
-        return catalog_markdown(self.rows, self.labels, self.order, command)
+        return catalog_markdown(self.rows, self.labels, self.order, command, self.families)
 
     def __repr__(self) -> str:
         from rkcheck.numbers.formatting import counted
@@ -421,7 +423,9 @@ def catalog(
     from rkcheck.io.loader import is_family_file
 
     # families (free [parameters]) are not one tableau: `rkcheck solve` is their catalogue
-    files = [f for f in find_tableau_files(roots, exclude=["README*", "*/README*"]) if not is_family_file(f)]
+    found = find_tableau_files(roots, exclude=["README*", "*/README*"])
+    families = [f for f in found if is_family_file(f)]
+    files = [f for f in found if f not in families]
     if not files:
         raise UserError(f"no tableau file (*.toml, *.json) under {', '.join(roots)}: nothing to catalogue", "catalog")
     root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
@@ -436,7 +440,8 @@ def catalog(
         if progress is not None:
             progress(len(rows), len(files))
     labels = ["all H" if d is None else f"m={d}" for d in degs]
-    return Catalog(rows, labels, degs, order)
+    shown = [str(FsPath(f).relative_to(root)) if root is not None else f for f in families]
+    return Catalog(rows, labels, degs, order, shown)
 
 
 __all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan"]

@@ -119,6 +119,6 @@ def catalog(paths, degrees, order, output) -> None:
     # the command line the header records: no path stays no path
     command = " ".join(["rkcheck catalog", *paths] + ([f"--degrees {degrees}"] if degrees != "2,3,4,6,none" else [])
                        + ([f"--order {order}"] if order != 8 else []) + ([f"-o {output}"] if output else []))
-    write_text(catalog_markdown(result.rows, result.labels, result.order, command), output)
+    write_text(catalog_markdown(result.rows, result.labels, result.order, command, result.families), output)
     if any(r.error for r in result.rows):  # as a scan: a file that cannot be read fails the run
         sys.exit(EXIT_FAIL)

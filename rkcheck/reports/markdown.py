@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import Sequence
 
 from rkcheck.batch.catalog import CatalogRow
 from rkcheck.io.printable import printable
 from rkcheck.numbers.formatting import decimal_digits, decimal_string
 
 
-def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: int, command: str) -> str:
+def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: int, command: str,
+                     families: Sequence[str] = ()) -> str:
     lines = [
         "# Shipped tableaux",
         "",
@@ -39,6 +41,11 @@ def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: i
             f"{r.symplectic or '—'} | {r.symmetric or '—'} | {r.claims or '—'} |"
         )
     lines += error_constant_sections(rows, degrees_labels)
+    if families:
+        lines += ["", "## Families", "",
+                  "Files with free `[parameters]` are families, not one method, and have no row above: "
+                  "`rkcheck verify FILE` gives their generic orders, `rkcheck solve FILE` where they do more.", ""]
+        lines += [f"- {_code(f)}" for f in families]
     return "\n".join(lines) + "\n"
 
 

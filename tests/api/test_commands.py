@@ -178,9 +178,20 @@ def test_catalog_orders_by_hand(tmp_path):
     assert row.energy == {"m=2": "3", "all H": "2"}
     page = cat.to_markdown("rkcheck catalog x")
     assert "`rkcheck catalog x`" in page and "| `mid.toml` |" in page
+    assert cat.families == [] and "## Families" not in page
     with pytest.raises(rkcheck.OptionError) as err:
         rkcheck.catalog([tmp_path], degrees=["x"])
     assert err.value.place == "degrees"
+
+
+def test_catalog_names_the_families_it_leaves_out(tmp_path):
+    # a family (free [parameters]) is no one method: no row, but named, not silently dropped
+    (tmp_path / "mid.toml").write_text(MIDPOINT_TOML)
+    (tmp_path / "fam.toml").write_text('[parameters]\np = "free"\n[tableau]\nA = [["p"]]\nb = ["1"]\n')
+    cat = rkcheck.catalog([tmp_path], degrees=[2], order=4)
+    assert [r.path for r in cat.rows] == ["mid.toml"] and cat.families == ["fam.toml"]
+    page = cat.to_markdown()
+    assert "## Families" in page and "- `fam.toml`" in page
 
 
 # ------------------------------------------------------------------ kernel
