@@ -80,8 +80,11 @@ def print_estimate(path: str, order: int, arithmetic: str, extra: list[str]) -> 
     from rkcheck.numbers.reading import Reading
 
     tableau = load(path)
-    if getattr(tableau, "is_continuous", False):
-        tableau = tableau.surrogate(order + 1)
+    if getattr(tableau, "is_continuous", False):  # on the rule the check takes for this arithmetic
+        from rkcheck.energy.claims import in_intervals
+        from rkcheck.options import CheckOptions
+
+        tableau = tableau.surrogate(order + 1, in_intervals(tableau, CheckOptions(order=order, arithmetic=arithmetic)))
     dps = int(extra[extra.index("--dps") + 1]) if "--dps" in extra else int(tableau.info.check.get("dps", 50))
     values = TableauValues(tableau, Reading(dps=dps, arithmetic=arithmetic))
     est = estimate(order, None, values.backend, channels_for(values, order), values.stages, dps,

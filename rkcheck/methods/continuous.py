@@ -257,9 +257,9 @@ class ContinuousMethod:
         """A tableau with the method's elementary weights for every tree with at most
         ``vertices`` vertices (module docstring); its ``info.continuous`` says so.
         ``positive``: on the rule of positive weights
-        (:func:`~rkcheck.methods.quadrature.positive_rule`), for a kernel judged in
-        intervals, whose widths the equispaced rule's weights would multiply by Σ|w_i|
-        at every level of a tree."""
+        (:func:`~rkcheck.methods.quadrature.positive_rule`), for a kernel judged over
+        the box of its decimals, whose widths the equispaced rule's weights would
+        multiply by Σ|w_i| at every level of a tree."""
         n_nodes = self.nodes_for(vertices)
         if n_nodes > MAX_SURROGATE_NODES:
             raise UserError(f"the exact B-series to {vertices} vertices needs {n_nodes} quadrature nodes, "

@@ -369,7 +369,7 @@ def positive_rule(n: int) -> tuple[list[Fraction], list[Fraction]]:
     integrate every polynomial of degree < n exactly: all positive (as Clenshaw–Curtis's
     are), so Σ|w_i| = 1 and an enclosure carried through the rule does not grow with n
     as through :func:`rational_rule`'s.  Its denominators are larger (a weight of 19
-    nodes has about 180 bits against 44), which only intervals do not pay for."""
+    nodes has about 180 bits against 44), worth it only where the entries are intervals."""
     if n <= 2:
         return rational_rule(n)
     bits = max(6, math.ceil(math.log2(n * n)) + 2)
