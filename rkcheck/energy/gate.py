@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from rkcheck.energy.check import CheckResult, inconsistent
-from rkcheck.numbers.formatting import count_text, counted, digits_text
+from rkcheck.numbers.formatting import count_text, digits_text
 from rkcheck.verdicts import DECIDING_DIGITS, HOLDS_TO_DIGITS
 
 
@@ -28,7 +28,8 @@ class Shortfall:
             held, ending = "to 0 digits", ": not one digit is certain"
         else:
             held = "only to digits"
-            ending = ", which is not " + ("a proof" if self.require == "proof" else counted(int(self.require.split(':')[1]), 'digit'))
+            ending = ", which is not " + ("a proof" if self.require == "proof"
+                                          else digits_text(int(self.require.split(":")[1])))
         parts = []
         if self.count:
             ids = "; ".join(self.examples) + ("; …" if self.count > len(self.examples) else "")
