@@ -1,4 +1,5 @@
-"""Scan reports: text (rich), JSON, CSV, JUnit XML and GitHub Actions annotations.
+"""Scan reports: text (rich), JSON and CSV here; JUnit XML and GitHub Actions annotations
+in :mod:`rkcheck.reports.scan_ci`.
 
 Every format is built from the same outcome documents (:func:`outcome_docs` of the
 :class:`~rkcheck.batch.scan.FileOutcome` values); the JSON per-file object under
@@ -9,17 +10,25 @@ from __future__ import annotations
 
 import csv
 import io
-import re
 from fractions import Fraction
-from pathlib import Path
 from typing import Any, Callable
-from xml.sax.saxutils import escape, quoteattr
 
 from rkcheck.errors import is_digits_limit, too_many_digits
 from rkcheck.io.printable import printable
-from rkcheck.numbers.formatting import counted, decimal_digits, decimal_string, digits_text
+from rkcheck.numbers.formatting import (
+    counted,
+    decimal_digits,
+    decimal_string,
+    digits_text,
+)
 from rkcheck.reports.jsondoc import check_doc
+from rkcheck.reports.scan_ci import scan_github, scan_junit
 from rkcheck.reports.scan_json import Encoded, json_row, scan_json, totals
+from rkcheck.reports.scan_outcomes import (
+    _summary,
+    broken_claims,
+    failure_message,
+)
 
 CSV_COLUMNS = [
     "file", "status", "method", "stages", "structure", "degree", "order", "classical_order",
@@ -96,19 +105,6 @@ def scan_text(outcomes, elapsed: float, interrupted: bool, constants: bool = Fal
                                                           constants=constants, fail_on=fail_on))
 
 
-def _summary(o: dict[str, Any]) -> dict[str, Any]:
-    return (o.get("result") or {}).get("summary", {})
-
-
-def broken_claims(o: dict[str, Any]) -> list[dict[str, Any]]:
-    return [c for c in ((o.get("result") or {}).get("claims") or []) if not c["met"]]
-
-
-def failing_conditions(o: dict[str, Any], limit: int | None = 5) -> list[dict[str, Any]]:
-    conds = (o.get("result") or {}).get("conditions") or []
-    return [c for c in conds if c["state"] == "fails"][:limit]
-
-
 def energy_text(o: dict[str, Any]) -> str:
     return _summary(o).get("energy_order_label", "")
 
@@ -157,209 +153,6 @@ def scan_csv(outcomes: list[dict[str, Any]]) -> str:
 
 
 # --------------------------------------------------------------------- JUnit
-
-
-def residual_text(c: dict[str, Any]) -> str:
-    """A condition's residual as the JSON document gives it: the exact value when it is
-    known (``-1/2880``, ``sqrt(3)/144``), else the certified ball ``mid ± radius``."""
-    if c.get("residual_exact") is not None:
-        return c["residual_exact"]
-    return f"{c['residual']} ± {c['radius']}"
-
-
-def judged_by_claims(o: dict[str, Any], fail_on: str) -> bool:
-    """Whether a file's failure is about its claims (``--fail-on`` claims, or auto with
-    claims) rather than its conditions."""
-    return bool(broken_claims(o)) and fail_on != "conditions"
-
-
-def _condition_line(c: dict[str, Any]) -> str:
-    return f"condition {c['id']} {c['bracket']} (order {c['order']}) fails: R = {residual_text(c)}"
-
-
-def claim_evidence(o: dict[str, Any], claim: dict[str, Any]) -> list[str]:
-    """What contradicts a broken claim, from what the file's check found: the first
-    failing classical or quadrature condition, or the failing energy conditions the
-    claim covers (orders up to the claimed one, when the claim's degree is the one the
-    conditions were checked for); never the conditions beyond what the claim says."""
-    s = _summary(o)
-    kind = claim["claim"]
-    if kind == "classical_order" and s.get("classical_first_failure"):
-        return [f"first failing classical condition: {s['classical_first_failure']}"]
-    if kind == "quadrature_order" and s.get("quadrature_first_failure"):
-        return [f"first failing quadrature condition: {s['quadrature_first_failure']}"]
-    if kind != "energy_order" or claim["degree"] != s.get("degree"):
-        return []
-    limit = int(claim["claimed"]) if claim["claimed"].isdigit() else None  # "all": every order
-    conds = (o.get("result") or {}).get("conditions") or []
-    return [_condition_line(c) for c in conds if c["state"] == "fails" and (limit is None or c["order"] <= limit)]
-
-
-def _claim_line(c: dict[str, Any]) -> str:
-    return f"{c['place']}: claimed {c['claimed']}, found {c['found']}" + (f" ({c['note']})" if c.get("note") else "")
-
-
-def failure_message(o: dict[str, Any], fail_on: str = "claims") -> str:
-    """One line: the broken claims when the file is judged by them, else why the
-    conditions fail (the first failing ones, with exact residuals when known)."""
-    s = _summary(o)
-    if judged_by_claims(o, fail_on):
-        broken = broken_claims(o)
-        if broken:
-            return "; ".join(f"{c['place']}: claimed {c['claimed']}, found {c['found']}" for c in broken)
-        return (s.get("require") or {}).get("reason") or "check failed"  # every claim met: the gate failed it
-    fails = failing_conditions(o, 3)
-    if fails:
-        n = s.get("conditions_failed", len(fails))
-        return (f"{n} failing condition{'s' if n != 1 else ''} (energy order {s.get('energy_order')}), first: "
-                + ", ".join(f"{c['id']} {c['bracket']} (R = {residual_text(c)})" for c in fails))
-    if s.get("inconsistent"):
-        return "Σb ≠ 1 (certain): the method is inconsistent"
-    return (s.get("require") or {}).get("reason") or "check failed"
-
-
-def failure_title(o: dict[str, Any], fail_on: str = "claims") -> str:
-    """What failed the file, in a few words (an annotation's title): its conditions, its
-    consistency, or the ``--require`` gate."""
-    s = _summary(o)
-    if not judged_by_claims(o, fail_on) and failing_conditions(o, 1):
-        return "rkcheck: energy conditions fail"
-    if not judged_by_claims(o, fail_on) and s.get("inconsistent"):
-        return "rkcheck: the method is inconsistent (Σb ≠ 1)"
-    return f"rkcheck: --require {(s.get('require') or {}).get('level', 'any')} not met"
-
-
-def failure_detail(o: dict[str, Any], fail_on: str = "claims", limit: int = 20) -> list[str]:
-    """The lines of a JUnit ``<failure>``: each broken claim with what contradicts it, or
-    (a file judged by its conditions) the failing conditions, at most ``limit`` of them."""
-    if judged_by_claims(o, fail_on):
-        lines = []
-        for c in broken_claims(o):
-            lines.append(f"claim {_claim_line(c)}")
-            evidence = claim_evidence(o, c)
-            lines += [f"  {e}" for e in evidence[:limit]]
-            if len(evidence) > limit:
-                lines.append(f"  … and {len(evidence) - limit} more")
-        return lines or [failure_message(o, fail_on)]
-    fails = failing_conditions(o, None)
-    lines = [_condition_line(c) for c in fails[:limit]]
-    if len(fails) > limit:
-        lines.append(f"… and {len(fails) - limit} more")
-    return lines or [failure_message(o, fail_on)]
-
-
-def scan_junit(outcomes: list[dict[str, Any]], total_time: float, fail_on: str = "claims") -> str:
-    """JUnit XML (the common Jenkins/Ant schema): one testcase per file."""
-    t = totals(outcomes)
-    cases = []
-    for o in outcomes:
-        name = quoteattr(o["path"])
-        head = f'    <testcase classname="rkcheck" name={name} file={name} time="{o["time"]:.6f}"'
-        if o["status"] == "ok":
-            cases.append(head + "/>")
-        elif o["status"] == "skipped":
-            cases.append(head + f">\n      <skipped message={quoteattr(o['error'] or 'skipped')}/>\n    </testcase>")
-        elif o["status"] == "error":
-            msg = o["error"] or "error"
-            cases.append(head + f">\n      <error message={quoteattr(msg)} type=\"UserError\">{escape(msg)}</error>\n    </testcase>")
-        else:
-            msg = failure_message(o, fail_on)
-            detail = "\n".join(failure_detail(o, fail_on))
-            cases.append(head + f">\n      <failure message={quoteattr(msg)} type=\"EnergyCheck\">{escape(detail)}</failure>\n    </testcase>")
-    suite = (
-        f'  <testsuite name="rkcheck" tests="{t["files"]}" failures="{t["failed"]}" errors="{t["error"]}" '
-        f'skipped="{t["skipped"]}" time="{total_time:.6f}">'
-    )
-    return "\n".join(['<?xml version="1.0" encoding="UTF-8"?>',
-                      f'<testsuites name="rkcheck scan" tests="{t["files"]}" failures="{t["failed"]}" '
-                      f'errors="{t["error"]}" time="{total_time:.6f}">',
-                      suite, *cases, "  </testsuite>", "</testsuites>"]) + "\n"
-
-
-# -------------------------------------------------------------------- GitHub
-
-
-def _gh_escape(text: str, prop: bool = False) -> str:
-    text = text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
-    if prop:
-        text = text.replace(":", "%3A").replace(",", "%2C")
-    return text
-
-
-def repository_root(path: str) -> Path | None:
-    """The repository a file belongs to: the nearest folder above it holding ``.git`` (a
-    folder, or a file in a worktree or submodule), else the nearest one holding a
-    ``pyproject.toml``; None when there is neither."""
-    here = Path(path).absolute().parent
-    folders = [here, *here.parents]
-    for marker in (".git", "pyproject.toml"):
-        for d in folders:
-            if (d / marker).exists():
-                return d
-    return None
-
-
-def annotation_path(path: str) -> str:
-    """A file as GitHub wants it in an annotation: relative to the repository root (which
-    is the workflow's working copy), with ``/``, whatever folder rkcheck ran in and
-    whether the path came from the command line or ``[tool.rkcheck]``.  A file outside
-    any repository, and an ``@name``, are left as they are."""
-    import os
-
-    if path.startswith("@") or path == "-":
-        return path
-    root = repository_root(path)
-    if root is None:
-        return path
-    full = Path(os.path.abspath(path))
-    try:
-        return full.relative_to(os.path.abspath(root)).as_posix()
-    except ValueError:
-        return path
-
-
-def _annotation(level: str, path: str, line: int | None, title: str, message: str) -> str:
-    props = f"file={_gh_escape(path, True)}"
-    if line:
-        props += f",line={line}"
-    props += f",title={_gh_escape(title, True)}"
-    return f"::{level} {props}::{_gh_escape(message)}"
-
-
-def scan_github(outcomes: list[dict[str, Any]], fail_on: str = "claims") -> str:
-    """GitHub Actions workflow commands: one ``::error`` per broken claim (at its line in
-    ``[expect]``), per failing file without claims (at ``[tableau]``), per bad file; files
-    are named relative to their repository's root (:func:`annotation_path`)."""
-
-    out = []
-    for o in outcomes:
-        path, lines = annotation_path(o["path"]), o.get("lines") or {}
-        if o["status"] == "error":
-            line = None
-            err = o["error"] or ""
-            if err.startswith(o["path"] + ": "):  # the message names the file as the annotation does
-                err = path + err[len(o["path"]):]
-            m = re.search(r"line (\d+)", err)
-            if m:
-                line = int(m.group(1))
-            out.append(_annotation("error", path, line, "rkcheck: cannot check", err))
-        elif o["status"] == "failed":
-            broken = broken_claims(o)
-            for c in broken:
-                key = c["place"].split("[")[0]
-                line = lines.get(key) or lines.get("expect")
-                out.append(_annotation("error", path, line, f"rkcheck: claim {c['claim']}",
-                                       f"{c['place']}: claimed {c['claimed']}, found {c['found']}"
-                                       + (f" ({c['note']})" if c.get("note") else "")))
-            if not broken or not judged_by_claims(o, fail_on):
-                line = lines.get("tableau") or lines.get("family")
-                out.append(_annotation("error", path, line, failure_title(o, fail_on), failure_message(o, fail_on)))
-        for w in (o.get("result") or {}).get("warnings", []):
-            out.append(_annotation("warning", path, lines.get("tableau"), "rkcheck", w))
-    return "\n".join(out) + ("\n" if out else "")
-
-
-# ---------------------------------------------------------------------- text
 
 
 def classical_cell(s: dict[str, Any]) -> str:

@@ -284,7 +284,7 @@ def test_github_annotations_name_files_from_the_repository_root(capsys, tmp_path
 
 
 def test_github_annotations_outside_a_repository_keep_the_path_given(capsys, tmp_path, monkeypatch):
-    from rkcheck.reports.scan import repository_root
+    from rkcheck.reports.scan_ci import repository_root
 
     (tmp_path / "w.toml").write_text(RK4_WRONG, encoding="utf-8")
     if repository_root(str(tmp_path / "w.toml")) is not None:
