@@ -234,9 +234,10 @@ def parse_callback(value: Any, place: str) -> Any:
 
 
 def parse_require(value: Any, place: str, source: str | None = None) -> str:
-    """The proof gate (definitions §5.3): ``any`` (every ``holds to D digits`` passes),
-    ``proof`` (only exact ``holds`` and exact certificates pass) or ``digits:D`` (a
-    numerical holds passes only with at least D digits), returned normalised."""
+    """The proof gate (definitions §5.3): ``any`` (every ``holds to D digits`` with D ≥ 1
+    passes: one with no certain digit decides nothing), ``proof`` (only exact ``holds``
+    and exact certificates pass) or ``digits:D`` (a numerical holds passes only with at
+    least D digits), returned normalised."""
     text = value.strip().lower() if isinstance(value, str) else None
     if text in ("any", "proof"):
         return text

@@ -266,7 +266,7 @@ class RequireType(click.ParamType):
 def require_option(f: Callable) -> Callable:
     return click.option(
         "--require", type=RequireType(), default="any", show_default=True,
-        help="What counts as a pass. any: holds, or holds to D digits; proof: only exact holds and exact "
+        help="What counts as a pass. any: holds, or holds to D >= 1 digits; proof: only exact holds and exact "
         "certificates (a 'holds to D digits' fails the gate, exit 1); digits:D: numerical holds need "
         "at least D digits. Also [check] require.",
     )(f)
