@@ -167,7 +167,10 @@ class Kernel:
     def text(self, x: Any) -> str:
         if self.exact:  # p/q, as the weights are written (never a decimal beside a fraction)
             q = Fraction(int(x.p), int(x.q))
-            return str(q) if len(str(q)) <= 40 else f"≈ {short(q)}"
+            # by bits first: Python refuses to write an integer past its digit limit
+            if q.numerator.bit_length() + q.denominator.bit_length() <= 140 and len(str(q)) <= 40:
+                return str(q)
+            return f"≈ {short(q)}"
         return f"≈ {short(Fraction(float(x.mid())))}"
 
     def adjoint(self) -> "Kernel":

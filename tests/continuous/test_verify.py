@@ -372,6 +372,9 @@ def test_from_kernel_takes_numbers_as_a_file_does():
     # number is a TableauError naming the argument
     assert rkcheck.verify(ContinuousMethod.from_kernel("tau", b=1), order=3).energy_order_all
     assert rkcheck.verify(ContinuousMethod.from_kernel("tau", b=Fraction(1)), order=3).energy_order_all
+    # B = 1 + 10⁻⁵⁰⁰⁰, past the digits Python writes: read and reported, not refused
+    near = rkcheck.verify(ContinuousMethod.from_kernel("tau", b=Fraction(10**5000 + 1, 10**5000)), order=2)
+    assert near.avf.verdict.state == "fails" and "(≈ 1 against 1)" in near.avf.reason
     for bad in (0.5, True, None, ["1"]):
         with pytest.raises(rkcheck.TableauError, match=r"^b: expected an expression in tau and sigma"):
             ContinuousMethod.from_kernel("tau", b=bad)
