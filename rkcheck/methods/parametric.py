@@ -84,6 +84,21 @@ class Family:
         s = self.stages
         return self.entries.values[s * s:s * s + s]
 
+    @property
+    def consistency_note(self) -> str | None:
+        """What a Σb that is not identically 1 says of the members (None when it is): a
+        member is consistent only where it is 1 — what ``solve`` finds when asked, so its
+        reports leave the note to ``verify``'s."""
+        total = sum(self.b, self.b[0] * 0)
+        defect = total - 1
+        if defect.is_zero():
+            return None
+        shown = "Σb = " + str(total).replace(" ", "")
+        if defect.is_constant():
+            return f"{shown} ≠ 1 for every parameter value: no member is consistent (not even order 1)"
+        return (f"{shown} is not identically 1: a member is consistent only where it is 1 "
+                f"(rkcheck solve {self.info.source or 'FILE'} --classical-order 1 says where)")
+
     def equation(self, text: str) -> Any:
         """``"lhs = rhs"`` (or an expression meaning ``= 0``) over the family's ring."""
         sides = text.split("=")
@@ -272,40 +287,16 @@ def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[st
     return _with_warnings(Family(name, parameters, tuple(tuple(r) for r in A), tuple(b), entries, info))
 
 
-#: how the warning that Σb is not identically 1 begins (:func:`without_sum_note`)
-SUM_B_NOTE = "Σb = "
-
-
-def without_sum_note(family: Family) -> Family:
-    """``family`` without the warning that Σb is not identically 1 (for a solve, which
-    says where it is 1 when asked)."""
-    kept = tuple(w for w in family.info.warnings if not w.startswith(SUM_B_NOTE))
-    return dataclasses.replace(family, info=family.info.replace(warnings=kept))
-
-
 def _with_warnings(family: Family) -> Family:
-    """``family`` with what its entries say of it beside the conditions: parameters no
-    entry uses (every value of them is the same method), and a Σb that is not
-    identically 1 (a member is consistent only where it is)."""
+    """``family`` with a warning for the parameters no entry uses (every value of them
+    gives the same method)."""
     values = family.entries.values
-    s = family.stages
-    notes = []
     ring_names = list(family.ring.ctx.names())
-    used = [any(v.degrees()[ring_names.index(p)] for v in values if not v.is_zero()) for p in family.parameters]
-    unused = [p for p, u in zip(family.parameters, used) if not u]
-    if unused:
-        many = len(unused) > 1
-        notes.append(f"parameter{'s' if many else ''} {', '.join(unused)} appear{'' if many else 's'} in no entry: "
-                     f"every value of {'them' if many else 'it'} gives the same method")
-    total = sum(values[-s:], values[0] * 0)
-    defect = total - 1
-    if not defect.is_zero():
-        shown = SUM_B_NOTE + str(total).replace(" ", "")
-        if defect.is_constant():
-            notes.append(f"{shown} ≠ 1 for every parameter value: no member is consistent (not even order 1)")
-        else:
-            notes.append(f"{shown} is not identically 1: a member is consistent only where it is 1 "
-                         f"(rkcheck solve {family.info.source or 'FILE'} --classical-order 1 says where)")
-    if not notes:
+    unused = [p for p in family.parameters
+              if not any(v.degrees()[ring_names.index(p)] for v in values if not v.is_zero())]
+    if not unused:
         return family
-    return dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, *notes)))
+    many = len(unused) > 1
+    note = (f"parameter{'s' if many else ''} {', '.join(unused)} appear{'' if many else 's'} in no entry: "
+            f"every value of {'them' if many else 'it'} gives the same method")
+    return dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, note)))

@@ -74,7 +74,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "quadrature_order_generic": fc.quadrature_order,
         "quadrature_order_checked": fc.quadrature_checked,
         "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
-        "warnings": list(fam.info.warnings),
+        "warnings": _verify_warnings(fam),
     }
 
 
@@ -110,7 +110,7 @@ def _conditions_text(fc: Any, console: Console, show_all: bool) -> None:
     if fam.kernel:
         console.print(f"a continuous-stage kernel, through its exact surrogate on {fam.stages} rational nodes "
                       f"(elementary weights exact for trees up to {fam.reach} vertices)")
-    for w in fam.info.warnings:
+    for w in _verify_warnings(fam):
         console.print(Text(f"warning: {w}", style="yellow"))
     total = len(fc.energy)
     zero = sum(c.vanishes for c in fc.energy)
@@ -163,7 +163,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "schema": FAMILY_SCHEMA,
         "family": {"name": family.name, "source": family.info.source, "field": None if field is None else field.name},
         "options": options,
-        "warnings": solve_warnings(family),
+        "warnings": list(family.info.warnings),
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
@@ -205,12 +205,10 @@ def avf_everywhere(result: Any) -> bool | None:
     return None if any(f is None for f in flags) else all(flags)
 
 
-def solve_warnings(family: Any) -> list[str]:
-    """The family's warnings for a solve, but the one that Σb is not identically 1: a
-    solve says where Σb = 1 itself, when its equations (--classical-order, --where) ask."""
-    from rkcheck.methods.parametric import without_sum_note
-
-    return list(without_sum_note(family).info.warnings)
+def _verify_warnings(family: Any) -> list[str]:
+    """The family's warnings, and what its Σb says of the members' consistency."""
+    note = family.consistency_note
+    return [*family.info.warnings, *([note] if note else [])]
 
 
 def render_solution_set(family: Any, result: Any, console: Console, scope: str | None = None) -> None:
@@ -219,7 +217,7 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
     field = family.ring.field
     equations = f"{result.equations} equation{'' if result.equations == 1 else 's'}"
     console.print(Text(f"{family.name}: {equations} in {', '.join(result.variables)}", style="bold"))
-    for w in solve_warnings(family):
+    for w in family.info.warnings:
         console.print(Text(f"warning: {w}", style="yellow"))
     if scope:
         console.print(Text(scope))
