@@ -149,10 +149,8 @@ class ContinuousMethod:
         expressions in tau and sigma, or numbers (an int or a Fraction, as a file's ``b = 2``)."""
         texts = []
         for what, value in (("A", A), ("b", b)):
-            if isinstance(value, Fraction):  # written out at any length, as the loader writes a file's integers
-                value = f"{ex.digits_text(value.numerator)}/{ex.digits_text(value.denominator)}"
-            elif isinstance(value, int) and not isinstance(value, bool):
-                value = ex.digits_text(value)
+            if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
+                value = ex.fraction_text(value)  # at any length
             if not isinstance(value, str):
                 raise TableauError(f"expected an expression in tau and sigma (a str) or a number (an int or a "
                                    f"Fraction), got {type(value).__name__}", what)

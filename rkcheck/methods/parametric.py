@@ -150,7 +150,7 @@ class Family:
 
 def _value_text(q: Fraction) -> str:
     """A parameter's value as an entry's text (of any length: str() stops at 4 300 digits)."""
-    return f"({ex.digits_text(q.numerator)}/{ex.digits_text(q.denominator)})"
+    return f"({ex.fraction_text(q)})"
 
 
 def _rational(value: Any, name: str) -> Fraction:

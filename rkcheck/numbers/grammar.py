@@ -454,6 +454,12 @@ def int_of_digits(digits: str) -> int:
     return value
 
 
+def fraction_text(q: Fraction | int) -> str:
+    """``p/q`` (``p`` for an integer) at any length, as the grammar reads it back exactly."""
+    q = Fraction(q)
+    return digits_text(q.numerator) if q.denominator == 1 else f"{digits_text(q.numerator)}/{digits_text(q.denominator)}"
+
+
 def digits_text(n: int) -> str:
     """``str(n)`` for integers of any length (the inverse of :func:`int_of_digits`)."""
     if -10**_INT_CHUNK < n < 10**_INT_CHUNK:
