@@ -81,6 +81,16 @@ class Verdict:
             object.__setattr__(self, "digits", 0)
 
     @property
+    def shown(self) -> bool:
+        """Holds exactly, or to at least one certain digit: what a certificate, an AVF
+        verdict or a claim counts as shown."""
+        return self.holds and self.decided
+
+    def how(self) -> str:
+        """``exactly``, or ``to D digits``: how a statement that holds holds."""
+        return "exactly" if self.state == HOLDS else f"to {digits_text(self.digits)}"
+
+    @property
     def decided(self) -> bool:
         """Whether the verdict says anything: not ``undecided``, and a holds to digits
         certifies at least one digit."""

@@ -34,7 +34,7 @@ from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.reading import DecimalsMode
 from rkcheck.options import CheckOptions
-from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS, Verdict
+from rkcheck.verdicts import HOLDS_TO_DIGITS, Verdict
 
 
 @dataclass(frozen=True)
@@ -192,7 +192,7 @@ def _shown(result: ClaimResult, verdict: Verdict) -> ClaimResult:
     """``result`` as far as ``verdict`` (that the value found is the value claimed) shows
     it: not met when it fails or decides nothing, met only to its digits when it holds
     to digits."""
-    if not verdict.decided or verdict.state == FAILS:
+    if not verdict.shown:
         return replace(result, met=False)
     return replace(result, digits=verdict.digits if verdict.state == HOLDS_TO_DIGITS else None)
 

@@ -56,7 +56,7 @@ class ContinuousCertificate:
     def certified(self) -> bool:
         """It proves every order, exactly or to digits (a verdict with no certain digit
         certifies nothing)."""
-        return self.verdict.state != FAILS and self.verdict.decided
+        return self.verdict.shown
 
     @property
     def kind(self) -> str | None:
@@ -96,7 +96,7 @@ class ContinuousAvf:
 
     @property
     def equals_avf(self) -> bool:
-        return self.verdict.holds and self.verdict.decided
+        return self.verdict.shown
 
     def refuted(self, condition_id: str) -> "ContinuousAvf":
         """Undecided by the kernel and its trees, refuted by an energy condition that

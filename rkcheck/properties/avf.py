@@ -47,7 +47,7 @@ class AvfVerdict:
     def equals_avf(self) -> bool:
         """Shown to be AVF: exactly or to digits (a verdict with no certain digit shows
         nothing)."""
-        return self.verdict.state != FAILS and self.verdict.decided
+        return self.verdict.shown
 
 
 def avf_of_reduction(red: Reduction, degree: int) -> AvfVerdict:

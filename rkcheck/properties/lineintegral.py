@@ -33,7 +33,7 @@ from rkcheck.numbers.formatting import digits_text
 from rkcheck.numbers.polynomials import integral
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
-from rkcheck.verdicts import FAILS, HOLDS, UNDECIDED_TEXT, Verdict, combine
+from rkcheck.verdicts import FAILS, UNDECIDED_TEXT, Verdict, combine
 
 
 class Certificate(Protocol):
@@ -73,7 +73,7 @@ class LineIntegralCertificate:
     def certified(self) -> bool:
         """It proves every order, exactly or to digits (a verdict with no certain digit
         certifies nothing)."""
-        return self.verdict.state != FAILS and self.verdict.decided
+        return self.verdict.shown
 
     @property
     def kind(self) -> str | None:
@@ -172,7 +172,7 @@ def line_integral_certificate(red: Reduction, degree: int, residuals: Iterator[s
         entries = matches(sigma)
         if entries is not None:
             verdict = combine(list(red.decisions) + entries + quad[: degree * sigma])
-            how = "exactly" if verdict.state == HOLDS else f"to {digits_text(verdict.digits)}"
+            how = verdict.how()
             return LineIntegralCertificate(
                 degree, sigma, verdict,
                 f"A = Σ_(j<{sigma}) (2j+1) G_j(c)(P_j(c)⊙b)ᵀ and the rule (b, A·1) has quadrature order "

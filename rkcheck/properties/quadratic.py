@@ -28,7 +28,7 @@ class StabilityCertificate:
     def certified(self) -> bool:
         """It proves every order, exactly or to digits (a verdict with no certain digit
         certifies nothing)."""
-        return self.verdict.state != FAILS and self.verdict.decided
+        return self.verdict.shown
 
     @property
     def name(self) -> str:
@@ -53,7 +53,7 @@ def quadratic_certificate(stab: StabilityFunction, degree: int) -> StabilityCert
             degree, Verdict(FAILS),
             f"{stab.defect_text()}: quadratic energy is preserved to order {stab.leading_power - 1} only",
         )
-    how = "exactly" if stab.identity.state == HOLDS else f"to {digits_text(stab.identity.digits)}"
+    how = stab.identity.how()
     return StabilityCertificate(
         degree, stab.identity,
         f"R(z)R(−z) = 1 {how} (e_2 = … = e_{2 * stab.stages} = 0 and deg(P(z)P(−z) − Q(z)Q(−z)) ≤ "

@@ -38,7 +38,7 @@ from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
 from rkcheck.numbers.centred import Centred
 from rkcheck.numbers.deadline import Overrun, call_within
-from rkcheck.numbers.formatting import decimal_string, digits_text
+from rkcheck.numbers.formatting import decimal_string
 from rkcheck.numbers.intervals import Interval
 from rkcheck.properties import scalars as sc
 from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
@@ -191,7 +191,7 @@ class StabilityFunction:
         if self.leading_power is None:
             if not self.identity.decided:
                 return "R(z)R(−z) = 1 not decided (to 0 digits)"
-            how = "exactly" if self.identity.state == HOLDS else f"to {digits_text(self.identity.digits)}"
+            how = self.identity.how()
             return f"R(z)R(−z) = 1 ({how})"
         lead = monomial_text(self.leading_coefficient, self.leading_power)
         num = self.defect_numerator

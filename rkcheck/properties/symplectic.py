@@ -25,7 +25,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterable
 
-from rkcheck.numbers.formatting import digits_text
 from rkcheck.properties import scalars as sc
 from rkcheck.properties.reduction import Reduction
 from rkcheck.verdicts import FAILS, HOLDS, Verdict, combine
@@ -48,10 +47,6 @@ class PropertyVerdict:
 
     def label(self) -> str:
         return self.verdict.answer()
-
-
-def _how(v: Verdict) -> str:
-    return "exactly" if v.state == HOLDS else f"to {digits_text(v.digits)}"
 
 
 def _after(red: Reduction) -> str:
@@ -96,7 +91,7 @@ def symplectic_verdict(red: Reduction, entries: Iterable[tuple[sc.Scalar, int, i
             f"BA + AᵀB − bbᵀ ≠ 0{_after(red)}: largest entry {value}",
             m, (gi, gj),
         )
-    return PropertyVerdict("symplectic", verdict, f"BA + AᵀB − bbᵀ = 0 {_how(verdict)}{_after(red)}")
+    return PropertyVerdict("symplectic", verdict, f"BA + AᵀB − bbᵀ = 0 {verdict.how()}{_after(red)}")
 
 
 def symmetry(red: Reduction) -> PropertyVerdict:
@@ -129,7 +124,7 @@ def symmetric(red: Reduction, image: list[int], verdict: Verdict) -> PropertyVer
     perm = tuple(red.kept[k] + 1 for k in image)
     return PropertyVerdict(
         "symmetric", verdict,
-        f"the adjoint (1bᵀ − A, b) equals the method {_permutation_text(red, perm)}, {_how(verdict)}{_after(red)}",
+        f"the adjoint (1bᵀ − A, b) equals the method {_permutation_text(red, perm)}, {verdict.how()}{_after(red)}",
         permutation=perm,
     )
 
