@@ -25,7 +25,8 @@ it stays ``undecided`` (:mod:`rkcheck.energy.kernel_series`).
 
 A kernel whose decimals stand for intervals (a box, definitions §5.2) is judged over the
 whole box (:mod:`rkcheck.energy.kernel_box`): "fails" only when every kernel of the box
-fails, otherwise "holds to D digits" — never a proof.
+fails, "holds" when it holds for every kernel of the box (its decimals cancel in it),
+otherwise "holds to D digits" — never a proof.
 """
 
 from __future__ import annotations
@@ -171,6 +172,8 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
 def _boxed(face: Verdict, box: Verdict, reason: str) -> str:
     """The reason of a kernel identity at face value, as the verdict over the box of its
     decimals reads it: unchanged where both agree, else said of the face values."""
+    if box.state == HOLDS:  # the decimals cancel in it
+        return f"{reason}, for every kernel of the box of its decimals"
     if box.state == face.state or box.state == FAILS:
         return reason
     if face.state == FAILS:  # nonzero at face value; the box's enclosure does not exclude 0

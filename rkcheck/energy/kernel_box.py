@@ -1,19 +1,23 @@
-"""A kernel whose decimals stand for intervals (definitions §5.2) judged rigorously: its
-``A(τ, σ)`` and ``B(τ)`` as polynomials with interval coefficients, and each kernel
-identity of :mod:`rkcheck.energy.continuous` as a defect polynomial ``D`` enclosed over
-the whole box of kernels.
+"""A kernel whose decimals stand for intervals (definitions §5.2) judged rigorously: each
+kernel identity of :mod:`rkcheck.energy.continuous` as a defect polynomial ``D`` in τ, σ
+bounded over the whole box of kernels.
 
-Every literal occurrence is enclosed on its own (a decimal written twice may take two
-values), which only widens the enclosure: a bound on ``|D|`` stays a bound.  On [0, 1]²
-``|τ^i σ^j| ≤ 1``, so ``max |D| ≤ Σ max|coefficient|``.  Verdicts: ``fails`` when some
-coefficient of D excludes 0 (D ≠ 0 for every kernel of the box), ``holds`` when every
-coefficient is exactly 0, otherwise ``holds to D digits`` with ``max|D| ≤ 10^−D``.
+``A(τ, σ)`` and ``B(τ)`` are the kernel's forms (:mod:`rkcheck.energy.kernel_forms`):
+exact polynomials in its literals as well, so that what cancels for every kernel of the
+box cancels here, and an identity that holds for every kernel of the box holds — as a
+classical condition whose weight involves no interval holds over a tableau's box.  Where
+an identity's forms would be too large, its coefficients are intervals, every literal
+occurrence enclosed on its own (:class:`IntervalForm`), which only widens the bound.  On
+[0, 1]² ``|τ^i σ^j| ≤ 1``, so ``max |D| ≤ Σ max|coefficient|``.  Verdicts: ``fails``
+when some coefficient of D is nonzero on the whole box (D ≠ 0 for every kernel of the
+box), ``holds`` when every coefficient is 0 on it, otherwise ``holds to D digits`` with
+``max|D| ≤ 10^−D``.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Any
+from typing import Any, Iterator
 
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
@@ -104,55 +108,135 @@ def _at(p: Poly, value: int) -> Poly:
     return out
 
 
-def verdict_of(defect: Poly) -> Verdict:
-    if any(not c.contains_zero() for c in defect.values()):
+class IntervalForm:
+    """A polynomial in τ, σ with interval coefficients, every literal occurrence enclosed
+    on its own: the judge of an identity whose forms
+    (:mod:`rkcheck.energy.kernel_forms`) would be too large."""
+
+    __slots__ = ("p",)
+
+    def __init__(self, p: Poly):
+        self.p = p
+
+    def __add__(self, other: "IntervalForm") -> "IntervalForm":
+        return IntervalForm(_add(self.p, other.p))
+
+    def __sub__(self, other: "IntervalForm") -> "IntervalForm":
+        return IntervalForm(_add(self.p, other.p, -1))
+
+    def __neg__(self) -> "IntervalForm":
+        return IntervalForm({k: -c for k, c in self.p.items()})
+
+    def __mul__(self, other: "IntervalForm") -> "IntervalForm":
+        return IntervalForm(_mul(self.p, other.p))
+
+    def scaled(self, q: Fraction) -> "IntervalForm":
+        return IntervalForm({k: c * Interval.point(q) for k, c in self.p.items()})
+
+    def constant(self, q: Fraction) -> "IntervalForm":
+        return IntervalForm({(0, 0): Interval.point(q)})
+
+    def at_tau(self, value: int) -> "IntervalForm":
+        return IntervalForm(_at(self.p, value))
+
+    def reflected(self, tau: bool, sigma: bool) -> "IntervalForm":
+        p = _affine(self.p, 0) if tau else self.p
+        return IntervalForm(_affine(p, 1) if sigma else p)
+
+    def swapped(self) -> "IntervalForm":
+        return IntervalForm({(j, i): c for (i, j), c in self.p.items()})
+
+    def in_sigma(self) -> "IntervalForm":
+        return IntervalForm({(0, i): c for (i, _), c in self.p.items()})
+
+    def d_tau(self) -> "IntervalForm":
+        return IntervalForm({(i - 1, j): c * Interval.point(i) for (i, j), c in self.p.items() if i > 0})
+
+    def integral(self, var: str) -> "IntervalForm":
+        out: Poly = {}
+        for (i, j), c in self.p.items():
+            key, e = ((i, 0), j) if var == "s" else ((0, j), i)
+            out = _add(out, {key: c / Interval.point(e + 1)})
+        return IntervalForm(out)
+
+    def spans(self) -> Iterator[tuple[Fraction, Fraction]]:
+        return ((c.mid, c.rad) for c in self.p.values())
+
+
+def verdict_of(defect: Any) -> Verdict:
+    """A defect polynomial's verdict on [0, 1]²: ``fails`` when some coefficient is
+    nonzero on the whole box, ``holds`` when all are 0 on it, else the digits of
+    ``Σ max |coefficient|``."""
+    spans = list(defect.spans())
+    if any(abs(centre) > spread for centre, spread in spans):
         return Verdict(FAILS)
-    bound = sum((max(abs(c.lo), abs(c.hi)) for c in defect.values()), Fraction(0))
+    bound = sum((abs(centre) + spread for centre, spread in spans), Fraction(0))
     return Verdict(HOLDS) if bound == 0 else Verdict(HOLDS_TO_DIGITS, certified_digits(bound))
 
 
 def box_verdicts(method: Any, decimals: DecimalsMode, degree: int | None = None, bits: int = 256) -> dict[str, Verdict]:
     """The kernel identities over the box: ``certificate`` (its three parts together),
-    ``avf`` (AVF's form for Hamiltonians of ``degree``), ``symmetric``, ``symplectic``."""
-    consts = method.info.constants.enclosures(bits, decimals)
-    A = interval_poly(method.nodes[0], decimals, consts, bits)
-    B = interval_poly(method.nodes[1], decimals, consts, bits)
-    B_sigma = {(0, i): c for (i, _), c in B.items()}
+    ``avf`` (AVF's form for Hamiltonians of ``degree``), ``symmetric``, ``symplectic``;
+    each on the kernel's forms, or on interval coefficients where its forms would be
+    too large."""
+    from rkcheck.energy.kernel_forms import NoForm, kernel_forms
 
-    def swap(p: Poly) -> Poly:
-        return {(j, i): c for (i, j), c in p.items()}
+    def intervals() -> tuple[IntervalForm, IntervalForm]:
+        consts = method.info.constants.enclosures(bits, decimals)
+        return (IntervalForm(interval_poly(method.nodes[0], decimals, consts, bits)),
+                IntervalForm(interval_poly(method.nodes[1], decimals, consts, bits)))
 
-    dA = {(i - 1, j): c * Interval.point(i) for (i, j), c in A.items() if i > 0}
-    parts = [verdict_of(_at(A, 0)), verdict_of(_add(_at(A, 1), B_sigma, -1)), verdict_of(_add(dA, swap(dA), -1))]
-    return {
-        "certificate": _weakest(parts),
-        "avf": _avf_form(A, B, B_sigma, degree),
-        "symmetric": _weakest([verdict_of(_add(B, _affine(B, 0), -1)),
-                               verdict_of(_add(_add(A, _affine(_affine(A, 0), 1)), B_sigma, -1))]),
-        "symplectic": verdict_of(_add(_add(_mul(B, A), _mul(B_sigma, swap(A))), _mul(B, B_sigma), -1)),
-    }
+    try:
+        forms: tuple[Any, Any] = kernel_forms(method, decimals, bits)
+    except NoForm:
+        forms = intervals()
+    identities = {"certificate": _certificate, "avf": lambda A, B: _avf_form(A, B, degree),
+                  "symmetric": _symmetric, "symplectic": _symplectic}
+    out = {}
+    for name, identity in identities.items():
+        try:
+            out[name] = identity(*forms)
+        except NoForm:
+            out[name] = identity(*intervals())
+    return out
 
 
-def _avf_form(A: Poly, B: Poly, B_sigma: Poly, degree: int | None) -> Verdict:
+def _certificate(A: Any, B: Any) -> Verdict:
+    """∂τA symmetric, A(0, σ) = 0, A(1, σ) = B(σ)."""
+    dA = A.d_tau()
+    return _weakest([verdict_of(A.at_tau(0)), verdict_of(A.at_tau(1) - B.in_sigma()), verdict_of(dA - dA.swapped())])
+
+
+def _symmetric(A: Any, B: Any) -> Verdict:
+    """B(τ) = B(1 − τ) and A(τ, σ) + A(1 − τ, 1 − σ) = B(σ)."""
+    return _weakest([verdict_of(B - B.reflected(True, False)),
+                     verdict_of(A + A.reflected(True, True) - B.in_sigma())])
+
+
+def _symplectic(A: Any, B: Any) -> Verdict:
+    """B(τ)A(τ, σ) + B(σ)A(σ, τ) = B(τ)B(σ)."""
+    B_sigma = B.in_sigma()
+    return verdict_of(B * A + B_sigma * A.swapped() - B * B_sigma)
+
+
+def _avf_form(A: Any, B: Any, degree: int | None) -> Verdict:
     """AVF's form over the box (:mod:`rkcheck.energy.continuous`): ``A = C(τ)B(σ)`` and
     ``∫B C^(k−1) = 1/k`` for k = 1…m, or for every degree ``B = ±C'`` with C from one
     end of [0, 1] to the other."""
-    C: Poly = {}
-    for (i, j), c in A.items():  # ∫₀¹ A dσ
-        C = _add(C, {(i, 0): c / Interval.point(j + 1)})
-    parts = [verdict_of(_add(A, _mul(C, B_sigma), -1))]
+    C = A.integral("s")  # ∫₀¹ A dσ
+    one = A.constant(Fraction(1))
+    parts = [verdict_of(A - C * B.in_sigma())]
     if degree is None:
-        dC = {(i - 1, 0): c * Interval.point(i) for (i, _), c in C.items() if i > 0}
-        at0, at1 = _at(C, 0), _at(C, 1)
-        rising = [verdict_of(at0), verdict_of(_add(at1, {(0, 0): ONE}, -1)), verdict_of(_add(B, dC, -1))]
-        falling = [verdict_of(_add(at0, {(0, 0): ONE}, -1)), verdict_of(at1), verdict_of(_add(B, dC))]
+        dC = C.d_tau()
+        at0, at1 = C.at_tau(0), C.at_tau(1)
+        rising = [verdict_of(at0), verdict_of(at1 - one), verdict_of(B - dC)]
+        falling = [verdict_of(at0 - one), verdict_of(at1), verdict_of(B + dC)]
         ends = max((_weakest(rising), _weakest(falling)), key=_strength)
         return _weakest(parts + [ends])
-    power: Poly = {(0, 0): ONE}
+    power = one
     for j in range(1, degree + 1):
-        moment = sum((c / Interval.point(i + 1) for (i, _), c in _mul(B, power).items()), Interval.point(0))
-        parts.append(verdict_of({(0, 0): moment - Interval.point(Fraction(1, j))}))
-        power = _mul(power, C)
+        parts.append(verdict_of((B * power).integral("t") - one.scaled(Fraction(1, j))))
+        power = power * C
     return _weakest(parts)
 
 

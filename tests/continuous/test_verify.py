@@ -202,13 +202,14 @@ def test_api_functions_that_need_stages_refuse_a_kernel():
 
 
 def test_rounded_decimals_make_a_box_judged_to_digits():
-    """0.50000000000000000000 (20 digits) stands for [0.5 − 5e−21, 0.5 + 5e−21]: twice it
-    is τ up to 1e−20 — the certificate holds only to digits (two independent literals in
-    ∂τA − its swap: |D| ≤ 2e−20, so 19 digits), never as a proof; at face value
-    (decimals exact) it is AVF exactly."""
+    """0.50000000000000000000 (20 digits) stands for [0.5 − 5e−21, 0.5 + 5e−21]: written
+    twice, two numbers x, y, and A = (x + y)τ.  ∂τA = x + y is symmetric for every x, y
+    and A(0, σ) = 0, but A(1, σ) − B = x + y − 1 ranges over [−1e−20, 1e−20]: the
+    certificate holds to 20 digits, never as a proof; at face value (decimals exact) it is
+    AVF exactly."""
     m = ContinuousMethod.from_kernel("0.50000000000000000000*tau + 0.50000000000000000000*tau")
     res = rkcheck.verify(m, order=4)
-    assert not res.energy_order_all and res.energy_order_all_digits == 19
+    assert not res.energy_order_all and res.energy_order_all_digits == 20
     assert res.avf.verdict.state == "holds_to_digits"
     exact = rkcheck.verify(m, order=4, decimals="exact")
     assert exact.energy_order_all and exact.avf.verdict.state == "holds"
