@@ -157,8 +157,8 @@ def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None =
         hint = ""
     if route == "structured":
         raise OptionError("the structured route needs A free (each entry its own parameter), weights that are "
-                          "numbers or their own parameters, --where equations in the weights only, and finitely "
-                          "many solutions of the quadrature conditions", "route")
+                          "numbers or their own parameters, no other parameter, --where equations in the weights only, "
+                          "and finitely many solutions of the quadrature conditions", "route")
     conditions = compute(fam, deg, N, q)
     polys = [c.polynomial for c in conditions.energy] + [c.polynomial for c in conditions.classical or []] + extra
     polys = polys or [fam.ring.constant(0)]  # order 1 has no condition: every parameter value solves it

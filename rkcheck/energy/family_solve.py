@@ -1,9 +1,9 @@
 """The structured route of ``rkcheck solve``: quadrature conditions first, then the
 conditions linear in A, then a small system in the kernel directions.
 
-It applies when every entry of A is its own free parameter (A free) and each weight is
-either a parameter-free number or its own parameter, and the extra equations (``--where``)
-use only the weights.  Then, with ``c = A·1`` as new unknowns:
+It applies when every entry of A is its own free parameter (A free), each weight is
+either a parameter-free number or its own parameter, there is no other parameter, and
+the extra equations (``--where``) use only the weights.  Then, with ``c = A·1`` as new unknowns:
 
 1. **Quadrature conditions.**  The energy condition of the star with k leaves is
    ``Σ bᵢcᵢ^(k−1) − (Σb)^k/k`` (times a constant), k = 2 … min(m, N): a system in b and c
@@ -98,6 +98,8 @@ def layout_of(family: Any, extra: Sequence[Any]) -> Layout | None:
         fixed.append(None if name else p)
     b_names = {n for n in b if n}
     if b_names & set(flat) or len(b_names) != len([n for n in b if n]):
+        return None
+    if set(ring.parameters) != set(flat) | b_names:  # a parameter no entry uses is free in every solution
         return None
     for q in extra:
         used = {names[i] for m in q.monoms() for i, e in enumerate(m) if e} - {THETA}

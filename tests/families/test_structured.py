@@ -77,6 +77,18 @@ def test_structured_route_refuses_a_family_it_does_not_fit():
         rkcheck.solve(FAMILIES / "seed-kernel-zeta-0.toml", degree=3, order=6, route="structured")
 
 
+def test_a_parameter_no_entry_uses_stays_free_in_every_solution(tmp_path):
+    """A = [[x]], b = [1] and a parameter y no entry uses: the energy condition of order 2
+    for quadratic H is x − 1/2 (the 1-stage methods: only the midpoint rule preserves
+    quadratic energies), and y is free in it — a line, dimension 1, not the point y = 0."""
+    path = tmp_path / "unused.toml"
+    path.write_text('[parameters]\nx = "free"\ny = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
+    res = rkcheck.solve(path, degree=2, order=2)
+    assert res.route == "plain" and res.dimension == 1 and [str(g) for g in res.groebner] == ["x - 1/2"]
+    with pytest.raises(rkcheck.RkcheckError, match="no other parameter"):
+        rkcheck.solve(path, degree=2, order=2, route="structured")
+
+
 def _gauss4():
     """The 4-point Gauss rule from its tableau file (exact entries): nodes and weights as
     certified enclosures."""
