@@ -21,8 +21,9 @@ from rkcheck.cli.output import check_output_target, write_text
 @output_options
 def discretize(file, rule, output) -> None:
     """Write the tableau a_ij = b_j A(c_i, c_j), b_i = b_i B(c_i) of the continuous-stage
-    method in FILE on a quadrature rule (TOML, exact), and say up to which degree of
-    Hamiltonian it keeps every energy condition.
+    method in FILE on a quadrature rule (TOML, exact; 60-digit decimals past 8
+    irrational nodes), and say up to which degree of Hamiltonian it keeps every energy
+    condition.
 
     \b
     Examples:

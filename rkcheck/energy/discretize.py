@@ -21,15 +21,21 @@ import re
 from typing import Any
 
 from rkcheck.errors import UserError
+from rkcheck.methods.closed_forms import MAX_EXACT_NODES
 from rkcheck.methods.continuous import ContinuousMethod
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry
+from rkcheck.numbers.intervals import Interval
+from rkcheck.numbers.precision import bits_for_digits
 from rkcheck.numbers.reading import DecimalsMode
 
 #: rule names: gauss-k, radau-i-k, radau-ii-k, lobatto-k, newton-cotes-k
 RULE_PATTERN = re.compile(r"(gauss|radau-i|radau-ii|lobatto|newton-cotes)-(\d+)")
 MAX_RULE_NODES = 20
+#: significant digits of the decimals written for a rule with more than
+#: :data:`~rkcheck.methods.closed_forms.MAX_EXACT_NODES` irrational nodes (as ``rkcheck new``)
+DECIMAL_DIGITS = 60
 
 
 @dataclasses.dataclass(frozen=True)
@@ -115,7 +121,11 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     entry texts, and the degree it keeps (module docstring)."""
     from rkcheck.energy.continuous import kernel_facts
 
-    c, w, consts, order, name = _rule_texts(rule_spec)
+    decimal = _decimal_rule(rule_spec)
+    if decimal is None:
+        c, w, consts, order, name = _rule_texts(rule_spec)
+    else:
+        c, w, consts, order, name = [], [], {}, *decimal[3:]
     own = {k: xp.to_text(v) for k, v in method.info.constants.definitions.items()}
     clash = sorted(set(own) & set(consts))
     if clash:
@@ -128,10 +138,13 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     def node(t: str) -> ex.Expr:
         return ex.parse(f"({t})")
 
-    A = [[f"{_par(w[j])}*({xp.to_text(xp.substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
-          for j in range(k)] for i in range(k)]
-    b = [f"{_par(w[i])}*({xp.to_text(xp.substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
-    consts, A, b, c_out = _simplified(A, b, c, consts)
+    if decimal is not None:
+        consts, A, b, c_out = _decimals(method, *decimal[:3])
+    else:
+        A = [[f"{_par(w[j])}*({xp.to_text(xp.substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
+              for j in range(k)] for i in range(k)]
+        b = [f"{_par(w[i])}*({xp.to_text(xp.substituted(B_node, {'tau': node(c[i])}))})" for i in range(k)]
+        consts, A, b, c_out = _simplified(A, b, c, consts)
     facts = kernel_facts(method, None)
     p = method.kernel.deg_tau
     if facts.certificate.certified and 0 < p and order // p >= 2:
@@ -149,7 +162,55 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     if method.is_box(DecimalsMode.AUTO):  # the rule's entries fold the decimals into exact numbers
         reason += (f"; the kernel's decimals (as few as {method.rounded_digits} significant digits) are taken at "
                    "face value: the tableau is exact, the centre of the box they stand for")
+    if decimal is not None:
+        reason += (f"; the nodes of {name} have no short exact form (more than {MAX_EXACT_NODES} nodes): the entries "
+                   f"are written as {DECIMAL_DIGITS}-digit decimals of the exact ones, read back as rounded to their "
+                   "last digit")
     return Discretisation(consts, A, b, c_out, name, order, kept, reason)
+
+
+def _decimal_rule(spec: Any) -> tuple[list[Interval], list[Interval], int, int, str] | None:
+    """The enclosed nodes and weights of a named rule with more than MAX_EXACT_NODES
+    irrational nodes, whose exact entries (Lagrange integrals of root(p, k) nodes) run to
+    megabytes, the bits they hold, its quadrature order and name (None: the rule is
+    written exactly)."""
+    if not isinstance(spec, str):
+        return None
+    from rkcheck.methods.quadrature import rule
+
+    m = RULE_PATTERN.fullmatch(spec.strip().lower())
+    if m is None or m.group(1) == "newton-cotes" or not MAX_EXACT_NODES < int(m.group(2)) <= MAX_RULE_NODES:
+        return None  # _rule_texts reads it, or refuses it
+    name, k = m.group(1), int(m.group(2))
+    r = rule(name, k)
+    if r.is_rational:
+        return None
+    bits = bits_for_digits(DECIMAL_DIGITS, 64)
+    c, w = r.enclosures(bits)
+    return c, w, bits, r.order(), f"{name}-{k}"
+
+
+def _decimals(method: ContinuousMethod, c: list[Interval], w: list[Interval], bits: int) -> Any:
+    """The tableau's entries as decimals of DECIMAL_DIGITS digits (the kernel's own
+    constants folded in at face value)."""
+    from rkcheck.numbers.formatting import decimal_string
+
+    A_node, B_node = method.nodes
+    consts = method.info.constants.enclosures(bits, DecimalsMode.EXACT)
+
+    def text(x: Interval) -> str:
+        # an enclosure of 0 has no digit to print: its mid-point is noise
+        return str(x.lo) if x.is_point else "0" if x.contains_zero() else decimal_string(
+            x.mid, DECIMAL_DIGITS, keep_zeros=True)
+
+    def at(node: ex.Expr, tau: Interval, sigma: Interval | None = None) -> Interval:
+        where = consts | {"tau": tau} | ({"sigma": sigma} if sigma is not None else {})
+        return xp.enclose(node, bits, DecimalsMode.EXACT, where)
+
+    k = len(c)
+    A = [[text(w[j] * at(A_node, c[i], c[j])) for j in range(k)] for i in range(k)]
+    b = [text(w[i] * at(B_node, c[i])) for i in range(k)]
+    return {}, A, b, [text(x) for x in c]
 
 
 def _par(text: str) -> str:

@@ -167,3 +167,54 @@ def test_a_kernel_of_rounded_decimals_is_written_at_face_value_and_says_so(tmp_p
     exact = tmp_path / "e.toml"
     exact.write_text('[continuous]\nA = "tau + 3*(tau^2 - tau)*(2*sigma - 1)"\n', encoding="utf-8")
     assert "face value" not in rkcheck.discretize(str(exact), "gauss-3")[1]
+
+
+@pytest.mark.parametrize("rule", ["gauss-12", "radau-ii-15", "lobatto-20"])
+def test_a_rule_of_many_irrational_nodes_is_written_in_decimals_read_back(rule):
+    """Past 8 irrational nodes the exact entries (Lagrange integrals of root(p, k) nodes)
+    run to megabytes, past what a file may hold: each entry is written as a 60-digit
+    decimal, within half a unit of its last digit of b_j A(c_i, c_j) on the rule's nodes
+    and weights computed here by mpmath at 100 digits, and the file reads back."""
+    mpmath = pytest.importorskip("mpmath")
+    text, note = rkcheck.discretize(str(EPCM2), rule)
+    assert "60-digit decimals" in note and len(text) < 100_000
+    tab = rkcheck.loads(text)
+    name, k = rule.rsplit("-", 1)
+    k = int(k)
+    with mpmath.workdps(100):
+        if name == "gauss":
+            x = [(r + 1) / 2 for r in mpmath.polyroots(mpmath.taylor(lambda t: mpmath.legendre(k, t), 0, k)[::-1],
+                                                        maxsteps=400, extraprec=400)]
+        elif name == "radau-ii":  # zeros of P_k − P_{k−1} on [−1, 1], 1 among them
+            x = [(r + 1) / 2 for r in mpmath.polyroots(mpmath.taylor(
+                lambda t: mpmath.legendre(k, t) - mpmath.legendre(k - 1, t), 0, k)[::-1], maxsteps=400, extraprec=400)]
+        else:  # both ends and the zeros of P'_{k−1}
+            inner = mpmath.polyroots(mpmath.taylor(lambda t: mpmath.diff(lambda u: mpmath.legendre(k - 1, u), t),
+                                                   0, k - 2)[::-1], maxsteps=400, extraprec=400)
+            x = [mpmath.mpf(0)] + [(r + 1) / 2 for r in inner] + [mpmath.mpf(1)]
+        x = sorted(mpmath.re(v) for v in x)
+        # weights: ∫₀¹ of each Lagrange basis polynomial, from the moments
+        V = mpmath.matrix([[xi**p for xi in x] for p in range(k)])
+        w = mpmath.lu_solve(V, mpmath.matrix([mpmath.mpf(1) / (p + 1) for p in range(k)]))
+
+        def A(t, s):
+            return t + 3 * (t**2 - t) * (2 * s - 1)
+
+        for i in range(k):
+            assert _within_last_digit(tab.b[i].text, w[i])
+            for j in range(k):
+                assert _within_last_digit(tab.A[i][j].text, w[j] * A(x[i], x[j])), (i, j)
+    assert rkcheck.verify(tab, degree=4, order=6).ok
+
+
+def _within_last_digit(text: str, value) -> bool:
+    from decimal import Decimal, localcontext
+
+    with localcontext() as ctx:
+        ctx.prec = 200
+        d = Decimal(text)
+        if d == 0:  # an exact zero (a row at c = 0 of a kernel with A(0, σ) = 0)
+            return abs(Decimal(str(value))) < Decimal("1e-90")
+        assert len(d.as_tuple().digits) == 60
+        half = Decimal(1).scaleb(d.adjusted() - 59) / 2
+        return abs(d - Decimal(str(value))) <= half
