@@ -423,7 +423,7 @@ def catalog(
     from rkcheck.io.loader import is_family_file
 
     # families (free [parameters]) are not one tableau: `rkcheck solve` is their catalogue
-    found = find_tableau_files(roots, exclude=["README*", "*/README*"])
+    found = [f for f in find_tableau_files(roots, exclude=["README*", "*/README*"]) if not _passed_over(f)]
     families = [f for f in found if is_family_file(f)]
     files = [f for f in found if f not in families]
     if not files:
@@ -442,6 +442,21 @@ def catalog(
     labels = ["all H" if d is None else f"m={d}" for d in degs]
     shown = [str(FsPath(f).relative_to(root)) if root is not None else f for f in families]
     return Catalog(rows, labels, degs, order, shown)
+
+
+def _passed_over(path: str) -> bool:
+    """A file in a folder that is not a tableau file (``package.json``, a report rkcheck
+    wrote), left out of a catalogue as a scan passes over it; one that cannot be read is
+    kept: its row says why."""
+    from rkcheck.batch.scan import skip_reason
+    from rkcheck.io.documents import detect_format, read_text
+    from rkcheck.io.loader import read_document
+
+    try:
+        text = read_text(path)
+        return skip_reason(read_document(text, path, detect_format(path, text), DEFAULT_MAX_STAGES)) is not None
+    except (UserError, RecursionError, MemoryError):
+        return False
 
 
 __all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan"]

@@ -104,6 +104,18 @@ def _is_tableau_document(data: dict[str, Any]) -> bool:
     return False
 
 
+def skip_reason(data: dict[str, Any]) -> str | None:
+    """Why a document found in a folder is passed over, not checked (None: it is a
+    tableau file, or meant as one)."""
+    from rkcheck.io.documents import is_rkcheck_report
+
+    if is_rkcheck_report(data):  # a report written into the folder scanned: scan ... -o dir/r.json
+        return "a JSON report of rkcheck, not a tableau file"
+    if not _is_tableau_document(data):
+        return "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"
+    return None
+
+
 #: the tables an rkcheck file is made of (a near miss of one is an error in a scan)
 RKCHECK_TABLES = ("tableau", "continuous", "family", "method", "expect", "check", "constants", "parameters")
 
@@ -117,12 +129,7 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
     when given, encodes the result's report here, in the worker (a failure leaves it to
     the report, which says so in the file's row)."""
     from rkcheck.energy.claims import judge_tableau
-    from rkcheck.io.documents import (
-        detect_format,
-        is_rkcheck_report,
-        locate_lines,
-        read_text,
-    )
+    from rkcheck.io.documents import detect_format, locate_lines, read_text
     from rkcheck.io.loader import build_tableau, load_named, read_document
     from rkcheck.methods.tableau import Tableau
 
@@ -138,11 +145,9 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
             fmt = detect_format(path, text)
             data = read_document(text, path, fmt, max_stages)  # CSV and nodepy as verify reads them
             out.lines = locate_lines(text, fmt)
-            if is_rkcheck_report(data):  # a report written into the folder scanned: scan ... -o dir/r.json
-                out.status, out.error = "skipped", "a JSON report of rkcheck, not a tableau file"
-                return out
-            if not _is_tableau_document(data):
-                out.status, out.error = "skipped", "not a tableau file (no [tableau], [continuous], [family] or [method] table, no top-level A and b)"
+            passed_over = skip_reason(data)
+            if passed_over is not None:
+                out.status, out.error = "skipped", passed_over
                 return out
             built: Any = build_tableau(data, path, max_stages)
             if not isinstance(built, Tableau) and not getattr(built, "is_continuous", False):

@@ -242,6 +242,15 @@ def test_catalog_exits_as_a_scan_on_unreadable_and_missing_files(capsys, tmp_pat
     (tmp_path / "none").mkdir()
     r = run_cli(capsys, "catalog", str(tmp_path / "none"))
     assert r.code == 2 and "no tableau file" in r.err and r.err.count("\n") == 1
+    # files that are no tableau files are passed over, as a scan passes over them
+    (tmp_path / "none" / "pyproject.toml").write_text("[tool.x]\na = 1\n", encoding="utf-8")
+    (tmp_path / "none" / "package.json").write_text('{"name": "x"}', encoding="utf-8")
+    for command in ("catalog", "scan"):
+        r = run_cli(capsys, command, str(tmp_path / "none"))
+        assert r.code == 2 and r.err.count("\n") == 1, (command, r.err)
+    (tmp_path / "none" / "euler.toml").write_text('[tableau]\nA = [["0"]]\nb = ["1"]\n', encoding="utf-8")
+    r = run_cli(capsys, "catalog", str(tmp_path / "none"), "-N", "3")
+    assert r.code == 0 and "euler" in r.out and "pyproject" not in r.out and "package" not in r.out, r.out
 
 
 @pytest.mark.parametrize("T, message", [("1e400", "--T: expected a final time up to 1,000,000"),
