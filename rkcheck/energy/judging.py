@@ -83,21 +83,30 @@ def _sums_of(listing: Listing, values: TableauValues, orders: list[int] | None,
     assert isinstance(listing, ConditionListing), "a centroid listing is for exact checks"
     wanted = sorted(listing.orders if orders is None else orders)
     on_order = None if progress is None else (lambda n, _: progress(wanted.index(n) + 1, len(wanted)))
-    centre_A, centre_b = _face_values(values)
+    centre_A, centre_b = _centre(values)
     return judge_box(listing, values.A, values.b, centre_A, centre_b, wanted, on_order, values.literal_chain,
                      values.varies)
 
 
-def _face_values(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
-    """The centre of the box: the entries at face value, exact rationals, or — a square
-    root of a decimal, an exact root beside the decimals — enclosures far narrower than
-    the box (the centre's own precision, :func:`centre_bits`, and more)."""
+def _centre(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
+    """The centre of the box: the entries with each literal at the middle of the numbers
+    it stands for — the face value of a rounded decimal, the middle of a double's rounding
+    interval (which is not centred on the decimal naming the double: about the face value
+    the box would be wider than it is, and a condition nonzero on all of it could hold
+    "to digits") —; exact rationals, or, with a square root of a decimal or an exact root
+    beside the decimals, enclosures far narrower than the box (the centre's own
+    precision, :func:`centre_bits`, and more)."""
     tab = values.tableau
-    if tab.is_rational:
-        return tab.exact_A(), tab.exact_b()
+    mode = values.reading.decimals
+    if tab.is_rational:  # the centre too: literals' middles are rationals
+        return ([[_entry_centre(e, 64, mode).lo for e in row] for row in tab.A],
+                [_entry_centre(e, 64, mode).lo for e in tab.b])
     bits = centre_bits(values.A, values.b, values.varies) + 64
-    face = DecimalsMode.EXACT
-    return [[e.enclosure(bits, face) for e in row] for row in tab.A], [e.enclosure(bits, face) for e in tab.b]
+    return [[_entry_centre(e, bits, mode) for e in row] for row in tab.A], [_entry_centre(e, bits, mode) for e in tab.b]
+
+
+def _entry_centre(entry: Any, bits: int, mode: DecimalsMode) -> Any:
+    return entry.centre(bits, mode) if entry.is_box(mode) else entry.enclosure(bits, DecimalsMode.EXACT)
 
 
 def box_order(listing: ConditionListing, values: TableauValues, n: int) -> dict[int, OrderVerdicts]:

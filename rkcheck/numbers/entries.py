@@ -40,7 +40,7 @@ class Constants:
         self.definitions: dict[str, ex.Expr] = dict(definitions or {})
         self._order = self._topological_order()
         self._exact: dict[str, Fraction | None] | None = None
-        self._enclosures: dict[tuple[int, DecimalsMode], dict[str, Interval]] = {}
+        self._enclosures: dict[tuple[int, DecimalsMode, bool], dict[str, Interval]] = {}
         self._rounded: dict[str, int | None] = {}  # fewest digits of its rounded decimals, through others too
         self._decimal: dict[str, bool] = {}
         self._root_decimal: dict[str, ex.Num | None] = {}  # a decimal in a root's polynomial, through others too
@@ -109,13 +109,15 @@ class Constants:
             self._exact = values
         return self._exact
 
-    def enclosures(self, bits: int, decimals: DecimalsMode) -> dict[str, Interval]:
-        key = (bits, decimals)
+    def enclosures(self, bits: int, decimals: DecimalsMode, centre: bool = False) -> dict[str, Interval]:
+        """Every constant enclosed under the decimals mode (``centre``: at the centre of
+        its literals' box, :func:`~rkcheck.numbers.expressions.enclose`)."""
+        key = (bits, decimals, centre)
         if key not in self._enclosures:
             values: dict[str, Interval] = {}
             for name in self._order:
                 try:
-                    values[name] = xp.enclose(self.definitions[name], bits, decimals, values)
+                    values[name] = xp.enclose(self.definitions[name], bits, decimals, values, centre)
                 except UserError as err:
                     raise err.located(f"constants.{name}") from None
             self._enclosures[key] = values
@@ -258,6 +260,15 @@ class Entry:
         if self.exact is not None and not self.is_box(decimals):
             return Interval.point(self.exact)
         return xp.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals))
+
+    def centre(self, bits: int, decimals: DecimalsMode) -> Interval:
+        """The entry at the centre of its box of inputs — each literal at the middle of
+        the numbers it stands for (:meth:`~rkcheck.numbers.grammar.Num.centre`) — at
+        ``bits`` bits: its face value unless a literal is a double's rounding interval."""
+        decimals = DecimalsMode(decimals)
+        if not self.is_box(decimals):
+            return self.enclosure(bits)
+        return xp.enclose(self.node, bits, decimals, self.constants.enclosures(bits, decimals, True), True)
 
     def is_zero(self) -> bool:
         """Certainly zero at face value (used for the explicit/implicit structure)."""

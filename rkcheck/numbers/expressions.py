@@ -372,15 +372,19 @@ def enclose(
     bits: int,
     decimals: DecimalsMode,
     constants: Mapping[str, Interval],
+    centre: bool = False,
 ) -> Interval:
     """A rigorous enclosure of ``node`` (definitions §5) under the decimals mode (see
     :meth:`Num.interval`).  Square roots of non-squares are rounded outwards to ``bits``
-    bits.  ``constants`` maps names to their enclosures.
+    bits.  ``constants`` maps names to their enclosures.  ``centre``: each literal at the
+    middle of what it stands for (:meth:`Num.centre`), the centre of the box of inputs.
     """
     mode = DecimalsMode(decimals)
 
     def combine(n: Expr, vals: list[Interval]) -> Interval:
         if isinstance(n, Num):
+            if centre:
+                return Interval.point(n.centre(mode))
             box = n.interval(mode)
             return Interval(*box) if box is not None else Interval.point(n.value)
         if isinstance(n, Name):

@@ -124,6 +124,13 @@ class Num:
                 lo, hi = min(lo, d[0]), max(hi, d[1])
         return lo, hi
 
+    def centre(self, decimals: DecimalsMode) -> Fraction:
+        """The middle of the numbers this literal stands for: its face value, or, for a
+        double's rounding interval (not centred on the decimal that names the double, nor
+        on the double below a power of two), the middle of that interval."""
+        box = self.interval(decimals)
+        return self.value if box is None else (box[0] + box[1]) / 2
+
     def _as_double(self) -> tuple[Fraction, Fraction]:
         """The rounding interval of the double this literal reads as in ``float64``; a
         literal that rounds past the largest double is refused: it stands for no double."""

@@ -59,7 +59,7 @@ class LiteralBox:
     """The Jacobian of some entries along the box literals they are written with, some
     literal occurring more than once among them: ``rows[e]`` maps a literal's number
     ``l`` to an enclosure of ``∂x_e/∂λ_l`` over the literals' box (literals the entry
-    does not use are absent: 0), ``radii[l]`` is ``max |λ_l − λ̃_l|`` over the literal's
+    does not use are absent: 0), ``radii[l]`` is ``max |λ_l − λ̃_l|`` (λ̃_l its centre, :meth:`Num.centre`) over the literal's
     interval."""
 
     radii: tuple[Fraction, ...]
@@ -152,7 +152,7 @@ class _Literals:
         if lit is None:
             lit = self.index[owner, id(n)] = len(self.nodes)
             self.nodes.append(n)
-            self.radii.append(max(n.value - box[0], box[1] - n.value))
+            self.radii.append((box[1] - box[0]) / 2)  # about its centre (Num.centre), as the box's centre takes it
         return _Slope(Interval(*box), {lit: Interval.point(1)})
 
 

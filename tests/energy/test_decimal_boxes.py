@@ -26,6 +26,7 @@ from hypothesis import strategies as st
 from support import reference as ref
 from support.clirun import run_cli, run_subprocess
 
+import rkcheck
 from rkcheck.energy.check import check
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.grammar import double_interval, parse
@@ -339,3 +340,54 @@ def test_decimals_of_hundreds_of_digits_are_judged_to_their_own_digits(tmp_path,
                 assert all(abs(v) <= Fraction(10) ** -got["digits"] for v in values)
                 held += 1
     assert held >= 2
+
+
+# ------------------------------------------------------------------ a double's interval
+
+
+def _double_box(text: str) -> tuple[Fraction, Fraction]:
+    """The reals that round to the double nearest ``text``, from Python's own float:
+    half an ulp on each side (away from a power of two)."""
+    d = float(text)
+    half = Fraction(math.ulp(d)) / 2
+    return Fraction(d) - half, Fraction(d) + half
+
+
+def _residuals_at(cond, A_of, b_of, points):
+    return [ref.energy_residual(cond, A_of(x), b_of(x)) for x in points]
+
+
+@pytest.mark.parametrize("mode", ["float64", "auto"])
+def test_a_condition_nonzero_on_a_doubles_whole_interval_fails(mode):
+    """a₂₁ = c = x·r with r = 10¹⁷/(10¹⁷ − 7), x = 0.6666666666666667, b = (1 − 1/(2c), 1/(2c)):
+    the [τ³] residual is a multiple of Σbc² − 1/3 = c/2 − 1/3, linear in x, and vanishes
+    only where c = 2/3, at x = 0.66666666666666662…, outside the
+    double's rounding interval of the literal (and, in auto, outside its half unit too):
+    it has one sign on the whole box — evaluated here by the reference at both ends of the
+    box, which Python's float gives — and fails, however wide the box is about the face
+    value.  About the face value, the box the literal's half-ulp interval makes reaches
+    past that zero: the centre is the middle of the interval, not the decimal."""
+    r = Fraction(10**17, 10**17 - 7)
+    text = "0.6666666666666667"
+    lo, hi = _double_box(text)
+    if mode == "auto":
+        half = Fraction(1, 2 * 10**16)
+        lo, hi = min(lo, Fraction(text) - half), max(hi, Fraction(text) + half)
+    cond = next(c for keys, c in REFERENCE if ref.canonicalize((1, 2, 2, 2)) in keys)
+    ends = _residuals_at(cond, lambda x: [[0, 0], [x * r, 0]], lambda x: [1 - 1 / (2 * x * r), 1 / (2 * x * r)],
+                         [lo, hi, (lo + hi) / 2])
+    assert all(v < 0 for v in ends) or all(v > 0 for v in ends)  # linear in x: one sign between the ends
+    tab = rkcheck.loads(f'[constants]\nx = "{text}"\nr = "{r.numerator}/{r.denominator}"\n'
+                        '[tableau]\nA = [["0", "0"], ["x*r", "0"]]\nb = ["1 - 1/(2*x*r)", "1/(2*x*r)"]\n')
+    res = check(tab, CheckOptions(degree=3, order=3, decimals=mode))
+    (cond_result,) = [c for c in res.conditions if ref.canonicalize(c.level_sequence) == ref.canonicalize((1, 2, 2, 2))]
+    assert cond_result.verdict.state == FAILS
+
+
+def test_a_double_at_a_power_of_two_is_centred_on_its_interval():
+    """In float64 the literal 1.0 stands for the reals that round to the double 1: the
+    spacing is 2⁻⁵³ below 1 and 2⁻⁵² above, so [1 − 2⁻⁵⁴, 1 + 2⁻⁵³], whose middle is
+    1 + 2⁻⁵⁵ — the centre a box is judged about, not the face value 1."""
+    node = parse("1.0")
+    assert node.centre("float64") == 1 + Fraction(1, 2**55)
+    assert node.centre("exact") == node.centre("rounded") == 1
