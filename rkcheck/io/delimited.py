@@ -64,6 +64,8 @@ def parse_delimited(text: str, name: str) -> dict[str, Any]:
         raise TableauError("no rows: expected a Butcher array (s+1 rows of s+1 cells: c | A, then · | b)")
     widths = {len(r) for r in rows}
     n = len(rows)
+    if widths == {1} and n == 1:  # a Butcher array of no stage
+        raise TableauError("1 row of 1 cell: expected a Butcher array (s+1 rows of s+1 cells, s ≥ 1: c | A, then · | b)")
     if widths == {n}:  # Butcher array: (s+1) x (s+1)
         body, last = rows[:-1], rows[-1]
         c = [r[0] for r in body]

@@ -77,6 +77,8 @@ def _table(data: dict[str, Any], name: str, required: bool = False) -> dict[str,
 
 
 def _kind(value: Any) -> str:
+    if value is None:  # JSON's null
+        return "null"
     if isinstance(value, bool):
         return "a boolean"
     if isinstance(value, list):
@@ -307,6 +309,8 @@ def _entries(tab: dict[str, Any], constants: Constants, max_stages: int):
         raise UserError("the tableau is empty (A has no rows)", "A")
     if s > max_stages:
         raise UserError(f"{s} stages exceeds the limit of {max_stages} (raise it with --max-stages, or max_stages= in Python)", "A")
+    if all(isinstance(row, list) and not row for row in rows):
+        raise UserError("the tableau is empty (A's rows have no entries)", "A")
     for i, row in enumerate(rows, start=1):
         if not isinstance(row, list):
             raise UserError(f"expected a row (a list), got {_kind(row)}", f"A[{i}]")

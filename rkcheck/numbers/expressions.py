@@ -13,7 +13,7 @@ from typing import Any, Callable, Iterator, Mapping
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import polynomials
-from rkcheck.numbers.formatting import count_text
+from rkcheck.numbers.formatting import count_text, exact_string
 from rkcheck.numbers.grammar import (
     MAX_BITS,
     MAX_EXPONENT,
@@ -278,9 +278,9 @@ def literals(node: Expr) -> list[Num]:
 
 def check_exponent(value: Fraction, column: int) -> int:
     if value.denominator != 1:
-        raise UserError(f"exponent {value} at column {column} is not an integer")
-    if abs(value) > MAX_EXPONENT:
-        raise UserError(f"exponent {value} at column {column} is out of range (|n| <= {MAX_EXPONENT})")
+        raise UserError(f"exponent {exact_string(value)} at column {column} is not an integer")
+    if abs(value) > MAX_EXPONENT:  # written by its leading digits: 2^1000^1000 has 302 of them
+        raise UserError(f"exponent {exact_string(value)} at column {column} is out of range (|n| <= {MAX_EXPONENT})")
     return int(value)
 
 

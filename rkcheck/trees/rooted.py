@@ -65,7 +65,7 @@ def bracket(seq: Sequence[int]) -> str:
 def _split_children(seq: tuple[int, ...]) -> list[tuple[int, ...]]:
     """The subtrees of the root of a level sequence, each re-based to root depth 1."""
     if not seq or seq[0] < 1:
-        raise ValueError("a level sequence starts at the root")
+        raise ValueError("a level sequence starts at the root, whose level is 1 or more")
     root = seq[0]
     subs: list[tuple[int, ...]] = []
     start = None
