@@ -146,6 +146,8 @@ def parse_claims(expect: dict[str, Any]) -> list[Claim]:
         if kind not in CLAIM_KINDS:
             raise UserError(f"unknown claim (known: {', '.join(CLAIM_KINDS)})", place)
         if isinstance(raw, list) and kind in ("energy_order", "avf"):
+            if not raw:  # a gate that reads this file would check nothing it seems to
+                raise UserError("an empty list claims nothing: give one table per degree, or leave the key out", place)
             claims.extend(_one(kind, item, f"{place}[{i}]") for i, item in enumerate(raw, start=1))
         else:
             claims.append(_one(kind, raw, place))

@@ -135,6 +135,8 @@ class ContinuousMethod:
     is_continuous = True
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str):  # a report writes it as text, a catalogue sorts by it
+            raise TableauError(f"expected a string, got {type(self.name).__name__}", "name")
         try:
             self.kernel  # noqa: B018 - parse now: a bad kernel is refused at construction
         except UserError as err:

@@ -17,7 +17,7 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any, Callable, Mapping, Protocol, Sequence
 
-from rkcheck.errors import UserError
+from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.arrays import FloatMode, entries_from_arrays
 from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
 from rkcheck.numbers.entries import Constants, Entry, TableauEntry
@@ -131,6 +131,10 @@ class Tableau:
     c: tuple[TableauEntry, ...] | None = None
     name: str = "unnamed tableau"
     info: MethodInfo = field(default_factory=MethodInfo, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str):  # a report writes it as text, a catalogue sorts by it
+            raise TableauError(f"expected a string, got {type(self.name).__name__}", "name")
 
     # ------------------------------------------------------------- construction
 

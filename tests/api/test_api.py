@@ -479,3 +479,14 @@ def test_a_property_text_past_pythons_digit_limit_reads_as_a_decimal(tmp_path):
             result.to_json()
     finally:
         sys.set_int_max_str_digits(before)
+
+
+@pytest.mark.parametrize("build", [
+    lambda name: rkcheck.Tableau.from_arrays([[0.5]], [1], name=name),
+    lambda name: rkcheck.Tableau.from_arrays([[0.5]], [1]).replace(name=name),
+    lambda name: rkcheck.ContinuousMethod.from_kernel("tau", name=name),
+])
+def test_a_name_that_is_not_a_string_is_refused_naming_the_argument(build):
+    with pytest.raises(rkcheck.TableauError) as err:
+        build(5)
+    assert err.value.place == "name" and "expected a string, got int" in str(err.value)

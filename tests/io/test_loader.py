@@ -125,6 +125,8 @@ ERRORS = {
     "missing b": ('[tableau]\nA = [["1"]]\n', "t.toml", "tableau: missing b"),
     "empty": ('[tableau]\nA = []\nb = []\n', "t.toml", "A: the tableau is empty"),
     "empty rows": ('[tableau]\nA = [[]]\nb = []\n', "t.toml", "A: the tableau is empty (A's rows have no entries)"),
+    "empty claim list": (VALID_ROWS + '[expect]\nenergy_order = []\n', "t.toml",
+                         "expect.energy_order: an empty list claims nothing"),
     "null c": ('{"A": [["1/2"]], "b": ["1"], "c": null}', "t.json", "c: expected a list of 1 entries, got null"),
     "one-cell csv": ("1/2\n", "t.csv", "1 row of 1 cell: expected a Butcher array"),
     "huge exponent": ('[tableau]\nA = [["2^1000^1000"]]\nb = [1]\n', "t.toml",
