@@ -277,10 +277,12 @@ def literals(node: Expr) -> list[Num]:
 
 
 def check_exponent(value: Fraction, column: int) -> int:
+    # a short exponent as written (1/2), a long one by its leading digits (2^1000^1000 has 3 001)
+    shown = str(value) if value.numerator.bit_length() + value.denominator.bit_length() < 200 else exact_string(value)
     if value.denominator != 1:
-        raise UserError(f"exponent {exact_string(value)} at column {column} is not an integer")
-    if abs(value) > MAX_EXPONENT:  # written by its leading digits: 2^1000^1000 has 302 of them
-        raise UserError(f"exponent {exact_string(value)} at column {column} is out of range (|n| <= {MAX_EXPONENT})")
+        raise UserError(f"exponent {shown} at column {column} is not an integer")
+    if abs(value) > MAX_EXPONENT:
+        raise UserError(f"exponent {shown} at column {column} is out of range (|n| <= {MAX_EXPONENT})")
     return int(value)
 
 
