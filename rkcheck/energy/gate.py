@@ -46,17 +46,19 @@ def requirement_shortfall(result: CheckResult, claims: list[Any] | None = None) 
     that hold only to digits (``proof``) or to fewer than D (``digits:D``), a certificate
     that is only numerical, or claims (``claims``, else the result's own) met only that
     way — or, for ``proof``, met by the orders checked without a proof beyond them.  None
-    when the requirement is met, as it is by an exact certificate of every order.  Even
+    when the requirement is met, as it is by an exact certificate of every order (but
+    for the claims on other properties).  Even
     ``any`` asks one certain digit of every holds (:data:`DECIDING_DIGITS`): a holds to 0
     digits decides nothing."""
     require = result.options.require
-    # an exact certificate of every order proves each checked condition exactly, whatever
-    # arithmetic evaluated the conditions themselves (definitions §5: a proof)
-    if result.energy_order_all:
-        return None
     need = DECIDING_DIGITS if require == "any" else result.options.required_digits
     claims = result.claims if claims is None else claims
     unmet = tuple(_claim_shortfall(r, need) for r in claims or () if r.met and _claim_short(r, need))
+    # an exact certificate of every order proves each checked condition exactly, whatever
+    # arithmetic evaluated the conditions themselves (definitions §5: a proof); it proves
+    # nothing of a claim on another property (a classical order met to digits)
+    if result.energy_order_all:
+        return Shortfall(require, 0, [], False, unmet) if unmet else None
 
     def short(digits: np.ndarray) -> np.ndarray:
         return np.ones(len(digits), dtype=bool) if need is None else digits < need

@@ -391,3 +391,16 @@ def test_a_double_at_a_power_of_two_is_centred_on_its_interval():
     node = parse("1.0")
     assert node.centre("float64") == 1 + Fraction(1, 2**55)
     assert node.centre("exact") == node.centre("rounded") == 1
+
+
+def test_a_certificate_of_every_order_does_not_prove_a_claim_on_another_property(tmp_path):
+    """A = [[1/2]], b = [1.000000] (b ∈ [1 − 5·10⁻⁷, 1 + 5·10⁻⁷]): every method preserves
+    linear energies, so degree 1 has a certificate of every order; the claim classical
+    order 2 rests on Σb = 1 and Σbc = 1/2, which hold only to 6 digits over the box:
+    met, but no proof, and not to 7 digits."""
+    path = tmp_path / "mid.toml"
+    path.write_text('[tableau]\nA = [["1/2"]]\nb = ["1.000000"]\n[expect]\nclassical_order = 2\n', encoding="utf-8")
+    base = ("verify", str(path), "--degree", "1")
+    assert run_subprocess(*base, "--require", "proof").code == 1
+    assert run_subprocess(*base, "--require", "digits:7").code == 1
+    assert run_subprocess(*base, "--require", "digits:6").code == 0
