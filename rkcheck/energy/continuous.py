@@ -158,6 +158,11 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
         cert = replace(cert, verdict=boxed, reason=f"no {cert.name} over the box of its decimals")
     elif cert.certified:
         cert = replace(cert, verdict=boxed, reason=_boxed(cert.verdict, boxed, cert.reason))
+    elif v["certificate"].state != FAILS:  # missed at face value, not on every kernel of the box
+        cert = replace(cert, verdict=v["certificate"], reason=_boxed(cert.verdict, v["certificate"], cert.reason))
+    elif v["avf"].state != FAILS:  # AVF for the degree on some kernel of the box
+        cert = ContinuousCertificate(degree, v["avf"], f"{_boxed(facts.avf.verdict, v['avf'], facts.avf.reason)}: "
+                                     f"energy is preserved to every order{_for(degree)} (AVF certificate)", via_avf=True)
     props = facts.properties
     sym, sym_box = props.symplectic, v["symplectic"]
     rev, rev_box = props.symmetric, v["symmetric"]

@@ -247,10 +247,13 @@ class ContinuousMethod:
 
     # ----------------------------------------------------------------- the surrogate
 
-    def nodes_for(self, vertices: int) -> int:
-        """How many rational nodes make the surrogate exact for trees up to ``vertices``."""
+    def nodes_for(self, vertices: int, box: bool = False) -> int:
+        """How many rational nodes make the surrogate exact for trees up to ``vertices``;
+        ``box``: for every kernel of the box of its decimals, by the degrees the kernel is
+        written with (a decimal 0 at face value may be nonzero in the box)."""
         k = self.kernel
-        need = max(k.deg_sigma + max(vertices - 2, 0) * k.deg_tau, k.deg_b + (vertices - 1) * k.deg_tau)
+        d_tau, d_sigma, d_b = k.written_degrees if box else (k.deg_tau, k.deg_sigma, k.deg_b)
+        need = max(d_sigma + max(vertices - 2, 0) * d_tau, d_b + (vertices - 1) * d_tau)
         return need + 1
 
     def surrogate(self, vertices: int, positive: bool = False) -> Tableau:
@@ -260,7 +263,7 @@ class ContinuousMethod:
         (:func:`~rkcheck.methods.quadrature.positive_rule`), for a kernel judged over
         the box of its decimals, whose widths the equispaced rule's weights would
         multiply by Σ|w_i| at every level of a tree."""
-        n_nodes = self.nodes_for(vertices)
+        n_nodes = self.nodes_for(vertices, positive)
         if n_nodes > MAX_SURROGATE_NODES:
             raise UserError(f"the exact B-series to {vertices} vertices needs {n_nodes} quadrature nodes, "
                             f"more than the limit MAX_SURROGATE_NODES = {MAX_SURROGATE_NODES}; check a lower order",
@@ -355,6 +358,27 @@ class Kernel:
     @property
     def deg_b(self) -> int:
         return self.degree(self.B_poly, "tau")
+
+    @cached_property
+    def written_degrees(self) -> tuple[int, int, int]:
+        """The degrees of A in τ and in σ and of B in τ as the kernel is written, every
+        literal counted nonzero: bounds of the degrees of every kernel of its box, where
+        ``deg_tau`` … are those at face value."""
+        def combine(n: ex.Expr, vals: list[tuple[int, int]]) -> tuple[int, int]:
+            if isinstance(n, ex.Name) and n.name in VARIABLES:
+                return (1, 0) if n.name == "tau" else (0, 1)
+            if isinstance(n, ex.Power):
+                k = int(xp.evaluate_exact(n.exponent, {}) or 0)  # checked when the kernel was read
+                return vals[0][0] * k, vals[0][1] * k
+            if isinstance(n, ex.Binary) and n.op == "*":
+                return vals[0][0] + vals[1][0], vals[0][1] + vals[1][1]
+            if isinstance(n, ex.Binary) and n.op == "/":
+                return vals[0]  # a number divides
+            return (max((v[0] for v in vals), default=0), max((v[1] for v in vals), default=0))
+
+        A = xp.fold(self.nodes[0], combine, xp.polynomial_operands)
+        B = xp.fold(self.nodes[1], combine, xp.polynomial_operands)
+        return A[0], A[1], max(B)
 
     def gens(self) -> tuple[Any, Any]:
         return self.ring.parameter("tau"), self.ring.parameter("sigma")

@@ -164,3 +164,40 @@ def test_box_verdicts_agree_with_the_identities_at_every_point_of_the_box(seed):
                         value = p.subs({tau: sympy.Rational(x.numerator, x.denominator),
                                         sigma: sympy.Rational(y.numerator, y.denominator)})
                         assert abs(Fraction(str(value))) <= bound, (name, p)
+
+
+def test_a_decimal_zero_at_face_value_still_counts_in_the_surrogates_degree():
+    """A = τ + d·τσ(σ − ½)²(σ − 1), B = 1, d = 1.000000 − 1 ∈ [−5·10⁻⁷, 5·10⁻⁷]: at face value
+    A = τ (degree 0 in σ), but every other kernel of the box has σ-degree 4.  Here
+    R([τ²]) = a([τ]) − a(τ)²/2 = d·∫₀¹σ(σ − ½)²(σ − 1)dσ·∫₀¹τ dτ — worked out by sympy —, so
+    |R| reaches 5·10⁻⁷/240 on the box: it holds to digits (never exactly), within that."""
+    d = sympy.Symbol("d")
+    A = tau + d * tau * sigma * (sigma - sympy.Rational(1, 2)) ** 2 * (sigma - 1)
+    a_bracket = sympy.integrate(sympy.integrate(A, (sigma, 0, 1)), (tau, 0, 1))
+    R = sympy.expand(a_bracket - sympy.Rational(1, 2))
+    worst = abs(Fraction(str(R.coeff(d)))) * Fraction(5, 10**7)
+    assert worst > 0
+    m = ContinuousMethod.from_kernel("tau + (1.000000 - 1)*tau*sigma*(sigma - 1/2)^2*(sigma - 1)")
+    res = rkcheck.verify(m, order=3)
+    (c,) = [c for c in res.conditions if c.id == "1,2,2"]
+    assert c.state == "holds_to_digits" and Fraction(1, 10**c.digits) >= worst and c.digits >= 7
+    assert res.classical.order == 1 and res.classical.verdict.state == "holds_to_digits"  # a([τ]) = ½ to digits
+
+
+@pytest.mark.parametrize("kernel, digits", [
+    # A(1, σ) − B = x + 10⁻⁷ − 1, x ∈ [1 − 5·10⁻⁷, 1 + 5·10⁻⁷]: from −4·10⁻⁷ to 6·10⁻⁷, 0 inside
+    ({"A": "(1.000000 + 1/10000000)*tau"}, 6),
+    # ∂τA − its swap = (M₁₂ − M₂₁)(σ − τ), M₁₂ − M₂₁ from −6.5·10⁻⁸ to 4.5·10⁻⁸: two coefficients
+    # of at most 6.5·10⁻⁸ each, 1.3·10⁻⁷ in all
+    ({"M": [["1", "0.1234567"], ["0.12345671", "1"]]}, 6),
+])
+def test_a_certificate_missed_at_face_value_but_not_on_the_whole_box_does_not_fail(tmp_path, kernel, digits):
+    path = tmp_path / "k.json"
+    import json
+
+    path.write_text(json.dumps({"continuous": kernel}), encoding="utf-8")
+    res = rkcheck.verify(path, order=3)
+    assert res.certificate.verdict.state == "holds_to_digits" and res.certificate.verdict.digits == digits
+    assert "at face value, which the box of its decimals does not exclude" in res.certificate.reason
+    exact = rkcheck.verify(path, order=3, decimals="exact")
+    assert exact.certificate.verdict.state == "fails"
