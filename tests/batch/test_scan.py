@@ -664,3 +664,19 @@ def test_the_classical_column_reads_an_order_held_to_digits_as_verify_does(capsy
     row = next(line for line in run_cli(capsys, "scan", str(tmp_path), "--jobs", "1").out.splitlines()
                if "Gauss–Legendre" in line)  # the method's name: a long path wraps
     assert want in row
+
+
+def test_the_pre_commit_hook_passes_a_commit_of_files_it_does_not_check(tmp_path, capsys):
+    """The hook runs on every staged *.toml/*.json: a commit of a pyproject.toml or of a
+    family alone checks nothing and must pass, while a failing tableau still fails it."""
+    root = Path(__file__).resolve().parents[2]
+    entry = next(line.split(":", 1)[1].split() for line in (root / ".pre-commit-hooks.yaml").read_text().splitlines()
+                 if line.strip().startswith("entry:"))
+    assert entry[:2] == ["rkcheck", "scan"]
+    (tmp_path / "pyproject.toml").write_text("[tool.x]\na = 1\n", encoding="utf-8")
+    (tmp_path / "fam.toml").write_text('[parameters]\np = "free"\n[tableau]\nA = [["p"]]\nb = ["1"]\n', encoding="utf-8")
+    for staged in ("pyproject.toml", "fam.toml"):
+        assert run_cli(capsys, *entry[1:], str(tmp_path / staged)).code == 0, staged
+    (tmp_path / "euler.toml").write_text('[tableau]\nA = [["0"]]\nb = ["1"]\n[expect]\nclassical_order = 2\n',
+                                         encoding="utf-8")
+    assert run_cli(capsys, *entry[1:], str(tmp_path / "euler.toml")).code == 1
