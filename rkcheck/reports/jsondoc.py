@@ -58,8 +58,8 @@ def method_doc(tab: Tableau) -> dict[str, Any]:
 def show_doc(tab: Tableau, file: str, decimals: DecimalsMode, warnings: list[str]) -> dict[str, Any]:
     """``rkcheck show --format json``."""
     values = TableauValues(tab, Reading(decimals))
-    return {"schema": SCHEMA, "file": printable(file), "method": method_doc(tab), "tableau": tableau_doc(values),
-            "stability": stability_doc(tableau_stability(values)), "warnings": warnings}
+    return {"schema": SCHEMA, "rkcheck": __version__, "file": printable(file), "method": method_doc(tab),
+            "tableau": tableau_doc(values), "stability": stability_doc(tableau_stability(values)), "warnings": warnings}
 
 
 def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:

@@ -75,3 +75,17 @@ def test_the_other_commands_keys_are_in_their_documents(capsys, which):
     doc = _json(capsys, *args)
     assert list(doc)[:2] == ["schema", "rkcheck"]
     assert tables[which] and not [k for k in tables[which] if not _has(doc, k)]
+
+
+@pytest.mark.parametrize("args", [
+    ["show", "@rk4"], ["show", str(TABLEAUX / "continuous" / "avf.toml")], ["verify", "@rk4", "-N", "3"],
+    ["verify", str(TABLEAUX / "continuous" / "avf.toml"), "-N", "3"], ["scan", str(TABLEAUX / "explicit")],
+    ["solve", str(TABLEAUX / "families" / "theorem1-s2-m3.toml"), "-m", "3", "-N", "4"],
+    ["conditions", "-N", "3"],
+])
+def test_every_document_starts_with_its_schema_and_the_version(capsys, args):
+    """A pipeline keys on the version: every command's JSON carries it beside its schema."""
+    import rkcheck
+
+    doc = _json(capsys, *args)
+    assert doc["schema"] >= 1 and doc["rkcheck"] == rkcheck.__version__
