@@ -10,6 +10,7 @@ relative to the directory of that ``pyproject.toml``.
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -87,7 +88,7 @@ def load_config(start: Path | None = None) -> Config:
             given = parse_strings(value, place, src)
             if "" in given:  # the project's folder otherwise, as `scan ''` would be the current one
                 raise UserError("an empty path: give a file or folder (. for the project's folder)", place, src)
-            cfg.paths = [str((path.parent / p)) for p in given]
+            cfg.paths = [_shown_path(path.parent / p) for p in given]
         elif key_n == "exclude":
             cfg.exclude = parse_strings(value, place, src)
         elif key_n == "jobs":
@@ -105,3 +106,11 @@ def load_config(start: Path | None = None) -> Config:
                 raise UserError(f"expected a scheduler address such as 'tcp://host:8786', got {value!r}"[:120], place, src)
             cfg.scheduler = value.strip()
     return cfg
+
+
+def _shown_path(p: Path) -> str:
+    """A configured path as a scan names its files: relative to the current folder when
+    it lies under it (as ``rkcheck scan tabs`` names them), so that reports and JUnit names
+    do not depend on where the project is checked out; absolute otherwise."""
+    rel = os.path.relpath(p)
+    return str(p) if rel == os.pardir or rel.startswith(os.pardir + os.sep) else rel

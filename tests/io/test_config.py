@@ -37,3 +37,22 @@ def test_bad_project_configuration_is_one_line_exit_2(tmp_path, capsys, monkeypa
         assert r.code == 2, (command, r.err)
         assert r.err.count("\n") == 1 and "Traceback" not in r.err
         assert r.err.startswith(f"rkcheck: error: {project}: {message}"), r.err
+
+
+def test_configured_paths_are_named_as_on_the_command_line(tmp_path, capsys, monkeypatch):
+    """[tool.rkcheck] paths = ["tabs"]: a scan from the project's folder names its files
+    tabs/a.toml, as `rkcheck scan tabs` does (not by where the project was checked out);
+    from a folder outside them, by their absolute path."""
+    import json
+
+    (tmp_path / "tabs").mkdir()
+    (tmp_path / "tabs" / "a.toml").write_text('[tableau]\nA = [["1/2"]]\nb = ["1"]\n', encoding="utf-8")
+    (tmp_path / "pyproject.toml").write_text('[tool.rkcheck]\npaths = ["tabs"]\n', encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    configured = json.loads(run_cli(capsys, "scan", "--format", "json", "-N", "3").out)
+    given = json.loads(run_cli(capsys, "scan", "tabs", "--format", "json", "-N", "3").out)
+    assert [f["file"] for f in configured["files"]] == [f["file"] for f in given["files"]] == ["tabs/a.toml"]
+    (tmp_path / "sub").mkdir()
+    monkeypatch.chdir(tmp_path / "sub")
+    outside = json.loads(run_cli(capsys, "scan", "--format", "json", "-N", "3").out)
+    assert [f["file"] for f in outside["files"]] == [str(tmp_path / "tabs" / "a.toml")]
