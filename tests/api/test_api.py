@@ -398,10 +398,15 @@ def test_an_exact_certificate_is_a_proof_whatever_evaluated_the_conditions(requi
     # Gauss-3 (exact, in Q(√15)) with its conditions forced into balls: they hold only to
     # digits, but its line-integral certificate for degree ≤ 2 is exact algebra on the
     # tableau, which proves every one of them (definitions §5)
-    result = rkcheck.verify(TABLEAUX / "collocation" / "gauss-3.toml", degree=2, order=8, arithmetic="ball",
-                            require=require)
+    gauss3 = rkcheck.load(TABLEAUX / "collocation" / "gauss-3.toml")
+    unclaimed = gauss3.replace(info=gauss3.info.replace(claims=()))
+    result = rkcheck.verify(unclaimed, degree=2, order=8, arithmetic="ball", require=require)
     assert result.verdict == "holds_to_digits" and result.energy_order_all
     assert result.ok and result.to_dict()["summary"]["proven"] is True
+    # it proves nothing of the file's claims on other properties: its energy order 6 for
+    # degree 3, checked here in balls, is met only to digits
+    claimed = rkcheck.verify(gauss3, degree=2, order=8, arithmetic="ball", require=require)
+    assert not claimed.ok and "energy_order = 6" in claimed.to_dict()["summary"]["require"]["reason"]
     # without the certificate (degree 4: none holds), the same conditions are no proof
     result = rkcheck.verify(TABLEAUX / "collocation" / "gauss-3.toml", degree=4, order=6, arithmetic="ball",
                             require=require, fail_on="conditions")
