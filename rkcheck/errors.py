@@ -122,6 +122,17 @@ def warn(message: str) -> None:
     warnings.warn(RkcheckWarning(message), stacklevel=level)
 
 
+def as_option(parse: Any) -> Any:
+    """``parse()``, its :class:`UserError` raised again as an :class:`OptionError` (an
+    API argument's: ``except OptionError`` catches every bad argument)."""
+    try:
+        return parse()
+    except OptionError:
+        raise
+    except UserError as err:
+        raise OptionError(err.message, err.place, err.source) from None
+
+
 class CheckInterrupted(KeyboardInterrupt):
     """Ctrl-C during a check: ``result`` holds the orders that were finished (a
     KeyboardInterrupt for library callers, a partial report for the CLI).  ``result`` is

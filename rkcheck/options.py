@@ -133,15 +133,15 @@ def parse_degree(value: Any, place: str, source: str | None = None) -> int | Non
     if _is_int(value) and 1 <= value <= MAX_DEGREE:
         return value
     if _is_int(value) and value > MAX_DEGREE:
-        raise UserError(f"expected a degree from 1 to {MAX_DEGREE} or 'none', got {_shown(value)}", place, source)
-    raise UserError(f"expected a positive integer or 'none', got {_shown(value)}", place, source)
+        raise UserError(f"expected a degree from 1 to {MAX_DEGREE} or 'none', got {shown_value(value)}", place, source)
+    raise UserError(f"expected a positive integer or 'none', got {shown_value(value)}", place, source)
 
 
 def parse_positive(value: Any, place: str, source: str | None = None) -> int:
     """A positive integer (an order, a precision, a number of jobs)."""
     if _is_int(value) and value >= 1:
         return value
-    raise UserError(f"expected a positive integer, got {_shown(value)}", place, source)
+    raise UserError(f"expected a positive integer, got {shown_value(value)}", place, source)
 
 
 def parse_int_in(value: Any, bounds: tuple[int, int], place: str, source: str | None = None) -> int:
@@ -149,14 +149,14 @@ def parse_int_in(value: Any, bounds: tuple[int, int], place: str, source: str | 
     lo, hi = bounds
     if _is_int(value) and lo <= value <= hi:
         return value
-    raise UserError(f"expected an integer from {lo} to {hi}, got {_shown(value)}", place, source)
+    raise UserError(f"expected an integer from {lo} to {hi}, got {shown_value(value)}", place, source)
 
 
 def parse_integer(value: Any, place: str, source: str | None = None) -> int:
     """Any integer (a seed)."""
     if _is_int(value):
         return value
-    raise UserError(f"expected an integer, got {_shown(value)}", place, source)
+    raise UserError(f"expected an integer, got {shown_value(value)}", place, source)
 
 
 def parse_dps_list(value: Any, place: str = "--dps", source: str | None = None) -> list[int]:
@@ -178,7 +178,7 @@ def parse_step_counts(value: Any, place: str = "--steps", source: str | None = N
     if min(counts) < 1:
         raise UserError("step counts must be positive", place, source)
     if max(counts) > STEPS_RANGE[1]:  # the same bound as simulate's: a run of that many steps
-        raise UserError(f"expected step counts from 1 to {count_text(STEPS_RANGE[1])}, got {_shown(max(counts))}",
+        raise UserError(f"expected step counts from 1 to {count_text(STEPS_RANGE[1])}, got {shown_value(max(counts))}",
                         place, source)
     return counts
 
@@ -192,10 +192,10 @@ def _integer_list(value: Any, expected: str, place: str, source: str | None) -> 
             raise UserError(f"expected {expected}, got {value!r}", place, source) from None
     if isinstance(value, (list, tuple)) and all(_is_int(x) for x in value):
         return list(value)
-    raise UserError(f"expected {expected}, got {_shown(value)}", place, source)
+    raise UserError(f"expected {expected}, got {shown_value(value)}", place, source)
 
 
-def _shown(value: Any) -> str:
+def shown_value(value: Any) -> str:
     """A value for a message: short, one line (repr of a huge integer is refused by Python
     past 4 300 digits, and would not be one line anyway)."""
     if _is_int(value) and value.bit_length() > 128:
@@ -216,21 +216,21 @@ def parse_choice(value: Any, choices: tuple[str, ...], place: str, source: str |
     if value in choices:
         return value
     names = ", ".join(f"'{c}'" for c in choices)
-    raise UserError(f"expected one of {names}, got {_shown(value)}", place, source)
+    raise UserError(f"expected one of {names}, got {shown_value(value)}", place, source)
 
 
 def parse_flag(value: Any, place: str, source: str | None = None) -> bool:
     """True or False, and nothing that merely reads as one (``'no'`` is a true string)."""
     if isinstance(value, bool):
         return value
-    raise UserError(f"expected True or False, got {_shown(value)}", place, source)
+    raise UserError(f"expected True or False, got {shown_value(value)}", place, source)
 
 
 def parse_callback(value: Any, place: str) -> Any:
     """A function to call, or None."""
     if value is None or callable(value):
         return value
-    raise UserError(f"expected a function or None, got {_shown(value)}", place)
+    raise UserError(f"expected a function or None, got {shown_value(value)}", place)
 
 
 def parse_require(value: Any, place: str, source: str | None = None) -> str:

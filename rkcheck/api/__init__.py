@@ -61,6 +61,10 @@ def __getattr__(name: str) -> Any:
         module = _module(m)
         if name in module.__all__:
             value = getattr(module, name)
+            if type(value).__name__ == "function":  # a command's: the user's numbers may pass Python's limits
+                from rkcheck.api.verification import numbers_as_errors
+
+                value = numbers_as_errors(value)
             globals()[name] = value
             return value
     if name in SUBMODULES:  # rkcheck.api.settings after a bare ``import rkcheck``

@@ -33,6 +33,7 @@ from rkcheck.options import (
     parse_flag,
     parse_int_in,
     parse_positive,
+    shown_value,
 )
 
 if TYPE_CHECKING:
@@ -414,8 +415,9 @@ def catalog(
             raise UserError("no tableaux are installed with rkcheck; give a PATH")
         roots = [str(root_dir)]
     order = _option(lambda: parse_int_in(order, ORDER_RANGE, "order"))
-    if isinstance(degrees, (str, int)) or degrees is None:
-        raise UserError(f"expected a list of degrees, got {degrees!r}", "degrees")
+    progress = _option(lambda: parse_callback(progress, "progress"))
+    if isinstance(degrees, (str, bytes)) or not isinstance(degrees, (Sequence, set, frozenset)):
+        raise OptionError(f"expected a list of degrees, got {shown_value(degrees)}", "degrees")
     degs = [_option(lambda: parse_degree(d, "degrees")) for d in degrees]
     if not degs:
         raise UserError("expected at least one degree", "degrees")

@@ -64,7 +64,9 @@ def _rational(value: Any, place: str) -> Fraction:
     from rkcheck.numbers.entries import Entry
 
     if isinstance(value, Fraction) or (isinstance(value, int) and not isinstance(value, bool)):
-        value = str(value)
+        from rkcheck.numbers.grammar import fraction_text
+
+        value = fraction_text(value)  # at any length
     if not isinstance(value, str):
         raise OptionError(f"expected a positive rational number, got {value!r}", place)
     try:

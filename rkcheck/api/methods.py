@@ -8,11 +8,17 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
-from rkcheck.errors import OptionError, UserError, not_applying
+from rkcheck.errors import OptionError, as_option, not_applying
 from rkcheck.methods.classics import NAMES as _CLASSIC_NAMES
 from rkcheck.methods.family_spec import FAMILIES as _FAMILIES
 from rkcheck.methods.tableau import Tableau
-from rkcheck.options import DIGITS_RANGE, MAX_FAMILY_STAGES, parse_choice, parse_int_in
+from rkcheck.options import (
+    DIGITS_RANGE,
+    MAX_FAMILY_STAGES,
+    parse_choice,
+    parse_flag,
+    parse_int_in,
+)
 
 if TYPE_CHECKING:
     from rkcheck.methods.family_spec import FamilySpec
@@ -24,13 +30,7 @@ FAMILIES: tuple[str, ...] = _FAMILIES
 CLASSICAL_METHODS: tuple[str, ...] = tuple(_CLASSIC_NAMES)
 
 
-def _option(parse: Any) -> Any:
-    try:
-        return parse()
-    except OptionError:
-        raise
-    except UserError as err:
-        raise OptionError(err.message, err.place, err.source) from None
+_option = as_option
 
 
 def _spec(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, beta: Any) -> "FamilySpec":
@@ -81,12 +81,21 @@ def unused_refusal(method: str, given: Sequence[str], shown: Callable[[str], str
     return f"{method} is {what}: {not_applying([shown(n) for n in unused])}"
 
 
+def _is(value: Any, default: Fraction) -> bool:
+    """``value`` is the default number, as a string or a number (``str()`` of a rational
+    past Python's 4 300 digits would raise)."""
+    if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
+        return value == default
+    return isinstance(value, str) and value.strip() == str(default)
+
+
 def _refuse_unused(method: str, stages: int | None, k: int | None, rule: str, zeta: Any, beta: Any,
                    digits: int | None = None, exact: bool = False) -> None:
     """An OptionError for the parameters given away from their defaults that ``method``
     does not read."""
-    given = {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss", "zeta": str(zeta) != "0",
-             "beta": str(beta) != "1/10", "digits": digits is not None, "exact": bool(exact)}
+    given = {"stages": stages is not None, "k": k is not None, "rule": rule != "gauss",
+             "zeta": not _is(zeta, Fraction(0)), "beta": not _is(beta, Fraction(1, 10)), "digits": digits is not None,
+             "exact": bool(exact)}
     refusal = unused_refusal(method, [g for g, on in given.items() if on])
     if refusal is not None:
         raise OptionError(refusal, "method")
@@ -164,6 +173,7 @@ def new_toml(method: str, *, stages: int | None = None, k: int | None = None, ru
     decimals.  A classical method is written with its ``[expect]`` claims.  Parameters the
     method does not read raise :class:`~rkcheck.errors.OptionError`."""
     method = _validate(method, stages, k)
+    exact = _option(lambda: parse_flag(exact, "exact"))
     _refuse_unused(method, stages, k, rule, zeta, beta, digits, exact)
     if method not in FAMILIES:
         from rkcheck.io.writers import document_toml

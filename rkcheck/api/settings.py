@@ -12,6 +12,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterator
 
+from rkcheck.errors import OptionError, as_option
 from rkcheck.io.config import Config as ProjectConfig
 
 if TYPE_CHECKING:
@@ -74,7 +75,12 @@ def listing_cache_scope(enabled: bool = True) -> Iterator[None]:
 
 def _store(enabled: bool, directory: str | os.PathLike[str] | None) -> "ListingCache | None":
     from rkcheck.io.cache import ListingCache, cache_disabled
+    from rkcheck.options import parse_flag
 
+    enabled = as_option(lambda: parse_flag(enabled, "enabled"))
+    if directory is not None and not isinstance(directory, (str, os.PathLike)):
+        raise OptionError(f"expected a folder (str or os.PathLike) or None, got {type(directory).__name__}",
+                          "directory")
     if not enabled or cache_disabled():
         return None
     return ListingCache(None if directory is None else Path(directory))

@@ -15,6 +15,7 @@ from rkcheck.api.verification import UNSET, _option, check_flags
 from rkcheck.energy.double_bush import Kernel
 from rkcheck.errors import OptionError
 from rkcheck.methods.tableau import Tableau
+from rkcheck.numbers.grammar import fraction_text
 from rkcheck.options import (
     DEFAULT_DPS,
     KERNEL_DEGREE_RANGE,
@@ -107,7 +108,8 @@ def _eps_list(eps: str | Sequence[Any]) -> list[Fraction]:
         raise OptionError(f"expected ε values: a text such as \"1e-1..1e-40\", a number or a list, "
                           f"got {type(eps).__name__}", "eps")
     # a float as its shortest decimal, as Tableau.from_arrays reads one
-    text = eps if isinstance(eps, str) else ",".join(str(x) for x in eps)
+    text = eps if isinstance(eps, str) else ",".join(
+        fraction_text(x) if isinstance(x, (int, Fraction)) and not isinstance(x, bool) else str(x) for x in eps)
     values: list[Fraction] = _option(lambda: parse_eps(text))
     if not values or any(not 0 < e <= 1 for e in values):  # log10(ε) and float radii need 0 < ε <= 1
         raise OptionError(f"every ε must be in (0, 1], got {text!r}", "--eps")

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.api.settings import guard
 from rkcheck.energy.explain import EnergyCondition, RootingTerm, explain
-from rkcheck.errors import OptionError, UserError
+from rkcheck.errors import OptionError, UserError, as_option
 from rkcheck.evaluation.values import TableauValues
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.reading import DecimalsMode, Reading
@@ -101,11 +101,7 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
     return explain(seq, None if tab is None else TableauValues(tab, Reading(DecimalsMode(decimals), dps)))
 
 
-def _checked(parse: Callable[[], Any]) -> Any:
-    try:
-        return parse()
-    except UserError as err:
-        raise OptionError(err.message, err.place, err.source) from None
+_checked = as_option
 
 
 # ------------------------------------------------------------------ the listing
@@ -159,10 +155,18 @@ def conditions(order: int, degree: int | str | None = None, *, count: bool = Fal
     otherwise the listing is built, refused (``ResourceError``) when it would not fit in
     memory or exceeds ``max_conditions``; ``announce(text)`` hears the estimate of a
     listing longer than 5 s.  :func:`free_trees` gives the conditions of one size."""
-    from rkcheck.options import parse_degree, parse_int_in, parse_positive
+    from rkcheck.options import (
+        parse_callback,
+        parse_degree,
+        parse_flag,
+        parse_int_in,
+        parse_positive,
+    )
 
     order = _checked(lambda: parse_int_in(order, ORDER_RANGE, "order"))
     bound: int | None = _checked(lambda: parse_degree(degree, "degree"))
+    count = _checked(lambda: parse_flag(count, "count"))
+    announce = _checked(lambda: parse_callback(announce, "announce"))
     if max_conditions is not None:
         max_conditions = _checked(lambda: parse_positive(max_conditions, "max_conditions"))
     listing: ConditionListing | CountOnly

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping
 
 from rkcheck.energy.check import CheckResult
 from rkcheck.energy.results import Condition
-from rkcheck.errors import OptionError, UserError, is_digits_limit
+from rkcheck.errors import OptionError, UserError, as_option, is_digits_limit
 from rkcheck.methods.tableau import Tableau
 from rkcheck.options import (
     ARITHMETICS,
@@ -51,6 +51,20 @@ def printable_numbers() -> Iterator[None]:
             raise
         raise UserError(f"a number has more than {sys.get_int_max_str_digits():,} digits, more than Python writes "
                         "as text (sys.set_int_max_str_digits raises the limit)") from None
+
+
+def numbers_as_errors(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """``fn`` with :func:`printable_numbers` around each call: a rational of more digits
+    than Python writes as text, given as an argument (``eps=[Fraction(1, 10**5000)]``)
+    and written on its way to the parser, is a :class:`UserError`, not a ValueError."""
+    import functools
+
+    @functools.wraps(fn)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        with printable_numbers():
+            return fn(*args, **kwargs)
+
+    return checked
 
 
 class _Unset:
@@ -96,11 +110,7 @@ class Verification(CheckResult):
 # ------------------------------------------------------------------ options
 
 
-def _option(parse: Callable[[], Any]) -> Any:
-    try:
-        return parse()
-    except UserError as err:
-        raise OptionError(err.message, err.place, err.source) from None
+_option = as_option
 
 
 def check_flags(degree: Any = UNSET, order: Any = UNSET, dps: Any = UNSET, decimals: Any = UNSET,

@@ -188,6 +188,8 @@ class ConditionResults(Sequence[Condition]):
         value = o._exact[k] if o._exact is not None else o.values.value(k)
         if flip < 0:  # a negation, not a product: a field element's product reduces modulo g
             value = -value
+        if hasattr(value, "rational") and (q := value.rational()) is not None:
+            value = q  # a rational residual of an algebraic tableau is that rational, exactly
         return Condition(tree, verdict, _enclosure_of(value), value)
 
     @overload

@@ -224,6 +224,10 @@ def _sympy_float_exact(x: Any) -> Fraction:
 
 
 def _as_list(value: Any, place: str) -> list[Any]:
+    mask = getattr(value, "mask", None)
+    if hasattr(value, "dtype") and mask is not None and bool(getattr(mask, "any", lambda: mask)()):
+        # a masked array: its masked cells hold whatever was there, not entries
+        raise TableauError("a masked array with masked entries: give every entry", place)
     if hasattr(value, "dtype") and getattr(value, "ndim", 0) >= 1:  # a numpy array: its own scalars
         value = list(value)  # (tolist() would widen float32 to float and print its binary noise)
     elif hasattr(value, "tolist"):  # sympy matrices
@@ -277,6 +281,10 @@ def entries_from_arrays(
         matrix.append(tuple(entry(x, f"A[{i}][{j}]") for j, x in enumerate(cells, start=1)))
 
     def vector(value: Any, label: str) -> tuple[Entry, ...]:
+        shape = getattr(value, "shape", None)
+        if not hasattr(value, "dtype") and shape is not None and len(shape) == 2 and 1 in shape:
+            # a sympy vector is a matrix of one column (or row): numpy has 1-D arrays for it
+            value = [value[i, 0] if shape[1] == 1 else value[0, i] for i in range(max(shape))]
         cells = _as_list(value, label)
         if len(cells) != s:
             raise TableauError(f"has {len(cells)} entries, expected {s} (one per stage)", label)

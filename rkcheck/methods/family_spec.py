@@ -13,8 +13,9 @@ from typing import Any
 
 from rkcheck.errors import UserError
 from rkcheck.methods.quadrature import Rule, rule
+from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Entry
-from rkcheck.options import MAX_FAMILY_STAGES
+from rkcheck.options import MAX_FAMILY_STAGES, shown_value
 
 FAMILIES = ("avf", "gauss", "lobatto-iiia", "lobatto-iiib", "radau-iia", "radau-ia", "hbvm", "kernel")
 TITLES = {
@@ -69,7 +70,8 @@ class FamilySpec:
         if self.name == "radau-ia":
             return rule("radau-i", self.s)
         assert self.name == "kernel"
-        return rule(f"zeta:{self.zeta}", 2)
+        assert self.zeta is not None  # the kernel family is given one (parse_spec)
+        return rule(f"zeta:{ex.fraction_text(self.zeta)}", 2)  # at any length
 
     def params(self) -> dict[str, Any]:
         out: dict[str, Any] = {"name": self.name}
@@ -85,12 +87,14 @@ class FamilySpec:
 
 
 def _exact(text: Any, place: str) -> Fraction:
+    if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
+        return Fraction(text)  # as it is (str() of a rational past 4 300 digits would raise)
     try:
         e = Entry.parse(str(text))
     except UserError as err:
         raise err.located(place) from None
     if e.exact is None:
-        raise UserError(f"expected a rational number, got {text!r}", place)
+        raise UserError(f"expected a rational number, got {shown_value(text)}", place)
     return e.exact
 
 

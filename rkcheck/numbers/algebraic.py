@@ -72,6 +72,11 @@ class NumberField:
     def __repr__(self) -> str:
         return f"NumberField(θ = {self.name}, degree {self.degree})"
 
+    def same_as(self, other: "NumberField") -> bool:
+        """The same field with the same θ, whether or not it is this object (two checks
+        of one tableau build it twice; a result unpickled brings its own)."""
+        return other is self or (other.index == self.index and other.minpoly == self.minpoly)
+
     def __reduce__(self) -> tuple[Callable[..., NumberField], tuple[Any, ...]]:
         # FLINT polynomials do not pickle; a field travels (to and from scan workers) as
         # its minimal polynomial, and pickle's memo keeps one field per message
@@ -188,7 +193,7 @@ class FieldElement:
     # ------------------------------------------------------------- arithmetic
     def _other(self, y: Any) -> Any:
         if isinstance(y, FieldElement):
-            if y.field is not self.field:
+            if not self.field.same_as(y.field):
                 raise ValueError("elements of different fields")
             return y.poly
         if isinstance(y, (int, Fraction)):
@@ -286,6 +291,11 @@ class FieldElement:
         return not self.is_zero()
 
     def __eq__(self, y: object) -> bool:
+        if isinstance(y, FieldElement) and not self.field.same_as(y.field):
+            # numbers of two fields: equal when both are the same rational; irrational ones
+            # are compared only within one field (two θ may generate one field)
+            mine, theirs = self.rational(), y.rational()
+            return mine is not None and mine == theirs
         o = self._other(y)
         if o is None:
             return NotImplemented

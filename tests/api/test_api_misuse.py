@@ -331,3 +331,68 @@ def test_each_way_floats_were_read_has_its_own_true_warning():
     assert said([[np.float32(1 / 12)]], [1], floats="exact")[0].startswith(
         "1 float entries (first A[1][1]) were taken at their exact binary value, which is not the decimal")
     assert said([[np.float32(0.5)]], [1])[0].startswith("1 float entries (first A[1][1] = 0.5000000) were read")
+
+
+@pytest.mark.parametrize("call, place", [
+    (lambda: rkcheck.conditions(6, count="no"), "count"),
+    (lambda: rkcheck.new_toml("gauss", stages=2, exact="no"), "exact"),
+    (lambda: rkcheck.conditions(6, announce=3), "announce"),
+    (lambda: rkcheck.catalog(degrees=b"3"), "degrees"),
+    (lambda: rkcheck.catalog(degrees=3.0), "degrees"),
+    (lambda: rkcheck.catalog(progress=3), "progress"),
+    (lambda: rkcheck.api.settings.use_listing_cache("x"), "enabled"),
+    (lambda: rkcheck.api.settings.use_listing_cache(True, 3), "directory"),
+])
+def test_flags_callbacks_and_lists_are_checked_not_read_as_truthy(call, place):
+    """'no' is a true string, b"3" iterates as 51, 3 is not a function: each refused,
+    naming the argument, where it was read as something else or failed deep inside."""
+    with pytest.raises(rkcheck.OptionError) as err:
+        call()
+    assert err.value.place == place
+
+
+def test_a_masked_array_is_refused_and_a_sympy_vector_is_a_vector():
+    np = pytest.importorskip("numpy")
+    sympy = pytest.importorskip("sympy")
+    with pytest.raises(rkcheck.TableauError, match="masked"):
+        rkcheck.from_arrays(np.ma.masked_array([[0, 0], [0.5, 0]], mask=[[0, 0], [1, 0]]), [0, 1])
+    half = sympy.Rational(1, 2)
+    lists = rkcheck.from_arrays([[0, 0], ["1/2", 0]], [0, 1], c=[0, "1/2"])
+    for b, c in ((sympy.Matrix([0, 1]), sympy.Matrix([0, half])), (sympy.Matrix([[0, 1]]), sympy.Matrix([[0, half]]))):
+        assert rkcheck.from_arrays(sympy.Matrix([[0, 0], [half, 0]]), b, c=c) == lists
+
+
+def test_results_of_one_check_compare_equal_across_runs_and_pickling():
+    """Two checks of Gauss-2 (entries in Q(√3)) build the field twice: their conditions,
+    and a kernel basis and its pickled copy, compare equal instead of raising."""
+    import pickle
+
+    a, b = (rkcheck.verify("@gauss-2", order=5) for _ in range(2))
+    assert list(a.conditions) == list(b.conditions) and a.first_failure == b.first_failure
+    k = rkcheck.kernel(4, 2)
+    assert k == rkcheck.kernel(4, 2) and pickle.loads(pickle.dumps(k)) == k
+
+
+def test_a_rational_residual_of_an_algebraic_tableau_is_that_rational_exactly():
+    """Gauss-2's first failing condition, [[τ]²τ], has the rational residual 1/288 (its
+    entries are in Q(√3)): verify gives the Fraction with an exact enclosure, as
+    energy_condition does."""
+    first = rkcheck.verify("@gauss-2", order=5).first_failure
+    other = rkcheck.energy_condition(first.id, "@gauss-2")
+    assert first.residual == other.residual == Fraction(1, 288) and isinstance(first.residual, Fraction)
+    assert first.enclosure.exact and first.enclosure == other.enclosure
+
+
+def test_a_rational_argument_past_pythons_digit_limit_is_an_rkcheck_error():
+    import sys
+
+    limit = sys.get_int_max_str_digits()
+    try:
+        sys.set_int_max_str_digits(4300)
+        for call in (lambda: rkcheck.new("kernel", zeta=Fraction(1, 10**5000)),
+                     lambda: rkcheck.perturb("@avf-gauss-2", direction="random", eps=[Fraction(1, 10**5000)],
+                                             degree=3, order=4)):
+            with pytest.raises(rkcheck.RkcheckError, match="more than 4,300 digits"):
+                call()
+    finally:
+        sys.set_int_max_str_digits(limit)
