@@ -47,8 +47,10 @@ class UserError(RkcheckError):
         return copy
 
     def __str__(self) -> str:
+        # one printable line, as the CLI prints it: a path or key may hold a newline or
+        # an escape sequence
         parts = [p for p in (self.source, self.place, self.message) if p]
-        return ": ".join(parts)
+        return printable(": ".join(parts))
 
     def as_tableau_error(self) -> "UserError":
         """The same error as a :class:`TableauError` — what building a method from its
@@ -141,3 +143,21 @@ class CheckInterrupted(KeyboardInterrupt):
     def __init__(self, result: Any):
         super().__init__()
         self.result = result
+
+
+def printable(text: str) -> str:
+    """Text that came from a file, made safe to print on one line
+    (:mod:`rkcheck.io.printable`): every non-printable character (controls, line breaks,
+    lone surrogates, format characters) written as its Python escape (``\\n``,
+    ``\\x1b``, ``\\ud800``); printable text, including non-ASCII letters, is unchanged."""
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
+
+
+def _escape(ch: str) -> str:
+    # U+DC80..U+DCFF is how Python keeps a byte that is not UTF-8 in a file name or an
+    # argument (surrogateescape): show the byte itself, as ls and git do
+    if "\udc80" <= ch <= "\udcff":
+        return f"\\x{ord(ch) - 0xDC00:02x}"
+    return ascii(ch)[1:-1]

@@ -374,10 +374,13 @@ class Catalog:
     order: int
     families: list[str] = field(default_factory=list)
 
-    def to_markdown(self, command: str = "") -> str:
-        """The Markdown page of ``rkcheck catalog`` (``command`` is recorded in its header)."""
+    def to_markdown(self, command: str = "rkcheck.catalog()") -> str:
+        """The Markdown page of ``rkcheck catalog`` (``command``, what made it, is
+        recorded in its header)."""
         from rkcheck.reports.markdown import catalog_markdown
 
+        if not isinstance(command, str) or not command.strip():
+            raise OptionError("expected the command that made the catalogue (a non-empty string)", "command")
         return catalog_markdown(self.rows, self.labels, self.order, command, self.families)
 
     def __repr__(self) -> str:

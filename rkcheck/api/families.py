@@ -33,8 +33,11 @@ def load_family(path: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_S
     """A family file (a tableau file with a ``[parameters]`` table), or ``"@name"``."""
     from rkcheck.io.loader import load_family as load
 
+    from rkcheck.options import MAX_STAGES_RANGE, parse_int_in
+
     if not isinstance(path, (str, os.PathLike)):
         raise OptionError(f"expected a path (str or os.PathLike) or '@name', got {type(path).__name__}", "path")
+    max_stages = _option(lambda: parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages"))  # as load() refuses it
     return load(os.fsdecode(path), max_stages)
 
 

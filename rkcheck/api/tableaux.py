@@ -106,7 +106,7 @@ def as_tableau(tableau: "TableauLike | ContinuousMethod", max_stages: int = DEFA
                            source=tableau.info.source)
     if isinstance(tableau, Tableau):
         return tableau
-    raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}")
+    raise TableauError(f"expected a Tableau, a path or '@name', got {type(tableau).__name__}", "tableau")
 
 
 from rkcheck.methods.continuous import ContinuousMethod  # noqa: E402 - a public name

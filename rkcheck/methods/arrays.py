@@ -223,7 +223,7 @@ def _sympy_float_exact(x: Any) -> Fraction:
     return Fraction(int(man)) * (Fraction(2) ** int(exp))
 
 
-def _as_list(value: Any, place: str) -> list[Any]:
+def as_list(value: Any, place: str) -> list[Any]:
     mask = getattr(value, "mask", None)
     if hasattr(value, "dtype") and mask is not None and bool(getattr(mask, "any", lambda: mask)()):
         # a masked array: its masked cells hold whatever was there, not entries
@@ -259,7 +259,7 @@ def entries_from_arrays(
     if floats not in ("exact", "shortest"):
         raise TableauError(f"floats must be 'exact' or 'shortest', got {floats!r}", "floats")
     parse_int_in(max_stages, MAX_STAGES_RANGE, "max_stages")  # as load() and loads() refuse it
-    rows = _as_list(A, "A")
+    rows = as_list(A, "A")
     s = len(rows)
     if s == 0:
         raise TableauError("the tableau is empty (A has no rows)", "A")
@@ -275,7 +275,7 @@ def entries_from_arrays(
 
     matrix = []
     for i, row in enumerate(rows, start=1):
-        cells = _as_list(row, f"A[{i}]")
+        cells = as_list(row, f"A[{i}]")
         if len(cells) != s:
             raise TableauError(f"row has {len(cells)} entries, expected {s} (A must be square)", f"A[{i}]")
         matrix.append(tuple(entry(x, f"A[{i}][{j}]") for j, x in enumerate(cells, start=1)))
@@ -285,7 +285,7 @@ def entries_from_arrays(
         if not hasattr(value, "dtype") and shape is not None and len(shape) == 2 and 1 in shape:
             # a sympy vector is a matrix of one column (or row): numpy has 1-D arrays for it
             value = [value[i, 0] if shape[1] == 1 else value[0, i] for i in range(max(shape))]
-        cells = _as_list(value, label)
+        cells = as_list(value, label)
         if len(cells) != s:
             raise TableauError(f"has {len(cells)} entries, expected {s} (one per stage)", label)
         return tuple(entry(x, f"{label}[{i}]") for i, x in enumerate(cells, start=1))

@@ -34,7 +34,7 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property, lru_cache
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 from rkcheck.errors import TableauError, UserError
 from rkcheck.methods.quadrature import positive_rule, rational_rule, vandermonde
@@ -158,6 +158,8 @@ class ContinuousMethod:
                                    f"Fraction), got {type(value).__name__}", what)
             texts.append(value)
         A, b = texts
+        if constants is not None and not isinstance(constants, Mapping):
+            raise TableauError(f"expected a mapping of names to values, got {type(constants).__name__}", "constants")
         defs = {}
         for key, text in (constants or {}).items():
             try:

@@ -195,6 +195,12 @@ def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters:
     if len(set(params)) != len(params):
         raise UserError(f"a parameter is named twice in {list(params)}", "parameters")
     parse_parameters({p: "free" for p in params}, constants or {})
+    if not isinstance(name, str):
+        raise UserError(f"expected a string, got {type(name).__name__}", "name")
+    from rkcheck.methods.arrays import as_list
+
+    b = as_list(b, "b")
+    A = [as_list(row, f"A[{i}]") for i, row in enumerate(as_list(A, "A"), start=1)]
     s = len(b)
     if len(A) != s or any(len(row) != s for row in A):
         raise UserError(f"A must be {s}×{s} (one row and one column per entry of b)", "A")

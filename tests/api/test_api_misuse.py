@@ -396,3 +396,28 @@ def test_a_rational_argument_past_pythons_digit_limit_is_an_rkcheck_error():
                 call()
     finally:
         sys.set_int_max_str_digits(limit)
+
+
+@pytest.mark.parametrize("call, place, error", [
+    (lambda: rkcheck.load_family(TABLEAUX / "families" / "design-s2-m3.toml", max_stages=None), "max_stages",
+     rkcheck.OptionError),
+    (lambda: rkcheck.load_family(TABLEAUX / "families" / "design-s2-m3.toml", max_stages=True), "max_stages",
+     rkcheck.OptionError),
+    (lambda: rkcheck.family_from_arrays(A=3, b=[1], parameters=["p"]), "A", rkcheck.RkcheckError),
+    (lambda: rkcheck.family_from_arrays(A=[["p"]], b=[1], parameters=["p"], name=object()), "name",
+     rkcheck.RkcheckError),
+    (lambda: rkcheck.ContinuousMethod.from_kernel("2*tau*sigma", constants=3), "constants", rkcheck.TableauError),
+    (lambda: rkcheck.verify(True), "tableau", rkcheck.TableauError),
+    (lambda: rkcheck.catalog([TABLEAUX / "explicit" / "euler.toml"], order=2).to_markdown(""), "command",
+     rkcheck.OptionError),
+])
+def test_family_kernel_and_catalogue_arguments_are_refused_naming_them(call, place, error):
+    with pytest.raises(error) as err:
+        call()
+    assert err.value.place == place
+
+
+def test_an_errors_text_is_one_printable_line_as_the_cli_prints_it():
+    with pytest.raises(rkcheck.RkcheckError) as err:
+        rkcheck.load("x\ny\x1b[2J.toml")
+    assert str(err.value) == "x\\ny\\x1b[2J.toml: no such file"
