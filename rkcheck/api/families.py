@@ -32,7 +32,6 @@ MAX_SECONDS_RANGE = (1, 86_400)
 def load_family(path: str | os.PathLike[str], *, max_stages: int = DEFAULT_MAX_STAGES) -> Family:
     """A family file (a tableau file with a ``[parameters]`` table), or ``"@name"``."""
     from rkcheck.io.loader import load_family as load
-
     from rkcheck.options import MAX_STAGES_RANGE, parse_int_in
 
     if not isinstance(path, (str, os.PathLike)):
