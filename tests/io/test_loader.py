@@ -125,6 +125,11 @@ ERRORS = {
     "missing b": ('[tableau]\nA = [["1"]]\n', "t.toml", "tableau: missing b"),
     "empty": ('[tableau]\nA = []\nb = []\n', "t.toml", "A: the tableau is empty"),
     "empty rows": ('[tableau]\nA = [[]]\nb = []\n', "t.toml", "A: the tableau is empty (A's rows have no entries)"),
+    "table in another case": ('[Parameters]\np = "free"\n[tableau]\nA = [["p"]]\nb = ["1"]\n', "t.toml",
+                              "Parameters: unknown table: table names are case-sensitive, and this one would be "
+                              "ignored; write [parameters]"),
+    "short-form key in another case": ('{"A": [["1/2"]], "B": ["1"]}', "t.json",
+                                       "B: unknown key: keys are case-sensitive, and this one would be ignored; write b"),
     "empty claim list": (VALID_ROWS + '[expect]\nenergy_order = []\n', "t.toml",
                          "expect.energy_order: an empty list claims nothing"),
     "null c": ('{"A": [["1/2"]], "b": ["1"], "c": null}', "t.json", "c: expected a list of 1 entries, got null"),
