@@ -14,12 +14,8 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from rkcheck.errors import UserError
-from rkcheck.methods.continuous import (
-    MAX_SURROGATE_NODES,
-    VARIABLES,
-    _literal,
-    b_in_tau,
-)
+from rkcheck.methods.continuous import MAX_SURROGATE_NODES
+from rkcheck.methods.kernel import VARIABLES, _literal, b_in_tau
 from rkcheck.methods.quadrature import rational_rule
 from rkcheck.methods.tableau import MethodInfo
 from rkcheck.numbers import expressions as xp
