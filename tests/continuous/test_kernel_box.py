@@ -3,6 +3,7 @@ identity worked out independently in sympy, as a polynomial in τ, σ and one sy
 literal, at the corners and random points of the box."""
 
 import itertools
+import json
 import random
 from fractions import Fraction
 
@@ -193,8 +194,6 @@ def test_a_decimal_zero_at_face_value_still_counts_in_the_surrogates_degree():
 ])
 def test_a_certificate_missed_at_face_value_but_not_on_the_whole_box_does_not_fail(tmp_path, kernel, digits):
     path = tmp_path / "k.json"
-    import json
-
     path.write_text(json.dumps({"continuous": kernel}), encoding="utf-8")
     res = rkcheck.verify(path, order=3)
     assert res.certificate.verdict.state == "holds_to_digits" and res.certificate.verdict.digits == digits
