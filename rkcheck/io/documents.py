@@ -214,7 +214,34 @@ def parse_document(text: str, fmt: str) -> dict[str, Any]:
         raise UserError("the top level must be a table/object")
     if not data:  # comments only, or {}: as empty as an empty file
         raise UserError(f"the file is empty (no table, no key); the smallest tableau file is {SMALLEST_FILE}")
+    refuse_case_twins(data)
     return data
+
+
+#: the keys of the short form, a tableau at the top level ({"A": …, "b": …})
+SHORT_FORM_KEYS = ("A", "b", "c")
+
+
+def refuse_case_twins(data: dict[str, Any]) -> None:
+    """Refuse a table named as one of rkcheck's in another case (``[Parameters]``), and
+    the short form written with its keys in another case (``{"A": …, "B": …}``): read
+    as some other document, the file would be checked as another method than the one
+    written — a family as a tableau — or passed over by a scan.  Every route that reads
+    a document (verify, scan, solve, the family test) comes through here."""
+    for key in data:
+        twin = next((t for t in KNOWN_TABLES if isinstance(key, str) and key != t and key.lower() == t), None)
+        if twin is not None:
+            raise UserError(f"unknown table: table names are case-sensitive, and this one would be ignored; write "
+                            f"[{twin}]", printable(key))
+    keys = [k for k in data if isinstance(k, str)]
+    lowered = {k.lower() for k in keys}
+    if not {"a", "b"} <= lowered or any(k.lower() not in ("a", "b", "c") for k in keys):
+        return  # not the short form, misspelt: keys of some other document
+    for key in keys:
+        short = next(k for k in SHORT_FORM_KEYS if key.lower() == k.lower())
+        if key != short and short not in data:
+            raise UserError(f"unknown key: keys are case-sensitive, and this one would be ignored; write {short}",
+                            printable(key))
 
 
 def locate_lines(text: str, fmt: str) -> dict[str, int]:

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from rkcheck.errors import UserError
 from rkcheck.io.documents import (
     KNOWN_TABLES,
+    SHORT_FORM_KEYS,
     SMALLEST_FILE,
     BareFloat,
     bare_floats_warning,
@@ -54,9 +55,6 @@ from rkcheck.options import (
     parse_strings,
     validate_check_table,
 )
-
-#: the smallest valid tableau file, shown when a file has no tableau at all
-SHORT_FORM_KEYS = ("A", "b", "c")
 
 #: the tables that each define a whole method: a file gives one of them
 _METHOD_TABLES = ("tableau", "family", "continuous")
@@ -215,15 +213,6 @@ def _build(
 def _tables(data: dict[str, Any]) -> tuple[dict[str, Any], list[str]]:
     """The document with its short form (A/b/c at the top level) read as its [tableau]
     table, and a warning per unknown table."""
-    for key in data:
-        twin = next((t for t in KNOWN_TABLES if isinstance(key, str) and key != t and key.lower() == t), None)
-        if twin is not None:  # ignored, [Parameters] would check another method than the one written
-            raise UserError(f"unknown table: table names are case-sensitive, and this one would be ignored; write "
-                            f"[{twin}]", printable(key))
-        short = next((k for k in SHORT_FORM_KEYS if isinstance(key, str) and key != k and key.lower() == k.lower()), None)
-        if short is not None and short not in data:  # the short form's B for b
-            raise UserError(f"unknown key: keys are case-sensitive, and this one would be ignored; write {short}",
-                            printable(key))
     warnings = [f"unknown table [{printable(key)}] ignored (known: {', '.join(KNOWN_TABLES)})"
                 for key in data if key not in KNOWN_TABLES]
     if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):

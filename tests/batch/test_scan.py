@@ -680,3 +680,19 @@ def test_the_pre_commit_hook_passes_a_commit_of_files_it_does_not_check(tmp_path
     (tmp_path / "euler.toml").write_text('[tableau]\nA = [["0"]]\nb = ["1"]\n[expect]\nclassical_order = 2\n',
                                          encoding="utf-8")
     assert run_cli(capsys, *entry[1:], str(tmp_path / "euler.toml")).code == 1
+
+
+def test_a_table_or_short_form_key_in_another_case_is_an_error_on_every_route(tmp_path, capsys):
+    """[Parameters] and the short form's B are refused by verify; a scan, a catalogue and
+    solve read the same document and refuse them alike, never passing over the file as
+    no tableau, nor reading the family as having no parameters."""
+    (tmp_path / "s1.toml").write_text('A = [["1/2"]]\nB = ["1"]\n', encoding="utf-8")
+    (tmp_path / "f.toml").write_text('[tableau]\nA = [["p"]]\nb = ["1"]\n[Parameters]\np = "free"\n', encoding="utf-8")
+    doc = json.loads(run_cli(capsys, "scan", str(tmp_path), "--format", "json", "--jobs", "1").out)
+    errors = {Path(f["file"]).name: f["error"] for f in doc["files"]}
+    assert [f["status"] for f in doc["files"]] == ["error", "error"]
+    assert "write [parameters]" in errors["f.toml"] and "write b" in errors["s1.toml"]
+    r = run_cli(capsys, "solve", str(tmp_path / "f.toml"), "-m", "2", "-N", "2")
+    assert r.code == 2 and "Parameters: unknown table" in r.err
+    r = run_cli(capsys, "catalog", str(tmp_path), "-N", "3")
+    assert r.code == 1 and "write b" in r.out
