@@ -75,6 +75,13 @@ class Sweep:
     axes: list[tuple[str, list[Fraction]]]
     orders: list[int]
 
+    def __repr__(self) -> str:
+        # each axis by its ends and count: a grid's values may be long rationals (repr of
+        # one past 4 300 digits raises) and many
+        axes = ", ".join(f"{n} = {_short(v[0])}…{_short(v[-1])} ({len(v)})" if v else f"{n} = ()"
+                         for n, v in self.axes)
+        return f"<Sweep of {self.family!r}: {axes}; degree {self.degree}, order ≤ {self.order}, generic {self.generic}>"
+
     def points(self) -> list[dict[str, Fraction]]:
         names = [n for n, _ in self.axes]
         return [dict(zip(names, values)) for values in itertools.product(*(v for _, v in self.axes))]
@@ -124,3 +131,9 @@ def _order_at(ring: Any, live: list[Any], point: dict[str, Fraction], order: int
         elif not ring.is_zero(c.polynomial.subs(values)):
             return int(c.order) - 1
     return order
+
+
+def _short(q: Fraction) -> str:
+    from rkcheck.numbers.formatting import exact_string
+
+    return exact_string(q)

@@ -237,6 +237,15 @@ def as_list(value: Any, place: str) -> list[Any]:
     raise TableauError(f"expected a list or an array, got {type(value).__name__}", place)
 
 
+def as_vector(value: Any, place: str) -> list[Any]:
+    """A vector's cells: a list, a 1-D array, or a sympy vector — a matrix of one column
+    (or row); numpy has 1-D arrays for vectors, and a 2-D one is refused cell by cell."""
+    shape = getattr(value, "shape", None)
+    if not hasattr(value, "dtype") and shape is not None and len(shape) == 2 and 1 in shape:
+        value = [value[i, 0] if shape[1] == 1 else value[0, i] for i in range(max(shape))]
+    return as_list(value, place)
+
+
 def entries_from_arrays(
     A: Any,
     b: Any,
@@ -281,11 +290,7 @@ def entries_from_arrays(
         matrix.append(tuple(entry(x, f"A[{i}][{j}]") for j, x in enumerate(cells, start=1)))
 
     def vector(value: Any, label: str) -> tuple[Entry, ...]:
-        shape = getattr(value, "shape", None)
-        if not hasattr(value, "dtype") and shape is not None and len(shape) == 2 and 1 in shape:
-            # a sympy vector is a matrix of one column (or row): numpy has 1-D arrays for it
-            value = [value[i, 0] if shape[1] == 1 else value[0, i] for i in range(max(shape))]
-        cells = as_list(value, label)
+        cells = as_vector(value, label)
         if len(cells) != s:
             raise TableauError(f"has {len(cells)} entries, expected {s} (one per stage)", label)
         return tuple(entry(x, f"{label}[{i}]") for i, x in enumerate(cells, start=1))

@@ -86,6 +86,9 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
     """The entry texts of a Miyatake–Butcher matrix, checked: a non-empty list of rows of
     one length, at most :data:`MAX_KERNEL_MATRIX` of each, entries numbers or strings."""
     if hasattr(M, "tolist"):  # numpy arrays, sympy matrices
+        from rkcheck.methods.arrays import as_list
+
+        as_list(M, where)  # a masked array is refused there
         M = M.tolist()
     if isinstance(M, (str, bytes)) or not isinstance(M, Sequence) or not M:
         raise UserError("expected a non-empty list of rows", where)
@@ -107,15 +110,22 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
 
 
 def _matrix_entry(value: Any, place: str) -> str:
-    """An entry's text: an int, a Fraction, a string, or a float as its shortest decimal
-    (as ``Tableau.from_arrays`` reads floats, and a file its bare decimals)."""
+    """An entry's text: an int or a Fraction at any length, a string, a sympy number, or
+    a float as its shortest decimal (as ``Tableau.from_arrays`` reads floats, and a file
+    its bare decimals)."""
     if isinstance(value, float):
         if not math.isfinite(value):
             raise UserError(f"{value} is not a finite number", place)
         return repr(value)
-    if isinstance(value, bool) or not isinstance(value, (int, str, Fraction)):
+    if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
+        return ex.fraction_text(value)  # at any length
+    if type(value).__module__.startswith("sympy"):  # a sympy number, as from_arrays takes it
+        from rkcheck.methods.parametric import entry_text
+
+        return entry_text(value, place)
+    if not isinstance(value, str):
         raise UserError(f"expected a number (int, Fraction, float) or a string, got {type(value).__name__}", place)
-    return str(value)
+    return value
 
 
 @dataclass(frozen=True)
@@ -161,6 +171,8 @@ class ContinuousMethod:
             raise TableauError(f"expected a mapping of names to values, got {type(constants).__name__}", "constants")
         defs = {}
         for key, text in (constants or {}).items():
+            if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
+                text = ex.fraction_text(text)  # at any length
             try:
                 defs[key] = ex.parse(str(text))
             except UserError as err:
@@ -296,7 +308,7 @@ def _poly_text(coeffs: dict[tuple[int, int], Fraction]) -> str:
             continue
         mono = (_monomial("tau", i) + _monomial("sigma", j)).lstrip("*")
         mag = abs(c)
-        term = (str(mag) if not mono or mag != 1 else "") + ("*" if mono and mag != 1 else "") + mono
+        term = (ex.fraction_text(mag) if not mono or mag != 1 else "") + ("*" if mono and mag != 1 else "") + mono
         out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
     return out or "0"
 

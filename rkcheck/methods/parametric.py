@@ -176,7 +176,7 @@ def entry_text(value: Any, place: str) -> str:
     if isinstance(value, str):
         return value
     if isinstance(value, (int, Fraction)):
-        return str(value)
+        return ex.fraction_text(value)  # at any length
     if type(value).__module__.startswith("sympy"):
         return str(value)
     raise UserError(f"expected a number, a string or a sympy expression, got {type(value).__name__} (floats are "
@@ -197,9 +197,9 @@ def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters:
     parse_parameters({p: "free" for p in params}, constants or {})
     if not isinstance(name, str):
         raise UserError(f"expected a string, got {type(name).__name__}", "name")
-    from rkcheck.methods.arrays import as_list
+    from rkcheck.methods.arrays import as_list, as_vector
 
-    b = as_list(b, "b")
+    b = as_vector(b, "b")
     A = [as_list(row, f"A[{i}]") for i, row in enumerate(as_list(A, "A"), start=1)]
     s = len(b)
     if len(A) != s or any(len(row) != s for row in A):

@@ -179,7 +179,7 @@ class Entry:
     text: str
     node: ex.Expr = field(repr=False, compare=False)
     constants: Constants = field(repr=False, compare=False)
-    exact: Fraction | None
+    exact: Fraction | None = field(repr=False)  # its text says it (repr of a long rational raises past 4 300 digits)
     uses_sqrt: bool
     rounded_digits: int | None  # fewest significant digits among its rounded decimal literals
     bare_number: bool = False  # written as a bare TOML/JSON number, not a string

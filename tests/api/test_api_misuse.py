@@ -421,3 +421,41 @@ def test_an_errors_text_is_one_printable_line_as_the_cli_prints_it():
     with pytest.raises(rkcheck.RkcheckError) as err:
         rkcheck.load("x\ny\x1b[2J.toml")
     assert str(err.value) == "x\\ny\\x1b[2J.toml: no such file"
+
+
+def test_long_rationals_pass_through_every_constructor_and_repr():
+    """A rational of 5 000 digits (past Python's 4 300-digit text limit) is written at any
+    length by from_matrix, from_kernel's constants and family_from_arrays, and the reprs
+    of a tableau and a sweep that hold one do not raise."""
+    import sys
+
+    tiny = Fraction(1, 10**5000)
+    limit = sys.get_int_max_str_digits()
+    try:
+        sys.set_int_max_str_digits(4300)
+        m = rkcheck.ContinuousMethod.from_matrix([[tiny]])
+        assert m.kernel.A_poly != 0
+        k = rkcheck.ContinuousMethod.from_kernel("tau + k*tau*(sigma - 1/2)", constants={"k": tiny})
+        assert "k" in k.info.constants.definitions
+        assert repr(rkcheck.from_arrays([[tiny]], [1])).startswith("Tableau(")
+        fam = rkcheck.family_from_arrays([["q"]], [1 - tiny], ["q"])
+        assert fam.stages == 1
+        sweep = rkcheck.sweep(TABLEAUX / "families" / "seed-kernel-zeta-0.toml",
+                              grids=["beta=0:" + "1" * 5000 + ":2"], order=3)
+        assert "(2)" in repr(sweep)
+    finally:
+        sys.set_int_max_str_digits(limit)
+
+
+def test_a_kernel_matrix_takes_what_from_arrays_takes_and_refuses_masked_cells():
+    np = pytest.importorskip("numpy")
+    sympy = pytest.importorskip("sympy")
+    from_texts = rkcheck.ContinuousMethod.from_matrix([["1", "1/2"], ["1/2", "1"]])
+    from_sympy = rkcheck.ContinuousMethod.from_matrix(sympy.Matrix([[1, sympy.Rational(1, 2)],
+                                                                    [sympy.Rational(1, 2), 1]]))
+    assert (from_sympy.A, from_sympy.b) == (from_texts.A, from_texts.b)
+    with pytest.raises(rkcheck.TableauError, match="masked"):
+        rkcheck.ContinuousMethod.from_matrix(np.ma.masked_array([[1.0, 2.0]], mask=[[0, 1]]))
+    q = sympy.Symbol("q")
+    fam = rkcheck.family_from_arrays([["q", 0], [0, "q"]], sympy.Matrix([q, 1 - q]), ["q"])
+    assert fam.stages == 2
