@@ -303,7 +303,8 @@ def _refuse_if_nothing_checked(outcomes: list["FileOutcome"]) -> None:
     """A gate that checks nothing does not pass silently: files found, every one of them
     skipped, is refused as finding none is."""
     if outcomes and all(o.status == "skipped" for o in outcomes):
-        raise UserError(f"none of the {len(outcomes)} files found is a tableau (rkcheck verify FILE says why "
+        found = "the one file found is not" if len(outcomes) == 1 else f"none of the {len(outcomes)} files found is"
+        raise UserError(f"{found} a tableau (rkcheck verify FILE says why "
                         "of one); nothing was checked (--allow-empty, or allow_empty = true in [tool.rkcheck], "
                         "lets such a scan pass)", "scan")
 
@@ -432,7 +433,12 @@ def catalog(
     families = [f for f in found if is_family_file(f)]
     files = [f for f in found if f not in families]
     if not files:
-        raise UserError(f"no tableau file (*.toml, *.json) under {', '.join(roots)}: nothing to catalogue", "catalog")
+        from rkcheck.numbers.formatting import counted
+
+        also = (f"; {counted(len(families), 'family', 'families')} (free [parameters]: rkcheck solve is their catalogue)"
+                if families else "")
+        raise UserError(f"no tableau file (*.toml, *.json) under {', '.join(roots)}: nothing to catalogue{also}",
+                        "catalog")
     root = FsPath(roots[0]) if len(roots) == 1 and FsPath(roots[0]).is_dir() else None
     rows = []
     if progress is not None:

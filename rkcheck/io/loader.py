@@ -212,19 +212,19 @@ def _build(
 
 def _tables(data: dict[str, Any]) -> tuple[dict[str, Any], list[str]]:
     """The document with its short form (A/b/c at the top level) read as its [tableau]
-    table, and a warning per unknown table."""
-    warnings = [f"unknown table [{printable(key)}] ignored (known: {', '.join(KNOWN_TABLES)})"
-                for key in data if key not in KNOWN_TABLES]
-    if "tableau" not in data and "family" not in data and any(k in data for k in SHORT_FORM_KEYS):
+    table, and a warning per unknown table or top-level key."""
+    def unknown(key: Any) -> str:
+        what = f"table [{printable(key)}]" if isinstance(data[key], dict) else f"key {printable(key)}"
+        return f"unknown {what} ignored (known tables: {', '.join(KNOWN_TABLES)})"
+
+    given = [k for k in SHORT_FORM_KEYS if k in data]  # the short form's, never unknown
+    warnings = [unknown(key) for key in data if key not in KNOWN_TABLES and key not in given]
+    if "tableau" not in data and "family" not in data and given:
         data = {k: v for k, v in data.items() if k not in SHORT_FORM_KEYS} | {
             "tableau": {k: data[k] for k in SHORT_FORM_KEYS if k in data}}
-        warnings = [w for w in warnings if not any(f"[{k}]" in w for k in SHORT_FORM_KEYS)]
-    else:  # A, b or c beside a table that defines the method: not tables of their own
-        given = [k for k in SHORT_FORM_KEYS if k in data]
-        warnings = [w for w in warnings if not any(f"[{k}]" in w for k in given)]
-        if given:
-            where = next((f"[{k}]" for k in _METHOD_TABLES if k in data), "the file's method")
-            warnings.append(f"{', '.join(given)} at the top level ignored: the method is given by {where}")
+    elif given:  # A, b or c beside a table that defines the method: not tables of their own
+        where = next((f"[{k}]" for k in _METHOD_TABLES if k in data), "the file's method")
+        warnings.append(f"{', '.join(given)} at the top level ignored: the method is given by {where}")
     return data, warnings
 
 

@@ -24,7 +24,7 @@ def catalog_markdown(rows: list[CatalogRow], degrees_labels: list[str], order: i
         "proven order n up to K, hold only to D digits: not a proof. "
         "Symplectic and symmetric are decided on the irreducible form of the method "
         "(`yes†` = holds to the working precision, the entries being enclosed, not exact; `?` = not decided, no digit certain). "
-        "Every file's `[expect]` claims are checked by the test-suite.",
+        "Claims: whether the file's `[expect]` claims are met (`ok`, `BROKEN`; empty: it makes none).",
         "",
         "| file | method | s | classical | quadrature | " + " | ".join(degrees_labels)
         + " | AVF for m | symplectic | symmetric | claims |",
@@ -110,7 +110,7 @@ def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -
             q, c = r.energy_orders.get(lbl), r.constants.get(lbl)
             cells.append("—" if q is None or c is None else f"{q}: {_c(c)}")
         out.append(f"| {_code(r.path)} | " + " | ".join(cells) + " |")
-    out += ["", "## Methods of equal energy order, ranked by C", ""]
+    ranking = []
     for lbl in degrees_labels:
         groups: dict[int, list[tuple[Fraction, CatalogRow]]] = {}  # order -> (C, row)
         for r in ok:
@@ -126,5 +126,7 @@ def error_constant_sections(rows: list[CatalogRow], degrees_labels: list[str]) -
             for (prev_c, _), (c, r) in zip(members, members[1:]):
                 sign = "=" if c == prev_c else "<"
                 ranked += f" {sign} {_code(r.path)} {_c(c)}"
-            out.append(f"- {lbl}, energy order {q}: {ranked}")
+            ranking.append(f"- {lbl}, energy order {q}: {ranked}")
+    if ranking:  # no two methods share an energy order: nothing to rank
+        out += ["", "## Methods of equal energy order, ranked by C", "", *ranking]
     return out

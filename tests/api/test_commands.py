@@ -179,6 +179,7 @@ def test_catalog_orders_by_hand(tmp_path):
     page = cat.to_markdown("rkcheck catalog x")
     assert "`rkcheck catalog x`" in page and "| `mid.toml` |" in page
     assert cat.families == [] and "## Families" not in page
+    assert "ranked by C" not in page  # one method: no two share an energy order
     with pytest.raises(rkcheck.OptionError) as err:
         rkcheck.catalog([tmp_path], degrees=["x"])
     assert err.value.place == "degrees"
