@@ -119,10 +119,8 @@ def _matrix_entry(value: Any, place: str) -> str:
         return repr(value)
     if isinstance(value, (int, Fraction)) and not isinstance(value, bool):
         return ex.fraction_text(value)  # at any length
-    if type(value).__module__.startswith("sympy"):  # a sympy number, as from_arrays takes it
-        from rkcheck.methods.parametric import entry_text
-
-        return entry_text(value, place)
+    if type(value).__module__.startswith("sympy"):  # a sympy number, as a family's entries read it: its text
+        return str(value)
     if not isinstance(value, str):
         raise UserError(f"expected a number (int, Fraction, float) or a string, got {type(value).__name__}", place)
     return value
