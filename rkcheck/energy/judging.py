@@ -90,11 +90,11 @@ def _sums_of(listing: Listing, values: TableauValues, orders: list[int] | None,
 
 def _centre(values: TableauValues) -> tuple[list[list[Any]], list[Any]]:
     """The centre of the box: the entries with each literal at the middle of the numbers
-    it stands for — the face value of a rounded decimal, the middle of a double's rounding
-    interval (which is not centred on the decimal naming the double: about the face value
-    the box would be wider than it is, and a condition nonzero on all of it could hold
-    "to digits") —; exact rationals, or, with a square root of a decimal or an exact root
-    beside the decimals, enclosures far narrower than the box (the centre's own
+    it stands for (the face value of a rounded decimal; the middle of a double's rounding
+    interval, which is not centred on the decimal naming the double — about the face
+    value the box would be wider than it is, and a condition nonzero on all of it could
+    hold "to digits").  Exact rationals, or, with a square root of a decimal or an exact
+    root beside the decimals, enclosures far narrower than the box (the centre's own
     precision, :func:`centre_bits`, and more)."""
     tab = values.tableau
     mode = values.reading.decimals

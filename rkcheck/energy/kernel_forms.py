@@ -102,7 +102,7 @@ class Form:
         return Form(q.subs({var: 1}) - q.subs({var: 0}))
 
     def spans(self) -> Iterator[tuple[Fraction, Fraction]]:
-        """Per monomial ``τ^i σ^j``: its coefficient's value at the face values and how
+        """Per monomial ``τ^i σ^j``: its coefficient's value at the box's centre (u = 0) and how
         far the box moves it at most."""
         centre: dict[tuple[int, int], Fraction] = {}
         spread: dict[tuple[int, int], Fraction] = {}

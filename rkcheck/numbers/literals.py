@@ -59,8 +59,8 @@ class LiteralBox:
     """The Jacobian of some entries along the box literals they are written with, some
     literal occurring more than once among them: ``rows[e]`` maps a literal's number
     ``l`` to an enclosure of ``∂x_e/∂λ_l`` over the literals' box (literals the entry
-    does not use are absent: 0), ``radii[l]`` is ``max |λ_l − λ̃_l|`` (λ̃_l its centre, :meth:`Num.centre`) over the literal's
-    interval."""
+    does not use are absent: 0), ``radii[l]`` is ``max |λ_l − λ̃_l|`` over the literal's
+    interval, ``λ̃_l`` its centre (:meth:`~rkcheck.numbers.grammar.Num.centre`)."""
 
     radii: tuple[Fraction, ...]
     rows: tuple[Mapping[Literal, Interval], ...]
