@@ -35,6 +35,11 @@ def is_rkcheck_report(data: dict[str, Any]) -> bool:
     return isinstance(data.get("schema"), int) and not isinstance(data.get("schema"), bool)
 
 
+def case_twin(key: Any, known: tuple[str, ...]) -> str | None:
+    """The known name ``key`` is in another case (``B`` for ``b``), or None."""
+    return next((k for k in known if isinstance(key, str) and key != k and k.lower() == key.lower()), None)
+
+
 def ignored_keys(table: dict[str, Any], known: tuple[str, ...], name: str) -> list[str]:
     """Warnings for the keys of ``[name]`` that nothing reads.  A key that is a known one
     in another case (``B`` for ``b``) is refused: ignored, it would check another method
@@ -43,7 +48,7 @@ def ignored_keys(table: dict[str, Any], known: tuple[str, ...], name: str) -> li
     for key in table:
         if key in known:
             continue
-        twin = next((k for k in known if isinstance(key, str) and k.lower() == key.lower()), None)
+        twin = case_twin(key, known)
         if twin is not None:
             raise UserError(f"unknown key: keys are case-sensitive, and this one would be ignored; write {twin}",
                             f"{name}.{printable(key)}")
@@ -229,7 +234,7 @@ def refuse_case_twins(data: dict[str, Any]) -> None:
     written — a family as a tableau — or passed over by a scan.  Every route that reads
     a document (verify, scan, solve, the family test) comes through here."""
     for key in data:
-        twin = next((t for t in KNOWN_TABLES if isinstance(key, str) and key != t and key.lower() == t), None)
+        twin = case_twin(key, KNOWN_TABLES)
         if twin is not None:
             raise UserError(f"unknown table: table names are case-sensitive, and this one would be ignored; write "
                             f"[{twin}]", printable(key))
@@ -238,8 +243,8 @@ def refuse_case_twins(data: dict[str, Any]) -> None:
     if not {"a", "b"} <= lowered or any(k.lower() not in ("a", "b", "c") for k in keys):
         return  # not the short form, misspelt: keys of some other document
     for key in keys:
-        short = next(k for k in SHORT_FORM_KEYS if key.lower() == k.lower())
-        if key != short and short not in data:
+        short = case_twin(key, SHORT_FORM_KEYS)
+        if short is not None and short not in data:
             raise UserError(f"unknown key: keys are case-sensitive, and this one would be ignored; write {short}",
                             printable(key))
 
