@@ -223,11 +223,16 @@ def _sympy_float_exact(x: Any) -> Fraction:
     return Fraction(int(man)) * (Fraction(2) ** int(exp))
 
 
-def as_list(value: Any, place: str) -> list[Any]:
+def refuse_masked(value: Any, place: str) -> None:
+    """A numpy masked array with masked cells is refused: they hold whatever was there,
+    not entries."""
     mask = getattr(value, "mask", None)
     if hasattr(value, "dtype") and mask is not None and bool(getattr(mask, "any", lambda: mask)()):
-        # a masked array: its masked cells hold whatever was there, not entries
         raise TableauError("a masked array with masked entries: give every entry", place)
+
+
+def as_list(value: Any, place: str) -> list[Any]:
+    refuse_masked(value, place)
     if hasattr(value, "dtype") and getattr(value, "ndim", 0) >= 1:  # a numpy array: its own scalars
         value = list(value)  # (tolist() would widen float32 to float and print its binary noise)
     elif hasattr(value, "tolist"):  # sympy matrices

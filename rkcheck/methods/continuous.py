@@ -86,9 +86,9 @@ def matrix_rows(M: Any, where: str = "continuous.M") -> list[list[str]]:
     """The entry texts of a Miyatake–Butcher matrix, checked: a non-empty list of rows of
     one length, at most :data:`MAX_KERNEL_MATRIX` of each, entries numbers or strings."""
     if hasattr(M, "tolist"):  # numpy arrays, sympy matrices
-        from rkcheck.methods.arrays import as_list
+        from rkcheck.methods.arrays import refuse_masked
 
-        as_list(M, where)  # a masked array is refused there
+        refuse_masked(M, where)
         M = M.tolist()
     if isinstance(M, (str, bytes)) or not isinstance(M, Sequence) or not M:
         raise UserError("expected a non-empty list of rows", where)
