@@ -161,8 +161,7 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
     elif v["certificate"].state != FAILS:  # missed at face value, not on every kernel of the box
         cert = replace(cert, verdict=v["certificate"], reason=_boxed(cert.verdict, v["certificate"], cert.reason))
     elif v["avf"].state != FAILS:  # AVF for the degree on some kernel of the box
-        cert = ContinuousCertificate(degree, v["avf"], f"{_boxed(facts.avf.verdict, v['avf'], facts.avf.reason)}: "
-                                     f"energy is preserved to every order{_for(degree)} (AVF certificate)", via_avf=True)
+        cert = _avf_certificate(degree, v["avf"], _boxed(facts.avf.verdict, v["avf"], facts.avf.reason))
     props = facts.properties
     sym, sym_box = props.symplectic, v["symplectic"]
     rev, rev_box = props.symmetric, v["symmetric"]
@@ -172,6 +171,13 @@ def _over_the_box(facts: KernelFacts, method: ContinuousMethod, degree: int | No
         ContinuousProperties(False, PropertyVerdict("symplectic", sym_box, _boxed(sym.verdict, sym_box, sym.reason)),
                              PropertyVerdict("symmetric", rev_box, _boxed(rev.verdict, rev_box, rev.reason))),
     )
+
+
+def _avf_certificate(degree: int | None, verdict: Verdict, avf_reason: str) -> ContinuousCertificate:
+    """AVF for the degree as the certificate of every order of it."""
+    return ContinuousCertificate(degree, verdict, f"{avf_reason}: energy is preserved to every order for "
+                                 f"{'every Hamiltonian' if degree is None else f'degree ≤ {degree}'} "
+                                 "(AVF certificate)", via_avf=True)
 
 
 def _boxed(face: Verdict, box: Verdict, reason: str) -> str:
@@ -257,9 +263,7 @@ def _exact_facts(method: ContinuousMethod, degree: int | None) -> KernelFacts:
 
     avf = ContinuousAvf(degree, *_avf_form(k, A, B, B_sigma, degree))
     if not cert.certified and avf.verdict.state == HOLDS:  # AVF for the degree proves every order of it
-        cert = ContinuousCertificate(degree, Verdict(HOLDS), f"{avf.reason}: energy is preserved to every order for "
-                                     f"{'every Hamiltonian' if degree is None else f'degree ≤ {degree}'} "
-                                     "(AVF certificate)", via_avf=True)
+        cert = _avf_certificate(degree, Verdict(HOLDS), avf.reason)
 
     adj_B = k.substitute(B, one - tau, sigma)
     sym_ok = k.is_zero(B - adj_B) and k.is_zero(A + k.substitute(A, one - tau, one - sigma) - B_sigma)
