@@ -426,12 +426,10 @@ def catalog(
     if not degs:
         raise UserError("expected at least one degree", "degrees")
     guard(order, None if None in degs else max(d for d in degs if d is not None))  # the resource guard
-    from rkcheck.io.loader import is_family_file
-
     # families (free [parameters]) are not one tableau: `rkcheck solve` is their catalogue
-    found = [f for f in find_tableau_files(roots, exclude=["README*", "*/README*"]) if not _passed_over(f)]
-    families = [f for f in found if is_family_file(f)]
-    files = [f for f in found if f not in families]
+    kinds = {f: _catalogued_as(f) for f in find_tableau_files(roots, exclude=["README*", "*/README*"])}
+    families = [f for f, kind in kinds.items() if kind == "family"]
+    files = [f for f, kind in kinds.items() if kind == "row"]
     if not files:
         from rkcheck.numbers.formatting import counted
 
@@ -455,19 +453,23 @@ def catalog(
     return Catalog(rows, labels, degs, order, shown)
 
 
-def _passed_over(path: str) -> bool:
-    """A file in a folder that is not a tableau file (``package.json``, a report rkcheck
-    wrote), left out of a catalogue as a scan passes over it; one that cannot be read is
-    kept: its row says why."""
+def _catalogued_as(path: str) -> str:
+    """What a file found in a folder is to a catalogue, from one read of it: ``"skip"``
+    for a file that is no tableau file (``package.json``, a report rkcheck wrote), passed
+    over as a scan passes over it; ``"family"`` for free ``[parameters]``; else ``"row"``
+    — one that cannot be read too: its row says why."""
     from rkcheck.batch.scan import skip_reason
     from rkcheck.io.documents import detect_format, read_text
     from rkcheck.io.loader import read_document
 
     try:
         text = read_text(path)
-        return skip_reason(read_document(text, path, detect_format(path, text), DEFAULT_MAX_STAGES)) is not None
+        data = read_document(text, path, detect_format(path, text), DEFAULT_MAX_STAGES)
     except (UserError, RecursionError, MemoryError):
-        return False
+        return "row"
+    if skip_reason(data) is not None:
+        return "skip"
+    return "family" if "parameters" in data else "row"
 
 
 __all__ = ["Catalog", "ScanResult", "ScanRow", "catalog", "scan"]
