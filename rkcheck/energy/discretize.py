@@ -125,7 +125,8 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
     if decimal is None:
         c, w, consts, order, name = _rule_texts(rule_spec)
     else:
-        c, w, consts, order, name = [], [], {}, *decimal[3:]
+        nodes, weights, bits, order, name = decimal
+        c, w, consts = [], [], {}
     own = {k: xp.to_text(v) for k, v in method.info.constants.definitions.items()}
     clash = sorted(set(own) & set(consts))
     if clash:
@@ -139,7 +140,7 @@ def discretize(method: ContinuousMethod, rule_spec: Any) -> Discretisation:
         return ex.parse(f"({t})")
 
     if decimal is not None:
-        consts, A, b, c_out = _decimals(method, *decimal[:3])
+        consts, A, b, c_out = _decimals(method, nodes, weights, bits)
     else:
         A = [[f"{_par(w[j])}*({xp.to_text(xp.substituted(A_node, {'tau': node(c[i]), 'sigma': node(c[j])}))})"
               for j in range(k)] for i in range(k)]

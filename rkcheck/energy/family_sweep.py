@@ -17,6 +17,7 @@ from typing import Any, Sequence
 
 from rkcheck.errors import UserError
 from rkcheck.numbers import expressions as xp
+from rkcheck.numbers.formatting import exact_string
 
 #: At most this many grid points in one sweep (each costs one exact evaluation of every
 #: condition polynomial).
@@ -78,7 +79,7 @@ class Sweep:
     def __repr__(self) -> str:
         # each axis by its ends and count: a grid's values may be long rationals (repr of
         # one past 4 300 digits raises) and many
-        axes = ", ".join(f"{n} = {_short(v[0])}…{_short(v[-1])} ({len(v)})" if v else f"{n} = ()"
+        axes = ", ".join(f"{n} = {exact_string(v[0])}…{exact_string(v[-1])} ({len(v)})" if v else f"{n} = ()"
                          for n, v in self.axes)
         return f"<Sweep of {self.family!r}: {axes}; degree {self.degree}, order ≤ {self.order}, generic {self.generic}>"
 
@@ -131,9 +132,3 @@ def _order_at(ring: Any, live: list[Any], point: dict[str, Fraction], order: int
         elif not ring.is_zero(c.polynomial.subs(values)):
             return int(c.order) - 1
     return order
-
-
-def _short(q: Fraction) -> str:
-    from rkcheck.numbers.formatting import exact_string
-
-    return exact_string(q)
