@@ -81,10 +81,11 @@ def print_estimate(path: str, order: int, arithmetic: str, extra: list[str]) -> 
 
     tableau = load(path)
     if getattr(tableau, "is_continuous", False):  # on the rule the check takes for this arithmetic
-        from rkcheck.energy.claims import in_intervals
+        from rkcheck.energy.claims import in_intervals, vertices_needed
         from rkcheck.options import CheckOptions
 
-        tableau = tableau.surrogate(order + 1, in_intervals(tableau, CheckOptions(order=order, arithmetic=arithmetic)))
+        options = CheckOptions(order=order, degree=None, arithmetic=arithmetic)
+        tableau = tableau.surrogate(vertices_needed(options, []), in_intervals(tableau, options))
     dps = int(extra[extra.index("--dps") + 1]) if "--dps" in extra else int(tableau.info.check.get("dps", 50))
     values = TableauValues(tableau, Reading(dps=dps, arithmetic=arithmetic))
     est = estimate(order, None, values.backend, channels_for(values, order), values.stages, dps,

@@ -18,9 +18,11 @@ prints the same figures) and are deliberately on the high side:
 * many stages (a continuous method's surrogate has hundreds): the products with A, s²
   per factor tree and s per term in every channel (2.5 ns each exact, 150 ns in balls at
   50 digits); making each entry a ball (up to 0.8 ms); the images of the entries in
-  every channel (100 ns and 8 bytes each, 32 where the products go through float
-  halves); the stage vectors beyond 4 stages (16 bytes per factor tree and stage exact,
-  170 in balls); and the entries as written (:func:`entries_size`);
+  every channel (100 ns each; in memory 32 bytes per entry and channel of one pass,
+  whose channels hold at most 64 MB of them, and 8 — 24 where the products go through
+  float halves — per entry and channel the classical order keeps open); the stage
+  vectors beyond 4 stages (16 bytes per factor tree and stage exact, 170 in balls); and
+  the entries as written (:func:`entries_size`);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
   grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
   and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
@@ -48,7 +50,11 @@ from typing import Callable, Iterable
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES
-from rkcheck.evaluation.channels import SLICE, SPLIT_STAGES
+from rkcheck.evaluation.channels import (
+    channels_per_image_pass,
+    held_image_bytes,
+    image_bytes,
+)
 from rkcheck.evaluation.slopes import MAX_GRADIENT_BYTES
 from rkcheck.numbers.formatting import count_text as count
 from rkcheck.numbers.formatting import human_bytes
@@ -71,8 +77,11 @@ CENTROID_RECORD_BYTES = 16
 #: beyond a few stages, the products with A (s² per factor tree, s per term and
 #: channel) and the stage vectors of the stored trees set the cost (a kernel's surrogate
 #: has hundreds of stages): about 2.5 ns a product exact (BLAS on float halves), 150 ns
-#: in balls at 50 digits; in memory, the images of A in every channel (8 bytes an entry)
-#: and, per factor tree and stage beyond SMALL_STAGES, 16 bytes exact and 170 in balls
+#: in balls at 50 digits; in memory, the images of A in the channels of one pass
+#: (:func:`~rkcheck.evaluation.channels.image_bytes`), those the exact classical order
+#: keeps in every channel it opens (counted as many as the energy conditions need, a
+#: bound), and, per factor tree and stage beyond SMALL_STAGES, 16 bytes exact and 170
+#: in balls
 EXACT_SECONDS_PER_STAGE_PRODUCT = 2.5e-9
 #: and the images of the entries in every channel, about 100 ns each (large rationals)
 EXACT_SECONDS_PER_ENTRY_CHANNEL = 100e-9
@@ -80,9 +89,6 @@ BALL_SECONDS_PER_STAGE_PRODUCT = 150e-9
 #: and each entry made a ball, once per precision the check tries (up to 0.8 ms for the
 #: rationals of hundreds of digits a kernel's surrogate has)
 BALL_SECONDS_PER_ENTRY = 0.8e-3
-EXACT_BYTES_PER_ENTRY_CHANNEL = 8
-#: the float halves the products of SLICE < s <= SPLIT_STAGES stages take beside them
-EXACT_BYTES_PER_ENTRY_CHANNEL_HALVES = 24
 EXACT_BYTES_PER_FACTOR_STAGE = 16
 BALL_BYTES_PER_LARGE_FACTOR_STAGE = 170
 #: the stage counts the per-tree costs above were measured at (RK4, Gauss-3, AVF Gauss-2..4)
@@ -146,7 +152,9 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
         seconds += trees * channels * EXACT_SECONDS_PER_TREE_CHANNEL
         seconds += channels * (products * EXACT_SECONDS_PER_STAGE_PRODUCT + stages**2 * EXACT_SECONDS_PER_ENTRY_CHANNEL)
         size = (BASE_BYTES + EXACT_BYTES_PER_TREE * trees + WORKING_BYTES * min(1.0, trees / 1e7)
-                + _image_bytes(stages) * channels * stages**2 + EXACT_BYTES_PER_FACTOR_STAGE * large)
+                + image_bytes(stages) * min(channels, channels_per_image_pass(stages))
+                + held_image_bytes(stages) * channels  # the classical order keeps its channels open
+                + EXACT_BYTES_PER_FACTOR_STAGE * large)
     else:
         precision = max(1.0, dps / 50)
         seconds += trees * (BALL_SECONDS_PER_TREE * precision**1.2 + BOX_SECONDS_PER_TREE_DIRECTION * directions)
@@ -159,12 +167,6 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
         # directions take more passes)
         size += min(MAX_GRADIENT_BYTES, factors * directions * (11 + 4 * stages))
     return Estimate(conditions, terms, factors, seconds, int(size + entry_bytes))
-
-
-def _image_bytes(stages: int) -> int:
-    """Bytes per entry and channel of the images of A in an exact check."""
-    halves = SLICE < stages <= SPLIT_STAGES  # multiplied by BLAS in two float halves
-    return EXACT_BYTES_PER_ENTRY_CHANNEL + (EXACT_BYTES_PER_ENTRY_CHANNEL_HALVES if halves else 0)
 
 
 def entries_size(texts: Iterable[str]) -> int:

@@ -21,7 +21,33 @@ SLICE = 8
 HALF_BITS = 15
 HALF_MASK = (1 << HALF_BITS) - 1
 SPLIT_STAGES = 1 << (53 - PRIME_BITS - HALF_BITS)
+#: the images of A and b one pass of channels holds: a surrogate of 300 stages needs
+#: 500 channels of 0.7 MB each, which in one pass took a gigabyte; passes are then
+#: narrowed to this much (a tableau of a few stages is never narrowed by it)
+IMAGE_PASS_BYTES = 64 << 20
+#: bytes per entry and channel of those images at their peak: each channel's images,
+#: then stacked, reduced and transposed (:class:`PrimeChannels`); or, while the pass
+#: runs, the transposed images and their float halves
+IMAGE_BYTES_PER_ENTRY = 32
 _PRIME_LIMIT = 1 << PRIME_BITS
+
+
+def image_bytes(stages: int) -> int:
+    """What one channel's images of A and b take at their peak."""
+    return IMAGE_BYTES_PER_ENTRY * (stages * stages + stages)
+
+
+def held_image_bytes(stages: int) -> int:
+    """What one channel's images of A take while its context lives: the transposed
+    residues, and their float halves where the products go through them."""
+    halves = SLICE < stages <= SPLIT_STAGES
+    return (8 + (16 if halves else 0)) * stages * stages
+
+
+def channels_per_image_pass(stages: int) -> int:
+    """How many channels' images of a tableau of ``stages`` stages one pass may hold
+    within :data:`IMAGE_PASS_BYTES` (at least one)."""
+    return max(1, IMAGE_PASS_BYTES // image_bytes(stages))
 
 
 def is_prime(n: int) -> bool:

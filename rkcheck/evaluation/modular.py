@@ -329,7 +329,6 @@ def _screened(scaled: ScaledTableau, listing: Listing, channels: list[tuple[int,
     ``done`` are all zero only (the others are decided: they fail), evaluated on the trees
     their terms need (:class:`~rkcheck.evaluation.subset.Subset`) into ``residues``;
     False, with nothing done, when those conditions are not few."""
-    from rkcheck.evaluation.scaled import PASS_BYTES
     from rkcheck.evaluation.subset import Subset
 
     if isinstance(listing, CentroidListing):  # its walks cost the same for a few conditions as for all
@@ -340,7 +339,7 @@ def _screened(scaled: ScaledTableau, listing: Listing, channels: list[tuple[int,
     if subset is None:
         return False
     flat, copies = _flat_channels(scaled, channels[done:])
-    width = max(1, PASS_BYTES // max(subset.channel_bytes(), 1))
+    width = scaled.pass_width(subset.channel_bytes())
     for g in range(0, len(flat), width):
         group = flat[g:g + width]
         sums = subset.residues(scaled.channels([(p, r) for _, _, p, r in group]))

@@ -13,7 +13,12 @@ from typing import Any, Sequence
 import numpy as np
 
 from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES, centroid_residues
-from rkcheck.evaluation.channels import ModularChannel, PrimeChannels, primes
+from rkcheck.evaluation.channels import (
+    ModularChannel,
+    PrimeChannels,
+    channels_per_image_pass,
+    primes,
+)
 from rkcheck.evaluation.conjugates import repeated_channels
 from rkcheck.evaluation.field_bounds import (
     embedding_bounds,
@@ -319,14 +324,20 @@ class ScaledTableau:
     def channels_per_pass(self, listing: Any, top: int) -> int:
         """How many channels one pass over the listing evaluates for orders up to ``top``
         vertices within :data:`PASS_BYTES` (at least one): Φ and ψ of the trees with up to
-        ``top − 2`` vertices, a and w up to ``top − 1``, 4 bytes each per channel."""
+        ``top − 2`` vertices, a and w up to ``top − 1``, 4 bytes each per channel
+        (:meth:`pass_width`)."""
         if isinstance(listing, CentroidListing):  # a few stage vectors per channel and waiting tree
-            return max(1, CENTROID_PASS_VALUES // self.s)
+            return min(channels_per_image_pass(self.s), max(1, CENTROID_PASS_VALUES // self.s))
         first = listing.first
         trees_a = first[min(top, len(first) - 1)]
         trees_phi = first[min(max(top - 1, 2), len(first) - 1)]
-        per_channel = 4 * (2 * trees_phi * self.s + 2 * trees_a)
-        return int(max(1, PASS_BYTES // per_channel))
+        return self.pass_width(4 * (2 * trees_phi * self.s + 2 * trees_a))
+
+    def pass_width(self, channel_bytes: int) -> int:
+        """How many channels one pass evaluates when each holds ``channel_bytes`` of
+        weights: as many as fit in :data:`PASS_BYTES`, and whose images of the tableau
+        fit (:func:`~rkcheck.evaluation.channels.channels_per_image_pass`); at least one."""
+        return min(channels_per_image_pass(self.s), max(1, PASS_BYTES // max(channel_bytes, 1)))
 
     def residues_at(self, listing: Any, pairs: Sequence[tuple[int, int]], orders: list[int]) -> dict[int, np.ndarray]:
         """``{n: (conditions, channels) residues}`` of the given orders in the channels

@@ -24,7 +24,7 @@ import numpy as np
 
 from rkcheck.errors import UserError
 from rkcheck.evaluation.backends import ball_context
-from rkcheck.evaluation.channels import PrimeChannels
+from rkcheck.evaluation.channels import PrimeChannels, channels_per_image_pass
 from rkcheck.evaluation.protocols import EnclosingContext, WeightContext
 from rkcheck.evaluation.scaled import ScaledTableau, scaled_rational
 from rkcheck.evaluation.values import Backend, TableauValues
@@ -212,9 +212,12 @@ class ExactWeights:
             self.opened.append(q)
             sources = scaled.channel_sources(q)
             pairs.extend((q, r) for j, r in enumerate(roots) if sources[j] == j)
-        if pairs:
-            self.groups.append((np.array([q for q, _ in pairs], dtype=np.int64)[:, None],
-                                TreeWeights(scaled.channels(pairs), self.s)))
+        # in groups whose images fit (a surrogate's are large: channels_per_image_pass)
+        width = channels_per_image_pass(self.s)
+        for k in range(0, len(pairs), width):
+            group = pairs[k:k + width]
+            self.groups.append((np.array([q for q, _ in group], dtype=np.int64)[:, None],
+                                TreeWeights(scaled.channels(group), self.s)))
         failing = np.zeros(len(ids), dtype=bool)
         for P, weights in self.groups:
             a = weights.extend(table, p)  # (channels, trees)

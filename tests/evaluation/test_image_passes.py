@@ -1,0 +1,70 @@
+"""Channels run in passes whose images of the tableau fit a bound (a surrogate of
+hundreds of stages needs hundreds of channels of its s² residues each): however
+narrow the passes, the residues are those of one wide pass — here checked against the
+independent reference (exact rationals, tree by tree)."""
+
+from __future__ import annotations
+
+import random
+from fractions import Fraction
+
+import pytest
+from support import reference as ref
+from support.heavy import heavy
+from support.limits import run_limited
+
+import rkcheck
+import rkcheck.evaluation.scaled as scaled
+import rkcheck.properties.orders as orders
+
+
+def _tableau(stages: int, digits: int, seed: int) -> tuple[list[list[Fraction]], list[Fraction]]:
+    """A dense rational tableau whose entries have about ``digits`` digits: many channels."""
+    rng = random.Random(seed)
+
+    def entry() -> Fraction:
+        return Fraction(rng.randint(-10**digits, 10**digits), rng.randint(1, 10**digits))
+
+    A = [[entry() for _ in range(stages)] for _ in range(stages)]
+    b = [entry() for _ in range(stages - 1)]
+    return A, b + [1 - sum(b)]  # consistent: classical order at least 1
+
+
+@pytest.fixture
+def one_channel_per_pass(monkeypatch):
+    """Every pass, screen and classical-order group as narrow as it can be."""
+    for module in (scaled, orders):
+        monkeypatch.setattr(module, "channels_per_image_pass", lambda stages: 1)
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_narrow_passes_give_the_reference_residuals_and_classical_order(one_channel_per_pass, seed):
+    A, b = _tableau(4, 30, seed)
+    tab = rkcheck.from_arrays([[str(x) for x in row] for row in A], [str(x) for x in b])
+    result = rkcheck.verify(tab, order=5, degree=None)
+    assert len(result.values.scaled.primes_for(result.values.scaled.decision_bits(6, 6))) > 4  # several passes
+    assert {c.level_sequence: c.residual for c in result.conditions} == {
+        cond["id"]: ref.energy_residual(cond, A, b) for n in range(3, 7) for cond in ref.energy_conditions(n)}
+    assert result.classical_order == ref.classical_order(A, b, 5)
+
+
+def test_narrow_passes_keep_a_kernels_verdicts(one_channel_per_pass):
+    # Hairer's energy-preserving collocation with s = 2 (tableaux/continuous/epcm-2.toml):
+    # classical order 2s = 4, and every energy condition holds (it preserves energy)
+    result = rkcheck.verify("tableaux/continuous/epcm-2.toml", order=6, degree=None)
+    assert result.classical_order == 4
+    assert result.all_hold
+
+
+@heavy
+def test_a_kernel_check_the_estimate_lets_through_fits_the_memory_it_was_given(tmp_path):
+    # τ⁴⁹σ to order 7: a surrogate of 295 stages whose entries need 533 channels.  With
+    # all their images in one pass the check took 1.4 GB where it estimated 0.93 GB, so
+    # under an address space of 1.3 GB it was let through and ran out of memory
+    path = tmp_path / "high-degree.toml"
+    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "7", "--no-cache", "-q"],
+                      memory_mb=1300, cpu_seconds=120)
+    assert run.code == 1, run.err  # a verdict (some condition fails), not "out of memory" (exit 2)
+    conditions = sum(ref.count_nonsuperfluous(n) for n in range(3, 9))  # free trees of order <= 7
+    assert f"of {conditions} conditions" in run.out.strip().splitlines()[-1], run.out
