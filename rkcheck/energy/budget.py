@@ -45,7 +45,7 @@ passes it in a :class:`Budget`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Iterable
 
 from rkcheck.errors import UserError
@@ -143,7 +143,8 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
     itself builds)."""
     conditions, terms, factors = listing_size(order, degree)
     if backend == "exact" and order >= CENTROID_FROM_ORDER and not listing:
-        return _centroid_estimate(conditions, terms, factors, channels, stages)
+        by_centroid = _centroid_estimate(conditions, terms, factors, channels, stages)
+        return replace(by_centroid, bytes=by_centroid.bytes + entry_bytes)
     trees = terms + factors
     seconds = trees * LISTING_SECONDS_PER_TREE
     products = factors * stages**2 + terms * stages  # per channel
@@ -172,7 +173,13 @@ def estimate(order: int, degree: int | None, backend: str, channels: int = 16, s
 def entries_size(texts: Iterable[str]) -> int:
     """About what entries written as ``texts`` take in memory (a kernel's surrogate of
     270 nodes: 73 000 entries of 1 100 characters, 380 MB)."""
-    return sum(ENTRY_BYTES + ENTRY_BYTES_PER_CHARACTER * len(t) for t in texts)
+    lengths = [len(t) for t in texts]
+    return entries_bytes(len(lengths), sum(lengths))
+
+
+def entries_bytes(count: int, characters: int) -> int:
+    """About what ``count`` entries whose texts take ``characters`` in all take in memory."""
+    return ENTRY_BYTES * count + ENTRY_BYTES_PER_CHARACTER * characters
 
 
 def _centroid_estimate(conditions: int, terms: int, factors: int, channels: int, stages: int) -> Estimate:

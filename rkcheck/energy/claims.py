@@ -25,7 +25,13 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
-from rkcheck.energy.budget import Budget, ResourceError
+from rkcheck.energy.budget import (
+    Budget,
+    ResourceError,
+    check_budget,
+    entries_bytes,
+    estimate,
+)
 from rkcheck.energy.check import CheckResult, CheckRunner
 from rkcheck.energy.gate import conditions_ok, requirement_shortfall
 from rkcheck.errors import UserError
@@ -234,14 +240,28 @@ def judge_tableau(tableau: Tableau, options: CheckOptions, fail_on: str = "auto"
     The claim runs share the main run when their options coincide (one CheckRunner);
     ``budget`` and ``progress`` go to every run (:func:`rkcheck.energy.check.check`)."""
     if getattr(tableau, "is_continuous", False):  # its B-series through an exact surrogate tableau
-        method: Any = tableau
-        tableau = method.surrogate(vertices_needed(options, list(method.info.claims)), in_intervals(method, options))
+        tableau = surrogate_within(tableau, options, list(tableau.info.claims), budget)
     runner = CheckRunner(budget, progress)
     result = runner(tableau, options)
     claims = check_claims(tableau, list(tableau.info.claims), options, runner) if tableau.info.claims else None
     require_ok = requirement_shortfall(result, claims) is None
     return result_type.of(result, claims=claims,
                           failed=file_fails(conditions_ok(result), claims, fail_on, require_ok))
+
+
+def surrogate_within(method: Any, options: CheckOptions, claims: list[Claim], budget: Budget | None) -> Tableau:
+    """The surrogate tableau a continuous method is checked through, built once the
+    budget allows its entries: hundreds of nodes make n² entries of a thousand digits,
+    which took the memory the check's own estimate then found missing (or GMP, failing
+    to allocate, aborted the process)."""
+    vertices, positive = vertices_needed(options, claims), in_intervals(method, options)
+    if budget is not None:
+        stages, characters = method.surrogate_size(vertices, positive)
+        entries = entries_bytes(stages * (stages + 1), characters)
+        check_budget(estimate(options.order, options.degree, "exact", stages=stages, entry_bytes=entries),
+                     replace(budget, announce=None), options.order)
+    surrogate: Tableau = method.surrogate(vertices, positive)
+    return surrogate
 
 
 def in_intervals(method: Any, options: CheckOptions) -> bool:

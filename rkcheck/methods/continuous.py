@@ -33,7 +33,7 @@ import math
 import re
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any, Mapping, Sequence
 
 from rkcheck.errors import TableauError, UserError
@@ -274,15 +274,36 @@ class ContinuousMethod:
         (:func:`~rkcheck.methods.quadrature.positive_rule`), for a kernel judged over
         the box of its decimals, whose widths the equispaced rule's weights would
         multiply by Σ|w_i| at every level of a tree."""
+        n_nodes, (x, w) = self._rule(vertices, positive)
+        A, b = self.kernel.surrogate_entries(x, w, self.info.constants)
+        info = self.info.replace(continuous=Surrogate(self, vertices, n_nodes, positive))
+        return Tableau(A=A, b=b, c=None, name=self.name, info=info)
+
+    def surrogate_size(self, vertices: int, positive: bool = False) -> tuple[int, int]:
+        """The stages of :meth:`surrogate` and about how many characters the texts of
+        its entries take (the longest of three rows of A, times the rows; and b), without
+        building it: hundreds of nodes give n² entries of a thousand digits each, which a
+        check weighs before it builds them.  The rows sampled are those of the nodes with
+        the longest texts (at 0, 1/2 or 1 the powers of a node take few digits)."""
+        n_nodes, (x, w) = self._rule(vertices, positive)
+        rows = sorted(range(n_nodes), key=lambda i: (-len(str(x[i])), i))[:3]
+        longest = max(self.kernel.row_characters(x, w, rows, self.info.constants))
+        return n_nodes, (n_nodes + 1) * longest
+
+    def _rule(self, vertices: int, positive: bool) -> tuple[int, tuple[list[Fraction], list[Fraction]]]:
         n_nodes = self.nodes_for(vertices, positive)
         if n_nodes > MAX_SURROGATE_NODES:
             raise UserError(f"the exact B-series to {vertices} vertices needs {n_nodes} quadrature nodes, "
                             f"more than the limit MAX_SURROGATE_NODES = {MAX_SURROGATE_NODES}; check a lower order",
                             source=self.info.source)
-        x, w = positive_rule(n_nodes) if positive else rational_rule(n_nodes)
-        A, b = self.kernel.surrogate_entries(x, w, self.info.constants)
-        info = self.info.replace(continuous=Surrogate(self, vertices, n_nodes, positive))
-        return Tableau(A=A, b=b, c=None, name=self.name, info=info)
+        return n_nodes, _rule(n_nodes, positive)
+
+
+@lru_cache(maxsize=4)
+def _rule(n_nodes: int, positive: bool) -> tuple[list[Fraction], list[Fraction]]:
+    """The surrogate's nodes and weights, kept: a check weighs a surrogate's size on
+    them, then builds it on them (hundreds of nodes take a fraction of a second)."""
+    return positive_rule(n_nodes) if positive else rational_rule(n_nodes)
 
 
 @dataclass(frozen=True)

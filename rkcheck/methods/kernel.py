@@ -150,11 +150,13 @@ class Kernel:
 
     # ---------------------------------------------------------------- surrogate
 
-    def _at_nodes(self, p: Any, x: list[Fraction], w: list[Fraction], rows: bool = False) -> list[list[Any]]:
+    def _at_nodes(self, p: Any, x: list[Fraction], w: list[Fraction], rows: bool = False,
+                  only: list[int] | None = None) -> list[list[Any]]:
         """``w_j p(x_i, x_j)`` for the rational polynomial ``p(τ, σ)`` at every pair of
         nodes, or ``w_i p(x_i)`` (one column) with ``rows``, as FLINT rationals: ``V_τ C
         V_σᵀ``, ``C`` its coefficients and ``V`` the Vandermonde matrices of the nodes
-        (node by node in Python, a surrogate of a few hundred nodes would take seconds)."""
+        (node by node in Python, a surrogate of a few hundred nodes would take seconds);
+        ``only``: the rows ``i`` in this list alone (pairs only)."""
         from flint import fmpq_mat
 
         t, s = self._index("tau"), self._index("sigma")
@@ -162,11 +164,20 @@ class Kernel:
         C = fmpq_mat(1 + max((i for i, _ in monoms), default=0), 1 + max((j for _, j in monoms), default=0))
         for (i, j), c in zip(monoms, p.coeffs()):
             C[i, j] = c
-        values = vandermonde(x, C.nrows()) * C
+        values = vandermonde(x if only is None else [x[i] for i in only], C.nrows()) * C
         if not rows:
             values = values * vandermonde(x, C.ncols()).transpose()
         weights = [to_fmpq(q) for q in w]
         return [[values[i, j] * weights[i if rows else j] for j in range(values.ncols())] for i in range(values.nrows())]
+
+    def row_characters(self, x: list[Fraction], w: list[Fraction], rows: list[int], constants: Constants) -> list[int]:
+        """The characters the texts of :meth:`surrogate_entries` take in each row of A in
+        ``rows``, written as there but not read back (a few rows of a surrogate cost what
+        a check may weigh before it builds all n² entries)."""
+        plain = self.ring.field is None and not any(constants.uses_decimal(node) for node in self.nodes)
+        if plain:
+            return [sum(len(str(v)) for v in row) for row in self._at_nodes(self.A_poly, x, w, only=rows)]
+        return [sum(len(_weighted_text(w[j], _value_at(self.nodes[0], x[i], x[j]))) for j in range(len(x))) for i in rows]
 
     def surrogate_entries(self, x: list[Fraction], w: list[Fraction],
                           constants: Constants) -> tuple[tuple[tuple[Entry, ...], ...], tuple[Entry, ...]]:
@@ -233,9 +244,17 @@ def _same_literals(A_node: ex.Expr, B_node: ex.Expr) -> ex.Expr:
     return xp.rebuilt(B_node, lambda n: same.get(id(n), n))
 
 
+def _value_at(node: ex.Expr, tau: Fraction, sigma: Fraction) -> ex.Expr:
+    return xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
+
+
+def _weighted_text(weight: Fraction, value: ex.Expr) -> str:
+    return f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
+
+
 def _entry_at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction, constants: Constants) -> Entry:
-    value = xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
-    text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
+    value = _value_at(node, tau, sigma)
+    text = _weighted_text(weight, value)
     # built from the kernel's own nodes, not parsed from the text: a decimal of the
     # kernel is then one literal in every entry (numbers.literals), as it is one number
     return Entry.from_node(text, ex.Binary("*", _literal(weight), value, 1), constants, shares_literals=True)

@@ -1,7 +1,8 @@
-"""Channels run in passes whose images of the tableau fit a bound (a surrogate of
-hundreds of stages needs hundreds of channels of its s² residues each): however
-narrow the passes, the residues are those of one wide pass — here checked against the
-independent reference (exact rationals, tree by tree)."""
+"""Checks of tableaux of hundreds of stages (a kernel's surrogate) within their memory:
+the surrogate is weighed before it is built, and its channels run in passes whose
+images of the tableau fit a bound — however narrow the passes, the residues are those
+of one wide pass, here checked against the independent reference (exact rationals,
+tree by tree)."""
 
 from __future__ import annotations
 
@@ -68,3 +69,16 @@ def test_a_kernel_check_the_estimate_lets_through_fits_the_memory_it_was_given(t
     assert run.code == 1, run.err  # a verdict (some condition fails), not "out of memory" (exit 2)
     conditions = sum(ref.count_nonsuperfluous(n) for n in range(3, 9))  # free trees of order <= 7
     assert f"of {conditions} conditions" in run.out.strip().splitlines()[-1], run.out
+
+
+def test_a_surrogate_the_memory_cannot_hold_is_refused_before_it_is_built(tmp_path):
+    # τ⁴⁹σ to order 8: 344 nodes, entries of some 1 500 characters (118 680 of them).
+    # Built before the budget was consulted, under 600 MB the surrogate alone ran the
+    # process out of memory: GMP, failing to allocate, aborted it (SIGABRT, no message)
+    path = tmp_path / "high-degree.toml"
+    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "8", "--no-cache"],
+                      memory_mb=600, cpu_seconds=60)
+    assert run.code == 2, run.err
+    [line] = run.err.strip().splitlines()
+    assert line.startswith("rkcheck: error: order 8 needs about ") and " MB is available" in line, line
