@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 import time
 from contextlib import nullcontext
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from rkcheck.api.settings import ProjectConfig, budget, guard, project_config
@@ -441,8 +441,10 @@ def catalog(
     rows = []
     if progress is not None:
         progress(0, len(files))
+    # every file's check within the memory available, as a scan's
+    each = replace(budget(), remedy="lower --order or --degrees")
     for f in files:
-        row = catalog_row(f, degs, order)
+        row = catalog_row(f, degs, order, budget=each)
         if root is not None:
             row.path = str(FsPath(f).relative_to(root))
         rows.append(row)

@@ -44,11 +44,12 @@ def _property_cell(pv) -> str:
     return "yes" if pv.verdict.state is State.HOLDS else "yes†"
 
 
-def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50) -> CatalogRow:
-    """One file's row; a file that cannot be read or checked is a row with its error."""
+def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50, budget: Any = None) -> CatalogRow:
+    """One file's row; a file that cannot be read or checked is a row with its error
+    (``budget``: refuse a check that would not fit, as :func:`rkcheck.energy.check.check`)."""
     row = CatalogRow(path)
     try:
-        _fill_row(row, path, degrees, order, dps)
+        _fill_row(row, path, degrees, order, dps, budget)
     except UserError as err:  # one file's error is its row, the catalogue goes on
         row.error = str(err if err.source else err.located(source=path))
     except (RecursionError, MemoryError) as err:
@@ -56,20 +57,19 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50)
     return row
 
 
-def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int, dps: int) -> None:
+def _fill_row(row: CatalogRow, path: str, degrees: list[int | None], order: int, dps: int, budget: Any) -> None:
     from rkcheck.energy.check import CheckRunner
     from rkcheck.energy.claims import check_claims
 
     tab: Any = load(path)
     if getattr(tab, "is_continuous", False):  # its B-series through a surrogate exact as far as the checks read
-        from rkcheck.energy.claims import in_intervals, vertices_needed
+        from rkcheck.energy.claims import surrogate_within
 
         row.name, row.stages, row.structure = tab.name, "∞", "continuous"
-        options = CheckOptions(order=order)
-        tab = tab.surrogate(vertices_needed(options, list(tab.info.claims)), in_intervals(tab, options))
+        tab = surrogate_within(tab, CheckOptions(order=order), list(tab.info.claims), budget)
     else:
         row.name, row.stages, row.structure = tab.name, tab.stages, tab.structure
-    runner = CheckRunner()
+    runner = CheckRunner(budget)
     for deg in degrees:
         res = runner(tab, CheckOptions(degree=deg, order=order, dps=dps))
         label = "all H" if deg is None else f"m={deg}"

@@ -131,6 +131,9 @@ class Budget:
     available_bytes: int | None = None
     max_conditions: int | None = None
     announce: Callable[[str], None] | None = None
+    #: what a refusal for memory tells the user to do (a command without
+    #: --max-conditions offers less)
+    remedy: str = "lower --order or --degree, or set --max-conditions to run anyway"
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
@@ -205,7 +208,6 @@ def check_budget(est: Estimate, budget: Budget | None, order: int) -> None:
     if budget.max_conditions is None and budget.available_bytes is not None and est.bytes > budget.available_bytes:
         raise ResourceError(
             f"order {order} needs about {human_bytes(est.bytes)} for {count(est.conditions)} conditions but "
-            f"{human_bytes(budget.available_bytes)} is available; lower --order or --degree, or set "
-            f"--max-conditions to run anyway")
+            f"{human_bytes(budget.available_bytes)} is available; {budget.remedy}")
     if budget.announce is not None and est.seconds > QUIET_SECONDS:
         budget.announce(f"estimated {est.text()}")

@@ -13,6 +13,7 @@ import pytest
 from support import reference as ref
 from support.heavy import heavy
 from support.limits import run_limited
+from support.paths import TABLEAUX
 
 import rkcheck
 import rkcheck.evaluation.scaled as scaled
@@ -82,3 +83,20 @@ def test_a_surrogate_the_memory_cannot_hold_is_refused_before_it_is_built(tmp_pa
     assert run.code == 2, run.err
     [line] = run.err.strip().splitlines()
     assert line.startswith("rkcheck: error: order 8 needs about ") and " MB is available" in line, line
+
+
+def test_a_catalogue_weighs_each_file_against_the_memory_available(tmp_path):
+    # the same surrogate in a catalogue: its row says why it was refused (with the
+    # catalogue's own options), the other files are catalogued; it ran out of memory
+    # instead (or GMP aborted the whole catalogue)
+    (tmp_path / "high-degree.toml").write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    (tmp_path / "rk4.toml").write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    run = run_limited(["-m", "rkcheck", "catalog", str(tmp_path), "--order", "8"], memory_mb=600, cpu_seconds=120)
+    assert run.code == 1, run.err
+    rows: dict[str, str] = {}
+    for line in run.out.splitlines():  # the first table's rows (the constants' table follows)
+        if line.startswith("| `"):
+            rows.setdefault(line.split("|")[1].strip(), line)
+    assert "error: " in rows["`high-degree.toml`"] and "order 8 needs about " in rows["`high-degree.toml`"]
+    assert rows["`high-degree.toml`"].count("lower --order or --degrees") == 1 and "--max-conditions" not in run.out
+    assert "error" not in rows["`rk4.toml`"] and "| 4 |" in rows["`rk4.toml`"]  # RK4: 4 stages, classical order 4
