@@ -43,6 +43,7 @@ from rkcheck.methods.tableau import MethodInfo, Tableau
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.entries import Constants
+from rkcheck.numbers.formatting import count_text
 from rkcheck.numbers.reading import DecimalsMode
 
 #: the Greek letters accepted for a kernel's two variables (VARIABLES)
@@ -219,7 +220,14 @@ class ContinuousMethod:
             coeff = (text if re.fullmatch(r"[\w.]+", text) else f"({text})") + ("" if i == 1 else f"/{i}")
             A_terms.append(coeff + _monomial("tau", i) + _monomial("sigma", j - 1))
             b_terms.append(coeff + _monomial("tau", j - 1))
-        return ContinuousMethod(" + ".join(A_terms), " + ".join(b_terms), name, info, tuple(tuple(r) for r in rows))
+        A_text = " + ".join(A_terms)
+        if len(A_text) > ex.MAX_ENTRY_LENGTH:
+            # every entry of the surrogate would hold this text: thousands of copies
+            raise TableauError(f"with decimals, M is written term by term into A(τ, σ), here {count_text(len(A_text))} "
+                               f"characters, above the limit of one entry (MAX_ENTRY_LENGTH = "
+                               f"{count_text(ex.MAX_ENTRY_LENGTH)}); M of rationals is collected into a polynomial instead",
+                               "M", info.source)
+        return ContinuousMethod(A_text, " + ".join(b_terms), name, info, tuple(tuple(r) for r in rows))
 
     def replace(self, **changes: Any) -> "ContinuousMethod":
         return dataclasses.replace(self, **changes)

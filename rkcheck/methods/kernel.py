@@ -42,7 +42,8 @@ class Kernel:
         places = [matrix_place or "continuous.A", matrix_place or "continuous.b"]
         for place, text in zip(places, (A, b)):
             try:
-                node = ex.parse(text)
+                # from M, a text of up to 40 × 40 terms, each entry of M within the limit
+                node = ex.parse(text, None if matrix_place else ex.MAX_ENTRY_LENGTH)
                 for used in xp.names(node):
                     if used.name not in VARIABLES and used.name not in constants.definitions:
                         raise UserError(f"unknown name {used.name!r} at column {used.column}: a kernel is a "
@@ -50,6 +51,7 @@ class Kernel:
             except UserError as err:
                 raise err.located(place) from None
             nodes.append(node)
+        written = list(nodes)
         nodes[1] = b_in_tau(nodes[1], matrix_place or "continuous.b")
         if matrix_place:
             nodes[1] = _same_literals(nodes[0], nodes[1])
@@ -65,9 +67,9 @@ class Kernel:
         # which divides nothing now that both are known to be polynomials
         probe = Constants(dict(constants.definitions) | {v: ex.parse("0") for v in VARIABLES})
         entries = []
-        for place, text in zip(places, (A, b)):
+        for place, text, node in zip(places, (A, b), written):
             try:
-                entries.append(Entry.parse(text, probe))
+                entries.append(Entry.from_node(text, node, probe))
             except UserError as err:
                 raise err.located(place) from None
         return Kernel((nodes[0], nodes[1]), (entries[0], entries[1]), parsed.ring, A_poly, B_poly, parsed)

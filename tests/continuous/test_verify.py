@@ -313,6 +313,22 @@ def test_a_matrix_from_python_is_checked_as_a_file_s(M, message, tmp_path):
     assert out.returncode == 2 and message in out.stderr and out.stderr.count("\n") == 1, out.stderr
 
 
+def test_the_largest_matrix_allowed_is_read(tmp_path):
+    # 40 × 40, the limit MAX_KERNEL_MATRIX: its kernel's text (1 600 terms) is longer than
+    # one entry may be, and was refused as "M: entry too long" though no entry of M is
+    M = [[str((i + j) % 3 + 1) for j in range(40)] for i in range(40)]
+    method = ContinuousMethod.from_matrix(M)
+    # A = Σ M_ij τ^i/i σ^(j−1): degree 40 in τ, 39 in σ; B(σ) = A(1, σ): degree 39
+    assert (method.kernel.deg_tau, method.kernel.deg_sigma, method.kernel.deg_b) == (40, 39, 39)
+    # with decimals M is written term by term (each literal kept), a text every entry of
+    # the surrogate would copy: refused in one line naming that limit, not an entry of M
+    f = tmp_path / "m.json"
+    f.write_text(json.dumps({"continuous": {"M": [[x + ".000001" for x in row] for row in M]}}), encoding="utf-8")
+    out = run("verify", str(f))
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert "M: with decimals, M is written term by term" in out.stderr and "MAX_ENTRY_LENGTH" in out.stderr
+
+
 @pytest.mark.parametrize("M, constants", [
     ('[["4", "-6.000000"], ["-6.000000", "12"]]', ""),
     ('[["4", "-k"], ["-6", "12"]]', '[constants]\nk = "6.000000"\n'),
