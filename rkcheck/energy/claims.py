@@ -22,6 +22,7 @@ property claim: the found column says so and the note gives the proven order.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
@@ -223,7 +224,7 @@ def _claim_run(run_check: Callable[[Tableau, CheckOptions], CheckResult], tablea
             raise
         bound = "every degree" if opts.degree is None else f"degree {opts.degree}"
         # lowering --degree cannot help: the claims name their own degree
-        message = err.message.replace("lower --order or --degree", "lower --order")
+        message = re.sub(r"lower --order or --degrees?\b", "lower --order", err.message)
         raise ResourceError(f"the file's [expect] claims for {bound} are checked to order {opts.order} too: "
                             f"{message}", err.place, err.source or tableau.info.source) from None
 

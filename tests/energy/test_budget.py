@@ -126,3 +126,21 @@ def test_a_refusal_the_claims_cause_names_them(capsys):
     assert r.code == 2 and r.err.count("\n") == 1, r.err
     assert "[expect] claims for degree 4 are checked to order 30" in r.err and "or --degree" not in r.err
     assert run_cli(capsys, "verify", "@gauss-2", "--order", "30", "--degree", "2", "-q").code == 2
+
+
+@pytest.mark.parametrize("remedy", [Budget().remedy, "lower --order or --degrees"], ids=["verify", "catalog"])
+def test_a_refusal_the_claims_cause_drops_the_degree_from_any_remedy(remedy):
+    # lowering the degree of the command cannot help a claim that names its own degree;
+    # catalog's words ("--degrees") lost the option and kept its "s" ("lower --orders")
+    from rkcheck.energy.budget import Estimate
+    from rkcheck.energy.claims import _claim_run
+
+    def refuse(tableau, options):
+        check_budget(Estimate(1, 1, 1, 0.0, 2**40), Budget(available_bytes=2**30, remedy=remedy), options.order)
+
+    with pytest.raises(ResourceError) as err:
+        _claim_run(refuse, load(str(TABLEAUX / "explicit" / "rk4.toml")), CheckOptions(order=30, degree=4),
+                   CheckOptions(order=30, degree=2))
+    message = str(err.value)
+    assert "the file's [expect] claims for degree 4 are checked to order 30 too: " in message, message
+    assert "; lower --order" in message and "--degree" not in message and "--orders" not in message
