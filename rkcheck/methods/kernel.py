@@ -172,12 +172,16 @@ class Kernel:
         weights = [to_fmpq(q) for q in w]
         return [[values[i, j] * weights[i if rows else j] for j in range(values.ncols())] for i in range(values.nrows())]
 
+    def _plain(self, constants: Constants) -> bool:
+        """Whether the surrogate's entries are exact fractions (a rational kernel without
+        decimals), not the kernel's own expression at the nodes."""
+        return self.ring.field is None and not any(constants.uses_decimal(node) for node in self.nodes)
+
     def row_characters(self, x: list[Fraction], w: list[Fraction], rows: list[int], constants: Constants) -> list[int]:
         """The characters the texts of :meth:`surrogate_entries` take in each row of A in
         ``rows``, written as there but not read back (a few rows of a surrogate cost what
         a check may weigh before it builds all n² entries)."""
-        plain = self.ring.field is None and not any(constants.uses_decimal(node) for node in self.nodes)
-        if plain:
+        if self._plain(constants):
             return [sum(len(str(v)) for v in row) for row in self._at_nodes(self.A_poly, x, w, only=rows)]
         return [sum(len(_weighted_text(w[j], _value_at(self.nodes[0], x[i], x[j]))) for j in range(len(x))) for i in rows]
 
@@ -187,8 +191,7 @@ class Kernel:
         fractions for a rational kernel without decimals, otherwise the kernel's own
         expression at the nodes (its decimals and roots then read as in any entry)."""
         n = len(x)
-        plain = self.ring.field is None and not any(constants.uses_decimal(node) for node in self.nodes)
-        if plain:
+        if self._plain(constants):
             A = tuple(tuple(_rational_entry(v) for v in row) for row in self._at_nodes(self.A_poly, x, w))
             b = tuple(_rational_entry(row[0]) for row in self._at_nodes(self.B_poly, x, w, rows=True))
             return A, b

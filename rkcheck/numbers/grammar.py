@@ -483,5 +483,5 @@ def parse(text: str, limit: int | None = MAX_ENTRY_LENGTH) -> Expr:
     ``limit``: None for a text rkcheck wrote from entries each within the limit (a
     kernel from its matrix M: the terms of up to 40 × 40 entries)."""
     if limit is not None and len(text) > limit:
-        raise UserError(f"entry too long ({count_text(len(text))} characters; the limit is {count_text(MAX_ENTRY_LENGTH)})")
+        raise UserError(f"entry too long ({count_text(len(text))} characters; the limit is {count_text(limit)})")
     return _Parser(text).parse()
