@@ -224,7 +224,9 @@ class _Weights:
         """Keep ``Φ`` of the first ``rows`` trees only (``ψ`` stays): for ``a`` of the
         trees with ``top − 1`` vertices, a tree with ``top − 3`` vertices is a left factor
         only when its children are the smallest trees (a handful, computed from their
-        factors), while its ψ enters every ``τ ∘ v``."""
+        factors), while its ψ enters every ``τ ∘ v``.  Φ(τ) stays whatever ``rows``: it
+        has no factors to be computed from."""
+        rows = max(rows, 1)
         if rows >= self.limit["phi"]:
             return
         ctx, old = self.ctx, self.store["phi"]

@@ -258,6 +258,27 @@ def test_top_a_stored_before_the_top_order_or_computed_in_it_give_the_reference(
         assert value == ref.energy_residual(refs[cid], A, b), cid
 
 
+@pytest.mark.parametrize("order", [3, 4, 5])
+def test_every_order_checked_alone_with_the_fewest_weights_stored_gives_the_reference(monkeypatch, order):
+    # the lowest top orders with Φ and ψ of the trees with top − 2 vertices recomputed
+    # and a stored before the top order (what vectors of a few hundred stages and many
+    # directions choose): at order 3 only Φ(τ) is left stored, which no factors give
+    import rkcheck.evaluation.algorithm as algorithm
+
+    monkeypatch.setattr(algorithm, "RECOMPUTE_BYTES", 0)
+    monkeypatch.setattr(algorithm, "_a_before_top", lambda *args: True)
+    listing = ConditionListing(order, None)
+    rng = random.Random(order)
+    A, b = random_tableau(rng, 3, sum_b_one=True)
+    refs = ref_by_id()
+    ctx = BallContext([[Interval.point(x) for x in row] for row in A], [Interval.point(x) for x in b], bits=200)
+    sums = condition_sums(listing, ctx, 3, [order + 1])[order + 1]
+    for k in range(len(sums)):
+        enc, rec = sums.enclosure(k), listing.record(order + 1, k)
+        exact = ref.energy_residual(refs[rec.level_sequence], A, b)
+        assert abs(enc.mid * listing.flip(order + 1, k) - exact) <= enc.rad < F(1, 10 ** 50), rec.id
+
+
 def test_symmetry_factors_equal_reference_sigmas():
     # expected: σ(u) of every rooting from the reference (the engine folds (n−1)!/σ(u)
     # into each term's coefficient)
