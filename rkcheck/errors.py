@@ -5,8 +5,8 @@
   ``FILE: PLACE: message`` and exits with code 2; it never shows a traceback.  Its
   subclasses say more: :class:`TableauError` (a tableau that cannot be built),
   :class:`OptionError` (a check option out of range), :class:`UnknownMethodError`
-  (``@name`` not in the library); the resource guard's ``ResourceError`` and the
-  integrator's ``NewtonError`` are UserErrors too.
+  (``@name`` not in the library), :class:`ResourceError` (a check that would not fit in
+  the memory available); the integrator's ``NewtonError`` is a UserError too.
 * Anything else that escapes is a bug (the CLI's exit code 3).
 * :class:`CheckInterrupted` is not an error: Ctrl-C during a check, carrying what
   finished (a ``KeyboardInterrupt``, so it stops a library caller as Ctrl-C does).
@@ -67,6 +67,10 @@ class TableauError(UserError):
 
 class OptionError(UserError):
     """A check option (degree, order, dps, decimals, ...) that is not valid."""
+
+
+class ResourceError(UserError):
+    """A check that would not fit in the machine's memory (exit code 2)."""
 
 
 class UnknownMethodError(UserError):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 from typing import Any, Sequence
 
+from rkcheck.api.settings import watching_memory
 from rkcheck.api.verification import UNSET, _option
 from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
 from rkcheck.errors import OptionError
@@ -103,6 +104,7 @@ def check_options(fam: Family, degree: Any = UNSET, order: Any = UNSET,
     return deg, N
 
 
+@watching_memory
 def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET,
                       order: int = UNSET, classical_order: int | None = None) -> FamilyConditions:
     """Every energy condition up to ``order`` for Hamiltonians of degree ≤ ``degree`` (and
@@ -117,6 +119,7 @@ def family_conditions(family: Family | str | os.PathLike[str], *, degree: int | 
     return compute(fam, deg, N, _classical(classical_order))
 
 
+@watching_memory
 def solve(family: Family | str | os.PathLike[str], *, degree: int | str | None = UNSET, order: int = UNSET,
           classical_order: int | None = None, where: Sequence[str] = (),
           max_seconds: float = 60, route: str = "auto") -> SolutionSet:
@@ -189,12 +192,8 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
     images = [ctx.gens()[i] if n not in result.eliminated else result.eliminated[n] for i, n in enumerate(names)]
     keep = [names.index(n) for n in result.rest]
     s = fam.stages
-    if fam.kernel:  # AVF's kernel A = τ, B = 1, whose surrogate is A_ij = w_j x_i, b_i = w_i
-        from rkcheck.methods.quadrature import rational_rule
-
-        x, w = rational_rule(s)
-        gaps = [fam.ring.reduce(fam.A[i][j] - fam.ring.constant(w[j] * x[i])) for i in range(s) for j in range(s)]
-        gaps += [fam.ring.reduce(fam.b[i] - fam.ring.constant(w[i])) for i in range(s)]
+    if fam.kernel:
+        gaps = _gaps_to_avf_kernel(fam)
     else:
         gaps = [fam.ring.reduce(fam.A[i][j] - sum(fam.A[i][1:], fam.A[i][0]) * fam.b[j])
                 for i in range(s) for j in range(s)]
@@ -204,6 +203,27 @@ def _avf_on_pieces(fam: Family, result: SolutionSet, seconds: float) -> None:
         comp.avf = True if all(contains(piece, d, result.rest, deadline) for d in dicts) else None
 
 
+def _gaps_to_avf_kernel(fam: Family) -> list[Any]:
+    """What vanishes exactly where a kernel family's member is AVF's kernel A = τ, B = 1,
+    whose surrogate is ``A_ij = w_j x_i``, ``b_i = w_i``: the coefficients of
+    ``A(τ, σ) − τ`` when A is read through its factors ``V C Wᵀ`` (V and W, the powers
+    of more nodes than the kernel's degrees, have independent columns, so ``V D Wᵀ = 0``
+    only for ``D = 0``), else every entry of ``A − (w_j x_i)``; and ``b − w``."""
+    from rkcheck.methods.quadrature import rational_rule
+
+    s, ring = fam.stages, fam.ring
+    x, w = rational_rule(s)
+    if fam.factors is not None:
+        C = fam.factors[1]
+        tau = [(a, c) for a in range(C.shape[0]) for c in range(C.shape[1])]
+        gaps = [C[a, c] - ring.constant(1 if (a, c) == (1, 0) else 0) for a, c in tau]
+        gaps += [] if (1, 0) in tau else [ring.constant(-1)]  # no τ in A: never τ
+    else:
+        gaps = [ring.reduce(fam.A[i][j] - ring.constant(w[j] * x[i])) for i in range(s) for j in range(s)]
+    return gaps + [ring.reduce(fam.b[i] - ring.constant(w[i])) for i in range(s)]
+
+
+@watching_memory
 def sweep(family: Family | str | os.PathLike[str], grids: Sequence[str], *, degree: int | str | None = UNSET,
           order: int = UNSET) -> Any:
     """The energy order of the family at every point of a grid of rational parameter

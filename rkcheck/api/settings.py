@@ -7,10 +7,11 @@ every command reads the project's settings and refuses oversized work the same w
 
 from __future__ import annotations
 
+import functools
 import os
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Iterator
+from typing import TYPE_CHECKING, Callable, Iterator, ParamSpec, TypeVar
 
 from rkcheck.errors import OptionError, as_option
 from rkcheck.io.config import Config as ProjectConfig
@@ -18,6 +19,9 @@ from rkcheck.io.config import Config as ProjectConfig
 if TYPE_CHECKING:
     from rkcheck.energy.budget import Budget
     from rkcheck.io.cache import ListingCache
+
+P = ParamSpec("P")
+R = TypeVar("R")
 
 
 def project_config() -> ProjectConfig:
@@ -40,8 +44,24 @@ def budget(max_conditions: int | None = None, announce: Callable[[str], None] | 
     return Budget(available_memory(), max_conditions, announce)
 
 
+def watching_memory(fn: Callable[P, R]) -> Callable[P, R]:
+    """``fn`` with its computations on polynomials stopped, as a
+    :class:`~rkcheck.errors.ResourceError`, before they run out of this machine's memory
+    (:mod:`rkcheck.numbers.room`; FLINT would abort the process)."""
+
+    @functools.wraps(fn)
+    def watched(*args: P.args, **kwargs: P.kwargs) -> R:
+        from rkcheck.io.machine import available_memory
+        from rkcheck.numbers.room import room_read_by
+
+        with room_read_by(available_memory):
+            return fn(*args, **kwargs)
+
+    return watched
+
+
 def guard(order: int, degree: int | None) -> None:
-    """Refuse (:class:`~rkcheck.energy.budget.ResourceError`, the CLI's one line) an order
+    """Refuse (:class:`~rkcheck.errors.ResourceError`, the CLI's one line) an order
     whose condition tables would not fit in the memory available: the guard of the
     commands that build the tables without a budget of their own (bench, perturb,
     catalog)."""

@@ -197,7 +197,7 @@ def verify(
     order 8, dps 50, decimals "auto" (definitions §5), require "any" (the proof gate:
     "proof" or "digits:D" make numerical holds count as failures, like ``--require``).
     ``arithmetic``: "auto", "exact" or "ball".  ``max_conditions`` refuses larger checks; the memory available
-    bounds them anyway (:class:`~rkcheck.energy.budget.ResourceError`).
+    bounds them anyway (:class:`~rkcheck.errors.ResourceError`).
 
     A large exact check can be split: its passes (one per group of primes, each a pass
     over every condition) run on the Dask cluster at ``scheduler`` (``"tcp://host:8786"``;

@@ -48,7 +48,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Callable, Iterable
 
-from rkcheck.errors import UserError
+from rkcheck.errors import ResourceError as ResourceError  # the refusal, named here too
 from rkcheck.evaluation.centroid import CENTROID_PASS_VALUES
 from rkcheck.evaluation.channels import (
     channels_per_image_pass,
@@ -99,10 +99,6 @@ ENTRY_BYTES_PER_CHARACTER = 4
 ENTRY_BYTES = 1000
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
-
-
-class ResourceError(UserError):
-    """A check that would not fit in the machine's memory (exit code 2)."""
 
 
 @dataclass(frozen=True)

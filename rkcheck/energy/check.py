@@ -189,7 +189,7 @@ def check(tableau: Tableau, options: CheckOptions, budget: Budget | None = None,
           progress: Callable[[int, int], None] | None = None, values: TableauValues | None = None) -> CheckResult:
     """Run the whole check of definitions §3–§5 on ``tableau``.
 
-    ``budget``: refuse (:class:`~rkcheck.energy.budget.ResourceError`) a check that would
+    ``budget``: refuse (:class:`~rkcheck.errors.ResourceError`) a check that would
     not fit, and announce a long one, before any work.  ``progress(done, total)`` as the
     evaluation advances.  ``values``: the tableau read under ``options.reading``, when
     the caller already has it (several checks of one tableau share it).  Ctrl-C raises

@@ -28,14 +28,13 @@ from typing import Any, Callable
 
 from rkcheck.energy.budget import (
     Budget,
-    ResourceError,
     check_budget,
     entries_bytes,
     estimate,
 )
 from rkcheck.energy.check import CheckResult, CheckRunner
 from rkcheck.energy.gate import conditions_ok, requirement_shortfall
-from rkcheck.errors import UserError
+from rkcheck.errors import ResourceError, UserError
 from rkcheck.methods.claims import Claim
 from rkcheck.methods.tableau import Tableau
 from rkcheck.numbers.formatting import digits_text

@@ -111,7 +111,8 @@ def quadrature_conditions(ring: ParameterRing, A: Sequence[Sequence[Any]], b: Se
     the elementary weight of the bush with k vertices; past it the surrogate's rule is not
     the kernel's)."""
     s = len(b)
-    c = [sum(row[1:], row[0]) for row in A]
+    row_sums = getattr(A, "row_sums", None)  # a kernel family's A, through its factors
+    c = row_sums() if row_sums is not None else [sum(row[1:], row[0]) for row in A]
     out = []
     for k in range(1, (2 * s if reach is None else reach) + 1):
         total = ring.constant(0)

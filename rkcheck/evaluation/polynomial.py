@@ -12,16 +12,25 @@ from __future__ import annotations
 
 from fractions import Fraction
 from math import factorial
-from typing import Any, Sequence
+from typing import Any, Callable, Sequence
 
 import numpy as np
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.parametric import MAX_PRODUCT_WORK, ParameterRing, object_array
+from rkcheck.numbers.room import RoomWatch
 
 #: Terms the stored weights and condition sums of one family check may hold together
 #: (50 bytes a term with 30 parameters, about 100 with the temporaries: two gigabytes).
 MAX_FAMILY_TERMS = 20_000_000
+
+#: products of terms, and polynomials formed, per slice of the rows of one array
+#: operation (about 0.1 s; coefficients of hundreds of digits make a few megabytes of
+#: results): the memory left is looked at between slices
+SLICE_PRODUCTS = 1_000_000
+SLICE_ENTRIES = 4096
+
+_REMEDY = "check a lower order, a degree bound or fewer parameters"
 
 
 def _terms(x: np.ndarray) -> np.ndarray:
@@ -35,14 +44,17 @@ class PolynomialContext:
     Polynomials in many parameters grow fast with the order (a 5-stage tableau with every
     entry free: 7 GB at order 8), and a product of two of them runs in FLINT's C, where
     neither Ctrl-C nor SIGTERM reaches it: each array operation is refused before it
-    would take more than :data:`MAX_PRODUCT_WORK` products of terms, and the weights and
-    sums kept stay within :data:`MAX_FAMILY_TERMS` terms."""
+    would take more than :data:`MAX_PRODUCT_WORK` products of terms, the weights and sums
+    kept stay within :data:`MAX_FAMILY_TERMS` terms, and no step starts without the
+    memory it may take (:class:`~rkcheck.numbers.room.RoomWatch`: their coefficients
+    can take more than their terms)."""
 
     exact = True
 
     def __init__(self, ring: ParameterRing, A: Sequence[Sequence[Any]], b: Sequence[Any]):
         self.ring = ring
         self.held = 0  # terms of the weights stored and of the condition sums
+        self.room = RoomWatch("the conditions' polynomials", _REMEDY)
         self.s = len(b)
         self.zero, self.unit = ring.constant(0), ring.constant(1)
         self.b = object_array(list(b), (self.s,))
@@ -83,8 +95,8 @@ class PolynomialContext:
         store[lo:lo + len(x)] = x
 
     def mul(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        self._work(int((_terms(x) * _terms(y)).sum()))
-        return self._reduced(x * y)
+        per_row = _terms(x) * _terms(y)
+        return self._sliced(lambda u, v: self._reduced(u * v), per_row, x, y)
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
         if self.factors is not None:
@@ -92,27 +104,46 @@ class PolynomialContext:
                 x = self._matmul(x, M)
             return x
         assert self.A_t is not None
-        return self._reduced(self._matmul(x, self.A_t))
+        A_t = self.A_t
+        return self._sliced(lambda u: self._reduced(u @ A_t), _terms(x) @ _terms(A_t), x)
 
     def dot(self, x: np.ndarray) -> np.ndarray:
-        return self._reduced(self._matmul(x, self.b))
+        b = self.b
+        return self._sliced(lambda u: self._reduced(u @ b), _terms(x) @ _terms(b), x)
 
     def _matmul(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
-        self._work(int((_terms(x) @ _terms(M)).sum()))
-        result: np.ndarray = x @ M
-        return result
+        return self._sliced(lambda u: u @ M, _terms(x) @ _terms(M), x)
 
-    def _work(self, products: int) -> None:
-        if products > MAX_PRODUCT_WORK:
-            raise UserError(f"the conditions' polynomials grow too large: one step would take about {products:,} "
+    def _sliced(self, op: Callable[..., np.ndarray], products: np.ndarray, *arrays: np.ndarray) -> np.ndarray:
+        """``op(*arrays)``, over slices of their rows of at most about
+        :data:`SLICE_PRODUCTS` products of terms and :data:`SLICE_ENTRIES` results each
+        (``products``: each result's, by rows), the memory left looked at before each
+        slice: one operation on the weights of an order's trees is most of what the
+        order takes."""
+        per_row = products.reshape(len(products), -1).sum(axis=1) if products.ndim > 1 else products
+        total = int(per_row.sum())
+        if total > MAX_PRODUCT_WORK:
+            raise UserError(f"the conditions' polynomials grow too large: one step would take about {total:,} "
                             f"products of terms, more than the limit MAX_PRODUCT_WORK = {MAX_PRODUCT_WORK:,}; "
-                            "check a lower order, a degree bound or fewer parameters")
+                            + _REMEDY)
+        n = len(per_row)
+        rows = max(1, SLICE_ENTRIES // max(1, products.size // max(1, n)))
+        if n <= 1 or (total <= SLICE_PRODUCTS and n <= rows):
+            self.room.step()
+            return op(*arrays)
+        ends = np.searchsorted(np.cumsum(per_row), np.arange(SLICE_PRODUCTS, total, SLICE_PRODUCTS), side="right")
+        bounds = np.unique(np.concatenate([[0], ends, np.arange(rows, n, rows), [n]]))
+        parts = []
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            self.room.step()
+            parts.append(op(*(a[lo:hi] for a in arrays)))
+        return np.concatenate(parts)
 
     def _hold(self, terms: int) -> None:
         self.held += terms
         if self.held > MAX_FAMILY_TERMS:
             raise UserError(f"the conditions' polynomials grow too large: more than {MAX_FAMILY_TERMS:,} terms "
-                            "(the limit MAX_FAMILY_TERMS); check a lower order, a degree bound or fewer parameters")
+                            "(the limit MAX_FAMILY_TERMS); " + _REMEDY)
 
     def sums(self, k: int, n: int) -> np.ndarray:
         return self.scalars(k)
@@ -121,6 +152,7 @@ class PolynomialContext:
         coefficients = [self.ring.constant(c) for c in terms.coefficients]
         grown = 0
         for cond, ci, w in zip(*terms.block(i0, i1), w_terms):
+            self.room.step()
             before = len(acc[cond])
             acc[cond] = acc[cond] + coefficients[ci] * w
             grown += len(acc[cond]) - before

@@ -80,10 +80,11 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
 def _factored_family(name: str, parameters: tuple[str, ...], constants: Mapping[str, ex.Expr], info: MethodInfo,
                      kernel: Any, x: list[Fraction], w: list[Fraction], degrees: tuple[int, int, int]) -> Any:
     """The family of the surrogate on the nodes ``x`` with weights ``w``, its entries
-    ``A_ij = w_j K(x_i, x_j)`` and ``b_i = w_i B(x_i)`` formed from the kernel's
-    coefficients as ``A = V C Wᵀ`` (:class:`~rkcheck.methods.parametric.KernelMatrix`) —
-    not n² expressions folded one by one — over the ring of the parameters (the
-    kernel's constants rational: ``kernel.ring`` has no field)."""
+    ``A_ij = w_j K(x_i, x_j)`` and ``b_i = w_i B(x_i)`` over the ring of the parameters
+    (the kernel's constants rational: ``kernel.ring`` has no field); A as ``V C Wᵀ``
+    from the kernel's coefficients (:class:`~rkcheck.methods.parametric.KernelMatrix`),
+    its entries formed as read — never n² expressions folded one by one, nor held
+    together."""
     from rkcheck.methods.parametric import Family
     from rkcheck.numbers.parametric import ParametricEntries, object_array
 
@@ -96,11 +97,9 @@ def _factored_family(name: str, parameters: tuple[str, ...], constants: Mapping[
     top = max(p, dB)
     V = object_array([ring.constant(xi ** a) for xi in x for a in range(top + 1)], (len(x), top + 1))
     W = object_array([ring.constant(wj * xj ** c) for xj, wj in zip(x, w) for c in range(q + 1)], (len(x), q + 1))
-    A_values = (V[:, :p + 1] @ C) @ W.T
     b_values = (V[:, :dB + 1] @ D)[:, 0] * object_array([ring.constant(wj) for wj in w], (len(w),))
-    entries.values = list(A_values.reshape(-1)) + list(b_values)
-    A_text = tuple(tuple(str(v) for v in row) for row in A_values)
-    return Family(name, parameters, A_text, tuple(str(v) for v in b_values), entries, info,
+    entries.values = list(b_values)
+    return Family(name, parameters, (), tuple(str(v) for v in b_values), entries, info,
                   factors=(np.ascontiguousarray(V[:, :p + 1]), C, W))
 
 

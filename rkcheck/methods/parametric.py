@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import dataclasses
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, overload
 
 from rkcheck.errors import OptionError, UserError
 from rkcheck.methods.tableau import MethodInfo, Tableau
@@ -34,7 +35,9 @@ class Family:
     its kernel's texts (``kernel``: A, B) and entries that are a surrogate tableau's,
     whose elementary weights are the kernel's for trees of up to ``reach`` vertices only:
     :meth:`covering` gives the family with a surrogate wide enough for the trees a
-    computation reads.  A tableau family has ``reach`` None (every tree)."""
+    computation reads; its A has no texts (``A_text`` empty: its entries are formed
+    from the kernel's coefficients as read, :class:`KernelMatrix`).  A tableau family
+    has ``reach`` None (every tree)."""
 
     name: str
     parameters: tuple[str, ...]
@@ -73,16 +76,18 @@ class Family:
         return self.entries.ring
 
     @property
-    def A(self) -> list[list[Any]]:
+    def A(self) -> Sequence[list[Any]]:
+        """A's rows of polynomials (a kernel family's: :class:`KernelMatrix`, formed as read)."""
+        if self.factors is not None:
+            return KernelMatrix(self.factors)
         s = self.stages
         v = self.entries.values
-        rows = [v[i * s:(i + 1) * s] for i in range(s)]
-        return rows if self.factors is None else KernelMatrix(rows, self.factors)
+        return [v[i * s:(i + 1) * s] for i in range(s)]
 
     @property
     def b(self) -> list[Any]:
-        s = self.stages
-        return self.entries.values[s * s:s * s + s]
+        """b's polynomials: the last of the entries (a kernel family's, the only ones)."""
+        return self.entries.values[-self.stages:]
 
     @property
     def consistency_note(self) -> str | None:
@@ -251,18 +256,40 @@ def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> 
     return tuple(names)
 
 
-class KernelMatrix(list[list[Any]]):
-    """The rows of a kernel family's surrogate A (a list of rows, as any family's A) that
-    also carries ``factors = (V, C, W)`` with ``A = V C Wᵀ``: ``V[i][a] = x_iᵃ``,
-    ``W[j][c] = w_j x_jᶜ`` (constants) and ``C[a][c]`` the kernel's coefficient of
-    ``τᵃσᶜ`` (a polynomial in the parameters).  A product ``x Aᵀ`` through them costs
-    ``n(p + q + 2)`` products of polynomials by constants and ``(p+1)(q+1)`` of
-    polynomials, where ``x Aᵀ`` itself costs ``n²`` (n nodes, p and q the degrees in τ
-    and σ): the surrogate's nodes grow with the trees, the kernel's degrees do not."""
+class KernelMatrix(Sequence[list[Any]]):
+    """The rows of a kernel family's surrogate A (a sequence of rows, as any family's A),
+    formed from ``factors = (V, C, W)`` with ``A = V C Wᵀ`` when asked for, never held
+    together: ``V[i][a] = x_iᵃ``, ``W[j][c] = w_j x_jᶜ`` (constants) and ``C[a][c]`` the
+    kernel's coefficient of ``τᵃσᶜ`` (a polynomial in the parameters).  The n² entries
+    of a surrogate of a few hundred nodes, rationals of hundreds of digits, took
+    hundreds of megabytes and seconds to form, and a computation reads A through the
+    factors: a product ``x Aᵀ`` costs ``n(p + q + 2)`` products of polynomials by
+    constants and ``(p+1)(q+1)`` of polynomials, where ``x Aᵀ`` itself costs ``n²`` (n
+    nodes, p and q the degrees in τ and σ): the surrogate's nodes grow with the trees,
+    the kernel's degrees do not."""
 
-    def __init__(self, rows: list[list[Any]], factors: tuple[Any, Any, Any]):
-        super().__init__(rows)
+    def __init__(self, factors: tuple[Any, Any, Any]):
         self.factors = factors
+
+    def __len__(self) -> int:
+        return len(self.factors[0])
+
+    @overload
+    def __getitem__(self, i: int) -> list[Any]: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> list[list[Any]]: ...
+
+    def __getitem__(self, i: int | slice) -> list[Any] | list[list[Any]]:
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        V, C, W = self.factors
+        return list((V[i] @ C) @ W.T)
+
+    def row_sums(self) -> list[Any]:
+        """``A·1`` (the nodes c), through the factors: ``V (C (Wᵀ 1))``."""
+        V, C, W = self.factors
+        return list(V @ (C @ W.sum(axis=0)))
 
 
 def build_family(name: str, parameters: tuple[str, ...], A: Sequence[Sequence[str]], b: Sequence[str],

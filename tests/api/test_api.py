@@ -222,12 +222,12 @@ def test_bad_options_are_option_errors(kwargs, place):
 
 def test_error_hierarchy():
     assert rkcheck.UserError is errors.UserError is rkcheck.InputError
-    for cls in (rkcheck.TableauError, rkcheck.OptionError, rkcheck.UnknownMethodError):
+    for cls in (rkcheck.TableauError, rkcheck.OptionError, rkcheck.UnknownMethodError, rkcheck.ResourceError):
         assert issubclass(cls, rkcheck.UserError) and issubclass(cls, rkcheck.RkcheckError)
     from rkcheck.dynamics.integrator import NewtonError
     from rkcheck.energy.budget import ResourceError
 
-    assert issubclass(ResourceError, rkcheck.RkcheckError) and issubclass(NewtonError, rkcheck.RkcheckError)
+    assert ResourceError is rkcheck.ResourceError and issubclass(NewtonError, rkcheck.RkcheckError)
     located = rkcheck.TableauError("bad", "A[1][1]").located(source="f.toml")
     assert type(located) is rkcheck.TableauError and str(located) == "f.toml: A[1][1]: bad"
 

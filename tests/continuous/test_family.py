@@ -187,6 +187,8 @@ def test_a_kernel_familys_surrogate_entries_are_the_kernel_at_the_nodes(tmp_path
     assert [[value(a) for a in row] for row in fam.A] == [[w[j] * K(x[i], x[j]) for j in range(len(x))]
                                                           for i in range(len(x))]
     assert [value(bi) for bi in fam.b] == [w[i] * B(x[i]) for i in range(len(x))]
+    assert [value(ci) for ci in fam.A.row_sums()] == [sum(w[j] * K(x[i], x[j]) for j in range(len(x)))
+                                                      for i in range(len(x))]
 
 
 def test_the_factored_product_is_the_product_by_the_entries(tmp_path):
