@@ -31,8 +31,12 @@ class Overrun(Exception):
 
 
 def _child(write_fd: int, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
-    """In the forked child: compute, send ``(True, result)`` or ``(False, exception)``, exit."""
+    """In the forked child: compute, send ``(True, result)`` or ``(False, exception)``, exit.
+    What the child writes to standard output goes to standard error: a C library that
+    aborts (FLINT, out of memory) prints its last words there, and a report being
+    written to standard output (JSON) must not take them in."""
     try:
+        os.dup2(2, 1)
         try:
             payload = pickle.dumps((True, fn(*args)), protocol=pickle.HIGHEST_PROTOCOL)
         except BaseException as exc:  # noqa: BLE001 - every outcome goes back to the parent

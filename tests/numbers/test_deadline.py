@@ -27,6 +27,15 @@ def test_the_result_comes_back_from_the_child():
     assert pid != os.getpid() and value == big
 
 
+def test_what_the_child_prints_goes_to_standard_error(capfd):
+    # a C library's last words (FLINT's "Unable to allocate memory" as it aborts) are
+    # written to file descriptor 1: never into the parent's report on standard output
+    with pytest.raises(MemoryError):
+        call_within(30, lambda: (os.write(1, b"last words\n"), os._exit(134)))  # as abort() ends, without a core file
+    out, err = capfd.readouterr()
+    assert "last words" not in out and "last words" in err
+
+
 def test_an_exception_comes_back_as_it_was():
     with pytest.raises(UserError) as info:
         call_within(30, _fails)
