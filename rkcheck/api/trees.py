@@ -97,11 +97,29 @@ def energy_condition(tree: Any, tableau: "Tableau | str | os.PathLike[str] | Non
     else:
         tab = as_tableau(tableau, continuous=True) if tableau is not None else None
     if getattr(tab, "is_continuous", False):  # its weights through a surrogate exact for this tree
+        _surrogate_fits(tab, len(seq))
         tab = tab.surrogate(len(seq))  # type: ignore[union-attr]
     return explain(seq, None if tab is None else TableauValues(tab, Reading(DecimalsMode(decimals), dps)))
 
 
 _checked = as_option
+
+
+def _surrogate_fits(method: Any, vertices: int) -> None:
+    """Refuse (:class:`~rkcheck.errors.ResourceError`) a surrogate whose entries would not
+    fit in the memory available, before it is built: hundreds of nodes make n² entries of
+    thousands of digits, and GMP, failing to allocate, aborts the process."""
+    from rkcheck.api.settings import budget
+    from rkcheck.energy.claims import surrogate_bytes
+    from rkcheck.errors import ResourceError
+    from rkcheck.numbers.formatting import human_bytes
+
+    available = budget().available_bytes
+    stages, needed = surrogate_bytes(method, vertices, False)
+    if available is not None and needed > available:
+        raise ResourceError(f"the surrogate exact for trees of {vertices} vertices ({stages} nodes) needs about "
+                            f"{human_bytes(needed)} but {human_bytes(available)} is available; explain a tree of "
+                            "fewer vertices", source=getattr(getattr(method, "info", None), "source", None))
 
 
 # ------------------------------------------------------------------ the listing

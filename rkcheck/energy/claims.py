@@ -256,12 +256,18 @@ def surrogate_within(method: Any, options: CheckOptions, claims: list[Claim], bu
     to allocate, aborted the process)."""
     vertices, positive = vertices_needed(options, claims), in_intervals(method, options)
     if budget is not None:
-        stages, characters = method.surrogate_size(vertices, positive)
-        entries = entries_bytes(stages * (stages + 1), characters)
+        stages, entries = surrogate_bytes(method, vertices, positive)
         check_budget(estimate(options.order, options.degree, "exact", stages=stages, entry_bytes=entries),
                      replace(budget, announce=None), options.order)
     surrogate: Tableau = method.surrogate(vertices, positive)
     return surrogate
+
+
+def surrogate_bytes(method: Any, vertices: int, positive: bool) -> tuple[int, int]:
+    """The stages of a continuous method's surrogate exact for trees of up to
+    ``vertices`` vertices, and about what its entries take, weighed before it is built."""
+    stages, characters = method.surrogate_size(vertices, positive)
+    return stages, entries_bytes(stages * (stages + 1), characters)
 
 
 def in_intervals(method: Any, options: CheckOptions) -> bool:

@@ -85,6 +85,19 @@ def test_a_surrogate_the_memory_cannot_hold_is_refused_before_it_is_built(tmp_pa
     assert line.startswith("rkcheck: error: order 8 needs about ") and " MB is available" in line, line
 
 
+def test_explain_weighs_the_surrogate_before_it_builds_it(tmp_path):
+    # the same surrogate for one tree of 8 vertices: GMP aborted explain under 500 MB
+    path = tmp_path / "high-degree.toml"
+    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    run = run_limited(["-m", "rkcheck", "explain", "1,2,3,3,2,2,2,2", "--tableau", str(path)],
+                      memory_mb=500, cpu_seconds=60)
+    assert run.code == 2, run.err
+    [line] = run.err.strip().splitlines()
+    assert line.startswith(f"rkcheck: error: {path}: the surrogate exact for trees of 8 vertices (344 nodes) needs "
+                           "about "), line
+    assert line.endswith("explain a tree of fewer vertices"), line
+
+
 def test_a_catalogue_weighs_each_file_against_the_memory_available(tmp_path):
     # the same surrogate in a catalogue: its row says why it was refused (with the
     # catalogue's own options), the other files are catalogued; it ran out of memory
