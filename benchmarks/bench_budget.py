@@ -16,7 +16,9 @@ The ball rows use methods whose conditions hold or nearly all hold, so the float
 decides few of them and the certified balls evaluate every condition: the worst case
 the model covers.  The last rows have many stages: the continuous methods with
 Miyatake–Butcher matrix ``M = I_k`` (energy-preserving: every condition holds), checked
-through surrogates of 100–270 stages, written to a temporary folder.
+through surrogates of 100–270 stages, written to a temporary folder, and kernels of
+degree 20 and 40 in rounded decimals, judged over the box of their decimals on
+surrogates of thousands of entries.
 
 Each estimate is computed in a process of its own: a forked child's peak memory counts
 its parent's pages, so the measuring process stays small.
@@ -55,6 +57,22 @@ KERNELS = [
 ]
 
 
+#: (label, degree p, orders, in --quick): the kernel τ + ¼τᵖσᵖ − ⅓τᵖ⁻¹σ² in 6-digit
+#: decimals, judged over the box of its decimals on a surrogate of thousands of entries
+DECIMAL_KERNELS = [
+    ("degree-20 kernel, 6-digit decimals", 20, (3,), True),
+    ("degree-40 kernel, 6-digit decimals", 40, (3,), False),
+]
+
+
+def decimal_kernel(folder: Path, p: int) -> Path:
+    path = folder / f"decimal-{p}.toml"
+    path.write_text(f'[method]\nname = "degree {p}"\n[continuous]\n'
+                    f'A = "tau + 0.250000*tau^{p}*sigma^{p} - 0.333333*tau^{p - 1}*sigma^2"\n'
+                    f'b = "1 + 0.142857*sigma^{p} - 0.142857*sigma^{p - 1}"\n')
+    return path
+
+
 def identity_kernel(folder: Path, k: int) -> Path:
     path = folder / f"identity-{k}.toml"
     rows = ",\n".join("[" + ", ".join('"1"' if i == j else '"0"' for j in range(k)) + "]" for i in range(k))
@@ -70,26 +88,22 @@ def estimated(path: Path, order: int, arithmetic: str, extra: tuple[str, ...]) -
 
 
 def print_estimate(path: str, order: int, arithmetic: str, extra: list[str]) -> None:
-    """As ``energy.check`` computes it: the surrogate of a continuous method, its channels,
-    stages, precision, box directions and entries."""
-    from rkcheck.energy.budget import entries_size, estimate
-    from rkcheck.energy.judging import box_directions
-    from rkcheck.evaluation.backends import channels_for
+    """As ``energy.check`` computes it (:func:`~rkcheck.energy.check.check_estimate`) on
+    the surrogate of a continuous method on the rule the check takes."""
+    from rkcheck.energy.check import check_estimate
     from rkcheck.evaluation.values import TableauValues
     from rkcheck.io.loader import load
     from rkcheck.numbers.reading import Reading
+    from rkcheck.options import CheckOptions
 
     tableau = load(path)
-    if getattr(tableau, "is_continuous", False):  # on the rule the check takes for this arithmetic
-        from rkcheck.energy.claims import in_intervals, vertices_needed
-        from rkcheck.options import CheckOptions
-
-        options = CheckOptions(order=order, degree=None, arithmetic=arithmetic)
-        tableau = tableau.surrogate(vertices_needed(options, []), in_intervals(tableau, options))
     dps = int(extra[extra.index("--dps") + 1]) if "--dps" in extra else int(tableau.info.check.get("dps", 50))
-    values = TableauValues(tableau, Reading(dps=dps, arithmetic=arithmetic))
-    est = estimate(order, None, values.backend, channels_for(values, order), values.stages, dps,
-                   box_directions(values), entry_bytes=entries_size(e.text for e in tableau.entries()))
+    options = CheckOptions(order=order, degree=None, arithmetic=arithmetic, dps=dps)
+    if getattr(tableau, "is_continuous", False):
+        from rkcheck.energy.claims import in_intervals, vertices_needed
+
+        tableau = tableau.surrogate(vertices_needed(options, []), in_intervals(tableau, options))
+    est = check_estimate(TableauValues(tableau, Reading(dps=dps, arithmetic=arithmetic)), options)
     print(est.seconds, est.bytes)
 
 
@@ -122,6 +136,8 @@ def main(argv: list[str] | None = None) -> None:
     with tempfile.TemporaryDirectory() as folder:
         rows += [(label, identity_kernel(Path(folder), k), arithmetic, (quick,) if args.quick else orders, ())
                  for label, k, arithmetic, orders, quick in KERNELS]
+        rows += [(label, decimal_kernel(Path(folder), p), "auto", orders, ())
+                 for label, p, orders, quick in DECIMAL_KERNELS if quick or not args.quick]
         for label, path, arithmetic, orders, extra in rows:
             for order in orders:
                 if order >= 20 and not args.order_20:

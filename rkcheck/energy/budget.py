@@ -22,7 +22,9 @@ prints the same figures) and are deliberately on the high side:
   whose channels hold at most 64 MB of them, and 8 — 24 where the products go through
   float halves — per entry and channel the classical order keeps open); the stage
   vectors beyond 4 stages (16 bytes per factor tree and stage exact, 170 in balls); and
-  the entries as written (:func:`entries_size`);
+  the entries as written (:func:`entries_size`), which a decimal box first encloses,
+  centres and differentiates in its decimals (4.5 ms an entry and 1.2 µs a character;
+  six times their memory again);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
   grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
   and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
@@ -97,6 +99,15 @@ SMALL_STAGES = 4
 #: bytes per character of their text, and this many besides
 ENTRY_BYTES_PER_CHARACTER = 4
 ENTRY_BYTES = 1000
+#: a decimal box's entries are each enclosed, centred and differentiated in its
+#: decimals before the evaluation starts: about 4.5 ms an entry and 1.2 µs a character
+#: of its text (a kernel's surrogate: thousands of entries of hundreds of characters,
+#: each a copy of the kernel at two nodes), and the enclosures, centres and slopes take
+#: about six times the entries as written again (measured on kernels of degree 20–40
+#: at order 3: 18–81 s and 125–578 MB)
+BOX_SECONDS_PER_ENTRY = 4.5e-3
+BOX_SECONDS_PER_ENTRY_CHARACTER = 1.2e-6
+BOX_ENTRY_COPIES = 7
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
 
@@ -133,13 +144,21 @@ class Budget:
 
 
 def estimate(order: int, degree: int | None, backend: str, channels: int = 16, stages: int = 4,
-             dps: int = 50, directions: int = 0, listing: bool = False, entry_bytes: int = 0) -> Estimate:
+             dps: int = 50, directions: int = 0, listing: bool = False, entry_bytes: int = 0,
+             box_entries: tuple[int, int] | None = None) -> Estimate:
     """The cost of listing and evaluating every condition to ``order`` for ``degree``
     (``directions``: the interval entries of a decimal box, whose derivatives the
     evaluation carries beside the weights; ``entry_bytes``: what the tableau's entries
-    take, :func:`entries_size`); a check from ``CENTROID_FROM_ORDER`` on enumerates them
-    by centroid instead, unless ``listing`` (what a command that lists the rooted trees
-    itself builds)."""
+    take, :func:`entries_size`; ``box_entries``: the count and characters of the entries
+    of a decimal box, each enclosed, centred and differentiated first); a check from
+    ``CENTROID_FROM_ORDER`` on enumerates them by centroid instead, unless ``listing``
+    (what a command that lists the rooted trees itself builds)."""
+    if box_entries is not None:
+        est = estimate(order, degree, backend, channels, stages, dps, directions, listing,
+                       entry_bytes * BOX_ENTRY_COPIES)
+        count_, characters = box_entries
+        seconds = est.seconds + count_ * BOX_SECONDS_PER_ENTRY + characters * BOX_SECONDS_PER_ENTRY_CHARACTER
+        return replace(est, seconds=seconds)
     conditions, terms, factors = listing_size(order, degree)
     if backend == "exact" and order >= CENTROID_FROM_ORDER and not listing:
         by_centroid = _centroid_estimate(conditions, terms, factors, channels, stages)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, fields
 from fractions import Fraction
 from typing import Any, Callable, Self, cast
 
-from rkcheck.energy.budget import Budget, check_budget, entries_size, estimate
+from rkcheck.energy.budget import Budget, Estimate, check_budget, entries_size, estimate
 from rkcheck.energy.judging import (
     Progress,
     box_directions,
@@ -293,15 +293,23 @@ def _memo(facts: dict[Any, Any], key: Any, compute: Callable[[], Any]) -> Any:
     return facts[key]
 
 
+def check_estimate(values: TableauValues, options: CheckOptions) -> Estimate:
+    """What checking ``values`` as ``options`` say costs, estimated before it starts (its
+    channels, stages, precision, box directions and entries)."""
+    channels = channels_for(values, options.order) if values.backend is Backend.EXACT else 0
+    texts = [getattr(e, "text", "") for e in values.tableau.entries()]
+    directions = box_directions(values)
+    box = (len(texts), sum(map(len, texts))) if directions else None
+    return estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps,
+                    directions, entry_bytes=entries_size(texts), box_entries=box)
+
+
 def _listing(values: TableauValues, options: CheckOptions,
              budget: Budget | None) -> Listing:
     """The conditions to check, after the budget allowed them: from
     :data:`~rkcheck.trees.centroid.CENTROID_FROM_ORDER` on, an exact check enumerates
     them by centroid (the rooted trees of its top orders would take gigabytes)."""
-    channels = channels_for(values, options.order) if values.backend is Backend.EXACT else 0
-    entry_bytes = entries_size(getattr(e, "text", "") for e in values.tableau.entries())
-    check_budget(estimate(options.order, options.degree, values.backend, channels, values.stages, options.dps,
-                          box_directions(values), entry_bytes=entry_bytes), budget, options.order)
+    check_budget(check_estimate(values, options), budget, options.order)
     if values.backend is Backend.EXACT and options.order >= CENTROID_FROM_ORDER:
         return centroid_listing(options.order, options.degree)
     # built order by order as the evaluation asks: --fail-fast stops before the high orders

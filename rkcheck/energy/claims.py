@@ -256,8 +256,11 @@ def surrogate_within(method: Any, options: CheckOptions, claims: list[Claim], bu
     to allocate, aborted the process)."""
     vertices, positive = vertices_needed(options, claims), in_intervals(method, options)
     if budget is not None:
-        stages, entries = surrogate_bytes(method, vertices, positive)
-        check_budget(estimate(options.order, options.degree, "exact", stages=stages, entry_bytes=entries),
+        stages, characters = method.surrogate_size(vertices, positive)
+        count_ = stages * (stages + 1)
+        box = (count_, characters) if positive else None  # on the positive rule: a decimal box
+        check_budget(estimate(options.order, options.degree, "ball" if positive else "exact", stages=stages,
+                              entry_bytes=entries_bytes(count_, characters), box_entries=box),
                      replace(budget, announce=None), options.order)
     surrogate: Tableau = method.surrogate(vertices, positive)
     return surrogate

@@ -85,6 +85,21 @@ def test_a_surrogate_the_memory_cannot_hold_is_refused_before_it_is_built(tmp_pa
     assert line.startswith("rkcheck: error: order 8 needs about ") and " MB is available" in line, line
 
 
+def test_a_decimal_kernels_box_is_weighed_with_its_entries(tmp_path):
+    # a kernel of degree 40 in 6-digit decimals at order 3: 121 nodes, 14 762 entries of
+    # about 1 100 characters, each enclosed, centred and differentiated in the decimals
+    # (81 s and 578 MB measured); estimated at 195 MB, it started under 400 MB and ran
+    # out of memory after 80 s: now refused before the surrogate is built
+    path = tmp_path / "decimal-40.toml"
+    path.write_text('[continuous]\nA = "tau + 0.250000*tau^40*sigma^40 - 0.333333*tau^39*sigma^2"\n'
+                    'b = "1 + 0.142857*sigma^40 - 0.142857*sigma^39"\n', encoding="utf-8")
+    run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "3", "--no-cache"],
+                      memory_mb=400, cpu_seconds=20)
+    assert run.code == 2, run.err
+    [line] = run.err.strip().splitlines()
+    assert line.startswith("rkcheck: error: order 3 needs about ") and " MB is available" in line, line
+
+
 def test_explain_weighs_the_surrogate_before_it_builds_it(tmp_path):
     # the same surrogate for one tree of 8 vertices: GMP aborted explain under 500 MB
     path = tmp_path / "high-degree.toml"
