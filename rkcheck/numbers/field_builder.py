@@ -41,6 +41,7 @@ from rkcheck.numbers.polynomials import (
     to_fmpq,
     to_fraction,
 )
+from rkcheck.numbers.room import each_watched
 
 # ---------------------------------------------------------------------- field_of
 
@@ -48,6 +49,10 @@ from rkcheck.numbers.polynomials import (
 #: Longest time :func:`field_of` spends building one field; beyond it the entries are left
 #: to balls too (nested radicals can need exponential work before the degree is known).
 FIELD_SECONDS = 10.0
+
+#: how a computation of many entries (a kernel family's surrogate) that outgrows the
+#: memory left stops (:func:`~rkcheck.numbers.room.each_watched`)
+_ENTRIES, _FEWER = "the entries' numbers", "check a lower order or fewer entries"
 
 
 def _too_slow() -> NotAlgebraic:
@@ -399,14 +404,14 @@ def _few_small_square_roots(calls: list[ex.Call], constants: Mapping[str, ex.Exp
 def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
               max_degree: int) -> FieldValues:
     builder = _Builder(constants, max_degree)
-    try:
-        values = [builder.value(n) for n in nodes]
+    try:  # thousands of entries (a kernel family's surrogate): the memory left is read between them
+        values = [builder.value(n) for n in each_watched(nodes, _ENTRIES, _FEWER)]
     except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None
     # every generator is irreducible over Q (a factor of its polynomial, or x² − m with
     # m square-free) and lies in the field
     builder.field.generator_polynomials = tuple(gamma.f for gamma in builder.generators)
-    return _values_in(builder.field, [builder.lift(v) for v in values])
+    return _values_in(builder.field, [builder.lift(v) for v in each_watched(values, _ENTRIES, _FEWER)])
 
 
 def _rational_values(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None) -> list[Fraction]:

@@ -23,11 +23,12 @@ from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from rkcheck.errors import UserError
+from rkcheck.errors import ResourceError, UserError
 from rkcheck.numbers import expressions as xp
 from rkcheck.numbers import grammar as ex
 from rkcheck.numbers.algebraic import NotAlgebraic, NumberField
 from rkcheck.numbers.field_builder import field_of
+from rkcheck.numbers.room import each_watched
 
 #: The name of the field generator among the variables (parameter names may not start
 #: with two underscores, so it never clashes with one); shown as θ.
@@ -44,6 +45,8 @@ MAX_ENTRY_TERMS = 100_000
 #: on the conditions' polynomials — (about its cost: a few seconds; FLINT's C loops are
 #: not interrupted by Ctrl-C or SIGTERM until they return).
 MAX_PRODUCT_WORK = 200_000_000
+
+_ENTRIES, _FEWER = "the family's entries", "check a lower order (a kernel's surrogate grows with it)"
 
 
 def fresh_name(base: str, taken: Iterable[str]) -> str:
@@ -167,6 +170,8 @@ class ParametricEntries:
         except NotAlgebraic as err:
             place = _failing_place(leaves, fixed_constants, (NotAlgebraic,)) or "parameters"
             raise UserError(f"not an exact algebraic number: {err}", place) from None
+        except ResourceError:  # the memory, not an entry: no place to look for
+            raise
         except UserError as err:
             if err.place:
                 raise
@@ -174,8 +179,11 @@ class ParametricEntries:
         self.ring = ParameterRing(parameters, found.field)
         # keyed by node identity: the nodes are kept alive with their values, so that an id
         # is never reused by another node while the map holds it
-        self._fixed = {id(node): (node, self.ring.element(v)) for (node, _), v in zip(leaves, found.values)}
-        self.values = [self._entry(node, place) for node, place in zip(nodes, places)]
+        # a kernel's surrogate over a number field has n² entries of hundreds of digits,
+        # formed one by one: the memory left is read between them
+        self._fixed = {id(node): (node, self.ring.element(v))
+                       for (node, _), v in each_watched(zip(leaves, found.values), _ENTRIES, _FEWER)}
+        self.values = [self._entry(node, place) for node, place in each_watched(zip(nodes, places), _ENTRIES, _FEWER)]
 
     def polynomial_of(self, node: ex.Expr, place: str) -> Any:
         """Another expression over the same ring (an extra equation): its parameter-free

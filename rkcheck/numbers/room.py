@@ -18,7 +18,7 @@ from __future__ import annotations
 import time
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import Callable, Iterator
+from typing import Callable, Iterable, Iterator, TypeVar
 
 from rkcheck.errors import ResourceError
 from rkcheck.numbers.formatting import human_bytes
@@ -30,6 +30,8 @@ MIN_ROOM = 48 * 2**20
 STEP_MARGIN = 3
 #: the memory left is read at most this often (seconds; reading it costs about 0.2 ms)
 READ_INTERVAL = 0.02
+
+T = TypeVar("T")
 
 _reader: ContextVar[Callable[[], int | None] | None] = ContextVar("rkcheck_room_reader", default=None)
 
@@ -76,3 +78,12 @@ class RoomWatch:
             raise ResourceError(f"{self.what} need more memory than is available: {human_bytes(left)} left, less "
                                 f"than the {human_bytes(need)} kept for their next step (MIN_ROOM, STEP_MARGIN); "
                                 f"{self.remedy}")
+
+
+def each_watched(items: Iterable[T], what: str, remedy: str) -> Iterator[T]:
+    """``items``, the memory left read before each (a loop forming large values one by
+    one: :meth:`RoomWatch.step`)."""
+    room = RoomWatch(what, remedy)
+    for item in items:
+        room.step()
+        yield item

@@ -55,6 +55,19 @@ def test_a_kernel_familys_surrogate_is_read_through_its_factors_within_the_memor
     assert any(p != "0" for p in limited.values())
 
 
+def test_a_kernel_family_over_a_number_field_is_watched_while_its_entries_are_formed(tmp_path):
+    # with √3 among its constants the surrogate's 241² entries are formed one by one in
+    # Q(√3), before any condition: under 300 MB GMP aborted the process (exit -6)
+    f = tmp_path / "k.toml"
+    f.write_text('[parameters]\nk = "free"\n[constants]\nr = "sqrt(3)"\n'
+                 '[continuous]\nA = "tau + k*r*tau^30*(sigma - 1/2)"\nb = "1"\n')
+    run = run_limited(["-m", "rkcheck", "verify", str(f), "--order", "8", "--degree", "none"],
+                      memory_mb=300, cpu_seconds=120)
+    assert run.code == 2, (run.code, run.out[-300:], run.err[-300:])
+    assert run.err.count("\n") == 1 and "need more memory than is available" in run.err
+    assert run.err.startswith(f"rkcheck: error: {f}: the entries' numbers need")  # no entry blamed
+
+
 class _Memory:
     """A reader of the memory left that replays ``values`` (MB)."""
 
