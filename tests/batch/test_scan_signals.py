@@ -280,7 +280,9 @@ def test_an_early_interrupt_is_quiet(tmp_path, delay):
     _, stderr = finish(proc)
     if _interrupted_in_python_startup(stderr):
         return
-    assert proc.returncode in (130, -signal.SIGINT), (proc.returncode, stderr)
+    # the whole stderr when it fails (a tuple's repr is cut short): a rare exit 0 with
+    # every file checked has been seen under CI's load, its cause not yet read
+    assert proc.returncode in (130, -signal.SIGINT), f"exit {proc.returncode}, stderr:\n{stderr}"
     assert "Traceback" not in stderr
     if out.exists():
         assert json.loads(out.read_text())["interrupted"] is True
