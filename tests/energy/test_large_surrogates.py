@@ -32,6 +32,22 @@ def _tableau(stages: int, digits: int, seed: int) -> tuple[list[list[Fraction]],
     return A, b + [1 - sum(b)]  # consistent: classical order at least 1
 
 
+def _high_degree(folder):
+    """``A = τ⁴⁹σ``, ``B = 1``: surrogates of hundreds of nodes with entries of a thousand
+    digits."""
+    path = folder / "high-degree.toml"
+    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    return path
+
+
+def _refusal(argv: list[str], memory_mb: int, cpu_seconds: int) -> str:
+    """``rkcheck ARGV`` under the limits: exit 2 with one line on stderr, that line."""
+    run = run_limited(["-m", "rkcheck", *argv], memory_mb=memory_mb, cpu_seconds=cpu_seconds)
+    assert run.code == 2, run.err
+    [line] = run.err.strip().splitlines()
+    return line
+
+
 @pytest.fixture
 def one_channel_per_pass(monkeypatch):
     """Every pass, screen and classical-order group as narrow as it can be."""
@@ -63,8 +79,7 @@ def test_a_kernel_check_the_estimate_lets_through_fits_the_memory_it_was_given(t
     # τ⁴⁹σ to order 7: a surrogate of 295 stages whose entries need 533 channels.  With
     # all their images in one pass the check took 1.4 GB where it estimated 0.93 GB, so
     # under an address space of 1.3 GB it was let through and ran out of memory
-    path = tmp_path / "high-degree.toml"
-    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    path = _high_degree(tmp_path)
     run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "7", "--no-cache", "-q"],
                       memory_mb=1300, cpu_seconds=120)
     assert run.code == 1, run.err  # a verdict (some condition fails), not "out of memory" (exit 2)
@@ -76,12 +91,8 @@ def test_a_surrogate_the_memory_cannot_hold_is_refused_before_it_is_built(tmp_pa
     # τ⁴⁹σ to order 8: 344 nodes, entries of some 1 500 characters (118 680 of them).
     # Built before the budget was consulted, under 600 MB the surrogate alone ran the
     # process out of memory: GMP, failing to allocate, aborted it (SIGABRT, no message)
-    path = tmp_path / "high-degree.toml"
-    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
-    run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "8", "--no-cache"],
-                      memory_mb=600, cpu_seconds=60)
-    assert run.code == 2, run.err
-    [line] = run.err.strip().splitlines()
+    path = _high_degree(tmp_path)
+    line = _refusal(["verify", str(path), "--order", "8", "--no-cache"], memory_mb=600, cpu_seconds=60)
     assert line.startswith("rkcheck: error: order 8 needs about ") and " MB is available" in line, line
 
 
@@ -93,21 +104,14 @@ def test_a_decimal_kernels_box_is_weighed_with_its_entries(tmp_path):
     path = tmp_path / "decimal-40.toml"
     path.write_text('[continuous]\nA = "tau + 0.250000*tau^40*sigma^40 - 0.333333*tau^39*sigma^2"\n'
                     'b = "1 + 0.142857*sigma^40 - 0.142857*sigma^39"\n', encoding="utf-8")
-    run = run_limited(["-m", "rkcheck", "verify", str(path), "--order", "3", "--no-cache"],
-                      memory_mb=400, cpu_seconds=20)
-    assert run.code == 2, run.err
-    [line] = run.err.strip().splitlines()
+    line = _refusal(["verify", str(path), "--order", "3", "--no-cache"], memory_mb=400, cpu_seconds=20)
     assert line.startswith("rkcheck: error: order 3 needs about ") and " MB is available" in line, line
 
 
 def test_explain_weighs_the_surrogate_before_it_builds_it(tmp_path):
     # the same surrogate for one tree of 8 vertices: GMP aborted explain under 500 MB
-    path = tmp_path / "high-degree.toml"
-    path.write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
-    run = run_limited(["-m", "rkcheck", "explain", "1,2,3,3,2,2,2,2", "--tableau", str(path)],
-                      memory_mb=500, cpu_seconds=60)
-    assert run.code == 2, run.err
-    [line] = run.err.strip().splitlines()
+    path = _high_degree(tmp_path)
+    line = _refusal(["explain", "1,2,3,3,2,2,2,2", "--tableau", str(path)], memory_mb=500, cpu_seconds=60)
     assert line.startswith(f"rkcheck: error: {path}: the surrogate exact for trees of 8 vertices (344 nodes) needs "
                            "about "), line
     assert line.endswith("explain a tree of fewer vertices"), line
@@ -117,7 +121,7 @@ def test_a_catalogue_weighs_each_file_against_the_memory_available(tmp_path):
     # the same surrogate in a catalogue: its row says why it was refused (with the
     # catalogue's own options), the other files are catalogued; it ran out of memory
     # instead (or GMP aborted the whole catalogue)
-    (tmp_path / "high-degree.toml").write_text('[continuous]\nA = "tau^49*sigma"\nb = "1"\n', encoding="utf-8")
+    _high_degree(tmp_path)
     (tmp_path / "rk4.toml").write_text((TABLEAUX / "explicit" / "rk4.toml").read_text(encoding="utf-8"), encoding="utf-8")
     run = run_limited(["-m", "rkcheck", "catalog", str(tmp_path), "--order", "8"], memory_mb=600, cpu_seconds=120)
     assert run.code == 1, run.err
