@@ -215,9 +215,9 @@ def _gaps_to_avf_kernel(fam: Family) -> list[Any]:
     x, w = rational_rule(s)
     if fam.factors is not None:
         C = fam.factors[1]
-        tau = [(a, c) for a in range(C.shape[0]) for c in range(C.shape[1])]
-        gaps = [C[a, c] - ring.constant(1 if (a, c) == (1, 0) else 0) for a, c in tau]
-        gaps += [] if (1, 0) in tau else [ring.constant(-1)]  # no τ in A: never τ
+        monomials = [(a, c) for a in range(C.shape[0]) for c in range(C.shape[1])]  # τᵃσᶜ
+        gaps = [C[a, c] - ring.constant(1 if (a, c) == (1, 0) else 0) for a, c in monomials]
+        gaps += [] if (1, 0) in monomials else [ring.constant(-1)]  # no τ in A: never τ
     else:
         gaps = [ring.reduce(fam.A[i][j] - ring.constant(w[j] * x[i])) for i in range(s) for j in range(s)]
     return gaps + [ring.reduce(fam.b[i] - ring.constant(w[i])) for i in range(s)]

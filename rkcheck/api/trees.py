@@ -119,7 +119,7 @@ def _surrogate_fits(method: Any, vertices: int) -> None:
     if available is not None and needed > available:
         raise ResourceError(f"the surrogate exact for trees of {vertices} vertices ({stages} nodes) needs about "
                             f"{human_bytes(needed)} but {human_bytes(available)} is available; explain a tree of "
-                            "fewer vertices", source=getattr(getattr(method, "info", None), "source", None))
+                            "fewer vertices", source=method.info.source)
 
 
 # ------------------------------------------------------------------ the listing
