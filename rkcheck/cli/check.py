@@ -17,6 +17,7 @@ from rkcheck.cli.common import (
     check_options,
     decimals_option,
     dps_option,
+    echo_json,
     exit_codes,
     fail_on_option,
     flag_values,
@@ -110,15 +111,11 @@ def _write_report(result, fmt: str, show_all: bool, fail_on: str, draw: bool) ->
     written closes the document) or as text."""
     if fmt == "json":
         from rkcheck.reports.jsondoc import check_doc
-        from rkcheck.reports.jsontext import chunks
-
         with interrupts_deferred() as signal:  # the rows go out as made: a Ctrl-C ends them, the document closes
             doc = check_doc(result, lazy=True)
             doc["conditions"] = (c for c in doc["conditions"] if not signal.asked)
             doc["conditions_complete"] = lambda: not signal.asked
-            for part in chunks(doc):
-                click.echo(part, nl=False)
-            click.echo()
+            echo_json(doc)
         if signal.asked:
             click.echo("rkcheck: interrupted while writing; the report lists the conditions written before "
                        '(JSON "conditions_complete": false)', err=True)
@@ -157,9 +154,9 @@ def show(file, fmt, decimals, max_stages, input_format) -> None:
         return
     warnings = tableau_warnings(tab, decimals)
     if fmt == "json":
-        from rkcheck.reports.jsondoc import dumps, show_doc
+        from rkcheck.reports.jsondoc import show_doc
 
-        click.echo(dumps(show_doc(tab, file, decimals, warnings)))
+        echo_json(show_doc(tab, file, decimals, warnings))
         return
     from rkcheck.reports.text import render_tableau
 
@@ -234,9 +231,9 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         write_text(emit_code(listing, emit, classical, stages, explicit), output)
         return
     if fmt == "json":
-        from rkcheck.reports.jsondoc import conditions_list_doc, dumps
+        from rkcheck.reports.jsondoc import conditions_list_doc
 
-        click.echo(dumps(conditions_list_doc(listing, with_conditions=not count)))
+        echo_json(conditions_list_doc(listing, with_conditions=not count, lazy=True))
         return
     from rkcheck.reports.trees import render_condition_list
 

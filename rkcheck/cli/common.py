@@ -107,6 +107,17 @@ def stdout_console():
     return make_console(settings())
 
 
+def echo_json(doc: Any) -> None:
+    """``doc`` as a JSON report on standard output, written in pieces as they are made:
+    a report of millions of conditions is never held whole as text (nor, where its
+    rows are a generator, as rows)."""
+    from rkcheck.reports.jsontext import chunks
+
+    for part in chunks(doc):
+        click.echo(part, nl=False)
+    click.echo()
+
+
 def _stderr_is_terminal() -> bool:
     import sys
 

@@ -8,6 +8,7 @@ import click
 
 from rkcheck.cli.common import (
     DEGREE,
+    echo_json,
     exit_codes,
     flag_values,
     output_options,
@@ -50,9 +51,8 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
         return result
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
-        from rkcheck.reports.jsondoc import dumps
 
-        click.echo(dumps(conditions_doc(result)))
+        echo_json(conditions_doc(result, lazy=True))
         return result
     from rkcheck.reports.families import render_conditions
 
@@ -191,10 +191,9 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
 
         sweep_chart(result, plot)
     if fmt == "json" or as_json:
-        from rkcheck.reports.jsondoc import dumps
         from rkcheck.reports.sweep import sweep_doc
 
-        click.echo(dumps(sweep_doc(result)))
+        echo_json(sweep_doc(result))
         return
     from rkcheck.reports.sweep import render_sweep
 

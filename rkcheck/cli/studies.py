@@ -8,6 +8,7 @@ from rkcheck.cli.common import (
     busy,
     chart_file,
     degree_option,
+    echo_json,
     exit_codes,
     flag_values,
     load_tableau,
@@ -52,10 +53,9 @@ def bench(file, degree, order, dps_text, repeat, chart, fmt) -> None:
 
         bench_chart(rows, title, chart)
     if fmt == "json":
-        from rkcheck.reports.jsondoc import dumps
         from rkcheck.reports.studies import bench_doc
 
-        click.echo(dumps(bench_doc(file, deg, N, rows, t_tables)))
+        echo_json(bench_doc(file, deg, N, rows, t_tables))
         return
     from rkcheck.reports.studies import render_bench
 
@@ -98,10 +98,9 @@ def perturb(file, direction, degree, order, eps_text, dps_text, seed, chart, fmt
 
         perturb_chart(res, title, chart)
     if fmt == "json":
-        from rkcheck.reports.jsondoc import dumps
         from rkcheck.reports.studies import perturb_doc
 
-        click.echo(dumps(perturb_doc(file, deg, N, res)))
+        echo_json(perturb_doc(file, deg, N, res))
         return
     from rkcheck.reports.studies import render_perturb
 

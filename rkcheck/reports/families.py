@@ -47,7 +47,9 @@ def _field_note(field: Any) -> str | None:
 # ------------------------------------------------------------------ conditions
 
 
-def conditions_doc(fc: Any) -> dict[str, Any]:
+def conditions_doc(fc: Any, lazy: bool = False) -> dict[str, Any]:
+    """``rkcheck conditions FAMILY --format json`` (``lazy``: the conditions a generator,
+    each polynomial written out only as the report reaches it)."""
     fam = fc.family
     field = fam.ring.field
 
@@ -55,6 +57,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         return {"kind": c.kind, "id": c.id, "bracket": c.bracket, "order": c.order,
                 "polynomial": polynomial_text(c.polynomial, field), "degree": c.degree, "vanishes": c.vanishes}
 
+    rows = (cond(c) for c in fc.energy + (fc.classical or []))
     return {
         "rkcheck": __version__,
         "schema": FAMILY_SCHEMA,
@@ -73,7 +76,7 @@ def conditions_doc(fc: Any) -> dict[str, Any]:
         "classical_order_generic": fc.classical_order,
         "quadrature_order_generic": fc.quadrature_order,
         "quadrature_order_checked": fc.quadrature_checked,
-        "conditions": [cond(c) for c in fc.energy + (fc.classical or [])],
+        "conditions": rows if lazy else list(rows),
         "warnings": _verify_warnings(fam),
     }
 

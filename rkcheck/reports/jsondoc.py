@@ -62,9 +62,10 @@ def show_doc(tab: Tableau, file: str, decimals: DecimalsMode, warnings: list[str
             "tableau": tableau_doc(values), "stability": stability_doc(tableau_stability(values)), "warnings": warnings}
 
 
-def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]:
+def conditions_list_doc(listing, with_conditions: bool = True, lazy: bool = False) -> dict[str, Any]:
     """``rkcheck conditions --format json``: counts per order and (unless ``--count``) the
-    condition trees, by vertices and then canonical id."""
+    condition trees, by vertices and then canonical id (``lazy``: a generator, made as
+    they are written)."""
     doc: dict[str, Any] = {
         "schema": SCHEMA,
         "rkcheck": __version__,
@@ -74,13 +75,10 @@ def conditions_list_doc(listing, with_conditions: bool = True) -> dict[str, Any]
         "counts": [{"order": k, "vertices": k + 1, "conditions": v} for k, v in listing.counts_by_order().items()],
     }
     if with_conditions:
-        doc["conditions"] = [
-            {
-                "id": c.id, "level_sequence": list(c.level_sequence), "bracket": c.bracket,
-                "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": c.rootings,
-            }
-            for c in listing.sorted_records()
-        ]
+        rows = ({"id": c.id, "level_sequence": list(c.level_sequence), "bracket": c.bracket,
+                 "vertices": c.vertices, "order": c.order, "max_degree": c.max_degree, "rootings": c.rootings}
+                for c in listing.sorted_records())
+        doc["conditions"] = rows if lazy else list(rows)
     return doc
 
 

@@ -6,8 +6,11 @@ from __future__ import annotations
 import json
 import re
 
+from collections import Counter
+
 import pytest
 from support.clirun import run_cli
+from support.limits import run_limited
 
 from rkcheck.numbers.formatting import count_text
 
@@ -45,6 +48,16 @@ def test_conditions_count_prints_every_count_in_one_format(capsys):
         assert cell == count_text(int(cell.replace(",", "")))  # 1301 plain, 19,205 grouped
     doc = json.loads(run_cli(capsys, "conditions", "--order", "18", "--count", "--format", "json").out)
     assert doc["total"] == sum(conditions_with(n) for n in range(3, 20))  # JSON: a plain integer
+
+
+def test_a_json_listing_is_written_as_it_is_made():
+    # order 16: 18 MB of JSON; joined whole into one string (and encoded) on top of the
+    # listing, the report ran out of memory under 300 MB after the listing was built
+    run = run_limited(["-m", "rkcheck", "conditions", "--order", "16", "--format", "json"], memory_mb=300,
+                      cpu_seconds=120)
+    assert run.code == 0, (run.code, run.err[-300:])
+    doc = json.loads(run.out)
+    assert Counter(c["vertices"] for c in doc["conditions"]) == {n: conditions_with(n) for n in range(3, 18)}
 
 
 def test_limit_messages_use_the_same_format(capsys):
