@@ -128,10 +128,13 @@ class Family:
         except UserError as err:
             raise OptionError(f"cannot read the equation {text!r}: {err.message}", "--where") from None
 
-    def at(self, values: Mapping[str, Fraction | int], name: str | None = None) -> Any:
-        """The method at rational parameter values (the other parameters must be given too):
-        a :class:`Tableau`, or for a family of kernels its
-        :class:`~rkcheck.methods.continuous.ContinuousMethod`."""
+    def at(self, values: Mapping[str, Any], name: str | None = None) -> Any:
+        """The method at the given values of every parameter: a :class:`Tableau`, or for
+        a family of kernels its :class:`~rkcheck.methods.continuous.ContinuousMethod`.  A
+        value is a rational (an int, a Fraction, a finite float taken exactly, a text
+        ``"1/3"``), an exact real number written as an entry is (``"1/2 - sqrt(3)/6"``,
+        ``"root(x^3 - x - 1, 1)"``), or a real value :func:`rkcheck.solve` found (a
+        solution's ``values`` may be passed whole)."""
         if not isinstance(values, Mapping):
             raise UserError(f"expected a mapping of the parameters to their values, got {type(values).__name__}",
                             "values")
@@ -142,7 +145,7 @@ class Family:
         if unknown:
             raise UserError(f"{unknown[0]!r} is not a parameter (the parameters are {', '.join(self.parameters)})")
         # on the expressions, where a root's polynomial keeps its own x
-        subst = {p: ex.parse(_value_text(_rational(values[p], p))) for p in self.parameters}
+        subst = {p: _value_node(values[p], p) for p in self.parameters}
         texts = list(self.kernel) if self.kernel else [x for row in self.A_text for x in row] + list(self.b_text)
         out = [xp.to_text(xp.substituted(ex.parse(t), subst)) for t in texts]
         constants = {k: xp.to_text(xp.substituted(v, subst)) for k, v in self.entries.constants.items()}
@@ -158,11 +161,59 @@ def _value_text(q: Fraction) -> str:
     return f"({ex.fraction_text(q)})"
 
 
+def _value_node(value: Any, name: str) -> ex.Expr:
+    """A parameter's value (:meth:`Family.at`) as an expression to put in its place."""
+    from rkcheck.numbers.solving import AlgebraicValue
+
+    if isinstance(value, AlgebraicValue):
+        text = value.expression()
+        if text is None:
+            raise UserError(f"{value.text} is not a real number: a method's entries are real", name)
+    elif isinstance(value, str) and not _is_rational(value):
+        text = value
+    else:
+        return ex.parse(_value_text(_rational(value, name)))
+    return _exact_real(text, name)
+
+
+def _is_rational(text: str) -> bool:
+    """Whether ``text`` is a rational as Python writes one (``"1/3"``, ``"0.25"``): taken
+    exactly, where a decimal in an entry of six or more digits stands for an interval."""
+    try:
+        Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        return False
+    return True
+
+
+def _exact_real(text: str, name: str) -> ex.Expr:
+    """The expression ``text``, which must name nothing and be an exact real number."""
+    from rkcheck.numbers.algebraic import NotAlgebraic
+    from rkcheck.numbers.field_builder import field_of
+
+    try:
+        node = ex.parse(text)
+    except UserError as err:
+        raise err.located(name) from None
+    used = xp.names(node)
+    if used:
+        raise UserError(f"unknown name {used[0].name!r} at column {used[0].column}: a parameter's value is a "
+                        "number", name)
+    try:
+        field_of([node])
+    except NotAlgebraic as err:
+        raise UserError(f"not an exact algebraic number: {err}", name) from None
+    except UserError as err:
+        raise err.located(name) from None
+    return ex.parse(f"({text})")
+
+
 def _rational(value: Any, name: str) -> Fraction:
-    """A parameter's value: an int, a Fraction, a text ``"1/3"``, or a finite float
+    """A rational parameter value: an int, a Fraction, a text ``"1/3"``, or a finite float
     (taken exactly, as the double it is)."""
     if isinstance(value, bool) or not isinstance(value, (int, Fraction, float, str)):
-        raise UserError(f"expected a rational number, got {type(value).__name__}", name)
+        raise UserError("expected a number (an int, a Fraction, a text such as '1/2 - sqrt(3)/6', or a value "
+                        f"from solve), got {type(value).__name__}", name)
     try:
         q = Fraction(value)
     except (ValueError, OverflowError, ZeroDivisionError):

@@ -61,6 +61,23 @@ class AlgebraicValue:
     minpoly: tuple[Fraction, ...] = ()
     ball: Any = None  # a certified complex enclosure (flint acb)
 
+    def expression(self) -> str | None:
+        """The value in the entries' grammar (a rational, ``p ± q*sqrt(d)``, or
+        ``root(P, k)``: the k-th smallest real root of its minimal polynomial P), for a
+        member of the family to be built from it; None when it is not real."""
+        if not self.real or not self.minpoly:
+            return None
+        if len(self.minpoly) <= 3:  # a rational or a real quadratic: its text is a closed form
+            return self.text
+        from flint import ctx, fmpq_poly
+
+        with ctx.workprec(APPROX_BITS):
+            found: Any = fmpq_poly([fmpq_of(c) for c in self.minpoly]).complex_roots()  # (acb, multiplicity) pairs
+        roots = [r for r, _ in found]
+        mine = next(r for r in roots if r.overlaps(self.ball))
+        below = sum(1 for r in roots if r.imag == 0 and r.real < mine.real)  # disjoint balls: decided
+        return f"root({_poly_text(list(self.minpoly), 'x')}, {below + 1})"
+
 
 @dataclass
 class Component:

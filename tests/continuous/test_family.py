@@ -136,15 +136,25 @@ def test_avf_of_a_kernel_family_is_a_equal_to_tau_and_b_to_1(tmp_path):
     assert len(res.components) == 2 and all(c.avf is True for c in res.components)
 
 
-def test_at_takes_rational_values_of_the_parameters_only(tmp_path):
+def test_at_takes_exact_real_values_of_the_parameters(tmp_path):
+    import mpmath
     import pytest
 
     from rkcheck.errors import UserError
 
     fam = rkcheck.load_family(_kernel_family(tmp_path))
     assert fam.at({"kappa": "1/3"}).A == fam.at({"kappa": Fraction(1, 3)}).A
+    # at κ = √2 the member fails exactly the conditions whose polynomials do not vanish there
+    mpmath.mp.dps = 50
+    fc = rkcheck.family_conditions(_kernel_family(tmp_path), degree=None, order=4)
+    root2 = mpmath.sqrt(2)
+    nonzero = {c.id for c in fc.energy
+               if abs(sum(mpmath.mpf(int(q.p)) / int(q.q) * root2 ** int(e[0]) for e, q in c.polynomial.terms())) > 1e-30}
+    member = rkcheck.verify(fam.at({"kappa": "sqrt(2)"}), degree=None, order=4, arithmetic="exact")
+    assert nonzero and {c.id for c in member.conditions if c.verdict.state == "fails"} == nonzero
+    assert {c.verdict.state for c in member.conditions if c.id not in nonzero} <= {"holds"}
     for values, message in (({"kappa": float("nan")}, "finite rational"), ({"kappa": 1, "zz": 2}, "not a parameter"),
-                            ({"kappa": "sqrt(2)"}, "finite rational"), ({"kappa": None}, "rational number")):
+                            ({"kappa": "sqrt(-2)"}, "negative number"), ({"kappa": None}, "expected a number")):
         with pytest.raises(UserError, match=message):
             fam.at(values)
 

@@ -1,0 +1,104 @@
+"""A member of a family at exact real values of its parameters (``Family.at``): the
+algebraic solutions ``solve`` finds, or texts written as entries are, give the method
+itself, checked exactly."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import pytest
+from support.paths import TABLEAUX
+
+import rkcheck
+from rkcheck.errors import UserError
+
+THEOREM_S3 = TABLEAUX / "families" / "theorem1-s3-m6.toml"
+
+
+def _value(entry, digits=40):
+    """An entry's value to ``digits`` digits, from its certified enclosure."""
+    box = entry.enclosure(4 * digits)
+    assert box.hi - box.lo < Fraction(1, 10**digits)
+    return mpmath.mpf(box.lo.numerator) / box.lo.denominator
+
+
+def test_solves_solutions_are_the_avf_methods_over_gauss_3_and_check_as_such():
+    # Theorem 1 (s = 3, m = 6): exactly AVF over 3-point Gauss, the outer nodes either
+    # way round: a_ij = c_i b_j with c = 1/2 ∓ √15/10, 1/2, 1/2 ± √15/10 and b = (5, 8, 5)/18
+    res = rkcheck.solve(THEOREM_S3, degree=6, order=7)
+    fam = rkcheck.load_family(THEOREM_S3)
+    mpmath.mp.dps = 60
+    b = [mpmath.mpf(5) / 18, mpmath.mpf(8) / 18, mpmath.mpf(5) / 18]
+    r = mpmath.sqrt(15) / 10
+    orders = set()
+    for solution in res.solutions:
+        member = fam.at(solution.values)
+        first = _value(member.A[0][0]) / b[0]  # the first node: 1/2 - √15/10 or 1/2 + √15/10
+        sign = 1 if first > mpmath.mpf(1) / 2 else -1
+        c = [mpmath.mpf(1) / 2 + sign * r, mpmath.mpf(1) / 2, mpmath.mpf(1) / 2 - sign * r]
+        for i in range(3):
+            for j in range(3):
+                assert abs(_value(member.A[i][j]) - c[i] * b[j]) < mpmath.mpf(10) ** -35
+        report = rkcheck.verify(member, degree=6, order=7)
+        assert {cond.verdict.state for cond in report.conditions} == {"holds"}  # exact, not to digits
+        orders.add(sign)
+    assert orders == {1, -1}
+
+
+def test_a_cubic_solution_is_the_real_root_it_names_and_a_complex_one_is_refused(tmp_path):
+    path = tmp_path / "x.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
+    res = rkcheck.solve(path, degree=2, order=1, where=["x^3 - x - 1"])
+    fam = rkcheck.load_family(path)
+    real = [s for s in res.solutions if s.real]
+    assert len(res.solutions) == 3 and len(real) == 1
+    mpmath.mp.dps = 50
+    plastic = mpmath.findroot(lambda x: x**3 - x - 1, 1.3)  # the plastic number, the one real root
+    assert abs(_value(fam.at(real[0].values).A[0][0]) - plastic) < mpmath.mpf(10) ** -35
+    complex_one = next(s for s in res.solutions if not s.real)
+    with pytest.raises(UserError, match=r"^x: .* is not a real number: a method's entries are real$"):
+        fam.at(complex_one.values)
+
+
+def test_a_cubic_root_among_several_real_ones_is_numbered_as_the_grammar_numbers_them(tmp_path):
+    # y³ − 3y + 1 has three real roots, 2 cos(2π/9 · (1, 2, 4)) up to order: each solution
+    # must give back its own root, not another of the three
+    path = tmp_path / "y.toml"
+    path.write_text('[parameters]\ny = "free"\n[tableau]\nA = [["y"]]\nb = ["1"]\n', encoding="utf-8")
+    res = rkcheck.solve(path, degree=2, order=1, where=["y^3 - 3*y + 1"])
+    fam = rkcheck.load_family(path)
+    mpmath.mp.dps = 50
+    want = sorted(2 * mpmath.cos(2 * mpmath.pi * k / 9) for k in (2, 4, 8))
+    got = sorted(_value(fam.at(s.values).A[0][0]) for s in res.solutions)
+    assert len(got) == 3 and all(abs(g - w) < mpmath.mpf(10) ** -35 for g, w in zip(got, want))
+    for s in res.solutions:  # each to the value solve printed
+        assert abs(_value(fam.at(s.values).A[0][0]) - s.values["y"].approx.real) < 1e-9
+
+
+def test_a_value_written_as_an_entry_is_taken_exactly(tmp_path):
+    path = tmp_path / "c.toml"
+    path.write_text('[parameters]\nc = "free"\n[tableau]\nA = [["c/2", "0"], ["c", "c/2"]]\nb = ["1/2", "1/2"]\n',
+                    encoding="utf-8")
+    fam = rkcheck.load_family(path)
+    mpmath.mp.dps = 50
+    member = fam.at({"c": "1/2 - sqrt(3)/6"})
+    assert abs(_value(member.A[1][0]) - (mpmath.mpf(1) / 2 - mpmath.sqrt(3) / 6)) < mpmath.mpf(10) ** -35
+    # a rational as Python writes it stays that rational, not a rounded decimal's interval
+    assert fam.at({"c": "0.3333333"}).A[1][0].exact == Fraction(3333333, 10**7)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("sqrt(-3)", "c: square root of a negative number"),
+    ("k + 1", "c: unknown name 'k' at column 1: a parameter's value is a number"),
+    ("sqrt(2", "c: "),
+    ("1/0", "c: division by zero"),
+    (None, "c: expected a number (an int, a Fraction, a text such as '1/2 - sqrt(3)/6', or a value from solve), "
+           "got NoneType"),
+])
+def test_a_value_that_is_not_an_exact_real_number_is_refused_at_its_parameter(tmp_path, value, message):
+    path = tmp_path / "c.toml"
+    path.write_text('[parameters]\nc = "free"\n[tableau]\nA = [["c"]]\nb = ["1"]\n', encoding="utf-8")
+    with pytest.raises(UserError) as err:
+        rkcheck.load_family(path).at({"c": value})
+    assert str(err.value).startswith(message), str(err.value)
