@@ -61,7 +61,7 @@ class PolynomialContext:
         # a kernel family's A = V C Wᵀ (methods.parametric.KernelMatrix): x Aᵀ = ((x W) Cᵀ) Vᵀ,
         # its n² entries never gathered into a matrix
         factors = getattr(A, "factors", None)
-        self.factors = None if factors is None or ring.minpoly is not None else \
+        self.factors = None if factors is None else \
             (factors[2], np.ascontiguousarray(factors[1].T), np.ascontiguousarray(factors[0].T))
         self.A_t = None if self.factors is not None else \
             object_array([A[i][j] for j in range(self.s) for i in range(self.s)], (self.s, self.s))
@@ -99,10 +99,9 @@ class PolynomialContext:
         return self._sliced(lambda u, v: self._reduced(u * v), per_row, x, y)
 
     def matvec(self, x: np.ndarray) -> np.ndarray:
-        if self.factors is not None:
-            for M in self.factors:
-                x = self._matmul(x, M)
-            return x
+        if self.factors is not None:  # W and V are rational: only C's products need reducing
+            W, C_t, V_t = self.factors
+            return self._matmul(self._matmul(self._matmul(x, W), C_t, reduce=True), V_t)
         assert self.A_t is not None
         A_t = self.A_t
         return self._sliced(lambda u: self._reduced(u @ A_t), _terms(x) @ _terms(A_t), x)
@@ -111,8 +110,8 @@ class PolynomialContext:
         b = self.b
         return self._sliced(lambda u: self._reduced(u @ b), _terms(x) @ _terms(b), x)
 
-    def _matmul(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
-        return self._sliced(lambda u: u @ M, _terms(x) @ _terms(M), x)
+    def _matmul(self, x: np.ndarray, M: np.ndarray, reduce: bool = False) -> np.ndarray:
+        return self._sliced(lambda u: self._reduced(u @ M) if reduce else u @ M, _terms(x) @ _terms(M), x)
 
     def _sliced(self, op: Callable[..., np.ndarray], products: np.ndarray, *arrays: np.ndarray) -> np.ndarray:
         """``op(*arrays)``, over slices of their rows of at most about

@@ -15,7 +15,7 @@ import numpy as np
 
 from rkcheck.errors import UserError
 from rkcheck.methods.continuous import MAX_SURROGATE_NODES
-from rkcheck.methods.kernel import VARIABLES, _literal, b_in_tau
+from rkcheck.methods.kernel import VARIABLES, b_in_tau
 from rkcheck.methods.quadrature import rational_rule
 from rkcheck.methods.tableau import MethodInfo
 from rkcheck.numbers import expressions as xp
@@ -33,7 +33,6 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
     import dataclasses
     from functools import partial
 
-    from rkcheck.methods.parametric import build_family
     from rkcheck.numbers.parametric import ParametricEntries
 
     clash = sorted(set(parameters) & set(VARIABLES))
@@ -66,30 +65,23 @@ def kernel_family(name: str, parameters: tuple[str, ...], A: str, b: str, consta
                         f"{MAX_SURROGATE_NODES}", "continuous")
     x, w = rational_rule(n_nodes)
     widen = partial(kernel_family, name, parameters, A, b, constants, info)
-    if ring.minpoly is None:
-        family = _factored_family(name, parameters, constants, info, poly, x, w, (p, q, dB))
-    else:  # constants with roots: the entries folded one by one, their products reduced as formed
-        A_at = [[_at(nodes[0], w[j], x[i], x[j]) for j in range(n_nodes)] for i in range(n_nodes)]
-        b_at = [_at(nodes[1], w[i], x[i], Fraction(0)) for i in range(n_nodes)]
-        parsed = [node for row in A_at for _, node in row] + [node for _, node in b_at]
-        family = build_family(name, parameters, [[text for text, _ in row] for row in A_at],
-                              [text for text, _ in b_at], constants, info, parsed)
+    family = _factored_family(name, parameters, info, poly, x, w, (p, q, dB))
     return dataclasses.replace(family, kernel=(A, b), reach=vertices, widen=widen)
 
 
-def _factored_family(name: str, parameters: tuple[str, ...], constants: Mapping[str, ex.Expr], info: MethodInfo,
-                     kernel: Any, x: list[Fraction], w: list[Fraction], degrees: tuple[int, int, int]) -> Any:
+def _factored_family(name: str, parameters: tuple[str, ...], info: MethodInfo, kernel: Any, x: list[Fraction],
+                     w: list[Fraction], degrees: tuple[int, int, int]) -> Any:
     """The family of the surrogate on the nodes ``x`` with weights ``w``, its entries
     ``A_ij = w_j K(x_i, x_j)`` and ``b_i = w_i B(x_i)`` over the ring of the parameters
-    (the kernel's constants rational: ``kernel.ring`` has no field); A as ``V C Wᵀ``
-    from the kernel's coefficients (:class:`~rkcheck.methods.parametric.KernelMatrix`),
-    its entries formed as read — never n² expressions folded one by one, nor held
+    (in the kernel's field, if its constants need one); A as ``V C Wᵀ`` from the
+    kernel's coefficients (:class:`~rkcheck.methods.parametric.KernelMatrix`), its
+    entries formed as read — never n² expressions folded one by one, nor held
     together."""
     from rkcheck.methods.parametric import Family
-    from rkcheck.numbers.parametric import ParametricEntries, object_array
+    from rkcheck.numbers.parametric import object_array
 
     p, q, dB = degrees
-    entries = ParametricEntries([], [], parameters, constants)  # the ring, and the constants for --where
+    entries = kernel.over(parameters)  # the ring, and the constants for --where
     ring = entries.ring
     A_poly, B_poly = kernel.values
     C = _coefficients(A_poly, kernel.ring.variables, ring, (p, q))
@@ -119,10 +111,3 @@ def _coefficients(poly: Any, names: Sequence[str], ring: Any, degrees: tuple[int
     return object_array([ring.ctx.from_dict(found[(a, c)]) if (a, c) in found else zero
                          for a in range(a_max + 1) for c in range(c_max + 1)], (a_max + 1, c_max + 1))
 
-
-def _at(node: ex.Expr, weight: Fraction, tau: Fraction, sigma: Fraction) -> tuple[str, ex.Expr]:
-    """The surrogate's entry ``weight·node(tau, sigma)``: its text (shown, written out)
-    and its expression (what the text parses to, built without parsing n² texts)."""
-    value = xp.substituted(node, {"tau": _literal(tau), "sigma": _literal(sigma)})
-    text = f"{weight.numerator}/{weight.denominator}*({xp.to_text(value)})"
-    return text, ex.Binary("*", _literal(weight), value, 1)

@@ -50,8 +50,8 @@ from rkcheck.numbers.room import each_watched
 #: to balls too (nested radicals can need exponential work before the degree is known).
 FIELD_SECONDS = 10.0
 
-#: how a computation of many entries (a kernel family's surrogate) that outgrows the
-#: memory left stops (:func:`~rkcheck.numbers.room.each_watched`)
+#: how a computation of many entries (a continuous method's surrogate, a large family)
+#: that outgrows the memory left stops (:func:`~rkcheck.numbers.room.each_watched`)
 _ENTRIES, _FEWER = "the entries' numbers", "check a lower order or fewer entries"
 
 
@@ -404,7 +404,7 @@ def _few_small_square_roots(calls: list[ex.Call], constants: Mapping[str, ex.Exp
 def _field_of(nodes: Sequence[ex.Expr], constants: Mapping[str, ex.Expr] | None,
               max_degree: int) -> FieldValues:
     builder = _Builder(constants, max_degree)
-    try:  # thousands of entries (a kernel family's surrogate): the memory left is read between them
+    try:  # thousands of entries (a continuous method's surrogate): the memory left is read between them
         values = [builder.value(n) for n in each_watched(nodes, _ENTRIES, _FEWER)]
     except RecursionError:  # a sum of a thousand square roots: a tree deeper than Python's stack
         raise NotAlgebraic("an expression is nested too deeply for exact arithmetic") from None

@@ -18,6 +18,7 @@ about exact coefficients.
 
 from __future__ import annotations
 
+import copy
 from fractions import Fraction
 from typing import Any, Iterable, Mapping, Sequence
 
@@ -46,7 +47,7 @@ MAX_ENTRY_TERMS = 100_000
 #: not interrupted by Ctrl-C or SIGTERM until they return).
 MAX_PRODUCT_WORK = 200_000_000
 
-_ENTRIES, _FEWER = "the family's entries", "check a lower order (a kernel's surrogate grows with it)"
+_ENTRIES, _FEWER = "the family's entries", "use fewer or smaller entries"
 
 
 def fresh_name(base: str, taken: Iterable[str]) -> str:
@@ -179,11 +180,33 @@ class ParametricEntries:
         self.ring = ParameterRing(parameters, found.field)
         # keyed by node identity: the nodes are kept alive with their values, so that an id
         # is never reused by another node while the map holds it
-        # a kernel's surrogate over a number field has n² entries of hundreds of digits,
-        # formed one by one: the memory left is read between them
+        # thousands of entries over a number field, each of hundreds of digits, are formed
+        # one by one: the memory left is read between them
         self._fixed = {id(node): (node, self.ring.element(v))
                        for (node, _), v in each_watched(zip(leaves, found.values), _ENTRIES, _FEWER)}
         self.values = [self._entry(node, place) for node, place in each_watched(zip(nodes, places), _ENTRIES, _FEWER)]
+
+    def over(self, parameters: Sequence[str]) -> "ParametricEntries":
+        """These constants and parameter-free parts, in the same field, over the ring of
+        ``parameters`` alone, with no entries of their own: a kernel read in τ, σ and
+        the parameters gives its family, whose entries are formed from the kernel's
+        coefficients in the parameters (τ and σ gone once the nodes are put in)."""
+        out = copy.copy(self)
+        out.ring = ParameterRing(parameters, self.ring.field)
+        out.dependent = parameter_closure(self.constants, parameters)
+        out.noun = "a parameter"
+        out._expanded = {}
+        out._fixed = {key: (node, out.ring.element(self.number(value))) for key, (node, value) in self._fixed.items()}
+        out.values = []
+        return out
+
+    def number(self, value: Any) -> Any:
+        """A parameter-free value of the ring as the number it is: a Fraction, or an
+        element of the field."""
+        if self.ring.field is not None:
+            return self._field_element(value)
+        coeffs = value.coeffs()
+        return Fraction(int(coeffs[0].p), int(coeffs[0].q)) if coeffs else Fraction(0)
 
     def polynomial_of(self, node: ex.Expr, place: str) -> Any:
         """Another expression over the same ring (an extra equation): its parameter-free

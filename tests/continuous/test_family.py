@@ -136,6 +136,27 @@ def test_avf_of_a_kernel_family_is_a_equal_to_tau_and_b_to_1(tmp_path):
     assert len(res.components) == 2 and all(c.avf is True for c in res.components)
 
 
+def test_a_kernel_family_over_a_number_field_is_its_surrogate_tableau_family(tmp_path):
+    """With √3 among the kernel's constants, the family read through the factors
+    V C Wᵀ over Q(√3) has the conditions of the family whose entries are the surrogate's,
+    written out one by one as texts: A_ij = w_j K(x_i, x_j), b_i = w_i."""
+    from rkcheck.methods.quadrature import rational_rule
+
+    f = tmp_path / "k.toml"
+    f.write_text('[parameters]\nk = "free"\n[constants]\nr = "sqrt(3)"\n'
+                 '[continuous]\nA = "tau + k*tau^3*(sigma - r/6)"\nb = "1"\n')
+    fc = rkcheck.family_conditions(f, degree=None, order=5)
+    n = fc.family.stages
+    x, w = rational_rule(n)
+    A = [[f"({w[j]})*(({x[i]}) + k*({x[i]})^3*(({x[j]}) - r/6))" for j in range(n)] for i in range(n)]
+    written = rkcheck.family_from_arrays(A, [str(v) for v in w], ["k"], constants={"r": "sqrt(3)"})
+    ref = rkcheck.family_conditions(written, degree=None, order=5)
+    assert fc.family.ring.field.name == ref.family.ring.field.name == "sqrt(3)"
+    got = {c.id: str(c.polynomial) for c in fc.energy}
+    assert got == {c.id: str(c.polynomial) for c in ref.energy}
+    assert any("__theta" in p for p in got.values())  # √3 is in them, not only rationals
+
+
 def test_at_takes_exact_real_values_of_the_parameters(tmp_path):
     import mpmath
     import pytest
