@@ -210,18 +210,27 @@ class ParametricEntries:
 
     def polynomial_of(self, node: ex.Expr, place: str) -> Any:
         """Another expression over the same ring (an extra equation): its parameter-free
-        parts must be rational, or be constants of the family."""
+        parts (numbers, the family's constants, roots) must lie in the entries' field."""
         for leaf, _ in self._fixed_leaves([node], [place]):
-            if id(leaf) in self._fixed:
-                continue
-            if isinstance(leaf, ex.Name) and leaf.name in self.constants:
-                self._fixed[id(leaf)] = (leaf, self._name(leaf.name, place))
-                continue
-            value = xp.evaluate_exact(leaf, {})
-            if value is None:
-                raise UserError("only rational numbers and the family's constants may appear here", place)
-            self._fixed[id(leaf)] = (leaf, self.ring.constant(value))
+            if id(leaf) not in self._fixed:
+                self._fixed[id(leaf)] = (leaf, self._in_field(leaf, place))
         return self._entry(node, place)
+
+    def _in_field(self, leaf: ex.Expr, place: str) -> Any:
+        """A parameter-free part of an extra equation as a number of the entries' field:
+        found with the entries' own parts, the field must come out the same."""
+        fixed_constants = {k: v for k, v in self.constants.items() if k not in self.dependent}
+        try:
+            alone = field_of([leaf], fixed_constants)
+            if alone.field is None:  # a rational: in every field
+                return self.ring.constant(alone.values[0])
+            found = field_of([n for n, _ in self._fixed.values()] + [leaf], fixed_constants)
+        except NotAlgebraic as err:
+            raise UserError(f"not an exact algebraic number: {err}", place) from None
+        if self.ring.field is None or found.field is None or not found.field.same_as(self.ring.field):
+            field = "the rationals" if self.ring.field is None else f"Q({self.ring.field.name})"
+            raise UserError(f"{xp.to_text(leaf)} is not a number of the entries' field, {field}", place)
+        return self.ring.element(self.ring.field(found.values[-1].coeffs))
 
     def _entry(self, node: ex.Expr, place: str) -> Any:
         self._work = 0  # products of terms spent on this entry (MAX_PRODUCT_WORK), its constants included

@@ -102,3 +102,31 @@ def test_a_value_that_is_not_an_exact_real_number_is_refused_at_its_parameter(tm
     with pytest.raises(UserError) as err:
         rkcheck.load_family(path).at({"c": value})
     assert str(err.value).startswith(message), str(err.value)
+
+
+def _gauss_family(tmp_path):
+    # Gauss-2's A with weights moved by k: Gauss-2, symplectic, at k = √3/6 = r/6
+    path = tmp_path / "g.toml"
+    path.write_text('[parameters]\nk = "free"\n[constants]\nr = "sqrt(3)"\n'
+                    '[tableau]\nA = [["1/4", "1/4 - r/6"], ["1/4 + r/6", "1/4"]]\n'
+                    'b = ["1/2 + k - r/6", "1/2 - k + r/6"]\n', encoding="utf-8")
+    return path
+
+
+def test_an_extra_equation_may_name_a_constant_with_a_root(tmp_path):
+    # --where "6*k = r" with r = √3: the family's own constant, a number of its field
+    # (it was refused: "cannot read this part of the entry as a polynomial")
+    path = _gauss_family(tmp_path)
+    res = rkcheck.solve(path, degree=2, order=4, where=["6*k = r"])
+    assert [s.values["k"].text for s in res.solutions] == ["1/6*sqrt(3)"]
+    member = rkcheck.load_family(path).at(res.solutions[0].values)
+    gauss = rkcheck.load("@gauss-2")
+    for i in range(2):
+        for j in range(2):
+            assert abs(_value(member.A[i][j]) - _value(gauss.A[i][j])) < mpmath.mpf(10) ** -35
+
+
+def test_an_extra_equation_outside_the_entries_field_is_refused_in_one_line(tmp_path):
+    with pytest.raises(UserError) as err:
+        rkcheck.solve(_gauss_family(tmp_path), degree=2, order=4, where=["k = sqrt(2)"])
+    assert str(err.value).endswith("sqrt(2) is not a number of the entries' field, Q(sqrt(3))"), str(err.value)
