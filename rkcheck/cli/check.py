@@ -32,6 +32,7 @@ from rkcheck.cli.common import (
     settings,
     stdout_console,
 )
+from rkcheck.cli.families import at_option, family_member
 from rkcheck.cli.output import printed_for, write_text
 from rkcheck.errors import CheckInterrupted, OptionError, UserError
 from rkcheck.options import DEFAULT_DPS, INPUT_FORMATS, JOBS_RANGE
@@ -65,16 +66,17 @@ def load_input(file: str, max_stages: int, input_format: str | None):
               help="Split an exact check's passes over the workers of this Dask cluster (tcp://host:8786; "
               "needs rkcheck[cluster]).")
 @fail_on_option
+@at_option
 @output_options
 def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arithmetic, require, input_format, show_all,
-           draw, fmt, fail_fast, jobs, scheduler, fail_on) -> None:
+           draw, fmt, fail_fast, jobs, scheduler, fail_on, at) -> None:
     """Check every energy condition of the tableau in FILE ('-' = stdin), and the
     claims of its [expect] table."""
     from rkcheck.api.families import is_family_file
     from rkcheck.api.verification import run_check
 
     config = project_config()
-    if is_family_file(file):  # free [parameters]: the conditions as polynomials
+    if not at and is_family_file(file):  # free [parameters]: the conditions as polynomials
         from rkcheck.cli.families import family_report
 
         # a family's polynomials are exact, its decimals at face value: the other check
@@ -86,7 +88,7 @@ def verify(file, degree, order, dps, decimals, max_stages, max_conditions, arith
         sys.exit(EXIT_FAIL if gate and conditions.fails_everywhere is not None else EXIT_OK)
     if draw and fmt != "text":
         raise UserError(f"--draw draws in the text report, not in --format {fmt}")
-    tab = load_input(file, max_stages, input_format)
+    tab = family_member(file, at) if at else load_input(file, max_stages, input_format)
     fail_on = fail_on or config.fail_on or "auto"
     interrupted = False
     try:
@@ -137,13 +139,14 @@ def _write_report(result, fmt: str, show_all: bool, fail_on: str, draw: bool) ->
 @decimals_option("auto")
 @max_stages_option
 @input_format_option
+@at_option
 @output_options
-def show(file, fmt, decimals, max_stages, input_format) -> None:
+def show(file, fmt, decimals, max_stages, input_format, at) -> None:
     """Print the tableau in FILE as a Butcher table, with its kind and any warnings
     (FILE may be @name, a shipped tableau; .csv/.tsv and nodepy .txt files are read too)."""
     from rkcheck.api.tableaux import tableau_warnings, write  # the public rkcheck.write
 
-    tab = load_input(file, max_stages, input_format)
+    tab = family_member(file, at) if at else load_input(file, max_stages, input_format)
     if getattr(tab, "is_continuous", False):
         from rkcheck.reports.continuous import show_continuous
 

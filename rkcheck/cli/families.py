@@ -16,7 +16,35 @@ from rkcheck.cli.common import (
     stdout_console,
 )
 from rkcheck.cli.output import check_output_target, write_text
-from rkcheck.errors import UserError, not_applying
+from rkcheck.errors import OptionError, UserError, not_applying
+
+
+def at_option(f: Any) -> Any:
+    return click.option("--at", "at", metavar="NAME=VALUE", multiple=True,
+                        help="With a family file (free [parameters]): the member at these values, one per "
+                        "parameter, exact: 'k=1/3', 'k=sqrt(3)/6', 'k=root(x^3 - x - 1, 1)' (repeatable).")(f)
+
+
+def family_member(file: str, at: tuple[str, ...]) -> Any:
+    """The method in the family FILE at the values of ``--at`` (``NAME=VALUE`` each),
+    with the file's ``[check]`` and claims: one method, checked as any other."""
+    from rkcheck.api.families import is_family_file, load_family
+
+    if not is_family_file(file):
+        raise OptionError(f"{file} has no free [parameters]: it is one method already", "--at")
+    values: dict[str, str] = {}
+    for text in at:
+        name, equals, value = (part.strip() for part in text.partition("="))
+        if not equals or not name or not value:
+            raise OptionError(f"expected NAME=VALUE, got {text!r}", "--at")
+        if name in values:
+            raise OptionError(f"{name} is given twice", "--at")
+        values[name] = value
+    family = load_family(file)
+    try:
+        return family.at(values, name=f"{family.name} at {', '.join(f'{k} = {v}' for k, v in values.items())}")
+    except UserError as err:  # a value's error, named by the option and its parameter
+        raise OptionError(err.message, f"--at {err.place}" if err.place else "--at") from None
 
 
 def family_report(file: str, flags: dict, classical_order: int | str | None, fmt: str, show_all: bool,

@@ -174,8 +174,9 @@ def _build(
     data, warnings = _tables(data)
     name, info = _method_info(data, source)
     if "parameters" in data and info.claims:
-        warnings.append("the [expect] claims are not judged for a family with free [parameters]: they state what "
-                        "one method does (check a member: a tableau file, or rkcheck.load_family(…).at(values))")
+        from rkcheck.methods.parametric import CLAIMS_OF_A_FAMILY
+
+        warnings.append(CLAIMS_OF_A_FAMILY)
 
     given = [key for key in _METHOD_TABLES if key in data]
     if len(given) > 1:  # each defines the whole method: which one was meant is not for us to guess

@@ -150,10 +150,10 @@ class Family:
         out = [xp.to_text(xp.substituted(ex.parse(t), subst)) for t in texts]
         constants = {k: xp.to_text(xp.substituted(v, subst)) for k, v in self.entries.constants.items()}
         if self.kernel:
-            return _kernel_from_texts(out[0], out[1], constants, name or self.name)
+            return _kernel_from_texts(out[0], out[1], constants, name or self.name, self.info)
         s = self.stages
         return _tableau_from_texts([out[i * s:(i + 1) * s] for i in range(s)], out[s * s:], constants,
-                                   name or self.name)
+                                   name or self.name, self.info)
 
 
 def _value_text(q: Fraction) -> str:
@@ -271,22 +271,34 @@ def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters:
     return build_family(name, params, A_text, b_text, consts, MethodInfo(source="<memory>"))
 
 
+#: a family file's warning about its claims: a member's are judged (``Family.at``)
+CLAIMS_OF_A_FAMILY = ("the [expect] claims are not judged for a family with free [parameters]: they state what one "
+                      "method does (check a member: `rkcheck verify FILE --at NAME=VALUE`, or "
+                      "rkcheck.load_family(…).at(values))")
+
+
+def _member_info(info: MethodInfo, constants: Any) -> MethodInfo:
+    """The family file's ``[check]``, claims, source and notes, as the member's: claims
+    state what one method does, and a member is where they are judged."""
+    return info.replace(constants=constants, warnings=tuple(w for w in info.warnings if w != CLAIMS_OF_A_FAMILY))
+
+
 def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants: Mapping[str, str],
-                        name: str) -> Tableau:
+                        name: str, info: MethodInfo) -> Tableau:
     from rkcheck.numbers.entries import Constants, Entry
 
     consts = Constants({k: ex.parse(v) for k, v in constants.items()})
     A_ = tuple(tuple(Entry.parse(x, consts) for x in row) for row in A)
     b_ = tuple(Entry.parse(x, consts) for x in b)
-    return Tableau(A=A_, b=b_, c=None, name=name, info=MethodInfo(constants=consts))
+    return Tableau(A=A_, b=b_, c=None, name=name, info=_member_info(info, consts))
 
 
-def _kernel_from_texts(A: str, b: str, constants: Mapping[str, str], name: str) -> Any:
+def _kernel_from_texts(A: str, b: str, constants: Mapping[str, str], name: str, info: MethodInfo) -> Any:
     from rkcheck.methods.continuous import ContinuousMethod
     from rkcheck.numbers.entries import Constants
 
     consts = Constants({k: ex.parse(v) for k, v in constants.items()})
-    return ContinuousMethod(A, b, name, MethodInfo(constants=consts))
+    return ContinuousMethod(A, b, name, _member_info(info, consts))
 
 
 def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> tuple[str, ...]:

@@ -4,10 +4,12 @@ itself, checked exactly."""
 
 from __future__ import annotations
 
+import json
 from fractions import Fraction
 
 import mpmath
 import pytest
+from support.clirun import run_cli
 from support.paths import TABLEAUX
 
 import rkcheck
@@ -130,3 +132,60 @@ def test_an_extra_equation_outside_the_entries_field_is_refused_in_one_line(tmp_
     with pytest.raises(UserError) as err:
         rkcheck.solve(_gauss_family(tmp_path), degree=2, order=4, where=["k = sqrt(2)"])
     assert str(err.value).endswith("sqrt(2) is not a number of the entries' field, Q(sqrt(3))"), str(err.value)
+
+
+def _gauss_with_free_nodes(tmp_path):
+    """Gauss-2 with its off-diagonal entries moved by k, and Gauss-2's file's [check] and
+    [expect] (published: classical order 4, symplectic, symmetric, degree-4 energy to
+    order 4): Gauss-2 at k = √3/6."""
+    shipped = (TABLEAUX / "collocation" / "gauss-2.toml").read_text(encoding="utf-8")
+    check = shipped[shipped.index("[check]"):]
+    path = tmp_path / "gauss-k.toml"
+    path.write_text('[parameters]\nk = "free"\n[tableau]\nA = [["1/4", "1/4 - k"], ["1/4 + k", "1/4"]]\n'
+                    f'b = ["1/2", "1/2"]\n{check}', encoding="utf-8")
+    return path
+
+
+def test_verify_at_checks_the_member_with_the_files_claims(tmp_path, capsys):
+    path = _gauss_with_free_nodes(tmp_path)
+    member = run_cli(capsys, "verify", str(path), "--at", "k = sqrt(3)/6", "--format", "json")
+    shipped = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--format", "json")
+    assert member.code == shipped.code == 0, member.err
+    got, want = json.loads(member.out), json.loads(shipped.out)
+    assert [(c["id"], c["state"], c["residual_exact"]) for c in got["conditions"]] == \
+        [(c["id"], c["state"], c["residual_exact"]) for c in want["conditions"]]
+    assert len(got["claims"]) == len(want["claims"]) == 8 and all(c["met"] for c in got["claims"])
+    assert not any("not judged" in w for w in got["warnings"])
+    # at k = 1/4 the nodes are 1/4 and 3/4: b·c² = 5/16 ≠ 1/3, classical order 2, the claim of 4 broken
+    other = run_cli(capsys, "verify", str(path), "--at", "k=1/4", "--format", "json")
+    assert other.code == 1
+    broken = {c["claim"] for c in json.loads(other.out)["claims"] if not c["met"]}
+    assert "classical_order" in broken
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--at", "k=sqrt(-3)"], "--at k: square root of a negative number"),
+    (["--at", "k"], "--at: expected NAME=VALUE, got 'k'"),
+    (["--at", "k=1", "--at", "k=2"], "--at: k is given twice"),
+    (["--at", "z=1"], "--at: no value for the parameter k"),
+    (["--at", "k=1", "--at", "z=1"], "--at: 'z' is not a parameter (the parameters are k)"),
+])
+def test_verify_at_refuses_a_bad_value_in_one_line(tmp_path, capsys, args, message):
+    run = run_cli(capsys, "verify", str(_gauss_with_free_nodes(tmp_path)), *args)
+    assert run.code == 2 and run.err.count("\n") == 1 and message in run.err, run.err
+
+
+def test_show_at_writes_the_member_as_a_file_that_reads_back_as_gauss_2(tmp_path, capsys):
+    run = run_cli(capsys, "show", str(_gauss_with_free_nodes(tmp_path)), "--at", "k=sqrt(3)/6", "--format", "toml")
+    assert run.code == 0
+    written = tmp_path / "member.toml"
+    written.write_text(run.out, encoding="utf-8")
+    member, gauss = rkcheck.load(written), rkcheck.load("@gauss-2")
+    assert all(abs(_value(member.A[i][j]) - _value(gauss.A[i][j])) < mpmath.mpf(10) ** -35
+               for i in range(2) for j in range(2))
+    assert len(member.info.claims) == len(gauss.info.claims)
+
+
+def test_at_on_a_file_of_one_method_is_refused(capsys):
+    run = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--at", "k=1")
+    assert run.code == 2 and "has no free [parameters]: it is one method already" in run.err
