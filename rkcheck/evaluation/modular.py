@@ -70,7 +70,7 @@ from __future__ import annotations
 import math
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
@@ -109,6 +109,8 @@ class ExactOrderSums:
     value_bits: int = 0  # the coefficients' bound: primes beyond the decision's, on demand
     dual: bool = False  # values from g'(θ)·N_e (ScaledTableau.dual_value_bits), not from N
     full: int | None = None  # primes known for every condition (None: all)
+    #: every order of the same evaluation, by vertices: small ones are completed along
+    siblings: dict[int, ExactOrderSums] | None = field(default=None, repr=False, compare=False)
 
     def __len__(self) -> int:
         return len(self.screened)
@@ -116,7 +118,7 @@ class ExactOrderSums:
     @property
     def residues(self) -> np.ndarray:
         """Every condition's residues at every prime (evaluated now where screened)."""
-        self._evaluate(list(self.primes))
+        _evaluate([(self, list(self.primes))])
         return self.screened
 
     def is_zero(self) -> np.ndarray:
@@ -156,27 +158,27 @@ class ExactOrderSums:
         return [t.field_element(list(c), scale) * inverse for c in zip(*columns)]
 
     def _complete(self) -> None:
-        """Evaluate the primes the coefficients' bound needs beyond the decision's."""
-        chosen = self.tableau.primes_for(self.value_bits) if self.value_bits else list(self.primes)
-        self._evaluate(chosen)
-        self.value_bits = 0
+        """Evaluate the primes the coefficients' bound needs beyond the decision's — in
+        the same passes, for the other orders of this evaluation that still need them
+        and have no more conditions than the tableau has stages: the passes' cost is
+        then forming A's images modulo each prime (a surrogate of hundreds of stages),
+        which every order's completion would repeat, and a report reads every order's
+        failing values in turn."""
+        along = [s for s in (self.siblings or {}).values()
+                 if s is not self and len(s) <= self.tableau.s and s._missing()]
+        _evaluate([(s, s._chosen()) for s in [self, *along]])
+        for s in [self, *along]:
+            s.value_bits = 0
 
-    def _evaluate(self, chosen: list[tuple[int, list[int]]]) -> None:
-        """Every condition's residues at the primes ``chosen`` (which start with
-        :attr:`primes`): those screened and those not evaluated yet, in passes over the
-        listing for this order."""
-        full = len(self.primes) if self.full is None else self.full
-        todo = chosen[full:]
-        if self.listing is None or not todo:
-            return
-        n = self.vertices
-        more = np.zeros((len(self.screened), len(todo), self.tableau.degree), dtype=self.screened.dtype)
-        for group, at in channel_passes(self.tableau, self.listing, todo, lambda i: [n], n):
-            for c, (i, j, _, _) in enumerate(group):
-                more[:, i, j] = at[n][:, c]
-        self.screened = np.concatenate([self.screened[:, :full], more], axis=1)
-        self.primes = list(self.primes) + list(chosen[len(self.primes):])
-        self.full = None
+    def _chosen(self) -> list[tuple[int, list[int]]]:
+        """The primes the exact value needs (the decision's, or the coefficients' bound's)."""
+        return self.tableau.primes_for(self.value_bits) if self.value_bits else list(self.primes)
+
+    def _full(self) -> int:
+        return len(self.primes) if self.full is None else self.full
+
+    def _missing(self) -> bool:
+        return self.listing is not None and len(self._chosen()) > self._full()
 
     def values(self) -> list[Any]:
         """Every condition's exact residual, the whole order at once
@@ -224,6 +226,36 @@ class ExactOrderSums:
                 for c in range(D)]
 
 
+def _evaluate(parts: list[tuple[ExactOrderSums, list[tuple[int, list[int]]]]]) -> None:
+    """Every condition's residues, for each ``(sums, chosen)``, at the primes
+    ``chosen`` (which start with its :attr:`~ExactOrderSums.primes`): those screened and
+    those not evaluated yet, in one series of passes over the listing for all the
+    orders (their primes are prefixes of one sequence)."""
+    parts = [(s, chosen) for s, chosen in parts if s.listing is not None and len(chosen) > s._full()]
+    if not parts:
+        return
+    first = parts[0][0]
+    start = min(s._full() for s, _ in parts)
+    longest = max((chosen for _, chosen in parts), key=len)
+    more = {s.vertices: np.zeros((len(s.screened), len(chosen) - s._full(), first.tableau.degree),
+                                 dtype=s.screened.dtype) for s, chosen in parts}
+    ends = {s.vertices: len(chosen) for s, chosen in parts}
+
+    def orders_for(i: int) -> list[int]:  # a pass's orders: those still short of primes from its first on
+        return [n for n in more if start + i < ends[n]]
+
+    for group, at in channel_passes(first.tableau, first.listing, longest[start:], orders_for, max(more)):
+        for n, sums in at.items():
+            for c, (i, j, _, _) in enumerate(group):
+                k = start + i - (ends[n] - more[n].shape[1])
+                if 0 <= k < more[n].shape[1]:
+                    more[n][:, k, j] = sums[:, c]
+    for s, chosen in parts:
+        s.screened = np.concatenate([s.screened[:, :s._full()], more[s.vertices]], axis=1)
+        s.primes = list(s.primes) + list(chosen[len(s.primes):])
+        s.full = None
+
+
 def _vandermonde_inverse(roots: list[int], p: int) -> list[list[int]]:
     """The inverse modulo p of the Vandermonde matrix ``(r_i^k)`` of distinct roots."""
     from flint import nmod_mat
@@ -261,7 +293,7 @@ def exact_condition_sums(scaled: ScaledTableau, listing: Listing, orders: Iterab
     if orders is None and _fill_contained(scaled, listing, count, channels, residues, full):
         if on_pass is not None and passes:
             on_pass(passes, passes)
-        return {n: result(n) for n in wanted}
+        return _linked({n: result(n) for n in wanted})
     left = [len(roots) for _, roots in channels[:passes]]  # channels still to come, per prime
     done = 0
     screen = True  # tried once, when the first prime is complete and others remain
@@ -290,11 +322,18 @@ def exact_condition_sums(scaled: ScaledTableau, listing: Listing, orders: Iterab
                             on_pass(done, passes)
                     break
     except KeyboardInterrupt:
-        raise EvaluationInterrupted({n: result(n) for n in wanted if count[n] <= done}) from None
-    out = {n: result(n) for n in wanted}
+        raise EvaluationInterrupted(_linked({n: result(n) for n in wanted if count[n] <= done})) from None
+    out = _linked({n: result(n) for n in wanted})
     if orders is None:
         _remember(scaled, listing, out)
     return out
+
+
+def _linked(sums: dict[int, ExactOrderSums]) -> dict[int, ExactOrderSums]:
+    """The orders of one evaluation, each knowing the others (:meth:`ExactOrderSums._complete`)."""
+    for s in sums.values():
+        s.siblings = sums
+    return sums
 
 
 def _fill_contained(scaled: ScaledTableau, listing: Listing, count: dict[int, int],

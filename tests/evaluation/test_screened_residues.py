@@ -171,3 +171,27 @@ def test_a_runner_s_passes_after_the_first_prime_are_left_when_screened(monkeypa
     assert ran == [0] and closed == [True]
     for n, o in sums.items():
         assert np.array_equal(o.is_zero(), plain[n].is_zero()), n
+
+
+def test_the_first_value_completes_the_small_orders_in_the_same_passes(monkeypatch):
+    # 12 stages: the orders of at most 12 conditions (3 … 6 vertices) need the primes
+    # beyond the screen for their values; the first value asked for evaluates them for
+    # all of them at once, and each value is the reference's
+    A, b = random_tableau(3, s=12)
+    one_channel_per_pass(monkeypatch)
+    scaled = scaled_rational(A, b)
+    listing = ConditionListing(6, None)
+    sums = exact_condition_sums(scaled, listing)
+    pending = sorted(n for n, o in sums.items() if o.full is not None)
+    assert len(pending) >= 3
+    calls = []
+    real = modular.channel_passes
+    monkeypatch.setattr(modular, "channel_passes", lambda *args: calls.append(args) or real(*args))
+    sums[pending[0]].value(0)
+    assert len(calls) == 1 and all(sums[n].full is None for n in pending)
+    refs = reference_conditions(6)
+    for n, o in sums.items():
+        for k, value in enumerate(o.values()):
+            rec = listing.record(n, k)
+            assert value * listing.flip(n, k) == ref.energy_residual(refs[rec.level_sequence], A, b), rec.id
+    assert len(calls) == 1  # completed once
