@@ -187,7 +187,7 @@ def busy(label: str) -> Iterator[None]:
     steps (family coefficients at large s, ranks, sweeps): hidden when stderr is not a
     terminal or --quiet; it disappears when the work is done."""
     console = make_console(settings(), stderr=True)
-    if settings().quiet or not console.is_terminal:
+    if settings().quiet or not _stderr_is_terminal():  # the stream itself, as for progress_steps
         yield
         return
     from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn

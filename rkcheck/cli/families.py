@@ -8,6 +8,7 @@ import click
 
 from rkcheck.cli.common import (
     DEGREE,
+    busy,
     echo_json,
     exit_codes,
     flag_values,
@@ -69,7 +70,8 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     # "order": the classical conditions up to the same order as the energy conditions
     classical = order if classical_order == "order" else classical_order
     assert classical is None or isinstance(classical, int)
-    result = family_conditions(family, degree=degree, order=order, classical_order=classical)
+    with busy("the conditions as polynomials in the parameters"):
+        result = family_conditions(family, degree=degree, order=order, classical_order=classical)
     if emit is not None:  # the polynomials as code (rkcheck.reports.family_code)
         from rkcheck.reports.family_code import FAMILY_LANGUAGES, emit_family
 
@@ -133,8 +135,9 @@ def solve(file, degree, order, classical_order, where, max_seconds, route, fmt, 
     flags = flag_values("degree", "order")  # given on the command line, else the file's [check]
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     try:
-        result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
-                     max_seconds=max_seconds, route=route)
+        with busy("solving the family's conditions"):
+            result = run(family, degree=degree, order=order, classical_order=classical_order, where=list(where),
+                         max_seconds=max_seconds, route=route)
     except UserError as err:  # an option's error names the option as typed (the API's argument is "route")
         if err.source or err.place != "route":
             raise
@@ -213,7 +216,8 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
         from rkcheck.reports.charts import pyplot
 
         pyplot("--plot")  # matplotlib present: fail before the work, not after
-    result = run(family, list(grids), degree=deg, order=N)
+    with busy("the family's conditions over the grid"):
+        result = run(family, list(grids), degree=deg, order=N)
     if plot is not None:
         from rkcheck.reports.sweep import sweep_chart
 

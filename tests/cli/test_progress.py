@@ -78,3 +78,15 @@ def test_the_terminal_shows_each_run_with_its_unit():
     assert re.search(r"degree ≤ 2, order ≤ 8 .* (\d+)/\1 primes", text)
     scan = _stderr_on_a_terminal("scan", str(RK4_CLAIMS.parent), "--jobs", "1")
     assert re.search(r"checking .* 2/2 files", scan)
+
+
+def test_a_familys_long_computations_show_that_they_run(tmp_path):
+    # a family's conditions, solve and sweep have no steps to count: a spinner with the
+    # elapsed time says each is running (it printed nothing for minutes)
+    family = REPO / "tableaux" / "families" / "sweep-s2-lobatto.toml"
+    conditions = _stderr_on_a_terminal("verify", str(family), "--order", "5")
+    assert "the conditions as polynomials in the parameters" in conditions
+    solve = _stderr_on_a_terminal("solve", str(family), "--order", "3")
+    assert "solving the family's conditions" in solve
+    sweep = _stderr_on_a_terminal("sweep", str(family), "--grid", "beta=0:1:3", "--grid", "gamma=0:1:3")
+    assert "the family's conditions over the grid" in sweep
