@@ -60,6 +60,9 @@ class AlgebraicValue:
     approx: complex
     minpoly: tuple[Fraction, ...] = ()
     ball: Any = None  # a certified complex enclosure (flint acb)
+    #: its place among the roots of ``minpoly`` as FLINT orders them (the real ones
+    #: first, increasing), when it is named as one (a minimal polynomial of degree ≥ 3)
+    index: int | None = None
 
     def expression(self) -> str | None:
         """The value in the entries' grammar (a rational, ``p ± q*sqrt(d)``, or
@@ -69,14 +72,10 @@ class AlgebraicValue:
             return None
         if len(self.minpoly) <= 3:  # a rational or a real quadratic: its text is a closed form
             return self.text
-        from flint import ctx, fmpq_poly
-
-        with ctx.workprec(APPROX_BITS):
-            found: Any = fmpq_poly([fmpq_of(c) for c in self.minpoly]).complex_roots()  # (acb, multiplicity) pairs
-        roots = [r for r, _ in found]
-        mine = next(r for r in roots if r.overlaps(self.ball))
-        below = sum(1 for r in roots if r.imag == 0 and r.real < mine.real)  # disjoint balls: decided
-        return f"root({_poly_text(list(self.minpoly), 'x')}, {below + 1})"
+        if self.index is None:
+            return None
+        # a real root's place among all roots is its place among the real ones
+        return f"root({_poly_text(list(self.minpoly), 'x')}, {self.index + 1})"
 
 
 @dataclass
@@ -471,7 +470,6 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
         K = NumberField([Fraction(int(x.p), int(x.q)) for x in psi.coeffs()], 1, name="z")
         minimal[name] = minimal_polynomial(K([Fraction(int(x.p), int(x.q)) for x in p.coeffs()]))
     P = minimal[name]
-    value = root_value([Fraction(int(x.p), int(x.q)) for x in p.coeffs()], root)
     from flint import fmpq_poly
 
     if len(P) < 3:
@@ -479,12 +477,7 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
     # which root of P the coordinate is, by enclosures: its value at a complex root of ψ
     # is a ball whose imaginary part straddles 0 even when it is real, so P's own root
     # (real exactly where it is real) is what the closed form is read from
-    from flint import ctx
-
-    with ctx.workprec(APPROX_BITS):  # P's roots, tight enough that every digit shown is right
-        found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
-    roots = [r for r, _ in found]
-    j = next(i for i, r in enumerate(roots) if r.overlaps(value))
+    j, roots, value = _which_root(P, [Fraction(int(x.p), int(x.q)) for x in p.coeffs()], psi, root, k)
     if len(P) == 3:
         return _coordinate(fmpq_poly([0, 1]), fmpq_poly([fmpq_of(x) for x in P]), roots[j], j)
     real = roots[j].imag == 0
@@ -497,4 +490,32 @@ def _value(p: Any, psi: Any, root: Any, k: int, minimal: dict[Any, Any], name: s
     # the polynomial in the coordinate's own name: with several parameters, an x would
     # read as another of them
     return AlgebraicValue(f"{kind}root {j + 1} of {_poly_text(P, name)} (≈ {approx.real:.10g}{imag})", real, approx,
-                          tuple(P), value)
+                          tuple(P), value, j)
+
+
+#: the working precision at which two roots of a minimal polynomial are taken to be
+#: told apart for certain (they are distinct: it is square-free)
+MAX_ROOT_BITS = 1 << 16
+
+
+def _which_root(P: list[Fraction], coeffs: list[Fraction], psi: Any, root: Any, k: int) -> tuple[int, list[Any], Any]:
+    """The place of ``p(z)`` (``coeffs``) at ψ's k-th root among the roots of its
+    minimal polynomial P, P's roots, and the value: the precision doubles until one root
+    of P alone overlaps the value (two can lie closer than a first enclosure tells)."""
+    from flint import ctx, fmpq_poly
+
+    bits = APPROX_BITS  # P's roots, tight enough that every digit shown is right
+    while True:
+        with ctx.workprec(bits):
+            found: Any = fmpq_poly([fmpq_of(x) for x in P]).complex_roots()  # (acb, multiplicity) pairs
+            if bits > APPROX_BITS:
+                root = psi.complex_roots()[k][0]
+            value = root_value(coeffs, root)
+        roots = [r for r, _ in found]
+        hits = [i for i, r in enumerate(roots) if r.overlaps(value)]
+        if len(hits) == 1:
+            return hits[0], roots, value
+        if bits >= MAX_ROOT_BITS:
+            raise ArithmeticError(f"the roots of a minimal polynomial of degree {len(P) - 1} were not told apart "
+                                  f"at {bits} bits")
+        bits *= 2

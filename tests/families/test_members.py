@@ -189,3 +189,18 @@ def test_show_at_writes_the_member_as_a_file_that_reads_back_as_gauss_2(tmp_path
 def test_at_on_a_file_of_one_method_is_refused(capsys):
     run = run_cli(capsys, "verify", str(TABLEAUX / "collocation" / "gauss-2.toml"), "--at", "k=1")
     assert run.code == 2 and "has no free [parameters]: it is one method already" in run.err
+
+
+def test_two_roots_closer_than_a_first_enclosure_are_told_apart(tmp_path):
+    # x⁴ = 2(10¹⁰x − 1)²: two real roots near 10⁻¹⁰, about 3·10⁻³⁰ apart; each solution
+    # was named (and built by at()) as the same root
+    path = tmp_path / "x.toml"
+    path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
+    res = rkcheck.solve(path, degree=2, order=1, where=["x^4 - 2*(10^10*x - 1)^2"])
+    assert len({s.values["x"].text for s in res.solutions}) == 4
+    mpmath.mp.dps = 80
+    want = sorted(mpmath.polyroots([1, 0, -2 * 10**20, 4 * 10**10, -2], maxsteps=200, extraprec=400))
+    fam = rkcheck.load_family(path)
+    got = sorted(_value(fam.at(s.values).A[0][0], digits=60) for s in res.solutions)
+    assert all(abs(g - w) < mpmath.mpf(10) ** -45 for g, w in zip(got, want))
+    assert got[2] - got[1] > mpmath.mpf(10) ** -31
