@@ -206,7 +206,8 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
         raise UserError(f"--format {fmt} and --emit do not go together (--emit writes {emit} code)")
     if file is not None:
         if count or stages or explicit or (output and emit is None):
-            raise UserError("with a FAMILY file: --order, --degree, --classical, --format, --emit and --output only")
+            raise UserError("with a FAMILY file: --order, --degree, --classical, --format and --emit only "
+                            "(--output goes with --emit)")
         from rkcheck.api.families import is_family_file
         from rkcheck.api.tableaux import load as load_file
 

@@ -218,19 +218,27 @@ class ParametricEntries:
 
     def _in_field(self, leaf: ex.Expr, place: str) -> Any:
         """A parameter-free part of an extra equation as a number of the entries' field:
-        found with the entries' own parts, the field must come out the same."""
+        built with the entries' own parts, then carried into the field as the entries
+        have it (built again, its generator may differ: ``sqrt(12)`` for ``sqrt(3)``)."""
+        from rkcheck.numbers.same_field import carried
+
         fixed_constants = {k: v for k, v in self.constants.items() if k not in self.dependent}
+        parts = list(self._fixed.values())
         try:
-            alone = field_of([leaf], fixed_constants)
-            if alone.field is None:  # a rational: in every field
-                return self.ring.constant(alone.values[0])
-            found = field_of([n for n, _ in self._fixed.values()] + [leaf], fixed_constants)
+            found = field_of([n for n, _ in parts] + [leaf], fixed_constants)
         except NotAlgebraic as err:
             raise UserError(f"not an exact algebraic number: {err}", place) from None
-        if self.ring.field is None or found.field is None or not found.field.same_as(self.ring.field):
-            field = "the rationals" if self.ring.field is None else f"Q({self.ring.field.name})"
-            raise UserError(f"{xp.to_text(leaf)} is not a number of the entries' field, {field}", place)
-        return self.ring.element(self.ring.field(found.values[-1].coeffs))
+        value = found.values[-1]
+        rational = value if found.field is None else value.rational()
+        if rational is not None:
+            return self.ring.constant(rational)
+        field = self.ring.field
+        number = None if field is None else \
+            carried(value, [(found.values[i], self.number(v)) for i, (_, v) in enumerate(parts)], field)
+        if number is None:
+            raise UserError(f"{xp.to_text(leaf)} is not a number of the entries' field, "
+                            f"{'the rationals' if field is None else f'Q({field.name})'}", place)
+        return self.ring.element(number)
 
     def _entry(self, node: ex.Expr, place: str) -> Any:
         self._work = 0  # products of terms spent on this entry (MAX_PRODUCT_WORK), its constants included

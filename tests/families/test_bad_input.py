@@ -169,3 +169,10 @@ def test_check_options_that_do_not_apply_to_a_family_are_named_not_dropped(capsy
     plain = json.loads(run_cli(capsys, "verify", path, "--format", "json").out)
     assert not any("do not apply" in w for w in plain["warnings"])
     assert doc["conditions"] == plain["conditions"]  # the conditions themselves are the same
+
+
+def test_conditions_of_a_family_say_output_goes_with_emit(capsys):
+    # -o without --emit was refused by a message listing --output among the options allowed
+    run = run_cli(capsys, "conditions", str(TABLEAUX / "families" / "seed-kernel-zeta-0.toml"), "--order", "3",
+                  "--format", "json", "-o", "out.json")
+    assert run.code == 2 and run.err.rstrip().endswith("(--output goes with --emit)"), run.err

@@ -204,3 +204,31 @@ def test_two_roots_closer_than_a_first_enclosure_are_told_apart(tmp_path):
     got = sorted(_value(fam.at(s.values).A[0][0], digits=60) for s in res.solutions)
     assert all(abs(g - w) < mpmath.mpf(10) ** -45 for g, w in zip(got, want))
     assert got[2] - got[1] > mpmath.mpf(10) ** -31
+
+
+def test_an_extra_equations_number_written_with_another_generator_of_the_field_is_in_it(tmp_path):
+    # built again with the entries' parts, root(x^2 - 12, 2) gives Q(√3) with another
+    # generator (√12): the same field, and the same solution as with r = √3 itself
+    path = _gauss_family(tmp_path)
+    same = rkcheck.solve(path, degree=2, order=4, where=["12*k = root(x^2 - 12, 2)"])
+    assert [s.values["k"].text for s in same.solutions] == ["1/6*sqrt(3)"]
+
+
+@pytest.mark.parametrize("constant, r, where, k", [
+    ("sqrt(3) + sqrt(5)", lambda: mpmath.sqrt(3) + mpmath.sqrt(5), "k = sqrt(8 + 2*sqrt(15))",
+     lambda: mpmath.sqrt(3) + mpmath.sqrt(5)),
+    ("sqrt(3) + sqrt(5)", lambda: mpmath.sqrt(3) + mpmath.sqrt(5), "k = sqrt(15)", lambda: mpmath.sqrt(15)),
+    ("root(x^3 - 2, 1)", lambda: mpmath.cbrt(2), "k = root(x^3 - 4, 1)", lambda: mpmath.cbrt(4)),  # r², a root of its own
+])
+def test_a_number_of_the_field_with_another_generator_is_carried_into_the_entries(tmp_path, constant, r, where, k):
+    # the entries' field Q(√3 + √5) (degree 4) or Q(∛2); the equation's number built
+    # again has another generator: it was refused as "not a number of the entries' field"
+    path = tmp_path / "r.toml"
+    path.write_text(f'[parameters]\nk = "free"\n[constants]\nr = "{constant}"\n[tableau]\nA = [["k*r"]]\nb = ["1"]\n',
+                    encoding="utf-8")
+    res = rkcheck.solve(path, degree=2, order=1, where=[where])
+    assert len(res.solutions) == 1
+    mpmath.mp.dps = 50
+    member = rkcheck.load_family(path).at(res.solutions[0].values)
+    assert abs(_value(member.A[0][0]) - k() * r()) < mpmath.mpf(10) ** -35
+
