@@ -8,9 +8,11 @@ how they are represented exactly: :mod:`rkcheck.numbers.parametric`.
 from __future__ import annotations
 
 import dataclasses
+import numbers
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from decimal import Decimal
 from fractions import Fraction
 from typing import Any, Callable, Mapping, overload
 
@@ -169,6 +171,8 @@ def _value_node(value: Any, name: str) -> ex.Expr:
         text = value.expression()
         if text is None:
             raise UserError(f"{value.text} is not a real number: a method's entries are real", name)
+    elif type(value).__module__.startswith("sympy"):  # its text, as a family's entries take it
+        text = str(value)
     elif isinstance(value, str) and not _is_rational(value):
         text = value
     else:
@@ -202,20 +206,23 @@ def _exact_real(text: str, name: str) -> ex.Expr:
     try:
         field_of([node])
     except NotAlgebraic as err:
-        raise UserError(f"not an exact algebraic number: {err}", name) from None
+        raise UserError(f"cannot be used exactly: {err}", name) from None
     except UserError as err:
         raise err.located(name) from None
     return ex.parse(f"({text})")
 
 
 def _rational(value: Any, name: str) -> Fraction:
-    """A rational parameter value: an int, a Fraction, a text ``"1/3"``, or a finite float
-    (taken exactly, as the double it is)."""
-    if isinstance(value, bool) or not isinstance(value, (int, Fraction, float, str)):
+    """A rational parameter value: an integer or a Fraction (numpy's too), a Decimal, a
+    text ``"1/3"``, or a finite float (taken exactly, as the binary number it is)."""
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, Decimal, str)):
         raise UserError("expected a number (an int, a Fraction, a text such as '1/2 - sqrt(3)/6', or a value "
                         f"from solve), got {type(value).__name__}", name)
     try:
-        q = Fraction(value)
+        if isinstance(value, numbers.Rational):  # numpy's integers too: their parts as Python ints
+            q = Fraction(int(value.numerator), int(value.denominator))
+        else:
+            q = Fraction(value) if isinstance(value, (Decimal, str)) else Fraction(float(value))
     except (ValueError, OverflowError, ZeroDivisionError):
         raise UserError(f"expected a finite rational number, got {str(value)[:40]!r}", name) from None
     bits = max(q.numerator.bit_length(), q.denominator.bit_length())

@@ -232,3 +232,24 @@ def test_a_number_of_the_field_with_another_generator_is_carried_into_the_entrie
     member = rkcheck.load_family(path).at(res.solutions[0].values)
     assert abs(_value(member.A[0][0]) - k() * r()) < mpmath.mpf(10) ** -35
 
+
+
+def test_numbers_of_numpy_decimal_and_sympy_are_taken_exactly(tmp_path):
+    # as family_from_arrays takes them: numpy's integers and floats, Decimals, sympy
+    from decimal import Decimal
+
+    import numpy as np
+    import sympy
+
+    path = tmp_path / "c.toml"
+    path.write_text('[parameters]\nc = "free"\n[tableau]\nA = [["c"]]\nb = ["1"]\n', encoding="utf-8")
+    fam = rkcheck.load_family(path)
+    assert fam.at({"c": np.int64(3)}).A[0][0].exact == 3
+    assert fam.at({"c": np.float32(0.1)}).A[0][0].exact == Fraction(13421773, 2**27)  # float32's 0.1, exactly
+    assert fam.at({"c": Decimal("0.1")}).A[0][0].exact == Fraction(1, 10)
+    assert fam.at({"c": sympy.Rational(1, 3)}).A[0][0].exact == Fraction(1, 3)
+    mpmath.mp.dps = 50
+    entry = fam.at({"c": sympy.sqrt(3) / 6 + sympy.Rational(1, 2)}).A[0][0]
+    assert abs(_value(entry) - (mpmath.sqrt(3) / 6 + mpmath.mpf(1) / 2)) < mpmath.mpf(10) ** -35
+    with pytest.raises(UserError, match="got bool"):
+        fam.at({"c": np.bool_(True)})
