@@ -133,10 +133,11 @@ class Family:
     def at(self, values: Mapping[str, Any], name: str | None = None) -> Any:
         """The method at the given values of every parameter: a :class:`Tableau`, or for
         a family of kernels its :class:`~rkcheck.methods.continuous.ContinuousMethod`.  A
-        value is a rational (an int, a Fraction, a finite float taken exactly, a text
-        ``"1/3"``), an exact real number written as an entry is (``"1/2 - sqrt(3)/6"``,
-        ``"root(x^3 - x - 1, 1)"``), or a real value :func:`rkcheck.solve` found (a
-        solution's ``values`` may be passed whole)."""
+        value is a rational (an int, a Fraction, a Decimal, a finite float taken exactly,
+        numpy's too, a text ``"1/3"``), an exact real number written as an entry is
+        (``"1/2 - sqrt(3)/6"``, ``"root(x^3 - x - 1, 1)"``, a sympy number), or a real
+        value :func:`rkcheck.solve` found (a solution's ``values`` may be passed whole).
+        The member has the family file's ``[check]`` and claims."""
         if not isinstance(values, Mapping):
             raise UserError(f"expected a mapping of the parameters to their values, got {type(values).__name__}",
                             "values")
