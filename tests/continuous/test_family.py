@@ -166,11 +166,11 @@ def test_at_takes_exact_real_values_of_the_parameters(tmp_path):
     fam = rkcheck.load_family(_kernel_family(tmp_path))
     assert fam.at({"kappa": "1/3"}).A == fam.at({"kappa": Fraction(1, 3)}).A
     # at κ = √2 the member fails exactly the conditions whose polynomials do not vanish there
-    mpmath.mp.dps = 50
     fc = rkcheck.family_conditions(_kernel_family(tmp_path), degree=None, order=4)
-    root2 = mpmath.sqrt(2)
-    nonzero = {c.id for c in fc.energy
-               if abs(sum(mpmath.mpf(int(q.p)) / int(q.q) * root2 ** int(e[0]) for e, q in c.polynomial.terms())) > 1e-30}
+    with mpmath.workdps(50):
+        root2 = mpmath.sqrt(2)
+        nonzero = {c.id for c in fc.energy if abs(sum(mpmath.mpf(int(q.p)) / int(q.q) * root2 ** int(e[0])
+                                                      for e, q in c.polynomial.terms())) > 1e-30}
     member = rkcheck.verify(fam.at({"kappa": "sqrt(2)"}), degree=None, order=4, arithmetic="exact")
     assert nonzero and {c.id for c in member.conditions if c.verdict.state == "fails"} == nonzero
     assert {c.verdict.state for c in member.conditions if c.id not in nonzero} <= {"holds"}

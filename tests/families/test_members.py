@@ -18,6 +18,13 @@ from rkcheck.errors import UserError
 THEOREM_S3 = TABLEAUX / "families" / "theorem1-s3-m6.toml"
 
 
+@pytest.fixture(autouse=True)
+def _precision():
+    """60 digits for mpmath here, the global precision as it was afterwards."""
+    with mpmath.workdps(60):
+        yield
+
+
 def _value(entry, digits=40):
     """An entry's value to ``digits`` digits, from its certified enclosure."""
     box = entry.enclosure(4 * digits)
@@ -30,7 +37,6 @@ def test_solves_solutions_are_the_avf_methods_over_gauss_3_and_check_as_such():
     # way round: a_ij = c_i b_j with c = 1/2 ∓ √15/10, 1/2, 1/2 ± √15/10 and b = (5, 8, 5)/18
     res = rkcheck.solve(THEOREM_S3, degree=6, order=7)
     fam = rkcheck.load_family(THEOREM_S3)
-    mpmath.mp.dps = 60
     b = [mpmath.mpf(5) / 18, mpmath.mpf(8) / 18, mpmath.mpf(5) / 18]
     r = mpmath.sqrt(15) / 10
     orders = set()
@@ -55,7 +61,6 @@ def test_a_cubic_solution_is_the_real_root_it_names_and_a_complex_one_is_refused
     fam = rkcheck.load_family(path)
     real = [s for s in res.solutions if s.real]
     assert len(res.solutions) == 3 and len(real) == 1
-    mpmath.mp.dps = 50
     plastic = mpmath.findroot(lambda x: x**3 - x - 1, 1.3)  # the plastic number, the one real root
     assert abs(_value(fam.at(real[0].values).A[0][0]) - plastic) < mpmath.mpf(10) ** -35
     complex_one = next(s for s in res.solutions if not s.real)
@@ -70,7 +75,6 @@ def test_a_cubic_root_among_several_real_ones_is_numbered_as_the_grammar_numbers
     path.write_text('[parameters]\ny = "free"\n[tableau]\nA = [["y"]]\nb = ["1"]\n', encoding="utf-8")
     res = rkcheck.solve(path, degree=2, order=1, where=["y^3 - 3*y + 1"])
     fam = rkcheck.load_family(path)
-    mpmath.mp.dps = 50
     want = sorted(2 * mpmath.cos(2 * mpmath.pi * k / 9) for k in (2, 4, 8))
     got = sorted(_value(fam.at(s.values).A[0][0]) for s in res.solutions)
     assert len(got) == 3 and all(abs(g - w) < mpmath.mpf(10) ** -35 for g, w in zip(got, want))
@@ -83,7 +87,6 @@ def test_a_value_written_as_an_entry_is_taken_exactly(tmp_path):
     path.write_text('[parameters]\nc = "free"\n[tableau]\nA = [["c/2", "0"], ["c", "c/2"]]\nb = ["1/2", "1/2"]\n',
                     encoding="utf-8")
     fam = rkcheck.load_family(path)
-    mpmath.mp.dps = 50
     member = fam.at({"c": "1/2 - sqrt(3)/6"})
     assert abs(_value(member.A[1][0]) - (mpmath.mpf(1) / 2 - mpmath.sqrt(3) / 6)) < mpmath.mpf(10) ** -35
     # a rational as Python writes it stays that rational, not a rounded decimal's interval
@@ -198,7 +201,7 @@ def test_two_roots_closer_than_a_first_enclosure_are_told_apart(tmp_path):
     path.write_text('[parameters]\nx = "free"\n[tableau]\nA = [["x"]]\nb = ["1"]\n', encoding="utf-8")
     res = rkcheck.solve(path, degree=2, order=1, where=["x^4 - 2*(10^10*x - 1)^2"])
     assert len({s.values["x"].text for s in res.solutions}) == 4
-    mpmath.mp.dps = 80
+    mpmath.mp.dps = 80  # within the fixture's workdps: restored after the test
     want = sorted(mpmath.polyroots([1, 0, -2 * 10**20, 4 * 10**10, -2], maxsteps=200, extraprec=400))
     fam = rkcheck.load_family(path)
     got = sorted(_value(fam.at(s.values).A[0][0], digits=60) for s in res.solutions)
@@ -228,7 +231,6 @@ def test_a_number_of_the_field_with_another_generator_is_carried_into_the_entrie
                     encoding="utf-8")
     res = rkcheck.solve(path, degree=2, order=1, where=[where])
     assert len(res.solutions) == 1
-    mpmath.mp.dps = 50
     member = rkcheck.load_family(path).at(res.solutions[0].values)
     assert abs(_value(member.A[0][0]) - k() * r()) < mpmath.mpf(10) ** -35
 
@@ -248,7 +250,6 @@ def test_numbers_of_numpy_decimal_and_sympy_are_taken_exactly(tmp_path):
     assert fam.at({"c": np.float32(0.1)}).A[0][0].exact == Fraction(13421773, 2**27)  # float32's 0.1, exactly
     assert fam.at({"c": Decimal("0.1")}).A[0][0].exact == Fraction(1, 10)
     assert fam.at({"c": sympy.Rational(1, 3)}).A[0][0].exact == Fraction(1, 3)
-    mpmath.mp.dps = 50
     entry = fam.at({"c": sympy.sqrt(3) / 6 + sympy.Rational(1, 2)}).A[0][0]
     assert abs(_value(entry) - (mpmath.sqrt(3) / 6 + mpmath.mpf(1) / 2)) < mpmath.mpf(10) ** -35
     with pytest.raises(UserError, match="got bool"):
