@@ -6,24 +6,11 @@ from __future__ import annotations
 import json
 import re
 
-from collections import Counter
-
 import pytest
 from support.clirun import run_cli
-from support.limits import run_limited
+from support.counts import conditions_with
 
 from rkcheck.numbers.formatting import count_text
-
-# OEIS A000055 (free trees with n vertices) and A000081 (rooted trees with n vertices),
-# n = 0, 1, ...: an energy condition is a free tree that is not superfluous, and a free
-# tree with an even number n of vertices is superfluous when the two halves across its
-# central edge are the same rooted tree with n/2 vertices (A000081(n/2) of them).
-A000055 = [1, 1, 1, 1, 2, 3, 6, 11, 23, 47, 106, 235, 551, 1301, 3159, 7741, 19320, 48629, 123867, 317955]
-A000081 = [0, 1, 1, 2, 4, 9, 20, 48, 115, 286]
-
-
-def conditions_with(vertices: int) -> int:
-    return A000055[vertices] - (A000081[vertices // 2] if vertices % 2 == 0 else 0)
 
 
 @pytest.mark.parametrize("n", [0, 7, 999, 1000, 9999, 10_000, 80_936, 522_472, 3_489_323, 10**12, -12_345])
@@ -48,16 +35,6 @@ def test_conditions_count_prints_every_count_in_one_format(capsys):
         assert cell == count_text(int(cell.replace(",", "")))  # 1301 plain, 19,205 grouped
     doc = json.loads(run_cli(capsys, "conditions", "--order", "18", "--count", "--format", "json").out)
     assert doc["total"] == sum(conditions_with(n) for n in range(3, 20))  # JSON: a plain integer
-
-
-def test_a_json_listing_is_written_as_it_is_made():
-    # order 16: 18 MB of JSON; joined whole into one string (and encoded) on top of the
-    # listing, the report ran out of memory under 300 MB after the listing was built
-    run = run_limited(["-m", "rkcheck", "conditions", "--order", "16", "--format", "json"], memory_mb=300,
-                      cpu_seconds=120)
-    assert run.code == 0, (run.code, run.err[-300:])
-    doc = json.loads(run.out)
-    assert Counter(c["vertices"] for c in doc["conditions"]) == {n: conditions_with(n) for n in range(3, 18)}
 
 
 def test_limit_messages_use_the_same_format(capsys):
