@@ -18,10 +18,10 @@ from rkcheck.cli.common import (
     decimals_option,
     dps_option,
     echo_json,
+    echo_json_rows,
     exit_codes,
     fail_on_option,
     flag_values,
-    interrupts_deferred,
     load_tableau,
     max_conditions_option,
     max_stages_option,
@@ -113,15 +113,7 @@ def _write_report(result, fmt: str, show_all: bool, fail_on: str, draw: bool) ->
     written closes the document) or as text."""
     if fmt == "json":
         from rkcheck.reports.jsondoc import check_doc
-        with interrupts_deferred() as signal:  # the rows go out as made: a Ctrl-C ends them, the document closes
-            doc = check_doc(result, lazy=True)
-            doc["conditions"] = (c for c in doc["conditions"] if not signal.asked)
-            doc["conditions_complete"] = lambda: not signal.asked
-            echo_json(doc)
-        if signal.asked:
-            click.echo("rkcheck: interrupted while writing; the report lists the conditions written before "
-                       '(JSON "conditions_complete": false)', err=True)
-            sys.exit(EXIT_INTERRUPTED)
+        echo_json_rows(check_doc(result, lazy=True))  # the rows go out as made: a Ctrl-C ends them, the document closes
     else:
         from rkcheck.reports.text import render_check
 
@@ -237,7 +229,11 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc
 
-        echo_json(conditions_list_doc(listing, with_conditions=not count, lazy=True))
+        doc = conditions_list_doc(listing, with_conditions=not count, lazy=True)
+        if count:
+            echo_json(doc)
+        else:
+            echo_json_rows(doc)
         return
     from rkcheck.reports.trees import render_condition_list
 

@@ -118,6 +118,23 @@ def echo_json(doc: Any) -> None:
     click.echo()
 
 
+def echo_json_rows(doc: dict[str, Any], rows: str = "conditions") -> None:
+    """``doc`` as JSON (:func:`echo_json`), its list ``rows`` written as its rows are
+    made: a Ctrl-C or SIGTERM meanwhile ends the list, the document closes with
+    ``"<rows>_complete": false``, and the program ends with exit 130."""
+    import itertools
+    import sys
+
+    with interrupts_deferred() as signal:
+        doc[rows] = itertools.takewhile(lambda _: not signal.asked, iter(doc[rows]))
+        doc[f"{rows}_complete"] = lambda: not signal.asked
+        echo_json(doc)
+    if signal.asked:
+        click.echo(f"rkcheck: interrupted while writing; the report lists the {rows} written before "
+                   f'(JSON "{rows}_complete": false)', err=True)
+        sys.exit(EXIT_INTERRUPTED)
+
+
 def _stderr_is_terminal() -> bool:
     import sys
 

@@ -10,6 +10,7 @@ from rkcheck.cli.common import (
     DEGREE,
     busy,
     echo_json,
+    echo_json_rows,
     exit_codes,
     flag_values,
     output_options,
@@ -82,7 +83,7 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     if fmt == "json":
         from rkcheck.reports.families import conditions_doc
 
-        echo_json(conditions_doc(result, lazy=True))
+        echo_json_rows(conditions_doc(result, lazy=True))
         return result
     from rkcheck.reports.families import render_conditions
 

@@ -3,8 +3,13 @@
 from __future__ import annotations
 
 import json
+import os
+import signal
+import subprocess
+import sys
 from collections import Counter
 
+import pytest
 from support.counts import conditions_with
 from support.limits import run_limited
 
@@ -17,3 +22,36 @@ def test_a_json_listing_is_written_as_it_is_made():
     assert run.code == 0, (run.code, run.err[-300:])
     doc = json.loads(run.out)
     assert Counter(c["vertices"] for c in doc["conditions"]) == {n: conditions_with(n) for n in range(3, 18)}
+
+
+def _free_family(folder):
+    """A 3-stage tableau whose every entry is its own parameter: 12.7 MB of conditions
+    as polynomials at order 8."""
+    A = [[f"a{i}{j}" for j in range(1, 4)] for i in range(1, 4)]
+    b = [f"b{i}" for i in range(1, 4)]
+    path = folder / "free.toml"
+    path.write_text("[parameters]\n" + "".join(f'{n} = "free"\n' for n in sum(A, []) + b)
+                    + f"[tableau]\nA = {json.dumps(A)}\nb = {json.dumps(b)}\n", encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("family", [False, True], ids=["trees", "family"])
+def test_a_ctrl_c_while_the_conditions_are_written_closes_the_document(tmp_path, family):
+    # as verify's report: the rows end, the document closes with conditions_complete
+    # false, exit 130 (the document was cut off mid-row)
+    args = ["conditions", str(_free_family(tmp_path)), "--order", "8"] if family else ["conditions", "--order", "15"]
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *args, "--format", "json"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env=dict(os.environ, NO_COLOR="1"))
+    head = []
+    while not head or not head[-1].startswith('  "conditions": ['):
+        head.append(proc.stdout.readline())
+        assert head[-1], "the document ended before its conditions"
+    proc.send_signal(signal.SIGINT)
+    rest = proc.stdout.read()
+    err = proc.stderr.read()
+    proc.wait(timeout=120)
+    doc = json.loads("".join(head) + rest)
+    assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
+    assert doc["conditions_complete"] is False
+    written, vertices = len(doc["conditions"]), 9 if family else 16
+    assert 0 < written < sum(conditions_with(n) for n in range(3, vertices + 1))
