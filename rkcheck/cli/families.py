@@ -66,7 +66,7 @@ def family_report(file: str, flags: dict, classical_order: int | str | None, fmt
     if ignored:
         note = (f"{not_applying(ignored)} to a family (its conditions are exact polynomials, its decimals read at "
                 "face value): ignored")
-        family = dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, note)))
+        family = dataclasses.replace(family, notes=(*family.notes, note))
     degree, order = check_options(family, flags.get("degree", UNSET), flags.get("order", UNSET), ("--degree", "--order"))
     # "order": the classical conditions up to the same order as the energy conditions
     classical = order if classical_order == "order" else classical_order

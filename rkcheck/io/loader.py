@@ -173,10 +173,6 @@ def _build(
                         "`rkcheck show FILE --format tableau-json` (or `toml`) writes one that reads back")
     data, warnings = _tables(data)
     name, info = _method_info(data, source)
-    if "parameters" in data and info.claims:
-        from rkcheck.methods.parametric import CLAIMS_OF_A_FAMILY
-
-        warnings.append(CLAIMS_OF_A_FAMILY)
 
     given = [key for key in _METHOD_TABLES if key in data]
     if len(given) > 1:  # each defines the whole method: which one was meant is not for us to guess

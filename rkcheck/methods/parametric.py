@@ -27,6 +27,12 @@ from rkcheck.numbers.parametric import ParameterRing, ParametricEntries
 PARAMETER_KINDS = ("free",)
 
 
+#: a family file's warning about its claims: a member's are judged (``Family.at``)
+CLAIMS_OF_A_FAMILY = ("the [expect] claims are not judged for a family with free [parameters]: they state what one "
+                      "method does (check a member: `rkcheck verify FILE --at NAME=VALUE`, or "
+                      "rkcheck.load_family(…).at(values))")
+
+
 @dataclass(frozen=True)
 class Family:
     """``name``, the parameters, the entries as written (``A``, ``b`` texts) and as
@@ -52,9 +58,18 @@ class Family:
     widen: Callable[[int], "Family"] | None = field(default=None, compare=False, repr=False)
     #: a kernel family's A as a product ``V C Wᵀ`` (:class:`KernelMatrix`), or None
     factors: tuple[Any, Any, Any] | None = field(default=None, compare=False, repr=False)
+    #: warnings about the family as a whole (parameters no entry uses, options that do
+    #: not apply to a family), not about one of its methods: a member has none of them
+    notes: tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         return f"<Family {self.name!r}: {self.stages} stages, parameters {', '.join(self.parameters)}>"
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the file says beside the entries, then what holds of the family as a
+        whole: its claims are not judged, and its :attr:`notes`."""
+        return (*self.info.warnings, *((CLAIMS_OF_A_FAMILY,) if self.info.claims else ()), *self.notes)
 
     @property
     def stages(self) -> int:
@@ -279,18 +294,6 @@ def family_from_arrays(A: Sequence[Sequence[Any]], b: Sequence[Any], parameters:
     return build_family(name, params, A_text, b_text, consts, MethodInfo(source="<memory>"))
 
 
-#: a family file's warning about its claims: a member's are judged (``Family.at``)
-CLAIMS_OF_A_FAMILY = ("the [expect] claims are not judged for a family with free [parameters]: they state what one "
-                      "method does (check a member: `rkcheck verify FILE --at NAME=VALUE`, or "
-                      "rkcheck.load_family(…).at(values))")
-
-
-def _member_info(info: MethodInfo, constants: Any) -> MethodInfo:
-    """The family file's ``[check]``, claims, source and notes, as the member's: claims
-    state what one method does, and a member is where they are judged."""
-    return info.replace(constants=constants, warnings=tuple(w for w in info.warnings if w != CLAIMS_OF_A_FAMILY))
-
-
 def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants: Mapping[str, str],
                         name: str, info: MethodInfo) -> Tableau:
     from rkcheck.numbers.entries import Constants, Entry
@@ -298,7 +301,7 @@ def _tableau_from_texts(A: Sequence[Sequence[str]], b: Sequence[str], constants:
     consts = Constants({k: ex.parse(v) for k, v in constants.items()})
     A_ = tuple(tuple(Entry.parse(x, consts) for x in row) for row in A)
     b_ = tuple(Entry.parse(x, consts) for x in b)
-    return Tableau(A=A_, b=b_, c=None, name=name, info=_member_info(info, consts))
+    return Tableau(A=A_, b=b_, c=None, name=name, info=info.replace(constants=consts))
 
 
 def _kernel_from_texts(A: str, b: str, constants: Mapping[str, str], name: str, info: MethodInfo) -> Any:
@@ -306,7 +309,7 @@ def _kernel_from_texts(A: str, b: str, constants: Mapping[str, str], name: str, 
     from rkcheck.numbers.entries import Constants
 
     consts = Constants({k: ex.parse(v) for k, v in constants.items()})
-    return ContinuousMethod(A, b, name, _member_info(info, consts))
+    return ContinuousMethod(A, b, name, info.replace(constants=consts))
 
 
 def parse_parameters(table: Mapping[str, Any], constants: Mapping[str, Any]) -> tuple[str, ...]:
@@ -403,4 +406,4 @@ def _with_warnings(family: Family) -> Family:
     many = len(unused) > 1
     note = (f"parameter{'s' if many else ''} {', '.join(unused)} appear{'' if many else 's'} in no entry: "
             f"every value of {'them' if many else 'it'} gives the same method")
-    return dataclasses.replace(family, info=family.info.replace(warnings=(*family.info.warnings, note)))
+    return dataclasses.replace(family, notes=(*family.notes, note))

@@ -166,7 +166,7 @@ def solve_doc(family: Any, result: Any, options: dict[str, Any]) -> dict[str, An
         "schema": FAMILY_SCHEMA,
         "family": {"name": family.name, "source": family.info.source, "field": None if field is None else field.name},
         "options": options,
-        "warnings": list(family.info.warnings),
+        "warnings": list(family.warnings),
         "parameters": list(result.variables),
         "equations": result.equations,
         "eliminated": {k: polynomial_text(v, field) for k, v in result.eliminated.items()},
@@ -211,7 +211,7 @@ def avf_everywhere(result: Any) -> bool | None:
 def _verify_warnings(family: Any) -> list[str]:
     """The family's warnings, and what its Σb says of the members' consistency."""
     note = family.consistency_note
-    return [*family.info.warnings, *([note] if note else [])]
+    return [*family.warnings, *([note] if note else [])]
 
 
 def render_solution_set(family: Any, result: Any, console: Console, scope: str | None = None) -> None:
@@ -220,7 +220,7 @@ def render_solution_set(family: Any, result: Any, console: Console, scope: str |
     field = family.ring.field
     equations = f"{result.equations} equation{'' if result.equations == 1 else 's'}"
     console.print(Text(f"{family.name}: {equations} in {', '.join(result.variables)}", style="bold"))
-    for w in family.info.warnings:
+    for w in family.warnings:
         console.print(Text(f"warning: {w}", style="yellow"))
     if scope:
         console.print(Text(scope))

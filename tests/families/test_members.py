@@ -254,3 +254,17 @@ def test_numbers_of_numpy_decimal_and_sympy_are_taken_exactly(tmp_path):
     assert abs(_value(entry) - (mpmath.sqrt(3) / 6 + mpmath.mpf(1) / 2)) < mpmath.mpf(10) ** -35
     with pytest.raises(UserError, match="got bool"):
         fam.at({"c": np.bool_(True)})
+
+
+def test_a_member_has_the_files_warnings_not_the_familys(tmp_path):
+    # "z appears in no entry: every value of it gives the same method" is about the
+    # family; the member at z = 3 is one method (the note was carried over to it)
+    path = tmp_path / "unused.toml"
+    path.write_text('[parameters]\nk = "free"\nz = "free"\n[tableau]\nA = [["1/4", "1/4 - k"], ["1/4 + k", "1/4"]]\n'
+                    'b = ["1/2", "1/2"]\n[expect]\nsymplectic = true\n', encoding="utf-8")
+    fam = rkcheck.load_family(path)
+    assert any("z appears in no entry" in w for w in fam.warnings)
+    assert any("claims are not judged" in w for w in fam.warnings)
+    member = fam.at({"k": Fraction(1, 6), "z": 3})
+    assert member.info.warnings == () and len(member.info.claims) == 1
+    assert rkcheck.verify(member, order=3).claims[0].met  # b_i a_ij + b_j a_ji = b_i b_j for every k
