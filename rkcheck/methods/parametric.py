@@ -84,7 +84,7 @@ class Family:
         if self.reach is None or vertices <= self.reach or self.widen is None:
             return self
         try:
-            return self.widen(vertices)
+            return dataclasses.replace(self.widen(vertices), notes=self.notes)
         except UserError as err:
             raise err.located(source=self.info.source) from None
 

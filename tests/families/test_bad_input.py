@@ -169,6 +169,11 @@ def test_check_options_that_do_not_apply_to_a_family_are_named_not_dropped(capsy
     plain = json.loads(run_cli(capsys, "verify", path, "--format", "json").out)
     assert not any("do not apply" in w for w in plain["warnings"])
     assert doc["conditions"] == plain["conditions"]  # the conditions themselves are the same
+    # a family of kernels too: its surrogate is built again for the order, and the note
+    # was lost with the family it widened
+    kernel = str(FAMILIES / "continuous-collocation-kappa.toml")
+    doc = json.loads(run_cli(capsys, "verify", kernel, "--order", "3", "--dps", "80", "--format", "json").out)
+    assert any(w.startswith("--dps does not apply to a family") for w in doc["warnings"]), doc["warnings"]
 
 
 def test_conditions_of_a_family_say_output_goes_with_emit(capsys):
