@@ -163,7 +163,7 @@ def _passes_elsewhere(scheduler: str | None, jobs: int) -> Iterator[None]:
         return
     from rkcheck.batch.executors import executor_for
     from rkcheck.batch.passes import executor_passes
-    from rkcheck.evaluation.modular import passes_run_by
+    from rkcheck.evaluation.passes import passes_run_by
     from rkcheck.trees.listing import current_store
 
     with executor_for(address, jobs) as executor, passes_run_by(executor_passes(executor, current_store() is not None)):

@@ -2,7 +2,7 @@
 
 An exact check evaluates every condition modulo several primes (and, in a number field,
 at several roots of each): each *pass* over the listing computes some of these channels,
-independently of the others (:mod:`rkcheck.evaluation.modular`).  The passes of one
+independently of the others (:mod:`rkcheck.evaluation.passes`).  The passes of one
 check go to the workers as jobs; each worker rebuilds the same listing — of rooted trees
 (or read from its own listing cache), or by centroid — for the same order and degree,
 and sends back the residues of its pass.

@@ -91,7 +91,7 @@ class _LosingExecutor:
 
 
 def test_a_lost_pass_is_computed_here(tmp_path, one_channel_per_pass):
-    from rkcheck.evaluation.modular import passes_run_by
+    from rkcheck.evaluation.passes import passes_run_by
 
     with passes_run_by(passes.executor_passes(_LosingExecutor(), cache=False)):
         result = rkcheck.verify(tableau_file(tmp_path), order=ORDER, degree=None)

@@ -148,7 +148,7 @@ def test_claims_read_screened_residues_of_the_main_run(monkeypatch):
 def test_a_runner_s_passes_after_the_first_prime_are_left_when_screened(monkeypatch):
     # a runner is given every pass; once the first prime is complete and its zeros are
     # few, the others are not waited for (closing the runner: a cluster cancels them)
-    from rkcheck.evaluation.modular import passes_run_by
+    from rkcheck.evaluation.passes import passes_run_by
 
     one_channel_per_pass(monkeypatch)
     A, b = lobatto_iiia_3()
