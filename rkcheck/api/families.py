@@ -12,7 +12,8 @@ from rkcheck.api.verification import UNSET, _option
 from rkcheck.energy.family_conditions import FamilyConditions, PolynomialCondition
 from rkcheck.errors import OptionError
 from rkcheck.methods.parametric import Family, family_from_arrays
-from rkcheck.numbers.solving import AlgebraicValue, Solution, SolutionSet
+from rkcheck.numbers.coordinates import AlgebraicValue
+from rkcheck.numbers.solving import Solution, SolutionSet
 from rkcheck.options import (
     DEFAULT_FAMILY_ORDER,
     DEFAULT_MAX_STAGES,

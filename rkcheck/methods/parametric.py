@@ -181,7 +181,7 @@ def _value_text(q: Fraction) -> str:
 
 def _value_node(value: Any, name: str) -> ex.Expr:
     """A parameter's value (:meth:`Family.at`) as an expression to put in its place."""
-    from rkcheck.numbers.solving import AlgebraicValue
+    from rkcheck.numbers.coordinates import AlgebraicValue
 
     if isinstance(value, AlgebraicValue):
         text = value.expression()

@@ -107,7 +107,7 @@ def test_a_real_quadratic_coordinate_at_complex_roots_takes_its_own_conjugate():
     # root's real part (it was −√5 at all four: the ball's imaginary part straddles 0)
     from flint import fmpq, fmpq_poly
 
-    from rkcheck.numbers.solving import _value
+    from rkcheck.numbers.coordinates import coordinate_value as _value
 
     psi = fmpq_poly([36, 0, -8, 0, 1])
     z = fmpq_poly([0, 1])
@@ -163,7 +163,7 @@ def test_the_square_part_of_a_discriminant_by_hand_and_by_sympy():
     # D = square²·d exactly; d square-free (sympy factors it) below the trial limit's
     # square, and the square of a large prime beside a small factor still taken out
     sp = pytest.importorskip("sympy")
-    from rkcheck.numbers.solving import _squarefree_part
+    from rkcheck.numbers.coordinates import _squarefree_part
 
     rng = random.Random(7)
     for _ in range(300):
