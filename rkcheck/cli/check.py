@@ -229,11 +229,7 @@ def conditions(file, order, degree, count, fmt, emit, classical, stages, explici
     if fmt == "json":
         from rkcheck.reports.jsondoc import conditions_list_doc
 
-        doc = conditions_list_doc(listing, with_conditions=not count, lazy=True)
-        if count:
-            echo_json(doc)
-        else:
-            echo_json_rows(doc)
+        echo_json_rows(conditions_list_doc(listing, with_conditions=not count, lazy=True))
         return
     from rkcheck.reports.trees import render_condition_list
 

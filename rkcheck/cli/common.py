@@ -121,9 +121,14 @@ def echo_json(doc: Any) -> None:
 def echo_json_rows(doc: dict[str, Any], rows: str = "conditions") -> None:
     """``doc`` as JSON (:func:`echo_json`), its list ``rows`` written as its rows are
     made: a Ctrl-C or SIGTERM meanwhile ends the list, the document closes with
-    ``"<rows>_complete": false``, and the program ends with exit 130."""
+    ``"<rows>_complete": false``, and the program ends with exit 130.  A document
+    without the list (``conditions --count``) is written as it is."""
     import itertools
     import sys
+
+    if rows not in doc:
+        echo_json(doc)
+        return
 
     with interrupts_deferred() as signal:
         doc[rows] = itertools.takewhile(lambda _: not signal.asked, iter(doc[rows]))
