@@ -31,8 +31,10 @@ recursion (divisions by integers only) for enclosures; ``P = Q·R`` truncated to
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 from rkcheck.numbers import polynomials as poly
 from rkcheck.numbers.algebraic import FieldElement
@@ -213,20 +215,45 @@ def _rational_parts(A: sc.Matrix, b: sc.Vector) -> tuple[sc.Vector, sc.Vector, s
         return None
     if len(b) <= MAX_FRACTION_STAGES and all(_bits(x) <= MAX_FRACTION_BITS for x in entries):
         return None
-    from flint import fmpq, fmpq_mat, fmpq_poly
+    s = len(b)
+    head, Q = _head_and_charpoly(A, b)
+    P = (Q * poly.to_flint(head)).truncate(s + 1)
+    numerator, denominator = poly.rational_lowest_terms(P, Q)
+    return _series_of(P, Q, 2 * s + 1), numerator, denominator
+
+
+def _head_and_charpoly(A: sc.Matrix, b: sc.Vector) -> tuple[list[Fraction], Any]:
+    """r_0 … r_s and det(I − zA) (an ``fmpq_poly``) of a rational tableau, over the
+    integers: with D the common denominator of A, r_(k+1) = bᵀ(DA)^k 1 / D^k, so the s
+    products by the matrix are of integers (FLINT's rational matrices reduce every entry
+    of every product to lowest terms), and det(I − zA) is that of DA at z/D."""
+    from flint import fmpq_mat, fmpq_poly, fmpz_mat
 
     s = len(b)
-    M = fmpq_mat(s, s, [poly.to_fmpq(x) for row in A for x in row])
+    D = math.lcm(*(Fraction(x).denominator for row in A for x in row))
+    M = fmpz_mat(s, s, [int(Fraction(x) * D) for row in A for x in row])
     B = fmpq_mat(1, s, [poly.to_fmpq(x) for x in b])
-    v = fmpq_mat(s, 1, [fmpq(1)] * s)
-    series = [Fraction(1)]
-    for _ in range(2 * s):
-        series.append(poly.to_fraction((B * v)[0, 0]))
+    v = fmpz_mat(s, 1, [1] * s)
+    head = [Fraction(1)]
+    for k in range(s):
+        head.append(poly.to_fraction((B * fmpq_mat(v))[0, 0]) / D**k)
         v = M * v
-    Q = fmpq_poly(M.charpoly().coeffs()[::-1])  # det(I − zA) = z^s det(z⁻¹I − A)
-    P = (Q * poly.to_flint(series[: s + 1])).truncate(s + 1)
-    numerator, denominator = poly.rational_lowest_terms(P, Q)
-    return series, numerator, denominator
+    c = M.charpoly().coeffs()  # det(xI − DA) = Σ c_j x^j, so det(I − zA) = Σ c_(s−k) (z/D)^k
+    return head, fmpq_poly([poly.to_fmpq(Fraction(int(c[s - k]), D**k)) for k in range(s + 1)])
+
+
+def _series_of(P: Any, Q: Any, n: int) -> list[Fraction]:
+    """The first ``n`` coefficients of the power series P/Q (Q(0) = 1), by FLINT's series
+    division: past z^s they follow from P and Q alone, with no more products by A."""
+    import flint
+
+    saved = flint.ctx.cap
+    flint.ctx.cap = n
+    try:
+        coeffs = (flint.fmpq_series(P.coeffs(), prec=n) / flint.fmpq_series(Q.coeffs(), prec=n)).coeffs()
+    finally:
+        flint.ctx.cap = saved
+    return [poly.to_fraction(x) for x in coeffs] + [Fraction(0)] * (n - len(coeffs))
 
 
 def _bits(x: Fraction | int) -> int:

@@ -63,6 +63,20 @@ def test_arithmetic_matches_sympy(p, q):
     assert pl.evaluate(p, F(5, 3)) == F(str(P.eval(sp.Rational(5, 3))))
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_long_rational_products_are_sympys_with_their_length(seed):
+    # past MAX_FRACTION_PRODUCT pairs the product is FLINT's: the same coefficients as
+    # sympy's, as Fractions, and as many as the schoolbook gives (trailing zeros too)
+    rng = random.Random(50 + seed)
+    p = random_poly(rng, rng.randint(20, 60), den=10**30)
+    q = random_poly(rng, rng.randint(20, 60)) + [F(0)] * seed
+    assert len(p) * len(q) > pl.MAX_FRACTION_PRODUCT
+    product = pl.mul(p, q)
+    assert len(product) == len(p) + len(q) - 1
+    assert all(type(c) is F for c in product)
+    assert pl.trim(product) == from_sympy(to_sympy(p) * to_sympy(pl.trim(q)))
+
+
 @pytest.mark.parametrize("p, d", random_cases(2, 40))
 def test_division_with_remainder_matches_sympy(p, d):
     quot, rem = pl.divide(p, d)

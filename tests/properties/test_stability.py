@@ -259,18 +259,25 @@ def test_enclosures_contain_the_exact_stability_function(seed):
     assert abs(p_enc / q_enc - p_exact / q_exact) < F(1, 10**20)
 
 
-@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("seed", range(13))
 def test_fraction_and_flint_routes_agree(seed, monkeypatch):
-    # small rational tableaux use the generic Fraction path (Hessenberg + Euclid), large
-    # ones FLINT's fmpq_mat charpoly and fmpq_poly gcd: two independent routes, forced
-    # here on the same tableaux (up to 11 stages) and compared exactly
+    # small rational tableaux use the generic Fraction path (Hessenberg + Euclid, the
+    # series by products with A, the defect by schoolbook products), large ones FLINT's
+    # (integer products with DA, its charpoly, fmpq_poly gcd, the series past z^s by
+    # series division, long products by fmpq_poly): two independent routes, forced here
+    # on the same tableaux (up to 11 stages, and one of 20) and compared exactly
+    import rkcheck.numbers.polynomials as pl
     import rkcheck.properties.stability as stab
 
     rng = random.Random(1000 + seed)
-    A, b = random_tableau(rng, rng.randint(1, 11), explicit=seed % 3 == 0)
+    A, b = random_tableau(rng, 20 if seed == 12 else rng.randint(1, 11), explicit=seed % 3 == 0)
     monkeypatch.setattr(stab, "MAX_FRACTION_STAGES", 100)
+    monkeypatch.setattr(pl, "MAX_FRACTION_PRODUCT", 10**9)
     by_fractions = stability_function(A, b)
+    texts = by_fractions.defect_numerator, by_fractions.defect_text()
     monkeypatch.setattr(stab, "MAX_FRACTION_STAGES", 0)
+    monkeypatch.setattr(pl, "MAX_FRACTION_PRODUCT", 0)
     by_flint = stability_function(A, b)
     for attr in ("series", "numerator", "denominator", "defect", "leading_power", "leading_coefficient"):
         assert getattr(by_fractions, attr) == getattr(by_flint, attr), attr
+    assert (by_flint.defect_numerator, by_flint.defect_text()) == texts
