@@ -9,7 +9,6 @@ import click
 from rkcheck.cli.common import (
     DEGREE,
     busy,
-    echo_json,
     echo_json_rows,
     exit_codes,
     flag_values,
@@ -226,7 +225,7 @@ def sweep(file, grids, degree, order, plot, fmt, as_json) -> None:
     if fmt == "json" or as_json:
         from rkcheck.reports.sweep import sweep_doc
 
-        echo_json(sweep_doc(result))
+        echo_json_rows(sweep_doc(result, lazy=True), rows="points")  # a Ctrl-C ends the points, the document closes
         return
     from rkcheck.reports.sweep import render_sweep
 

@@ -26,7 +26,11 @@ def _cell(order: int, cap: int) -> str:
     return "*" if order >= cap else (str(order) if order < 10 else "+")
 
 
-def sweep_doc(sw: Any) -> dict[str, Any]:
+def sweep_doc(sw: Any, lazy: bool = False) -> dict[str, Any]:
+    """``rkcheck sweep --format json`` (``lazy``: the points a generator, made as they
+    are written)."""
+    points = ({"values": {k: _text(v) for k, v in p.items()}, "energy_order": o}
+              for p, o in zip(sw.points(), sw.orders))
     return {
         "rkcheck": __version__,
         "schema": FAMILY_SCHEMA,
@@ -35,8 +39,7 @@ def sweep_doc(sw: Any) -> dict[str, Any]:
         "order_checked": sw.order,
         "energy_order_generic": sw.generic,
         "grid": {name: [_text(v) for v in values] for name, values in sw.axes},
-        "points": [{"values": {k: _text(v) for k, v in p.items()}, "energy_order": o}
-                   for p, o in zip(sw.points(), sw.orders)],
+        "points": points if lazy else list(points),
     }
 
 

@@ -12,6 +12,7 @@ from collections import Counter
 import pytest
 from support.counts import conditions_with
 from support.limits import run_limited
+from support.paths import TABLEAUX
 
 
 def test_a_json_listing_is_written_as_it_is_made():
@@ -55,3 +56,26 @@ def test_a_ctrl_c_while_the_conditions_are_written_closes_the_document(tmp_path,
     assert doc["conditions_complete"] is False
     written, vertices = len(doc["conditions"]), 9 if family else 16
     assert 0 < written < sum(conditions_with(n) for n in range(3, vertices + 1))
+
+
+def test_a_ctrl_c_while_a_sweeps_points_are_written_closes_the_document():
+    # 10 000 points (1 MB): the reader stops at the list, so the writer blocks on the
+    # full pipe and the signal arrives while the points are written
+    args = ["sweep", str(TABLEAUX / "families" / "sweep-s2-lobatto.toml"), "--grid", "beta=-1:1:100", "--grid", "gamma=0:1:100",
+            "--order", "3", "--format", "json"]
+    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env=dict(os.environ, NO_COLOR="1"))
+    head = []
+    while not head or not head[-1].startswith('  "points": ['):
+        head.append(proc.stdout.readline())
+        assert head[-1], "the document ended before its points"
+    proc.send_signal(signal.SIGINT)
+    rest = proc.stdout.read()
+    err = proc.stderr.read()
+    proc.wait(timeout=120)
+    doc = json.loads("".join(head) + rest)
+    assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
+    assert doc["points_complete"] is False
+    assert 0 < len(doc["points"]) < 100 * 100
+    # the points written are the grid's first, in its order
+    assert [p["values"] for p in doc["points"][:2]] == [{"beta": "-1", "gamma": "0"}, {"beta": "-1", "gamma": "1/99"}]
