@@ -1,5 +1,5 @@
 """What a typed notebook or script does with the public API; tests/api/test_typing.py
-runs mypy over it (and over rkcheck/api).  Not collected by pytest: no test_ prefix."""
+runs mypy over it (and over the package).  Not collected by pytest: no test_ prefix."""
 
 from __future__ import annotations
 
