@@ -49,12 +49,42 @@ def tune_process() -> None:
     gc.set_threshold(100_000, *gc.get_threshold()[1:])
 
 
+def _numpy_loads() -> bool:
+    """Whether numpy loads within this process's limit on its address space (``ulimit
+    -v``), tried in a forked child, which has the same limit and already uses what this
+    process uses.  Short of memory for its buffers as numpy loads it, OpenBLAS ends the
+    process itself (exit 1 — the exit code of a failing method — and a line of its own),
+    where no Python code can catch it.  Without a limit nothing is tried."""
+    import resource
+
+    limits = [resource.getrlimit(r)[0] for r in (resource.RLIMIT_AS, resource.RLIMIT_DATA)]
+    if all(limit == resource.RLIM_INFINITY for limit in limits) or not hasattr(os, "fork"):
+        return True
+    child = os.fork()
+    if child == 0:  # pragma: no cover - the child ends in os._exit, coverage never sees it
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, 1)
+            os.dup2(devnull, 2)
+            import numpy  # noqa: F401
+
+            os._exit(0)
+        except BaseException:
+            os._exit(1)
+    _, status = os.waitpid(child, 0)
+    return os.waitstatus_to_exitcode(status) == 0
+
+
 def main() -> None:
     """Tune the process, then run the command line; when it is done, the process ends:
     the interpreter's last full collection would walk every object still alive only to
     find that nothing is garbage (35-45 ms after a verify), so they are frozen (exit still
     flushes the streams and runs atexit handlers)."""
     tune_process()
+    if not _numpy_loads():
+        os.write(2, b"rkcheck: error: out of memory: the memory limit (ulimit -v) leaves too little to load numpy; "
+                    b"raise it (docs/errors.md)\n")
+        os._exit(2)
     from rkcheck.cli.main import (
         main as run_command_line,  # after the tuning: numpy reads it
     )
