@@ -251,3 +251,26 @@ def test_no_module_imports_in_a_cycle():
 def test_the_cycle_finder_finds_cycles():
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert cycles({"a": {"b"}, "b": set()}) == []
+
+
+#: the modules that import mpmath; .ci/run tests them (through the tests of these
+#: modules: dynamics, studies, the double-bush rank, arrays) with mpmath's newest release
+#: as well, so a module that starts to use mpmath belongs here and its tests there
+MPMATH_USERS = {"energy/double_bush.py", "energy/double_bush_rank.py", "dynamics/hamiltonians.py",
+                "dynamics/integrator.py", "dynamics/simulate.py", "studies/accuracy.py", "methods/arrays.py",
+                "reports/studies.py", "reports/simulation.py"}
+
+
+def test_the_modules_that_use_mpmath_are_the_ones_ci_tests_with_both_releases():
+    users = set()
+    for path in PACKAGE.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            if any(n.split(".")[0] == "mpmath" for n in names):
+                users.add(path.relative_to(PACKAGE).as_posix())
+    assert users == MPMATH_USERS
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    for tests in ("tests/dynamics", "tests/studies", "tests/energy/test_double_bush_exact.py",
+                  "tests/api/test_api_misuse.py"):
+        assert tests in ci
