@@ -458,7 +458,7 @@ def to_text(node: Expr) -> str:
 
     def combine(n: Expr, texts: list[str]) -> str:
         if isinstance(n, Num):
-            return n.text
+            return n.text or (str(n.value) if n.value.denominator == 1 and n.value >= 0 else f"({n.value})")
         if isinstance(n, Name):
             return n.name
         if isinstance(n, Call):

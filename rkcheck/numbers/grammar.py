@@ -35,6 +35,7 @@ import math
 import re
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 
 from rkcheck.errors import UserError
 from rkcheck.numbers.formatting import count_text
@@ -77,7 +78,9 @@ ROOT_VARIABLE = "x"
 
 @dataclass(frozen=True, slots=True)
 class Num:
-    """A literal.  ``digits`` = significant digits of a decimal literal, None for integers."""
+    """A literal.  ``digits`` = significant digits of a decimal literal, None for integers.
+    An empty ``text``: an exact number formed by rkcheck, not written (a coefficient of a
+    kernel's surrogate entry), which is written out as its value only when shown."""
 
     value: Fraction
     text: str
@@ -116,13 +119,7 @@ class Num:
             return self._as_double() if self.is_decimal else None
         if not self.is_rounded_decimal:
             return None
-        h = self.half_unit
-        lo, hi = self.value - h, self.value + h
-        if decimals is DecimalsMode.AUTO:
-            d = double_interval(self.value, written_digits=self.digits)
-            if d is not None:
-                lo, hi = min(lo, d[0]), max(hi, d[1])
-        return lo, hi
+        return _rounded_interval(self.value, self.digits, self.last_digit_exponent, decimals is DecimalsMode.AUTO)
 
     def centre(self, decimals: DecimalsMode) -> Fraction:
         """The middle of the numbers this literal stands for: its face value, or, for a
@@ -134,12 +131,32 @@ class Num:
     def _as_double(self) -> tuple[Fraction, Fraction]:
         """The rounding interval of the double this literal reads as in ``float64``; a
         literal that rounds past the largest double is refused: it stands for no double."""
-        box = double_interval(self.value)
+        box = _double_box(self.value)
         if box is None:
             raise UserError(f"{self.text} is beyond the range of binary64 doubles, and "
                             "--decimals float64 reads every decimal as a double; write it exactly, or check "
                             "with another --decimals")
         return box
+
+
+@lru_cache(maxsize=4096)
+def _rounded_interval(value: Fraction, digits: int | None, last_digit_exponent: int,
+                      with_double: bool) -> tuple[Fraction, Fraction]:
+    """What a rounded decimal literal stands for (:meth:`Num.interval`), kept by its
+    value and digits: a literal of a kernel is enclosed once in every entry of its
+    surrogate, thousands of times per pass."""
+    h = Fraction(1, 2) * Fraction(10) ** last_digit_exponent
+    lo, hi = value - h, value + h
+    if with_double:
+        d = double_interval(value, written_digits=digits)
+        if d is not None:
+            lo, hi = min(lo, d[0]), max(hi, d[1])
+    return lo, hi
+
+
+@lru_cache(maxsize=4096)
+def _double_box(value: Fraction) -> tuple[Fraction, Fraction] | None:
+    return double_interval(value)
 
 
 def double_interval(value: Fraction, written_digits: int | None = None) -> tuple[Fraction, Fraction] | None:

@@ -66,10 +66,25 @@ class Interval:
         return Interval(self.lo - other.hi, self.hi - other.lo)
 
     def __mul__(self, other: "Interval") -> "Interval":
-        if self.is_point and other.is_point:
-            return Interval.point(self.lo * other.lo)
-        products = (self.lo * other.lo, self.lo * other.hi, self.hi * other.lo, self.hi * other.hi)
-        return Interval(min(products), max(products))
+        """By the signs of the end points, which pick the products that bound it (two,
+        or four where both intervals hold 0 inside): comparing products of long
+        fractions costs more than forming them."""
+        a, b = self, other
+        if a.is_point and b.is_point:
+            return Interval.point(a.lo * b.lo)
+        if a.lo >= 0:
+            if b.lo >= 0:
+                return Interval(a.lo * b.lo, a.hi * b.hi)
+            return Interval(a.hi * b.lo, a.lo * b.hi) if b.hi <= 0 else Interval(a.hi * b.lo, a.hi * b.hi)
+        if a.hi <= 0:
+            if b.lo >= 0:
+                return Interval(a.lo * b.hi, a.hi * b.lo)
+            return Interval(a.hi * b.hi, a.lo * b.lo) if b.hi <= 0 else Interval(a.lo * b.hi, a.lo * b.lo)
+        if b.lo >= 0:
+            return Interval(a.lo * b.hi, a.hi * b.hi)
+        if b.hi <= 0:
+            return Interval(a.hi * b.lo, a.lo * b.lo)
+        return Interval(min(a.lo * b.hi, a.hi * b.lo), max(a.lo * b.lo, a.hi * b.hi))
 
     def reciprocal(self) -> "Interval":
         """``1/x``; the caller must have excluded intervals that contain 0."""
