@@ -23,8 +23,8 @@ prints the same figures) and are deliberately on the high side:
   float halves — per entry and channel the classical order keeps open); the stage
   vectors beyond 4 stages (16 bytes per factor tree and stage exact, 170 in balls); and
   the entries as written (:func:`entries_size`), which a decimal box first encloses,
-  centres and differentiates in its decimals (4.5 ms an entry and 1.2 µs a character;
-  six times their memory again);
+  centres and differentiates in its decimals (0.5 ms an entry and 2 µs a character;
+  seven times their memory again);
 * memory: about 80 MB, plus 24 bytes per tree, plus up to 100 MB of working arrays that
   grow with the listing until 10 million trees (exact); balls count the terms' 24 bytes
   and 150 + 30·s bytes per factor tree at 50 digits (their stored weights: a and w of
@@ -100,14 +100,15 @@ SMALL_STAGES = 4
 ENTRY_BYTES_PER_CHARACTER = 4
 ENTRY_BYTES = 1000
 #: a decimal box's entries are each enclosed, centred and differentiated in its
-#: decimals before the evaluation starts: about 4.5 ms an entry and 1.2 µs a character
+#: decimals before the evaluation starts: about 0.5 ms an entry and 2 µs a character
 #: of its text (a kernel's surrogate: thousands of entries of hundreds of characters,
-#: each a copy of the kernel at two nodes), and the enclosures, centres and slopes take
-#: about six times the entries as written again (measured on kernels of degree 20–40
-#: at order 3: 18–81 s and 125–578 MB)
-BOX_SECONDS_PER_ENTRY = 4.5e-3
-BOX_SECONDS_PER_ENTRY_CHARACTER = 1.2e-6
-BOX_ENTRY_COPIES = 7
+#: each the kernel at two nodes, held as a sum over the monomials in its decimals with
+#: long rational coefficients), and the entries' numbers, enclosures, centres and slopes
+#: take about seven times the entries as written again (measured on kernels of degree
+#: 20–40 at order 3: 6–39 s and 132–631 MB, of which 5–35 s the box)
+BOX_SECONDS_PER_ENTRY = 0.5e-3
+BOX_SECONDS_PER_ENTRY_CHARACTER = 2.0e-6
+BOX_ENTRY_COPIES = 8
 #: Checks estimated below this many seconds run silently.
 QUIET_SECONDS = 5.0
 

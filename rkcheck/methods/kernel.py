@@ -155,22 +155,11 @@ class Kernel:
     def _at_nodes(self, p: Any, x: list[Fraction], w: list[Fraction], rows: bool = False,
                   only: list[int] | None = None) -> list[list[Any]]:
         """``w_j p(x_i, x_j)`` for the rational polynomial ``p(τ, σ)`` at every pair of
-        nodes, or ``w_i p(x_i)`` (one column) with ``rows``, as FLINT rationals: ``V_τ C
-        V_σᵀ``, ``C`` its coefficients and ``V`` the Vandermonde matrices of the nodes
-        (node by node in Python, a surrogate of a few hundred nodes would take seconds);
-        ``only``: the rows ``i`` in this list alone (pairs only)."""
-        from flint import fmpq_mat
-
+        nodes, or ``w_i p(x_i)`` (one column) with ``rows``, as FLINT rationals
+        (:func:`_at_nodes`); ``only``: the rows ``i`` in this list alone (pairs only)."""
         t, s = self._index("tau"), self._index("sigma")
-        monoms = [(int(m[t]), int(m[s])) for m in p.monoms()]
-        C = fmpq_mat(1 + max((i for i, _ in monoms), default=0), 1 + max((j for _, j in monoms), default=0))
-        for (i, j), c in zip(monoms, p.coeffs()):
-            C[i, j] = c
-        values = vandermonde(x if only is None else [x[i] for i in only], C.nrows()) * C
-        if not rows:
-            values = values * vandermonde(x, C.ncols()).transpose()
-        weights = [to_fmpq(q) for q in w]
-        return [[values[i, j] * weights[i if rows else j] for j in range(values.ncols())] for i in range(values.nrows())]
+        terms = {(int(m[t]), int(m[s])): c for m, c in zip(p.monoms(), p.coeffs())}
+        return _at_nodes(terms, x, w, rows, only)
 
     def _plain(self, constants: Constants) -> bool:
         """Whether the surrogate's entries are exact fractions (a rational kernel without
@@ -183,7 +172,17 @@ class Kernel:
         a check may weigh before it builds all n² entries)."""
         if self._plain(constants):
             return [sum(len(str(v)) for v in row) for row in self._at_nodes(self.A_poly, x, w, only=rows)]
+        parts = self._in_literals[0]
+        if parts is not None:
+            return [sum(len(text) for text, _ in row) for row in _combined(parts, self.nodes[0], x, w, False, rows)]
         return [sum(len(_weighted_text(w[j], _value_at(self.nodes[0], x[i], x[j]))) for j in range(len(x))) for i in rows]
+
+    @cached_property
+    def _in_literals(self) -> tuple[LiteralParts | None, LiteralParts | None]:
+        """A and B as sums of monomials in their decimal literals times rational
+        polynomials in τ and σ (:func:`in_literals`), or None where they are not."""
+        literals: dict[int, int] = {}
+        return in_literals(self.nodes[0], literals), in_literals(self.nodes[1], literals)
 
     def surrogate_entries(self, x: list[Fraction], w: list[Fraction],
                           constants: Constants) -> tuple[tuple[tuple[Entry, ...], ...], tuple[Entry, ...]]:
@@ -195,10 +194,157 @@ class Kernel:
             A = tuple(tuple(_rational_entry(v) for v in row) for row in self._at_nodes(self.A_poly, x, w))
             b = tuple(_rational_entry(row[0]) for row in self._at_nodes(self.B_poly, x, w, rows=True))
             return A, b
+        A_parts, B_parts = self._in_literals
+        if A_parts is not None and B_parts is not None:
+            # the kernel's values at the nodes formed once by FLINT for each monomial in
+            # the decimals; an entry is then a short sum over them, which the enclosures
+            # and derivatives along the literals read at a fraction of the kernel's cost
+            A = tuple(tuple(Entry.from_node(text, node, constants, shares_literals=True) for text, node in row)
+                      for row in _combined(A_parts, self.nodes[0], x, w, False))
+            b = tuple(Entry.from_node(text, node, constants, shares_literals=True)
+                      for (text, node), in _combined(B_parts, self.nodes[1], x, w, True))
+            return A, b
         A = tuple(tuple(_entry_at(self.nodes[0], w[j], x[i], x[j], constants) for j in range(n)) for i in range(n))
         b = tuple(_entry_at(self.nodes[1], w[i], x[i], Fraction(0), constants) for i in range(n))
         return A, b
 
+
+
+def _at_nodes(terms: dict[tuple[int, int], Any], x: list[Fraction], w: list[Fraction], rows: bool = False,
+              only: list[int] | None = None) -> list[list[Any]]:
+    """``w_j p(x_i, x_j)`` for ``p(τ, σ) = Σ c τ^i σ^j`` (``terms``: (i, j) → c) at
+    every pair of nodes, or ``w_i p(x_i)`` (one column) with ``rows``, as FLINT
+    rationals: ``V_τ C V_σᵀ``, ``C`` the coefficients and ``V`` the Vandermonde matrices
+    of the nodes (node by node in Python, a surrogate of a few hundred nodes would take
+    seconds)."""
+    from flint import fmpq_mat
+
+    C = fmpq_mat(1 + max((i for i, _ in terms), default=0), 1 + max((j for _, j in terms), default=0))
+    for (i, j), c in terms.items():
+        C[i, j] = c
+    values = vandermonde(x if only is None else [x[i] for i in only], C.nrows()) * C
+    if not rows:
+        values = values * vandermonde(x, C.ncols()).transpose()
+    weights = [to_fmpq(q) for q in w]
+    return [[values[i, j] * weights[i if rows else j] for j in range(values.ncols())] for i in range(values.nrows())]
+
+
+#: a kernel part: each monomial in the decimal literals (None: the part without them)
+#: with the polynomial in τ and σ it multiplies ((i, j) → coefficient)
+LiteralParts = list[tuple[ex.Expr | None, dict[tuple[int, int], Any]]]
+
+#: terms of a kernel expanded in its decimals, τ and σ beyond which the entries are formed
+#: from its expression instead (each term costs every entry a product)
+MAX_LITERAL_TERMS = 64
+
+
+class _NotPolynomial(Exception):
+    """A part of the kernel that is no polynomial in its decimals, τ and σ."""
+
+
+def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
+    """The kernel ``node`` as ``Σ_μ m_μ · p_μ(τ, σ)``: ``m_μ`` a monomial in its decimal
+    literals (the kernel's own nodes, so that each is one number in every entry of the
+    surrogate), ``p_μ`` rational; None when it names a constant, has a root or divides
+    by more than a number, or expands to more than :data:`MAX_LITERAL_TERMS` terms.
+    ``literals``: the decimals met so far (a node's id → its variable), shared by A and B."""
+    from flint import fmpq, fmpq_mpoly_ctx
+
+    nodes = [n for n in xp.walk(node) if isinstance(n, ex.Num) and n.is_decimal]
+    for n in nodes:
+        literals.setdefault(id(n), len(literals))
+    by_index = {literals[id(n)]: n for n in nodes}
+    ctx = fmpq_mpoly_ctx.get(("tau", "sigma") + tuple(f"l{k}" for k in range(len(literals))), "lex")
+    gens = ctx.gens()
+
+    def combine(n: ex.Expr, vals: list[Any]) -> Any:
+        if isinstance(n, ex.Num):
+            return gens[2 + literals[id(n)]] if n.is_decimal else ctx.from_dict({(0,) * ctx.nvars(): fmpq(
+                n.value.numerator, n.value.denominator)}) if n.value else ctx.from_dict({})
+        if isinstance(n, ex.Name) and n.name in VARIABLES:
+            return gens[VARIABLES.index(n.name)]
+        if isinstance(n, ex.Unary):
+            return -vals[0]
+        if isinstance(n, ex.Binary) and n.op in "+-*":
+            out = vals[0] + vals[1] if n.op == "+" else vals[0] - vals[1] if n.op == "-" else vals[0] * vals[1]
+        elif isinstance(n, ex.Binary) and vals[1].is_constant() and not vals[1].is_zero():
+            out = vals[0] / vals[1]
+        elif isinstance(n, ex.Power) and vals[1].is_constant() and _small_natural(vals[1]):
+            out = vals[0] ** int(vals[1].coeffs()[0]) if not vals[1].is_zero() else ctx.from_dict(
+                {(0,) * ctx.nvars(): fmpq(1)})
+        else:
+            raise _NotPolynomial
+        if len(out) > MAX_LITERAL_TERMS:
+            raise _NotPolynomial
+        return out
+
+    try:
+        poly = xp.fold(node, combine)
+    except _NotPolynomial:
+        return None
+    grouped: dict[tuple[int, ...], dict[tuple[int, int], Any]] = {}
+    for monom, c in zip(poly.monoms(), poly.coeffs()):
+        grouped.setdefault(tuple(int(e) for e in monom[2:]), {})[int(monom[0]), int(monom[1])] = c
+    return [(_monomial(powers, by_index), terms) for powers, terms in grouped.items()]
+
+
+def _small_natural(p: Any) -> bool:
+    c = p.coeffs()[0] if not p.is_zero() else 0
+    return int(getattr(c, "q", 1)) == 1 and 0 <= int(getattr(c, "p", c)) <= 1000
+
+
+def _monomial(powers: tuple[int, ...], nodes: dict[int, ex.Num]) -> ex.Expr | None:
+    """The product of the literals to their ``powers`` (None: no literal)."""
+    out: ex.Expr | None = None
+    for k, e in enumerate(powers):
+        if e:
+            factor: ex.Expr = nodes[k] if e == 1 else ex.Power(nodes[k], ex.Num(Fraction(e), str(e), None, 0), 0)
+            out = factor if out is None else ex.Binary("*", out, factor, 0)
+    return out
+
+
+def _combined(parts: LiteralParts, kernel: ex.Expr, x: list[Fraction], w: list[Fraction], rows: bool,
+              only: list[int] | None = None) -> list[list[tuple[str, ex.Expr]]]:
+    """The text and expression of every entry ``w_j A(x_i, x_j)`` (``rows``: of b,
+    ``w_i B(x_i)``, one column; ``kernel``: A or B as written): the text is the
+    kernel's at the nodes, the expression ``Σ_μ v_μ·m_μ`` with ``v_μ`` the rational
+    ``w_j p_μ(x_i, x_j)`` one number — a product per monomial in every pass over the
+    entries, where the kernel's own expression costs its every operation on the nodes'
+    long fractions; ``only``: these rows alone (pairs only)."""
+    tables = [(m, _at_nodes(terms, x, w, rows, only)) for m, terms in parts]
+    template = _text_template(kernel)
+    out = []
+    for k, i in enumerate(range(len(x)) if only is None else only):
+        row = []
+        for j in range(1 if rows else len(x)):
+            node: ex.Expr | None = None
+            for m, values in tables:
+                # every monomial, 0 times it too: the entry holds each decimal of the
+                # kernel, as the kernel's expression at the nodes does (its digits, its
+                # literal in the box)
+                q = to_fraction(values[k][j])
+                # no text of its own: hundreds of digits per entry, written only if shown
+                term: ex.Expr = ex.Num(q, "", None, 0) if m is None else ex.Binary("*", ex.Num(q, "", None, 0), m, 0)
+                node = term if node is None else ex.Binary("+", node, term, 0)
+            weight = w[i] if rows else w[j]
+            text = f"{weight.numerator}/{weight.denominator}*({template(x[i], Fraction(0) if rows else x[j])})"
+            row.append((text, node or ex.Num(Fraction(0), "0", None, 0)))
+        out.append(row)
+    return out
+
+
+def _text_template(kernel: ex.Expr) -> Any:
+    """``(τ, σ) ↦`` the kernel's text with the two nodes in place of tau and sigma (what
+    the kernel's expression at them reads as; written once, filled in per entry)."""
+    import re
+
+    pieces = re.split(r"\b(tau|sigma)\b", xp.to_text(kernel))
+
+    def fill(tau: Fraction, sigma: Fraction) -> str:
+        at = {"tau": f"({tau.numerator}/{tau.denominator})", "sigma": f"({sigma.numerator}/{sigma.denominator})"}
+        return "".join(at[p] if k % 2 else p for k, p in enumerate(pieces))
+
+    return fill
 
 
 def _rational_entry(v: Any) -> Entry:
@@ -206,16 +352,22 @@ def _rational_entry(v: Any) -> Entry:
     without the parser: a surrogate has thousands of entries, whose numerators run to
     hundreds of digits — FLINT writes them out, once each)."""
     q = to_fraction(v)
-    digits = str(abs(v.p))
+    node, text = _exact_node(q, str(abs(v.p)), str(v.q))
+    return Entry(text, node, _NO_CONSTANTS, q, False, None)
+
+
+def _exact_node(q: Fraction, digits: str | None = None, under: str | None = None) -> tuple[ex.Expr, str]:
+    """The expression of the rational ``q`` as the parser builds it from its text
+    (``-p/q``: a negated integer over an integer), and that text."""
+    digits = str(abs(q.numerator)) if digits is None else digits
     num: ex.Expr = ex.Num(Fraction(abs(q.numerator)), digits, None, 0)
     text = digits
     if q.numerator < 0:
         num, text = ex.Unary("-", num), "-" + digits
     if q.denominator == 1:
-        return Entry(text, num, _NO_CONSTANTS, q, False, None)
-    under = str(v.q)
-    node = ex.Binary("/", num, ex.Num(Fraction(q.denominator), under, None, 0), len(text) + 1)
-    return Entry(f"{text}/{under}", node, _NO_CONSTANTS, q, False, None)
+        return num, text
+    under = str(q.denominator) if under is None else under
+    return ex.Binary("/", num, ex.Num(Fraction(q.denominator), under, None, 0), len(text) + 1), f"{text}/{under}"
 
 
 _NO_CONSTANTS = Constants()
