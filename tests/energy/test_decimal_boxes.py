@@ -29,7 +29,8 @@ from support.clirun import run_cli, run_subprocess
 import rkcheck
 from rkcheck.energy.check import check
 from rkcheck.methods.tableau import Tableau
-from rkcheck.numbers.grammar import double_interval, parse
+from rkcheck.numbers.doubles import double_interval
+from rkcheck.numbers.grammar import parse
 from rkcheck.options import CheckOptions
 from rkcheck.verdicts import FAILS, HOLDS_TO_DIGITS
 
