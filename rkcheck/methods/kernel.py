@@ -209,7 +209,6 @@ class Kernel:
         return A, b
 
 
-
 def _at_nodes(terms: dict[tuple[int, int], Any], x: list[Fraction], w: list[Fraction], rows: bool = False,
               only: list[int] | None = None) -> list[list[Any]]:
     """``w_j p(x_i, x_j)`` for ``p(τ, σ) = Σ c τ^i σ^j`` (``terms``: (i, j) → c) at
@@ -248,7 +247,7 @@ def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
     surrogate), ``p_μ`` rational; None when it names a constant, has a root or divides
     by more than a number, or expands to more than :data:`MAX_LITERAL_TERMS` terms.
     ``literals``: the decimals met so far (a node's id → its variable), shared by A and B."""
-    from flint import fmpq, fmpq_mpoly_ctx
+    from flint import fmpq_mpoly_ctx
 
     nodes = [n for n in xp.walk(node) if isinstance(n, ex.Num) and n.is_decimal]
     for n in nodes:
@@ -259,8 +258,7 @@ def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
 
     def combine(n: ex.Expr, vals: list[Any]) -> Any:
         if isinstance(n, ex.Num):
-            return gens[2 + literals[id(n)]] if n.is_decimal else ctx.from_dict({(0,) * ctx.nvars(): fmpq(
-                n.value.numerator, n.value.denominator)}) if n.value else ctx.from_dict({})
+            return gens[2 + literals[id(n)]] if n.is_decimal else ctx.constant(to_fmpq(n.value))
         if isinstance(n, ex.Name) and n.name in VARIABLES:
             return gens[VARIABLES.index(n.name)]
         if isinstance(n, ex.Unary):
@@ -269,9 +267,12 @@ def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
             out = vals[0] + vals[1] if n.op == "+" else vals[0] - vals[1] if n.op == "-" else vals[0] * vals[1]
         elif isinstance(n, ex.Binary) and vals[1].is_constant() and not vals[1].is_zero():
             out = vals[0] / vals[1]
-        elif isinstance(n, ex.Power) and vals[1].is_constant() and _small_natural(vals[1]):
-            out = vals[0] ** int(vals[1].coeffs()[0]) if not vals[1].is_zero() else ctx.from_dict(
-                {(0,) * ctx.nvars(): fmpq(1)})
+        elif isinstance(n, ex.Power) and (k := _natural(vals[1])) is not None:
+            out = ctx.constant(1)
+            for _ in range(k):  # factor by factor: a long power is given up as it grows
+                out = out * vals[0]
+                if len(out) > MAX_LITERAL_TERMS:
+                    raise _NotPolynomial
         else:
             raise _NotPolynomial
         if len(out) > MAX_LITERAL_TERMS:
@@ -288,9 +289,12 @@ def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
     return [(_monomial(powers, by_index), terms) for powers, terms in grouped.items()]
 
 
-def _small_natural(p: Any) -> bool:
-    c = p.coeffs()[0] if not p.is_zero() else 0
-    return int(getattr(c, "q", 1)) == 1 and 0 <= int(getattr(c, "p", c)) <= 1000
+def _natural(p: Any) -> int | None:
+    """The exponent the constant polynomial ``p`` is (0 … MAX_EXPONENT), else None."""
+    if not p.is_constant():
+        return None
+    c = to_fraction(p.coeffs()[0]) if not p.is_zero() else Fraction(0)
+    return int(c) if c.denominator == 1 and 0 <= c <= ex.MAX_EXPONENT else None
 
 
 def _monomial(powers: tuple[int, ...], nodes: dict[int, ex.Num]) -> ex.Expr | None:
@@ -352,22 +356,16 @@ def _rational_entry(v: Any) -> Entry:
     without the parser: a surrogate has thousands of entries, whose numerators run to
     hundreds of digits — FLINT writes them out, once each)."""
     q = to_fraction(v)
-    node, text = _exact_node(q, str(abs(v.p)), str(v.q))
-    return Entry(text, node, _NO_CONSTANTS, q, False, None)
-
-
-def _exact_node(q: Fraction, digits: str | None = None, under: str | None = None) -> tuple[ex.Expr, str]:
-    """The expression of the rational ``q`` as the parser builds it from its text
-    (``-p/q``: a negated integer over an integer), and that text."""
-    digits = str(abs(q.numerator)) if digits is None else digits
+    digits = str(abs(v.p))
     num: ex.Expr = ex.Num(Fraction(abs(q.numerator)), digits, None, 0)
     text = digits
     if q.numerator < 0:
         num, text = ex.Unary("-", num), "-" + digits
     if q.denominator == 1:
-        return num, text
-    under = str(q.denominator) if under is None else under
-    return ex.Binary("/", num, ex.Num(Fraction(q.denominator), under, None, 0), len(text) + 1), f"{text}/{under}"
+        return Entry(text, num, _NO_CONSTANTS, q, False, None)
+    under = str(v.q)
+    node = ex.Binary("/", num, ex.Num(Fraction(q.denominator), under, None, 0), len(text) + 1)
+    return Entry(f"{text}/{under}", node, _NO_CONSTANTS, q, False, None)
 
 
 _NO_CONSTANTS = Constants()
