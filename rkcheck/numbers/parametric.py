@@ -236,8 +236,14 @@ class ParametricEntries:
         number = None if field is None else \
             carried(value, [(found.values[i], self.number(v)) for i, (_, v) in enumerate(parts)], field)
         if number is None:
+            from rkcheck.numbers.minimal import minimal_polynomial
+            from rkcheck.numbers.polynomials import poly_text
+
+            # the equation the number satisfies has coefficients in Q, which any field holds
             raise UserError(f"{xp.to_text(leaf)} is not a number of the entries' field, "
-                            f"{'the rationals' if field is None else f'Q({field.name})'}", place)
+                            f"{'the rationals' if field is None else f'Q({field.name})'}; write the polynomial "
+                            f"equation it is a root of instead: {poly_text(minimal_polynomial(value))} = 0 "
+                            f"for x = {xp.to_text(leaf)}", place)
         return self.ring.element(number)
 
     def _entry(self, node: ex.Expr, place: str) -> Any:

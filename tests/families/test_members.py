@@ -134,7 +134,14 @@ def test_an_extra_equation_may_name_a_constant_with_a_root(tmp_path):
 def test_an_extra_equation_outside_the_entries_field_is_refused_in_one_line(tmp_path):
     with pytest.raises(UserError) as err:
         rkcheck.solve(_gauss_family(tmp_path), degree=2, order=4, where=["k = sqrt(2)"])
-    assert str(err.value).endswith("sqrt(2) is not a number of the entries' field, Q(sqrt(3))"), str(err.value)
+    # with the equation √2 satisfies over Q (by hand: x² − 2), which any field can hold
+    assert str(err.value).endswith("sqrt(2) is not a number of the entries' field, Q(sqrt(3)); write the "
+                                   "polynomial equation it is a root of instead: x^2 - 2 = 0 for x = sqrt(2)"), \
+        str(err.value)
+    with pytest.raises(UserError) as err:
+        rkcheck.solve(_gauss_family(tmp_path), degree=2, order=4, where=["k = 1 + root(x^3 - 2, 1)/3"])
+    # x = 1 + ∛2/3: (3(x − 1))³ = 2, 27x³ − 81x² + 81x − 29 = 0
+    assert str(err.value).endswith("27*x^3 - 81*x^2 + 81*x - 29 = 0 for x = 1 + root(x^3 - 2, 1)/3"), str(err.value)
 
 
 def _gauss_with_free_nodes(tmp_path):
