@@ -12,7 +12,7 @@ from typing import Any
 
 from rkcheck.energy.check import CheckOptions
 from rkcheck.energy.error_constants import error_constant
-from rkcheck.errors import UserError
+from rkcheck.errors import UserError, is_out_of_memory
 from rkcheck.io.loader import load
 from rkcheck.numbers.formatting import decimal_string, digits_text
 from rkcheck.verdicts import State
@@ -52,8 +52,12 @@ def catalog_row(path: str, degrees: list[int | None], order: int, dps: int = 50,
         _fill_row(row, path, degrees, order, dps, budget)
     except UserError as err:  # one file's error is its row, the catalogue goes on
         row.error = str(err if err.source else err.located(source=path))
-    except (RecursionError, MemoryError) as err:
-        row.error = f"{path}: {'nesting too deep' if isinstance(err, RecursionError) else 'out of memory'}"
+    except RecursionError:
+        row.error = f"{path}: nesting too deep"
+    except (MemoryError, ImportError, OSError) as err:  # a library that could not be mapped too
+        if not is_out_of_memory(err):
+            raise
+        row.error = f"{path}: out of memory"
     return row
 
 

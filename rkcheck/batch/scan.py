@@ -26,6 +26,7 @@ from rkcheck.batch.executors import Executor, executor_for
 from rkcheck.batch.executors import (
     default_jobs as default_jobs,  # where callers found it before
 )
+from rkcheck.batch.jobs import internal_error
 from rkcheck.errors import UserError
 from rkcheck.io.printable import printable
 from rkcheck.options import DEFAULT_MAX_STAGES, DEFAULT_ORDER, resolve_check_options
@@ -165,10 +166,8 @@ def scan_file(path: str, flags: dict[str, Any], project: dict[str, Any], fail_on
         out.error = str(err.located(source=path) if not err.source else err)
     except RecursionError:
         out.error = f"{path}: nesting too deep"
-    except MemoryError:
-        out.error = f"{path}: out of memory; lower --order or --degree"
-    except Exception as err:  # a bug: this file's row says so, the other files go on
-        out.error = f"{path}: internal error: {type(err).__name__}: {err} (a bug in rkcheck; please report it)"
+    except Exception as err:  # memory running out, or a bug: this file's row says so, the other files go on
+        out.error = f"{path}: {internal_error(err)}"
     finally:
         out.time = round(time.perf_counter() - t0, 6)
     return out

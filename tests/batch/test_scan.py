@@ -696,3 +696,18 @@ def test_a_table_or_short_form_key_in_another_case_is_an_error_on_every_route(tm
     assert r.code == 2 and "Parameters: unknown table" in r.err
     r = run_cli(capsys, "catalog", str(tmp_path), "-N", "3")
     assert r.code == 1 and "write b" in r.out
+
+
+@pytest.mark.parametrize("memory_mb", [120, 130, 140, 160])
+def test_a_scan_short_of_memory_says_so_in_each_row_not_a_bug(memory_mb):
+    # under a limit this low FLINT's shared library cannot be mapped when a worker first
+    # imports it (an ImportError), or an allocation fails: the machine's memory, which the
+    # rows called "internal error … a bug in rkcheck"
+    from support.limits import run_limited
+
+    run = run_limited(["-m", "rkcheck", "scan", str(TABLEAUX / "collocation"), "-j", "1", "--format", "json"],
+                      memory_mb=memory_mb, cpu_seconds=120)
+    assert "internal error" not in run.out + run.err and "Traceback" not in run.err, (run.out[-500:], run.err[-500:])
+    if run.code in (0, 1):
+        rows = json.loads(run.out)["files"]
+        assert rows and all(r["status"] in ("ok", "failed") or r["error"] for r in rows)
