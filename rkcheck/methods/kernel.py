@@ -286,6 +286,11 @@ def in_literals(node: ex.Expr, literals: dict[int, int]) -> LiteralParts | None:
     grouped: dict[tuple[int, ...], dict[tuple[int, int], Any]] = {}
     for monom, c in zip(poly.monoms(), poly.coeffs()):
         grouped.setdefault(tuple(int(e) for e in monom[2:]), {})[int(monom[0]), int(monom[1])] = c
+    # a decimal the expansion cancels (times 0, to the power 0) is still written in the
+    # kernel, a number of its box like any other (definitions §5): 0 times it
+    kept = {k for powers in grouped for k, e in enumerate(powers) if e}
+    for k in sorted(set(by_index) - kept):
+        grouped[tuple(int(i == k) for i in range(len(literals)))] = {}
     return [(_monomial(powers, by_index), terms) for powers, terms in grouped.items()]
 
 
