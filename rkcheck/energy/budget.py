@@ -221,9 +221,12 @@ def check_budget(est: Estimate, budget: Budget | None, order: int) -> None:
         raise ResourceError(
             f"order {order} has {count(est.conditions)} conditions, above --max-conditions "
             f"{count(budget.max_conditions)}; lower --order or --degree, or raise --max-conditions")
-    if budget.max_conditions is None and budget.available_bytes is not None and est.bytes > budget.available_bytes:
+    # the estimate is of the whole process, its start (BASE_BYTES) included, which the
+    # memory available already leaves out (held, not to come): the check needs the rest
+    more = max(0, est.bytes - BASE_BYTES)
+    if budget.max_conditions is None and budget.available_bytes is not None and more > budget.available_bytes:
         raise ResourceError(
-            f"order {order} needs about {human_bytes(est.bytes)} for {count(est.conditions)} conditions but "
+            f"order {order} needs about {human_bytes(more)} more for {count(est.conditions)} conditions but "
             f"{human_bytes(budget.available_bytes)} is available; {budget.remedy}")
     if budget.announce is not None and est.seconds > QUIET_SECONDS:
         budget.announce(f"estimated {est.text()}")
