@@ -12,9 +12,10 @@ from functools import lru_cache
 @lru_cache(maxsize=4096)
 def rounded_interval(value: Fraction, digits: int | None, last_digit_exponent: int,
                       with_double: bool) -> tuple[Fraction, Fraction]:
-    """What a rounded decimal literal stands for (:meth:`~rkcheck.numbers.grammar.Num.interval`), kept by its
-    value and digits: a literal of a kernel is enclosed once in every entry of its
-    surrogate, thousands of times per pass."""
+    """What a rounded decimal literal stands for
+    (:meth:`~rkcheck.numbers.grammar.Num.interval`), kept by its value and digits: a
+    literal of a kernel is enclosed once in every entry of its surrogate, thousands of
+    times per pass."""
     h = Fraction(1, 2) * Fraction(10) ** last_digit_exponent
     lo, hi = value - h, value + h
     if with_double:
@@ -26,6 +27,8 @@ def rounded_interval(value: Fraction, digits: int | None, last_digit_exponent: i
 
 @lru_cache(maxsize=4096)
 def double_box(value: Fraction) -> tuple[Fraction, Fraction] | None:
+    """:func:`double_interval` of a literal read as a double (``--decimals float64``),
+    kept by its value."""
     return double_interval(value)
 
 
