@@ -36,24 +36,33 @@ def _free_family(folder):
     return path
 
 
-@pytest.mark.parametrize("family", [False, True], ids=["trees", "family"])
-def test_a_ctrl_c_while_the_conditions_are_written_closes_the_document(tmp_path, family):
-    # as verify's report: the rows end, the document closes with conditions_complete
-    # false, exit 130 (the document was cut off mid-row)
-    args = ["conditions", str(_free_family(tmp_path)), "--order", "8"] if family else ["conditions", "--order", "15"]
+def _interrupted_while_listing(args, rows):
+    """``rkcheck ARGS``'s JSON, read until its list ``rows`` begins; then a SIGINT, while
+    the writer (its reader stopped, the pipe full) is writing the list.  Returns the
+    document, checked to close (``<rows>_complete`` false) with exit 130, the interrupt's
+    line and no traceback."""
     proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *args, "--format", "json"], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, env=dict(os.environ, NO_COLOR="1"))
     head = []
-    while not head or not head[-1].startswith('  "conditions": ['):
+    while not head or not head[-1].startswith(f'  "{rows}": ['):
         head.append(proc.stdout.readline())
-        assert head[-1], "the document ended before its conditions"
+        assert head[-1], f"the document ended before its {rows}"
     proc.send_signal(signal.SIGINT)
     rest = proc.stdout.read()
     err = proc.stderr.read()
     proc.wait(timeout=120)
     doc = json.loads("".join(head) + rest)
     assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
-    assert doc["conditions_complete"] is False
+    assert doc[f"{rows}_complete"] is False
+    return doc
+
+
+@pytest.mark.parametrize("family", [False, True], ids=["trees", "family"])
+def test_a_ctrl_c_while_the_conditions_are_written_closes_the_document(tmp_path, family):
+    # as verify's report: the rows end, the document closes with conditions_complete
+    # false, exit 130 (the document was cut off mid-row)
+    args = ["conditions", str(_free_family(tmp_path)), "--order", "8"] if family else ["conditions", "--order", "15"]
+    doc = _interrupted_while_listing(args, "conditions")
     written, vertices = len(doc["conditions"]), 9 if family else 16
     assert 0 < written < sum(conditions_with(n) for n in range(3, vertices + 1))
 
@@ -61,21 +70,9 @@ def test_a_ctrl_c_while_the_conditions_are_written_closes_the_document(tmp_path,
 def test_a_ctrl_c_while_a_sweeps_points_are_written_closes_the_document():
     # 10 000 points (1 MB): the reader stops at the list, so the writer blocks on the
     # full pipe and the signal arrives while the points are written
-    args = ["sweep", str(TABLEAUX / "families" / "sweep-s2-lobatto.toml"), "--grid", "beta=-1:1:100", "--grid", "gamma=0:1:100",
-            "--order", "3", "--format", "json"]
-    proc = subprocess.Popen([sys.executable, "-m", "rkcheck", *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env=dict(os.environ, NO_COLOR="1"))
-    head = []
-    while not head or not head[-1].startswith('  "points": ['):
-        head.append(proc.stdout.readline())
-        assert head[-1], "the document ended before its points"
-    proc.send_signal(signal.SIGINT)
-    rest = proc.stdout.read()
-    err = proc.stderr.read()
-    proc.wait(timeout=120)
-    doc = json.loads("".join(head) + rest)
-    assert proc.returncode == 130 and "interrupted while writing" in err and "Traceback" not in err
-    assert doc["points_complete"] is False
+    family = TABLEAUX / "families" / "sweep-s2-lobatto.toml"
+    doc = _interrupted_while_listing(["sweep", str(family), "--grid", "beta=-1:1:100", "--grid", "gamma=0:1:100",
+                                      "--order", "3"], "points")
     assert 0 < len(doc["points"]) < 100 * 100
     # the points written are the grid's first, in its order
     assert [p["values"] for p in doc["points"][:2]] == [{"beta": "-1", "gamma": "0"}, {"beta": "-1", "gamma": "1/99"}]
