@@ -234,10 +234,10 @@ def _head_and_charpoly(A: sc.Matrix, b: sc.Vector) -> tuple[list[Fraction], Any]
     M = fmpz_mat(s, s, [int(Fraction(x) * D) for row in A for x in row])
     B = fmpq_mat(1, s, [poly.to_fmpq(x) for x in b])
     v = fmpz_mat(s, 1, [1] * s)
-    head = [Fraction(1)]
-    for k in range(s):
-        head.append(poly.to_fraction((B * fmpq_mat(v))[0, 0]) / D**k)
-        v = M * v
+    head, power = [Fraction(1)], 1  # power = D^k
+    for _ in range(s):
+        head.append(poly.to_fraction((B * fmpq_mat(v))[0, 0]) / power)
+        v, power = M * v, power * D
     c = M.charpoly().coeffs()  # det(xI − DA) = Σ c_j x^j, so det(I − zA) = Σ c_(s−k) (z/D)^k
     return head, fmpq_poly([poly.to_fmpq(Fraction(int(c[s - k]), D**k)) for k in range(s + 1)])
 
